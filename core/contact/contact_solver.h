@@ -1,0 +1,84 @@
+// SolveContact: one wheel on one rail, end to end. Placement -> contact search -> patch grids
+// and gaps -> influence operators -> normal solve -> patch results.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/contact/contact_types.h"
+#include "core/contact/hertz.h"
+#include "core/contact/normal_solver.h"
+#include "core/contact/patch_grid.h"
+#include "core/profile/profile.h"
+
+namespace railwear {
+
+// Where the wheel stands on the rail (single wheel; wheelsets come with rolling contact).
+struct WheelPlacement {
+  double lateral_shift_m = 0.0;   // y of the wheel profile origin in the rail frame [m]
+  double roll_rad = 0.0;          // rotation about x; positive turns +y toward +z (field side down)
+  double rolling_radius_m = 0.46; // wheel radius at the wheel profile's z = 0 [m]
+};
+
+// Prescribe exactly one of the two.
+struct ContactLoad {
+  std::optional<double> vertical_force_N;  // > 0, pressing the wheel down onto the rail
+  std::optional<double> approach_m;        // vertical approach from first contact
+};
+
+struct ContactProblem {
+  Profile wheel_profile;  // in the wheel profile frame
+  Profile rail_profile;   // in the rail profile frame (cant already applied)
+  Material wheel_material;
+  Material rail_material;
+  WheelPlacement placement;
+  ContactLoad load;
+  ModelOptions model;
+  NormalSolverOptions solver;
+};
+
+struct PatchResult {
+  double area_m2 = 0.0;
+  double p_max_Pa = 0.0;
+  double normal_force_N = 0.0;    // magnitude of the resultant of p over the patch
+  double vertical_force_N = 0.0;  // on the rail, positive downward (+z)
+  double lateral_force_N = 0.0;   // on the rail, positive toward +y (field side)
+  // Pressure centre mapped onto the rail profile, rail profile coordinates [m].
+  Eigen::Vector2d contact_point_yz_m = Eigen::Vector2d::Zero();
+  // Angle of the resultant force against the vertical [rad]; positive when it pushes the rail
+  // toward -y (gauge side), i.e. flange-root contact has a large positive angle.
+  double contact_angle_rad = 0.0;
+  int cells = 0;
+  int cells_in_contact = 0;
+  PatchGrid grid;               // empty for the Hertz model
+  Eigen::VectorXd pressure_Pa;  // per grid cell
+  std::optional<HertzSolution> hertz;  // the Hertz model's ellipse
+};
+
+struct StageTime {
+  std::string name;
+  double seconds = 0.0;
+};
+
+struct ContactResult {
+  SolverStatus status = SolverStatus::kNotConverged;
+  std::string message;
+  ModelOptions model;
+  double approach_m = 0.0;
+  int iterations = 0;
+  double time_s = 0.0;
+  double area_m2 = 0.0;
+  double p_max_Pa = 0.0;
+  double vertical_force_N = 0.0;
+  double lateral_force_N = 0.0;
+  std::vector<PatchResult> patches;
+  std::vector<StageTime> stages;
+};
+
+// Throws InputError for inconsistent input (both or neither load given, non-positive radius).
+ContactResult SolveContact(const ContactProblem& problem);
+
+}  // namespace railwear

@@ -1,0 +1,86 @@
+// Enum names and small helpers of contact_types.h.
+#include "core/contact/contact_types.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace railwear {
+
+double Material::Compliance() const {
+  return (1.0 - poisson_ratio * poisson_ratio) / (std::numbers::pi * youngs_modulus_Pa);
+}
+
+double ContactModulus(const Material& a, const Material& b) {
+  const double inv = (1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus_Pa +
+                     (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus_Pa;
+  return 1.0 / inv;
+}
+
+std::string_view ToString(GeometryModel v) {
+  return v == GeometryModel::kPlanar ? "planar" : "conformal";
+}
+std::string_view ToString(KernelModel v) {
+  return v == KernelModel::kBoussinesq ? "boussinesq" : "golubenko";
+}
+std::string_view ToString(ModelKind v) {
+  switch (v) {
+    case ModelKind::kHertz: return "hertz";
+    case ModelKind::kHalfspace: return "halfspace";
+    case ModelKind::kConformal: return "conformal";
+    case ModelKind::kCustom: return "custom";
+  }
+  return "?";
+}
+std::string_view ToString(AccuracyPreset v) {
+  switch (v) {
+    case AccuracyPreset::kDraft: return "draft";
+    case AccuracyPreset::kStandard: return "standard";
+    case AccuracyPreset::kReference: return "reference";
+    case AccuracyPreset::kFine: return "fine";
+  }
+  return "?";
+}
+
+std::optional<GeometryModel> GeometryModelFromString(std::string_view s) {
+  if (s == "planar") return GeometryModel::kPlanar;
+  if (s == "conformal") return GeometryModel::kConformal;
+  return std::nullopt;
+}
+std::optional<KernelModel> KernelModelFromString(std::string_view s) {
+  if (s == "boussinesq") return KernelModel::kBoussinesq;
+  if (s == "golubenko") return KernelModel::kGolubenko;
+  return std::nullopt;
+}
+std::optional<ModelKind> ModelKindFromString(std::string_view s) {
+  if (s == "hertz") return ModelKind::kHertz;
+  if (s == "halfspace") return ModelKind::kHalfspace;
+  if (s == "conformal") return ModelKind::kConformal;
+  return std::nullopt;
+}
+std::optional<AccuracyPreset> AccuracyPresetFromString(std::string_view s) {
+  if (s == "draft") return AccuracyPreset::kDraft;
+  if (s == "standard") return AccuracyPreset::kStandard;
+  if (s == "reference") return AccuracyPreset::kReference;
+  if (s == "fine") return AccuracyPreset::kFine;
+  return std::nullopt;
+}
+
+ModelOptions MakeModelOptions(ModelKind kind) {
+  ModelOptions o;
+  o.kind = kind;
+  switch (kind) {
+    case ModelKind::kHertz:
+    case ModelKind::kHalfspace:
+      o.geometry = GeometryModel::kPlanar;
+      o.kernel = KernelModel::kBoussinesq;
+      break;
+    case ModelKind::kConformal:
+    case ModelKind::kCustom:
+      o.geometry = GeometryModel::kConformal;
+      o.kernel = KernelModel::kGolubenko;
+      break;
+  }
+  return o;
+}
+
+}  // namespace railwear

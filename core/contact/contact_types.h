@@ -1,0 +1,79 @@
+// Plain value types shared by the contact pipeline: materials, model choices, influence
+// constants, accuracy presets. Units are SI unless the name says otherwise.
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace railwear {
+
+// Linear elastic, isotropic material of one body.
+struct Material {
+  double youngs_modulus_Pa = 210e9;  // E > 0
+  double poisson_ratio = 0.28;       // nu in [0, 0.5)
+  // Optional, used by wear and damage (issue 3/4); NaN when not given.
+  double hardness_Pa = std::numeric_limits<double>::quiet_NaN();
+  double shear_yield_Pa = std::numeric_limits<double>::quiet_NaN();
+
+  double ShearModulus() const { return youngs_modulus_Pa / (2.0 * (1.0 + poisson_ratio)); }
+  // k = (1 - nu^2) / (pi E)  [1/Pa]  (seed eq. 1)
+  double Compliance() const;
+};
+
+// 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2   [Pa]
+double ContactModulus(const Material& a, const Material& b);
+
+// Which surface the contact grid lives on.
+enum class GeometryModel {
+  kPlanar,     // tangent plane of the first contact point, gap along its normal (Model A)
+  kConformal,  // intermediate surface (seed eq. 1), gap by orthogonal projection (seed eq. 2)
+};
+// Which influence function couples pressure to normal displacement.
+enum class KernelModel {
+  kBoussinesq,  // half-space, Love's closed form per cell
+  kGolubenko,   // seed eq. 4, semi-empirical Kelvin type, cell-integrated
+};
+// The scene's `kind` shorthand. kHertz is analytic and uses no grid.
+enum class ModelKind { kHertz, kHalfspace, kConformal, kCustom };
+
+std::string_view ToString(GeometryModel v);
+std::string_view ToString(KernelModel v);
+std::string_view ToString(ModelKind v);
+// Return std::nullopt for an unknown name (the caller reports the error with file and key).
+std::optional<GeometryModel> GeometryModelFromString(std::string_view s);
+std::optional<KernelModel> KernelModelFromString(std::string_view s);
+std::optional<ModelKind> ModelKindFromString(std::string_view s);
+
+// Constants of the seed's eq. 4; the seed's values are the defaults. Dimensionless.
+//   w_z = (1/rho) [c_f k_f + c_z k_d dn^2/rho^2],  w_x,y = c_t k_d d(x,s)/rho^2,
+//   c_t = 1 + c_s sign(body)  (+1 concave body, -1 convex body).
+struct InfluenceConstants {
+  double c_f = 0.75;
+  double c_z = 1.0;
+  double c_s = 0.25;
+};
+
+// Accuracy presets map to cell sizes relative to the estimated patch (see core/contact/grid_
+// resolution.h for the definition and tests/core/contact for the errors they reach on Hertz
+// cases: about 5 %, 1 % and 0.2 % on area and peak pressure).
+enum class AccuracyPreset { kDraft, kStandard, kReference, kFine };
+std::string_view ToString(AccuracyPreset v);
+std::optional<AccuracyPreset> AccuracyPresetFromString(std::string_view s);
+
+struct ModelOptions {
+  ModelKind kind = ModelKind::kConformal;
+  GeometryModel geometry = GeometryModel::kConformal;  // ignored for kHertz
+  KernelModel kernel = KernelModel::kGolubenko;        // ignored for kHertz
+  InfluenceConstants constants;
+  AccuracyPreset accuracy = AccuracyPreset::kStandard;
+  // Explicit cell size (dx along rolling, ds along the lateral arc) [m]; overrides accuracy.
+  std::optional<double> cell_dx_m, cell_ds_m;
+};
+
+// Builds ModelOptions for a `kind` shorthand: hertz, halfspace = planar + boussinesq,
+// conformal = conformal + golubenko.
+ModelOptions MakeModelOptions(ModelKind kind);
+
+}  // namespace railwear

@@ -1,0 +1,35 @@
+// Hertz's analytic elliptical contact. Gap near the first contact point h = A x^2 + B y^2
+// (A, B principal relative curvatures / 2, 1/m), contact modulus E* (Pa), normal force P (N).
+// Formulas in ../shared/reference/README.md §1 (exact): a >= b semi-axes with
+// e^2 = 1 - (b/a)^2, B/A = [(a/b)^2 E(e) - K(e)] / [K(e) - E(e)] along the smaller curvature,
+// c^3 = 3 P E(e) / (2 pi E* (A + B) sqrt(g)), g = b/a, p0 = 3P/(2 pi a b),
+// delta = p0 b K(e) / E*.
+#pragma once
+
+namespace railwear {
+
+struct HertzSolution {
+  double semi_axis_x_m = 0.0;  // semi-axis along x (the direction of curvature A)
+  double semi_axis_y_m = 0.0;  // semi-axis along y (the direction of curvature B)
+  double p0_Pa = 0.0;          // peak pressure
+  double approach_m = 0.0;     // mutual approach delta
+  double area_m2 = 0.0;        // pi a b
+  double force_N = 0.0;
+};
+
+// A, B > 0. P >= 0 (P = 0 gives a zero patch). Throws std::invalid_argument on A or B <= 0.
+HertzSolution SolveHertz(double A_per_m, double B_per_m, double contact_modulus_Pa,
+                         double force_N);
+// The same for a prescribed approach delta >= 0.
+HertzSolution SolveHertzForApproach(double A_per_m, double B_per_m, double contact_modulus_Pa,
+                                    double approach_m);
+
+// 2-D line contact (exact): a = sqrt(4 P' R / (pi E*)), p0 = 2 P' / (pi a), 1/R = 1/R1 + 1/R2.
+struct LineContactSolution {
+  double half_width_m = 0.0;
+  double p0_Pa = 0.0;
+};
+LineContactSolution SolveLineContact(double force_per_length_N_m, double relative_radius_m,
+                                     double contact_modulus_Pa);
+
+}  // namespace railwear

@@ -1,0 +1,70 @@
+// Influence operators: the compliance C that maps cell pressures to normal displacements.
+//
+// u_i = sum_j C_ij p_j, with p_j the uniform pressure on cell j [Pa] and u_i the sum of both
+// bodies' normal surface displacements toward each other at the centre of cell i [m]
+// (so the deformed gap is g = d - delta*w + C p). C = C_wheel + C_rail, each body with its own
+// shear modulus and Poisson ratio.
+//
+// Kernels per body b (G, nu of that body), point load at cell j, field point i, with
+// rho = |P_i - P_j|, dn = (P_i - P_j) . n_j, and (dx, ds) the offsets along the tangents at j:
+//   boussinesq:  (1 - nu) / (2 pi G) / rho                       (Love's closed form per cell)
+//   golubenko:   (1/rho) [c_f k_f + c_z k_d dn^2 / rho^2]          (seed eq. 4)
+//                k_d = 1 / (8 pi (1 - nu) G),  k_f = (3 - 4 nu) k_d
+// Every kernel is integrated over cell j's tangent rectangle (dx by ds, centred at P_j, spanned
+// by the x axis and the s tangent at j) in closed form; far cells may use the midpoint rule
+// where it is provably within tolerance.
+//
+// Implementations exploit the grid's structure (see patch_grid.h): Toeplitz in x for a curved
+// cross-section (FFT along x, a dense ns x ns block per frequency), Toeplitz in x and s for a
+// planar one (2-D FFT). A dense matrix serves as the naive reference on small grids.
+#pragma once
+
+#include <memory>
+
+#include <Eigen/Core>
+
+#include "core/contact/contact_types.h"
+#include "core/contact/patch_grid.h"
+
+namespace railwear {
+
+class InfluenceOperator {
+ public:
+  virtual ~InfluenceOperator() = default;
+  virtual int size() const = 0;
+  // u = C p. p: [size()] pressures [Pa]; u: [size()] displacements [m]. u is resized.
+  virtual void Apply(const Eigen::VectorXd& p, Eigen::VectorXd* u) const = 0;
+  // C_kk [m/Pa].
+  virtual double Diagonal(int k) const = 0;
+};
+
+struct InfluenceSettings {
+  KernelModel kernel = KernelModel::kBoussinesq;
+  InfluenceConstants constants;
+  Material wheel;
+  Material rail;
+};
+
+// Chooses the fastest exact-structure implementation for the grid (2-D FFT when grid.planar,
+// x-Toeplitz FFT otherwise).
+std::unique_ptr<InfluenceOperator> MakeInfluenceOperator(const PatchGrid& grid,
+                                                         const InfluenceSettings& settings);
+
+// Naive reference: the full dense matrix [cells x cells], C(i, j) in m/Pa. For tests and small
+// grids only (memory grows as cells^2).
+Eigen::MatrixXd AssembleDenseInfluence(const PatchGrid& grid, const InfluenceSettings& settings);
+
+// Dense-matrix operator (wraps AssembleDenseInfluence).
+std::unique_ptr<InfluenceOperator> MakeDenseInfluenceOperator(const PatchGrid& grid,
+                                                              const InfluenceSettings& settings);
+
+// Closed-form integrals over a rectangle [-hx/2, hx/2] x [-hs/2, hs/2] in the plane, field point
+// at in-plane offset (x, s) and out-of-plane offset n from the rectangle's centre [m]:
+//   RectangleIntegralInvR  = integral of 1/R      dA   [m]
+//   RectangleIntegralN2R3  = integral of n^2/R^3  dA   [m]
+// with R = sqrt((x - xi)^2 + (s - eta)^2 + n^2). At the centre of a square of side h,
+// RectangleIntegralInvR = 4 h ln(1 + sqrt 2) (Love).
+double RectangleIntegralInvR(double x, double s, double n, double hx, double hs);
+double RectangleIntegralN2R3(double x, double s, double n, double hx, double hs);
+
+}  // namespace railwear

@@ -1,0 +1,32 @@
+// Interpolating cubic spline (C2) of one scalar function of a strictly increasing parameter,
+// with value, first and second derivative. Used for profile curves y(s), z(s).
+#pragma once
+
+#include <vector>
+
+namespace railwear {
+
+class CubicSpline {
+ public:
+  CubicSpline() = default;
+  // t: strictly increasing knots (at least 2); v: values at the knots (same size).
+  // Natural end conditions (zero second derivative at both ends).
+  CubicSpline(std::vector<double> t, std::vector<double> v);
+
+  double Value(double t) const;
+  double Derivative(double t) const;
+  double SecondDerivative(double t) const;
+  // All three at once (cheaper than three calls).
+  void Evaluate(double t, double* value, double* d1, double* d2) const;
+
+  const std::vector<double>& knots() const { return t_; }
+  const std::vector<double>& values() const { return v_; }
+
+ private:
+  int Interval(double t) const;
+  std::vector<double> t_;
+  std::vector<double> v_;
+  std::vector<double> m_;  // second derivatives at the knots
+};
+
+}  // namespace railwear

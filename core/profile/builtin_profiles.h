@@ -1,0 +1,42 @@
+// Built-in profiles: S1002 wheel (EN 13715, exact piecewise definition), UIC60 (60E1) rail head
+// (arc construction), and circular test profiles; profile specs; rail cant.
+// Definitions and check values: ../shared/reference/README.md §5.
+#pragma once
+
+#include <string>
+
+#include "core/profile/profile.h"
+
+namespace railwear {
+
+enum class BodyRole { kWheel, kRail };
+
+// S1002 wheel in the profile frame: y = S (toward the field side), z = F(S) (radius increase,
+// toward the rail), S from -70 (flange back) to +60 mm. `step_m` is the point spacing in S.
+Profile MakeS1002(double step_m = 0.1e-3);
+// F(S) of the S1002 definition, millimetres in and out (for tests and the generator).
+double S1002RadiusIncrease_mm(double S_mm);
+
+// UIC60 rail head, uncanted, symmetric about y = 0, crown at the origin, z downward; R300, R80,
+// R13 arcs then the 1:20 flank down to the bottom of the head. `step_m` is the arc spacing.
+Profile MakeUic60(double step_m = 0.1e-3);
+
+// Circular profiles of radius R for tests. Role decides which way they face:
+//   circle, wheel: convex wheel (bottom point at the origin, z = -(R - sqrt(R^2 - y^2)))
+//   circle, rail:  convex rail crown (top at the origin, z = R - sqrt(R^2 - y^2))
+//   groove, rail:  concave rail groove (bottom at the origin, z = -(R - sqrt(R^2 - y^2)))
+//   groove, wheel: concave wheel groove (z = R - sqrt(R^2 - y^2))
+Profile MakeCircle(double radius_m, BodyRole role);
+Profile MakeGroove(double radius_m, BodyRole role);
+
+// Rail cant: rotates the rail profile so that its head leans toward the gauge side (-y) by
+// atan(ratio) (1:40 -> ratio = 0.025), then moves the origin to the new highest point.
+Profile ApplyCant(const Profile& rail, double ratio);
+// Parses "1:40" -> 0.025, "0" -> 0. Throws InputError otherwise.
+double ParseCant(const std::string& text);
+
+// A profile spec from a scene: "builtin:S1002", "builtin:UIC60", "circle:R", "groove:R" (R in
+// mm), or a file path (relative paths are taken relative to base_dir). Throws InputError.
+Profile LoadProfileSpec(const std::string& spec, BodyRole role, const std::string& base_dir);
+
+}  // namespace railwear

@@ -1,0 +1,147 @@
+// Profile validation and its C2 arc-length spline.
+#include "core/profile/profile.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/numerics/input_error.h"
+
+namespace railwear {
+
+namespace {
+
+// Arc length of the spline pieces between consecutive knots, by 5-point Gauss-Legendre.
+std::vector<double> SplineArcLengths(const std::vector<double>& t, const CubicSpline& y,
+                                     const CubicSpline& z) {
+  static constexpr double kX[5] = {-0.9061798459386640, -0.5384693101056831, 0.0,
+                                   0.5384693101056831, 0.9061798459386640};
+  static constexpr double kW[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                                   0.4786286704993665, 0.2369268850561891};
+  std::vector<double> s(t.size(), 0.0);
+  for (size_t i = 0; i + 1 < t.size(); ++i) {
+    const double mid = 0.5 * (t[i] + t[i + 1]);
+    const double half = 0.5 * (t[i + 1] - t[i]);
+    double len = 0.0;
+    for (int k = 0; k < 5; ++k) {
+      const double tk = mid + half * kX[k];
+      len += kW[k] * std::hypot(y.Derivative(tk), z.Derivative(tk));
+    }
+    s[i + 1] = s[i] + half * len;
+  }
+  return s;
+}
+
+}  // namespace
+
+Profile::Profile(std::vector<Eigen::Vector2d> points_m, std::string source)
+    : points_(std::move(points_m)), source_(std::move(source)) {
+  const std::string where = source_.empty() ? std::string("profile") : source_;
+  if (points_.size() < 4) {
+    throw InputError(fmt::format("{}: {} point(s) read; a profile needs at least 4 points", where,
+                                 points_.size()));
+  }
+  for (size_t i = 0; i < points_.size(); ++i) {
+    if (!std::isfinite(points_[i].x()) || !std::isfinite(points_[i].y())) {
+      throw InputError(fmt::format("{}: point {} has a non-finite coordinate (y = {}, z = {} mm)",
+                                   where, i + 1, points_[i].x() * 1e3, points_[i].y() * 1e3));
+    }
+  }
+  for (size_t i = 1; i < points_.size(); ++i) {
+    if ((points_[i] - points_[i - 1]).norm() < kDuplicateDistance_m) {
+      throw InputError(fmt::format(
+          "{}: point {} (y = {:.6f}, z = {:.6f} mm) duplicates point {}; expected distinct "
+          "consecutive points",
+          where, i + 1, points_[i].x() * 1e3, points_[i].y() * 1e3, i));
+    }
+  }
+  const double cos_max_turn = std::cos(kMaxTurnAngle_rad);
+  for (size_t i = 1; i + 1 < points_.size(); ++i) {
+    const Eigen::Vector2d a = points_[i] - points_[i - 1];
+    const Eigen::Vector2d b = points_[i + 1] - points_[i];
+    if (a.dot(b) < cos_max_turn * a.norm() * b.norm()) {
+      throw InputError(fmt::format(
+          "{}: point {} (y = {:.6f}, z = {:.6f} mm) makes the profile turn back on itself "
+          "(more than 150 degrees); expected points ordered along the profile",
+          where, i + 2, points_[i + 1].x() * 1e3, points_[i + 1].y() * 1e3));
+    }
+  }
+  Build();
+}
+
+void Profile::Build() {
+  const size_t n = points_.size();
+  std::vector<double> t(n, 0.0), y(n), z(n);
+  for (size_t i = 0; i < n; ++i) {
+    y[i] = points_[i].x();
+    z[i] = points_[i].y();
+    if (i > 0) t[i] = t[i - 1] + (points_[i] - points_[i - 1]).norm();
+  }
+  // Chord-length spline first, then re-parametrise by its own arc length (one pass makes the
+  // parameter an arc length to far below the point spacing's second order).
+  CubicSpline yc(t, y), zc(t, z);
+  knot_s_ = SplineArcLengths(t, yc, zc);
+  y_of_s_ = CubicSpline(knot_s_, y);
+  z_of_s_ = CubicSpline(knot_s_, z);
+}
+
+void Profile::Evaluate(double s, Eigen::Vector2d* position, Eigen::Vector2d* d1,
+                       Eigen::Vector2d* d2) const {
+  double y, yd, ydd, z, zd, zdd;
+  y_of_s_.Evaluate(s, &y, &yd, &ydd);
+  z_of_s_.Evaluate(s, &z, &zd, &zdd);
+  if (position) *position = {y, z};
+  if (d1) *d1 = {yd, zd};
+  if (d2) *d2 = {ydd, zdd};
+}
+
+Eigen::Vector2d Profile::Position(double s) const {
+  return {y_of_s_.Value(s), z_of_s_.Value(s)};
+}
+
+Eigen::Vector2d Profile::Derivative(double s) const {
+  return {y_of_s_.Derivative(s), z_of_s_.Derivative(s)};
+}
+
+Eigen::Vector2d Profile::Tangent(double s) const { return Derivative(s).normalized(); }
+
+Eigen::Vector2d Profile::LeftNormal(double s) const {
+  const Eigen::Vector2d t = Tangent(s);
+  return {-t.y(), t.x()};
+}
+
+double Profile::Curvature(double s) const {
+  Eigen::Vector2d d1, d2;
+  Evaluate(s, nullptr, &d1, &d2);
+  const double speed = d1.norm();
+  return (d1.x() * d2.y() - d1.y() * d2.x()) / (speed * speed * speed);
+}
+
+Profile::Bounds Profile::bounds() const {
+  Bounds b{points_[0].x(), points_[0].x(), points_[0].y(), points_[0].y()};
+  for (const auto& p : points_) {
+    b.y_min = std::min(b.y_min, p.x());
+    b.y_max = std::max(b.y_max, p.x());
+    b.z_min = std::min(b.z_min, p.y());
+    b.z_max = std::max(b.z_max, p.y());
+  }
+  return b;
+}
+
+Profile Profile::Mirrored() const {
+  std::vector<Eigen::Vector2d> pts(points_.rbegin(), points_.rend());
+  for (auto& p : pts) p.x() = -p.x();
+  return Profile(std::move(pts), source_);
+}
+
+Profile Profile::Transformed(double angle_rad, const Eigen::Vector2d& shift_m) const {
+  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
+  std::vector<Eigen::Vector2d> pts(points_);
+  for (auto& p : pts) {
+    const Eigen::Vector2d q(c * p.x() - s * p.y(), s * p.x() + c * p.y());
+    p = q + shift_m;
+  }
+  return Profile(std::move(pts), source_);
+}
+
+}  // namespace railwear

@@ -1,0 +1,73 @@
+// Profile: an ordered cross-section curve of a wheel or rail, with a smooth C2 representation.
+//
+// Frame (see core/notation.md): y lateral, positive toward the field side; z vertical, positive
+// downward (into the rail, toward the rail for a wheel). A rail profile's origin is its reference
+// point (the crown for built-ins); a wheel profile's origin is the taping line at z = 0, where the
+// wheel radius equals the nominal rolling radius. SI inside (metres); files use millimetres.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/numerics/cubic_spline.h"
+
+namespace railwear {
+
+class Profile {
+ public:
+  Profile() = default;
+  // points_m: ordered (y, z) points in metres, shape [n][2], n >= 4. `source` names where they
+  // came from (a file, "builtin:S1002") and is used in error messages.
+  // Throws InputError for fewer than 4 points, a non-finite coordinate, a duplicate point
+  // (closer than kDuplicateDistance_m to its predecessor) or a backtracking point (the curve
+  // turns back by more than kMaxTurnAngle_rad between consecutive segments). Messages name the
+  // source and the 1-based point number.
+  explicit Profile(std::vector<Eigen::Vector2d> points_m, std::string source = {});
+
+  static constexpr double kDuplicateDistance_m = 1e-9;
+  static constexpr double kMaxTurnAngle_rad = 2.6179938779914944;  // 150 degrees
+
+  int size() const { return static_cast<int>(points_.size()); }
+  const std::vector<Eigen::Vector2d>& points() const { return points_; }
+  const std::string& source() const { return source_; }
+  void set_source(std::string source) { source_ = std::move(source); }
+
+  // Arc-length parameter s in [0, Length()] (metres). The knots carry the arc length of the
+  // interpolating spline itself (Gauss-Legendre per interval), so s is a true arc length.
+  double Length() const { return knot_s_.back(); }
+  double KnotS(int i) const { return knot_s_[i]; }
+
+  // Position (y, z) [m], first and second derivative with respect to s, at parameter s.
+  // s outside [0, Length()] extrapolates the end cubic (callers should stay inside).
+  Eigen::Vector2d Position(double s) const;
+  Eigen::Vector2d Derivative(double s) const;
+  void Evaluate(double s, Eigen::Vector2d* position, Eigen::Vector2d* d1,
+                Eigen::Vector2d* d2) const;
+  // Unit tangent in the direction of increasing s.
+  Eigen::Vector2d Tangent(double s) const;
+  // Unit tangent rotated by +90 degrees in the (y, z) plane: (-t_z, t_y).
+  Eigen::Vector2d LeftNormal(double s) const;
+  // Signed curvature [1/m]: positive when the curve turns toward LeftNormal().
+  double Curvature(double s) const;
+
+  struct Bounds {
+    double y_min, y_max, z_min, z_max;  // metres
+  };
+  Bounds bounds() const;
+
+  // y -> -y (point order reversed so that s still runs the same way round the body).
+  Profile Mirrored() const;
+  // Rotate about the origin by angle_rad (positive turns +y toward +z), then translate by shift_m.
+  Profile Transformed(double angle_rad, const Eigen::Vector2d& shift_m) const;
+
+ private:
+  void Build();
+  std::vector<Eigen::Vector2d> points_;
+  std::string source_;
+  std::vector<double> knot_s_;
+  CubicSpline y_of_s_, z_of_s_;
+};
+
+}  // namespace railwear

@@ -1,0 +1,54 @@
+# Layering rule (DESIGN.md §2): app -> {wear, profiles_db} -> core, never back.
+# wear and profiles_db never include each other; core includes none of them.
+# SQLite only in profiles_db/*.cpp; CLI11 only in app/; Ceres, GSL and toml++ never in headers
+# outside app/. Run as: cmake -DSOURCE_DIR=<repo> -P tests/layering_test.cmake
+set(violations "")
+function(check_dir dir pattern why)
+  file(GLOB_RECURSE files "${SOURCE_DIR}/${dir}/*.h" "${SOURCE_DIR}/${dir}/*.cpp")
+  foreach(f ${files})
+    file(STRINGS "${f}" lines REGEX "^[ \t]*#[ \t]*include")
+    foreach(line ${lines})
+      if(line MATCHES "${pattern}")
+        file(RELATIVE_PATH rel "${SOURCE_DIR}" "${f}")
+        set(violations "${violations}\n  ${rel}: ${line}   (${why})" PARENT_SCOPE)
+      endif()
+    endforeach()
+  endforeach()
+  set(violations "${violations}" PARENT_SCOPE)
+endfunction()
+
+check_dir(core "[\"<](app|wear|profiles_db)/" "core depends on nothing of ours")
+check_dir(core "[\"<](sqlite3\\.h|CLI/|toml\\+\\+/)" "core uses no SQLite, CLI11 or toml++")
+check_dir(wear "[\"<](app|profiles_db)/" "wear never includes app or profiles_db")
+check_dir(wear "[\"<](sqlite3\\.h|CLI/|toml\\+\\+/)" "wear uses no SQLite, CLI11 or toml++")
+check_dir(profiles_db "[\"<](app|wear)/" "profiles_db never includes app or wear")
+check_dir(profiles_db "[\"<](CLI/|toml\\+\\+/)" "profiles_db uses no CLI11 or toml++")
+
+# Ceres and GSL only inside .cpp files; SQLite only in profiles_db/*.cpp.
+file(GLOB_RECURSE headers "${SOURCE_DIR}/core/*.h" "${SOURCE_DIR}/wear/*.h"
+     "${SOURCE_DIR}/profiles_db/*.h" "${SOURCE_DIR}/app/*.h")
+foreach(f ${headers})
+  file(STRINGS "${f}" lines REGEX "^[ \t]*#[ \t]*include")
+  foreach(line ${lines})
+    if(line MATCHES "[<\"](ceres/|gsl/|sqlite3\\.h)")
+      file(RELATIVE_PATH rel "${SOURCE_DIR}" "${f}")
+      set(violations "${violations}\n  ${rel}: ${line}   (Ceres, GSL and SQLite only in .cpp files)")
+    endif()
+  endforeach()
+endforeach()
+file(GLOB_RECURSE all_sources "${SOURCE_DIR}/app/*.cpp" "${SOURCE_DIR}/core/*.cpp"
+     "${SOURCE_DIR}/wear/*.cpp")
+foreach(f ${all_sources})
+  file(STRINGS "${f}" lines REGEX "^[ \t]*#[ \t]*include")
+  foreach(line ${lines})
+    if(line MATCHES "[<\"]sqlite3\\.h")
+      file(RELATIVE_PATH rel "${SOURCE_DIR}" "${f}")
+      set(violations "${violations}\n  ${rel}: ${line}   (SQLite only in profiles_db/*.cpp)")
+    endif()
+  endforeach()
+endforeach()
+
+if(violations)
+  message(FATAL_ERROR "Forbidden include edges (app -> {wear, profiles_db} -> core):${violations}")
+endif()
+message(STATUS "layering: no forbidden include edge")
