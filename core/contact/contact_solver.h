@@ -48,8 +48,9 @@ struct PatchResult {
   double lateral_force_N = 0.0;   // on the rail, positive toward +y (field side)
   // Pressure centre mapped onto the rail profile, rail profile coordinates [m].
   Eigen::Vector2d contact_point_yz_m = Eigen::Vector2d::Zero();
-  // Angle of the resultant force against the vertical [rad]; positive when it pushes the rail
-  // toward -y (gauge side), i.e. flange-root contact has a large positive angle.
+  // Angle of the resultant force on the rail against the vertical [rad]: atan2(lateral,
+  // vertical). Flange-root and gauge-corner contact push the rail toward the field side (+y) and
+  // have large positive angles (40-70 degrees); tread contact a few degrees.
   double contact_angle_rad = 0.0;
   int cells = 0;
   int cells_in_contact = 0;

@@ -1,0 +1,379 @@
+// SolveContact: placement -> contact search -> patch grids and gaps -> influence -> normal solve.
+//
+// The potential contact area is not known before the solve. It starts from a Hertz estimate of
+// the approach at the first contact point and is corrected from the solution: the grid grows
+// when pressure reaches its edge, takes in further candidates (two-point contact) when the
+// approach passes their gap, and is re-gridded when the patch turns out larger or smaller than
+// estimated, so that every accuracy preset keeps its number of cells per semi-axis.
+#include "core/contact/contact_solver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "core/contact/grid_resolution.h"
+#include "core/contact/influence_operator.h"
+#include "core/geometry/patch_builder.h"
+#include "core/geometry/wheel_rail_geometry.h"
+#include "core/numerics/input_error.h"
+
+namespace railwear {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void AddStage(std::vector<StageTime>* stages, const std::string& name, double seconds) {
+  for (auto& s : *stages) {
+    if (s.name == name) {
+      s.seconds += seconds;
+      return;
+    }
+  }
+  stages->push_back({name, seconds});
+}
+
+// Hertz's relative curvatures at a candidate: A along x (the wheel's parallel circle, normal
+// curvature cos(gamma)/r), B laterally (sum of the convex-positive profile curvatures).
+// B is bounded below to stay meaningful in nearly conformal contact, where it only seeds the
+// estimate of the approach.
+struct Curvatures {
+  double A = 0.0, B = 0.0, w0 = 1.0;
+};
+Curvatures CandidateCurvatures(const ContactCandidate& c) {
+  Curvatures k;
+  k.w0 = std::max(-c.normal.y(), 1e-3);
+  k.A = k.w0 / (2.0 * c.wheel_radius_m);
+  k.B = std::max(0.5 * (c.rail_lateral_curvature + c.wheel_lateral_curvature), 1e-4 * k.A);
+  return k;
+}
+
+// Vertical approach for which Hertz contacts at all candidates carry the vertical load F
+// (bisection on the common approach), or their loads for a given approach.
+double HertzVerticalLoad(const std::vector<ContactCandidate>& cands, double estar, double delta,
+                         std::vector<HertzSolution>* out) {
+  double total = 0.0;
+  if (out) out->clear();
+  for (const auto& c : cands) {
+    const Curvatures k = CandidateCurvatures(c);
+    const double dn = std::max(0.0, (delta - c.gap_m) * k.w0);
+    const HertzSolution h = SolveHertzForApproach(k.A, k.B, estar, dn);
+    total += h.force_N * k.w0;
+    if (out) out->push_back(h);
+  }
+  return total;
+}
+
+double HertzApproachForLoad(const std::vector<ContactCandidate>& cands, double estar,
+                            double force) {
+  double hi = 1e-6;
+  while (HertzVerticalLoad(cands, estar, hi, nullptr) < force && hi < 1.0) hi *= 2.0;
+  double lo = 0.0;
+  for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (HertzVerticalLoad(cands, estar, mid, nullptr) < force ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+PatchResult HertzPatch(const ContactCandidate& c, const HertzSolution& h) {
+  PatchResult p;
+  p.hertz = h;
+  p.area_m2 = h.area_m2;
+  p.p_max_Pa = h.p0_Pa;
+  p.normal_force_N = h.force_N;
+  p.vertical_force_N = h.force_N * (-c.normal.y());
+  p.lateral_force_N = h.force_N * (-c.normal.x());
+  p.contact_point_yz_m = c.rail_point_m;
+  p.contact_angle_rad = std::atan2(p.lateral_force_N, p.vertical_force_N);
+  return p;
+}
+
+ContactResult SolveHertzModel(const WheelRailGeometry& geom, const ContactProblem& problem,
+                              double estar, ContactResult result, Clock::time_point t0) {
+  // Candidates within a generous threshold; widen it while the approach passes it.
+  double threshold = 1e-4;
+  std::vector<ContactCandidate> cands;
+  double delta = 0.0;
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    cands = geom.FindCandidates(threshold);
+    delta = problem.load.approach_m
+                ? *problem.load.approach_m
+                : HertzApproachForLoad(cands, estar, *problem.load.vertical_force_N);
+    if (delta < 0.8 * threshold) break;
+    threshold = 2.0 * delta;
+  }
+  std::vector<HertzSolution> hs;
+  HertzVerticalLoad(cands, estar, delta, &hs);
+  result.approach_m = delta;
+  for (size_t k = 0; k < cands.size(); ++k) {
+    if (hs[k].force_N <= 0) continue;
+    result.patches.push_back(HertzPatch(cands[k], hs[k]));
+  }
+  result.status = result.patches.empty() ? SolverStatus::kNoContact : SolverStatus::kConverged;
+  if (result.patches.empty()) result.message = "no contact at this approach";
+  AddStage(&result.stages, "hertz", SecondsSince(t0));
+  return result;
+}
+
+// Measured extent of the contact on a grid: half-lengths along x and s of the cells with p > 0.
+struct Extent {
+  double half_x = 0.0, half_s = 0.0;
+  bool touches_x_edge = false, touches_s_edge = false;
+  int cells = 0;
+};
+Extent MeasureExtent(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>& p) {
+  Extent e;
+  double s_lo = 1e300, s_hi = -1e300;
+  for (int j = 0; j < g.ns; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      if (p[g.Index(i, j)] <= 0) continue;
+      ++e.cells;
+      e.half_x = std::max(e.half_x, std::abs(g.X(i)) + 0.5 * g.dx_m);
+      s_lo = std::min(s_lo, g.S(j) - 0.5 * g.ds_m);
+      s_hi = std::max(s_hi, g.S(j) + 0.5 * g.ds_m);
+      if (i == 0 || i == g.nx - 1) e.touches_x_edge = true;
+      if (j == 0 || j == g.ns - 1) e.touches_s_edge = true;
+    }
+  }
+  if (e.cells > 0) e.half_s = 0.5 * (s_hi - s_lo);
+  return e;
+}
+
+PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
+                           const Eigen::Ref<const Eigen::VectorXd>& p) {
+  PatchResult r;
+  const double area = grid.CellArea();
+  double fy = 0.0, fz = 0.0, fn = 0.0, ps = 0.0, psum = 0.0;
+  for (int j = 0; j < grid.ns; ++j) {
+    const Eigen::Vector2d n = grid.normal_yz[j];
+    for (int i = 0; i < grid.nx; ++i) {
+      const double pk = p[grid.Index(i, j)];
+      if (pk <= 0) continue;
+      ++r.cells_in_contact;
+      fn += pk * area;
+      fy += pk * area * (-n.x());
+      fz += pk * area * (-n.y());
+      ps += pk * grid.S(j);
+      psum += pk;
+      r.p_max_Pa = std::max(r.p_max_Pa, pk);
+    }
+  }
+  r.cells = grid.cells();
+  r.area_m2 = r.cells_in_contact * area;
+  r.normal_force_N = fn;
+  r.vertical_force_N = fz;
+  r.lateral_force_N = fy;
+  r.contact_angle_rad = std::atan2(fy, fz);
+  if (psum > 0) {
+    // Pressure centre on the reference cross-section, projected onto the rail profile.
+    const double sbar = ps / psum;
+    const double jf = std::clamp((sbar - grid.s0_m) / grid.ds_m, 0.0, grid.ns - 1.0);
+    const int j0 = std::min(static_cast<int>(jf), std::max(grid.ns - 2, 0));
+    const int j1 = std::min(j0 + 1, grid.ns - 1);
+    const double f = jf - j0;
+    const Eigen::Vector2d q = (1 - f) * grid.point_yz_m[j0] + f * grid.point_yz_m[j1];
+    r.contact_point_yz_m = geom.rail().Project(q).point;
+  }
+  r.grid = std::move(grid);
+  r.pressure_Pa = p;
+  return r;
+}
+
+}  // namespace
+
+ContactResult SolveContact(const ContactProblem& problem) {
+  const auto t_start = Clock::now();
+  if (problem.load.vertical_force_N.has_value() == problem.load.approach_m.has_value()) {
+    throw InputError("contact load: give exactly one of the vertical force and the approach");
+  }
+  if (!(problem.placement.rolling_radius_m > 0)) {
+    throw InputError(fmt::format("wheel rolling radius = {} mm: expected a positive radius",
+                                 problem.placement.rolling_radius_m * 1e3));
+  }
+  ContactResult result;
+  result.model = problem.model;
+  const std::string invalid = problem.solver.Validate();
+  if (!invalid.empty()) throw InputError("normal solver options: " + invalid);
+
+  auto t0 = Clock::now();
+  const WheelPose pose{problem.placement.lateral_shift_m, problem.placement.roll_rad,
+                       problem.placement.rolling_radius_m};
+  const WheelRailGeometry geom(problem.wheel_profile, problem.rail_profile, pose);
+  AddStage(&result.stages, "placement", SecondsSince(t0));
+  auto finish = [&](ContactResult r) {
+    r.time_s = SecondsSince(t_start);
+    for (const auto& p : r.patches) {
+      r.area_m2 += p.area_m2;
+      r.p_max_Pa = std::max(r.p_max_Pa, p.p_max_Pa);
+      r.vertical_force_N += p.vertical_force_N;
+      r.lateral_force_N += p.lateral_force_N;
+    }
+    return r;
+  };
+  if (!geom.has_overlap()) {
+    result.status = SolverStatus::kNoContact;
+    result.message = "the wheel and rail profiles do not overlap laterally";
+    return finish(result);
+  }
+  const bool load_given = problem.load.vertical_force_N.has_value();
+  if ((load_given && !(*problem.load.vertical_force_N > 0)) ||
+      (!load_given && !(*problem.load.approach_m > 0))) {
+    result.status = SolverStatus::kNoContact;
+    result.message = load_given ? "no load: the wheel only touches the rail"
+                                : "no contact: the approach leaves the profiles apart";
+    return finish(result);
+  }
+
+  const double estar = ContactModulus(problem.wheel_material, problem.rail_material);
+  if (problem.model.kind == ModelKind::kHertz) {
+    return finish(SolveHertzModel(geom, problem, estar, std::move(result), Clock::now()));
+  }
+
+  // Hertz estimate of the approach and of the patch size at the first contact point.
+  const std::vector<ContactCandidate> first = geom.FindCandidates(1e-6);
+  double delta_est = load_given
+                         ? HertzApproachForLoad(first, estar, *problem.load.vertical_force_N)
+                         : *problem.load.approach_m;
+  std::vector<HertzSolution> hs;
+  HertzVerticalLoad(first, estar, delta_est, &hs);
+  double ax = 0.0, bs = 0.0;
+  for (const auto& h : hs) {
+    ax = std::max(ax, h.semi_axis_x_m);
+    bs = std::max(bs, h.semi_axis_y_m);
+  }
+  // In nearly conformal contact Hertz's lateral semi-axis is far too large; bound it by the
+  // lateral reach of the interpenetration at the estimated approach.
+  {
+    const std::vector<ContactCandidate> interp = geom.FindCandidates(delta_est);
+    double reach = 0.0;
+    for (const auto& c : interp) {
+      reach = std::max(reach, 0.5 * (c.y_hi_m - c.y_lo_m) / std::max(-c.normal.y(), 0.1));
+    }
+    if (reach > 0) bs = std::min(bs, reach / std::sqrt(2.0));
+  }
+  CellSize cell = ChooseCellSize(problem.model, ax, bs);
+  double threshold = 2.0 * delta_est;
+
+  const double k_w = problem.wheel_material.Compliance();
+  const double k_r = problem.rail_material.Compliance();
+  InfluenceSettings settings{problem.model.kernel, problem.model.constants,
+                             problem.wheel_material, problem.rail_material};
+  const double n_per_axis = CellsPerSemiAxis(problem.model.accuracy);
+  const bool cell_fixed = problem.model.cell_dx_m.has_value() || problem.model.cell_ds_m.has_value();
+
+  int regrids = 0, total_iterations = 0;
+  for (int attempt = 0; attempt < 12; ++attempt) {
+    t0 = Clock::now();
+    const std::vector<ContactCandidate> cands = geom.FindCandidates(threshold);
+    std::vector<PatchBuild> builds;
+    for (const auto& c : cands) {
+      PatchGridOptions o;
+      o.geometry = problem.model.geometry;
+      o.cell_dx_m = cell.dx_m;
+      o.cell_ds_m = cell.ds_m;
+      o.threshold_m = threshold;
+      o.stiffness_ratio_K = k_r / (k_w + k_r);
+      PatchBuild b = BuildPatchGrid(geom, c, o);
+      if (b.valid) builds.push_back(std::move(b));
+    }
+    AddStage(&result.stages, "grid", SecondsSince(t0));
+    if (builds.empty()) {
+      result.status = SolverStatus::kNoContact;
+      result.message = "no usable contact patch (surfaces too steep for a vertical approach)";
+      return finish(result);
+    }
+
+    t0 = Clock::now();
+    std::vector<std::unique_ptr<InfluenceOperator>> ops;
+    NormalProblem np;
+    int total = 0;
+    for (const auto& b : builds) total += b.grid.cells();
+    np.gap_m.resize(total);
+    np.approach_weight.resize(total);
+    np.cell_area_m2.resize(total);
+    int offset = 0;
+    for (const auto& b : builds) {
+      ops.push_back(MakeInfluenceOperator(b.grid, settings));
+      np.blocks.push_back(ops.back().get());
+      np.gap_m.segment(offset, b.grid.cells()) = b.grid.gap_m;
+      for (int j = 0; j < b.grid.ns; ++j) {
+        const double w = -b.grid.normal_yz[j].y();
+        np.approach_weight.segment(offset + j * b.grid.nx, b.grid.nx).setConstant(w);
+      }
+      np.cell_area_m2.segment(offset, b.grid.cells()).setConstant(b.grid.CellArea());
+      offset += b.grid.cells();
+    }
+    np.force_N = problem.load.vertical_force_N;
+    np.approach_m = problem.load.approach_m;
+    AddStage(&result.stages, "influence", SecondsSince(t0));
+
+    t0 = Clock::now();
+    const NormalSolution sol = SolveNormal(np, problem.solver);
+    AddStage(&result.stages, "solve", SecondsSince(t0));
+    total_iterations += sol.iterations;
+
+    // Decide whether the grid fits the solution.
+    bool grow = false, regrid = false;
+    double new_dx = cell.dx_m, new_ds = cell.ds_m;
+    offset = 0;
+    for (const auto& b : builds) {
+      const Extent e = MeasureExtent(b.grid, sol.pressure_Pa.segment(offset, b.grid.cells()));
+      offset += b.grid.cells();
+      if (e.cells == 0) continue;
+      if (e.touches_x_edge || (e.touches_s_edge && !b.lateral_limited)) grow = true;
+      if (!cell_fixed && regrids < 3 && e.cells > 0) {
+        const double nx_ratio = e.half_x / cell.dx_m / n_per_axis;
+        const double ns_ratio = e.half_s / cell.ds_m / n_per_axis;
+        if (std::abs(nx_ratio - 1.0) > 0.3 || std::abs(ns_ratio - 1.0) > 0.3) {
+          regrid = true;
+          new_dx = std::min(new_dx, e.half_x / n_per_axis);
+          new_ds = std::min(new_ds, e.half_s / n_per_axis);
+        }
+      }
+    }
+    const bool more_candidates = sol.status == SolverStatus::kConverged &&
+                                 sol.approach_m > 0.7 * threshold;
+    if (sol.status == SolverStatus::kConverged && (grow || regrid || more_candidates) &&
+        attempt < 11) {
+      if (grow) threshold *= 1.8;
+      if (more_candidates) threshold = std::max(threshold, 2.0 * sol.approach_m);
+      if (regrid) {
+        cell = {new_dx, new_ds};
+        ++regrids;
+        threshold = std::max(threshold, 2.0 * sol.approach_m);
+      }
+      continue;
+    }
+
+    result.status = sol.status;
+    result.message = sol.message;
+    result.approach_m = sol.approach_m;
+    result.iterations = total_iterations;
+    offset = 0;
+    for (auto& b : builds) {
+      const int n = b.grid.cells();
+      PatchResult pr = NumericalPatch(geom, std::move(b.grid), sol.pressure_Pa.segment(offset, n));
+      offset += n;
+      if (pr.cells_in_contact > 0) result.patches.push_back(std::move(pr));
+    }
+    if (grow) {
+      result.message += (result.message.empty() ? "" : "; ");
+      result.message += "pressure reaches the edge of the potential contact area";
+    }
+    return finish(result);
+  }
+  result.status = SolverStatus::kNotConverged;
+  result.message = "the potential contact area did not settle";
+  return finish(result);
+}
+
+}  // namespace railwear

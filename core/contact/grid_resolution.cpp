@@ -1,0 +1,25 @@
+// Accuracy presets (see grid_resolution.h).
+#include "core/contact/grid_resolution.h"
+
+namespace railwear {
+
+double CellsPerSemiAxis(AccuracyPreset preset) {
+  switch (preset) {
+    case AccuracyPreset::kDraft: return 4.0;
+    case AccuracyPreset::kStandard: return 10.0;
+    case AccuracyPreset::kReference: return 24.0;
+    case AccuracyPreset::kFine: return 40.0;
+  }
+  return 10.0;
+}
+
+CellSize ChooseCellSize(const ModelOptions& options, double semi_axis_x_m,
+                        double semi_axis_s_m) {
+  const double n = CellsPerSemiAxis(options.accuracy);
+  CellSize c{semi_axis_x_m / n, semi_axis_s_m / n};
+  if (options.cell_dx_m) c.dx_m = *options.cell_dx_m;
+  if (options.cell_ds_m) c.ds_m = *options.cell_ds_m;
+  return c;
+}
+
+}  // namespace railwear

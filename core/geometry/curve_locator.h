@@ -1,0 +1,65 @@
+// CurveLocator: fast geometric queries on one Profile in its own frame — closest point
+// (orthogonal projection, seed eq. 2) and intersection with a straight line.
+//
+// The profile is sampled at a uniform arc-length step for a coarse scan; each answer is then
+// refined on the C2 spline by a safeguarded Newton iteration inside the bracket of one sample
+// step on either side, to a tolerance far below any cell size (kParameterTolerance_m).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/profile/profile.h"
+
+namespace railwear {
+
+class CurveLocator {
+ public:
+  static constexpr double kParameterTolerance_m = 1e-12;
+
+  // material_toward_plus_z: true for a rail (material below its surface, at larger z), false for
+  // a wheel (material above). Decides the sign of SignedDistance. `sample_step_m` is the coarse
+  // scan step in arc length.
+  CurveLocator(const Profile& profile, bool material_toward_plus_z, double sample_step_m = 2e-5);
+
+  const Profile& profile() const { return *profile_; }
+
+  struct Projection {
+    double s = 0.0;                              // arc length of the closest point [m]
+    Eigen::Vector2d point = Eigen::Vector2d::Zero();
+    double signed_distance = 0.0;                // > 0 outside the body, < 0 inside [m]
+  };
+  // Closest point to q among profile parameters in [s_lo, s_hi] (clipped to the profile).
+  Projection Project(const Eigen::Vector2d& q, double s_lo, double s_hi) const;
+  Projection Project(const Eigen::Vector2d& q) const { return Project(q, 0.0, length_); }
+  // Refine from a nearby parameter (warm start): searches [s_guess - window, s_guess + window].
+  Projection ProjectNear(const Eigen::Vector2d& q, double s_guess, double window_m) const;
+
+  // Outward unit normal (pointing out of the body's material) at parameter s.
+  Eigen::Vector2d OutwardNormal(double s) const;
+
+  // Intersection of the line b + lambda * n (unit n; t = n rotated, the line's normal direction
+  // for the search) with the profile, among parameters in [s_lo, s_hi]: the crossing with the
+  // smallest |lambda|. Returns the parameter and lambda, or nullopt when the line misses.
+  struct Crossing {
+    double s = 0.0;
+    double lambda = 0.0;
+  };
+  std::optional<Crossing> IntersectLine(const Eigen::Vector2d& b, const Eigen::Vector2d& n,
+                                        double s_lo, double s_hi) const;
+
+  double length() const { return length_; }
+
+ private:
+  double RefineClosest(const Eigen::Vector2d& q, double s0, double lo, double hi) const;
+  const Profile* profile_;
+  double length_ = 0.0;
+  double step_ = 0.0;
+  double outward_sign_ = 1.0;  // OutwardNormal = outward_sign_ * LeftNormal
+  std::vector<double> sample_s_;
+  std::vector<Eigen::Vector2d> sample_p_;
+};
+
+}  // namespace railwear

@@ -1,0 +1,233 @@
+// Potential contact area, reference cross-section and initial separation of one patch.
+#include "core/geometry/patch_builder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/numerics/check.h"
+
+namespace railwear {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// The lateral walk never leaves this distance from the contact point (beyond any patch).
+constexpr double kMaxLateralReach_m = 0.08;
+
+struct Section {
+  double tau = 0.0;       // offset along t0 from the contact point [m]
+  double lambda_r = 0.0;  // rail surface offset along n0
+  double lambda_w = 0.0;  // wheel surface offset along n0 (x = 0)
+  double rail_s = 0.0, wheel_s = 0.0;
+};
+
+// Direction of R expressed in the wheel profile frame (rotation by -roll).
+Eigen::Vector2d DirectionInWheel(const WheelRailGeometry& g, const Eigen::Vector2d& d) {
+  return g.RailToWheel(d + g.WheelToRail({0.0, 0.0})) ;
+}
+
+// Rail and wheel crossings of the line P_c + tau t0 + lambda n0, near the previous crossing.
+bool CrossSection(const WheelRailGeometry& g, const Eigen::Vector2d& pc, const Eigen::Vector2d& t0,
+                  const Eigen::Vector2d& n0, double tau, double rail_s_guess,
+                  double wheel_s_guess, double window, Section* out) {
+  const Eigen::Vector2d b = pc + tau * t0;
+  auto r = g.rail().IntersectLine(b, n0, rail_s_guess - window, rail_s_guess + window);
+  if (!r) r = g.rail().IntersectLine(b, n0, 0.0, kInf);
+  const Eigen::Vector2d b_w = g.RailToWheel(b);
+  const Eigen::Vector2d n_w = DirectionInWheel(g, n0);
+  auto w = g.wheel().IntersectLine(b_w, n_w, wheel_s_guess - window, wheel_s_guess + window);
+  if (!w) w = g.wheel().IntersectLine(b_w, n_w, 0.0, kInf);
+  if (!r || !w) return false;
+  *out = Section{tau, r->lambda, w->lambda, r->s, w->s};
+  return true;
+}
+
+// Walks tau outward (sign = +1 or -1) while the normal gap stays below the threshold.
+// Returns the sections in order of increasing |tau| (excluding tau = 0) and whether it stopped
+// for a geometric limit rather than the threshold.
+std::vector<Section> Walk(const WheelRailGeometry& g, const Eigen::Vector2d& pc,
+                          const Eigen::Vector2d& t0, const Eigen::Vector2d& n0,
+                          const Section& start, double step, double threshold_n, double sign,
+                          bool* limited) {
+  std::vector<Section> out;
+  Section prev = start;
+  *limited = false;
+  for (int k = 1;; ++k) {
+    const double tau = sign * k * step;
+    if (std::abs(tau) > kMaxLateralReach_m) {
+      *limited = true;
+      break;
+    }
+    Section s;
+    const double window = 50 * step + 5e-4;
+    if (!CrossSection(g, pc, t0, n0, tau, prev.rail_s, prev.wheel_s, window, &s)) {
+      *limited = true;
+      break;
+    }
+    out.push_back(s);
+    if (s.lambda_w - s.lambda_r > threshold_n) break;
+    prev = s;
+  }
+  return out;
+}
+
+}  // namespace
+
+PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
+                          const PatchGridOptions& o) {
+  RAILWEAR_CHECK(o.cell_dx_m > 0 && o.cell_ds_m > 0 && o.threshold_m > 0);
+  PatchBuild build;
+  const Eigen::Vector2d n0 = c.normal.normalized();
+  const Eigen::Vector2d t0(-n0.y(), n0.x());  // points toward +y when n0 points up
+  const double w0 = -n0.y();
+  if (w0 < o.min_approach_weight) return build;
+  const Eigen::Vector2d pc = c.rail_point_m;
+  const double threshold_n = o.threshold_m * w0;
+
+  // 1. Lateral walk along t0 at x = 0.
+  Section centre;
+  if (!CrossSection(g, pc, t0, n0, 0.0, c.rail_s_m, c.wheel_s_m, 1e-3, &centre)) return build;
+  const double step = std::min(o.cell_ds_m / 8.0, 2e-5);
+  bool lim_lo = false, lim_hi = false;
+  std::vector<Section> lo = Walk(g, pc, t0, n0, centre, step, threshold_n, -1.0, &lim_lo);
+  std::vector<Section> hi = Walk(g, pc, t0, n0, centre, step, threshold_n, +1.0, &lim_hi);
+  std::vector<Section> sections(lo.rbegin(), lo.rend());
+  sections.push_back(centre);
+  sections.insert(sections.end(), hi.begin(), hi.end());
+  const int centre_index = static_cast<int>(lo.size());
+
+  // 2. Reference curve samples (rail frame) and their arc length, 0 at the contact point.
+  const double K = o.stiffness_ratio_K;
+  const bool planar = o.geometry == GeometryModel::kPlanar;
+  const int m = static_cast<int>(sections.size());
+  std::vector<Eigen::Vector2d> curve(m);
+  std::vector<double> arc(m, 0.0);
+  for (int k = 0; k < m; ++k) {
+    const Section& s = sections[k];
+    const double lambda = planar ? 0.0 : K * s.lambda_w + (1.0 - K) * s.lambda_r;
+    curve[k] = pc + s.tau * t0 + lambda * n0;
+    if (k > 0) arc[k] = arc[k - 1] + (curve[k] - curve[k - 1]).norm();
+  }
+  const double arc0 = arc[centre_index];
+  for (double& a : arc) a -= arc0;
+
+  // Keep only the part where the reference normal lets a vertical approach close the gap.
+  auto tangent_at = [&](int k) {
+    const int a = std::max(0, k - 1), b = std::min(m - 1, k + 1);
+    return (curve[b] - curve[a]).normalized().eval();
+  };
+  int k_lo = 0, k_hi = m - 1;
+  for (int k = centre_index; k >= 0; --k) {
+    const Eigen::Vector2d t = tangent_at(k);
+    if (t.x() < o.min_approach_weight) { k_lo = k + 1; lim_lo = true; break; }
+  }
+  for (int k = centre_index; k < m; ++k) {
+    const Eigen::Vector2d t = tangent_at(k);
+    if (t.x() < o.min_approach_weight) { k_hi = k - 1; lim_hi = true; break; }
+  }
+  if (k_hi <= k_lo) return build;
+  build.lateral_limited = lim_lo || lim_hi;
+
+  // 3. Cells: one centred on the contact point in s and on x = 0.
+  PatchGrid& grid = build.grid;
+  grid.planar = planar;
+  grid.dx_m = o.cell_dx_m;
+  grid.ds_m = o.cell_ds_m;
+  const int j_lo = static_cast<int>(std::floor(arc[k_lo] / o.cell_ds_m + 0.5));
+  const int j_hi = static_cast<int>(std::ceil(arc[k_hi] / o.cell_ds_m - 0.5));
+  grid.ns = std::max(1, j_hi - j_lo + 1);
+  grid.s0_m = j_lo * o.cell_ds_m;
+  double r_max = c.wheel_radius_m;
+  for (int k = k_lo; k <= k_hi; ++k) {
+    const double r = g.pose().rolling_radius_m +
+                     g.wheel().profile().Position(sections[k].wheel_s).y();
+    r_max = std::max(r_max, r);
+  }
+  build.wheel_radius_max_m = r_max;
+  const double x_half = std::sqrt(2.0 * r_max * o.threshold_m);
+  const int half_cells = std::max(1, static_cast<int>(std::ceil(x_half / o.cell_dx_m - 0.5)));
+  grid.nx = 2 * half_cells + 1;
+  grid.x0_m = -half_cells * o.cell_dx_m;
+
+  grid.point_yz_m.resize(grid.ns);
+  grid.tangent_yz.resize(grid.ns);
+  grid.normal_yz.resize(grid.ns);
+  std::vector<double> rail_s(grid.ns), wheel_s(grid.ns), lambda_r(grid.ns), lambda_w(grid.ns);
+  for (int j = 0; j < grid.ns; ++j) {
+    const double s = grid.S(j);
+    // Locate s on the sampled reference curve (linear between samples).
+    const int k = std::clamp(
+        static_cast<int>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin()) - 1, 0, m - 2);
+    const double f = std::clamp((s - arc[k]) / (arc[k + 1] - arc[k]), -1.0, 2.0);
+    grid.point_yz_m[j] = curve[k] + f * (curve[k + 1] - curve[k]);
+    const Eigen::Vector2d t = (curve[k + 1] - curve[k]).normalized();
+    grid.tangent_yz[j] = planar ? t0 : t;
+    Eigen::Vector2d n(-t.y(), t.x());
+    if (n.dot(n0) < 0) n = -n;
+    grid.normal_yz[j] = planar ? n0 : n;
+    rail_s[j] = sections[k].rail_s;
+    wheel_s[j] = sections[k].wheel_s;
+    lambda_r[j] = sections[k].lambda_r + f * (sections[k + 1].lambda_r - sections[k].lambda_r);
+    lambda_w[j] = sections[k].lambda_w + f * (sections[k + 1].lambda_w - sections[k].lambda_w);
+  }
+
+  // 4. Initial separation per cell.
+  grid.gap_m.resize(grid.cells());
+  // Search windows in profile arc length: wide for the first cell of a column, narrow for warm
+  // starts from the neighbouring cell (the closest point moves by much less than a cell).
+  const double window = 3 * o.cell_ds_m + 1e-3;
+  const double warm_window = 1e-4 + 0.5 * std::max(o.cell_dx_m, o.cell_ds_m);
+  const int ic = half_cells;  // the x = 0 column
+  for (int j = 0; j < grid.ns; ++j) {
+    const Eigen::Vector2d p = grid.point_yz_m[j];
+    if (!planar) {
+      // Seed eq. 2: signed distance to the rail (prismatic) plus to the wheel (revolution).
+      const auto pr = g.ProjectOnRail(p, rail_s[j] - window, rail_s[j] + window);
+      const double s_centre =
+          g.ProjectOnWheel({0.0, p.x(), p.y()}, wheel_s[j] - window, wheel_s[j] + window).s;
+      for (int dir : {+1, -1}) {
+        double sg = s_centre;
+        for (int i = (dir > 0 ? ic : ic - 1); i >= 0 && i < grid.nx; i += dir) {
+          const Eigen::Vector3d q(grid.X(i), p.x(), p.y());
+          const auto pw = g.ProjectOnWheel(q, sg - warm_window, sg + warm_window);
+          sg = pw.s;
+          grid.gap_m[grid.Index(i, j)] = pr.signed_distance + pw.signed_distance;
+        }
+      }
+    } else {
+      // Model A: gap along n0 between the rail line crossing and the wheel surface at x.
+      const Eigen::Vector2d b = pc + (grid.S(j)) * t0;
+      const auto rail_cross = g.rail().IntersectLine(b, n0, rail_s[j] - window, rail_s[j] + window);
+      const double lr = rail_cross ? rail_cross->lambda : lambda_r[j];
+      const double s_centre =
+          g.ProjectOnWheel({0.0, (b + lambda_w[j] * n0).x(), (b + lambda_w[j] * n0).y()},
+                           wheel_s[j] - window, wheel_s[j] + window).s;
+      for (int i = 0; i < grid.nx; ++i) {
+        const double x = grid.X(i);
+        // Root of the wheel's signed distance along the line (x, b + lambda n0); secant steps
+        // from the x = 0 crossing plus the lift of a body of revolution.
+        auto dist = [&](double lambda) {
+          const Eigen::Vector2d yz = b + lambda * n0;
+          return g.ProjectOnWheel({x, yz.x(), yz.y()}, s_centre - warm_window,
+                                  s_centre + warm_window)
+              .signed_distance;
+        };
+        double l0 = lambda_w[j] + x * x * w0 / (2.0 * r_max);
+        double f0 = dist(l0);
+        double l1 = l0 + f0, f1 = dist(l1);
+        for (int it = 0; it < 30 && std::abs(f1) > 1e-13; ++it) {
+          const double slope = (f1 - f0) / (l1 - l0);
+          const double l2 = (slope != 0) ? l1 - f1 / slope : l1 + f1;
+          l0 = l1; f0 = f1; l1 = l2; f1 = dist(l1);
+          if (std::abs(l1 - l0) < 1e-13) break;
+        }
+        grid.gap_m[grid.Index(i, j)] = l1 - lr;
+      }
+    }
+  }
+  build.valid = true;
+  return build;
+}
+
+}  // namespace railwear

@@ -1,0 +1,44 @@
+// BuildPatchGrid: the potential contact area of one contact candidate as a PatchGrid.
+//
+// Planar model (Model A): the cross-section is the tangent line of the first contact point; the
+// gap is measured along that line's normal n0, from the rail to the wheel.
+// Conformal model (Model B): the cross-section is the intermediate curve of seed eq. 1,
+// f = K f_wheel + (1 - K) f_rail with K = k_rail / (k_wheel + k_rail), evaluated in the local
+// frame (t0, n0) of the first contact point so that steep gauge-corner surfaces stay
+// single-valued; the gap of a cell is the sum of the signed distances of its centre to both
+// bodies by orthogonal projection (seed eq. 2): a 1-D search along the prismatic rail's profile,
+// and along the wheel profile in the meridian plane through the point (body of revolution).
+//
+// Both grids are extruded along x. The potential area spans the lateral range where the gap
+// along n0 at x = 0 stays below threshold * w0 (w0 = the vertical component of n0) and the
+// longitudinal range where the wheel's lift x^2 / (2 r) stays below the threshold.
+#pragma once
+
+#include "core/contact/contact_types.h"
+#include "core/contact/patch_grid.h"
+#include "core/geometry/wheel_rail_geometry.h"
+
+namespace railwear {
+
+struct PatchGridOptions {
+  GeometryModel geometry = GeometryModel::kConformal;
+  double cell_dx_m = 0.0;    // > 0
+  double cell_ds_m = 0.0;    // > 0
+  double threshold_m = 0.0;  // vertical-gap threshold bounding the potential area (> 0)
+  double stiffness_ratio_K = 0.5;  // K = k_rail / (k_wheel + k_rail) of seed eq. 1
+  // Cells whose surface normal is steeper than this against the vertical are left out (a
+  // vertical approach cannot close them). cos of 85 degrees.
+  double min_approach_weight = 0.0872;
+};
+
+struct PatchBuild {
+  PatchGrid grid;
+  bool valid = false;           // false when the candidate gives no usable cross-section
+  bool lateral_limited = false; // the lateral range stopped at a profile end or a steep normal
+  double wheel_radius_max_m = 0.0;
+};
+
+PatchBuild BuildPatchGrid(const WheelRailGeometry& geometry, const ContactCandidate& candidate,
+                          const PatchGridOptions& options);
+
+}  // namespace railwear

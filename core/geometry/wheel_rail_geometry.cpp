@@ -1,0 +1,204 @@
+// Placement of the wheel on the rail, first contact by lowering, and the vertical-gap search for
+// contact candidates (one or several separate patches, e.g. tread and flange at once).
+#include "core/geometry/wheel_rail_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/numerics/check.h"
+
+namespace railwear {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Golden-section minimisation of f on [a, b] to an absolute tolerance.
+template <typename F>
+double GoldenMinimise(F&& f, double a, double b, double tol) {
+  const double r = 0.5 * (std::sqrt(5.0) - 1.0);
+  double c = b - r * (b - a), d = a + r * (b - a);
+  double fc = f(c), fd = f(d);
+  while (b - a > tol) {
+    if (fc < fd) {
+      b = d; d = c; fd = fc; c = b - r * (b - a); fc = f(c);
+    } else {
+      a = c; c = d; fc = fd; d = a + r * (b - a); fd = f(d);
+    }
+  }
+  return 0.5 * (a + b);
+}
+
+// Lower (max z) or upper (min z) envelope of a polyline on a uniform y grid.
+void Rasterise(const std::vector<Eigen::Vector2d>& pts, double y0, double h, int n, bool take_min,
+               std::vector<double>* z) {
+  for (size_t k = 0; k + 1 < pts.size(); ++k) {
+    const Eigen::Vector2d& a = pts[k];
+    const Eigen::Vector2d& b = pts[k + 1];
+    const double ya = std::min(a.x(), b.x()), yb = std::max(a.x(), b.x());
+    int i0 = static_cast<int>(std::ceil((ya - y0) / h));
+    int i1 = static_cast<int>(std::floor((yb - y0) / h));
+    i0 = std::max(i0, 0);
+    i1 = std::min(i1, n - 1);
+    for (int i = i0; i <= i1; ++i) {
+      const double y = y0 + i * h;
+      const double t = (b.x() == a.x()) ? 0.0 : (y - a.x()) / (b.x() - a.x());
+      const double zi = a.y() + t * (b.y() - a.y());
+      double& slot = (*z)[i];
+      slot = take_min ? std::min(slot, zi) : std::max(slot, zi);
+      if (b.x() == a.x()) slot = take_min ? std::min(slot, b.y()) : std::max(slot, b.y());
+    }
+  }
+}
+
+// Lateral curvature of a profile at s, positive where the body is convex.
+double ConvexCurvature(const CurveLocator& loc, double s) {
+  const Eigen::Vector2d outward = loc.OutwardNormal(s);
+  const Eigen::Vector2d left = loc.profile().LeftNormal(s);
+  // The curve turns toward the material on a convex body: toward -outward.
+  return loc.profile().Curvature(s) * (left.dot(-outward) > 0 ? 1.0 : -1.0);
+}
+
+}  // namespace
+
+WheelRailGeometry::WheelRailGeometry(const Profile& wheel, const Profile& rail,
+                                     const WheelPose& pose, double vertical_step_m)
+    : pose_(pose),
+      rail_locator_(rail, /*material_toward_plus_z=*/true),
+      wheel_locator_(wheel, /*material_toward_plus_z=*/false),
+      cos_roll_(std::cos(pose.roll_rad)),
+      sin_roll_(std::sin(pose.roll_rad)) {
+  RAILWEAR_CHECK(pose.rolling_radius_m > 0 && vertical_step_m > 0);
+  // Sample both cross-sections (wheel at dz = 0) and intersect their lateral ranges.
+  auto sample = [](const Profile& p, double step) {
+    const int n = std::max(2, static_cast<int>(std::ceil(p.Length() / step)) + 1);
+    std::vector<Eigen::Vector2d> pts(n);
+    for (int i = 0; i < n; ++i) pts[i] = p.Position(p.Length() * i / (n - 1));
+    return pts;
+  };
+  std::vector<Eigen::Vector2d> rail_pts = sample(rail, vertical_step_m);
+  std::vector<Eigen::Vector2d> wheel_pts = sample(wheel, vertical_step_m);
+  for (auto& p : wheel_pts) p = WheelToRail(p);  // dz_ is still 0
+  double ry0 = kInf, ry1 = -kInf, wy0 = kInf, wy1 = -kInf;
+  for (const auto& p : rail_pts) { ry0 = std::min(ry0, p.x()); ry1 = std::max(ry1, p.x()); }
+  for (const auto& p : wheel_pts) { wy0 = std::min(wy0, p.x()); wy1 = std::max(wy1, p.x()); }
+  const double y0 = std::max(ry0, wy0), y1 = std::min(ry1, wy1);
+  if (!(y1 > y0)) return;
+  const int n = static_cast<int>(std::floor((y1 - y0) / vertical_step_m)) + 1;
+  std::vector<double> ztop(n, kInf), zbot(n, -kInf);
+  Rasterise(rail_pts, y0, vertical_step_m, n, /*take_min=*/true, &ztop);
+  Rasterise(wheel_pts, y0, vertical_step_m, n, /*take_min=*/false, &zbot);
+  gap_y_.resize(n);
+  gap_.assign(n, std::numeric_limits<double>::quiet_NaN());
+  int best = -1;
+  for (int i = 0; i < n; ++i) {
+    gap_y_[i] = y0 + i * vertical_step_m;
+    if (std::isfinite(ztop[i]) && std::isfinite(zbot[i])) {
+      gap_[i] = ztop[i] - zbot[i];
+      if (best < 0 || gap_[i] < gap_[best]) best = i;
+    }
+  }
+  if (best < 0) return;
+  has_overlap_ = true;
+  // Refine the first contact on the splines: the exact vertical gap near the sampled minimum.
+  rail_top_ = ztop;
+  wheel_bottom_ = zbot;
+  const double y_star = RefineMinimum(best);
+  double g_min = ExactVerticalGap(y_star, best);
+  if (!std::isfinite(g_min)) g_min = gap_[best];
+  dz_ = g_min;
+  for (double& g : gap_) g -= dz_;
+}
+
+double WheelRailGeometry::ExactVerticalGap(double y, int sample) const {
+  // Crossings of the vertical line at y with both splines, near the sampled envelopes.
+  const auto r = rail_locator_.IntersectLine({y, rail_top_[sample]}, {0.0, 1.0}, 0.0, kInf);
+  const Eigen::Vector2d b_w = RailToWheel({y, wheel_bottom_[sample]});
+  const Eigen::Vector2d n_w = {sin_roll_, cos_roll_};  // R's +z seen in W
+  const auto w = wheel_locator_.IntersectLine(b_w, n_w, 0.0, kInf);
+  if (!r || !w) return kInf;
+  return (rail_top_[sample] + r->lambda) - (wheel_bottom_[sample] + w->lambda);
+}
+
+double WheelRailGeometry::RefineMinimum(int sample) const {
+  const double h = gap_y_.size() > 1 ? gap_y_[1] - gap_y_[0] : 1e-5;
+  return GoldenMinimise([&](double y) { return ExactVerticalGap(y, sample); },
+                        gap_y_[sample] - 2 * h, gap_y_[sample] + 2 * h, 1e-10);
+}
+
+Eigen::Vector2d WheelRailGeometry::WheelToRail(const Eigen::Vector2d& p) const {
+  return {cos_roll_ * p.x() - sin_roll_ * p.y() + pose_.lateral_shift_m,
+          sin_roll_ * p.x() + cos_roll_ * p.y() + dz_};
+}
+
+Eigen::Vector2d WheelRailGeometry::RailToWheel(const Eigen::Vector2d& p) const {
+  const double dy = p.x() - pose_.lateral_shift_m, dzz = p.y() - dz_;
+  return {cos_roll_ * dy + sin_roll_ * dzz, -sin_roll_ * dy + cos_roll_ * dzz};
+}
+
+Eigen::Vector2d WheelRailGeometry::Meridian(const Eigen::Vector3d& p) const {
+  const Eigen::Vector2d w = RailToWheel({p.y(), p.z()});
+  const double r0 = pose_.rolling_radius_m;
+  const double r = std::hypot(p.x(), w.y() + r0);
+  return {w.x(), r - r0};
+}
+
+CurveLocator::Projection WheelRailGeometry::ProjectOnWheel(const Eigen::Vector3d& p, double s_lo,
+                                                           double s_hi) const {
+  return wheel_locator_.Project(Meridian(p), s_lo, s_hi);
+}
+
+CurveLocator::Projection WheelRailGeometry::ProjectOnRail(const Eigen::Vector2d& yz,
+                                                          double s_lo, double s_hi) const {
+  return rail_locator_.Project(yz, s_lo, s_hi);
+}
+
+Eigen::Vector2d WheelRailGeometry::WheelOutwardNormalInRail(double s) const {
+  const Eigen::Vector2d n = wheel_locator_.OutwardNormal(s);
+  return {cos_roll_ * n.x() - sin_roll_ * n.y(), sin_roll_ * n.x() + cos_roll_ * n.y()};
+}
+
+std::vector<ContactCandidate> WheelRailGeometry::FindCandidates(double threshold_m) const {
+  std::vector<ContactCandidate> out;
+  if (!has_overlap_) return out;
+  const int n = static_cast<int>(gap_.size());
+  int i = 0;
+  while (i < n) {
+    if (!(gap_[i] < threshold_m)) {
+      ++i;
+      continue;
+    }
+    int j = i, best = i;
+    while (j < n && gap_[j] < threshold_m) {
+      if (gap_[j] < gap_[best]) best = j;
+      ++j;
+    }
+    ContactCandidate c;
+    c.y_lo_m = gap_y_[i];
+    c.y_hi_m = gap_y_[j - 1];
+    c.y_m = RefineMinimum(best);
+    c.gap_m = ExactVerticalGap(c.y_m, best);
+    if (!std::isfinite(c.gap_m)) {
+      c.y_m = gap_y_[best];
+      c.gap_m = gap_[best];
+    }
+    // Contact point: the rail top under the smallest gap (projected onto the spline), and the
+    // wheel point straight above it.
+    const auto rp = rail_locator_.Project({c.y_m, rail_top_[best]}, 0.0, kInf);
+    c.rail_s_m = rp.s;
+    c.rail_point_m = rp.point;
+    const Eigen::Vector2d above = c.rail_point_m - Eigen::Vector2d(0.0, c.gap_m);
+    const auto wp = wheel_locator_.Project(RailToWheel(above));
+    c.wheel_s_m = wp.s;
+    c.normal = rail_locator_.OutwardNormal(c.rail_s_m);
+    c.rail_lateral_curvature = ConvexCurvature(rail_locator_, c.rail_s_m);
+    c.wheel_lateral_curvature = ConvexCurvature(wheel_locator_, c.wheel_s_m);
+    c.wheel_radius_m = pose_.rolling_radius_m + wheel_locator_.profile().Position(c.wheel_s_m).y();
+    out.push_back(c);
+    i = j;
+  }
+  return out;
+}
+
+}  // namespace railwear

@@ -1,0 +1,94 @@
+// WheelRailGeometry: a wheel placed on a rail (lateral shift, roll, rolling radius), lowered
+// until first contact, with the geometric queries the contact patches need.
+//
+// Frames (core/notation.md): rail frame R (y toward the field side, z down); wheel profile frame
+// W (origin on the taping line, z toward the rail, axle at z = -r0). The wheel profile's origin
+// sits at (lateral_shift, dz) in R, rotated by roll about x; dz is chosen so that the smallest
+// vertical gap between the bodies is zero (first contact).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/geometry/curve_locator.h"
+#include "core/profile/profile.h"
+
+namespace railwear {
+
+struct WheelPose {
+  double lateral_shift_m = 0.0;
+  double roll_rad = 0.0;
+  double rolling_radius_m = 0.46;
+};
+
+// A potential contact region found on the vertical-gap function g(y) at x = 0.
+struct ContactCandidate {
+  double y_lo_m = 0.0, y_hi_m = 0.0;  // lateral interval (R) where g < threshold
+  double y_m = 0.0;                   // lateral position of the smallest gap in the interval
+  double gap_m = 0.0;                 // that smallest vertical gap (0 at first contact)
+  double rail_s_m = 0.0;              // rail profile parameter of the contact point
+  double wheel_s_m = 0.0;             // wheel profile parameter of the contact point
+  Eigen::Vector2d rail_point_m = Eigen::Vector2d::Zero();  // on the rail, R
+  Eigen::Vector2d normal = Eigen::Vector2d::Zero();        // rail outward normal there, R
+  double rail_lateral_curvature = 0.0;   // 1/m, convex positive
+  double wheel_lateral_curvature = 0.0;  // 1/m, convex positive
+  double wheel_radius_m = 0.0;           // rolling radius at the contact point
+};
+
+class WheelRailGeometry {
+ public:
+  // Profiles must outlive this object. vertical_step_m is the lateral sampling of g(y).
+  WheelRailGeometry(const Profile& wheel, const Profile& rail, const WheelPose& pose,
+                    double vertical_step_m = 2e-5);
+
+  // False when the profiles do not overlap laterally (no contact is possible).
+  bool has_overlap() const { return has_overlap_; }
+  const WheelPose& pose() const { return pose_; }
+  double dz_m() const { return dz_; }
+
+  // Vertical gap samples at x = 0 after lowering: y (R) and g(y) >= 0 (NaN where only one body
+  // is present).
+  const std::vector<double>& gap_y_m() const { return gap_y_; }
+  const std::vector<double>& gap_m() const { return gap_; }
+
+  // Connected lateral intervals where g(y) < threshold, each with its contact point.
+  std::vector<ContactCandidate> FindCandidates(double threshold_m) const;
+
+  // Transforms between the wheel profile frame W (x = 0 cross-section) and R.
+  Eigen::Vector2d WheelToRail(const Eigen::Vector2d& p_W) const;
+  Eigen::Vector2d RailToWheel(const Eigen::Vector2d& p_R) const;
+  // A 3-D point (x, y, z) in R in the wheel's meridian coordinates (y_W, r - r0): the point's
+  // position in the wheel profile frame after rotating it about the axle into the x = 0 plane.
+  Eigen::Vector2d Meridian(const Eigen::Vector3d& p_R) const;
+
+  const CurveLocator& rail() const { return rail_locator_; }
+  const CurveLocator& wheel() const { return wheel_locator_; }
+
+  // Signed distance of a 3-D point (R) to the wheel surface (> 0 outside), with the wheel
+  // profile parameter of the closest point; the search covers [s_lo, s_hi] of the wheel profile.
+  CurveLocator::Projection ProjectOnWheel(const Eigen::Vector3d& p_R, double s_lo,
+                                          double s_hi) const;
+  // The same for the (prismatic) rail: only (y, z) matters.
+  CurveLocator::Projection ProjectOnRail(const Eigen::Vector2d& yz_R, double s_lo,
+                                         double s_hi) const;
+
+  // Outward normal of the wheel at profile parameter s, in R (x = 0 cross-section).
+  Eigen::Vector2d WheelOutwardNormalInRail(double s) const;
+
+ private:
+  WheelPose pose_;
+  CurveLocator rail_locator_;
+  CurveLocator wheel_locator_;
+  double dz_ = 0.0;
+  bool has_overlap_ = false;
+  // Vertical gap at y on the splines (after lowering), near gap sample `sample`.
+  double ExactVerticalGap(double y, int sample) const;
+  // Lateral position of the smallest exact gap near gap sample `sample`.
+  double RefineMinimum(int sample) const;
+  std::vector<double> gap_y_, gap_, rail_top_, wheel_bottom_;
+  double cos_roll_ = 1.0, sin_roll_ = 0.0;
+};
+
+}  // namespace railwear

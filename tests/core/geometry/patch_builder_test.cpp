@@ -1,0 +1,93 @@
+#include "core/geometry/patch_builder.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "tests/core/geometry/geometry_test_util.h"
+
+namespace railwear {
+namespace {
+
+// Projections are refined on C2 splines of 801-point arcs (position error ~1e-12 m) to a
+// parameter tolerance of 1e-12 m; the reference curve is linear between samples 20 um apart,
+// which moves a cell centre off the exact intermediate curve by at most h^2 kappa / 8 ~ 5e-9 m —
+// the gap itself is exact for the point used, so compare gaps to 1e-10 m.
+constexpr double kGapTolerance_m = 1e-10;
+
+TEST(PatchBuilder, ConformalGapIsTheSumOfOrthogonalDistances) {
+  // A 10 mm convex wheel in a 10.25 mm groove, both touching at the origin. At x = 0 the gap of
+  // seed eq. 2 is exact: d = (R2 - |P - C2|) + (|P - C1| - R1), C1 = (0, -R1), C2 = (0, -R2).
+  const double R1 = 0.010, R2 = 0.01025;
+  const Profile wheel = testing::ArcProfile(R1, -1.0);
+  const Profile rail = testing::ArcProfile(R2, -1.0);
+  WheelPose pose;
+  pose.rolling_radius_m = 0.46;
+  const WheelRailGeometry g(wheel, rail, pose);
+  const auto cands = g.FindCandidates(2e-5);
+  ASSERT_EQ(cands.size(), 1u);
+  PatchGridOptions o;
+  o.geometry = GeometryModel::kConformal;
+  o.cell_dx_m = 2e-4;
+  o.cell_ds_m = 2e-4;
+  o.threshold_m = 2e-5;
+  const PatchBuild b = BuildPatchGrid(g, cands[0], o);
+  ASSERT_TRUE(b.valid);
+  const PatchGrid& grid = b.grid;
+  EXPECT_FALSE(grid.planar);
+  EXPECT_GT(grid.ns, 20);  // the conformal patch wraps far around the groove
+  const Eigen::Vector2d c1(0.0, -R1), c2(0.0, -R2);
+  const int ic = (grid.nx - 1) / 2;
+  EXPECT_NEAR(grid.X(ic), 0.0, 1e-15);
+  for (int j = 0; j < grid.ns; ++j) {
+    const Eigen::Vector2d p = grid.point_yz_m[j];
+    const double exact = (R2 - (p - c2).norm()) + ((p - c1).norm() - R1);
+    EXPECT_NEAR(grid.gap_m[grid.Index(ic, j)], exact, kGapTolerance_m) << j;
+    // Identical materials: the cell centre lies midway between the two circles along the
+    // common radial direction (to the curvature of the offset between them).
+    const double mid = 0.5 * ((p - c1).norm() - R1 - (R2 - (p - c2).norm()));
+    EXPECT_NEAR(mid, 0.0, 1e-7) << j;
+    // Normals point out of the rail, into the wheel: toward the circle centres.
+    EXPECT_GT(grid.normal_yz[j].dot((c1 - p).normalized()), 0.999);
+  }
+  // The gap grows away from x = 0 as the wheel lifts: x^2/(2 r0) w, w = -n_z.
+  const int j0 = static_cast<int>(std::lround(-grid.s0_m / grid.ds_m));
+  const double x = grid.X(grid.nx - 1);
+  EXPECT_NEAR(grid.gap_m[grid.Index(grid.nx - 1, j0)] - grid.gap_m[grid.Index(ic, j0)],
+              x * x / (2 * pose.rolling_radius_m), 1e-3 * x * x / (2 * pose.rolling_radius_m));
+}
+
+TEST(PatchBuilder, PlanarGapIsQuadraticNearFirstContact) {
+  // Laterally flat wheel of radius r0 on a 300 mm crown: along the plane normal the gap is
+  // x^2/(2 r0) + s^2/(2 R) + higher order terms (relative size ~ s^2/R^2 ~ 1e-4 here).
+  const double R = 0.3, r0 = 0.46;
+  const Profile rail = testing::ArcProfile(R, +1.0, 0.15);
+  const Profile wheel = testing::FunctionProfile([](double) { return 0.0; }, -0.05, 0.05, 201);
+  WheelPose pose;
+  pose.rolling_radius_m = r0;
+  const WheelRailGeometry g(wheel, rail, pose);
+  const auto cands = g.FindCandidates(1e-4);
+  ASSERT_EQ(cands.size(), 1u);
+  PatchGridOptions o;
+  o.geometry = GeometryModel::kPlanar;
+  o.cell_dx_m = 5e-4;
+  o.cell_ds_m = 5e-4;
+  o.threshold_m = 1e-4;
+  const PatchBuild b = BuildPatchGrid(g, cands[0], o);
+  ASSERT_TRUE(b.valid);
+  const PatchGrid& grid = b.grid;
+  EXPECT_TRUE(grid.planar);
+  for (int j = 0; j < grid.ns; ++j) {
+    for (int i = 0; i < grid.nx; ++i) {
+      const double x = grid.X(i), s = grid.S(j);
+      const double quad = x * x / (2 * r0) + s * s / (2 * R);
+      EXPECT_NEAR(grid.gap_m[grid.Index(i, j)], quad, 2e-3 * quad + 1e-11) << i << " " << j;
+    }
+  }
+  // Potential area: |s| up to sqrt(2 R T), |x| up to sqrt(2 r0 T).
+  EXPECT_NEAR(grid.S(grid.ns - 1), std::sqrt(2 * R * 1e-4), 1.5 * o.cell_ds_m);
+  EXPECT_NEAR(grid.X(grid.nx - 1), std::sqrt(2 * r0 * 1e-4), 1.0 * o.cell_dx_m);
+}
+
+}  // namespace
+}  // namespace railwear

@@ -1,0 +1,89 @@
+#include "core/geometry/wheel_rail_geometry.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "tests/core/geometry/geometry_test_util.h"
+
+namespace railwear {
+namespace {
+
+constexpr double kGeomTolerance_m = 1e-9;  // spline and golden-section accuracy
+
+TEST(WheelRailGeometry, FlatWheelLowersOntoCrown) {
+  // A laterally straight wheel tread over a 300 mm crown shifted by 4 mm: first contact at the
+  // crown top, whatever the shift; the gap there is zero and grows as y^2/(2R).
+  const double R = 0.3;
+  const Profile rail = testing::ArcProfile(R, +1.0, 0.15);
+  const Profile wheel = testing::FunctionProfile([](double) { return 0.002; }, -0.05, 0.05, 201);
+  WheelPose pose;
+  pose.lateral_shift_m = 0.004;
+  pose.rolling_radius_m = 0.46;
+  const WheelRailGeometry g(wheel, rail, pose);
+  ASSERT_TRUE(g.has_overlap());
+  EXPECT_NEAR(g.dz_m(), -0.002, kGeomTolerance_m);  // the wheel's z = 2 mm line lands on z = 0
+  const auto cands = g.FindCandidates(1e-4);
+  ASSERT_EQ(cands.size(), 1u);
+  const auto& c = cands[0];
+  EXPECT_NEAR(c.y_m, 0.0, 1e-7);
+  EXPECT_NEAR(c.gap_m, 0.0, kGeomTolerance_m);  // first contact: zero gap after lowering
+  EXPECT_NEAR(c.rail_point_m.norm(), 0.0, 1e-6);
+  EXPECT_NEAR(c.rail_lateral_curvature, 1.0 / R, 1e-6 / R);
+  EXPECT_NEAR(c.wheel_lateral_curvature, 0.0, 1e-6);
+  EXPECT_NEAR(c.wheel_radius_m, 0.462, 1e-9);
+  EXPECT_NEAR(c.normal.y(), -1.0, 1e-9);
+  // Interval where y^2/(2R) < 1e-4: |y| < sqrt(2 R 1e-4) = 7.746 mm.
+  EXPECT_NEAR(c.y_lo_m, -std::sqrt(2 * R * 1e-4), 3e-5);
+  EXPECT_NEAR(c.y_hi_m, std::sqrt(2 * R * 1e-4), 3e-5);
+}
+
+TEST(WheelRailGeometry, TwoPointContactGivesTwoCandidates) {
+  // A wheel with two lobes over a flat rail: two separate candidates; the deeper lobe touches.
+  const Profile rail = testing::FunctionProfile([](double) { return 0.0; }, -0.05, 0.05, 201);
+  auto lobes = [](double y) {
+    return -std::min(100.0 * (y + 0.02) * (y + 0.02), 30.0 * (y - 0.02) * (y - 0.02) + 5e-5);
+  };
+  const Profile wheel = testing::FunctionProfile(lobes, -0.045, 0.045, 901);
+  const WheelRailGeometry g(wheel, rail, WheelPose{});
+  const auto one = g.FindCandidates(2e-5);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_NEAR(one[0].y_m, -0.02, 2e-5);
+  const auto two = g.FindCandidates(1e-4);
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_NEAR(two[1].y_m, 0.02, 2e-5);
+  EXPECT_NEAR(two[1].gap_m, 5e-5, 1e-7);
+}
+
+TEST(WheelRailGeometry, MeridianOfABodyOfRevolution) {
+  // Rotating a wheel point about the axle keeps its meridian coordinates.
+  const Profile rail = testing::ArcProfile(0.3, +1.0, 0.15);
+  const Profile wheel = testing::FunctionProfile([](double y) { return 0.01 * y; }, -0.05, 0.05, 11);
+  WheelPose pose;
+  pose.roll_rad = 0.01;
+  pose.lateral_shift_m = 0.003;
+  const WheelRailGeometry g(wheel, rail, pose);
+  const double r0 = pose.rolling_radius_m;
+  const Eigen::Vector2d pw(0.007, 0.0005);              // in the wheel profile frame
+  const Eigen::Vector2d pr = g.WheelToRail(pw);         // x = 0 cross-section, rail frame
+  EXPECT_NEAR((g.RailToWheel(pr) - pw).norm(), 0.0, 1e-15);
+  // Rotate about the axle by 0.1 rad: the axle is along the wheel's y axis at z_W = -r0.
+  const double a = 0.1, rr = r0 + pw.y();
+  const Eigen::Vector2d pw_rot_yz(pw.x(), rr * std::cos(a) - r0);
+  const Eigen::Vector2d pr_rot = g.WheelToRail(pw_rot_yz);
+  const Eigen::Vector3d p3(rr * std::sin(a), pr_rot.x(), pr_rot.y());
+  EXPECT_NEAR((g.Meridian(p3) - pw).norm(), 0.0, 1e-12);
+}
+
+TEST(WheelRailGeometry, NoLateralOverlap) {
+  const Profile rail = testing::ArcProfile(0.3, +1.0, 0.05);
+  const Profile wheel = testing::FunctionProfile([](double) { return 0.0; }, -0.01, 0.01, 11);
+  WheelPose pose;
+  pose.lateral_shift_m = 0.5;
+  const WheelRailGeometry g(wheel, rail, pose);
+  EXPECT_FALSE(g.has_overlap());
+  EXPECT_TRUE(g.FindCandidates(1.0).empty());
+}
+
+}  // namespace
+}  // namespace railwear
