@@ -345,17 +345,20 @@ TEST(NormalSolver, TwoPatchesShareOneApproach) {
 }
 
 TEST(NormalSolver, NearlySymmetricOperatorConverges) {
-  // A 2 % antisymmetric perturbation (like the seed's kernel on a curved grid) still converges.
-  const GridCase g = MakeHertzGrid(8, 1.5);
-  const FlatBoussinesqOperator op(g.nx, g.ny, g.dx, g.dy, CompliancePerPa(), 0.02);
-  NormalProblem pr = MakeQuadraticProblem(g, &op);
-  pr.force_N = kForce;
-  NormalSolverOptions options;
-  options.tolerance = 1e-8;
-  const NormalSolution s = SolveNormal(pr, options);
-  ASSERT_EQ(s.status, SolverStatus::kConverged) << s.message;
-  EXPECT_NEAR(LoadOf(pr, s), kForce, kLoadRelTol * kForce);
-  ExpectComplementarity(pr, s, options.tolerance);
+  // Antisymmetric perturbations of 2 % and 10 % (the seed's kernel on a curved grid is only
+  // nearly symmetric): plain CG stagnates on the 10 % one; the restart guard makes it converge.
+  for (double skew : {0.02, 0.1}) {
+    const GridCase g = MakeHertzGrid(8, 1.5);
+    const FlatBoussinesqOperator op(g.nx, g.ny, g.dx, g.dy, CompliancePerPa(), skew);
+    NormalProblem pr = MakeQuadraticProblem(g, &op);
+    pr.force_N = kForce;
+    const NormalSolverOptions options;
+    const NormalSolution s = SolveNormal(pr, options);
+    ASSERT_EQ(s.status, SolverStatus::kConverged) << "skew " << skew << ": " << s.message;
+    EXPECT_LT(s.iterations, 200) << "skew " << skew;
+    EXPECT_NEAR(LoadOf(pr, s), kForce, kLoadRelTol * kForce);
+    ExpectComplementarity(pr, s, options.tolerance);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -509,21 +512,36 @@ TEST(NormalSolver, StatusNames) {
 //       --gtest_filter='NormalSolver.DISABLED_IterationsVersusGridSize'
 TEST(NormalSolver, DISABLED_IterationsVersusGridSize) {
   const HertzSolution h = SolveHertz(kA, kB, ContactModulusH4(), kForce);
-  for (int n : {5, 10, 15, 20, 30}) {
-    const GridCase g = MakeHertzGrid(n, 1.5);
-    const FlatBoussinesqOperator op(g.nx, g.ny, g.dx, g.dy, CompliancePerPa());
+  struct Run {
+    int cells_per_semi_axis;
+    double coverage;
+    bool prescribed_approach;
+    double skew;
+  };
+  const Run runs[] = {{5, 1.5, false, 0}, {10, 1.5, false, 0}, {15, 1.5, false, 0},
+                      {20, 1.5, false, 0}, {30, 1.5, false, 0}, {10, 1.5, true, 0},
+                      {20, 1.5, true, 0},  {10, 3.0, false, 0}, {10, 1.5, false, 0.1}};
+  for (const Run& r : runs) {
+    const GridCase g = MakeHertzGrid(r.cells_per_semi_axis, r.coverage);
+    const FlatBoussinesqOperator op(g.nx, g.ny, g.dx, g.dy, CompliancePerPa(), r.skew);
     NormalProblem pr = MakeQuadraticProblem(g, &op);
-    pr.force_N = kForce;
+    if (r.prescribed_approach) {
+      pr.approach_m = h.approach_m;
+    } else {
+      pr.force_N = kForce;
+    }
     const auto t0 = std::chrono::steady_clock::now();
     const NormalSolution s = SolveNormal(pr);
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     std::printf(
-        "cells/semi-axis %2d  grid %3dx%3d  %s  iterations %3d  applies %3d  %8.1f ms  "
-        "area %+.2f%%  p0 %+.2f%%  delta %+.2f%%\n",
-        n, g.nx, g.ny, std::string(ToString(s.status)).c_str(), s.iterations,
+        "cells/semi-axis %2d cover %.1f %s skew %.2f grid %3dx%3d  %s  iterations %3d  "
+        "applies %3d  %8.1f ms  area %+.2f%%  p0 %+.2f%%  delta %+.2f%%  load %+.2f%%\n",
+        r.cells_per_semi_axis, r.coverage, r.prescribed_approach ? "approach" : "load    ",
+        r.skew, g.nx, g.ny, std::string(ToString(s.status)).c_str(), s.iterations,
         s.operator_applications, ms, 100 * (ContactArea(pr, s) / h.area_m2 - 1),
-        100 * (s.pressure_Pa.maxCoeff() / h.p0_Pa - 1), 100 * (s.approach_m / h.approach_m - 1));
+        100 * (s.pressure_Pa.maxCoeff() / h.p0_Pa - 1), 100 * (s.approach_m / h.approach_m - 1),
+        100 * (s.force_N / kForce - 1));
   }
 }
 
