@@ -17,7 +17,10 @@ struct HertzSolution {
   double force_N = 0.0;
 };
 
-// A, B > 0. P >= 0 (P = 0 gives a zero patch). Throws std::invalid_argument on A or B <= 0.
+// A, B > 0 [1/m], E* > 0 [Pa], P >= 0 [N] (P = 0 gives a zero patch). Throws
+// std::invalid_argument on A or B <= 0 (or E* <= 0, P < 0, non-finite input), and
+// std::runtime_error if the axis ratio cannot be found (curvature ratio beyond ~1e12).
+// Any ratio B/A is accepted: the major axis lies along the smaller curvature.
 HertzSolution SolveHertz(double A_per_m, double B_per_m, double contact_modulus_Pa,
                          double force_N);
 // The same for a prescribed approach delta >= 0.
@@ -29,7 +32,19 @@ struct LineContactSolution {
   double half_width_m = 0.0;
   double p0_Pa = 0.0;
 };
+// P' >= 0 force per unit length [N/m], R > 0 [m], E* > 0 [Pa]; throws std::invalid_argument
+// otherwise.
 LineContactSolution SolveLineContact(double force_per_length_N_m, double relative_radius_m,
                                      double contact_modulus_Pa);
+
+namespace internal {
+// Complete elliptic integrals of the first and second kind as functions of the PARAMETER
+// m = e^2 in [0, 1) (GSL takes the modulus e = sqrt(m)). Throw std::runtime_error on failure.
+double CompleteEllipticK(double m);
+double CompleteEllipticE(double m);
+// Axis ratio g = b/a in (0, 1] of the Hertz ellipse for a curvature ratio
+// r = (larger curvature)/(smaller curvature) >= 1 (reference README §1).
+double HertzAxisRatio(double curvature_ratio);
+}  // namespace internal
 
 }  // namespace railwear

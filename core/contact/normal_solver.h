@@ -24,9 +24,17 @@ enum class SolverStatus { kConverged, kNotConverged, kNoContact };
 std::string_view ToString(SolverStatus s);
 
 struct NormalSolverOptions {
-  // Stop when the complementarity residual max_k |g_k| over the contact set and the relative
-  // load error are below tolerance (|g| relative to the largest |d| over the contact set).
+  // Stopping criterion (dimensionless, > 0). The solver stops when
+  //   complementarity_residual_m <= tolerance * h   and   load_error_relative <= tolerance,
+  // where h = max over the contact set (p_k > 0) of |delta * w_k - d_k|: the largest elastic
+  // displacement in the patch (at the solution, C p = delta w - d there). This scale is
+  // independent of a constant offset in d (several patches, first contact not at d = 0).
+  // The criterion is checked with a freshly applied C p, never with an updated one.
   double tolerance = 1e-10;
+  // Projected-CG iterations (one operator application each, plus one more when the contact set
+  // grows or shrinks, plus O(n) work) before giving up with kNotConverged. >= 1. The conjugate
+  // directions restart when the residual has not halved in 30 iterations (operators that are
+  // only nearly symmetric), so a stalled solve ends here with a message instead of looping.
   int max_iterations = 2000;
   // Returns "" when valid, otherwise what is wrong.
   std::string Validate() const;
@@ -39,19 +47,31 @@ struct NormalProblem {
   Eigen::VectorXd gap_m;          // d, initial separation per cell [m]
   Eigen::VectorXd approach_weight;  // w, per cell, in (0, 1]
   Eigen::VectorXd cell_area_m2;   // A, per cell [m^2]
-  std::optional<double> force_N;     // prescribed load F (> 0) ...
-  std::optional<double> approach_m;  // ... or prescribed approach delta
+  std::optional<double> force_N;     // prescribed load F [N] (F <= 0 gives kNoContact) ...
+  std::optional<double> approach_m;  // ... or prescribed approach delta [m]; exactly one is set
 };
+// Preconditions (checked, abort on violation: the caller builds the problem): at least one
+// block, none null, block sizes summing to n = gap_m.size(); approach_weight and cell_area_m2
+// of size n; 0 < w_k <= 1; A_k > 0; all entries finite; options.Validate() == "".
+// The operators should be positive definite on any contact set (Boussinesq), or nearly so
+// (seed kernel on a curved grid); if the iteration stagnates the result is kNotConverged.
 
 struct NormalSolution {
   SolverStatus status = SolverStatus::kNotConverged;
   std::string message;
   Eigen::VectorXd pressure_Pa;  // per cell
   Eigen::VectorXd deformed_gap_m;  // g per cell
+  // delta [m]: the prescribed one, or the load multiplier (weighted least-squares fit of d + Cp
+  // against w over the contact set). With no contact under a prescribed load: min_k d_k / w_k,
+  // the largest approach that carries nothing.
   double approach_m = 0.0;
-  int iterations = 0;
-  double complementarity_residual_m = 0.0;  // max over cells of |min(p, g)|-type measure, m
+  double force_N = 0.0;  // sum_k p_k A_k w_k [N] (the load that follows a prescribed approach)
+  int iterations = 0;    // projected-CG iterations
+  // max( max_{p_k > 0} |g_k|, max_{p_k = 0} max(0, -g_k) ) [m]
+  double complementarity_residual_m = 0.0;
+  // |sum_k p_k A_k w_k - F| / F under a prescribed load; 0 under a prescribed approach.
   double load_error_relative = 0.0;
+  int operator_applications = 0;  // calls of InfluenceOperator::Apply (per block set), for cost
 };
 
 NormalSolution SolveNormal(const NormalProblem& problem, const NormalSolverOptions& options = {});
