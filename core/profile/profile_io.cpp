@@ -171,6 +171,43 @@ void ValidatePoints(const std::vector<RawPoint>& pts, const std::string& path, i
   }
 }
 
+// Measured MiniProf profiles carry scan glitches: a point that repeats its predecessor or steps
+// back against the scan direction (avg_HR.BAN line 136 steps back 0.01 mm; Car7216_0001r.whl line
+// 223 jumps back 0.6 mm at the flange tip). Such points are dropped, each with a note naming its
+// line, up to max(3, 1% of the points); more than that is a badly ordered file and is an error
+// (ValidatePoints reports the first offending line).
+void DropScanGlitches(std::vector<RawPoint>* pts, const std::string& path, int last_line,
+                      std::vector<std::string>* notes) {
+  const size_t max_drops = std::max<size_t>(3, pts->size() / 100);
+  const double dup_mm = Profile::kDuplicateDistance_m * 1e3;
+  const double cos_max_turn = std::cos(Profile::kMaxTurnAngle_rad);
+  std::vector<RawPoint> kept;
+  std::vector<std::string> dropped;
+  kept.reserve(pts->size());
+  for (const RawPoint& p : *pts) {
+    const size_t k = kept.size();
+    bool glitch = false;
+    if (k >= 1 && std::hypot(p.y - kept[k - 1].y, p.z - kept[k - 1].z) < dup_mm) {
+      glitch = true;
+      dropped.push_back(fmt::format("line {} (repeats line {})", p.line, kept[k - 1].line));
+    } else if (k >= 2) {
+      const double ay = kept[k - 1].y - kept[k - 2].y, az = kept[k - 1].z - kept[k - 2].z;
+      const double by = p.y - kept[k - 1].y, bz = p.z - kept[k - 1].z;
+      if (ay * by + az * bz < cos_max_turn * std::hypot(ay, az) * std::hypot(by, bz)) {
+        glitch = true;
+        dropped.push_back(fmt::format("line {} (steps back {:.3f} mm)", p.line, std::hypot(by, bz)));
+      }
+    }
+    if (!glitch) kept.push_back(p);
+  }
+  if (dropped.empty()) return;
+  if (dropped.size() > max_drops) {
+    ValidatePoints(*pts, path, last_line);  // throws, naming the first offending line
+  }
+  for (const auto& d : dropped) notes->push_back("scan glitch dropped: " + d);
+  *pts = std::move(kept);
+}
+
 // Orders the points so that y increases from first to last, validates and builds the Profile.
 Profile Finish(std::vector<RawPoint> pts, const std::string& path, int last_line,
                std::vector<std::string>* notes) {
@@ -601,6 +638,7 @@ ProfileFile ReadBan(const std::string& path) {
   if (y_up) {
     for (auto& p : d.pts) p.z = -p.z;
   }
+  DropScanGlitches(&d.pts, path, LastLine(lines), &notes);
   out.profile = Finish(std::move(d.pts), path, LastLine(lines), &notes);
   return out;
 }
@@ -656,6 +694,7 @@ ProfileFile ReadWhl(const std::string& path) {
   }
   const int last_line = LastLine(lines);
   if (d.pts.size() < 4) ValidatePoints(d.pts, path, last_line);
+  DropScanGlitches(&d.pts, path, last_line, &notes);
   // Y at the taping line X = 70 (first crossing) and the flange (largest |Y - Y70| for X in the
   // flange window).
   std::optional<double> y70;
