@@ -1,6 +1,7 @@
 // Built-in profiles: S1002 wheel (EN 13715, exact piecewise definition), UIC60 (60E1) rail head
 // (arc construction), and circular test profiles; profile specs; rail cant.
 // Definitions and check values: ../shared/reference/README.md §5.
+// All built-ins order their points with y increasing (as the file readers do).
 #pragma once
 
 #include <string>
@@ -30,13 +31,16 @@ Profile MakeCircle(double radius_m, BodyRole role);
 Profile MakeGroove(double radius_m, BodyRole role);
 
 // Rail cant: rotates the rail profile so that its head leans toward the gauge side (-y) by
-// atan(ratio) (1:40 -> ratio = 0.025), then moves the origin to the new highest point.
+// atan(ratio) (1:40 -> ratio = 0.025), then moves the origin to the new highest point (minimum z
+// of the spline). UIC60 canted 1:40: its old crown lands at y = -7.4977 mm.
 Profile ApplyCant(const Profile& rail, double ratio);
 // Parses "1:40" -> 0.025, "0" -> 0. Throws InputError otherwise.
 double ParseCant(const std::string& text);
 
 // A profile spec from a scene: "builtin:S1002", "builtin:UIC60", "circle:R", "groove:R" (R in
 // mm), or a file path (relative paths are taken relative to base_dir). Throws InputError.
+// source() of the result is the spec for built-ins/circles/grooves, the resolved path for files.
+// Circles and grooves: half-angle 80 degrees for R <= 50 mm, else half-width 50 mm; arc only.
 Profile LoadProfileSpec(const std::string& spec, BodyRole role, const std::string& base_dir);
 
 }  // namespace railwear

@@ -4,6 +4,21 @@
 // in the file, metres inside; y lateral positive toward the field side; z positive downward
 // (into the rail / toward the rail for a wheel). Conversions a format needs are applied and
 // listed in ProfileFile::notes (e.g. SIMPACK mirror.y, MiniProf vertical axis pointing up).
+//
+// Point order: every reader returns the points ordered so that y increases from the first to the
+// last point (flange / gauge side first), like the built-in profiles; for a rail LeftNormal() then
+// points into the rail (+z), for a wheel out of the wheel toward the rail.
+//
+// Format conventions applied:
+//   CSV         header "y_mm,z_mm" (extra columns, spaces, '#' comment lines allowed); frame as is.
+//   SIMPACK     header keys applied in SIMPACK's order: shift, rotate (turns +y toward +z), bound,
+//               mirror, inversion, units.len.f (mm when absent); header type must match the
+//               extension (0 = .prr rail, 1 = .prw wheel).
+//   MiniProf    .ban: y = -X; Y upward (z = -Y) unless the content shows it stored downward (the
+//               crown is then the interior minimum); files written by WriteProfileBan are taken
+//               as Y upward. .whl: y = X - 70 (taping line), z = Y (negated if the flange points
+//               to negative Y). Measured scan glitches (a point repeating or stepping back against
+//               the scan) are dropped with a note, up to max(3, 1% of the points).
 #pragma once
 
 #include <string>
