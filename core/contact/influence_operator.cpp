@@ -96,12 +96,16 @@ class PlanarFftOperator final : public InfluenceOperator {
         }
       }
     }
-    Forward(generator.data(), ls_, lx_);
+    TransformX(generator.data(), ls_, lx_);
     // Even generator -> real spectrum; the inverse FFTs are unscaled, so fold in 1/(lx ls).
     spectrum_.resize(static_cast<size_t>(hx_) * ls_);
     const double scale = 1.0 / (static_cast<double>(lx_) * ls_);
-    for (size_t k = 0; k < spectrum_.size(); ++k) spectrum_[k] = rows_[k].real() * scale;
-    // Forward() filled all ls_ columns of rows_ and all of x_real_; Apply relies on columns
+    for (int kx = 0; kx < hx_; ++kx) {
+      const size_t row = static_cast<size_t>(kx) * ls_;
+      fft_.fwd(s_line_.data(), rows_.data() + row, ls_);
+      for (int ks = 0; ks < ls_; ++ks) spectrum_[row + ks] = s_line_[ks].real() * scale;
+    }
+    // TransformX() filled all ls_ columns of rows_ and all of x_real_; Apply relies on columns
     // >= ns_ and entries >= nx_ being zero.
     std::fill(rows_.begin(), rows_.end(), Complex(0.0, 0.0));
     std::fill(x_real_.begin(), x_real_.end(), 0.0);
@@ -115,10 +119,11 @@ class PlanarFftOperator final : public InfluenceOperator {
 
   void Apply(const Eigen::VectorXd& p, Eigen::VectorXd* u) const override {
     RAILWEAR_CHECK(p.size() == size());
-    Forward(p.data(), ns_, nx_);
+    TransformX(p.data(), ns_, nx_);
     for (int kx = 0; kx < hx_; ++kx) {
       const size_t row = static_cast<size_t>(kx) * ls_;
-      for (int ks = 0; ks < ls_; ++ks) s_line_[ks] = rows_[row + ks] * spectrum_[row + ks];
+      fft_.fwd(s_line_.data(), rows_.data() + row, ls_);
+      for (int ks = 0; ks < ls_; ++ks) s_line_[ks] *= spectrum_[row + ks];
       fft_.inv(s_out_.data(), s_line_.data(), ls_);
       for (int j = 0; j < ns_; ++j) cropped_[static_cast<size_t>(j) * hx_ + kx] = s_out_[j];
     }
@@ -130,20 +135,15 @@ class PlanarFftOperator final : public InfluenceOperator {
   }
 
  private:
-  // 2-D forward transform of a real array of n_rows s-rows of row_length x-values (x fastest;
-  // missing rows and columns are zero) into rows_. Only the first n_rows columns of rows_ are
-  // written; the others must hold zeros (they do for the kernel, whose n_rows = ls_).
-  void Forward(const double* data, int n_rows, int row_length) const {
+  // Real FFTs along x of n_rows s-rows of row_length values each (x fastest; the rest is zero
+  // padding) into columns 0 .. n_rows-1 of rows_. The other columns must hold zeros (they do
+  // after the constructor; nothing else writes them).
+  void TransformX(const double* data, int n_rows, int row_length) const {
     for (int j = 0; j < n_rows; ++j) {
       std::copy(data + static_cast<size_t>(j) * row_length,
                 data + static_cast<size_t>(j + 1) * row_length, x_real_.begin());
       fft_.fwd(x_half_.data(), x_real_.data(), lx_);
       for (int kx = 0; kx < hx_; ++kx) rows_[static_cast<size_t>(kx) * ls_ + j] = x_half_[kx];
-    }
-    for (int kx = 0; kx < hx_; ++kx) {
-      Complex* row = rows_.data() + static_cast<size_t>(kx) * ls_;
-      fft_.fwd(s_line_.data(), row, ls_);
-      std::copy(s_line_.begin(), s_line_.end(), row);
     }
   }
 
