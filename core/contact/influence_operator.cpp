@@ -5,8 +5,8 @@
 // Toeplitz direction (zero padding), so the products are exact linear convolutions, not
 // periodic ones. The kernels are even in their Toeplitz offsets, so their spectra are real.
 // FFTs use Eigen's unsupported FFT module (kissfft backend): real-input transforms with the
-// half spectrum, and lengths 4 * 2^a 3^b 5^c (kissfft's radices; the factor 4 selects its
-// packed real transform).
+// half spectrum, and lengths 2^a 3^b 5^c (kissfft's radices), multiples of 4 for the real
+// transforms (that selects kissfft's packed real FFT).
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -23,16 +23,20 @@ namespace {
 
 using Complex = std::complex<double>;
 
-// Smallest L = 4 m >= n with m a product of 2, 3 and 5.
-int NextFftSize(int n) {
-  for (int l = 4;; l += 4) {
-    int m = l / 4;
+// Smallest L >= n of the form 2^a 3^b 5^c (kissfft's fast radices) that is a multiple of
+// `multiple` (4 for real transforms: kissfft's packed real FFT needs it), and at least 2.
+int NextFftSize(int n, int multiple) {
+  for (int l = multiple;; l += multiple) {
+    int m = l;
     for (int p : {2, 3, 5}) {
       while (m % p == 0) m /= p;
     }
-    if (m == 1 && l >= n) return l;
+    if (m == 1 && l >= n && l >= 2) return l;
   }
 }
+// Lengths of the real (x) and complex (s) transforms for a Toeplitz direction of n cells.
+int RealFftSize(int n) { return NextFftSize(2 * n - 1, 4); }
+int ComplexFftSize(int n) { return NextFftSize(2 * n - 1, 1); }
 
 // An unscaled, half-spectrum FFT object. Its plans are built on first use of each length;
 // Warm() does that in the constructors so Apply never allocates.
@@ -70,9 +74,9 @@ class PlanarFftOperator final : public InfluenceOperator {
   PlanarFftOperator(const PatchGrid& grid, const internal::KernelCoefficients& coefficients)
       : nx_(grid.nx),
         ns_(grid.ns),
-        lx_(NextFftSize(2 * grid.nx - 1)),
+        lx_(RealFftSize(grid.nx)),
         hx_(lx_ / 2 + 1),
-        ls_(NextFftSize(2 * grid.ns - 1)),
+        ls_(ComplexFftSize(grid.ns)),
         fft_(MakeFft()),
         x_real_(lx_, 0.0),
         x_out_(lx_, 0.0),
@@ -171,7 +175,7 @@ class CurvedFftOperator final : public InfluenceOperator {
   CurvedFftOperator(const PatchGrid& grid, const internal::KernelCoefficients& coefficients)
       : nx_(grid.nx),
         ns_(grid.ns),
-        lx_(NextFftSize(2 * grid.nx - 1)),
+        lx_(RealFftSize(grid.nx)),
         hx_(lx_ / 2 + 1),
         diagonal_(grid.ns),
         fft_(MakeFft()),
