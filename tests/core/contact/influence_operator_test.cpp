@@ -436,6 +436,21 @@ TEST(InfluenceOperator, CurvedFftEqualsDense) {
   }
 }
 
+TEST(InfluenceOperator, CurvedFftEqualsDenseOnFlatSectionNotFlaggedPlanar) {
+  PatchGrid g = MakePlanarGrid(6, 7, 2e-4, 3e-4, -0.5);
+  g.planar = false;
+  ExpectFastEqualsDense(g, MakeDissimilarSettings(KernelModel::kBoussinesq));
+}
+
+TEST(InfluenceOperatorDeathTest, PlanarFlagOnCurvedSectionAborts) {
+  // grid.planar promises a straight, uniformly spaced cross-section; breaking it is a bug in
+  // the grid builder, not bad input.
+  PatchGrid g = MakeArcGrid(4, 5, 2e-4, 4e-4, 10e-3);
+  g.planar = true;
+  EXPECT_DEATH(MakeInfluenceOperator(g, MakeSettings(KernelModel::kBoussinesq)),
+               "internal check failed");
+}
+
 TEST(InfluenceOperator, CurvedFftEqualsDenseOnNonCircularSection) {
   // A cross-section of varying curvature (parabola z = y^2 / (2 * 8 mm), arc-length spaced
   // approximately): nothing in the curved operator may rely on constant curvature.
