@@ -1,0 +1,188 @@
+// Cell-integrated influence kernels (Love's closed forms, seed eq. 4) and the dense reference
+// operator. See influence_operator.h for the conventions.
+#include "core/contact/influence_kernels.h"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "core/numerics/check.h"
+#include "core/numerics/input_error.h"
+
+namespace railwear {
+namespace internal {
+namespace {
+
+// xi * asinh(eta / sqrt(xi^2 + n^2)), with its limit 0 at xi = 0 (also when n = 0). This is the
+// form of xi ln(eta + R) that stays finite and accurate when eta + R -> 0.
+double XiAsinh(double xi, double eta, double n) {
+  if (xi == 0.0) return 0.0;
+  return xi * std::asinh(eta / std::sqrt(xi * xi + n * n));
+}
+
+// atan(xi eta / (n R)) at one corner; 0 when n = 0 (the n-terms vanish with n).
+double CornerAtan(double xi, double eta, double n) {
+  if (n == 0.0) return 0.0;
+  const double r = std::sqrt(xi * xi + eta * eta + n * n);
+  return std::atan(xi * eta / (n * r));
+}
+
+void CheckMaterial(const Material& m, const char* which) {
+  if (!(m.youngs_modulus_Pa > 0.0) || !(m.poisson_ratio >= 0.0 && m.poisson_ratio < 0.5)) {
+    std::ostringstream msg;
+    msg << "influence: " << which << " material has E = " << m.youngs_modulus_Pa
+        << " Pa and nu = " << m.poisson_ratio << "; expected E > 0 and 0 <= nu < 0.5";
+    throw InputError(msg.str());
+  }
+}
+
+}  // namespace
+
+KernelCoefficients MakeKernelCoefficients(const InfluenceSettings& settings) {
+  CheckMaterial(settings.wheel, "wheel");
+  CheckMaterial(settings.rail, "rail");
+  KernelCoefficients c;
+  for (const Material* m : {&settings.wheel, &settings.rail}) {
+    const double nu = m->poisson_ratio;
+    const double g = m->ShearModulus();
+    if (settings.kernel == KernelModel::kBoussinesq) {
+      c.inv_r += (1.0 - nu) / (2.0 * std::numbers::pi * g);
+    } else {
+      const double k_d = 1.0 / (8.0 * std::numbers::pi * (1.0 - nu) * g);
+      const double k_f = (3.0 - 4.0 * nu) * k_d;
+      c.inv_r += settings.constants.c_f * k_f;
+      c.n2_r3 += settings.constants.c_z * k_d;
+    }
+  }
+  return c;
+}
+
+void RectangleIntegralsClosedForm(double x, double s, double n, double hx, double hs,
+                                  double* inv_r, double* n2_r3) {
+  // Mixed antiderivatives in the offsets (xi, eta) from the field point to a corner:
+  //   F = xi asinh(eta / sqrt(xi^2 + n^2)) + eta asinh(xi / sqrt(eta^2 + n^2)) - n A,
+  //   G = n A,  A = atan(xi eta / (n R)),
+  // combined over the corners with signs + - - +.
+  const double xs[2] = {x - 0.5 * hx, x + 0.5 * hx};
+  const double ss[2] = {s - 0.5 * hs, s + 0.5 * hs};
+  double f = 0.0;
+  double a = 0.0;
+  for (int ix = 0; ix < 2; ++ix) {
+    for (int is = 0; is < 2; ++is) {
+      const double sign = (ix == is) ? 1.0 : -1.0;
+      const double xi = xs[ix];
+      const double eta = ss[is];
+      f += sign * (XiAsinh(xi, eta, n) + XiAsinh(eta, xi, n));
+      a += sign * CornerAtan(xi, eta, n);
+    }
+  }
+  *inv_r = f - n * a;
+  *n2_r3 = n * a;
+}
+
+void RectangleIntegralsFarField(double x, double s, double n, double hx, double hs, double* inv_r,
+                                double* n2_r3) {
+  // Product midpoint rule with the h^2/24 terms of the Taylor expansion about the centre:
+  //   int f dA ~= A [f + hx^2/24 f_xx + hs^2/24 f_ss], error O(h^4 / R^4) relative.
+  //   f = 1/R:      f_xx = (3x^2 - R^2)/R^5
+  //   g = n^2/R^3:  g_xx = 3 n^2 (5x^2 - R^2)/R^7
+  const double area = hx * hs;
+  const double r2 = x * x + s * s + n * n;
+  const double r = std::sqrt(r2);
+  const double hx2 = hx * hx;
+  const double hs2 = hs * hs;
+  const double inv_r4 = 1.0 / (r2 * r2);
+  *inv_r = area / r * (1.0 + (hx2 * (3.0 * x * x - r2) + hs2 * (3.0 * s * s - r2)) * inv_r4 / 24.0);
+  *n2_r3 = area * n * n / (r2 * r) *
+           (1.0 + (hx2 * (5.0 * x * x - r2) + hs2 * (5.0 * s * s - r2)) * inv_r4 / 8.0);
+}
+
+void RectangleIntegrals(double x, double s, double n, double hx, double hs, double* inv_r,
+                        double* n2_r3) {
+  const double r2 = x * x + s * s + n * n;
+  const double far2 = kFarFieldDiagonals * kFarFieldDiagonals * (hx * hx + hs * hs);
+  if (r2 > far2) {
+    RectangleIntegralsFarField(x, s, n, hx, hs, inv_r, n2_r3);
+  } else {
+    RectangleIntegralsClosedForm(x, s, n, hx, hs, inv_r, n2_r3);
+  }
+}
+
+double CellInfluence(const PatchGrid& grid, const KernelCoefficients& coefficients, int field_ix,
+                     int field_is, int source_ix, int source_is) {
+  const Eigen::Vector2d d_yz = grid.point_yz_m[field_is] - grid.point_yz_m[source_is];
+  const double dx = (field_ix - source_ix) * grid.dx_m;
+  const double ds = d_yz.dot(grid.tangent_yz[source_is]);
+  const double dn = d_yz.dot(grid.normal_yz[source_is]);
+  double inv_r = 0.0;
+  double n2_r3 = 0.0;
+  RectangleIntegrals(dx, ds, dn, grid.dx_m, grid.ds_m, &inv_r, &n2_r3);
+  return coefficients.inv_r * inv_r + coefficients.n2_r3 * n2_r3;
+}
+
+void CheckGrid(const PatchGrid& grid) {
+  RAILWEAR_CHECK(grid.nx >= 1 && grid.ns >= 1);
+  RAILWEAR_CHECK(grid.dx_m > 0.0 && grid.ds_m > 0.0);
+  RAILWEAR_CHECK(static_cast<int>(grid.point_yz_m.size()) == grid.ns);
+  RAILWEAR_CHECK(static_cast<int>(grid.tangent_yz.size()) == grid.ns);
+  RAILWEAR_CHECK(static_cast<int>(grid.normal_yz.size()) == grid.ns);
+}
+
+}  // namespace internal
+
+double RectangleIntegralInvR(double x, double s, double n, double hx, double hs) {
+  double inv_r = 0.0;
+  double n2_r3 = 0.0;
+  internal::RectangleIntegralsClosedForm(x, s, n, hx, hs, &inv_r, &n2_r3);
+  return inv_r;
+}
+
+double RectangleIntegralN2R3(double x, double s, double n, double hx, double hs) {
+  double inv_r = 0.0;
+  double n2_r3 = 0.0;
+  internal::RectangleIntegralsClosedForm(x, s, n, hx, hs, &inv_r, &n2_r3);
+  return n2_r3;
+}
+
+Eigen::MatrixXd AssembleDenseInfluence(const PatchGrid& grid, const InfluenceSettings& settings) {
+  internal::CheckGrid(grid);
+  const internal::KernelCoefficients coefficients = internal::MakeKernelCoefficients(settings);
+  const int n = grid.cells();
+  Eigen::MatrixXd c(n, n);
+  for (int js = 0; js < grid.ns; ++js) {
+    for (int jx = 0; jx < grid.nx; ++jx) {
+      const int j = grid.Index(jx, js);
+      for (int is = 0; is < grid.ns; ++is) {
+        for (int ix = 0; ix < grid.nx; ++ix) {
+          c(grid.Index(ix, is), j) = internal::CellInfluence(grid, coefficients, ix, is, jx, js);
+        }
+      }
+    }
+  }
+  return c;
+}
+
+namespace {
+
+class DenseInfluenceOperator final : public InfluenceOperator {
+ public:
+  explicit DenseInfluenceOperator(Eigen::MatrixXd c) : c_(std::move(c)) {}
+  int size() const override { return static_cast<int>(c_.rows()); }
+  void Apply(const Eigen::VectorXd& p, Eigen::VectorXd* u) const override {
+    RAILWEAR_CHECK(p.size() == c_.cols());
+    u->noalias() = c_ * p;
+  }
+  double Diagonal(int k) const override { return c_(k, k); }
+
+ private:
+  Eigen::MatrixXd c_;
+};
+
+}  // namespace
+
+std::unique_ptr<InfluenceOperator> MakeDenseInfluenceOperator(const PatchGrid& grid,
+                                                              const InfluenceSettings& settings) {
+  return std::make_unique<DenseInfluenceOperator>(AssembleDenseInfluence(grid, settings));
+}
+
+}  // namespace railwear
