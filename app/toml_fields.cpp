@@ -34,15 +34,46 @@ int LineOf(const toml::node& node) {
   return line > 0 ? line : 1;
 }
 
+namespace {
+
+std::string Quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// The value as a user would write it: strings in double quotes, numbers in their shortest form.
+std::string Written(const toml::node& node) {
+  if (const auto s = node.value_exact<std::string>()) return Quoted(*s);
+  if (const auto i = node.value_exact<int64_t>()) return fmt::format("{}", *i);
+  if (const auto d = node.value_exact<double>()) return fmt::format("{}", *d);
+  if (const auto b = node.value_exact<bool>()) return *b ? "true" : "false";
+  if (const toml::array* a = node.as_array()) {
+    std::string out;
+    for (const auto& e : *a) out += fmt::format("{}{}", out.empty() ? "" : ", ", Written(e));
+    return fmt::format("[{}]", out);
+  }
+  if (const toml::table* t = node.as_table()) {
+    std::string out;
+    for (const auto& [k, v] : *t) {
+      out += fmt::format("{}{} = {}", out.empty() ? "" : ", ", k.str(), Written(v));
+    }
+    return fmt::format("{{ {} }}", out);
+  }
+  std::ostringstream os;  // dates and times
+  node.visit([&os](const auto& v) { os << v; });
+  return os.str();
+}
+
+}  // namespace
+
 std::string ValueText(const toml::node& node) {
   if (node.is_table() && !node.as_table()->is_inline()) return "(table)";
   if (node.is_array_of_tables()) return "(array of tables)";
-  std::ostringstream os;
-  node.visit([&os](const auto& v) { os << v; });
-  std::string text = os.str();
-  for (char& c : text) {
-    if (c == '\n') c = ' ';
-  }
+  std::string text = Written(node);
   if (text.size() > 60) text = text.substr(0, 57) + "...";
   return text;
 }
