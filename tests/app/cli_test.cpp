@@ -48,10 +48,10 @@ class CliTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  // Runs `railwear ARGS` in dir_ with stdout and stderr captured.
-  Outcome Run(const std::string& args) const {
-    const std::string command = "cd '" + dir_.string() + "' && '" RAILWEAR_BINARY "' " + args +
-                                " > stdout.txt 2> stderr.txt";
+  // Runs `ENV railwear ARGS` in dir_ with stdout and stderr captured.
+  Outcome Run(const std::string& args, const std::string& env = "") const {
+    const std::string command = "cd '" + dir_.string() + "' && " + env + " '" RAILWEAR_BINARY
+                                "' " + args + " > stdout.txt 2> stderr.txt";
     const int status = std::system(command.c_str());
     Outcome o;
     o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -212,6 +212,21 @@ TEST_F(CliTest, PlotWritesAPng) {
   const std::string png = ReadFile(dir_ / "p.png");
   ASSERT_GT(png.size(), 8u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
+}
+
+TEST_F(CliTest, PlotWithoutGnuplotExitsOneNamingIt) {
+  Write("scene.toml", kScene);
+  const Outcome o = Run("contact scene.toml --accuracy draft --plot p.png", "PATH=/nonexistent");
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_TRUE(Contains(o.err, "railwear: error: --plot needs the program 'gnuplot'"));
+  EXPECT_EQ(o.out, "");  // checked before the solve
+}
+
+TEST_F(CliTest, JsonAndCsvCannotBothUseStdout) {
+  Write("scene.toml", kScene);
+  const Outcome o = Run("contact scene.toml --json - --csv -");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_TRUE(Contains(o.err, "both want stdout"));
 }
 
 TEST_F(CliTest, ExamplesRun) {
