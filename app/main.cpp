@@ -1,3 +1,46 @@
 // railwear command-line entry point. Exit codes: 0 ok, 1 runtime or numerical failure,
-// 2 bad input or usage.
-int main() { return 0; }
+// 2 bad input or usage. Errors go to stderr as "railwear: error: MESSAGE".
+#include <exception>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "app/contact_command.h"
+#include "app/init_command.h"
+#include "app/profile_command.h"
+#include "core/numerics/input_error.h"
+
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailure = 1;
+constexpr int kExitBadInput = 2;
+
+int Fail(const char* message, int code) {
+  std::cerr << "railwear: error: " << message << "\n";
+  return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"railwear: wheel-rail contact mechanics at the rail gauge corner"};
+  app.set_version_flag("--version", std::string("railwear ") + RAILWEAR_VERSION);
+  app.require_subcommand(1);
+  railwear::app::SetupContact(app);
+  railwear::app::SetupProfile(app);
+  railwear::app::SetupInit(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    Fail(e.what(), kExitBadInput);
+    std::cerr << "Run with --help for more information.\n";
+    return kExitBadInput;
+  } catch (const railwear::InputError& e) {
+    return Fail(e.what(), kExitBadInput);
+  } catch (const std::exception& e) {
+    return Fail(e.what(), kExitFailure);
+  }
+  return kExitOk;
+}

@@ -1,0 +1,94 @@
+// `railwear contact`: scene -> SolveContact -> summary, JSON, CSV, plot.
+#include "app/contact_command.h"
+
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "app/contact_output.h"
+#include "app/pressure_plot.h"
+#include "app/scene.h"
+#include "core/numerics/input_error.h"
+
+namespace railwear::app {
+namespace {
+
+// --model replaces kind, geometry and kernel; constants, accuracy and cell size stay.
+void ApplyOverrides(const ContactOptions& o, ModelOptions* model) {
+  if (o.model) {
+    ModelOptions replaced = MakeModelOptions(*ModelKindFromString(*o.model));
+    replaced.constants = model->constants;
+    replaced.accuracy = model->accuracy;
+    replaced.cell_dx_m = model->cell_dx_m;
+    replaced.cell_ds_m = model->cell_ds_m;
+    *model = replaced;
+  }
+  if (o.accuracy) {
+    model->accuracy = *AccuracyPresetFromString(*o.accuracy);
+    model->cell_dx_m.reset();  // the command line wins over the scene's cell_mm
+    model->cell_ds_m.reset();
+  }
+}
+
+// Writes `text` to FILE, or to stdout for "-".
+void WriteOutput(const std::string& path, const std::string& text, const std::string& what) {
+  if (path == "-") {
+    std::cout << text << std::flush;
+    return;
+  }
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw InputError(fmt::format("{}: cannot write the {}", path, what));
+}
+
+void CheckOptions(const ContactOptions& o) {
+  if (o.json == "-" && o.csv == "-") {
+    throw InputError("--json - and --csv - both want stdout; give one of them a file name");
+  }
+  if (o.plot) RequireGnuplot();  // before the solve, so nobody waits for nothing
+}
+
+}  // namespace
+
+void SetupContact(CLI::App& app) {
+  auto options = std::make_shared<ContactOptions>();
+  CLI::App* sub = app.add_subcommand("contact", "Normal contact of one wheel on one rail");
+  sub->add_option("scene", options->scene_path, "Scene file (TOML); see `railwear init`")
+      ->required();
+  sub->add_option("--model", options->model, "Replace the scene's model kind")
+      ->check(CLI::IsMember({"hertz", "halfspace", "conformal"}));
+  sub->add_option("--accuracy", options->accuracy,
+                  "Replace the scene's accuracy (and its cell_mm)")
+      ->check(CLI::IsMember({"draft", "standard", "reference", "fine"}));
+  sub->add_option("--json", options->json, "Write the result as JSON to FILE ('-' = stdout)");
+  sub->add_option("--csv", options->csv, "Write the pressure field as CSV to FILE ('-' = stdout)");
+  sub->add_option("--plot", options->plot, "Draw the pressure map to PNG (needs gnuplot)");
+  sub->callback([options]() { RunContact(*options); });
+}
+
+void RunContact(const ContactOptions& o) {
+  CheckOptions(o);
+  Scene scene = LoadScene(o.scene_path);
+  ApplyOverrides(o, &scene.problem.model);
+  const ContactResult result = SolveContact(scene.problem);
+
+  if (o.json) WriteOutput(*o.json, MakeContactJson(scene, result).dump(2) + "\n", "JSON");
+  if (o.csv) {
+    std::ostringstream csv;
+    WritePressureCsv(result, csv);
+    WriteOutput(*o.csv, csv.str(), "CSV");
+  }
+  if (o.json != "-" && o.csv != "-") std::cout << FormatSummary(scene, result) << std::flush;
+  if (o.plot) PlotPressure(scene, result, *o.plot);
+
+  if (result.status != SolverStatus::kConverged) {
+    throw std::runtime_error(fmt::format("contact solve ended with status '{}': {}",
+                                         ToString(result.status), result.message));
+  }
+}
+
+}  // namespace railwear::app

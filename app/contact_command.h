@@ -1,0 +1,28 @@
+// `railwear contact SCENE.toml`: solve the normal contact of one wheel on one rail and report it.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace railwear::app {
+
+struct ContactOptions {
+  std::string scene_path;
+  std::optional<std::string> model;     // --model hertz|halfspace|conformal: replaces [model] kind
+  std::optional<std::string> accuracy;  // --accuracy draft|standard|reference|fine (drops cell_mm)
+  std::optional<std::string> json;      // --json FILE, "-" = stdout (then nothing else there)
+  std::optional<std::string> csv;       // --csv FILE, "-" = stdout: pressure field per cell
+  std::optional<std::string> plot;      // --plot PNG (needs gnuplot)
+};
+
+void SetupContact(CLI::App& app);
+
+// Throws InputError for bad input (exit 2) and std::runtime_error for failures (exit 1),
+// including a solve that did not converge or found no contact (after writing the outputs).
+void RunContact(const ContactOptions& options);
+
+}  // namespace railwear::app

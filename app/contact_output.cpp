@@ -1,0 +1,199 @@
+// Summary, JSON and CSV output of `railwear contact`.
+#include "app/contact_output.h"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace railwear::app {
+namespace {
+
+constexpr double kToMm = 1e3;
+constexpr double kToMm2 = 1e6;
+constexpr double kToMPa = 1e-6;
+constexpr double kToMs = 1e3;
+constexpr double kToDeg = 180.0 / std::numbers::pi;
+
+std::vector<PressureSample> GridSamples(const PatchResult& patch, int patch_number) {
+  const PatchGrid& g = patch.grid;
+  if (patch.pressure_Pa.size() != g.cells() || static_cast<int>(g.point_yz_m.size()) != g.ns) {
+    throw std::runtime_error(fmt::format(
+        "patch {}: pressure field has {} values for a grid of {} x {} cells", patch_number,
+        patch.pressure_Pa.size(), g.nx, g.ns));
+  }
+  std::vector<PressureSample> out;
+  out.reserve(g.cells());
+  for (int j = 0; j < g.ns; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      out.push_back({patch_number, i, j, g.X(i) * kToMm, g.S(j) * kToMm,
+                     g.point_yz_m[j].x() * kToMm, g.point_yz_m[j].y() * kToMm,
+                     patch.pressure_Pa[g.Index(i, j)] * kToMPa});
+    }
+  }
+  return out;
+}
+
+// p = p0 sqrt(1 - (x/a)^2 - (s/b)^2) on a regular grid over [-a, a] x [-b, b].
+std::vector<PressureSample> HertzSamples(const PatchResult& patch, int patch_number) {
+  const HertzSolution& h = *patch.hertz;
+  const double a = h.semi_axis_x_m, b = h.semi_axis_y_m;
+  const Eigen::Vector2d t(std::cos(patch.contact_angle_rad), std::sin(patch.contact_angle_rad));
+  std::vector<PressureSample> out;
+  out.reserve(kHertzSamples * kHertzSamples);
+  for (int j = 0; j < kHertzSamples; ++j) {
+    const double s = -b + 2.0 * b * j / (kHertzSamples - 1);
+    const Eigen::Vector2d yz = patch.contact_point_yz_m + s * t;
+    for (int i = 0; i < kHertzSamples; ++i) {
+      const double x = -a + 2.0 * a * i / (kHertzSamples - 1);
+      const double r2 = (a > 0 && b > 0) ? (x / a) * (x / a) + (s / b) * (s / b) : 1.0;
+      const double p = r2 < 1.0 ? h.p0_Pa * std::sqrt(1.0 - r2) : 0.0;
+      out.push_back({patch_number, i, j, x * kToMm, s * kToMm, yz.x() * kToMm, yz.y() * kToMm,
+                     p * kToMPa});
+    }
+  }
+  return out;
+}
+
+// Walks the JSON and throws at the first NaN or infinity, naming its key path.
+void CheckFinite(const nlohmann::json& j, const std::string& where) {
+  if (j.is_number_float() && !std::isfinite(j.get<double>())) {
+    throw std::runtime_error(fmt::format(
+        "the result has a non-finite value at '{}' ({}); no JSON written", where,
+        j.get<double>()));
+  }
+  if (j.is_object()) {
+    for (const auto& [key, value] : j.items()) CheckFinite(value, where + "." + key);
+  } else if (j.is_array()) {
+    for (size_t i = 0; i < j.size(); ++i) CheckFinite(j[i], fmt::format("{}[{}]", where, i));
+  }
+}
+
+nlohmann::json PatchJson(const PatchResult& p) {
+  nlohmann::json j;
+  j["area_mm2"] = p.area_m2 * kToMm2;
+  j["p_max_MPa"] = p.p_max_Pa * kToMPa;
+  j["normal_force_N"] = p.normal_force_N;
+  j["vertical_force_N"] = p.vertical_force_N;
+  j["lateral_force_N"] = p.lateral_force_N;
+  j["contact_y_mm"] = p.contact_point_yz_m.x() * kToMm;
+  j["contact_z_mm"] = p.contact_point_yz_m.y() * kToMm;
+  j["contact_angle_deg"] = p.contact_angle_rad * kToDeg;
+  j["cells"] = p.cells;
+  j["cells_in_contact"] = p.cells_in_contact;
+  if (p.grid.cells() > 0) {
+    j["cell_mm"] = {p.grid.dx_m * kToMm, p.grid.ds_m * kToMm};
+  } else {
+    j["cell_mm"] = nullptr;  // Hertz: analytic, no grid
+  }
+  if (p.hertz) {
+    j["hertz"] = {{"semi_axis_x_mm", p.hertz->semi_axis_x_m * kToMm},
+                  {"semi_axis_y_mm", p.hertz->semi_axis_y_m * kToMm}};
+  }
+  return j;
+}
+
+nlohmann::json ModelJson(const ModelOptions& m) {
+  nlohmann::json j;
+  j["kind"] = ToString(m.kind);
+  const bool hertz = m.kind == ModelKind::kHertz;
+  j["geometry"] = hertz ? nlohmann::json(nullptr) : nlohmann::json(ToString(m.geometry));
+  j["kernel"] = hertz ? nlohmann::json(nullptr) : nlohmann::json(ToString(m.kernel));
+  j["accuracy"] = ToString(m.accuracy);
+  j["influence_constants"] = {
+      {"c_f", m.constants.c_f}, {"c_z", m.constants.c_z}, {"c_s", m.constants.c_s}};
+  return j;
+}
+
+std::string ModelLine(const ModelOptions& m) {
+  if (m.kind == ModelKind::kHertz) {
+    return fmt::format("hertz (analytic), accuracy {}", ToString(m.accuracy));
+  }
+  return fmt::format("{} (geometry {}, kernel {}), accuracy {}, c_f {} c_z {} c_s {}",
+                     ToString(m.kind), ToString(m.geometry), ToString(m.kernel),
+                     ToString(m.accuracy), m.constants.c_f, m.constants.c_z, m.constants.c_s);
+}
+
+std::string StagesLine(const ContactResult& r) {
+  std::string out;
+  for (const auto& s : r.stages) {
+    out += fmt::format("{}{} {:.1f} ms", out.empty() ? "" : ", ", s.name, s.seconds * kToMs);
+  }
+  return out.empty() ? std::string() : fmt::format(" ({})", out);
+}
+
+std::string PatchTable(const ContactResult& r) {
+  std::string out = fmt::format("{:>5} {:>10} {:>10} {:>11} {:>9} {:>9} {:>9} {:>15}\n", "patch",
+                                "area_mm2", "p_max_MPa", "normal_N", "y_mm", "z_mm", "angle_deg",
+                                "cells_contact");
+  for (size_t k = 0; k < r.patches.size(); ++k) {
+    const PatchResult& p = r.patches[k];
+    const std::string cells =
+        p.cells > 0 ? fmt::format("{}/{}", p.cells_in_contact, p.cells) : "analytic";
+    out += fmt::format("{:>5} {:>10.2f} {:>10.1f} {:>11.1f} {:>9.3f} {:>9.3f} {:>9.2f} {:>15}\n",
+                       k + 1, p.area_m2 * kToMm2, p.p_max_Pa * kToMPa, p.normal_force_N,
+                       p.contact_point_yz_m.x() * kToMm, p.contact_point_yz_m.y() * kToMm,
+                       p.contact_angle_rad * kToDeg, cells);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<PressureSample> PressureSamples(const PatchResult& patch, int patch_number) {
+  if (patch.grid.cells() == 0 && patch.hertz) return HertzSamples(patch, patch_number);
+  return GridSamples(patch, patch_number);
+}
+
+std::string FormatSummary(const Scene& scene, const ContactResult& r) {
+  std::string out;
+  out += fmt::format("scene       {} ({})\n", scene.name, scene.path);
+  out += fmt::format("model       {}\n", ModelLine(r.model));
+  out += fmt::format("status      {}\n", ToString(r.status));
+  if (!r.message.empty()) out += fmt::format("message     {}\n", r.message);
+  out += fmt::format("approach    {:.5f} mm\n", r.approach_m * kToMm);
+  out += fmt::format("iterations  {}\n", r.iterations);
+  out += fmt::format("time        {:.1f} ms{}\n", r.time_s * kToMs, StagesLine(r));
+  out += fmt::format("total       area {:.2f} mm2, p_max {:.1f} MPa, vertical {:.1f} N, "
+                     "lateral {:.1f} N\n",
+                     r.area_m2 * kToMm2, r.p_max_Pa * kToMPa, r.vertical_force_N,
+                     r.lateral_force_N);
+  out += fmt::format("patches     {}\n", r.patches.size());
+  if (!r.patches.empty()) out += fmt::format("\n{}", PatchTable(r));
+  return out;
+}
+
+nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r) {
+  nlohmann::json j;
+  j["status"] = ToString(r.status);
+  j["message"] = r.message;
+  j["scene"] = scene.name;
+  j["scene_file"] = scene.path;
+  j["model"] = ModelJson(r.model);
+  j["approach_mm"] = r.approach_m * kToMm;
+  j["iterations"] = r.iterations;
+  j["time_ms"] = r.time_s * kToMs;
+  j["stages"] = nlohmann::json::array();
+  for (const auto& s : r.stages) j["stages"].push_back({{"name", s.name}, {"time_ms", s.seconds * kToMs}});
+  j["total"] = {{"area_mm2", r.area_m2 * kToMm2},
+                {"p_max_MPa", r.p_max_Pa * kToMPa},
+                {"vertical_force_N", r.vertical_force_N},
+                {"lateral_force_N", r.lateral_force_N}};
+  j["patches"] = nlohmann::json::array();
+  for (const auto& p : r.patches) j["patches"].push_back(PatchJson(p));
+  CheckFinite(j, "$");
+  return j;
+}
+
+void WritePressureCsv(const ContactResult& r, std::ostream& out) {
+  out << "patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa\n";
+  for (size_t k = 0; k < r.patches.size(); ++k) {
+    for (const auto& s : PressureSamples(r.patches[k], static_cast<int>(k) + 1)) {
+      out << fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n", s.patch, s.ix, s.js,
+                         s.x_mm, s.s_mm, s.y_mm, s.z_mm, s.p_MPa);
+    }
+  }
+}
+
+}  // namespace railwear::app

@@ -1,0 +1,42 @@
+// Output of `railwear contact`: the human summary, the JSON object, the pressure-field CSV and
+// the pressure samples the CSV and the plot share. Units of files: mm, N, MPa, ms, degrees.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/scene.h"
+#include "core/contact/contact_solver.h"
+
+namespace railwear::app {
+
+// One sample of a patch's pressure field. For grid models: one per cell, (x, s) its centre on
+// the reference surface and (y, z) the cross-section point grid.point_yz_m[js]. For Hertz: the
+// analytic ellipse sampled on kHertzSamples x kHertzSamples points over its bounding box, with
+// (y, z) = contact point + s * (cos(angle), sin(angle)) (the tangent of the contact plane).
+struct PressureSample {
+  int patch = 0;  // 1-based, as in the summary
+  int ix = 0;     // index along x (rolling)
+  int js = 0;     // index along s (lateral arc)
+  double x_mm = 0.0, s_mm = 0.0, y_mm = 0.0, z_mm = 0.0, p_MPa = 0.0;
+};
+constexpr int kHertzSamples = 41;
+
+// Samples of one patch; `patch_number` is 1-based. Throws std::runtime_error when the pressure
+// vector does not match the grid.
+std::vector<PressureSample> PressureSamples(const PatchResult& patch, int patch_number);
+
+// Human summary: model, status, approach, iterations, time, totals and a table of patches.
+std::string FormatSummary(const Scene& scene, const ContactResult& result);
+
+// The JSON object of DESIGN.md §4 (keys carry their units). Throws std::runtime_error naming
+// the key when a number is NaN or infinite, so that no such value reaches a file.
+nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& result);
+
+// Header "patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa", then one row per sample of every patch.
+void WritePressureCsv(const ContactResult& result, std::ostream& out);
+
+}  // namespace railwear::app

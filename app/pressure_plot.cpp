@@ -1,0 +1,138 @@
+// Pressure maps via gnuplot: data files and a script in a temporary directory, then `gnuplot`.
+#include "app/pressure_plot.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "app/contact_output.h"
+
+namespace railwear::app {
+namespace fs = std::filesystem;
+namespace {
+
+// A path inside single quotes for /bin/sh.
+std::string ShellQuote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// A string inside gnuplot single quotes ('' stands for ').
+std::string GnuplotQuote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+// Removes the temporary directory however the plot ends.
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "railwear-plot-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) {
+      throw std::runtime_error("cannot create a temporary directory for the plot");
+    }
+    path = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+// One data file per patch: x_mm s_mm p_MPa, a blank line after each s row.
+std::string WritePatchData(const PatchResult& patch, int number, const fs::path& dir) {
+  const fs::path file = dir / fmt::format("patch{}.dat", number);
+  std::ofstream out(file);
+  int row = -1;
+  for (const auto& s : PressureSamples(patch, number)) {
+    if (row >= 0 && s.js != row) out << "\n";
+    row = s.js;
+    out << fmt::format("{:.6f} {:.6f} {:.6f}\n", s.x_mm, s.s_mm, s.p_MPa);
+  }
+  if (!out) throw std::runtime_error("cannot write plot data to " + file.string());
+  return file.string();
+}
+
+std::string Title(const Scene& scene, const ContactResult& r) {
+  return fmt::format("{}: {} model, {} accuracy; area {:.1f} mm^2, p_max {:.0f} MPa, "
+                     "vertical {:.0f} N, lateral {:.0f} N",
+                     scene.name, ToString(r.model.kind), ToString(r.model.accuracy),
+                     r.area_m2 * 1e6, r.p_max_Pa * 1e-6, r.vertical_force_N,
+                     r.lateral_force_N);
+}
+
+std::string Script(const Scene& scene, const ContactResult& r, const fs::path& dir,
+                   const std::string& png_path) {
+  const int n = static_cast<int>(r.patches.size());
+  std::ostringstream s;
+  s << fmt::format(
+      "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {{ set terminal pngcairo size {},600 "
+      "noenhanced }} else {{ set terminal png size {},600 noenhanced }}\n",
+      500 * std::max(n, 2), 500 * std::max(n, 2));
+  s << "set output " << GnuplotQuote(png_path) << "\n";
+  s << "set xlabel 'x [mm] (rolling)'\nset ylabel 's [mm] (lateral arc)'\n";
+  s << "set cblabel 'p [MPa]'\nset size ratio -1\nset palette rgb 33,13,10\n";
+  s << fmt::format("set multiplot layout 1,{} title {}\n", std::max(n, 1),
+                   GnuplotQuote(Title(scene, r)));
+  for (int k = 0; k < n; ++k) {
+    const std::string data = WritePatchData(r.patches[k], k + 1, dir);
+    s << fmt::format("set title 'patch {}'\n", k + 1);
+    s << "plot " << GnuplotQuote(data) << " using 1:2:3 with image notitle\n";
+  }
+  if (n == 0) s << "set title 'no contact'\nunset colorbox\nplot [-1:1][-1:1] NaN notitle\n";
+  s << "unset multiplot\n";
+  return s.str();
+}
+
+std::string ReadAll(const fs::path& file) {
+  std::ifstream in(file);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+}  // namespace
+
+void RequireGnuplot() {
+  const char* path_env = std::getenv("PATH");
+  std::stringstream dirs(path_env != nullptr ? path_env : "");
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    if (dir.empty()) continue;
+    std::error_code ec;
+    if (fs::is_regular_file(fs::path(dir) / "gnuplot", ec)) return;
+  }
+  throw std::runtime_error(
+      "--plot needs the program 'gnuplot', which is not on PATH; install gnuplot (e.g. "
+      "apt-get install gnuplot-nox) or leave out --plot");
+}
+
+void PlotPressure(const Scene& scene, const ContactResult& result, const std::string& png_path) {
+  RequireGnuplot();
+  const TempDir tmp;
+  const fs::path script = tmp.path / "pressure.gp";
+  const fs::path log = tmp.path / "gnuplot.log";
+  {
+    std::ofstream out(script);
+    out << Script(scene, result, tmp.path, fs::absolute(png_path).string());
+    if (!out) throw std::runtime_error("cannot write the gnuplot script to " + script.string());
+  }
+  const std::string command = fmt::format("gnuplot {} > {} 2>&1", ShellQuote(script.string()),
+                                          ShellQuote(log.string()));
+  const int rc = std::system(command.c_str());
+  if (rc != 0) {
+    throw std::runtime_error(
+        fmt::format("gnuplot failed (status {}) writing {}:\n{}", rc, png_path, ReadAll(log)));
+  }
+  if (!fs::exists(png_path)) {
+    throw std::runtime_error(fmt::format("gnuplot wrote no {}:\n{}", png_path, ReadAll(log)));
+  }
+}
+
+}  // namespace railwear::app

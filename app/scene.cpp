@@ -1,0 +1,306 @@
+// Scene files: TOML text -> validated Scene with a ready ContactProblem (DESIGN.md §3).
+#include "app/scene.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "app/paths.h"
+#include "app/toml_fields.h"
+#include "core/numerics/input_error.h"
+#include "core/profile/builtin_profiles.h"
+
+namespace railwear::app {
+namespace {
+
+constexpr double kMm = 1e-3;   // millimetres -> metres
+constexpr double kMPa = 1e6;   // MPa -> Pa
+constexpr double kMaxRoll_rad = 0.5;  // a wheel rolls by milliradians; 0.5 rad catches typos
+
+const std::vector<std::string_view> kKnownEffects = {"normal", "tangential", "coupling", "wear",
+                                                     "damage"};
+
+std::string ReadTextFile(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot open {}", path, what));
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+// [track], [wheelset], [wear], [[traffic]] describe runs this version cannot do yet.
+void RejectLaterTables(const Fields& top) {
+  for (const std::string_view key : {"track", "wheelset", "wear", "traffic"}) {
+    if (top.Has(key)) {
+      throw InputError(fmt::format(
+          "{}: expected single-wheel contact tables only: [{}] belongs to rolling contact / wear "
+          "runs, which this version of railwear does not provide yet",
+          FieldPrefix(top.file(), *top.Node(key), key), key));
+    }
+  }
+}
+
+Fields RequiredTable(const Fields& top, std::string_view key, std::string_view expected) {
+  auto t = top.Table(key, "a table");
+  if (!t) top.FailMissing(key, expected);
+  return *t;
+}
+
+void ReadSceneTable(const Fields& top, Scene* scene) {
+  scene->name = std::filesystem::path(scene->path).stem().string();
+  scene->effects = {"normal"};
+  const auto t = top.Table("scene", "a table");
+  if (!t) return;
+  t->AllowOnly({"name", "effects"});
+  if (auto name = t->String("name")) scene->name = *name;
+  const toml::node* effects = t->Node("effects");
+  if (effects == nullptr) return;
+  const std::string expected = "an array of effect names, of " + JoinQuoted(kKnownEffects);
+  if (!effects->is_array()) t->Fail("effects", expected);
+  for (const auto& e : *effects->as_array()) {
+    const auto name = e.value_exact<std::string>();
+    const std::string key = t->KeyName("effects");
+    if (!name) throw InputError(FieldError(t->file(), e, key, expected));
+    if (*name == "normal") continue;
+    bool known = false;
+    for (const auto& k : kKnownEffects) known = known || *name == k;
+    if (!known) throw InputError(FieldError(t->file(), e, key, "one of " + JoinQuoted(kKnownEffects)));
+    throw InputError(fmt::format(
+        "{}: expected 'normal': effect '{}' is not available in this version of railwear "
+        "(only 'normal')",
+        FieldPrefix(t->file(), e, key), *name));
+  }
+}
+
+InfluenceConstants ReadConstants(const Fields& t) {
+  t.AllowOnly({"c_f", "c_z", "c_s"});
+  InfluenceConstants c;
+  c.c_f = t.Number("c_f", Positive()).value_or(c.c_f);
+  c.c_z = t.Number("c_z", Positive()).value_or(c.c_z);
+  c.c_s = t.Number("c_s", AnyFinite()).value_or(c.c_s);
+  return c;
+}
+
+InfluenceConstants ReadConstantsFile(const std::string& path) {
+  const std::string text = ReadTextFile(path, "influence constants file");
+  const toml::table root = ParseToml(text, path);
+  const Fields top(root, "", path);
+  const auto t = top.Table("influence_constants", "a table { c_f, c_z, c_s }");
+  if (!t) {
+    top.FailMissing("influence_constants", "an [influence_constants] table with c_f, c_z, c_s");
+  }
+  return ReadConstants(*t);
+}
+
+void ReadInfluenceConstants(const Fields& model, const std::string& scene_path, Scene* scene) {
+  const toml::node* node = model.Node("influence_constants");
+  if (node == nullptr) return;
+  const std::string expected =
+      "an inline table { c_f, c_z, c_s } or the path of a TOML file with [influence_constants]";
+  if (const auto file = node->value_exact<std::string>()) {
+    const std::string path = ResolveRelativeTo(DirectoryOf(scene_path), *file);
+    scene->influence_constants_source = path;
+    scene->problem.model.constants = ReadConstantsFile(path);
+    return;
+  }
+  const auto t = model.Table("influence_constants", expected);
+  scene->influence_constants_source = "inline";
+  scene->problem.model.constants = ReadConstants(*t);
+}
+
+// geometry/kernel given explicitly: the kind becomes the shorthand they match, else custom.
+ModelKind KindOf(GeometryModel geometry, KernelModel kernel) {
+  for (const ModelKind k : {ModelKind::kHalfspace, ModelKind::kConformal}) {
+    const ModelOptions o = MakeModelOptions(k);
+    if (o.geometry == geometry && o.kernel == kernel) return k;
+  }
+  return ModelKind::kCustom;
+}
+
+void ReadGeometryAndKernel(const Fields& t, ModelOptions* model) {
+  const auto geometry = t.Choice("geometry", {"planar", "conformal"});
+  const auto kernel = t.Choice("kernel", {"boussinesq", "golubenko"});
+  if (!geometry && !kernel) return;
+  if (model->kind == ModelKind::kHertz) {
+    t.Fail(geometry ? "geometry" : "kernel",
+           "no geometry or kernel with kind = 'hertz' (Hertz is analytic; use kind = "
+           "'halfspace' or 'conformal', or drop this key)");
+  }
+  if (geometry) model->geometry = *GeometryModelFromString(*geometry);
+  if (kernel) model->kernel = *KernelModelFromString(*kernel);
+  model->kind = KindOf(model->geometry, model->kernel);
+}
+
+void ReadCellSize(const Fields& t, ModelOptions* model) {
+  const toml::node* node = t.Node("cell_mm");
+  if (node == nullptr) return;
+  const std::string expected = "two positive numbers [dx, ds] in mm";
+  const toml::array* a = node->as_array();
+  if (a == nullptr || a->size() != 2) t.Fail("cell_mm", expected);
+  double v[2] = {0.0, 0.0};
+  for (int i = 0; i < 2; ++i) {
+    const toml::node& e = *a->get(i);
+    if (const auto n = e.value<double>()) v[i] = *n;  // integers convert
+    if (!(e.is_number() && std::isfinite(v[i]) && v[i] > 0.0)) t.Fail("cell_mm", expected);
+  }
+  model->cell_dx_m = v[0] * kMm;
+  model->cell_ds_m = v[1] * kMm;
+}
+
+void ReadModel(const Fields& top, Scene* scene) {
+  ModelOptions& model = scene->problem.model;
+  model = MakeModelOptions(ModelKind::kConformal);
+  const auto t = top.Table("model", "a table");
+  if (!t) return;
+  t->AllowOnly({"kind", "geometry", "kernel", "influence_constants", "accuracy", "cell_mm",
+                "tangential"});
+  if (const auto kind = t->Choice("kind", {"hertz", "halfspace", "conformal"})) {
+    model = MakeModelOptions(*ModelKindFromString(*kind));
+  }
+  ReadGeometryAndKernel(*t, &model);
+  if (const auto a = t->Choice("accuracy", {"draft", "standard", "reference", "fine"})) {
+    model.accuracy = *AccuracyPresetFromString(*a);
+  }
+  ReadCellSize(*t, &model);
+  if (const auto tan = t->Choice("tangential", {"fastsim", "exact"})) scene->tangential = *tan;
+  ReadInfluenceConstants(*t, scene->path, scene);
+}
+
+Material ReadMaterial(const Fields& materials, std::string_view body, bool rail) {
+  const auto t = materials.Table(body, "an inline table { E_MPa, nu }");
+  if (!t) materials.FailMissing(body, "an inline table { E_MPa, nu }");
+  if (rail) {
+    t->AllowOnly({"E_MPa", "nu", "hardness_MPa", "shear_yield_MPa"});
+  } else {
+    t->AllowOnly({"E_MPa", "nu"});
+  }
+  Material m;
+  m.youngs_modulus_Pa = t->RequiredNumber("E_MPa", Positive()) * kMPa;
+  m.poisson_ratio = t->RequiredNumber("nu", InRange(0.0, 0.5));
+  if (const auto h = t->Number("hardness_MPa", Positive())) m.hardness_Pa = *h * kMPa;
+  if (const auto y = t->Number("shear_yield_MPa", Positive())) m.shear_yield_Pa = *y * kMPa;
+  return m;
+}
+
+void ReadMaterials(const Fields& top, Scene* scene) {
+  scene->problem.wheel_material = DefaultSteel();
+  scene->problem.rail_material = DefaultSteel();
+  const auto t = top.Table("materials", "a table");
+  if (!t) return;
+  t->AllowOnly({"wheel", "rail"});
+  scene->problem.wheel_material = ReadMaterial(*t, "wheel", false);
+  scene->problem.rail_material = ReadMaterial(*t, "rail", true);
+}
+
+// Loads a profile spec; errors from the profile reader get the scene key in front.
+Profile LoadProfile(const Fields& t, BodyRole role, const std::string& spec,
+                    const std::string& scene_path) {
+  try {
+    return LoadProfileSpec(spec, role, DirectoryOf(scene_path));
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}:{}: key '{}' = \"{}\": {}", t.file(), LineOf(*t.Node("profile")),
+                                 t.KeyName("profile"), spec, e.what()));
+  }
+}
+
+constexpr std::string_view kProfileExpected =
+    "a profile: \"builtin:S1002\", \"builtin:UIC60\", \"circle:R_mm\", \"groove:R_mm\" or a "
+    "file (.csv, .ban, .whl, .prr, .prw) relative to the scene";
+
+void ReadWheel(const Fields& top, Scene* scene) {
+  const Fields t = RequiredTable(top, "wheel", "a [wheel] table with profile, rolling_radius_mm");
+  t.AllowOnly({"profile", "rolling_radius_mm", "mirror_y"});
+  scene->wheel_profile_spec = t.RequiredString("profile", kProfileExpected);
+  scene->problem.placement.rolling_radius_m =
+      t.RequiredNumber("rolling_radius_mm", Positive()) * kMm;
+  Profile p = LoadProfile(t, BodyRole::kWheel, scene->wheel_profile_spec, scene->path);
+  if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
+  scene->problem.wheel_profile = std::move(p);
+}
+
+double ReadCant(const Fields& t, Scene* scene) {
+  const toml::node* node = t.Node("cant");
+  if (node == nullptr) return 0.0;
+  const std::string expected = "a cant ratio \"1:N\" (e.g. \"1:40\") or 0";
+  if (const auto i = node->value_exact<int64_t>(); i && *i == 0) return 0.0;
+  const auto text = node->value_exact<std::string>();
+  if (!text) t.Fail("cant", expected);
+  scene->cant = *text;
+  try {
+    return ParseCant(*text);
+  } catch (const InputError&) {
+    t.Fail("cant", expected);
+  }
+}
+
+void ReadRail(const Fields& top, Scene* scene) {
+  const Fields t = RequiredTable(top, "rail", "a [rail] table with profile");
+  t.AllowOnly({"profile", "cant", "mirror_y"});
+  scene->rail_profile_spec = t.RequiredString("profile", kProfileExpected);
+  scene->cant_ratio = ReadCant(t, scene);
+  Profile p = LoadProfile(t, BodyRole::kRail, scene->rail_profile_spec, scene->path);
+  if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
+  if (scene->cant_ratio != 0.0) p = ApplyCant(p, scene->cant_ratio);
+  scene->problem.rail_profile = std::move(p);
+}
+
+void ReadLoad(const Fields& top, Scene* scene) {
+  const Fields t = RequiredTable(top, "load", "a [load] table with vertical_N or approach_mm");
+  if (t.Has("creepage")) {
+    throw InputError(fmt::format(
+        "{}: expected no creepage: prescribed creepages belong to rolling contact runs, which "
+        "this version of railwear does not provide yet",
+        FieldPrefix(t.file(), *t.Node("creepage"), t.KeyName("creepage"))));
+  }
+  t.AllowOnly({"vertical_N", "approach_mm", "lateral_shift_mm", "roll_rad", "friction",
+               "speed_m_s"});
+  ContactLoad& load = scene->problem.load;
+  load.vertical_force_N = t.Number("vertical_N", Positive());
+  if (const auto a = t.Number("approach_mm", Positive())) load.approach_m = *a * kMm;
+  if (load.vertical_force_N && load.approach_m) {
+    t.Fail("approach_mm", "exactly one of 'load.vertical_N' and 'load.approach_mm' (both given)");
+  }
+  if (!load.vertical_force_N && !load.approach_m) {
+    t.FailMissing("vertical_N", "exactly one of 'load.vertical_N' and 'load.approach_mm'");
+  }
+  WheelPlacement& placement = scene->problem.placement;
+  placement.lateral_shift_m = t.Number("lateral_shift_mm", AnyFinite()).value_or(0.0) * kMm;
+  placement.roll_rad = t.Number("roll_rad", InRange(-kMaxRoll_rad, kMaxRoll_rad)).value_or(0.0);
+  scene->friction = t.Number("friction", OpenClosed(0.0, 2.0));
+  scene->speed_m_s = t.Number("speed_m_s", AtLeast(0.0));
+}
+
+}  // namespace
+
+Material DefaultSteel() {
+  Material m;
+  m.youngs_modulus_Pa = 210000.0 * kMPa;
+  m.poisson_ratio = 0.28;
+  return m;
+}
+
+Scene ParseScene(const std::string& text, const std::string& path) {
+  const toml::table root = ParseToml(text, path);
+  const Fields top(root, "", path);
+  RejectLaterTables(top);
+  top.AllowOnly({"scene", "model", "materials", "wheel", "rail", "load"});
+  Scene scene;
+  scene.path = path;
+  scene.text = text;
+  ReadSceneTable(top, &scene);
+  ReadModel(top, &scene);
+  ReadMaterials(top, &scene);
+  ReadLoad(top, &scene);
+  ReadWheel(top, &scene);
+  ReadRail(top, &scene);
+  return scene;
+}
+
+Scene LoadScene(const std::string& path) {
+  return ParseScene(ReadTextFile(path, "scene file"), path);
+}
+
+}  // namespace railwear::app

@@ -1,0 +1,49 @@
+// Scene files (TOML, DESIGN.md §3): read, validate strictly, and turn into a ContactProblem.
+//
+// Every problem with a scene is an InputError whose message reads
+//   FILE:LINE: key 'section.key' = VALUE: expected WHAT
+// (for a missing key: "FILE:LINE: key 'section.key' is missing: expected WHAT", with the line of
+// its table). toml++ stays inside scene.cpp; callers see plain value types.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/contact/contact_solver.h"
+
+namespace railwear::app {
+
+struct Scene {
+  std::string path;  // as given ("<text>" for ParseScene without a file)
+  std::string name;  // [scene] name; defaults to the file's stem
+  std::vector<std::string> effects;  // always contains "normal" (the only one available now)
+  std::string text;  // the original TOML text, stored with results so a run can be repeated
+
+  std::string wheel_profile_spec;  // [wheel] profile, as written
+  std::string rail_profile_spec;   // [rail] profile, as written
+  std::string cant = "0";          // [rail] cant, as written ("1:40")
+  double cant_ratio = 0.0;         // 1:40 -> 0.025
+  std::string tangential = "fastsim";  // [model] tangential: "fastsim" | "exact"
+  // Where the influence constants came from: "default", "inline" or the resolved file path.
+  std::string influence_constants_source = "default";
+
+  std::optional<double> friction;   // [load] friction, in (0, 2]; used by rolling contact
+  std::optional<double> speed_m_s;  // [load] speed_m_s, >= 0; used by rolling contact
+
+  ContactProblem problem;  // profiles loaded (cant, mirroring applied), SI units throughout
+};
+
+// Reads and validates the scene file at `path`; profile paths are relative to its directory.
+// Throws InputError (file unreadable, TOML syntax, unknown/missing/mistyped/out-of-range keys,
+// profile files).
+Scene LoadScene(const std::string& path);
+
+// The same for scene text already in memory; `path` names it in messages and anchors relative
+// profile paths.
+Scene ParseScene(const std::string& text, const std::string& path);
+
+// Steel, the default of both bodies when a scene has no [materials] table.
+Material DefaultSteel();
+
+}  // namespace railwear::app

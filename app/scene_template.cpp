@@ -1,0 +1,69 @@
+// Text of the `railwear init` scene template (kept in step with scene.cpp; a test loads it).
+#include "app/scene_template.h"
+
+namespace railwear::app {
+
+std::string_view SceneTemplate() {
+  return R"toml(# railwear scene: one wheel on one rail, normal contact.
+# Run it with:   railwear contact THIS_FILE.toml [--json -] [--csv p.csv] [--plot p.png]
+#
+# Units are in the key names (mm, N, MPa, rad, m/s). Frames (core/notation.md): y lateral,
+# positive toward the field side; z vertical, positive downward (into the rail).
+# Unknown keys, missing required keys, wrong types and out-of-range values are errors.
+
+[scene]
+name = "S1002 on UIC60"       # optional; default: the file name without extension
+effects = ["normal"]          # optional; "normal" is the only effect in this version
+                              # ("tangential", "coupling", "wear", "damage" come later)
+
+[model]                       # optional table
+kind = "conformal"            # "hertz" | "halfspace" (planar + boussinesq)
+                              # | "conformal" (conformal + golubenko); default "conformal"
+# geometry = "conformal"      # "planar" | "conformal"; overrides kind (not with "hertz")
+# kernel = "golubenko"        # "boussinesq" | "golubenko"; overrides kind (not with "hertz")
+# influence_constants = { c_f = 0.75, c_z = 1.0, c_s = 0.25 }
+                              # seed eq. 4 constants; each optional (defaults shown);
+                              # c_f, c_z > 0, c_s any finite number. Or the path (relative
+                              # to this file) of a TOML file with an [influence_constants]
+                              # table of the same keys.
+accuracy = "standard"         # "draft" | "standard" | "reference" | "fine"; default "standard"
+# cell_mm = [0.2, 0.2]        # explicit cell size [dx, ds] in mm (> 0); overrides accuracy
+tangential = "fastsim"        # "fastsim" | "exact"; default "fastsim" (for the later
+                              # "tangential" effect; read and checked now)
+
+[materials]                   # optional table; without it both bodies are steel,
+                              # E_MPa = 210000 and nu = 0.28. With it, give both bodies.
+wheel = { E_MPa = 210000, nu = 0.28 }          # E_MPa > 0, 0 <= nu < 0.5
+rail = { E_MPa = 210000, nu = 0.28, hardness_MPa = 2600, shear_yield_MPa = 350 }
+                              # hardness_MPa, shear_yield_MPa optional (> 0), for wear/damage
+
+[wheel]                       # required
+profile = "builtin:S1002"     # "builtin:S1002", "circle:R_mm", or a file (.csv, .whl, .prw,
+                              # .ban) relative to this scene file
+rolling_radius_mm = 460       # required, > 0: wheel radius at the profile's z = 0
+# mirror_y = false            # true: mirror the profile (y -> -y) after reading it
+
+[rail]                        # required
+profile = "builtin:UIC60"     # "builtin:UIC60", "groove:R_mm", or a file (.csv, .ban, .prr)
+cant = "1:40"                 # "1:N" or "0"; default "0" (no cant)
+# mirror_y = false            # true: mirror the profile (before the cant is applied)
+
+[load]                        # required; one wheel on one rail
+vertical_N = 100000           # give exactly one of vertical_N (> 0) ...
+# approach_mm = 0.05          # ... and approach_mm (> 0, from first contact)
+lateral_shift_mm = 0.0        # wheel profile origin relative to the rail's, toward the field
+                              # side; default 0
+roll_rad = 0.0                # roll of the wheel, |roll_rad| < 0.5; default 0
+friction = 0.3                # optional, in (0, 2]; for the later "tangential" effect
+speed_m_s = 20.0              # optional, >= 0; for the later "tangential" effect
+# creepage = { xi = -0.004, eta = 0.0, spin_per_mm = 0.0 }    # comes with rolling contact
+
+# Coming in later versions (rolling contact, wear runs); these tables are errors for now:
+# [track]      gauge_mm, gauge_height_mm
+# [wheelset]   flange_back_distance_mm, lateral_displacement_mm, yaw_mrad, ...
+# [wear]       law, k, max_depth_per_step_mm, total_passes, db
+# [[traffic]]  wheel_profile, vertical_N, lateral_shift_mm, yaw_mrad, friction, speed_m_s, share
+)toml";
+}
+
+}  // namespace railwear::app

@@ -1,0 +1,204 @@
+// Checked access to toml++ tables: every problem becomes an InputError naming file, line, key,
+// value and what was expected.
+#include "app/toml_fields.h"
+
+#include <cmath>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "core/numerics/input_error.h"
+
+namespace railwear::app {
+
+NumberRule AnyFinite() {
+  return {[](double) { return true; }, "a finite number"};
+}
+NumberRule Positive() {
+  return {[](double v) { return v > 0.0; }, "a number > 0"};
+}
+NumberRule AtLeast(double lo) {
+  return {[lo](double v) { return v >= lo; }, fmt::format("a number >= {}", lo)};
+}
+NumberRule InRange(double lo, double hi) {
+  return {[lo, hi](double v) { return v >= lo && v < hi; },
+          fmt::format("a number in [{}, {})", lo, hi)};
+}
+NumberRule OpenClosed(double lo, double hi) {
+  return {[lo, hi](double v) { return v > lo && v <= hi; },
+          fmt::format("a number in ({}, {}]", lo, hi)};
+}
+
+int LineOf(const toml::node& node) {
+  const int line = static_cast<int>(node.source().begin.line);
+  return line > 0 ? line : 1;
+}
+
+namespace {
+
+std::string Quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// The value as a user would write it: strings in double quotes, numbers in their shortest form.
+std::string Written(const toml::node& node) {
+  if (const auto s = node.value_exact<std::string>()) return Quoted(*s);
+  if (const auto i = node.value_exact<int64_t>()) return fmt::format("{}", *i);
+  if (const auto d = node.value_exact<double>()) return fmt::format("{}", *d);
+  if (const auto b = node.value_exact<bool>()) return *b ? "true" : "false";
+  if (const toml::array* a = node.as_array()) {
+    std::string out;
+    for (const auto& e : *a) out += fmt::format("{}{}", out.empty() ? "" : ", ", Written(e));
+    return fmt::format("[{}]", out);
+  }
+  if (const toml::table* t = node.as_table()) {
+    std::string out;
+    for (const auto& [k, v] : *t) {
+      out += fmt::format("{}{} = {}", out.empty() ? "" : ", ", k.str(), Written(v));
+    }
+    return fmt::format("{{ {} }}", out);
+  }
+  std::ostringstream os;  // dates and times
+  node.visit([&os](const auto& v) { os << v; });
+  return os.str();
+}
+
+}  // namespace
+
+std::string ValueText(const toml::node& node) {
+  if (node.is_table() && !node.as_table()->is_inline()) return "(table)";
+  if (node.is_array_of_tables()) return "(array of tables)";
+  std::string text = Written(node);
+  if (text.size() > 60) text = text.substr(0, 57) + "...";
+  return text;
+}
+
+std::string FieldPrefix(const std::string& file, const toml::node& node, std::string_view key) {
+  return fmt::format("{}:{}: key '{}' = {}", file, LineOf(node), key, ValueText(node));
+}
+
+std::string FieldError(const std::string& file, const toml::node& node, std::string_view key,
+                       std::string_view expected) {
+  return fmt::format("{}: expected {}", FieldPrefix(file, node, key), expected);
+}
+
+std::string JoinQuoted(const std::vector<std::string_view>& names) {
+  std::string out;
+  for (const auto& n : names) {
+    if (!out.empty()) out += ", ";
+    out += fmt::format("'{}'", n);
+  }
+  return out;
+}
+
+toml::table ParseToml(const std::string& text, const std::string& file) {
+  try {
+    return toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    const auto& begin = e.source().begin;
+    throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", file, begin.line,
+                                 begin.column, e.description()));
+  }
+}
+
+Fields::Fields(const toml::table& table, std::string name, std::string file)
+    : table_(table), name_(std::move(name)), file_(std::move(file)) {}
+
+int Fields::Line() const { return LineOf(table_); }
+
+std::string Fields::KeyName(std::string_view key) const {
+  return name_.empty() ? std::string(key) : fmt::format("{}.{}", name_, key);
+}
+
+void Fields::Fail(std::string_view key, std::string_view expected) const {
+  throw InputError(FieldError(file_, *table_.get(key), KeyName(key), expected));
+}
+
+void Fields::FailMissing(std::string_view key, std::string_view expected) const {
+  throw InputError(fmt::format("{}:{}: key '{}' is missing: expected {}", file_, Line(),
+                               KeyName(key), expected));
+}
+
+void Fields::AllowOnly(const std::vector<std::string_view>& allowed) const {
+  for (const auto& [key, node] : table_) {
+    bool known = false;
+    for (const auto& a : allowed) known = known || key.str() == a;
+    if (known) continue;
+    const std::string where = name_.empty() ? "at the top level" : fmt::format("in [{}]", name_);
+    throw InputError(fmt::format("{}:{}: key '{}' = {}: expected one of the keys allowed {}: {}",
+                                 file_, LineOf(node), KeyName(key.str()), ValueText(node), where,
+                                 JoinQuoted(allowed)));
+  }
+}
+
+std::optional<double> Fields::Number(std::string_view key, const NumberRule& rule) const {
+  const toml::node* node = table_.get(key);
+  if (node == nullptr) return std::nullopt;
+  double v = 0.0;
+  if (const auto i = node->value_exact<int64_t>()) {
+    v = static_cast<double>(*i);
+  } else if (const auto d = node->value_exact<double>()) {
+    v = *d;
+  } else {
+    Fail(key, rule.expected);
+  }
+  if (!std::isfinite(v) || !rule.ok(v)) Fail(key, rule.expected);
+  return v;
+}
+
+double Fields::RequiredNumber(std::string_view key, const NumberRule& rule) const {
+  const auto v = Number(key, rule);
+  if (!v) FailMissing(key, rule.expected);
+  return *v;
+}
+
+std::optional<std::string> Fields::String(std::string_view key) const {
+  const toml::node* node = table_.get(key);
+  if (node == nullptr) return std::nullopt;
+  const auto s = node->value_exact<std::string>();
+  if (!s) Fail(key, "a string");
+  return *s;
+}
+
+std::string Fields::RequiredString(std::string_view key, std::string_view expected) const {
+  const toml::node* node = table_.get(key);
+  if (node == nullptr) FailMissing(key, expected);
+  const auto s = node->value_exact<std::string>();
+  if (!s || s->empty()) Fail(key, expected);
+  return *s;
+}
+
+std::optional<std::string> Fields::Choice(std::string_view key,
+                                          const std::vector<std::string_view>& choices) const {
+  const toml::node* node = table_.get(key);
+  if (node == nullptr) return std::nullopt;
+  const std::string expected = "one of " + JoinQuoted(choices);
+  const auto s = node->value_exact<std::string>();
+  if (!s) Fail(key, expected);
+  for (const auto& c : choices) {
+    if (*s == c) return *s;
+  }
+  Fail(key, expected);
+}
+
+std::optional<bool> Fields::Bool(std::string_view key) const {
+  const toml::node* node = table_.get(key);
+  if (node == nullptr) return std::nullopt;
+  const auto b = node->value_exact<bool>();
+  if (!b) Fail(key, "true or false");
+  return *b;
+}
+
+std::optional<Fields> Fields::Table(std::string_view key, std::string_view expected) const {
+  const toml::node* node = table_.get(key);
+  if (node == nullptr) return std::nullopt;
+  if (!node->is_table()) Fail(key, expected);
+  return Fields(*node->as_table(), KeyName(key), file_);
+}
+
+}  // namespace railwear::app

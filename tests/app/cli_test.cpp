@@ -1,0 +1,273 @@
+// The railwear executable end to end: exit codes (0 ok, 1 failure, 2 bad input/usage), error
+// messages on stderr, `init` -> `contact`, JSON on stdout, CSV, `profile show|convert`.
+// Runs the built binary (RAILWEAR_BINARY) in a temporary directory; draft accuracy keeps each
+// test well under a second.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "app/scene_template.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
+  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "\n  text:  " << text << "\n  lacks: " << part;
+}
+
+std::string ReadFile(const fs::path& file) {
+  std::ifstream in(file);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+// Each test gets its own working directory; the binary runs there.
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / (std::string("railwear_cli_test_") + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs `ENV railwear ARGS` in dir_ with stdout and stderr captured.
+  Outcome Run(const std::string& args, const std::string& env = "") const {
+    const std::string command = "cd '" + dir_.string() + "' && " + env + " '" RAILWEAR_BINARY
+                                "' " + args + " > stdout.txt 2> stderr.txt";
+    const int status = std::system(command.c_str());
+    Outcome o;
+    o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    o.out = ReadFile(dir_ / "stdout.txt");
+    o.err = ReadFile(dir_ / "stderr.txt");
+    return o;
+  }
+  void Write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+  }
+  fs::path dir_;
+};
+
+const char* const kScene = R"([wheel]
+profile = "builtin:S1002"
+rolling_radius_mm = 460
+[rail]
+profile = "builtin:UIC60"
+cant = "1:40"
+[load]
+vertical_N = 100000
+)";
+
+TEST_F(CliTest, HelpAndVersionExitZero) {
+  const Outcome help = Run("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_TRUE(Contains(help.out, "contact"));
+  EXPECT_TRUE(Contains(help.out, "profile"));
+  EXPECT_TRUE(Contains(help.out, "init"));
+  EXPECT_EQ(Run("contact --help").exit_code, 0);
+  const Outcome version = Run("--version");
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_TRUE(Contains(version.out, "railwear "));
+}
+
+TEST_F(CliTest, UsageErrorsExitTwo) {
+  const Outcome none = Run("");
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_TRUE(Contains(none.err, "railwear: error: "));
+  const Outcome unknown = Run("contact scene.toml --bogus");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_TRUE(Contains(unknown.err, "railwear: error: "));
+  EXPECT_TRUE(Contains(unknown.err, "--bogus"));
+  const Outcome model = Run("contact scene.toml --model auto");
+  EXPECT_EQ(model.exit_code, 2);
+  EXPECT_TRUE(Contains(model.err, "--model"));
+  EXPECT_EQ(Run("contact scene.toml --accuracy ultra").exit_code, 2);
+  EXPECT_EQ(Run("frobnicate").exit_code, 2);
+}
+
+TEST_F(CliTest, MissingSceneFileExitsTwo) {
+  const Outcome o = Run("contact no_such_scene.toml");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_TRUE(Contains(o.err, "railwear: error: no_such_scene.toml: cannot open scene file"));
+}
+
+TEST_F(CliTest, BadSceneExitsTwoWithFileLineAndKey) {
+  std::string text = kScene;
+  text.replace(text.find("100000"), 6, "\"heavy\"");
+  Write("bad.toml", text);
+  const Outcome o = Run("contact bad.toml");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_TRUE(Contains(o.err, "railwear: error: bad.toml:8: key 'load.vertical_N' = \"heavy\": "
+                              "expected a number > 0"));
+  EXPECT_EQ(o.out, "");
+}
+
+TEST_F(CliTest, InitWritesATemplateThatContactAccepts) {
+  const Outcome init = Run("init scene.toml");
+  ASSERT_EQ(init.exit_code, 0) << init.err;
+  EXPECT_EQ(ReadFile(dir_ / "scene.toml"), railwear::app::SceneTemplate());
+  const Outcome contact = Run("contact scene.toml --accuracy draft");
+  EXPECT_EQ(contact.exit_code, 0) << contact.err;
+  EXPECT_TRUE(Contains(contact.out, "status      converged"));
+  EXPECT_TRUE(Contains(contact.out, "area_mm2"));
+}
+
+TEST_F(CliTest, InitNeverOverwrites) {
+  Write("scene.toml", "keep me");
+  const Outcome o = Run("init scene.toml");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_TRUE(Contains(o.err, "railwear: error: scene.toml: file exists"));
+  EXPECT_EQ(ReadFile(dir_ / "scene.toml"), "keep me");
+}
+
+TEST_F(CliTest, InitWithoutFileWritesStdout) {
+  const Outcome o = Run("init");
+  EXPECT_EQ(o.exit_code, 0);
+  EXPECT_EQ(o.out, railwear::app::SceneTemplate());
+}
+
+TEST_F(CliTest, JsonOnStdoutIsOneObjectWithTheRequiredKeys) {
+  Write("scene.toml", kScene);
+  const Outcome o = Run("contact scene.toml --accuracy draft --json -");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);  // throws on anything but one object
+  for (const char* key : {"status", "message", "scene", "model", "approach_mm", "iterations",
+                          "time_ms", "stages", "total", "patches"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["status"], "converged");
+  EXPECT_EQ(j["model"]["accuracy"], "draft");
+  for (const char* key : {"kind", "geometry", "kernel", "accuracy", "influence_constants"}) {
+    EXPECT_TRUE(j["model"].contains(key)) << key;
+  }
+  for (const char* key : {"c_f", "c_z", "c_s"}) {
+    EXPECT_TRUE(j["model"]["influence_constants"].contains(key)) << key;
+  }
+  for (const char* key : {"area_mm2", "p_max_MPa", "vertical_force_N", "lateral_force_N"}) {
+    EXPECT_TRUE(j["total"].contains(key)) << key;
+  }
+  ASSERT_FALSE(j["patches"].empty());
+  for (const char* key : {"area_mm2", "p_max_MPa", "normal_force_N", "vertical_force_N",
+                          "lateral_force_N", "contact_y_mm", "contact_z_mm", "contact_angle_deg",
+                          "cells", "cells_in_contact", "cell_mm"}) {
+    EXPECT_TRUE(j["patches"][0].contains(key)) << key;
+  }
+  EXPECT_GT(j["total"]["area_mm2"].get<double>(), 0.0);
+}
+
+TEST_F(CliTest, JsonAndCsvFilesAndSummary) {
+  Write("scene.toml", kScene);
+  const Outcome o = Run("contact scene.toml --accuracy draft --json r.json --csv p.csv");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(Contains(o.out, "model       conformal"));
+  const nlohmann::json j = nlohmann::json::parse(ReadFile(dir_ / "r.json"));
+  std::istringstream csv(ReadFile(dir_ / "p.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa");
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 7) << line;
+  }
+  int cells = 0;
+  for (const auto& p : j["patches"]) cells += p["cells"].get<int>();
+  EXPECT_EQ(rows, cells);
+}
+
+TEST_F(CliTest, HertzCsvSamplesTheEllipse) {
+  Write("scene.toml", kScene);
+  const Outcome o = Run("contact scene.toml --model hertz --csv p.csv --json -");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  EXPECT_EQ(j["model"]["kind"], "hertz");
+  EXPECT_TRUE(j["model"]["geometry"].is_null());
+  const std::string csv = ReadFile(dir_ / "p.csv");
+  const auto rows = std::count(csv.begin(), csv.end(), '\n') - 1;
+  EXPECT_EQ(rows, static_cast<long>(j["patches"].size()) * 41 * 41);
+}
+
+TEST_F(CliTest, PlotWritesAPng) {
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) GTEST_SKIP() << "no gnuplot";
+  Write("scene.toml", kScene);
+  const Outcome o = Run("contact scene.toml --accuracy draft --plot p.png");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  const std::string png = ReadFile(dir_ / "p.png");
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+}
+
+TEST_F(CliTest, PlotWithoutGnuplotExitsOneNamingIt) {
+  Write("scene.toml", kScene);
+  const Outcome o = Run("contact scene.toml --accuracy draft --plot p.png", "PATH=/nonexistent");
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_TRUE(Contains(o.err, "railwear: error: --plot needs the program 'gnuplot'"));
+  EXPECT_EQ(o.out, "");  // checked before the solve
+}
+
+TEST_F(CliTest, JsonAndCsvCannotBothUseStdout) {
+  Write("scene.toml", kScene);
+  const Outcome o = Run("contact scene.toml --json - --csv -");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_TRUE(Contains(o.err, "both want stdout"));
+}
+
+TEST_F(CliTest, ExamplesRun) {
+  for (const char* name : {"gauge_corner.toml", "tread.toml", "groove_conformal.toml"}) {
+    const Outcome o = Run(std::string("contact '" RAILWEAR_SOURCE_DIR "/examples/") + name +
+                          "' --accuracy draft --json -");
+    EXPECT_EQ(o.exit_code, 0) << name << ": " << o.err;
+    EXPECT_NO_THROW(nlohmann::json::parse(o.out)) << name;
+  }
+}
+
+TEST_F(CliTest, ProfileShowJsonAndConvert) {
+  Write("rail.csv", "y_mm,z_mm\n-10,0.5\n-5,0.125\n0,0\n5,0.125\n10,0.5\n");
+  const Outcome show = Run("profile show rail.csv --json");
+  ASSERT_EQ(show.exit_code, 0) << show.err;
+  const nlohmann::json j = nlohmann::json::parse(show.out);
+  EXPECT_EQ(j["format"], "csv");
+  EXPECT_EQ(j["points"], 5);
+  EXPECT_DOUBLE_EQ(j["y_range_mm"][0].get<double>(), -10.0);
+  EXPECT_DOUBLE_EQ(j["y_range_mm"][1].get<double>(), 10.0);
+  EXPECT_NEAR(j["z_range_mm"][1].get<double>(), 0.5, 1e-9);
+  EXPECT_GT(j["arc_length_mm"].get<double>(), 20.0);  // longer than the chord
+  EXPECT_TRUE(j.contains("notes"));
+  EXPECT_TRUE(j.contains("source"));
+
+  const Outcome text = Run("profile show rail.csv");
+  EXPECT_EQ(text.exit_code, 0);
+  EXPECT_TRUE(Contains(text.out, "points      5"));
+
+  const Outcome convert = Run("profile convert rail.csv copy.csv");
+  ASSERT_EQ(convert.exit_code, 0) << convert.err;
+  EXPECT_TRUE(Contains(convert.err, "copy.csv"));
+  EXPECT_EQ(convert.out, "");
+  EXPECT_TRUE(fs::exists(dir_ / "copy.csv"));
+}
+
+TEST_F(CliTest, ProfileShowMissingFileExitsTwo) {
+  const Outcome o = Run("profile show none.csv");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_TRUE(Contains(o.err, "railwear: error: "));
+  EXPECT_TRUE(Contains(o.err, "none.csv"));
+}
+
+}  // namespace

@@ -1,0 +1,421 @@
+// Scene files: defaults, SI conversion, overrides, and one test per class of bad input that
+// checks the message (file, line, key, value, what was expected).
+#include "app/scene.h"
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "app/scene_template.h"
+#include "core/numerics/input_error.h"
+
+namespace railwear::app {
+namespace {
+
+// Passes when `text` contains `part`; the failure message shows both.
+::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
+  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "\n  message: " << text << "\n  lacks:   " << part;
+}
+
+// Exact conversions (mm -> m, MPa -> Pa) only lose the last bit.
+constexpr double kTight = 1e-12;
+
+const char* const kMinimal = R"(
+[wheel]
+profile = "builtin:S1002"
+rolling_radius_mm = 460
+
+[rail]
+profile = "builtin:UIC60"
+
+[load]
+vertical_N = 100000
+)";
+
+// The message of the InputError that ParseScene throws for `text` ("" if none).
+std::string ErrorOf(const std::string& text, const std::string& path = "scene.toml") {
+  try {
+    ParseScene(text, path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A fresh directory under the system temp dir, removed at the end of the test.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& name)
+      : path_(std::filesystem::temp_directory_path() / ("railwear_scene_test_" + name)) {
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() { std::filesystem::remove_all(path_); }
+  std::string Write(const std::string& name, const std::string& text) const {
+    const auto file = path_ / name;
+    std::ofstream(file) << text;
+    return file.string();
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
+TEST(SceneTest, MinimalSceneGetsDocumentedDefaults) {
+  const Scene s = ParseScene(kMinimal, "dir/minimal.toml");
+  EXPECT_EQ(s.name, "minimal");
+  EXPECT_EQ(s.effects, std::vector<std::string>{"normal"});
+  EXPECT_EQ(s.text, kMinimal);
+  EXPECT_EQ(s.problem.model.kind, ModelKind::kConformal);
+  EXPECT_EQ(s.problem.model.geometry, GeometryModel::kConformal);
+  EXPECT_EQ(s.problem.model.kernel, KernelModel::kGolubenko);
+  EXPECT_EQ(s.problem.model.accuracy, AccuracyPreset::kStandard);
+  EXPECT_FALSE(s.problem.model.cell_dx_m.has_value());
+  EXPECT_DOUBLE_EQ(s.problem.model.constants.c_f, 0.75);
+  EXPECT_EQ(s.cant_ratio, 0.0);
+  EXPECT_EQ(s.problem.placement.lateral_shift_m, 0.0);
+  EXPECT_EQ(s.problem.placement.roll_rad, 0.0);
+  EXPECT_NEAR(s.problem.placement.rolling_radius_m, 0.46, kTight);
+  EXPECT_NEAR(s.problem.wheel_material.youngs_modulus_Pa, 210e9, 1.0);
+  EXPECT_DOUBLE_EQ(s.problem.rail_material.poisson_ratio, 0.28);
+  EXPECT_NEAR(*s.problem.load.vertical_force_N, 1e5, kTight);
+  EXPECT_FALSE(s.problem.load.approach_m.has_value());
+  EXPECT_FALSE(s.friction.has_value());
+  EXPECT_EQ(s.tangential, "fastsim");
+  EXPECT_EQ(s.wheel_profile_spec, "builtin:S1002");
+  EXPECT_GE(s.problem.wheel_profile.size(), 4);
+  EXPECT_GE(s.problem.rail_profile.size(), 4);
+}
+
+TEST(SceneTest, FullSceneConvertsToSi) {
+  const std::string text = R"(
+[scene]
+name = "full"
+effects = ["normal"]
+[model]
+kind = "halfspace"
+accuracy = "draft"
+cell_mm = [0.25, 0.5]
+tangential = "exact"
+influence_constants = { c_f = 0.7, c_s = -0.1 }
+[materials]
+wheel = { E_MPa = 200000, nu = 0.3 }
+rail = { E_MPa = 190000.5, nu = 0.25, hardness_MPa = 2600, shear_yield_MPa = 350 }
+[wheel]
+profile = "builtin:S1002"
+rolling_radius_mm = 450.5
+[rail]
+profile = "builtin:UIC60"
+cant = "1:40"
+[load]
+approach_mm = 0.05
+lateral_shift_mm = -3
+roll_rad = 0.001
+friction = 0.4
+speed_m_s = 20
+)";
+  const Scene s = ParseScene(text, "full.toml");
+  EXPECT_EQ(s.name, "full");
+  EXPECT_EQ(s.problem.model.kind, ModelKind::kHalfspace);
+  EXPECT_EQ(s.problem.model.geometry, GeometryModel::kPlanar);
+  EXPECT_EQ(s.problem.model.kernel, KernelModel::kBoussinesq);
+  EXPECT_EQ(s.problem.model.accuracy, AccuracyPreset::kDraft);
+  EXPECT_NEAR(*s.problem.model.cell_dx_m, 0.25e-3, kTight);
+  EXPECT_NEAR(*s.problem.model.cell_ds_m, 0.5e-3, kTight);
+  EXPECT_EQ(s.tangential, "exact");
+  EXPECT_EQ(s.influence_constants_source, "inline");
+  EXPECT_DOUBLE_EQ(s.problem.model.constants.c_f, 0.7);
+  EXPECT_DOUBLE_EQ(s.problem.model.constants.c_z, 1.0);  // default kept
+  EXPECT_DOUBLE_EQ(s.problem.model.constants.c_s, -0.1);
+  EXPECT_NEAR(s.problem.wheel_material.youngs_modulus_Pa, 200e9, 1.0);
+  EXPECT_DOUBLE_EQ(s.problem.wheel_material.poisson_ratio, 0.3);
+  EXPECT_NEAR(s.problem.rail_material.youngs_modulus_Pa, 190000.5e6, 1.0);
+  EXPECT_NEAR(s.problem.rail_material.hardness_Pa, 2600e6, 1.0);
+  EXPECT_NEAR(s.problem.rail_material.shear_yield_Pa, 350e6, 1.0);
+  EXPECT_NEAR(s.problem.placement.rolling_radius_m, 0.4505, kTight);
+  EXPECT_DOUBLE_EQ(s.cant_ratio, 0.025);
+  EXPECT_EQ(s.cant, "1:40");
+  EXPECT_NEAR(*s.problem.load.approach_m, 0.05e-3, kTight);
+  EXPECT_FALSE(s.problem.load.vertical_force_N.has_value());
+  EXPECT_NEAR(s.problem.placement.lateral_shift_m, -3e-3, kTight);
+  EXPECT_DOUBLE_EQ(s.problem.placement.roll_rad, 0.001);
+  EXPECT_DOUBLE_EQ(*s.friction, 0.4);
+  EXPECT_DOUBLE_EQ(*s.speed_m_s, 20.0);
+}
+
+TEST(SceneTest, HertzKindUsesShorthand) {
+  const Scene s = ParseScene(std::string(kMinimal) + "[model]\nkind = \"hertz\"\n", "h.toml");
+  EXPECT_EQ(s.problem.model.kind, ModelKind::kHertz);
+}
+
+TEST(SceneTest, ExplicitGeometryAndKernelOverrideKind) {
+  const Scene custom = ParseScene(
+      std::string(kMinimal) + "[model]\nkind = \"conformal\"\nkernel = \"boussinesq\"\n", "c.toml");
+  EXPECT_EQ(custom.problem.model.kind, ModelKind::kCustom);
+  EXPECT_EQ(custom.problem.model.geometry, GeometryModel::kConformal);
+  EXPECT_EQ(custom.problem.model.kernel, KernelModel::kBoussinesq);
+
+  const Scene halfspace = ParseScene(
+      std::string(kMinimal) + "[model]\ngeometry = \"planar\"\nkernel = \"boussinesq\"\n",
+      "c.toml");
+  EXPECT_EQ(halfspace.problem.model.kind, ModelKind::kHalfspace);
+}
+
+TEST(SceneTest, GeometryWithHertzIsAnError) {
+  const std::string msg =
+      ErrorOf(std::string(kMinimal) + "[model]\nkind = \"hertz\"\ngeometry = \"planar\"\n");
+  EXPECT_TRUE(Contains(msg, "scene.toml:13: key 'model.geometry' = \"planar\": expected no "
+                             "geometry or kernel with kind = 'hertz'"));
+}
+
+TEST(SceneTest, UnknownKeyListsAllowedKeys) {
+  const std::string msg = ErrorOf(std::string(kMinimal) + "lateral_shfit_mm = 3\n");
+  EXPECT_TRUE(Contains(msg, "scene.toml:11: key 'load.lateral_shfit_mm' = 3: expected one of "
+                             "the keys allowed in [load]:"));
+  EXPECT_TRUE(Contains(msg, "'vertical_N', 'approach_mm', 'lateral_shift_mm', 'roll_rad', "
+                             "'friction', 'speed_m_s'"));
+}
+
+TEST(SceneTest, UnknownKeyInInlineTable) {
+  const std::string msg = ErrorOf(std::string(kMinimal) +
+                                  "[materials]\nwheel = { E_MPa = 1, nu = 0.3, G_MPa = 3 }\n"
+                                  "rail = { E_MPa = 1, nu = 0.3 }\n");
+  EXPECT_TRUE(Contains(msg, "scene.toml:12: key 'materials.wheel.G_MPa' = 3: expected one of "
+                             "the keys allowed in [materials.wheel]: 'E_MPa', 'nu'"));
+}
+
+TEST(SceneTest, UnknownTableListsAllowedTables) {
+  const std::string msg = ErrorOf(std::string(kMinimal) + "\n[loads]\nx = 1\n");
+  EXPECT_TRUE(Contains(msg, "scene.toml:12: key 'loads' = (table): expected one of the keys "
+                             "allowed at the top level: 'scene', 'model', 'materials', 'wheel', "
+                             "'rail', 'load'"));
+}
+
+TEST(SceneTest, MissingKeyNamesItsTableLine) {
+  const std::string text = R"([wheel]
+profile = "builtin:S1002"
+[rail]
+profile = "builtin:UIC60"
+[load]
+vertical_N = 1000
+)";
+  EXPECT_TRUE(Contains(ErrorOf(text), "scene.toml:1: key 'wheel.rolling_radius_mm' is missing: "
+                                       "expected a number > 0"));
+}
+
+TEST(SceneTest, MissingTableUsesLineOne) {
+  const std::string text = "[wheel]\nprofile = \"builtin:S1002\"\nrolling_radius_mm = 460\n"
+                           "[rail]\nprofile = \"builtin:UIC60\"\n";
+  EXPECT_TRUE(Contains(ErrorOf(text), "scene.toml:1: key 'load' is missing: expected a [load] "
+                                       "table with vertical_N or approach_mm"));
+}
+
+TEST(SceneTest, WrongTypeNamesValueAndExpectation) {
+  std::string text = kMinimal;
+  text.replace(text.find("100000"), 6, "\"100000\"");
+  EXPECT_TRUE(Contains(ErrorOf(text),
+              "scene.toml:10: key 'load.vertical_N' = \"100000\": expected a number > 0"));
+}
+
+TEST(SceneTest, WrongTypeForTable) {
+  EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "[model]\ncell_mm = 0.2\n"),
+              "scene.toml:12: key 'model.cell_mm' = 0.2: expected two positive numbers "
+                        "[dx, ds] in mm"));
+  EXPECT_TRUE(Contains(ErrorOf(std::string("scene = 3\n") + kMinimal),
+              "scene.toml:1: key 'scene' = 3: expected a table"));
+  EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "[wheel.x]\n"), "key 'wheel.x'"));
+  EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "[scene]\neffects = \"normal\"\n"),
+              "scene.toml:12: key 'scene.effects' = \"normal\": expected an array"));
+}
+
+TEST(SceneTest, OutOfRangeValues) {
+  const std::string m = kMinimal;
+  const std::string materials = "[materials]\nrail = { E_MPa = 210000, nu = 0.28 }\n";
+  EXPECT_TRUE(Contains(ErrorOf(m + materials + "wheel = { E_MPa = 210000, nu = 0.5 }\n"),
+              "scene.toml:13: key 'materials.wheel.nu' = 0.5: expected a number in "
+                        "[0, 0.5)"));
+  EXPECT_TRUE(Contains(ErrorOf(m + materials + "wheel = { E_MPa = -1, nu = 0.3 }\n"),
+              "scene.toml:13: key 'materials.wheel.E_MPa' = -1: expected a number > 0"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "friction = 0\n"),
+              "scene.toml:11: key 'load.friction' = 0: expected a number in (0, 2]"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "friction = 2.5\n"),
+              "key 'load.friction' = 2.5: expected a number in (0, 2]"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "friction = nan\n"), "key 'load.friction' = nan"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "[model]\ncell_mm = [0.2, -1]\n"),
+              "scene.toml:12: key 'model.cell_mm' = [0.2, -1]: expected two positive "
+                        "numbers"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "[model]\ncell_mm = [0.2]\n"), "key 'model.cell_mm'"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "[model]\naccuracy = \"ultra\"\n"),
+              "scene.toml:12: key 'model.accuracy' = \"ultra\": expected one of "
+                        "'draft', 'standard', 'reference', 'fine'"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "[model]\nkind = \"auto\"\n"),
+              "key 'model.kind' = \"auto\": expected one of 'hertz', 'halfspace', "
+                        "'conformal'"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "[model]\ngeometry = \"curved\"\n"),
+              "expected one of 'planar', 'conformal'"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "[model]\nkernel = \"kelvin\"\n"),
+              "expected one of 'boussinesq', 'golubenko'"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "[model]\ntangential = \"kalker\"\n"),
+              "expected one of 'fastsim', 'exact'"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "[model]\ninfluence_constants = { c_f = 0 }\n"),
+              "key 'model.influence_constants.c_f' = 0: expected a number > 0"));
+}
+
+TEST(SceneTest, RollingRadiusAndLoadMustBePositive) {
+  std::string text = kMinimal;
+  text.replace(text.find("460"), 3, "0");
+  EXPECT_TRUE(Contains(ErrorOf(text),
+              "scene.toml:4: key 'wheel.rolling_radius_mm' = 0: expected a number > 0"));
+  text = kMinimal;
+  text.replace(text.find("100000"), 6, "-5");
+  EXPECT_TRUE(Contains(ErrorOf(text), "key 'load.vertical_N' = -5: expected a number > 0"));
+}
+
+TEST(SceneTest, IntegersAreAcceptedWhereFloatsAreExpected) {
+  const Scene s = ParseScene(std::string(kMinimal) + "lateral_shift_mm = 6\n", "i.toml");
+  EXPECT_NEAR(s.problem.placement.lateral_shift_m, 6e-3, kTight);
+}
+
+TEST(SceneTest, LoadNeedsExactlyOneOfForceAndApproach) {
+  EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "approach_mm = 0.1\n"),
+              "scene.toml:11: key 'load.approach_mm' = 0.1: expected exactly one of "
+                        "'load.vertical_N' and 'load.approach_mm' (both given)"));
+  std::string text = kMinimal;
+  text.replace(text.find("vertical_N = 100000"), 19, "friction = 0.3");
+  EXPECT_TRUE(Contains(ErrorOf(text), "scene.toml:9: key 'load.vertical_N' is missing: expected "
+                                       "exactly one of 'load.vertical_N' and "
+                                       "'load.approach_mm'"));
+}
+
+TEST(SceneTest, SyntaxErrorGivesLineAndColumn) {
+  const std::string msg = ErrorOf("[wheel]\nprofile = \"builtin:S1002\nrolling_radius_mm = 460\n");
+  EXPECT_TRUE(Contains(msg, "scene.toml:2:"));
+  EXPECT_TRUE(Contains(msg, "TOML syntax error"));
+  EXPECT_TRUE(Contains(ErrorOf("[load]\nvertical_N = = 3\n"), "scene.toml:2:14: TOML syntax"));
+}
+
+TEST(SceneTest, OnlyNormalEffectIsAvailable) {
+  const std::string text = std::string("[scene]\neffects = [\"normal\", \"wear\"]\n") + kMinimal;
+  EXPECT_TRUE(Contains(ErrorOf(text),
+              "scene.toml:2: key 'scene.effects' = \"wear\": expected 'normal': effect "
+                        "'wear' is not available in this version of railwear (only 'normal')"));
+  const std::string unknown = std::string("[scene]\neffects = [\"friction\"]\n") + kMinimal;
+  EXPECT_TRUE(Contains(ErrorOf(unknown),
+              "key 'scene.effects' = \"friction\": expected one of 'normal', "
+                        "'tangential', 'coupling', 'wear', 'damage'"));
+}
+
+TEST(SceneTest, RollingContactAndWearTablesAreNotYetProvided) {
+  for (const std::string table : {"[track]\ngauge_mm = 1435\n", "[wheelset]\nyaw_mrad = 1\n",
+                                  "[wear]\nk = 1e-4\n", "[[traffic]]\nshare = 1\n"}) {
+    const std::string msg = ErrorOf(std::string(kMinimal) + table);
+    EXPECT_TRUE(Contains(msg, "scene.toml:11: key '")) << table;
+    EXPECT_TRUE(Contains(msg, "belongs to rolling contact / wear runs, which this version of "
+                               "railwear does not provide yet"))
+        << table;
+  }
+  EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "creepage = { xi = 0.001 }\n"),
+              "scene.toml:11: key 'load.creepage' = { xi = 0.001 }: expected no "
+                        "creepage: prescribed creepages belong to rolling contact runs"));
+}
+
+TEST(SceneTest, CantMustBeARatio) {
+  const std::string base = std::string(kMinimal);
+  const std::string with_cant = [&] {
+    std::string t = base;
+    t.replace(t.find("profile = \"builtin:UIC60\""), 25, "profile = \"builtin:UIC60\"\ncant = 7");
+    return t;
+  }();
+  EXPECT_TRUE(Contains(ErrorOf(with_cant), "scene.toml:8: key 'rail.cant' = 7: expected a cant "
+                                            "ratio \"1:N\" (e.g. \"1:40\") or 0"));
+}
+
+TEST(SceneTest, ProfileErrorsNameTheSceneKey) {
+  std::string text = kMinimal;
+  text.replace(text.find("builtin:S1002"), 13, "no_such_profile.csv");
+  const std::string msg = ErrorOf(text, "dir/scene.toml");
+  EXPECT_TRUE(Contains(msg, "dir/scene.toml:3: key 'wheel.profile' = \"no_such_profile.csv\": "));
+  EXPECT_TRUE(Contains(msg, "no_such_profile.csv"));
+}
+
+TEST(SceneTest, ProfilePathsAreRelativeToTheSceneAndMirrorYFlips) {
+  const TempDir dir("mirror");
+  dir.Write("wheel.csv", "y_mm,z_mm\n0,0\n2,-0.01\n4,-0.04\n6,-0.09\n8,-0.16\n");
+  std::string text = kMinimal;
+  text.replace(text.find("\"builtin:S1002\""), 15, "\"wheel.csv\"\nmirror_y = true");
+  const Scene s = LoadScene(dir.Write("scene.toml", text));
+  const auto b = s.problem.wheel_profile.bounds();
+  EXPECT_NEAR(b.y_min, -8e-3, kTight);
+  EXPECT_NEAR(b.y_max, 0.0, kTight);
+}
+
+TEST(SceneTest, MirrorYMustBeBoolean) {
+  std::string text = kMinimal;
+  text.replace(text.find("rolling_radius_mm"), 0, "mirror_y = \"yes\"\n");
+  EXPECT_TRUE(Contains(ErrorOf(text),
+              "scene.toml:4: key 'wheel.mirror_y' = \"yes\": expected true or false"));
+}
+
+TEST(SceneTest, InfluenceConstantsFromFile) {
+  const TempDir dir("constants");
+  dir.Write("fit.toml", "[influence_constants]\nc_f = 0.68\nc_z = 1.1\nc_s = 0.2\n");
+  const Scene s = LoadScene(dir.Write(
+      "scene.toml", std::string(kMinimal) + "[model]\ninfluence_constants = \"fit.toml\"\n"));
+  EXPECT_DOUBLE_EQ(s.problem.model.constants.c_f, 0.68);
+  EXPECT_DOUBLE_EQ(s.problem.model.constants.c_z, 1.1);
+  EXPECT_DOUBLE_EQ(s.problem.model.constants.c_s, 0.2);
+  EXPECT_TRUE(Contains(s.influence_constants_source, "fit.toml"));
+}
+
+TEST(SceneTest, InfluenceConstantsFileErrorsNameThatFile) {
+  const TempDir dir("constants_bad");
+  const std::string fit = dir.Write("fit.toml", "[influence_constants]\nc_f = -1\n");
+  const std::string scene = dir.Write(
+      "scene.toml", std::string(kMinimal) + "[model]\ninfluence_constants = \"fit.toml\"\n");
+  try {
+    LoadScene(scene);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(Contains(e.what(), fit + ":2: key 'influence_constants.c_f' = -1: expected a "
+                                          "number > 0"));
+  }
+  dir.Write("fit.toml", "[constants]\nc_f = 1\n");
+  try {
+    LoadScene(scene);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(Contains(e.what(), fit + ":1: key 'influence_constants' is missing"));
+  }
+}
+
+TEST(SceneTest, MaterialsTableNeedsBothBodies) {
+  EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "[materials]\nwheel = { E_MPa = 1, nu = 0.3 }\n"),
+              "scene.toml:11: key 'materials.rail' is missing: expected an inline table "
+                        "{ E_MPa, nu }"));
+}
+
+TEST(SceneTest, MissingFileIsAnInputError) {
+  EXPECT_THROW(LoadScene("/nonexistent/railwear/scene.toml"), InputError);
+}
+
+TEST(SceneTest, TemplateLoads) {
+  const Scene s = ParseScene(std::string(SceneTemplate()), "template.toml");
+  EXPECT_EQ(s.name, "S1002 on UIC60");
+  EXPECT_EQ(s.problem.model.kind, ModelKind::kConformal);
+  EXPECT_DOUBLE_EQ(s.cant_ratio, 0.025);
+  EXPECT_TRUE(s.problem.load.vertical_force_N.has_value());
+}
+
+TEST(SceneTest, ExamplesLoad) {
+  for (const char* name : {"gauge_corner.toml", "tread.toml", "groove_conformal.toml"}) {
+    const Scene s = LoadScene(std::string(RAILWEAR_SOURCE_DIR) + "/examples/" + name);
+    EXPECT_FALSE(s.name.empty()) << name;
+    EXPECT_EQ(s.problem.model.kind, ModelKind::kConformal) << name;
+  }
+}
+
+}  // namespace
+}  // namespace railwear::app
