@@ -60,11 +60,13 @@ std::string WritePatchData(const PatchResult& patch, int number, const fs::path&
 }
 
 std::string Title(const Scene& scene, const ContactResult& r) {
-  return fmt::format("{}: {} model, {} accuracy; area {:.1f} mm^2, p_max {:.0f} MPa, "
-                     "vertical {:.0f} N, lateral {:.0f} N",
-                     scene.name, ToString(r.model.kind), ToString(r.model.accuracy),
-                     r.area_m2 * 1e6, r.p_max_Pa * 1e-6, r.vertical_force_N,
-                     r.lateral_force_N);
+  return fmt::format("{} - {} model, {} accuracy", scene.name, ToString(r.model.kind),
+                     ToString(r.model.accuracy));
+}
+
+std::string PatchTitle(const PatchResult& p, int number) {
+  return fmt::format("patch {}: area {:.1f} mm^2, p_max {:.0f} MPa, angle {:.1f} deg", number,
+                     p.area_m2 * 1e6, p.p_max_Pa * 1e-6, p.contact_angle_rad * 180.0 / M_PI);
 }
 
 std::string Script(const Scene& scene, const ContactResult& r, const fs::path& dir,
@@ -82,7 +84,7 @@ std::string Script(const Scene& scene, const ContactResult& r, const fs::path& d
                    GnuplotQuote(Title(scene, r)));
   for (int k = 0; k < n; ++k) {
     const std::string data = WritePatchData(r.patches[k], k + 1, dir);
-    s << fmt::format("set title 'patch {}'\n", k + 1);
+    s << "set title " << GnuplotQuote(PatchTitle(r.patches[k], k + 1)) << "\n";
     s << "plot " << GnuplotQuote(data) << " using 1:2:3 with image notitle\n";
   }
   if (n == 0) s << "set title 'no contact'\nunset colorbox\nplot [-1:1][-1:1] NaN notitle\n";
