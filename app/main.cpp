@@ -25,6 +25,7 @@ int Fail(const char* message, int code) {
 
 int main(int argc, char** argv) {
   CLI::App app{"railwear: wheel-rail contact mechanics at the rail gauge corner"};
+  app.name("railwear");
   app.set_version_flag("--version", std::string("railwear ") + RAILWEAR_VERSION);
   app.require_subcommand(1);
   railwear::app::SetupContact(app);

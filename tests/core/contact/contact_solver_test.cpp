@@ -3,6 +3,9 @@
 #include "core/contact/contact_solver.h"
 
 #include <cmath>
+#include <cstdio>
+#include <iterator>
+#include <string>
 #include <filesystem>
 
 #include <gtest/gtest.h>
@@ -42,22 +45,36 @@ ContactProblem HertzProblem(const HertzCase& c, ModelKind kind, AccuracyPreset a
 
 double RelErr(double value, double reference) { return std::abs(value / reference - 1.0); }
 
-TEST(SolveContact, HalfspaceMatchesHertzAtStandardAndReference) {
-  // Issue 2: `halfspace` within 1 % of H1-H4 at standard accuracy and 0.3 % at reference.
-  constexpr double kStandardTolerance = 0.01;
-  constexpr double kReferenceTolerance = 0.003;
-  for (const auto& c : kHertzCases) {
-    for (auto [preset, tol] : {std::pair{AccuracyPreset::kStandard, kStandardTolerance},
-                               std::pair{AccuracyPreset::kReference, kReferenceTolerance}}) {
+TEST(SolveContact, AccuracyPresetsReachTheirErrorsOnHertzCases) {
+  // Issue 2: presets are defined by the error they reach on H1-H4 (about 5 %, 1 %, 0.2 %), and
+  // `halfspace` must be within 1 % at standard and 0.3 % at reference. The measured errors are
+  // printed (the README quotes them): ctest -R AccuracyPresets --verbose
+  struct Bound {
+    AccuracyPreset preset;
+    double tolerance;
+  };
+  const Bound bounds[] = {{AccuracyPreset::kDraft, 0.05},
+                          {AccuracyPreset::kStandard, 0.01},
+                          {AccuracyPreset::kReference, 0.003},
+                          {AccuracyPreset::kFine, 0.003}};
+  for (const auto& [preset, tol] : bounds) {
+    double worst_area = 0.0, worst_p0 = 0.0, time_ms = 0.0;
+    for (const auto& c : kHertzCases) {
       const ContactResult r = SolveContact(HertzProblem(c, ModelKind::kHalfspace, preset));
       ASSERT_EQ(r.status, SolverStatus::kConverged) << c.name << " " << r.message;
       ASSERT_EQ(r.patches.size(), 1u);
-      EXPECT_LT(RelErr(r.area_m2 * 1e6, c.area_mm2), tol)
-          << c.name << " " << ToString(preset) << " area " << r.area_m2 * 1e6;
-      EXPECT_LT(RelErr(r.p_max_Pa * 1e-6, c.p0_MPa), tol)
-          << c.name << " " << ToString(preset) << " p0 " << r.p_max_Pa * 1e-6;
+      const double ea = RelErr(r.area_m2 * 1e6, c.area_mm2);
+      const double ep = RelErr(r.p_max_Pa * 1e-6, c.p0_MPa);
+      EXPECT_LT(ea, tol) << c.name << " " << ToString(preset) << " area " << r.area_m2 * 1e6;
+      EXPECT_LT(ep, tol) << c.name << " " << ToString(preset) << " p0 " << r.p_max_Pa * 1e-6;
       EXPECT_NEAR(r.vertical_force_N, c.force_N, 1e-8 * c.force_N) << c.name;  // load balance
+      worst_area = std::max(worst_area, ea);
+      worst_p0 = std::max(worst_p0, ep);
+      time_ms += r.time_s * 1e3 / std::size(kHertzCases);
     }
+    std::printf("[ measured ] halfspace %-9s worst over H1-H4: area %.3f %%, p0 %.3f %%, "
+                "mean time %.0f ms\n",
+                std::string(ToString(preset)).c_str(), 100 * worst_area, 100 * worst_p0, time_ms);
   }
 }
 

@@ -1,0 +1,158 @@
+// Contact solves: time against cell count for each model (not a test; see the README).
+//
+//  BM_HalfspaceSolve/nx/ns    planar grid, Boussinesq (the half-space model), Hertzian gap sized
+//                             so that ~55 % of the cells are in contact, like CONTACT's figures
+//                             (71 x 81 grid with 3,148 in contact; 575 x 647 with 201k).
+//  BM_ConformalSolve/nx/ns    10 mm arc cross-section, the seed's kernel, gap of a 10 mm wheel
+//                             in a 10.25 mm groove; ~2,000 cells at 45 x 45.
+//  Both time operator construction plus the normal solve, prescribed load, one thread.
+//  BM_GaugeCorner/model/preset  the whole pipeline (SolveContact) on examples/gauge_corner.toml's
+//                             problem: S1002 on UIC60 1:40, shift -4 mm, 100 kN.
+//
+// Run: build/tests/benchmarks/contact_bench --benchmark_repetitions=3
+//        --benchmark_report_aggregates_only=true
+#include <cmath>
+#include <numbers>
+
+#include <benchmark/benchmark.h>
+
+#include "core/contact/contact_solver.h"
+#include "core/contact/influence_operator.h"
+#include "core/contact/normal_solver.h"
+#include "core/profile/builtin_profiles.h"
+
+namespace railwear {
+namespace {
+
+constexpr double kCell_m = 1e-4;
+const Material kSteel{210e9, 0.28};
+
+// Grid of nx x ns square cells on a line (planar) or on an arc of radius 10 mm, with the gap
+// x^2/(2 Rx) + s^2/(2 Rs); returns the load that makes the Hertz contact radius fill `fill` of
+// the grid's half-size.
+PatchGrid MakeGrid(int nx, int ns, bool planar, double Rx, double Rs) {
+  PatchGrid g;
+  g.nx = nx;
+  g.ns = ns;
+  g.dx_m = g.ds_m = kCell_m;
+  g.x0_m = -0.5 * (nx - 1) * kCell_m;
+  g.s0_m = -0.5 * (ns - 1) * kCell_m;
+  g.planar = planar;
+  const double R = 0.010;
+  for (int j = 0; j < ns; ++j) {
+    if (planar) {
+      g.point_yz_m.emplace_back(g.S(j), 0.0);
+      g.tangent_yz.emplace_back(1.0, 0.0);
+      g.normal_yz.emplace_back(0.0, -1.0);
+    } else {
+      const double th = g.S(j) / R;
+      const Eigen::Vector2d n(std::sin(th), -std::cos(th));
+      g.point_yz_m.push_back(Eigen::Vector2d(0.0, R) + R * n);
+      g.tangent_yz.emplace_back(std::cos(th), std::sin(th));
+      g.normal_yz.push_back(n);
+    }
+  }
+  g.gap_m.resize(g.cells());
+  for (int j = 0; j < ns; ++j)
+    for (int i = 0; i < nx; ++i)
+      g.gap_m[g.Index(i, j)] = g.X(i) * g.X(i) / (2 * Rx) + g.S(j) * g.S(j) / (2 * Rs);
+  return g;
+}
+
+void Solve(benchmark::State& state, bool planar, KernelModel kernel, double Rx, double Rs) {
+  const int nx = static_cast<int>(state.range(0)), ns = static_cast<int>(state.range(1));
+  const PatchGrid g = MakeGrid(nx, ns, planar, Rx, Rs);
+  // Hertz load for contact semi-axes at 0.834 of the grid's half-sizes (~55 % of the cells).
+  const double a = 0.834 * 0.5 * nx * kCell_m, b = 0.834 * 0.5 * ns * kCell_m;
+  const double estar = ContactModulus(kSteel, kSteel);
+  const HertzSolution h = SolveHertzForApproach(1 / (2 * Rx), 1 / (2 * Rs), estar,
+                                                std::max(a * a / Rx, b * b / Rs));
+  InfluenceSettings settings{kernel, {}, kSteel, kSteel};
+  NormalProblem np;
+  np.gap_m = g.gap_m;
+  np.approach_weight = Eigen::VectorXd::Ones(g.cells());
+  np.cell_area_m2 = Eigen::VectorXd::Constant(g.cells(), g.CellArea());
+  np.force_N = h.force_N;
+  NormalSolution sol;
+  for (auto _ : state) {
+    const auto op = MakeInfluenceOperator(g, settings);
+    np.blocks = {op.get()};
+    sol = SolveNormal(np);
+    benchmark::DoNotOptimize(sol.pressure_Pa.data());
+  }
+  int in_contact = 0;
+  for (int k = 0; k < sol.pressure_Pa.size(); ++k) in_contact += sol.pressure_Pa[k] > 0;
+  state.counters["cells"] = g.cells();
+  state.counters["in_contact"] = in_contact;
+  state.counters["iterations"] = sol.iterations;
+  state.counters["converged"] = sol.status == SolverStatus::kConverged;
+}
+
+void BM_HalfspaceSolve(benchmark::State& state) {
+  // Laterally the Hertz radii of the ellipse follow the grid's aspect ratio.
+  const double Rx = 0.3;
+  const double Rs = Rx * std::pow(static_cast<double>(state.range(1)) / state.range(0), 2);
+  Solve(state, /*planar=*/true, KernelModel::kBoussinesq, Rx, Rs);
+}
+BENCHMARK(BM_HalfspaceSolve)
+    ->Args({71, 81})->Args({142, 162})->Args({284, 324})->Args({575, 647})
+    ->Unit(benchmark::kMillisecond);
+
+void BM_ConformalSolve(benchmark::State& state) {
+  // 10 mm wheel in a 10.25 mm groove: lateral relative radius 10 * 10.25 / 0.25 = 410 mm; the
+  // longitudinal one is the 460 mm rolling radius.
+  Solve(state, /*planar=*/false, KernelModel::kGolubenko, 0.46, 0.41);
+}
+BENCHMARK(BM_ConformalSolve)
+    ->Args({20, 20})->Args({32, 32})->Args({45, 45})->Args({64, 64})->Args({90, 90})
+    ->Unit(benchmark::kMillisecond);
+
+const Profile& S1002() {
+  static const Profile p = MakeS1002();
+  return p;
+}
+const Profile& Uic60Canted() {
+  static const Profile p = ApplyCant(MakeUic60(), 1.0 / 40.0);
+  return p;
+}
+
+void BM_GaugeCorner(benchmark::State& state) {
+  ContactProblem p;
+  p.wheel_profile = S1002();
+  p.rail_profile = Uic60Canted();
+  p.wheel_material = p.rail_material = kSteel;
+  p.placement.lateral_shift_m = -0.004;
+  p.placement.rolling_radius_m = 0.46;
+  p.load.vertical_force_N = 100e3;
+  const int model = static_cast<int>(state.range(0));
+  p.model = MakeModelOptions(model == 0 ? ModelKind::kHertz
+                                        : model == 1 ? ModelKind::kHalfspace : ModelKind::kConformal);
+  if (model == 2) p.model.kernel = KernelModel::kBoussinesq;  // conformal geometry, half-space kernel
+  p.model.accuracy = static_cast<AccuracyPreset>(state.range(1));
+  ContactResult r;
+  for (auto _ : state) {
+    r = SolveContact(p);
+    benchmark::DoNotOptimize(r.patches.data());
+  }
+  static const char* kModels[] = {"hertz", "halfspace", "conformal+boussinesq",
+                                  "conformal+golubenko"};
+  state.SetLabel(std::string(kModels[model]) + " " + std::string(ToString(p.model.accuracy)));
+  int cells = 0, in_contact = 0;
+  for (const auto& pr : r.patches) {
+    cells += pr.cells;
+    in_contact += pr.cells_in_contact;
+  }
+  state.counters["area_mm2"] = r.area_m2 * 1e6;
+  state.counters["p_max_MPa"] = r.p_max_Pa * 1e-6;
+  state.counters["cells"] = cells;
+  state.counters["in_contact"] = in_contact;
+  state.counters["iterations"] = r.iterations;
+}
+BENCHMARK(BM_GaugeCorner)
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 1, 2}})
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace railwear
+
+BENCHMARK_MAIN();
