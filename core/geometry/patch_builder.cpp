@@ -52,7 +52,7 @@ bool CrossSection(const WheelRailGeometry& g, const Eigen::Vector2d& pc, const E
 std::vector<Section> Walk(const WheelRailGeometry& g, const Eigen::Vector2d& pc,
                           const Eigen::Vector2d& t0, const Eigen::Vector2d& n0,
                           const Section& start, double step, double threshold_n, double sign,
-                          int extra, bool* limited, int* within) {
+                          double y_stop, int extra, bool* limited, int* within) {
   std::vector<Section> out;
   Section prev = start;
   *limited = false;
@@ -70,7 +70,12 @@ std::vector<Section> Walk(const WheelRailGeometry& g, const Eigen::Vector2d& pc,
       break;
     }
     out.push_back(s);
-    if (*within < 0 && s.lambda_w - s.lambda_r > threshold_n) *within = static_cast<int>(out.size());
+    // Past the threshold, or past the saddle that separates this patch from its neighbour.
+    const double y_rail = (pc + tau * t0 + s.lambda_r * n0).x();
+    const bool past_saddle = sign * (y_rail - y_stop) > 0;
+    if (*within < 0 && (s.lambda_w - s.lambda_r > threshold_n || past_saddle)) {
+      *within = static_cast<int>(out.size());
+    }
     if (*within >= 0 && static_cast<int>(out.size()) >= *within + extra) break;
     prev = s;
   }
@@ -98,10 +103,12 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
   bool lim_lo = false, lim_hi = false;
   int within_lo = 0, within_hi = 0;
   const int extra = static_cast<int>(std::ceil(o.cell_ds_m / step)) + 2;
-  std::vector<Section> lo =
-      Walk(g, pc, t0, n0, centre, step, threshold_n, -1.0, extra, &lim_lo, &within_lo);
-  std::vector<Section> hi =
-      Walk(g, pc, t0, n0, centre, step, threshold_n, +1.0, extra, &lim_hi, &within_hi);
+  const double y_stop_lo = c.split_lo ? c.y_lo_m : -kInf;
+  const double y_stop_hi = c.split_hi ? c.y_hi_m : kInf;
+  std::vector<Section> lo = Walk(g, pc, t0, n0, centre, step, threshold_n, -1.0, y_stop_lo,
+                                 extra, &lim_lo, &within_lo);
+  std::vector<Section> hi = Walk(g, pc, t0, n0, centre, step, threshold_n, +1.0, y_stop_hi,
+                                 extra, &lim_hi, &within_hi);
   std::vector<Section> sections(lo.rbegin(), lo.rend());
   sections.push_back(centre);
   sections.insert(sections.end(), hi.begin(), hi.end());

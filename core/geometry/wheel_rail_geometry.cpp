@@ -163,20 +163,51 @@ std::vector<ContactCandidate> WheelRailGeometry::FindCandidates(double threshold
   std::vector<ContactCandidate> out;
   if (!has_overlap_) return out;
   const int n = static_cast<int>(gap_.size());
-  int i = 0;
-  while (i < n) {
+  // Runs of samples below the threshold, each split at its prominent saddles: two basins of
+  // the gap (tread and flange root, say) are separate candidates when the gap between them
+  // rises by more than kProminence * threshold above both.
+  constexpr double kProminence = 0.1;
+  const double prom = kProminence * threshold_m;
+  struct Segment {
+    int a, b;  // [a, b) samples
+    bool split_lo, split_hi;
+  };
+  std::vector<Segment> segments;
+  for (int i = 0; i < n;) {
     if (!(gap_[i] < threshold_m)) {
       ++i;
       continue;
     }
-    int j = i, best = i;
-    while (j < n && gap_[j] < threshold_m) {
-      if (gap_[j] < gap_[best]) best = j;
-      ++j;
+    int j = i;
+    while (j < n && gap_[j] < threshold_m) ++j;
+    int start = i, lo = i, hi = i;
+    bool split_before = false;
+    for (int k = i + 1; k < j; ++k) {
+      if (gap_[hi] - gap_[lo] <= prom && gap_[k] < gap_[lo]) {
+        lo = hi = k;  // still descending into the same basin
+      } else if (gap_[k] > gap_[hi]) {
+        hi = k;
+      } else if (gap_[hi] - gap_[k] > prom && gap_[hi] - gap_[lo] > prom) {
+        segments.push_back({start, hi, split_before, true});  // saddle at hi: a new basin
+        start = hi;
+        split_before = true;
+        lo = hi = k;
+      }
     }
+    segments.push_back({start, j, split_before, false});
+    i = j;
+  }
+  for (const Segment& seg : segments) {
+    int best = seg.a;
+    for (int k = seg.a; k < seg.b; ++k) {
+      if (gap_[k] < gap_[best]) best = k;
+    }
+    const int i = seg.a, j = seg.b;
     ContactCandidate c;
     c.y_lo_m = gap_y_[i];
     c.y_hi_m = gap_y_[j - 1];
+    c.split_lo = seg.split_lo;
+    c.split_hi = seg.split_hi;
     c.y_m = RefineMinimum(best);
     c.gap_m = ExactVerticalGap(c.y_m, best);
     if (!std::isfinite(c.gap_m)) {
@@ -196,7 +227,6 @@ std::vector<ContactCandidate> WheelRailGeometry::FindCandidates(double threshold
     c.wheel_lateral_curvature = ConvexCurvature(wheel_locator_, c.wheel_s_m);
     c.wheel_radius_m = pose_.rolling_radius_m + wheel_locator_.profile().Position(c.wheel_s_m).y();
     out.push_back(c);
-    i = j;
   }
   return out;
 }

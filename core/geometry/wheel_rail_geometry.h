@@ -26,6 +26,9 @@ struct WheelPose {
 // A potential contact region found on the vertical-gap function g(y) at x = 0.
 struct ContactCandidate {
   double y_lo_m = 0.0, y_hi_m = 0.0;  // lateral interval (R) where g < threshold
+  // True where the interval ends at a saddle shared with a neighbouring candidate (two-point
+  // contact) rather than where the gap reaches the threshold.
+  bool split_lo = false, split_hi = false;
   double y_m = 0.0;                   // lateral position of the smallest gap in the interval
   double gap_m = 0.0;                 // that smallest vertical gap (0 at first contact)
   double rail_s_m = 0.0;              // rail profile parameter of the contact point
@@ -53,7 +56,8 @@ class WheelRailGeometry {
   const std::vector<double>& gap_y_m() const { return gap_y_; }
   const std::vector<double>& gap_m() const { return gap_; }
 
-  // Connected lateral intervals where g(y) < threshold, each with its contact point.
+  // Connected lateral intervals where g(y) < threshold, split at saddles that rise by more than
+  // a tenth of the threshold above the minima on both sides; each with its contact point.
   std::vector<ContactCandidate> FindCandidates(double threshold_m) const;
 
   // Transforms between the wheel profile frame W (x = 0 cross-section) and R.

@@ -87,3 +87,32 @@ TEST(WheelRailGeometry, NoLateralOverlap) {
 
 }  // namespace
 }  // namespace railwear
+
+namespace railwear {
+namespace {
+
+TEST(WheelRailGeometry, SaddleBelowThresholdSplitsCandidates) {
+  // Two lobes 6 mm apart whose saddle (gap 45 um above the deeper lobe) lies below the
+  // threshold: separate candidates while the saddle rises by more than a tenth of the
+  // threshold above both minima, one candidate when the threshold dwarfs it.
+  const Profile rail = testing::FunctionProfile([](double) { return 0.0; }, -0.05, 0.05, 201);
+  auto lobes = [](double y) {
+    return -std::min(10.0 * (y + 0.003) * (y + 0.003), 10.0 * (y - 0.003) * (y - 0.003) + 1e-5);
+  };
+  const Profile wheel = testing::FunctionProfile(lobes, -0.03, 0.03, 1201);
+  const WheelRailGeometry g(wheel, rail, WheelPose{});
+  const auto two = g.FindCandidates(2e-4);  // saddle ~ 90 um: prominence 80 um > 20 um
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_NEAR(two[0].y_m, -0.003, 1e-6);
+  EXPECT_NEAR(two[1].y_m, 0.003, 1e-6);
+  EXPECT_NEAR(two[1].gap_m, 1e-5, 1e-8);
+  EXPECT_TRUE(two[0].split_hi);
+  EXPECT_TRUE(two[1].split_lo);
+  EXPECT_NEAR(two[0].y_hi_m, two[1].y_lo_m, 2e-5);  // they meet at the saddle
+  const auto one = g.FindCandidates(2e-3);  // prominence 80 um < 200 um: one basin
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_FALSE(one[0].split_lo || one[0].split_hi);
+}
+
+}  // namespace
+}  // namespace railwear
