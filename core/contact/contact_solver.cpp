@@ -345,20 +345,35 @@ ContactResult SolveContact(const ContactProblem& problem) {
   const double n_per_axis = CellsPerSemiAxis(problem.model.accuracy);
   const bool cell_fixed = problem.model.cell_dx_m.has_value() || problem.model.cell_ds_m.has_value();
 
+  // Each patch keeps its own cell size once it has been measured (two-point contact: a small
+  // flange patch must not shrink the cells of a large tread patch), found again by position.
+  struct CellMemory {
+    double y_lo_m, y_hi_m;
+    CellSize cell;
+  };
+  std::vector<CellMemory> cell_memory;
   int regrids = 0, total_iterations = 0;
   for (int attempt = 0; attempt < 12; ++attempt) {
     t0 = Clock::now();
     const std::vector<ContactCandidate> cands = geom.FindCandidates(threshold);
     std::vector<PatchBuild> builds;
+    std::vector<CellMemory> build_cells;
     for (const auto& c : cands) {
+      CellSize cc = cell;
+      for (const auto& m : cell_memory) {
+        if (c.y_m >= m.y_lo_m && c.y_m <= m.y_hi_m) cc = m.cell;
+      }
       PatchGridOptions o;
       o.geometry = problem.model.geometry;
-      o.cell_dx_m = cell.dx_m;
-      o.cell_ds_m = cell.ds_m;
+      o.cell_dx_m = cc.dx_m;
+      o.cell_ds_m = cc.ds_m;
       o.threshold_m = threshold;
       o.stiffness_ratio_K = k_r / (k_w + k_r);
       PatchBuild b = BuildPatchGrid(geom, c, o);
-      if (b.valid) builds.push_back(std::move(b));
+      if (b.valid) {
+        builds.push_back(std::move(b));
+        build_cells.push_back({c.y_lo_m, c.y_hi_m, cc});
+      }
     }
     AddStage(&result.stages, "grid", SecondsSince(t0));
     if (builds.empty()) {
@@ -398,23 +413,26 @@ ContactResult SolveContact(const ContactProblem& problem) {
 
     // Decide whether the grid fits the solution.
     bool grow = false, regrid = false;
-    double new_dx = cell.dx_m, new_ds = cell.ds_m;
+    std::vector<CellMemory> next_memory;
     offset = 0;
-    for (const auto& b : builds) {
+    for (size_t k = 0; k < builds.size(); ++k) {
+      const PatchBuild& b = builds[k];
+      CellMemory mem = build_cells[k];
       const Extent e = MeasureExtent(b.grid, sol.pressure_Pa.segment(offset, b.grid.cells()));
       offset += b.grid.cells();
       if (e.cells == 0) continue;
       if (e.touches_x_edge || (e.touches_s_edge && !b.lateral_limited)) grow = true;
-      if (!cell_fixed && regrids < 3 && e.cells > 0) {
-        const double nx_ratio = e.half_x / cell.dx_m / n_per_axis;
-        const double ns_ratio = e.half_s / cell.ds_m / n_per_axis;
+      if (!cell_fixed && regrids < 3) {
+        const double nx_ratio = e.half_x / mem.cell.dx_m / n_per_axis;
+        const double ns_ratio = e.half_s / mem.cell.ds_m / n_per_axis;
         if (std::abs(nx_ratio - 1.0) > 0.3 || std::abs(ns_ratio - 1.0) > 0.3) {
           regrid = true;
-          new_dx = std::min(new_dx, e.half_x / n_per_axis);
-          new_ds = std::min(new_ds, e.half_s / n_per_axis);
+          mem.cell = {e.half_x / n_per_axis, e.half_s / n_per_axis};
         }
       }
+      next_memory.push_back(mem);
     }
+    cell_memory = std::move(next_memory);
     const bool more_candidates = sol.status == SolverStatus::kConverged &&
                                  sol.approach_m > 0.7 * threshold;
     if (sol.status == SolverStatus::kConverged && (grow || regrid || more_candidates) &&
@@ -422,7 +440,6 @@ ContactResult SolveContact(const ContactProblem& problem) {
       if (grow) threshold *= 1.8;
       if (more_candidates) threshold = std::max(threshold, 2.0 * sol.approach_m);
       if (regrid) {
-        cell = {new_dx, new_ds};
         ++regrids;
         threshold = std::max(threshold, 2.0 * sol.approach_m);
       }
