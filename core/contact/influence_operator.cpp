@@ -59,7 +59,7 @@ constexpr double kPlanarGridTolerance = 1e-9;
 // values (planar) and eigenvalues of the symmetric part of each frequency's block (curved) below
 // kSpectrumFloor * C_kk are raised to it before inverting. The discrete half-space symbol is
 // smallest at the highest frequency, where it is a fixed fraction of C_kk on any grid (about
-// 0.35 C_kk for square Boussinesq cells, measured by influence_operator_test.cpp); the circulant
+// 0.5 C_kk for square Boussinesq cells, checked by influence_operator_test.cpp); the circulant
 // embedding's wrap-around can dip below that and, in principle, below zero. 0.1 C_kk leaves
 // every genuine value untouched and keeps M positive definite with a bounded norm.
 constexpr double kSpectrumFloor = 0.1;
