@@ -26,8 +26,9 @@
 //
 // Approximate inverses (ApplyPreconditioner), the same structure run backwards: the planar
 // operator divides by the circulant embedding's spectrum (2-D FFT, the cost of one Apply), the
-// curved one solves with each frequency's ns x ns block (its symmetric part, inverted once in
-// the constructor: another (L/2 + 1) ns^2 doubles and ~(L/2 + 1) ns^3 flops). Spectrum values
+// curved one solves with each frequency's ns x ns block (its symmetric part, Cholesky-factored
+// once in the constructor: another (L/2 + 1) ns^2 doubles and (L/2 + 1) ns^3 / 3 flops; each
+// application costs about one Apply). Spectrum values
 // and block eigenvalues below a floor are raised to it, so M stays positive definite. On a
 // full-contact patch M is close to C^-1 away from the edges (Vollebregt, J. Comput. Phys. 2014).
 //

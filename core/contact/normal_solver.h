@@ -44,7 +44,8 @@ struct NormalSolverOptions {
   // The criterion is checked with a freshly applied C p, never with an updated one.
   double tolerance = 1e-10;
   // Projected-CG iterations (one operator application each, plus one more when the contact set
-  // grows or shrinks, plus O(n) work) before giving up with kNotConverged. >= 1. The conjugate
+  // grows or shrinks, plus one preconditioner application when preconditioned, plus O(n) work)
+  // before giving up with kNotConverged. >= 1. The conjugate
   // directions restart when the residual has not halved in 30 iterations (operators that are
   // only nearly symmetric), so a stalled solve ends here with a message instead of looping.
   int max_iterations = 2000;
