@@ -24,6 +24,16 @@
 // one with zero padding, so they reproduce the dense matrix to rounding (~1e-15 relative). A
 // dense matrix serves as the naive reference on small grids.
 //
+// Approximate inverses (ApplyPreconditioner), the same structure run backwards: the planar
+// operator divides by the circulant embedding's spectrum (2-D FFT, the cost of one Apply), the
+// curved one solves with each frequency's ns x ns block (its symmetric part, Cholesky-factored
+// once in the constructor: another (L/2 + 1) ns^2 doubles and (L/2 + 1) ns^3 / 3 flops; each
+// application costs about 1.5 Apply, the triangular solves being slower than Apply's products). Spectrum values and block eigenvalues below a floor are
+// raised to it, so M stays positive definite. M inverts the circulant embedding, not C itself:
+// C M r - r is small for displacement fields r that are smooth and vanish toward the grid's
+// edges (below 0.15 relative at every grid size, influence_operator_test.cpp), which is what
+// makes it a good preconditioner (Vollebregt, J. Comput. Phys. 2014).
+//
 // Threads: the FFT operators keep scratch buffers for Apply (no allocation per call), so one
 // operator must not be applied from several threads at once; build one per thread.
 #pragma once
@@ -45,6 +55,16 @@ class InfluenceOperator {
   virtual void Apply(const Eigen::VectorXd& p, Eigen::VectorXd* u) const = 0;
   // C_kk [m/Pa].
   virtual double Diagonal(int k) const = 0;
+  // z = M r with M an approximate inverse of C, for preconditioning iterative solves.
+  // r: [size()] displacements [m]; z: [size()] pressures [Pa], resized. M is symmetric positive
+  // definite (whatever C's rounding or near-symmetry), so it can precondition conjugate
+  // gradients. Returns false, leaving z untouched, when the operator has no such inverse (the
+  // default; the dense reference operator).
+  virtual bool ApplyPreconditioner(const Eigen::VectorXd& r, Eigen::VectorXd* z) const {
+    (void)r;
+    (void)z;
+    return false;
+  }
 };
 
 struct InfluenceSettings {

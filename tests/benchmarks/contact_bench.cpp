@@ -1,9 +1,10 @@
 // Contact solves: time against cell count for each model (not a test; see the README).
 //
-//  BM_HalfspaceSolve/nx/ns    planar grid, Boussinesq (the half-space model), Hertzian gap sized
+//  The third argument of both: the CG preconditioner (0 none, 1 the operator's inverse).
+//  BM_HalfspaceSolve/nx/ns/pc planar grid, Boussinesq (the half-space model), Hertzian gap sized
 //                             so that ~55 % of the cells are in contact, like CONTACT's figures
 //                             (71 x 81 grid with 3,148 in contact; 575 x 647 with 201k).
-//  BM_ConformalSolve/nx/ns    10 mm arc cross-section, the seed's kernel, gap of a 10 mm wheel
+//  BM_ConformalSolve/nx/ns/pc 10 mm arc cross-section, the seed's kernel, gap of a 10 mm wheel
 //                             in a 10.25 mm groove; ~2,000 cells at 45 x 45.
 //  Both time operator construction plus the normal solve, prescribed load, one thread.
 //  BM_GaugeCorner/model/preset  the whole pipeline (SolveContact) on examples/gauge_corner.toml's
@@ -12,6 +13,8 @@
 // Run: build/tests/benchmarks/contact_bench --benchmark_repetitions=3
 //        --benchmark_report_aggregates_only=true
 #include <cmath>
+#include <string>
+#include <utility>
 #include <numbers>
 
 #include <benchmark/benchmark.h>
@@ -73,11 +76,14 @@ void Solve(benchmark::State& state, bool planar, KernelModel kernel, double Rx, 
   np.approach_weight = Eigen::VectorXd::Ones(g.cells());
   np.cell_area_m2 = Eigen::VectorXd::Constant(g.cells(), g.CellArea());
   np.force_N = h.force_N;
+  NormalSolverOptions options;
+  options.preconditioner =
+      state.range(2) == 0 ? CgPreconditioner::kNone : CgPreconditioner::kInverseOperator;
   NormalSolution sol;
   for (auto _ : state) {
     const auto op = MakeInfluenceOperator(g, settings);
     np.blocks = {op.get()};
-    sol = SolveNormal(np);
+    sol = SolveNormal(np, options);
     benchmark::DoNotOptimize(sol.pressure_Pa.data());
   }
   int in_contact = 0;
@@ -86,6 +92,9 @@ void Solve(benchmark::State& state, bool planar, KernelModel kernel, double Rx, 
   state.counters["in_contact"] = in_contact;
   state.counters["iterations"] = sol.iterations;
   state.counters["converged"] = sol.status == SolverStatus::kConverged;
+  state.counters["applies"] = sol.operator_applications;
+  state.counters["pc_applies"] = sol.preconditioner_applications;
+  state.SetLabel(std::string(ToString(options.preconditioner)));
 }
 
 void BM_HalfspaceSolve(benchmark::State& state) {
@@ -95,7 +104,11 @@ void BM_HalfspaceSolve(benchmark::State& state) {
   Solve(state, /*planar=*/true, KernelModel::kBoussinesq, Rx, Rs);
 }
 BENCHMARK(BM_HalfspaceSolve)
-    ->Args({71, 81})->Args({142, 162})->Args({284, 324})->Args({575, 647})
+    ->Apply([](benchmark::internal::Benchmark* b) {
+      for (auto [nx, ns] : {std::pair{71, 81}, {142, 162}, {284, 324}, {575, 647}}) {
+        for (int pc : {0, 1}) b->Args({nx, ns, pc});
+      }
+    })
     ->Unit(benchmark::kMillisecond);
 
 void BM_ConformalSolve(benchmark::State& state) {
@@ -104,7 +117,11 @@ void BM_ConformalSolve(benchmark::State& state) {
   Solve(state, /*planar=*/false, KernelModel::kGolubenko, 0.46, 0.41);
 }
 BENCHMARK(BM_ConformalSolve)
-    ->Args({20, 20})->Args({32, 32})->Args({45, 45})->Args({64, 64})->Args({90, 90})
+    ->Apply([](benchmark::internal::Benchmark* b) {
+      for (int n : {20, 32, 45, 64, 90}) {
+        for (int pc : {0, 1}) b->Args({n, n, pc});
+      }
+    })
     ->Unit(benchmark::kMillisecond);
 
 const Profile& S1002() {
