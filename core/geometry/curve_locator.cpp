@@ -51,6 +51,9 @@ double CurveLocator::RefineClosest(const Eigen::Vector2d& q, double s0, double l
     const double g = r.dot(d1);
     if (g == 0.0) break;  // exactly at the closest point (common on straight pieces)
     const double gp = d1.squaredNorm() + r.dot(d2);
+    // Converged when the Newton step is below tolerance — tested before the bracket, because a
+    // step below one ulp leaves s on the bracket end just set and would fall back to bisection.
+    if (gp > 0 && std::abs(g / gp) < kParameterTolerance_m) break;
     if (g > 0) hi = s; else lo = s;
     double next = (gp > 0) ? s - g / gp : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
@@ -124,6 +127,7 @@ std::optional<CurveLocator::Crossing> CurveLocator::IntersectLine(const Eigen::V
           hi = s;
         }
         const double fp = d1.dot(t);
+        if (fp != 0 && std::abs(f / fp) < kParameterTolerance_m) break;  // as in RefineClosest
         double next = (fp != 0) ? s - f / fp : 0.5 * (lo + hi);
         if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
         const double step = std::abs(next - s);
