@@ -23,39 +23,17 @@
 #include "core/contact/influence_operator.h"
 #include "core/contact/normal_solver.h"
 #include "core/profile/builtin_profiles.h"
+#include "tests/benchmarks/bench_grids.h"
 
 namespace railwear {
 namespace {
 
-constexpr double kCell_m = 1e-4;
+using bench::kCell_m;
 const Material kSteel{210e9, 0.28};
 
-// Grid of nx x ns square cells on a line (planar) or on an arc of radius 10 mm, with the gap
-// x^2/(2 Rx) + s^2/(2 Rs); returns the load that makes the Hertz contact radius fill `fill` of
-// the grid's half-size.
+// Benchmark grid (bench_grids.h) with the gap x^2/(2 Rx) + s^2/(2 Rs).
 PatchGrid MakeGrid(int nx, int ns, bool planar, double Rx, double Rs) {
-  PatchGrid g;
-  g.nx = nx;
-  g.ns = ns;
-  g.dx_m = g.ds_m = kCell_m;
-  g.x0_m = -0.5 * (nx - 1) * kCell_m;
-  g.s0_m = -0.5 * (ns - 1) * kCell_m;
-  g.planar = planar;
-  const double R = 0.010;
-  for (int j = 0; j < ns; ++j) {
-    if (planar) {
-      g.point_yz_m.emplace_back(g.S(j), 0.0);
-      g.tangent_yz.emplace_back(1.0, 0.0);
-      g.normal_yz.emplace_back(0.0, -1.0);
-    } else {
-      const double th = g.S(j) / R;
-      const Eigen::Vector2d n(std::sin(th), -std::cos(th));
-      g.point_yz_m.push_back(Eigen::Vector2d(0.0, R) + R * n);
-      g.tangent_yz.emplace_back(std::cos(th), std::sin(th));
-      g.normal_yz.push_back(n);
-    }
-  }
-  g.gap_m.resize(g.cells());
+  PatchGrid g = bench::MakeBenchGrid(nx, ns, planar);
   for (int j = 0; j < ns; ++j)
     for (int i = 0; i < nx; ++i)
       g.gap_m[g.Index(i, j)] = g.X(i) * g.X(i) / (2 * Rx) + g.S(j) * g.S(j) / (2 * Rs);

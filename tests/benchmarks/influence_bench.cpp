@@ -13,38 +13,12 @@
 #include <benchmark/benchmark.h>
 
 #include "core/contact/influence_operator.h"
+#include "tests/benchmarks/bench_grids.h"
 
 namespace railwear {
 namespace {
 
-constexpr double kCellSize_m = 1e-4;
-constexpr double kArcRadius_m = 10e-3;
-
-PatchGrid MakeGrid(int nx, int ns, bool planar) {
-  PatchGrid g;
-  g.nx = nx;
-  g.ns = ns;
-  g.dx_m = kCellSize_m;
-  g.ds_m = kCellSize_m;
-  g.x0_m = -0.5 * (nx - 1) * g.dx_m;
-  g.s0_m = -0.5 * (ns - 1) * g.ds_m;
-  g.planar = planar;
-  for (int j = 0; j < ns; ++j) {
-    if (planar) {
-      g.point_yz_m.emplace_back(g.S(j), 0.0);
-      g.tangent_yz.emplace_back(1.0, 0.0);
-      g.normal_yz.emplace_back(0.0, -1.0);
-    } else {
-      const double theta = g.S(j) / kArcRadius_m;
-      const Eigen::Vector2d n(std::sin(theta), -std::cos(theta));
-      g.point_yz_m.push_back(Eigen::Vector2d(0.0, kArcRadius_m) + kArcRadius_m * n);
-      g.tangent_yz.emplace_back(std::cos(theta), std::sin(theta));
-      g.normal_yz.push_back(n);
-    }
-  }
-  g.gap_m = Eigen::VectorXd::Zero(nx * ns);
-  return g;
-}
+PatchGrid MakeGrid(int nx, int ns, bool planar) { return bench::MakeBenchGrid(nx, ns, planar); }
 
 InfluenceSettings MakeSettings(KernelModel kernel) {
   InfluenceSettings s;
