@@ -28,6 +28,11 @@ class Profile {
 
   static constexpr double kDuplicateDistance_m = 1e-9;
   static constexpr double kMaxTurnAngle_rad = 2.6179938779914944;  // 150 degrees
+  // A segment longer than kMaxSegmentRatio times a neighbouring one is subdivided along its
+  // chord (into pieces of about twice the neighbour, at most kMaxSubdivision) before the spline
+  // is built, so that the spline follows coarsely sampled steep walls without overshoot.
+  static constexpr double kMaxSegmentRatio = 4.0;
+  static constexpr int kMaxSubdivision = 64;
 
   int size() const { return static_cast<int>(points_.size()); }
   const std::vector<Eigen::Vector2d>& points() const { return points_; }
@@ -36,7 +41,8 @@ class Profile {
 
   // Arc-length parameter s in [0, Length()] (metres). The knots carry the arc length of the
   // interpolating spline itself (Gauss-Legendre per interval), so s is a true arc length.
-  double Length() const { return knot_s_.back(); }
+  double Length() const { return length_; }
+  // Arc length of point i.
   double KnotS(int i) const { return knot_s_[i]; }
 
   // Position (y, z) [m], first and second derivative with respect to s, at parameter s.
@@ -66,7 +72,8 @@ class Profile {
   void Build();
   std::vector<Eigen::Vector2d> points_;
   std::string source_;
-  std::vector<double> knot_s_;
+  std::vector<double> knot_s_;  // arc length of each point
+  double length_ = 0.0;
   CubicSpline y_of_s_, z_of_s_;
 };
 
