@@ -314,7 +314,9 @@ ContactResult SolveContact(const ContactProblem& problem) {
   }
 
   // Hertz estimate of the approach and of the patch size at the first contact point.
-  const std::vector<ContactCandidate> first = geom.FindCandidates(1e-6);
+  // (Widen the search when no gap sample lies within 1 um of first contact, e.g. at a corner.)
+  std::vector<ContactCandidate> first = geom.FindCandidates(1e-6);
+  for (double t = 1e-5; first.empty() && t < 1e-2; t *= 10) first = geom.FindCandidates(t);
   double delta_est = load_given
                          ? HertzApproachForLoad(first, estar, *problem.load.vertical_force_N)
                          : *problem.load.approach_m;
@@ -335,8 +337,12 @@ ContactResult SolveContact(const ContactProblem& problem) {
     }
     if (reach > 0) bs = std::min(bs, reach / std::sqrt(2.0));
   }
-  CellSize cell = ChooseCellSize(problem.model, ax, bs);
-  double threshold = 2.0 * delta_est;
+  // Floors keep a degenerate estimate (no Hertz solution, a zero approach) from producing an
+  // empty grid; the re-gridding below corrects the cell size from the first solution.
+  constexpr double kMinSemiAxis_m = 1e-5, kMinThreshold_m = 1e-8;
+  CellSize cell = ChooseCellSize(problem.model, std::max(ax, kMinSemiAxis_m),
+                                 std::max(bs, kMinSemiAxis_m));
+  double threshold = std::max(2.0 * delta_est, kMinThreshold_m);
 
   const double k_w = problem.wheel_material.Compliance();
   const double k_r = problem.rail_material.Compliance();
