@@ -1,0 +1,97 @@
+// Rigid slip from the wheel's motion, prescribed creepage, and patch-average creepage.
+#include "core/contact/kinematics.h"
+
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "core/numerics/check.h"
+
+namespace railwear {
+
+RollingInput RigidSlipFromMotion(const WheelRailGeometry& geom, const PatchGrid& grid,
+                                 const WheelMotion& motion, double friction) {
+  RAILWEAR_CHECK(motion.speed_m_s > 0);
+  const double V = motion.speed_m_s;
+  const double r0 = geom.pose().rolling_radius_m;
+  const double omega = motion.pitch_velocity_rad_s.value_or(-V / r0);
+  // Axle: a point on it (x = 0) and its direction, in R.
+  const Eigen::Vector2d axle_yz = geom.WheelToRail({0.0, -r0});
+  const Eigen::Vector3d a0(0.0, axle_yz.x(), axle_yz.y());
+  const double roll = geom.pose().roll_rad, yaw = motion.yaw_rad;
+  const Eigen::Vector3d a_rolled(0.0, std::cos(roll), std::sin(roll));  // wheel y axis in R
+  const Eigen::Vector3d a(a_rolled.x() * std::cos(yaw) - a_rolled.y() * std::sin(yaw),
+                          a_rolled.x() * std::sin(yaw) + a_rolled.y() * std::cos(yaw),
+                          a_rolled.z());
+  RollingInput in;
+  in.speed_m_s = V;
+  in.friction = friction;
+  in.creep_x.resize(grid.cells());
+  in.creep_s.resize(grid.cells());
+  for (int j = 0; j < grid.ns; ++j) {
+    const Eigen::Vector3d t(0.0, grid.tangent_yz[j].x(), grid.tangent_yz[j].y());
+    for (int i = 0; i < grid.nx; ++i) {
+      const Eigen::Vector3d d = grid.Point(i, j) - a0;
+      const Eigen::Vector3d r = d - d.dot(a) * a;  // perpendicular from the axle
+      const Eigen::Vector3d v = Eigen::Vector3d(V, 0.0, 0.0) + omega * a.cross(r);
+      in.creep_x[grid.Index(i, j)] = v.x() / V;
+      in.creep_s[grid.Index(i, j)] = v.dot(t) / V;
+    }
+  }
+  return in;
+}
+
+RollingInput RigidSlipFromCreepage(const PatchGrid& grid, const Creepage& c, double speed_m_s,
+                                   double friction) {
+  RollingInput in;
+  in.speed_m_s = speed_m_s;
+  in.friction = friction;
+  in.creep_x.resize(grid.cells());
+  in.creep_s.resize(grid.cells());
+  for (int j = 0; j < grid.ns; ++j) {
+    for (int i = 0; i < grid.nx; ++i) {
+      in.creep_x[grid.Index(i, j)] = c.xi - c.spin_per_m * grid.S(j);
+      in.creep_s[grid.Index(i, j)] = c.eta + c.spin_per_m * grid.X(i);
+    }
+  }
+  return in;
+}
+
+Creepage AverageCreepage(const PatchGrid& grid, const Eigen::VectorXd& weight,
+                         const RollingInput& in) {
+  // Minimise sum w [(w_x - xi + phi s')^2 + (w_s - eta - phi x')^2], x' = x - x_c, s' = s - s_c.
+  double W = 0.0, xc = 0.0, sc = 0.0;
+  for (int j = 0; j < grid.ns; ++j) {
+    for (int i = 0; i < grid.nx; ++i) {
+      const double w = std::max(0.0, weight[grid.Index(i, j)]);
+      W += w;
+      xc += w * grid.X(i);
+      sc += w * grid.S(j);
+    }
+  }
+  Creepage c;
+  if (W <= 0) return c;
+  xc /= W;
+  sc /= W;
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (int j = 0; j < grid.ns; ++j) {
+    for (int i = 0; i < grid.nx; ++i) {
+      const int k = grid.Index(i, j);
+      const double w = std::max(0.0, weight[k]);
+      if (w == 0) continue;
+      const double xp = grid.X(i) - xc, sp = grid.S(j) - sc;
+      // Rows: w_x = xi - phi s', w_s = eta + phi x'.
+      const Eigen::Vector3d gx(1.0, 0.0, -sp), gs(0.0, 1.0, xp);
+      A += w * (gx * gx.transpose() + gs * gs.transpose());
+      b += w * (gx * in.creep_x[k] + gs * in.creep_s[k]);
+    }
+  }
+  const Eigen::Vector3d sol = A.ldlt().solve(b);
+  c.xi = sol[0];
+  c.eta = sol[1];
+  c.spin_per_m = sol[2];
+  return c;
+}
+
+}  // namespace railwear

@@ -1,0 +1,54 @@
+// Rigid slip per cell from the motion of the wheel (not one creepage for the whole patch).
+//
+// Rail frame R (core/notation.md): x forward (rolling direction), y toward the field side,
+// z down. The wheel moves forward at speed V and turns about its axle with the pitch velocity
+// Omega (pure rolling at the nominal radius r0: Omega = -V / r0, negative about +y in this
+// frame). The axle is the wheel frame's y axis at z_W = -r0, turned by the wheel's roll about x
+// and by its yaw psi about +z (positive turns the nose toward +y). The rail is at rest. The
+// rigid slip velocity at a cell centre P is v = V e_x + Omega a x r, with a the axle direction
+// and r the perpendicular from the axle to P; the creepage of the cell is v / V resolved on its
+// tangents: x and the patch cross-section's s tangent (tangent_yz).
+//
+// Yaw enters the kinematics only: the contact geometry is solved for the unyawed wheel (an
+// approximation good for the small yaw angles of tangent-track and curving cases, up to a few
+// tens of mrad; the contact point's longitudinal shift r tan(gamma) tan(psi) is neglected).
+#pragma once
+
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "core/contact/patch_grid.h"
+#include "core/contact/tangential_types.h"
+#include "core/geometry/wheel_rail_geometry.h"
+
+namespace railwear {
+
+struct WheelMotion {
+  double speed_m_s = 1.0;                      // V > 0
+  std::optional<double> pitch_velocity_rad_s;  // Omega; pure rolling (-V/r0) when absent
+  double yaw_rad = 0.0;
+};
+
+// Kalker-style creepages: w_x = xi - phi (s - s_c), w_s = eta + phi (x - x_c).
+struct Creepage {
+  double xi = 0.0;
+  double eta = 0.0;
+  double spin_per_m = 0.0;  // phi [1/m]
+};
+
+// Per-cell creepage of a patch from the wheel's motion.
+RollingInput RigidSlipFromMotion(const WheelRailGeometry& geometry, const PatchGrid& grid,
+                                 const WheelMotion& motion, double friction);
+
+// Per-cell creepage from prescribed creepages about the patch point (x, s) = (0, 0) (the first
+// contact point of the patch).
+RollingInput RigidSlipFromCreepage(const PatchGrid& grid, const Creepage& creepage,
+                                   double speed_m_s, double friction);
+
+// Patch-average creepages: the least-squares fit of (xi, eta, phi) to the per-cell creepage
+// over the cells with positive weight (pressure), about the weighted centre (x_c, s_c).
+Creepage AverageCreepage(const PatchGrid& grid, const Eigen::VectorXd& weight,
+                         const RollingInput& input);
+
+}  // namespace railwear

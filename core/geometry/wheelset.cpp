@@ -1,0 +1,70 @@
+// Wheelset placement on a track (see wheelset.h).
+#include "core/geometry/wheelset.h"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "core/geometry/curve_locator.h"
+#include "core/numerics/input_error.h"
+
+namespace railwear {
+
+Eigen::Vector2d RailGaugePoint(const Profile& rail, double gauge_height_m) {
+  const Profile::Bounds b = rail.bounds();
+  const double level = b.z_min + gauge_height_m;
+  // Gauge-side crossing: scan the polyline of the spline for the smallest y at this level.
+  const CurveLocator loc(rail, /*material_toward_plus_z=*/true);
+  std::optional<double> y_best;
+  double best_s = 0.0;
+  const int n = std::max(2, static_cast<int>(std::ceil(rail.Length() / 1e-5)));
+  Eigen::Vector2d prev = rail.Position(0.0);
+  for (int i = 1; i <= n; ++i) {
+    const double s = rail.Length() * i / n;
+    const Eigen::Vector2d cur = rail.Position(s);
+    if ((prev.y() - level) * (cur.y() - level) <= 0 && prev.y() != cur.y()) {
+      const double f = (level - prev.y()) / (cur.y() - prev.y());
+      const double y = prev.x() + f * (cur.x() - prev.x());
+      if (!y_best || y < *y_best) {
+        y_best = y;
+        best_s = s;
+      }
+    }
+    prev = cur;
+  }
+  if (!y_best) {
+    throw InputError(fmt::format(
+        "{}: the rail profile does not reach {:.3f} mm below its top on the gauge side; "
+        "expected a rail head at least as deep as the gauge height",
+        rail.source().empty() ? "rail profile" : rail.source(), gauge_height_m * 1e3));
+  }
+  // Refine on the spline: the level crossing near best_s.
+  const auto c = loc.IntersectLine({*y_best - 1e-3, level}, {1.0, 0.0}, best_s - 1e-3,
+                                   best_s + 1e-3);
+  return {c ? *y_best - 1e-3 + c->lambda : *y_best, level};
+}
+
+WheelsetPlacement PlaceWheelset(const Profile& rail, const TrackSpec& track,
+                                const WheelsetSpec& ws) {
+  WheelsetPlacement out;
+  const Eigen::Vector2d gauge_point = RailGaugePoint(rail, track.gauge_height_m);
+  out.rail_gauge_point_y_m = gauge_point.x();
+  // Right rail: its gauge point at Y = gauge/2, so its origin at Y = gauge/2 - y_g.
+  out.right_rail_origin_Y_m = 0.5 * track.gauge_m - gauge_point.x();
+  // Right wheel: flange back at Y = fbd/2 + displacement, so its origin at that minus y_fb.
+  const double wheel_origin_Y =
+      0.5 * ws.flange_back_distance_m - ws.flange_back_position_m + ws.lateral_displacement_m;
+  out.right.lateral_shift_m = wheel_origin_Y - out.right_rail_origin_Y_m;
+  out.right.roll_rad = ws.roll_rad;
+  out.right.rolling_radius_m = ws.rolling_radius_m;
+  // Left: the mirror image, seen in its own (mirrored) frame: displacement and roll change sign.
+  out.left = out.right;
+  out.left.lateral_shift_m = wheel_origin_Y - 2.0 * ws.lateral_displacement_m -
+                             out.right_rail_origin_Y_m;
+  out.left.roll_rad = -ws.roll_rad;
+  return out;
+}
+
+}  // namespace railwear

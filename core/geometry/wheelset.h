@@ -1,0 +1,49 @@
+// A wheelset on a track: where each wheel stands on its rail.
+//
+// Track frame T (core/notation.md): x forward, Y lateral positive to the right, z down, origin
+// at the track centre line. The right rail's profile frame has y = Y - Y_right (toward its field
+// side); the left rail is the mirror image: its profile frame has y = -(Y - Y_left), so both
+// rails, and both wheels, are described with the same (right-hand) profiles, the left ones
+// mirrored. Gauge is measured between the gauge faces at `gauge_height` below the top of rail;
+// the flange backs of the wheels are `flange_back_distance` apart when the wheelset is centred.
+#pragma once
+
+#include "core/geometry/wheel_rail_geometry.h"
+#include "core/profile/profile.h"
+
+namespace railwear {
+
+struct TrackSpec {
+  double gauge_m = 1.435;         // between the gauge faces, > 0
+  double gauge_height_m = 0.014;  // below the top of rail where the gauge is measured, >= 0
+};
+
+struct WheelsetSpec {
+  double flange_back_distance_m = 1.360;
+  // y of the flange back in the wheel profile frame (S1002: -70 mm, the taping line being 70 mm
+  // from the flange back).
+  double flange_back_position_m = -0.070;
+  double lateral_displacement_m = 0.0;  // of the wheelset toward +Y (flange contact on the right)
+  double yaw_rad = 0.0;   // about +z (down): positive turns the nose toward +Y
+  double roll_rad = 0.0;  // about +x: positive lowers the right wheel
+  double rolling_radius_m = 0.46;
+};
+
+struct WheelsetPlacement {
+  WheelPose right;  // in the right rail's profile frame
+  WheelPose left;   // in the left (mirrored) rail's profile frame
+  double right_rail_origin_Y_m = 0.0;  // Y of the right rail profile's origin
+  double rail_gauge_point_y_m = 0.0;   // gauge point in the rail profile frame (negative)
+};
+
+// The gauge point of a rail profile: the gauge-side crossing (smallest y) of the level
+// gauge_height below its highest point. Throws InputError when the profile does not reach that
+// depth on its gauge side.
+Eigen::Vector2d RailGaugePoint(const Profile& rail, double gauge_height_m);
+
+// Places both wheels. `wheel` and `rail` are the right-hand profiles; the left ones are their
+// mirror images (Profile::Mirrored), for which `left` holds the pose.
+WheelsetPlacement PlaceWheelset(const Profile& rail, const TrackSpec& track,
+                                const WheelsetSpec& wheelset);
+
+}  // namespace railwear

@@ -1,0 +1,131 @@
+#include "core/contact/kinematics.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/geometry/patch_builder.h"
+#include "core/geometry/wheelset.h"
+#include "core/profile/builtin_profiles.h"
+#include "tests/core/geometry/geometry_test_util.h"
+
+namespace railwear {
+namespace {
+
+// A planar grid on the first contact of a wheel profile z_W(y) on a 300 mm crown.
+struct ContactScene {
+  Profile wheel, rail;
+  std::unique_ptr<WheelRailGeometry> geom;
+  PatchGrid grid;
+};
+ContactScene MakeScene(double wheel_slope, double rail_R = 0.3, double half_angle = 0.1) {
+  ContactScene s;
+  s.rail = testing::ArcProfile(rail_R, +1.0, half_angle, 2001);
+  s.wheel = testing::FunctionProfile([&](double y) { return 0.002 + wheel_slope * y; }, -0.05,
+                                     0.05, 201);
+  WheelPose pose;
+  pose.rolling_radius_m = 0.46;
+  s.geom = std::make_unique<WheelRailGeometry>(s.wheel, s.rail, pose);
+  const auto c = s.geom->FindCandidates(1e-4);
+  PatchGridOptions o;
+  o.geometry = GeometryModel::kConformal;
+  o.cell_dx_m = o.cell_ds_m = 5e-4;
+  o.threshold_m = 1e-4;
+  s.grid = BuildPatchGrid(*s.geom, c.at(0), o).grid;
+  return s;
+}
+
+// Kinematics are exact rigid-body formulas evaluated at cell centres: compare to 1e-9.
+constexpr double kCreepTolerance = 1e-9;
+
+TEST(Kinematics, RollingRadiusDifferenceGivesLongitudinalCreepage) {
+  // The wheel's z = 2 mm line touches the crown: the rolling radius there is r0 + 2 mm, so pure
+  // rolling at r0 leaves xi = (r0 - r)/r0 at the contact point.
+  const ContactScene s = MakeScene(0.0);
+  WheelMotion m;
+  m.speed_m_s = 20.0;
+  const RollingInput in = RigidSlipFromMotion(*s.geom, s.grid, m, 0.3);
+  const int ic = (s.grid.nx - 1) / 2;
+  const int jc = static_cast<int>(std::lround(-s.grid.s0_m / s.grid.ds_m));
+  const double r = 0.462, r0 = 0.46;
+  EXPECT_NEAR(in.creep_x[s.grid.Index(ic, jc)], (r0 - r) / r0, kCreepTolerance);
+  EXPECT_NEAR(in.creep_s[s.grid.Index(ic, jc)], 0.0, kCreepTolerance);
+  // Pitch velocity for pure rolling at the contact radius: no longitudinal slip there.
+  m.pitch_velocity_rad_s = -m.speed_m_s / r;
+  const RollingInput in2 = RigidSlipFromMotion(*s.geom, s.grid, m, 0.3);
+  EXPECT_NEAR(in2.creep_x[s.grid.Index(ic, jc)], 0.0, kCreepTolerance);
+}
+
+TEST(Kinematics, YawGivesLateralCreepageMinusPsi) {
+  const ContactScene s = MakeScene(0.0);
+  WheelMotion m;
+  m.speed_m_s = 10.0;
+  m.yaw_rad = 0.005;
+  m.pitch_velocity_rad_s = -m.speed_m_s / 0.462;  // pure rolling at the contact radius
+  const RollingInput in = RigidSlipFromMotion(*s.geom, s.grid, m, 0.3);
+  // v = V (1 - cos psi, -sin psi) at the contact point, where the radius is the contact radius.
+  const int ic = (s.grid.nx - 1) / 2;
+  const int jc = static_cast<int>(std::lround(-s.grid.s0_m / s.grid.ds_m));
+  EXPECT_NEAR(in.creep_s[s.grid.Index(ic, jc)], -std::sin(m.yaw_rad), kCreepTolerance);
+  EXPECT_NEAR(in.creep_x[s.grid.Index(ic, jc)], 1.0 - std::cos(m.yaw_rad), kCreepTolerance);
+}
+
+TEST(Kinematics, InclinedContactHasSpinSinGammaOverR) {
+  // A wheel cone of slope 0.3 on a 100 mm crown: contact where the crown has the same slope,
+  // gamma = atan(0.3). The spin of a wheel turning at Omega = -V/r0 about a level axle is
+  // Omega a . n, so the spin creepage is sin(gamma) / r0 in magnitude.
+  const ContactScene s = MakeScene(0.3, 0.1, 0.5);
+  WheelMotion m;
+  m.speed_m_s = 10.0;
+  const RollingInput in = RigidSlipFromMotion(*s.geom, s.grid, m, 0.3);
+  // Weight the fit on the cells nearest the contact point (the crown turns the normal by
+  // ds/R per cell; within 1 mm that changes sin(gamma) by < 1 %).
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(s.grid.cells());
+  for (int j = 0; j < s.grid.ns; ++j)
+    for (int i = 0; i < s.grid.nx; ++i)
+      if (std::abs(s.grid.S(j)) < 1e-3 && std::abs(s.grid.X(i)) < 1e-3) w[s.grid.Index(i, j)] = 1;
+  const Creepage c = AverageCreepage(s.grid, w, in);
+  const double gamma = std::atan(0.3);
+  EXPECT_NEAR(std::abs(c.spin_per_m), std::sin(gamma) / 0.46, 0.01 * std::sin(gamma) / 0.46);
+}
+
+TEST(Kinematics, PrescribedCreepageRoundTrips) {
+  const ContactScene s = MakeScene(0.0);
+  const Creepage c{-0.004, 0.0021, -1.5};
+  const RollingInput in = RigidSlipFromCreepage(s.grid, c, 20.0, 0.3);
+  const Creepage back = AverageCreepage(s.grid, Eigen::VectorXd::Ones(s.grid.cells()), in);
+  // The fit is about the weighted centre (x_c, s_c): xi and eta move by the spin times it.
+  double xc = 0.0, sc = 0.0;
+  for (int j = 0; j < s.grid.ns; ++j)
+    for (int i = 0; i < s.grid.nx; ++i) {
+      xc += s.grid.X(i) / s.grid.cells();
+      sc += s.grid.S(j) / s.grid.cells();
+    }
+  EXPECT_NEAR(back.spin_per_m, c.spin_per_m, 1e-9);
+  EXPECT_NEAR(back.xi, c.xi - c.spin_per_m * sc, 1e-12);
+  EXPECT_NEAR(back.eta, c.eta + c.spin_per_m * xc, 1e-12);
+}
+
+TEST(Wheelset, CentredS1002OnCantedUic60) {
+  // Gauge point of the canted UIC60 14 mm below its top; the centred wheel's taping line then
+  // lies 10.4 mm gauge-side of the rail's origin (README, examples/gauge_corner.toml).
+  const Profile rail = ApplyCant(MakeUic60(), 1.0 / 40.0);
+  const Eigen::Vector2d g = RailGaugePoint(rail, 0.014);
+  EXPECT_NEAR(g.y(), 0.014, 1e-8);  // level from the sampled top of the spline
+  EXPECT_LT(g.x(), -0.04);
+  const WheelsetPlacement p = PlaceWheelset(rail, TrackSpec{}, WheelsetSpec{});
+  EXPECT_NEAR(p.right.lateral_shift_m, 0.750 - (0.7175 - g.x()), 1e-12);
+  EXPECT_NEAR(p.right.lateral_shift_m, -0.0104, 2e-4);
+  // Centred and unrolled: the left wheel sees the same placement in its mirrored frame.
+  EXPECT_DOUBLE_EQ(p.left.lateral_shift_m, p.right.lateral_shift_m);
+  WheelsetSpec moved;
+  moved.lateral_displacement_m = 0.005;
+  moved.roll_rad = 0.001;
+  const WheelsetPlacement q = PlaceWheelset(rail, TrackSpec{}, moved);
+  EXPECT_NEAR(q.right.lateral_shift_m - p.right.lateral_shift_m, 0.005, 1e-12);
+  EXPECT_NEAR(q.left.lateral_shift_m - p.left.lateral_shift_m, -0.005, 1e-12);
+  EXPECT_DOUBLE_EQ(q.left.roll_rad, -q.right.roll_rad);
+}
+
+}  // namespace
+}  // namespace railwear
