@@ -247,7 +247,7 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
       inside = true;
       const double tx = qx - rx * h, ts = qs - rs * h;
       const double g = mu * bound_Pa[k];
-      const double t_norm = std::hypot(tx, ts);
+      const double t_norm = std::sqrt(tx * tx + ts * ts);
       if (t_norm <= g) {
         qx = tx;
         qs = ts;
@@ -260,7 +260,7 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
         ++slip_cells;
         // Slip s = V (w - du/dx) with du/dx = L (q_prev - q)/h: s = V (L/h)(q - q_trial).
         const double sx = lx_slip / h * (qx - tx), ss = ls_slip / h * (qs - ts);
-        const double speed = v * std::hypot(sx, ss);
+        const double speed = v * std::sqrt(sx * sx + ss * ss);
         if (t_norm > 0.0) {
           // Opposite the traction (exact for the weighted L; see fastsim.h for kSeparate).
           sol.slip_x_m_s[k] = -speed * tx / t_norm;
