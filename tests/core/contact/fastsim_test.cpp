@@ -99,30 +99,30 @@ TEST(Fastsim, SmallCreepageMatchesLinearTheory) {
   const Case cases[] = {{"xi", 1e-6, 0.0, 0.0}, {"eta", 0.0, 1e-6, 0.0}, {"spin", 0.0, 0.0, 1e-4},
                         {"-xi", -1e-6, 0.0, 0.0}, {"mix", 1e-6, -1e-6, 1e-4}};
   for (FlexibilityModel model : {FlexibilityModel::kThree, FlexibilityModel::kWeighted}) {
-  for (const Case& c : cases) {
-    // The single weighted flexibility is exact for each pure creepage only (fastsim.h).
-    if (model == FlexibilityModel::kWeighted && std::string(c.name) == "mix") continue;
-    for (bool given_axes : {true, false}) {
-      FastsimOptions o = MakeOptions();
-      o.flexibility = model;
-      if (given_axes) {
-        o.semi_axis_x_m = kA;
-        o.semi_axis_s_m = kB;
+    for (const Case& c : cases) {
+      // The single weighted flexibility is exact for each pure creepage only (fastsim.h).
+      if (model == FlexibilityModel::kWeighted && std::string(c.name) == "mix") continue;
+      for (bool given_axes : {true, false}) {
+        FastsimOptions o = MakeOptions();
+        o.flexibility = model;
+        if (given_axes) {
+          o.semi_axis_x_m = kA;
+          o.semi_axis_s_m = kB;
+        }
+        const RollingInput in = MakeCreepage(h.grid, c.xi, c.eta, c.phi);
+        const TangentialSolution sol = SolveFastsim(h.grid, h.pressure_Pa, in, o);
+        ASSERT_EQ(sol.status, SolverStatus::kConverged);
+        const LinearCreepForces lin = CalcLinearCreepForces(kA, kB, kG, kNu, c.xi, c.eta, c.phi);
+        const double ref = std::hypot(lin.force_x_N, lin.force_y_N);
+        EXPECT_NEAR(sol.force_x_N, lin.force_x_N, kLinearRelTol * ref) << c.name << given_axes;
+        EXPECT_NEAR(sol.force_s_N, lin.force_y_N, kLinearRelTol * ref) << c.name << given_axes;
+        const double err =
+            std::hypot(sol.force_x_N - lin.force_x_N, sol.force_s_N - lin.force_y_N) / ref;
+        std::printf("linear %-8s %-5s axes %s: Fx %.6g (lin %.6g)  Fy %.6g (lin %.6g)  err %.3g%%\n",
+                    std::string(ToString(model)).c_str(), c.name, given_axes ? "given" : "estim",
+                    sol.force_x_N, lin.force_x_N, sol.force_s_N, lin.force_y_N, 100.0 * err);
       }
-      const RollingInput in = MakeCreepage(h.grid, c.xi, c.eta, c.phi);
-      const TangentialSolution sol = SolveFastsim(h.grid, h.pressure_Pa, in, o);
-      ASSERT_EQ(sol.status, SolverStatus::kConverged);
-      const LinearCreepForces lin = CalcLinearCreepForces(kA, kB, kG, kNu, c.xi, c.eta, c.phi);
-      const double ref = std::hypot(lin.force_x_N, lin.force_y_N);
-      EXPECT_NEAR(sol.force_x_N, lin.force_x_N, kLinearRelTol * ref) << c.name << given_axes;
-      EXPECT_NEAR(sol.force_s_N, lin.force_y_N, kLinearRelTol * ref) << c.name << given_axes;
-      std::printf("linear %-8s %-5s axes %s: Fx %.6g (lin %.6g)  Fy %.6g (lin %.6g)  rel err %.3g%%\n",
-                  std::string(ToString(model)).c_str(), c.name, given_axes ? "given" : "estim", sol.force_x_N, lin.force_x_N,
-                  sol.force_s_N, lin.force_y_N,
-                  100.0 * std::hypot(sol.force_x_N - lin.force_x_N, sol.force_s_N - lin.force_y_N) /
-                      ref);
     }
-  }
   }
 }
 
