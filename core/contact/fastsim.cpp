@@ -1,0 +1,300 @@
+// FASTSIM (Kalker's simplified theory) on the patch grid; see fastsim.h for the method.
+#include "core/contact/fastsim.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/contact/kalker_coefficients.h"
+#include "core/numerics/check.h"
+
+namespace railwear {
+
+std::string_view ToString(TractionBound v) {
+  switch (v) {
+    case TractionBound::kActualPressure: return "actual_pressure";
+    case TractionBound::kParabolic: return "parabolic";
+  }
+  return "unknown";
+}
+
+std::string_view ToString(FlexibilityModel v) {
+  switch (v) {
+    case FlexibilityModel::kWeighted: return "weighted";
+    case FlexibilityModel::kSeparate: return "separate";
+    case FlexibilityModel::kThree: return "three";
+  }
+  return "unknown";
+}
+
+bool FastsimOptions::IsValid(std::string* error) const {
+  std::ostringstream msg;
+  if (!std::isfinite(shear_modulus_Pa) || shear_modulus_Pa <= 0.0) {
+    msg << "shear_modulus_Pa = " << shear_modulus_Pa << ", expected finite > 0";
+  } else if (!std::isfinite(poisson_ratio) || poisson_ratio < 0.0 || poisson_ratio > 0.5) {
+    msg << "poisson_ratio = " << poisson_ratio << ", expected in [0, 0.5]";
+  } else if (semi_axis_x_m && !(std::isfinite(*semi_axis_x_m) && *semi_axis_x_m > 0.0)) {
+    msg << "semi_axis_x_m = " << *semi_axis_x_m << ", expected finite > 0";
+  } else if (semi_axis_s_m && !(std::isfinite(*semi_axis_s_m) && *semi_axis_s_m > 0.0)) {
+    msg << "semi_axis_s_m = " << *semi_axis_s_m << ", expected finite > 0";
+  } else if ((xi && !std::isfinite(*xi)) || (eta && !std::isfinite(*eta)) ||
+             (phi_per_m && !std::isfinite(*phi_per_m))) {
+    msg << "patch-average creepages xi, eta, phi_per_m must be finite";
+  }
+  const std::string text = msg.str();
+  if (error != nullptr) *error = text;
+  return text.empty();
+}
+
+CombinedElastic CombineElastic(const Material& a, const Material& b) {
+  const double ga = a.ShearModulus(), gb = b.ShearModulus();
+  const double g = 2.0 / (1.0 / ga + 1.0 / gb);
+  return {g, 0.5 * g * (a.poisson_ratio / ga + b.poisson_ratio / gb)};
+}
+
+namespace {
+
+void Require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("SolveFastsim: " + what);
+}
+
+}  // namespace
+
+TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                                const RollingInput& in, const FastsimOptions& opt,
+                                FastsimPatch* patch_out) {
+  const int n = grid.cells();
+  Require(grid.nx > 0 && grid.ns > 0 && grid.dx_m > 0.0 && grid.ds_m > 0.0,
+          "grid must have nx, ns >= 1 and dx, ds > 0");
+  Require(static_cast<int>(grid.tangent_yz.size()) == grid.ns,
+          "grid.tangent_yz has " + std::to_string(grid.tangent_yz.size()) + " entries, expected ns = " +
+              std::to_string(grid.ns));
+  Require(pressure_Pa.size() == n, "pressure has " + std::to_string(pressure_Pa.size()) +
+                                       " cells, expected " + std::to_string(n));
+  Require(in.creep_x.size() == n && in.creep_s.size() == n,
+          "creep_x/creep_s have " + std::to_string(in.creep_x.size()) + "/" +
+              std::to_string(in.creep_s.size()) + " cells, expected " + std::to_string(n));
+  Require(pressure_Pa.allFinite() && in.creep_x.allFinite() && in.creep_s.allFinite(),
+          "pressure and creepages must be finite");
+  Require(std::isfinite(in.speed_m_s) && in.speed_m_s > 0.0,
+          "speed_m_s = " + std::to_string(in.speed_m_s) + ", expected > 0");
+  Require(std::isfinite(in.friction) && in.friction > 0.0,
+          "friction = " + std::to_string(in.friction) + ", expected > 0");
+  std::string error;
+  Require(opt.IsValid(&error), "options: " + error);
+
+  TangentialSolution sol;
+  sol.traction_x_Pa = Eigen::VectorXd::Zero(n);
+  sol.traction_s_Pa = Eigen::VectorXd::Zero(n);
+  sol.slip_x_m_s = Eigen::VectorXd::Zero(n);
+  sol.slip_s_m_s = Eigen::VectorXd::Zero(n);
+  sol.stick = Eigen::VectorXi::Constant(n, -1);
+  const double dA = grid.CellArea();
+
+  // 1. The contact region: cell count, extents (to the cell faces), centroid, normal force.
+  int count = 0;
+  double xmin = 1e300, xmax = -1e300, smin = 1e300, smax = -1e300, xsum = 0.0, ssum = 0.0;
+  double fn = 0.0;
+  for (int j = 0; j < grid.ns; ++j) {
+    for (int i = 0; i < grid.nx; ++i) {
+      const double p = pressure_Pa[grid.Index(i, j)];
+      if (p <= 0.0) continue;
+      ++count;
+      const double x = grid.X(i), s = grid.S(j);
+      xmin = std::min(xmin, x);
+      xmax = std::max(xmax, x);
+      smin = std::min(smin, s);
+      smax = std::max(smax, s);
+      xsum += x;
+      ssum += s;
+      fn += p * dA;
+    }
+  }
+  if (count == 0) {
+    sol.status = SolverStatus::kNoContact;
+    sol.message = "no cell carries pressure";
+    return sol;
+  }
+  FastsimPatch patch;
+  patch.normal_force_N = fn;
+  patch.centroid_x_m = xsum / count;
+  patch.centroid_s_m = ssum / count;
+  {
+    const double ratio = (xmax - xmin + grid.dx_m) / (smax - smin + grid.ds_m);  // a/b
+    const double ab = count * dA / std::numbers::pi;
+    const double a_est = std::sqrt(ab * ratio), b_est = std::sqrt(ab / ratio);
+    if (opt.semi_axis_x_m && opt.semi_axis_s_m) {
+      patch.semi_axis_x_m = *opt.semi_axis_x_m;
+      patch.semi_axis_s_m = *opt.semi_axis_s_m;
+    } else if (opt.semi_axis_x_m) {
+      patch.semi_axis_x_m = *opt.semi_axis_x_m;
+      patch.semi_axis_s_m = *opt.semi_axis_x_m / ratio;
+    } else if (opt.semi_axis_s_m) {
+      patch.semi_axis_s_m = *opt.semi_axis_s_m;
+      patch.semi_axis_x_m = *opt.semi_axis_s_m * ratio;
+    } else {
+      patch.semi_axis_x_m = a_est;
+      patch.semi_axis_s_m = b_est;
+    }
+  }
+  const double a = patch.semi_axis_x_m, b = patch.semi_axis_s_m, c = std::sqrt(a * b);
+
+  // 2. Patch-average creepages: least squares of w_x = xi - phi s', w_s = eta + phi x' about
+  // the centroid; the normal equations decouple because sum x' = sum s' = 0.
+  {
+    double wx = 0.0, ws = 0.0, num = 0.0, den = 0.0;
+    for (int j = 0; j < grid.ns; ++j) {
+      for (int i = 0; i < grid.nx; ++i) {
+        const int k = grid.Index(i, j);
+        if (pressure_Pa[k] <= 0.0) continue;
+        const double xp = grid.X(i) - patch.centroid_x_m, sp = grid.S(j) - patch.centroid_s_m;
+        wx += in.creep_x[k];
+        ws += in.creep_s[k];
+        num += xp * in.creep_s[k] - sp * in.creep_x[k];
+        den += xp * xp + sp * sp;
+      }
+    }
+    patch.xi = opt.xi.value_or(wx / count);
+    patch.eta = opt.eta.value_or(ws / count);
+    patch.phi_per_m = opt.phi_per_m.value_or(den > 0.0 ? num / den : 0.0);
+  }
+
+  // 3. Flexibilities.
+  const double g_mod = opt.shear_modulus_Pa;
+  const CreepCoefficients cc = KalkerCoefficients(a / b, opt.poisson_ratio);
+  const double l1 = 8.0 * a / (3.0 * cc.c11 * g_mod);
+  const double l2 = 8.0 * a / (3.0 * cc.c22 * g_mod);
+  const double l3 = std::numbers::pi * a * std::sqrt(a / b) / (4.0 * cc.c23 * g_mod);
+  if (opt.flexibility == FlexibilityModel::kSeparate) {
+    patch.flexibility_x_m_Pa = l1;
+    patch.flexibility_s_m_Pa = l2;
+  } else {
+    const double wxi = std::abs(patch.xi), weta = std::abs(patch.eta),
+                 wphi = std::abs(patch.phi_per_m) * c;
+    const double sum = wxi + weta + wphi;
+    const double l = sum > 0.0 ? (wxi * l1 + weta * l2 + wphi * l3) / sum : l1;
+    patch.flexibility_x_m_Pa = patch.flexibility_s_m_Pa = l;
+  }
+  const double lx = patch.flexibility_x_m_Pa, ls = patch.flexibility_s_m_Pa;
+  // Slip magnitudes use one flexibility per component (for kThree: the weighted L).
+  double lx_slip = lx, ls_slip = ls;
+  if (opt.flexibility == FlexibilityModel::kThree) {
+    const double wxi = std::abs(patch.xi), weta = std::abs(patch.eta),
+                 wphi = std::abs(patch.phi_per_m) * c;
+    const double sum = wxi + weta + wphi;
+    lx_slip = ls_slip = sum > 0.0 ? (wxi * l1 + weta * l2 + wphi * l3) / sum : l1;
+    patch.flexibility_x_m_Pa = l1;
+    patch.flexibility_s_m_Pa = l2;
+    patch.flexibility_spin_m_Pa = l3;
+  }
+  // Traction rate -dq/dx of sticking material per cell [Pa/m]: w/L, or for kThree the spin part
+  // of Kalker's field over L3 and the rest over L1, L2.
+  Eigen::VectorXd rate_x(n), rate_s(n);
+  for (int j = 0; j < grid.ns; ++j) {
+    for (int i = 0; i < grid.nx; ++i) {
+      const int k = grid.Index(i, j);
+      const double wx = in.creep_x[k], ws = in.creep_s[k];
+      if (opt.flexibility == FlexibilityModel::kThree) {
+        const double xp = grid.X(i) - patch.centroid_x_m, sp = grid.S(j) - patch.centroid_s_m;
+        const double spin_x = -patch.phi_per_m * sp, spin_s = patch.phi_per_m * xp;
+        rate_x[k] = (wx - spin_x) / l1 + spin_x / l3;
+        rate_s[k] = (ws - spin_s) / l2 + spin_s / l3;
+      } else {
+        rate_x[k] = wx / lx;
+        rate_s[k] = ws / ls;
+      }
+    }
+  }
+
+  // 4. The bound pressure.
+  Eigen::VectorXd bound_Pa = pressure_Pa.cwiseMax(0.0);
+  if (opt.bound == TractionBound::kParabolic) {
+    const double peak = 2.0 * fn / (std::numbers::pi * a * b);
+    double sum = 0.0;
+    for (int j = 0; j < grid.ns; ++j) {
+      for (int i = 0; i < grid.nx; ++i) {
+        const int k = grid.Index(i, j);
+        if (pressure_Pa[k] <= 0.0) continue;
+        const double xr = (grid.X(i) - patch.centroid_x_m) / a;
+        const double sr = (grid.S(j) - patch.centroid_s_m) / b;
+        bound_Pa[k] = peak * std::max(0.0, 1.0 - xr * xr - sr * sr);
+        sum += bound_Pa[k] * dA;
+      }
+    }
+    if (sum > 0.0) bound_Pa *= fn / sum;
+  }
+
+  // 5. March every strip from its leading edge (largest x) to its trailing edge.
+  const double mu = in.friction, v = in.speed_m_s;
+  double stick_cells = 0, slip_cells = 0;
+  for (int j = 0; j < grid.ns; ++j) {
+    double qx = 0.0, qs = 0.0;
+    bool inside = false;
+    for (int i = grid.nx - 1; i >= 0; --i) {
+      const int k = grid.Index(i, j);
+      if (pressure_Pa[k] <= 0.0) {
+        qx = qs = 0.0;
+        inside = false;
+        continue;
+      }
+      // Trapezoidal rule between cell centres (second order for creepage varying along x);
+      // from the leading face of the first cell the cell's own rate.
+      const double h = inside ? grid.dx_m : 0.5 * grid.dx_m;
+      const double rx = inside ? 0.5 * (rate_x[k] + rate_x[k + 1]) : rate_x[k];
+      const double rs = inside ? 0.5 * (rate_s[k] + rate_s[k + 1]) : rate_s[k];
+      inside = true;
+      const double tx = qx - rx * h, ts = qs - rs * h;
+      const double g = mu * bound_Pa[k];
+      const double t_norm = std::sqrt(tx * tx + ts * ts);
+      if (t_norm <= g) {
+        qx = tx;
+        qs = ts;
+        sol.stick[k] = 1;
+        ++stick_cells;
+      } else {
+        qx = g * tx / t_norm;
+        qs = g * ts / t_norm;
+        sol.stick[k] = 0;
+        ++slip_cells;
+        // Slip s = V (w - du/dx) with du/dx = L (q_prev - q)/h: s = V (L/h)(q - q_trial).
+        const double sx = lx_slip / h * (qx - tx), ss = ls_slip / h * (qs - ts);
+        const double speed = v * std::sqrt(sx * sx + ss * ss);
+        if (t_norm > 0.0) {
+          // Opposite the traction (exact for the weighted L; see fastsim.h for kSeparate).
+          sol.slip_x_m_s[k] = -speed * tx / t_norm;
+          sol.slip_s_m_s[k] = -speed * ts / t_norm;
+        }
+      }
+      sol.traction_x_Pa[k] = qx;
+      sol.traction_s_Pa[k] = qs;
+    }
+  }
+
+  // 6. Totals.
+  for (int j = 0; j < grid.ns; ++j) {
+    double fs_strip = 0.0;
+    for (int i = 0; i < grid.nx; ++i) {
+      const int k = grid.Index(i, j);
+      const double qx = sol.traction_x_Pa[k], qs = sol.traction_s_Pa[k];
+      sol.force_x_N += qx * dA;
+      fs_strip += qs * dA;
+      sol.spin_moment_Nm += (grid.X(i) * qs - grid.S(j) * qx) * dA;
+      sol.frictional_power_W +=
+          std::abs(qx * sol.slip_x_m_s[k] + qs * sol.slip_s_m_s[k]) * dA;
+    }
+    sol.force_s_N += fs_strip;
+    sol.force_s_yz_N += fs_strip * grid.tangent_yz[j];
+  }
+  sol.stick_area_m2 = stick_cells * dA;
+  sol.slip_area_m2 = slip_cells * dA;
+  RAILWEAR_CHECK(stick_cells + slip_cells == count);
+  sol.status = SolverStatus::kConverged;
+  sol.iterations = 1;
+  sol.message = "FASTSIM: one sweep";
+  if (patch_out != nullptr) *patch_out = patch;
+  return sol;
+}
+
+}  // namespace railwear

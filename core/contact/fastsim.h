@@ -1,0 +1,114 @@
+// FASTSIM: Kalker's simplified theory of rolling contact, strip by strip on the patch grid.
+//
+// The elastic surface displacement is taken proportional to the local traction, u = L q
+// (Kalker 1982). In steady rolling the material moves through the patch from its leading edge
+// (largest x) to its trailing edge at the rolling speed V, so the slip of a cell is
+//   s = V (w - du/dx),   w = (creep_x, creep_s) the rigid creepage of the cell,
+// and sticking cells carry du/dx = w. Each s strip j is marched from its leading edge down:
+//   q_trial = q_prev - (w / L) h,   h = dx between cell centres (dx/2 from the leading face of
+//                                   the first cell, where q = 0),
+//   q = q_trial            if |q_trial| <= g   (stick),
+//   q = g q_trial/|q_trial| otherwise          (slip; q = -g v/|v| with v the slip velocity),
+// with g = mu * (bound pressure). The traction is that of the rail on the wheel and opposes the
+// creepage (tangential_types.h); for small creepage this reproduces Kalker's linear theory with
+// the flexibilities below.
+//
+// Flexibilities (reference README §4, C from KalkerCoefficients at the patch's a/b):
+//   L1 = 8a/(3 C11 G),  L2 = 8a/(3 C22 G),  L3 = pi a sqrt(a/b)/(4 C23 G).
+// The per-cell creepage cannot be split into its xi/eta/spin parts cell by cell, so unless the
+// options give them, patch-average creepages (xi, eta, phi) are fitted by least squares over the
+// contact cells to Kalker's planar field  w_x = xi - phi (s - s_c),  w_s = eta + phi (x - x_c)
+// about the contact centroid (x_c, s_c) (exact when the field has that form). Three models:
+//   kThree (default): Kalker's simplified theory with three flexibilities (CONTACT's M=3): the
+//     fitted spin part of each cell's creepage goes with L3, the rest (xi, eta and whatever the
+//     planar field does not explain) with L1 along x and L2 along s. Reproduces linear theory for
+//     pure xi, pure eta AND pure spin, on any mix. u = L q holds with a different L per part, so
+//     the slip magnitude uses the weighted L below and its direction is set to -q/|q|.
+//   kWeighted: Kalker's single flexibility for both components,
+//     L = (|xi| L1 + |eta| L2 + |phi| c L3) / (|xi| + |eta| + |phi| c),  c = sqrt(a b);
+//     exact for each pure creepage, not for mixes (on the README check case it underestimates
+//     |Fy| by ~7 %); the slip is exactly opposite the traction.
+//   kSeparate: L1 for x, L2 for s, no spin flexibility (the classical choice when creepage varies
+//     across the patch); wrong by the ratio L3/L2 for spin. Slip direction set to -q/|q|.
+// Discretisation: cell-centre values; the traction rate w/L is integrated between centres by the
+// trapezoidal rule (second order, so a spin's linearly varying creepage costs no first-order
+// error), from the leading face of each strip's first contact cell where q = 0.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <Eigen/Core>
+
+#include "core/contact/contact_types.h"
+#include "core/contact/patch_grid.h"
+#include "core/contact/tangential_types.h"
+
+namespace railwear {
+
+// Which pressure bounds the traction, g = mu * p_bound.
+enum class TractionBound {
+  kActualPressure,  // the grid's pressure (Hertz pressure: the "elliptic" bound)
+  // Kalker's original FASTSIM bound: p = 2 Fn/(pi a b) (1 - x'^2/a^2 - s'^2/b^2), x', s' from
+  // the contact centroid, Fn = sum p dA; cells of the contact outside that ellipse get 0, and the
+  // field is rescaled so that its discrete sum is Fn exactly.
+  kParabolic,
+};
+std::string_view ToString(TractionBound v);
+
+enum class FlexibilityModel { kWeighted, kSeparate, kThree };
+std::string_view ToString(FlexibilityModel v);
+
+struct FastsimOptions {
+  // Combined elastic constants of the two bodies: 2/G = 1/G1 + 1/G2, nu = (G/2)(nu1/G1 +
+  // nu2/G2) (CombineElastic below). Defaults: steel, E = 210 GPa, nu = 0.28.
+  double shear_modulus_Pa = 210e9 / (2.0 * 1.28);  // G > 0
+  double poisson_ratio = 0.28;                     // nu in [0, 0.5]
+  TractionBound bound = TractionBound::kActualPressure;
+  FlexibilityModel flexibility = FlexibilityModel::kThree;
+  // Semi-axes of the contact along x and s [m] used for a/b and the flexibilities. When not
+  // given: the ratio a/b is that of the extents of the contact cells (cells with p > 0, counted
+  // to their faces) and the size follows from the contact area, pi a b = (number of cells) dA.
+  std::optional<double> semi_axis_x_m, semi_axis_s_m;
+  // Patch-average creepages used for the flexibilities: xi, eta [-], phi [1/m]. Any not given
+  // is fitted to the per-cell creepage (see the file comment).
+  std::optional<double> xi, eta, phi_per_m;
+
+  // True when the options are usable; otherwise fills *error (if non-null) with the reason.
+  bool IsValid(std::string* error) const;
+};
+
+// Patch quantities FASTSIM used, reported next to the solution (for tests and reports).
+struct FastsimPatch {
+  double semi_axis_x_m = 0.0, semi_axis_s_m = 0.0;
+  double centroid_x_m = 0.0, centroid_s_m = 0.0;  // area centroid of the contact cells
+  double xi = 0.0, eta = 0.0, phi_per_m = 0.0;    // patch-average creepages used for L
+  double flexibility_x_m_Pa = 0.0;  // L used for the x component (L1 for kThree) [m/Pa]
+  double flexibility_s_m_Pa = 0.0;  // L used for the s component (L2 for kThree) [m/Pa]
+  double flexibility_spin_m_Pa = 0.0;  // L3 for kThree, else 0 [m/Pa]
+  double normal_force_N = 0.0;      // sum p dA over the grid
+};
+
+// Solves the tangential problem by FASTSIM.
+//   grid: the patch grid (cells k = j*nx + i).
+//   pressure_Pa: size grid.cells(), p >= 0 [Pa]; cells with p <= 0 are outside the contact
+//     (zero traction, stick = -1).
+//   in: per-cell creepages (size grid.cells()), speed V > 0 [m/s], friction mu > 0.
+//   patch (optional out): the patch quantities used.
+// Returns tractions [Pa], slip velocities [m/s], stick flags and totals per tangential_types.h;
+// status kConverged (one direct sweep, iterations = 1) or kNoContact when no cell carries
+// pressure. Throws std::invalid_argument on mismatched sizes, non-finite input, V <= 0,
+// mu <= 0, or invalid options (message names the field and value).
+TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                                const RollingInput& in, const FastsimOptions& opt,
+                                FastsimPatch* patch = nullptr);
+
+// Combined G [Pa] and nu of two bodies (Kalker): 2/G = 1/G1 + 1/G2, nu = (G/2)(nu1/G1 + nu2/G2).
+struct CombinedElastic {
+  double shear_modulus_Pa = 0.0;
+  double poisson_ratio = 0.0;
+};
+CombinedElastic CombineElastic(const Material& a, const Material& b);
+
+}  // namespace railwear

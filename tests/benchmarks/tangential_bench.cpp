@@ -1,0 +1,56 @@
+// FASTSIM timing on a Hertz patch (the README §4 check case: a = 8, b = 4 mm, Fn = 82 kN,
+// eta = -6.25e-4, phi = 0.625 /m) on a 70 x 80 grid covering the ellipse.
+// Run: build/tests/benchmarks/tangential_bench --benchmark_repetitions=5
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "core/contact/fastsim.h"
+
+namespace railwear {
+namespace {
+
+void BM_Fastsim(benchmark::State& state) {
+  const int nx = static_cast<int>(state.range(0)), ns = static_cast<int>(state.range(1));
+  const double a = 8e-3, b = 4e-3, fn = 82e3;
+  PatchGrid g;
+  g.nx = nx;
+  g.ns = ns;
+  g.dx_m = 2.0 * a / nx;
+  g.ds_m = 2.0 * b / ns;
+  g.x0_m = -a + 0.5 * g.dx_m;
+  g.s0_m = -b + 0.5 * g.ds_m;
+  g.planar = true;
+  for (int j = 0; j < ns; ++j) {
+    g.point_yz_m.emplace_back(g.S(j), 0.0);
+    g.tangent_yz.emplace_back(1.0, 0.0);
+    g.normal_yz.emplace_back(0.0, -1.0);
+  }
+  const double p0 = 3.0 * fn / (2.0 * std::numbers::pi * a * b);
+  Eigen::VectorXd p = Eigen::VectorXd::Zero(g.cells());
+  RollingInput in;
+  in.creep_x.resize(g.cells());
+  in.creep_s.resize(g.cells());
+  for (int j = 0; j < ns; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const double r = 1.0 - std::pow(g.X(i) / a, 2) - std::pow(g.S(j) / b, 2);
+      p[g.Index(i, j)] = r > 0.0 ? p0 * std::sqrt(r) : 0.0;
+      in.creep_x[g.Index(i, j)] = -0.625 * g.S(j);
+      in.creep_s[g.Index(i, j)] = -6.25e-4 + 0.625 * g.X(i);
+    }
+  }
+  FastsimOptions opt;
+  opt.shear_modulus_Pa = 82e9;
+  for (auto _ : state) {
+    TangentialSolution s = SolveFastsim(g, p, in, opt);
+    benchmark::DoNotOptimize(s.force_s_N);
+  }
+  state.counters["cells"] = g.cells();
+}
+BENCHMARK(BM_Fastsim)->Args({70, 80})->Args({200, 200})->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace railwear
+
+BENCHMARK_MAIN();
