@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
@@ -12,6 +13,7 @@
 #include "app/contact_output.h"
 #include "app/pressure_plot.h"
 #include "app/scene.h"
+#include "core/contact/wheelset_contact.h"
 #include "core/numerics/input_error.h"
 
 namespace railwear::app {
@@ -52,11 +54,37 @@ void CheckOptions(const ContactOptions& o) {
   if (o.plot) RequireGnuplot();  // before the solve, so nobody waits for nothing
 }
 
+// A wheelset on a track: both wheels, each in its rail's own frame.
+void RunWheelset(const ContactOptions& o, const Scene& scene) {
+  const WheelsetResult result = SolveWheelset({scene.problem, *scene.track, *scene.wheelset});
+  if (o.json) WriteOutput(*o.json, MakeWheelsetJson(scene, result).dump(2) + "\n", "JSON");
+  if (o.csv) {
+    std::ostringstream csv;
+    WritePressureCsv(result.right, csv, "right");
+    WritePressureCsv(result.left, csv, "left", /*header=*/false);
+    WriteOutput(*o.csv, csv.str(), "CSV");
+  }
+  if (o.json != "-" && o.csv != "-") std::cout << FormatWheelsetSummary(scene, result) << std::flush;
+  if (o.plot) {
+    ContactResult both = result.right;  // right patches first, then the left ones
+    for (const auto& p : result.left.patches) both.patches.push_back(p);
+    PlotPressure(scene, both, *o.plot);
+  }
+  for (const ContactResult* r : {&result.right, &result.left}) {
+    if (r->status != SolverStatus::kConverged) {
+      throw std::runtime_error(fmt::format("contact solve of the {} wheel ended with status '{}': {}",
+                                           r == &result.right ? "right" : "left",
+                                           ToString(r->status), r->message));
+    }
+  }
+}
+
 }  // namespace
 
 void SetupContact(CLI::App& app) {
   auto options = std::make_shared<ContactOptions>();
-  CLI::App* sub = app.add_subcommand("contact", "Normal contact of one wheel on one rail");
+  CLI::App* sub = app.add_subcommand(
+      "contact", "Contact of a wheel on its rail (or a wheelset on a track): normal, rolling, damage");
   sub->add_option("scene", options->scene_path, "Scene file (TOML); see `railwear init`")
       ->required();
   sub->add_option("--model", options->model, "Replace the scene's model kind")
@@ -74,6 +102,10 @@ void RunContact(const ContactOptions& o) {
   CheckOptions(o);
   Scene scene = LoadScene(o.scene_path);
   ApplyOverrides(o, &scene.problem.model);
+  if (scene.wheelset) {
+    RunWheelset(o, scene);
+    return;
+  }
   const ContactResult result = SolveContact(scene.problem);
 
   if (o.json) WriteOutput(*o.json, MakeContactJson(scene, result).dump(2) + "\n", "JSON");

@@ -70,6 +70,60 @@ void CheckFinite(const nlohmann::json& j, const std::string& where) {
   }
 }
 
+// Creep forces are those of the rail on the wheel: x along the rolling direction, y along the
+// patch's lateral arc (its s tangent), and the latter also as rail-frame (y, z) components.
+void AddRollingJson(const RollingPatch& r, nlohmann::json* j) {
+  const TangentialSolution& t = r.tangential;
+  (*j)["tangential_status"] = ToString(t.status);
+  (*j)["creep_force_N"] = {{"x", t.force_x_N}, {"y", t.force_s_N}};
+  (*j)["creep_force_yz_N"] = {{"y", t.force_s_yz_N.x()}, {"z", t.force_s_yz_N.y()}};
+  (*j)["spin_moment_Nmm"] = t.spin_moment_Nm * 1e3;
+  (*j)["creepage"] = {{"xi", r.creepage.xi},
+                      {"eta", r.creepage.eta},
+                      {"spin_per_mm", r.creepage.spin_per_m * 1e-3}};
+  (*j)["stick_area_mm2"] = t.stick_area_m2 * kToMm2;
+  (*j)["slip_area_mm2"] = t.slip_area_m2 * kToMm2;
+  (*j)["frictional_power_W"] = t.frictional_power_W;
+  if (r.damage) {
+    const PatchDamage& d = *r.damage;
+    (*j)["damage"] = {
+        {"t_gamma_J_per_m", d.t_gamma_N},
+        {"wlrm_rcf_damage_per_axle", d.wlrm_damage},
+        {"traction_coefficient", d.traction_coefficient},
+        {"fi_surf", d.fi_surf},
+        {"shakedown",
+         {{"load_factor_p0_over_k", d.shakedown.load_factor},
+          {"elastic_limit", d.shakedown.elastic_limit},
+          {"shakedown_limit", d.shakedown.shakedown_limit},
+          {"margin", d.shakedown.margin},
+          {"regime", ToString(d.shakedown.regime)}}}};
+  }
+}
+
+std::string RollingTable(const ContactResult& r) {
+  std::string out = fmt::format("{:>5} {:>10} {:>10} {:>11} {:>10} {:>10} {:>12} {:>9} {:>9} {:>9}\n",
+                                "patch", "Fx_N", "Fy_N", "Mspin_Nmm", "xi", "eta", "phi_per_mm",
+                                "stick_mm2", "slip_mm2", "power_W");
+  for (size_t k = 0; k < r.patches.size(); ++k) {
+    if (!r.patches[k].rolling) continue;
+    const RollingPatch& rp = *r.patches[k].rolling;
+    const TangentialSolution& t = rp.tangential;
+    out += fmt::format("{:>5} {:>10.1f} {:>10.1f} {:>11.1f} {:>10.6f} {:>10.6f} {:>12.7f} "
+                       "{:>9.2f} {:>9.2f} {:>9.1f}\n",
+                       k + 1, t.force_x_N, t.force_s_N, t.spin_moment_Nm * 1e3, rp.creepage.xi,
+                       rp.creepage.eta, rp.creepage.spin_per_m * 1e-3, t.stick_area_m2 * kToMm2,
+                       t.slip_area_m2 * kToMm2, t.frictional_power_W);
+    if (rp.damage) {
+      const PatchDamage& d = *rp.damage;
+      out += fmt::format("      damage: T-gamma {:.1f} J/m, WLRM RCF {:.3g} per axle, FI_surf "
+                         "{:.3f}, p0/k {:.2f} at mu_eff {:.3f} ({}, margin {:.2f})\n",
+                         d.t_gamma_N, d.wlrm_damage, d.fi_surf, d.shakedown.load_factor,
+                         d.traction_coefficient, ToString(d.shakedown.regime), d.shakedown.margin);
+    }
+  }
+  return out;
+}
+
 nlohmann::json PatchJson(const PatchResult& p) {
   nlohmann::json j;
   j["area_mm2"] = p.area_m2 * kToMm2;
@@ -91,6 +145,7 @@ nlohmann::json PatchJson(const PatchResult& p) {
     j["hertz"] = {{"semi_axis_x_mm", p.hertz->semi_axis_x_m * kToMm},
                   {"semi_axis_y_mm", p.hertz->semi_axis_y_m * kToMm}};
   }
+  if (p.rolling) AddRollingJson(*p.rolling, &j);
   return j;
 }
 
@@ -161,6 +216,9 @@ std::string FormatSummary(const Scene& scene, const ContactResult& r) {
                      r.lateral_force_N);
   out += fmt::format("patches     {}\n", r.patches.size());
   if (!r.patches.empty()) out += fmt::format("\n{}", PatchTable(r));
+  if (!r.patches.empty() && r.patches[0].rolling) {
+    out += fmt::format("\nrolling (creep forces of the rail on the wheel)\n{}", RollingTable(r));
+  }
   return out;
 }
 
@@ -186,14 +244,59 @@ nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r) {
   return j;
 }
 
-void WritePressureCsv(const ContactResult& r, std::ostream& out) {
-  out << "patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa\n";
+void WritePressureCsv(const ContactResult& r, std::ostream& out, const std::string& wheel,
+                      bool header) {
+  const bool rolling = !r.patches.empty() && r.patches[0].rolling.has_value();
+  const std::string lead = wheel.empty() ? "" : wheel + ",";
+  if (header) {
+    out << (wheel.empty() ? "" : "wheel,") << "patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa"
+        << (rolling ? ",qx_MPa,qs_MPa,slip_x_m_s,slip_s_m_s,stick\n" : "\n");
+  }
   for (size_t k = 0; k < r.patches.size(); ++k) {
-    for (const auto& s : PressureSamples(r.patches[k], static_cast<int>(k) + 1)) {
-      out << fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n", s.patch, s.ix, s.js,
+    const PatchResult& patch = r.patches[k];
+    for (const auto& s : PressureSamples(patch, static_cast<int>(k) + 1)) {
+      out << lead
+          << fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}", s.patch, s.ix, s.js,
                          s.x_mm, s.s_mm, s.y_mm, s.z_mm, s.p_MPa);
+      if (rolling && patch.rolling) {
+        // Traction, slip velocity and stick (1) / slip (0) / outside (-1) per cell.
+        const TangentialSolution& t = patch.rolling->tangential;
+        const int c = patch.grid.Index(s.ix, s.js);
+        out << fmt::format(",{:.6f},{:.6f},{:.6g},{:.6g},{}", t.traction_x_Pa[c] * kToMPa,
+                           t.traction_s_Pa[c] * kToMPa, t.slip_x_m_s[c], t.slip_s_m_s[c],
+                           t.stick[c]);
+      }
+      out << "\n";
     }
   }
+}
+
+nlohmann::json MakeWheelsetJson(const Scene& scene, const WheelsetResult& r) {
+  nlohmann::json j;
+  const bool ok = r.right.status == SolverStatus::kConverged &&
+                  r.left.status == SolverStatus::kConverged;
+  j["status"] = ok ? "converged" : (r.right.status != SolverStatus::kConverged
+                                        ? ToString(r.right.status)
+                                        : ToString(r.left.status));
+  j["scene"] = scene.name;
+  j["scene_file"] = scene.path;
+  j["placement"] = {{"right_lateral_shift_mm", r.placement.right.lateral_shift_m * kToMm},
+                    {"left_lateral_shift_mm", r.placement.left.lateral_shift_m * kToMm},
+                    {"right_roll_rad", r.placement.right.roll_rad},
+                    {"left_roll_rad", r.placement.left.roll_rad},
+                    {"rail_gauge_point_y_mm", r.placement.rail_gauge_point_y_m * kToMm}};
+  j["wheels"] = {{"right", MakeContactJson(scene, r.right)},
+                 {"left", MakeContactJson(scene, r.left)}};
+  return j;
+}
+
+std::string FormatWheelsetSummary(const Scene& scene, const WheelsetResult& r) {
+  return fmt::format(
+      "wheelset    lateral shift in each rail's frame: right {:.3f} mm, left {:.3f} mm\n\n"
+      "== right wheel (right rail's frame) ==\n{}\n== left wheel (left rail's own frame, y "
+      "toward its field side) ==\n{}",
+      r.placement.right.lateral_shift_m * kToMm, r.placement.left.lateral_shift_m * kToMm,
+      FormatSummary(scene, r.right), FormatSummary(scene, r.left));
 }
 
 }  // namespace railwear::app

@@ -10,6 +10,7 @@
 
 #include "app/scene.h"
 #include "core/contact/contact_solver.h"
+#include "core/contact/wheelset_contact.h"
 
 namespace railwear::app {
 
@@ -36,7 +37,16 @@ std::string FormatSummary(const Scene& scene, const ContactResult& result);
 // the key when a number is NaN or infinite, so that no such value reaches a file.
 nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& result);
 
-// Header "patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa", then one row per sample of every patch.
-void WritePressureCsv(const ContactResult& result, std::ostream& out);
+// Header "patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa" (plus traction, slip velocity and stick when
+// the result has rolling contact), then one row per sample of every patch. With a `wheel`
+// label every row starts with it, under a leading "wheel" column; `header` = false leaves the
+// header out (for the second wheel of a wheelset).
+void WritePressureCsv(const ContactResult& result, std::ostream& out, const std::string& wheel = "",
+                      bool header = true);
+
+// A wheelset: { status, scene, scene_file, placement: {...}, wheels: {left: {...}, right: {...}} }
+// with each wheel's object as MakeContactJson gives it. Throws as MakeContactJson does.
+nlohmann::json MakeWheelsetJson(const Scene& scene, const WheelsetResult& result);
+std::string FormatWheelsetSummary(const Scene& scene, const WheelsetResult& result);
 
 }  // namespace railwear::app

@@ -1,6 +1,7 @@
 // Scene files: TOML text -> validated Scene with a ready ContactProblem (DESIGN.md §3).
 #include "app/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -31,13 +32,13 @@ std::string ReadTextFile(const std::string& path, const std::string& what) {
   return os.str();
 }
 
-// [track], [wheelset], [wear], [[traffic]] describe runs this version cannot do yet.
+// [wear] and [[traffic]] describe wear runs, which this version cannot do yet.
 void RejectLaterTables(const Fields& top) {
-  for (const std::string_view key : {"track", "wheelset", "wear", "traffic"}) {
+  for (const std::string_view key : {"wear", "traffic"}) {
     if (top.Has(key)) {
       throw InputError(fmt::format(
-          "{}: expected single-wheel contact tables only: [{}] belongs to rolling contact / wear "
-          "runs, which this version of railwear does not provide yet",
+          "{}: expected contact tables only: [{}] belongs to worn-profile evolution runs, which "
+          "this version of railwear does not provide yet",
           FieldPrefix(top.file(), *top.Node(key), key), key));
     }
   }
@@ -68,10 +69,20 @@ void ReadSceneTable(const Fields& top, Scene* scene) {
     bool known = false;
     for (const auto& k : kKnownEffects) known = known || *name == k;
     if (!known) throw InputError(FieldError(t->file(), e, key, "one of " + JoinQuoted(kKnownEffects)));
+    if (*name == "tangential" || *name == "damage") {
+      scene->tangential = true;  // damage needs the creep forces and slip of the tangential stage
+      scene->damage = scene->damage || *name == "damage";
+      scene->effects.push_back(*name);
+      continue;
+    }
     throw InputError(fmt::format(
-        "{}: expected 'normal': effect '{}' is not available in this version of railwear "
-        "(only 'normal')",
+        "{}: expected 'normal', 'tangential' or 'damage': effect '{}' is not available in this "
+        "version of railwear",
         FieldPrefix(t->file(), e, key), *name));
+  }
+  if (scene->damage && std::find(scene->effects.begin(), scene->effects.end(), "tangential") ==
+                           scene->effects.end()) {
+    scene->effects.insert(scene->effects.begin() + 1, "tangential");  // implied by damage
   }
 }
 
@@ -165,7 +176,9 @@ void ReadModel(const Fields& top, Scene* scene) {
     model.accuracy = *AccuracyPresetFromString(*a);
   }
   ReadCellSize(*t, &model);
-  if (const auto tan = t->Choice("tangential", {"fastsim", "exact"})) scene->tangential = *tan;
+  if (const auto tan = t->Choice("tangential", {"fastsim", "exact"})) {
+    scene->tangential_method = *tan;
+  }
   ReadInfluenceConstants(*t, scene->path, scene);
 }
 
@@ -247,16 +260,40 @@ void ReadRail(const Fields& top, Scene* scene) {
   scene->problem.rail_profile = std::move(p);
 }
 
-void ReadLoad(const Fields& top, Scene* scene) {
-  const Fields t = RequiredTable(top, "load", "a [load] table with vertical_N or approach_mm");
-  if (t.Has("creepage")) {
-    throw InputError(fmt::format(
-        "{}: expected no creepage: prescribed creepages belong to rolling contact runs, which "
-        "this version of railwear does not provide yet",
-        FieldPrefix(t.file(), *t.Node("creepage"), t.KeyName("creepage"))));
+// [load] creepage = { xi, eta, spin_per_mm }: prescribed creepages instead of kinematics.
+Creepage ReadCreepage(const Fields& load) {
+  const auto t = load.Table("creepage", "an inline table { xi, eta, spin_per_mm }");
+  t->AllowOnly({"xi", "eta", "spin_per_mm"});
+  Creepage c;
+  c.xi = t->Number("xi", InRange(-1.0, 1.0)).value_or(0.0);
+  c.eta = t->Number("eta", InRange(-1.0, 1.0)).value_or(0.0);
+  c.spin_per_m = t->Number("spin_per_mm", AnyFinite()).value_or(0.0) / kMm;
+  return c;
+}
+
+// The rolling keys shared by the single wheel ([load]) and the wheelset ([wheelset]).
+void ReadMotion(const Fields& t, Scene* scene) {
+  if (const auto v = t.Number("speed_m_s", AtLeast(0.0))) scene->speed_m_s = *v;
+  if (const auto yaw = t.Number("yaw_mrad", InRange(-kMaxRoll_rad * 1e3, kMaxRoll_rad * 1e3))) {
+    scene->motion.yaw_rad = *yaw * 1e-3;
   }
+  scene->motion.pitch_velocity_rad_s = t.Number("pitch_velocity_rad_s", AnyFinite());
+}
+
+void ReadLoad(const Fields& top, Scene* scene) {
+  const bool wheelset = top.Has("wheelset");
+  if (wheelset) {
+    // With a wheelset, [load] is optional and holds only what is not placement.
+    const auto t = top.Table("load", "a table");
+    if (!t) return;
+    t->AllowOnly({"friction", "creepage"});
+    scene->friction = t->Number("friction", OpenClosed(0.0, 2.0));
+    if (t->Has("creepage")) scene->creepage = ReadCreepage(*t);
+    return;
+  }
+  const Fields t = RequiredTable(top, "load", "a [load] table with vertical_N or approach_mm");
   t.AllowOnly({"vertical_N", "approach_mm", "lateral_shift_mm", "roll_rad", "friction",
-               "speed_m_s"});
+               "speed_m_s", "yaw_mrad", "pitch_velocity_rad_s", "creepage"});
   ContactLoad& load = scene->problem.load;
   load.vertical_force_N = t.Number("vertical_N", Positive());
   if (const auto a = t.Number("approach_mm", Positive())) load.approach_m = *a * kMm;
@@ -270,7 +307,91 @@ void ReadLoad(const Fields& top, Scene* scene) {
   placement.lateral_shift_m = t.Number("lateral_shift_mm", AnyFinite()).value_or(0.0) * kMm;
   placement.roll_rad = t.Number("roll_rad", InRange(-kMaxRoll_rad, kMaxRoll_rad)).value_or(0.0);
   scene->friction = t.Number("friction", OpenClosed(0.0, 2.0));
-  scene->speed_m_s = t.Number("speed_m_s", AtLeast(0.0));
+  ReadMotion(t, scene);
+  if (t.Has("creepage")) {
+    if (t.Has("yaw_mrad") || t.Has("pitch_velocity_rad_s")) {
+      t.Fail("creepage",
+             "either prescribed creepages or the wheel's motion (yaw_mrad, "
+             "pitch_velocity_rad_s), not both");
+    }
+    scene->creepage = ReadCreepage(t);
+  }
+}
+
+// [track] and [wheelset]: a wheelset on a track (DESIGN.md §3) instead of the single wheel.
+void ReadWheelset(const Fields& top, Scene* scene) {
+  const auto track = top.Table("track", "a table");
+  const auto ws = top.Table("wheelset", "a table");
+  if (track && !ws) {
+    track->Fail("gauge_mm", "a [wheelset] table next to [track] (a track alone places nothing)");
+  }
+  if (!ws) return;
+  TrackSpec tr;
+  if (track) {
+    track->AllowOnly({"gauge_mm", "gauge_height_mm"});
+    tr.gauge_m = track->Number("gauge_mm", Positive()).value_or(tr.gauge_m / kMm) * kMm;
+    tr.gauge_height_m =
+        track->Number("gauge_height_mm", AtLeast(0.0)).value_or(tr.gauge_height_m / kMm) * kMm;
+  }
+  ws->AllowOnly({"flange_back_distance_mm", "flange_back_position_mm", "lateral_displacement_mm",
+                 "yaw_mrad", "roll_rad", "vertical_load_per_wheel_N", "speed_m_s",
+                 "pitch_velocity_rad_s"});
+  WheelsetSpec w;
+  w.flange_back_distance_m =
+      ws->Number("flange_back_distance_mm", Positive()).value_or(w.flange_back_distance_m / kMm) *
+      kMm;
+  w.flange_back_position_m =
+      ws->Number("flange_back_position_mm", AnyFinite()).value_or(w.flange_back_position_m / kMm) *
+      kMm;
+  w.lateral_displacement_m = ws->Number("lateral_displacement_mm", AnyFinite()).value_or(0.0) * kMm;
+  w.roll_rad = ws->Number("roll_rad", InRange(-kMaxRoll_rad, kMaxRoll_rad)).value_or(0.0);
+  w.rolling_radius_m = scene->problem.placement.rolling_radius_m;
+  ReadMotion(*ws, scene);
+  w.yaw_rad = scene->motion.yaw_rad;
+  if (scene->creepage && (ws->Has("yaw_mrad") || ws->Has("pitch_velocity_rad_s"))) {
+    ws->Fail(ws->Has("yaw_mrad") ? "yaw_mrad" : "pitch_velocity_rad_s",
+             "no wheelset motion next to prescribed creepages in [load]");
+  }
+  scene->problem.load = {};
+  scene->problem.load.vertical_force_N = ws->RequiredNumber("vertical_load_per_wheel_N", Positive());
+  scene->track = tr;
+  scene->wheelset = w;
+}
+
+// Rolling contact needs a friction coefficient and a speed, and a model with a grid.
+void CheckRolling(const Fields& top, const Scene& scene) {
+  if (!scene.tangential) return;
+  if (const auto model = top.Table("model", "a table")) {
+    if (scene.tangential_method == "exact") {
+      model->Fail("tangential",
+                  "\"fastsim\": the exact steady-rolling solver is not available in this "
+                  "version of railwear");
+    }
+    if (scene.problem.model.kind == ModelKind::kHertz) {
+      model->Fail("kind",
+                  "\"halfspace\" or \"conformal\" with the tangential effect (rolling contact "
+                  "is solved on the patch grid, which the analytic Hertz model has not)");
+    }
+  }
+  if (scene.damage && !(scene.problem.rail_material.shear_yield_Pa > 0)) {
+    throw InputError(fmt::format(
+        "{}:{}: key 'materials.rail.shear_yield_MPa' is missing: expected the rail's shear yield "
+        "stress k in MPa for the damage effect (FI_surf and the shakedown map need it)",
+        top.file(), top.Has("materials") ? LineOf(*top.Node("materials")) : 1));
+  }
+  const std::string_view where = scene.wheelset ? "wheelset" : "load";
+  if (!scene.friction) {
+    throw InputError(fmt::format(
+        "{}:{}: key 'load.friction' is missing: expected a friction coefficient in (0, 2] for "
+        "the tangential effect",
+        top.file(), top.Has("load") ? LineOf(*top.Node("load")) : 1));
+  }
+  if (!scene.speed_m_s || !(*scene.speed_m_s > 0)) {
+    throw InputError(fmt::format(
+        "{}:{}: key '{}.speed_m_s' {}: expected a speed > 0 m/s for the tangential effect",
+        top.file(), top.Has(where) ? LineOf(*top.Node(where)) : 1, where,
+        scene.speed_m_s ? "= 0" : "is missing"));
+  }
 }
 
 }  // namespace
@@ -286,7 +407,7 @@ Scene ParseScene(const std::string& text, const std::string& path) {
   const toml::table root = ParseToml(text, path);
   const Fields top(root, "", path);
   RejectLaterTables(top);
-  top.AllowOnly({"scene", "model", "materials", "wheel", "rail", "load"});
+  top.AllowOnly({"scene", "model", "materials", "wheel", "rail", "load", "track", "wheelset"});
   Scene scene;
   scene.path = path;
   scene.text = text;
@@ -296,6 +417,18 @@ Scene ParseScene(const std::string& text, const std::string& path) {
   ReadLoad(top, &scene);
   ReadWheel(top, &scene);
   ReadRail(top, &scene);
+  ReadWheelset(top, &scene);
+  CheckRolling(top, scene);
+  if (scene.speed_m_s) scene.motion.speed_m_s = *scene.speed_m_s;
+  if (scene.tangential) {
+    RollingOptions rolling;
+    rolling.method = *TangentialMethodFromString(scene.tangential_method);
+    rolling.motion = scene.motion;
+    rolling.creepage = scene.creepage;
+    rolling.friction = *scene.friction;
+    rolling.damage = scene.damage;
+    scene.problem.rolling = rolling;
+  }
   return scene;
 }
 

@@ -11,25 +11,39 @@
 #include <vector>
 
 #include "core/contact/contact_solver.h"
+#include "core/contact/kinematics.h"
+#include "core/geometry/wheelset.h"
 
 namespace railwear::app {
 
 struct Scene {
   std::string path;  // as given ("<text>" for ParseScene without a file)
   std::string name;  // [scene] name; defaults to the file's stem
-  std::vector<std::string> effects;  // always contains "normal" (the only one available now)
+  std::vector<std::string> effects;  // always contains "normal"; as listed, in order
   std::string text;  // the original TOML text, stored with results so a run can be repeated
 
   std::string wheel_profile_spec;  // [wheel] profile, as written
   std::string rail_profile_spec;   // [rail] profile, as written
   std::string cant = "0";          // [rail] cant, as written ("1:40")
   double cant_ratio = 0.0;         // 1:40 -> 0.025
-  std::string tangential = "fastsim";  // [model] tangential: "fastsim" | "exact"
+  std::string tangential_method = "fastsim";  // [model] tangential: "fastsim" | "exact"
   // Where the influence constants came from: "default", "inline" or the resolved file path.
   std::string influence_constants_source = "default";
 
   std::optional<double> friction;   // [load] friction, in (0, 2]; used by rolling contact
-  std::optional<double> speed_m_s;  // [load] speed_m_s, >= 0; used by rolling contact
+  std::optional<double> speed_m_s;  // [load] or [wheelset] speed_m_s; used by rolling contact
+
+  // Effects beyond "normal" (DESIGN.md §3). "damage" implies "tangential".
+  bool tangential = false;
+  bool damage = false;
+  // Rolling: the wheel's motion (speed, pitch velocity, yaw), or prescribed creepages instead.
+  WheelMotion motion;
+  std::optional<Creepage> creepage;
+
+  // A wheelset on a track ([track] + [wheelset]) instead of the single wheel of [load]; then
+  // `problem` holds the right wheel's placement and the left one is its mirror image.
+  std::optional<TrackSpec> track;
+  std::optional<WheelsetSpec> wheelset;
 
   ContactProblem problem;  // profiles loaded (cant, mirroring applied), SI units throughout
 };

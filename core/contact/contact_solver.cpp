@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "core/contact/fastsim.h"
 #include "core/contact/grid_resolution.h"
 #include "core/contact/influence_operator.h"
 #include "core/geometry/patch_builder.h"
@@ -263,7 +264,52 @@ PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
   return r;
 }
 
+// The rolling stage on every numerical patch: rigid slip per cell (from the wheel's motion or
+// prescribed creepages), its patch average, and the tangential solution.
+void SolveRolling(const ContactProblem& problem, const WheelRailGeometry& geom,
+                  ContactResult* result) {
+  const RollingOptions& o = *problem.rolling;
+  const CombinedElastic elastic = CombineElastic(problem.wheel_material, problem.rail_material);
+  for (PatchResult& patch : result->patches) {
+    const RollingInput in =
+        o.creepage ? RigidSlipFromCreepage(patch.grid, patch.pressure_Pa, *o.creepage,
+                                           o.motion.speed_m_s, o.friction)
+                   : RigidSlipFromMotion(geom, patch.grid, o.motion, o.friction);
+    RollingPatch rolling;
+    rolling.creepage = AverageCreepage(patch.grid, patch.pressure_Pa, in);
+    FastsimOptions fo;
+    fo.shear_modulus_Pa = elastic.shear_modulus_Pa;
+    fo.poisson_ratio = elastic.poisson_ratio;
+    FastsimPatch used;
+    rolling.tangential = SolveFastsim(patch.grid, patch.pressure_Pa, in, fo, &used);
+    rolling.semi_axis_x_m = used.semi_axis_x_m;
+    rolling.semi_axis_s_m = used.semi_axis_s_m;
+    if (o.damage && rolling.tangential.status == SolverStatus::kConverged) {
+      PatchDamageInput d;
+      d.force_x_N = rolling.tangential.force_x_N;
+      d.force_y_N = rolling.tangential.force_s_N;
+      d.normal_force_N = patch.normal_force_N;
+      d.xi = rolling.creepage.xi;
+      d.eta = rolling.creepage.eta;
+      d.semi_axis_x_m = used.semi_axis_x_m;
+      d.semi_axis_y_m = used.semi_axis_s_m;
+      d.shear_yield_Pa = problem.rail_material.shear_yield_Pa;
+      rolling.damage = CalcPatchDamage(d);
+    }
+    patch.rolling = std::move(rolling);
+  }
+}
+
 }  // namespace
+
+std::string_view ToString(TangentialMethod v) {
+  return v == TangentialMethod::kFastsim ? "fastsim" : "exact";
+}
+std::optional<TangentialMethod> TangentialMethodFromString(std::string_view s) {
+  if (s == "fastsim") return TangentialMethod::kFastsim;
+  if (s == "exact") return TangentialMethod::kExact;
+  return std::nullopt;
+}
 
 ContactResult SolveContact(const ContactProblem& problem) {
   const auto t_start = Clock::now();
@@ -308,6 +354,25 @@ ContactResult SolveContact(const ContactProblem& problem) {
     return finish(result);
   }
 
+  if (problem.rolling && problem.model.kind == ModelKind::kHertz) {
+    throw InputError(
+        "rolling contact needs a patch grid: use the halfspace or conformal model, not hertz");
+  }
+  if (problem.rolling && problem.rolling->method == TangentialMethod::kExact) {
+    throw InputError("tangential = \"exact\": the exact steady-rolling solver is not available in "
+                     "this version of railwear; expected \"fastsim\"");
+  }
+  if (problem.rolling && problem.rolling->damage &&
+      !(problem.rail_material.shear_yield_Pa > 0)) {
+    throw InputError(
+        "materials.rail.shear_yield_MPa is missing: expected the rail's shear yield stress k for "
+        "the damage effect (FI_surf and the shakedown map need it)");
+  }
+  if (problem.rolling && !(problem.rolling->motion.speed_m_s > 0 && problem.rolling->friction > 0)) {
+    throw InputError(fmt::format(
+        "rolling contact: speed = {} m/s and friction = {}: expected both > 0",
+        problem.rolling->motion.speed_m_s, problem.rolling->friction));
+  }
   const double estar = ContactModulus(problem.wheel_material, problem.rail_material);
   if (problem.model.kind == ModelKind::kHertz) {
     return finish(SolveHertzModel(geom, problem, estar, std::move(result), Clock::now()));
@@ -466,6 +531,11 @@ ContactResult SolveContact(const ContactProblem& problem) {
     if (grow) {
       result.message += (result.message.empty() ? "" : "; ");
       result.message += "pressure reaches the edge of the potential contact area";
+    }
+    if (problem.rolling && result.status == SolverStatus::kConverged) {
+      t0 = Clock::now();
+      SolveRolling(problem, geom, &result);
+      AddStage(&result.stages, "tangential", SecondsSince(t0));
     }
     return finish(result);
   }

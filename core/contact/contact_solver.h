@@ -9,8 +9,11 @@
 #include <Eigen/Core>
 
 #include "core/contact/contact_types.h"
+#include "core/contact/damage.h"
 #include "core/contact/hertz.h"
+#include "core/contact/kinematics.h"
 #include "core/contact/normal_solver.h"
+#include "core/contact/tangential_types.h"
 #include "core/contact/patch_grid.h"
 #include "core/profile/profile.h"
 
@@ -29,6 +32,23 @@ struct ContactLoad {
   std::optional<double> approach_m;        // vertical approach from first contact
 };
 
+// Which tangential solver a rolling contact uses.
+enum class TangentialMethod {
+  kFastsim,  // Kalker's simplified theory, strip by strip (core/contact/fastsim.h)
+  kExact,    // steady rolling with half-space tangential influence (tangential_exact.h)
+};
+std::string_view ToString(TangentialMethod v);
+std::optional<TangentialMethod> TangentialMethodFromString(std::string_view s);
+
+// The rolling stage (the "tangential" effect): only run when a problem carries these options.
+struct RollingOptions {
+  TangentialMethod method = TangentialMethod::kFastsim;
+  WheelMotion motion;                 // the wheel's motion, giving the rigid slip per cell ...
+  std::optional<Creepage> creepage;   // ... or prescribed creepages about each patch's origin
+  double friction = 0.3;              // mu > 0
+  bool damage = false;  // the "damage" effect: T-gamma, WLRM RCF damage, FI_surf, shakedown
+};
+
 struct ContactProblem {
   Profile wheel_profile;  // in the wheel profile frame
   Profile rail_profile;   // in the rail profile frame (cant already applied)
@@ -38,6 +58,15 @@ struct ContactProblem {
   ContactLoad load;
   ModelOptions model;
   NormalSolverOptions solver;
+  std::optional<RollingOptions> rolling;  // absent: normal contact only, nothing else computed
+};
+
+// Rolling-contact results of one patch.
+struct RollingPatch {
+  Creepage creepage;  // pressure-weighted patch average of the rigid creepage (kinematics.h)
+  TangentialSolution tangential;
+  double semi_axis_x_m = 0.0, semi_axis_s_m = 0.0;  // of the contact, as the solver used them
+  std::optional<PatchDamage> damage;                // when the damage effect was asked for
 };
 
 struct PatchResult {
@@ -57,6 +86,7 @@ struct PatchResult {
   PatchGrid grid;               // empty for the Hertz model
   Eigen::VectorXd pressure_Pa;  // per grid cell
   std::optional<HertzSolution> hertz;  // the Hertz model's ellipse
+  std::optional<RollingPatch> rolling;  // when the problem asked for rolling contact
 };
 
 struct StageTime {
@@ -79,7 +109,9 @@ struct ContactResult {
   std::vector<StageTime> stages;
 };
 
-// Throws InputError for inconsistent input (both or neither load given, non-positive radius).
+// Throws InputError for inconsistent input (both or neither load given, non-positive radius,
+// rolling contact asked of the Hertz model, which has no grid; damage without the rail's shear
+// yield stress).
 ContactResult SolveContact(const ContactProblem& problem);
 
 }  // namespace railwear

@@ -41,25 +41,7 @@ RollingInput RigidSlipFromMotion(const WheelRailGeometry& geom, const PatchGrid&
   return in;
 }
 
-RollingInput RigidSlipFromCreepage(const PatchGrid& grid, const Creepage& c, double speed_m_s,
-                                   double friction) {
-  RollingInput in;
-  in.speed_m_s = speed_m_s;
-  in.friction = friction;
-  in.creep_x.resize(grid.cells());
-  in.creep_s.resize(grid.cells());
-  for (int j = 0; j < grid.ns; ++j) {
-    for (int i = 0; i < grid.nx; ++i) {
-      in.creep_x[grid.Index(i, j)] = c.xi - c.spin_per_m * grid.S(j);
-      in.creep_s[grid.Index(i, j)] = c.eta + c.spin_per_m * grid.X(i);
-    }
-  }
-  return in;
-}
-
-Creepage AverageCreepage(const PatchGrid& grid, const Eigen::VectorXd& weight,
-                         const RollingInput& in) {
-  // Minimise sum w [(w_x - xi + phi s')^2 + (w_s - eta - phi x')^2], x' = x - x_c, s' = s - s_c.
+Eigen::Vector2d PressureCentre(const PatchGrid& grid, const Eigen::VectorXd& weight) {
   double W = 0.0, xc = 0.0, sc = 0.0;
   for (int j = 0; j < grid.ns; ++j) {
     for (int i = 0; i < grid.nx; ++i) {
@@ -69,10 +51,33 @@ Creepage AverageCreepage(const PatchGrid& grid, const Eigen::VectorXd& weight,
       sc += w * grid.S(j);
     }
   }
+  return W > 0 ? Eigen::Vector2d(xc / W, sc / W) : Eigen::Vector2d::Zero();
+}
+
+RollingInput RigidSlipFromCreepage(const PatchGrid& grid, const Eigen::VectorXd& pressure,
+                                   const Creepage& c, double speed_m_s, double friction) {
+  const Eigen::Vector2d centre = PressureCentre(grid, pressure);
+  RollingInput in;
+  in.speed_m_s = speed_m_s;
+  in.friction = friction;
+  in.creep_x.resize(grid.cells());
+  in.creep_s.resize(grid.cells());
+  for (int j = 0; j < grid.ns; ++j) {
+    for (int i = 0; i < grid.nx; ++i) {
+      in.creep_x[grid.Index(i, j)] = c.xi - c.spin_per_m * (grid.S(j) - centre.y());
+      in.creep_s[grid.Index(i, j)] = c.eta + c.spin_per_m * (grid.X(i) - centre.x());
+    }
+  }
+  return in;
+}
+
+Creepage AverageCreepage(const PatchGrid& grid, const Eigen::VectorXd& weight,
+                         const RollingInput& in) {
+  // Minimise sum w [(w_x - xi + phi s')^2 + (w_s - eta - phi x')^2], x' = x - x_c, s' = s - s_c.
   Creepage c;
-  if (W <= 0) return c;
-  xc /= W;
-  sc /= W;
+  if (!(weight.maxCoeff() > 0)) return c;
+  const Eigen::Vector2d centre = PressureCentre(grid, weight);
+  const double xc = centre.x(), sc = centre.y();
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   for (int j = 0; j < grid.ns; ++j) {

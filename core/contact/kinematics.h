@@ -30,7 +30,8 @@ struct WheelMotion {
   double yaw_rad = 0.0;
 };
 
-// Kalker-style creepages: w_x = xi - phi (s - s_c), w_s = eta + phi (x - x_c).
+// Kalker-style creepages: w_x = xi - phi (s - s_c), w_s = eta + phi (x - x_c), about the
+// patch's pressure centre (x_c, s_c).
 struct Creepage {
   double xi = 0.0;
   double eta = 0.0;
@@ -41,10 +42,14 @@ struct Creepage {
 RollingInput RigidSlipFromMotion(const WheelRailGeometry& geometry, const PatchGrid& grid,
                                  const WheelMotion& motion, double friction);
 
-// Per-cell creepage from prescribed creepages about the patch point (x, s) = (0, 0) (the first
-// contact point of the patch).
-RollingInput RigidSlipFromCreepage(const PatchGrid& grid, const Creepage& creepage,
-                                   double speed_m_s, double friction);
+// Per-cell creepage from prescribed creepages about the pressure centre of the patch (the same
+// point AverageCreepage fits about, so that a fitted average prescribed back gives the same
+// constant field): w_x = xi - phi (s - s_c), w_s = eta + phi (x - x_c).
+RollingInput RigidSlipFromCreepage(const PatchGrid& grid, const Eigen::VectorXd& pressure,
+                                   const Creepage& creepage, double speed_m_s, double friction);
+
+// Pressure-weighted centre (x_c, s_c) of a patch [m]; (0, 0) when nothing is in contact.
+Eigen::Vector2d PressureCentre(const PatchGrid& grid, const Eigen::VectorXd& weight);
 
 // Patch-average creepages: the least-squares fit of (xi, eta, phi) to the per-cell creepage
 // over the cells with positive weight (pressure), about the weighted centre (x_c, s_c).

@@ -3,8 +3,8 @@
 // Track frame T (core/notation.md): x forward, Y lateral positive to the right, z down, origin
 // at the track centre line. The right rail's profile frame has y = Y - Y_right (toward its field
 // side); the left rail is the mirror image: its profile frame has y = -(Y - Y_left), so both
-// rails, and both wheels, are described with the same (right-hand) profiles, the left ones
-// mirrored. Gauge is measured between the gauge faces at `gauge_height` below the top of rail;
+// rails, and both wheels, are described with the same (right-hand) profiles: in the track the
+// left ones are mirror images, in their own frames they are the same curves. Gauge is measured between the gauge faces at `gauge_height` below the top of rail;
 // the flange backs of the wheels are `flange_back_distance` apart when the wheelset is centred.
 #pragma once
 
@@ -31,7 +31,7 @@ struct WheelsetSpec {
 
 struct WheelsetPlacement {
   WheelPose right;  // in the right rail's profile frame
-  WheelPose left;   // in the left (mirrored) rail's profile frame
+  WheelPose left;   // in the left rail's own profile frame (y toward its field side)
   double right_rail_origin_Y_m = 0.0;  // Y of the right rail profile's origin
   double rail_gauge_point_y_m = 0.0;   // gauge point in the rail profile frame (negative)
 };
@@ -41,8 +41,8 @@ struct WheelsetPlacement {
 // depth on its gauge side.
 Eigen::Vector2d RailGaugePoint(const Profile& rail, double gauge_height_m);
 
-// Places both wheels. `wheel` and `rail` are the right-hand profiles; the left ones are their
-// mirror images (Profile::Mirrored), for which `left` holds the pose.
+// Places both wheels. `rail` is the right-hand rail profile; `left` holds the left wheel's pose
+// in the left rail's own frame, where the same profiles describe the mirrored pair.
 WheelsetPlacement PlaceWheelset(const Profile& rail, const TrackSpec& track,
                                 const WheelsetSpec& wheelset);
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -259,6 +260,65 @@ TEST_F(CliTest, GaugeCornerExampleRunsWithAllThreeModels) {
   }
   EXPECT_LT(double(r[2]["total"]["area_mm2"]), double(r[1]["total"]["area_mm2"]));
   EXPECT_GT(double(r[2]["total"]["p_max_MPa"]), double(r[1]["total"]["p_max_MPa"]));
+}
+
+TEST_F(CliTest, RollingContactReportsCreepForcesSlipAndDamage) {
+  // Issue 3: the tangential and damage effects add creep forces, spin moment, creepages, stick
+  // and slip areas, frictional power and the damage block to each patch; --csv adds traction,
+  // slip velocity and stick per cell.
+  std::string scene = R"(
+[scene]
+effects = ["tangential", "damage"]
+[model]
+kind = "conformal"
+accuracy = "draft"
+[materials]
+wheel = { E_MPa = 210000, nu = 0.28 }
+rail = { E_MPa = 210000, nu = 0.28, shear_yield_MPa = 350 }
+[wheel]
+profile = "builtin:S1002"
+rolling_radius_mm = 460
+[rail]
+profile = "builtin:UIC60"
+cant = "1:40"
+[load]
+vertical_N = 100000
+lateral_shift_mm = -4.0
+friction = 0.3
+speed_m_s = 20
+yaw_mrad = 5
+)";
+  Write("rolling.toml", scene);
+  const Outcome o = Run("contact rolling.toml --json - ");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  const auto& p = j["patches"][0];
+  for (const char* key : {"creep_force_N", "spin_moment_Nmm", "creepage", "stick_area_mm2",
+                          "slip_area_mm2", "frictional_power_W", "damage"}) {
+    EXPECT_TRUE(p.contains(key)) << key;
+  }
+  const double fx = p["creep_force_N"]["x"], fy = p["creep_force_N"]["y"];
+  EXPECT_LE(std::hypot(fx, fy), 0.3 * double(p["normal_force_N"]) * (1 + 1e-9));
+  EXPECT_NEAR(double(p["stick_area_mm2"]) + double(p["slip_area_mm2"]), double(p["area_mm2"]),
+              0.1 * double(p["area_mm2"]));  // cell count against the level-set area
+  for (const char* key : {"t_gamma_J_per_m", "wlrm_rcf_damage_per_axle", "fi_surf", "shakedown"}) {
+    EXPECT_TRUE(p["damage"].contains(key)) << key;
+  }
+  const Outcome csv = Run("contact rolling.toml --csv cells.csv");
+  ASSERT_EQ(csv.exit_code, 0) << csv.err;
+  std::ifstream in(dir_ / "cells.csv");
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa,qx_MPa,qs_MPa,slip_x_m_s,slip_s_m_s,stick");
+  // The rolling stage is refused where it cannot run, with the scene's file, line and key.
+  Write("exact.toml", std::string(scene).replace(scene.find("accuracy"), 0, "tangential = \"exact\"\n"));
+  const Outcome exact = Run("contact exact.toml");
+  EXPECT_EQ(exact.exit_code, 2);
+  EXPECT_TRUE(Contains(exact.err, "key 'model.tangential' = \"exact\""));
+  Write("nok.toml", std::string(scene).replace(scene.find(", shear_yield_MPa = 350"), 23, ""));
+  const Outcome nok = Run("contact nok.toml");
+  EXPECT_EQ(nok.exit_code, 2);
+  EXPECT_TRUE(Contains(nok.err, "key 'materials.rail.shear_yield_MPa' is missing"));
 }
 
 TEST_F(CliTest, ProfileShowJsonAndConvert) {

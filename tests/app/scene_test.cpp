@@ -84,7 +84,7 @@ TEST(SceneTest, MinimalSceneGetsDocumentedDefaults) {
   EXPECT_NEAR(*s.problem.load.vertical_force_N, 1e5, kTight);
   EXPECT_FALSE(s.problem.load.approach_m.has_value());
   EXPECT_FALSE(s.friction.has_value());
-  EXPECT_EQ(s.tangential, "fastsim");
+  EXPECT_EQ(s.tangential_method, "fastsim");
   EXPECT_EQ(s.wheel_profile_spec, "builtin:S1002");
   EXPECT_GE(s.problem.wheel_profile.size(), 4);
   EXPECT_GE(s.problem.rail_profile.size(), 4);
@@ -125,7 +125,7 @@ speed_m_s = 20
   EXPECT_EQ(s.problem.model.accuracy, AccuracyPreset::kDraft);
   EXPECT_NEAR(*s.problem.model.cell_dx_m, 0.25e-3, kTight);
   EXPECT_NEAR(*s.problem.model.cell_ds_m, 0.5e-3, kTight);
-  EXPECT_EQ(s.tangential, "exact");
+  EXPECT_EQ(s.tangential_method, "exact");
   EXPECT_EQ(s.influence_constants_source, "inline");
   EXPECT_DOUBLE_EQ(s.problem.model.constants.c_f, 0.7);
   EXPECT_DOUBLE_EQ(s.problem.model.constants.c_z, 1.0);  // default kept
@@ -297,29 +297,106 @@ TEST(SceneTest, SyntaxErrorGivesLineAndColumn) {
   EXPECT_TRUE(Contains(ErrorOf("[load]\nvertical_N = = 3\n"), "scene.toml:2:14: TOML syntax"));
 }
 
-TEST(SceneTest, OnlyNormalEffectIsAvailable) {
+TEST(SceneTest, EffectsTangentialAndDamageAreAvailableOthersNotYet) {
   const std::string text = std::string("[scene]\neffects = [\"normal\", \"wear\"]\n") + kMinimal;
   EXPECT_TRUE(Contains(ErrorOf(text),
-              "scene.toml:2: key 'scene.effects' = \"wear\": expected 'normal': effect "
-                        "'wear' is not available in this version of railwear (only 'normal')"));
+                       "scene.toml:2: key 'scene.effects' = \"wear\": expected 'normal', "
+                       "'tangential' or 'damage': effect 'wear' is not available in this "
+                       "version of railwear"));
   const std::string unknown = std::string("[scene]\neffects = [\"friction\"]\n") + kMinimal;
   EXPECT_TRUE(Contains(ErrorOf(unknown),
-              "key 'scene.effects' = \"friction\": expected one of 'normal', "
-                        "'tangential', 'coupling', 'wear', 'damage'"));
+                       "key 'scene.effects' = \"friction\": expected one of 'normal', "
+                       "'tangential', 'coupling', 'wear', 'damage'"));
+  // damage implies tangential; both need friction and speed.
+  const std::string rolling =
+      std::string("[scene]\neffects = [\"damage\"]\n[materials]\nwheel = { E_MPa = 210000, "
+                  "nu = 0.28 }\nrail = { E_MPa = 210000, nu = 0.28, shear_yield_MPa = 350 }\n") +
+      kMinimal + "friction = 0.3\nspeed_m_s = 20\n";
+  const Scene s = ParseScene(rolling, "scene.toml");
+  EXPECT_TRUE(s.tangential);
+  EXPECT_TRUE(s.damage);
+  EXPECT_EQ(s.effects, (std::vector<std::string>{"normal", "tangential", "damage"}));
+  EXPECT_DOUBLE_EQ(s.motion.speed_m_s, 20.0);
+  EXPECT_FALSE(s.motion.pitch_velocity_rad_s.has_value());  // pure rolling
 }
 
-TEST(SceneTest, RollingContactAndWearTablesAreNotYetProvided) {
-  for (const std::string table : {"[track]\ngauge_mm = 1435\n", "[wheelset]\nyaw_mrad = 1\n",
-                                  "[wear]\nk = 1e-4\n", "[[traffic]]\nshare = 1\n"}) {
+TEST(SceneTest, TangentialNeedsFrictionAndSpeed) {
+  const std::string head = "[scene]\neffects = [\"tangential\"]\n";
+  EXPECT_TRUE(Contains(ErrorOf(head + kMinimal + "speed_m_s = 20\n"),
+                       "key 'load.friction' is missing: expected a friction coefficient in "
+                       "(0, 2] for the tangential effect"));
+  EXPECT_TRUE(Contains(ErrorOf(head + kMinimal + "friction = 0.3\n"),
+                       "key 'load.speed_m_s' is missing: expected a speed > 0 m/s for the "
+                       "tangential effect"));
+}
+
+TEST(SceneTest, PrescribedCreepageOrMotionNotBoth) {
+  const std::string base = std::string(kMinimal) + "friction = 0.3\nspeed_m_s = 20\n";
+  const Scene s = ParseScene(
+      base + "creepage = { xi = -0.004, eta = 0.001, spin_per_mm = -0.0015 }\n", "scene.toml");
+  ASSERT_TRUE(s.creepage.has_value());
+  EXPECT_DOUBLE_EQ(s.creepage->xi, -0.004);
+  EXPECT_DOUBLE_EQ(s.creepage->eta, 0.001);
+  EXPECT_NEAR(s.creepage->spin_per_m, -1.5, kTight);  // per mm -> per m
+  EXPECT_TRUE(Contains(ErrorOf(base + "yaw_mrad = 2\ncreepage = { xi = 0.001 }\n"),
+                       "key 'load.creepage' = { xi = 0.001 }: expected either prescribed "
+                       "creepages or the wheel's motion"));
+  EXPECT_TRUE(Contains(ErrorOf(base + "creepage = { xi = 0.001, zeta = 1 }\n"),
+                       "key 'load.creepage.zeta' = 1: expected one of the keys allowed"));
+  const Scene yawed = ParseScene(base + "yaw_mrad = 5\npitch_velocity_rad_s = -43\n", "s.toml");
+  EXPECT_NEAR(yawed.motion.yaw_rad, 0.005, kTight);
+  EXPECT_EQ(yawed.motion.pitch_velocity_rad_s, -43.0);
+}
+
+TEST(SceneTest, WheelsetOnTrackReplacesThePlacementOfLoad) {
+  const char* const kWheelset = R"(
+[wheel]
+profile = "builtin:S1002"
+rolling_radius_mm = 460
+[rail]
+profile = "builtin:UIC60"
+cant = "1:40"
+[track]
+gauge_mm = 1435
+gauge_height_mm = 14
+[wheelset]
+flange_back_distance_mm = 1360
+flange_back_position_mm = -70
+lateral_displacement_mm = 5.0
+yaw_mrad = 12.0
+roll_rad = -0.0006
+vertical_load_per_wheel_N = 10000
+speed_m_s = 2.0
+)";
+  const Scene s = ParseScene(kWheelset, "scene.toml");
+  ASSERT_TRUE(s.wheelset.has_value());
+  ASSERT_TRUE(s.track.has_value());
+  EXPECT_NEAR(s.track->gauge_m, 1.435, kTight);
+  EXPECT_NEAR(s.wheelset->lateral_displacement_m, 0.005, kTight);
+  EXPECT_NEAR(s.wheelset->yaw_rad, 0.012, kTight);
+  EXPECT_NEAR(s.wheelset->rolling_radius_m, 0.46, kTight);
+  EXPECT_EQ(s.problem.load.vertical_force_N, 10000.0);
+  EXPECT_DOUBLE_EQ(s.motion.speed_m_s, 2.0);
+  // Placement keys of [load] do not go with a wheelset; a track needs a wheelset.
+  EXPECT_TRUE(Contains(ErrorOf(std::string(kWheelset) + "[load]\nvertical_N = 1\n"),
+                       "key 'load.vertical_N' = 1: expected one of the keys allowed in [load]: "
+                       "'friction', 'creepage'"));
+  EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "[track]\ngauge_mm = 1435\n"),
+                       "expected a [wheelset] table next to [track]"));
+  std::string no_load = kWheelset;
+  const std::string line = "vertical_load_per_wheel_N = 10000\n";
+  no_load.erase(no_load.find(line), line.size());
+  EXPECT_TRUE(Contains(ErrorOf(no_load), "key 'wheelset.vertical_load_per_wheel_N' is missing"));
+}
+
+TEST(SceneTest, WearTablesAreNotYetProvided) {
+  for (const std::string table : {"[wear]\nk = 1e-4\n", "[[traffic]]\nshare = 1\n"}) {
     const std::string msg = ErrorOf(std::string(kMinimal) + table);
     EXPECT_TRUE(Contains(msg, "scene.toml:11: key '")) << table;
-    EXPECT_TRUE(Contains(msg, "belongs to rolling contact / wear runs, which this version of "
-                               "railwear does not provide yet"))
+    EXPECT_TRUE(Contains(msg, "belongs to worn-profile evolution runs, which this version of "
+                              "railwear does not provide yet"))
         << table;
   }
-  EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "creepage = { xi = 0.001 }\n"),
-              "scene.toml:11: key 'load.creepage' = { xi = 0.001 }: expected no "
-                        "creepage: prescribed creepages belong to rolling contact runs"));
 }
 
 TEST(SceneTest, CantMustBeARatio) {
