@@ -48,7 +48,8 @@
 // are swept from the leading edge (largest x) to the trailing edge, so a chain update only moves
 // cells not yet visited in the sweep. The step is under-relaxed (`relaxation`): the chain
 // operator is not symmetric near the trailing edge and the unrelaxed sweep diverges in full stick
-// on fine grids (measured: 1.0 and 0.5 diverge in full stick at 32 x 16 cells of the Hertz test case, 0.3
+// on fine grids (measured: 1.0 and 0.5 diverge in full stick at 32 x 16 cells of the Hertz
+// test case, 0.3
 // converges there and at 64 x 32 in about 110 iterations).
 // Each outer iteration evaluates s = w + B q exactly (one FFT product of the four blocks, or the
 // dense matrix), checks convergence, then sweeps once; during the sweep every update refreshes
