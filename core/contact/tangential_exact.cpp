@@ -1,0 +1,543 @@
+// Exact steady-rolling tangential solver: Cerruti cell kernels, the rolling operator B (FFT and
+// dense), and Kalker's block Gauss-Seidel with the exact local problem. See tangential_exact.h.
+#include "core/contact/tangential_exact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <sstream>
+#include <vector>
+
+#include <unsupported/Eigen/FFT>
+
+#include "core/contact/influence_operator.h"
+#include "core/numerics/check.h"
+#include "core/numerics/input_error.h"
+
+namespace railwear {
+namespace internal {
+namespace {
+
+// xi * asinh(eta / |xi|) with its limit 0 at xi = 0.
+double XiAsinh(double xi, double eta) {
+  if (xi == 0.0) return 0.0;
+  return xi * std::asinh(eta / std::abs(xi));
+}
+
+// Sum over the four corners (X, S) of the rectangle in field-minus-source offsets, signs + - - +.
+template <typename F>
+double CornerSum(double x, double s, double hx, double hs, F f) {
+  const double xs[2] = {x - 0.5 * hx, x + 0.5 * hx};
+  const double ss[2] = {s - 0.5 * hs, s + 0.5 * hs};
+  double sum = 0.0;
+  for (int ix = 0; ix < 2; ++ix) {
+    for (int is = 0; is < 2; ++is) sum += ((ix == is) ? 1.0 : -1.0) * f(xs[ix], ss[is]);
+  }
+  return sum;
+}
+
+void CheckMaterial(const Material& m, const char* which) {
+  if (!(m.youngs_modulus_Pa > 0.0) || !(m.poisson_ratio >= 0.0 && m.poisson_ratio < 0.5)) {
+    std::ostringstream msg;
+    msg << "tangential exact: " << which << " material has E = " << m.youngs_modulus_Pa
+        << " Pa and nu = " << m.poisson_ratio << "; expected E > 0 and 0 <= nu < 0.5";
+    throw InputError(msg.str());
+  }
+}
+
+}  // namespace
+
+// Antiderivatives F with d2F/dXdS = integrand:
+//   X^2/R^3: S asinh(X/|S|);  S^2/R^3: X asinh(S/|X|);  X S/R^3: -R.
+double RectangleIntegralX2R3(double x, double s, double hx, double hs) {
+  return CornerSum(x, s, hx, hs, [](double X, double S) { return XiAsinh(S, X); });
+}
+double RectangleIntegralS2R3(double x, double s, double hx, double hs) {
+  return CornerSum(x, s, hx, hs, [](double X, double S) { return XiAsinh(X, S); });
+}
+double RectangleIntegralXSR3(double x, double s, double hx, double hs) {
+  return CornerSum(x, s, hx, hs, [](double X, double S) { return -std::hypot(X, S); });
+}
+
+CerrutiCoefficients MakeCerrutiCoefficients(const Material& wheel, const Material& rail) {
+  CheckMaterial(wheel, "wheel");
+  CheckMaterial(rail, "rail");
+  CerrutiCoefficients c;
+  for (const Material* m : {&wheel, &rail}) {
+    const double g = m->ShearModulus();
+    c.inv_r += (1.0 - m->poisson_ratio) / (2.0 * std::numbers::pi * g);
+    c.quad += m->poisson_ratio / (2.0 * std::numbers::pi * g);
+  }
+  return c;
+}
+
+TangentialBlock CerrutiCellInfluence(const CerrutiCoefficients& c, double x, double s, double hx,
+                                     double hs) {
+  // int 1/R = int X^2/R^3 + int S^2/R^3 in the plane, so one pair of integrals gives all three.
+  const double x2 = RectangleIntegralX2R3(x, s, hx, hs);
+  const double s2 = RectangleIntegralS2R3(x, s, hx, hs);
+  const double inv_r = x2 + s2;
+  TangentialBlock b;
+  b.xx = c.inv_r * inv_r + c.quad * x2;
+  b.ss = c.inv_r * inv_r + c.quad * s2;
+  b.xs = c.quad * RectangleIntegralXSR3(x, s, hx, hs);
+  return b;
+}
+
+}  // namespace internal
+
+std::string ExactTangentialOptions::Validate() const {
+  std::ostringstream msg;
+  if (!(tolerance > 0.0)) msg << "tolerance = " << tolerance << ", expected > 0; ";
+  if (!(relaxation > 0.0 && relaxation <= 1.0)) {
+    msg << "relaxation = " << relaxation << ", expected in (0, 1]; ";
+  }
+  if (max_iterations < 1) msg << "max_iterations = " << max_iterations << ", expected >= 1; ";
+  return msg.str();
+}
+
+namespace {
+
+using Complex = std::complex<double>;
+using internal::TangentialBlock;
+
+// Residual growth (relative to the best residual so far) taken as a sign that the relaxed sweep
+// does not contract; the relaxation is then halved. A converging run stays well below it: the
+// residual of a contracting sweep may rise a little while the slip area settles.
+constexpr double kDivergenceFactor = 10.0;
+
+// Rolling operator block B(d, e) [1/Pa] = (A(d dx, e ds) - A((d + 1) dx, e ds)) / dx: slip per
+// unit traction, field cell minus source cell = (d, e) in indices.
+class RollingKernel {
+ public:
+  RollingKernel(const PatchGrid& grid, const internal::CerrutiCoefficients& c)
+      : c_(c), dx_(grid.dx_m), ds_(grid.ds_m) {}
+  TangentialBlock operator()(int d, int e) const {
+    const TangentialBlock a = internal::CerrutiCellInfluence(c_, d * dx_, e * ds_, dx_, ds_);
+    const TangentialBlock b =
+        internal::CerrutiCellInfluence(c_, (d + 1) * dx_, e * ds_, dx_, ds_);
+    return {(a.xx - b.xx) / dx_, (a.xs - b.xs) / dx_, (a.ss - b.ss) / dx_};
+  }
+
+ private:
+  internal::CerrutiCoefficients c_;
+  double dx_, ds_;
+};
+
+// Smallest L >= n of the form 2^a 3^b 5^c (kissfft's fast radices), a multiple of `multiple`
+// (4 for real transforms: kissfft's packed real FFT), and at least 2. Same rule as
+// influence_operator.cpp.
+int NextFftSize(int n, int multiple) {
+  for (int l = multiple;; l += multiple) {
+    int m = l;
+    for (int p : {2, 3, 5}) {
+      while (m % p == 0) m /= p;
+    }
+    if (m == 1 && l >= n && l >= 2) return l;
+  }
+}
+
+// The rolling operator applied to a traction field: s = B q, (q_x, q_s) -> (s_x, s_s).
+class RollingOperator {
+ public:
+  virtual ~RollingOperator() = default;
+  // qx, qs: [cells] [Pa]; sx, ss: [cells] [-], resized.
+  virtual void Apply(const Eigen::VectorXd& qx, const Eigen::VectorXd& qs, Eigen::VectorXd* sx,
+                     Eigen::VectorXd* ss) const = 0;
+};
+
+// Dense reference: the 2N x 2N matrix [Bxx Bxs; Bsx Bss].
+class DenseRollingOperator final : public RollingOperator {
+ public:
+  DenseRollingOperator(const PatchGrid& grid, const RollingKernel& kernel) : n_(grid.cells()) {
+    b_.resize(2 * n_, 2 * n_);
+    for (int js = 0; js < grid.ns; ++js) {
+      for (int jx = 0; jx < grid.nx; ++jx) {
+        const int j = grid.Index(jx, js);
+        for (int is = 0; is < grid.ns; ++is) {
+          for (int ix = 0; ix < grid.nx; ++ix) {
+            const int i = grid.Index(ix, is);
+            const TangentialBlock blk = kernel(ix - jx, is - js);
+            b_(i, j) = blk.xx;
+            b_(i, n_ + j) = blk.xs;
+            b_(n_ + i, j) = blk.xs;
+            b_(n_ + i, n_ + j) = blk.ss;
+          }
+        }
+      }
+    }
+  }
+  void Apply(const Eigen::VectorXd& qx, const Eigen::VectorXd& qs, Eigen::VectorXd* sx,
+             Eigen::VectorXd* ss) const override {
+    *sx = b_.topLeftCorner(n_, n_) * qx + b_.topRightCorner(n_, n_) * qs;
+    *ss = b_.bottomLeftCorner(n_, n_) * qx + b_.bottomRightCorner(n_, n_) * qs;
+  }
+
+ private:
+  int n_;
+  Eigen::MatrixXd b_;
+};
+
+// 2-D Toeplitz products by FFT: each block's generator on offsets d in (-nx, nx), e in (-ns, ns)
+// is wrapped into an lx by ls circulant (lx >= 2 nx - 1, ls >= 2 ns - 1: linear, not periodic,
+// convolution). B is not even in d, so the spectra are complex. Real FFTs along x (half
+// spectrum, hx = lx/2 + 1 bins), complex FFTs along s; spectra stored bin-major [kx * ls + ks].
+class FftRollingOperator final : public RollingOperator {
+ public:
+  FftRollingOperator(const PatchGrid& grid, const RollingKernel& kernel)
+      : nx_(grid.nx),
+        ns_(grid.ns),
+        lx_(NextFftSize(2 * grid.nx - 1, 4)),
+        hx_(lx_ / 2 + 1),
+        ls_(NextFftSize(2 * grid.ns - 1, 1)),
+        x_real_(lx_, 0.0),
+        x_half_(hx_),
+        s_line_(ls_),
+        s_out_(ls_),
+        qx_hat_(static_cast<size_t>(hx_) * ls_),
+        qs_hat_(static_cast<size_t>(hx_) * ls_),
+        out_hat_(static_cast<size_t>(hx_) * ls_) {
+    fft_.SetFlag(Eigen::FFT<double>::Unscaled);
+    fft_.SetFlag(Eigen::FFT<double>::HalfSpectrum);
+    const size_t size = static_cast<size_t>(lx_) * ls_;
+    std::vector<double> gxx(size, 0.0), gxs(size, 0.0), gss(size, 0.0);
+    for (int e = -(ns_ - 1); e <= ns_ - 1; ++e) {
+      for (int d = -(nx_ - 1); d <= nx_ - 1; ++d) {
+        const TangentialBlock b = kernel(d, e);
+        const size_t k =
+            static_cast<size_t>((e + ls_) % ls_) * lx_ + static_cast<size_t>((d + lx_) % lx_);
+        gxx[k] = b.xx;
+        gxs[k] = b.xs;
+        gss[k] = b.ss;
+      }
+    }
+    // The unscaled inverse transforms need 1 / (lx ls); fold it into the spectra.
+    const double scale = 1.0 / (static_cast<double>(lx_) * ls_);
+    spec_xx_ = Forward(gxx.data(), ls_, lx_, scale);
+    spec_xs_ = Forward(gxs.data(), ls_, lx_, scale);
+    spec_ss_ = Forward(gss.data(), ls_, lx_, scale);
+    // Warm the plans so that Apply does not allocate.
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(nx_ * ns_), a, b;
+    Apply(z, z, &a, &b);
+  }
+
+  void Apply(const Eigen::VectorXd& qx, const Eigen::VectorXd& qs, Eigen::VectorXd* sx,
+             Eigen::VectorXd* ss) const override {
+    ForwardInto(qx.data(), ns_, nx_, &qx_hat_);
+    ForwardInto(qs.data(), ns_, nx_, &qs_hat_);
+    for (size_t k = 0; k < out_hat_.size(); ++k) {
+      out_hat_[k] = spec_xx_[k] * qx_hat_[k] + spec_xs_[k] * qs_hat_[k];
+    }
+    Inverse(sx);
+    for (size_t k = 0; k < out_hat_.size(); ++k) {
+      out_hat_[k] = spec_xs_[k] * qx_hat_[k] + spec_ss_[k] * qs_hat_[k];
+    }
+    Inverse(ss);
+  }
+
+ private:
+  std::vector<Complex> Forward(const double* data, int n_rows, int row_length,
+                               double scale) const {
+    std::vector<Complex> out(static_cast<size_t>(hx_) * ls_);
+    ForwardInto(data, n_rows, row_length, &out);
+    for (Complex& c : out) c *= scale;
+    return out;
+  }
+
+  // 2-D FFT of n_rows s-rows of row_length x-values (the rest zero padding) into out.
+  void ForwardInto(const double* data, int n_rows, int row_length,
+                   std::vector<Complex>* out) const {
+    std::fill(out->begin(), out->end(), Complex(0.0, 0.0));
+    std::fill(x_real_.begin(), x_real_.end(), 0.0);
+    for (int j = 0; j < n_rows; ++j) {
+      std::copy(data + static_cast<size_t>(j) * row_length,
+                data + static_cast<size_t>(j + 1) * row_length, x_real_.begin());
+      fft_.fwd(x_half_.data(), x_real_.data(), lx_);
+      for (int kx = 0; kx < hx_; ++kx) (*out)[static_cast<size_t>(kx) * ls_ + j] = x_half_[kx];
+    }
+    for (int kx = 0; kx < hx_; ++kx) {
+      Complex* row = out->data() + static_cast<size_t>(kx) * ls_;
+      fft_.fwd(s_line_.data(), row, ls_);
+      std::copy(s_line_.begin(), s_line_.end(), row);
+    }
+  }
+
+  // out = crop(IFFT2(out_hat_)).
+  void Inverse(Eigen::VectorXd* out) const {
+    for (int kx = 0; kx < hx_; ++kx) {
+      Complex* row = out_hat_.data() + static_cast<size_t>(kx) * ls_;
+      fft_.inv(s_out_.data(), row, ls_);
+      std::copy(s_out_.begin(), s_out_.end(), row);
+    }
+    if (out->size() != nx_ * ns_) out->resize(nx_ * ns_);
+    for (int j = 0; j < ns_; ++j) {
+      for (int kx = 0; kx < hx_; ++kx) x_half_[kx] = out_hat_[static_cast<size_t>(kx) * ls_ + j];
+      fft_.inv(x_real_.data(), x_half_.data(), lx_);
+      std::copy(x_real_.begin(), x_real_.begin() + nx_,
+                out->data() + static_cast<size_t>(j) * nx_);
+    }
+  }
+
+  int nx_, ns_, lx_, hx_, ls_;
+  std::vector<Complex> spec_xx_, spec_xs_, spec_ss_;  // [hx_ * ls_], scaled by 1/(lx ls)
+  // Scratch (hence mutable; not for concurrent use).
+  mutable Eigen::FFT<double> fft_;
+  mutable std::vector<double> x_real_;
+  mutable std::vector<Complex> x_half_, s_line_, s_out_;
+  mutable std::vector<Complex> qx_hat_, qs_hat_, out_hat_;
+};
+
+// The exact local problem of one cell. r: slip the cell would have with zero traction [-];
+// d: the cell's own diagonal block of B (both > 0) [1/Pa]; g = mu p [Pa]. Returns the traction
+// and whether the cell sticks.
+struct LocalResult {
+  double qx, qs;
+  bool stick;
+};
+LocalResult SolveLocal(double rx, double rs, double dxx, double dss, double g) {
+  const double tx = -rx / dxx;
+  const double ts = -rs / dss;
+  if (tx * tx + ts * ts <= g * g) return {tx, ts, true};
+  // Slip: q = -g s/|s|, s = r + D q  =>  s_k = r_k sigma / (sigma + g d_k), sigma = |s| the root
+  // of f(sigma) = sum r_k^2 / (sigma + g d_k)^2 - 1, convex and decreasing: Newton from 0 (where
+  // f > 0, this branch) climbs monotonically to the root.
+  const double ax = g * dxx;
+  const double as = g * dss;
+  double sigma = 0.0;
+  for (int it = 0; it < 100; ++it) {
+    const double ex = sigma + ax;
+    const double es = sigma + as;
+    const double f = rx * rx / (ex * ex) + rs * rs / (es * es) - 1.0;
+    const double df = -2.0 * (rx * rx / (ex * ex * ex) + rs * rs / (es * es * es));
+    const double step = -f / df;
+    sigma += step;
+    if (step <= 1e-15 * sigma) break;
+  }
+  return {-g * rx / (sigma + ax), -g * rs / (sigma + as), false};
+}
+
+void CheckInputs(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                 const RollingInput& in, const ExactTangentialOptions& opt) {
+  std::ostringstream msg;
+  const std::string opt_error = opt.Validate();
+  if (!opt_error.empty()) msg << "options: " << opt_error;
+  if (grid.nx < 1 || grid.ns < 1 || !(grid.dx_m > 0.0) || !(grid.ds_m > 0.0)) {
+    msg << "grid " << grid.nx << " x " << grid.ns << " cells of " << grid.dx_m << " x "
+        << grid.ds_m << " m, expected at least one cell of positive size; ";
+  }
+  const long n = static_cast<long>(grid.nx) * grid.ns;
+  if (pressure_Pa.size() != n || in.creep_x.size() != n || in.creep_s.size() != n) {
+    msg << "sizes: pressure " << pressure_Pa.size() << ", creep_x " << in.creep_x.size()
+        << ", creep_s " << in.creep_s.size() << ", expected grid.cells() = " << n << "; ";
+  } else {
+    if (!pressure_Pa.allFinite() || (pressure_Pa.array() < 0.0).any()) {
+      msg << "pressure must be finite and >= 0; ";
+    }
+    if (!in.creep_x.allFinite() || !in.creep_s.allFinite()) msg << "creepage must be finite; ";
+  }
+  if (!(in.speed_m_s > 0.0) || !std::isfinite(in.speed_m_s)) {
+    msg << "speed_m_s = " << in.speed_m_s << ", expected > 0; ";
+  }
+  if (!(in.friction > 0.0) || !std::isfinite(in.friction)) {
+    msg << "friction = " << in.friction << ", expected > 0; ";
+  }
+  if (!msg.str().empty()) throw InputError("tangential exact: " + msg.str());
+  RAILWEAR_CHECK(static_cast<int>(grid.tangent_yz.size()) == grid.ns);
+}
+
+}  // namespace
+
+TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                                        const RollingInput& in, const Material& wheel,
+                                        const Material& rail, const ExactTangentialOptions& opt) {
+  CheckInputs(grid, pressure_Pa, in, opt);
+  const internal::CerrutiCoefficients coefficients =
+      internal::MakeCerrutiCoefficients(wheel, rail);
+  const int n = grid.cells();
+  const double mu = in.friction;
+
+  TangentialSolution sol;
+  sol.traction_x_Pa = Eigen::VectorXd::Zero(n);
+  sol.traction_s_Pa = Eigen::VectorXd::Zero(n);
+  sol.slip_x_m_s = Eigen::VectorXd::Zero(n);
+  sol.slip_s_m_s = Eigen::VectorXd::Zero(n);
+  sol.stick = Eigen::VectorXi::Constant(n, -1);
+  const double p_max = pressure_Pa.maxCoeff();
+  if (!(p_max > 0.0)) {
+    sol.status = SolverStatus::kNoContact;
+    sol.message = "no cell carries pressure";
+    return sol;
+  }
+
+  // 1. The rolling operator (for the exact slip of each outer iteration) and the table of the
+  //    displacement kernel A / dx on offsets d in [-nx, nx], e in (-ns, ns) (for the sweeps).
+  const RollingKernel kernel(grid, coefficients);
+  const bool dense = opt.method == ExactTangentialOptions::Method::kDense;
+  std::unique_ptr<RollingOperator> op;
+  if (dense) {
+    op = std::make_unique<DenseRollingOperator>(grid, kernel);
+  } else {
+    op = std::make_unique<FftRollingOperator>(grid, kernel);
+  }
+  const int tx = 2 * grid.nx + 1;  // table row length (d = -nx .. nx)
+  const int ts = 2 * grid.ns - 1;
+  std::vector<double> a_xx(static_cast<size_t>(tx) * ts), a_xs(a_xx.size()), a_ss(a_xx.size());
+  for (int e = -(grid.ns - 1); e <= grid.ns - 1; ++e) {
+    for (int d = -grid.nx; d <= grid.nx; ++d) {
+      const TangentialBlock b =
+          internal::CerrutiCellInfluence(coefficients, d * grid.dx_m, e * grid.ds_m, grid.dx_m,
+                                         grid.ds_m);
+      const size_t k = static_cast<size_t>(e + grid.ns - 1) * tx + (d + grid.nx);
+      a_xx[k] = b.xx / grid.dx_m;
+      a_xs[k] = b.xs / grid.dx_m;
+      a_ss[k] = b.ss / grid.dx_m;
+    }
+  }
+  auto table = [&](const std::vector<double>& t, int d, int e) {
+    return t[static_cast<size_t>(e + grid.ns - 1) * tx + (d + grid.nx)];
+  };
+  // Downstream end of each cell's chain: the smallest ix' <= ix with all of ix' .. ix loaded.
+  std::vector<int> chain_end(n, -1);
+  for (int js = 0; js < grid.ns; ++js) {
+    int end = -1;
+    for (int ix = 0; ix < grid.nx; ++ix) {
+      const int k = grid.Index(ix, js);
+      if (!(pressure_Pa[k] > 0.0)) {
+        end = -1;
+        continue;
+      }
+      if (end < 0) end = ix;
+      chain_end[k] = end;
+    }
+  }
+  // The local diagonal of a chain update at ix with chain end e: (A(0) - A(ix - e + 1)) / dx.
+  auto local_diagonal = [&](int ix, int js, double* dxx, double* dss) {
+    const int v = chain_end[grid.Index(ix, js)] - 1;
+    *dxx = table(a_xx, 0, 0) - table(a_xx, ix - v, 0);
+    *dss = table(a_ss, 0, 0) - table(a_ss, ix - v, 0);
+  };
+
+  // 2. Iterate: exact slip, convergence check, one Gauss-Seidel sweep from the leading edge.
+  Eigen::VectorXd& qx = sol.traction_x_Pa;
+  Eigen::VectorXd& qs = sol.traction_s_Pa;
+  Eigen::VectorXd sx, ss;
+  const double threshold = opt.tolerance * mu * p_max;
+  double residual = 0.0;
+  bool converged = false;
+  int iteration = 0;
+  double w = opt.relaxation;
+  double best_residual = std::numeric_limits<double>::infinity();
+  auto local_solve = [&](int ix, int js) {
+    const int k = grid.Index(ix, js);
+    double dxx = 0.0, dss = 0.0;
+    local_diagonal(ix, js, &dxx, &dss);
+    return SolveLocal(sx[k] - dxx * qx[k], ss[k] - dss * qs[k], dxx, dss, mu * pressure_Pa[k]);
+  };
+  for (;;) {
+    op->Apply(qx, qs, &sx, &ss);
+    sx += in.creep_x;
+    ss += in.creep_s;
+    residual = 0.0;
+    for (int js = 0; js < grid.ns; ++js) {
+      for (int ix = 0; ix < grid.nx; ++ix) {
+        const int k = grid.Index(ix, js);
+        if (!(pressure_Pa[k] > 0.0)) continue;
+        const LocalResult loc = local_solve(ix, js);
+        residual = std::max(residual, std::hypot(loc.qx - qx[k], loc.qs - qs[k]));
+      }
+    }
+    if (residual <= threshold) {
+      converged = true;
+      break;
+    }
+    if (iteration >= opt.max_iterations) break;
+    // Safeguard: a residual far above the best one so far means the relaxed sweep is not
+    // contracting on this problem; halve the relaxation (the fixed point does not depend on it).
+    best_residual = std::min(best_residual, residual);
+    if (residual > kDivergenceFactor * best_residual) {
+      w *= 0.5;
+      best_residual = residual;
+    }
+    ++iteration;
+    for (int ix = grid.nx - 1; ix >= 0; --ix) {
+      for (int js = 0; js < grid.ns; ++js) {
+        const int k = grid.Index(ix, js);
+        if (!(pressure_Pa[k] > 0.0)) continue;
+        const LocalResult loc = local_solve(ix, js);
+        const double dqx = w * (loc.qx - qx[k]);
+        const double dqs = w * (loc.qs - qs[k]);
+        if (dqx == 0.0 && dqs == 0.0) continue;
+        // The change moves the whole chain ix .. chain end (the cell and everything downstream
+        // of it up to the contact edge), whose slip is the telescoped sum
+        // (A(m - k) - A(m - v)) / dx, v the virtual cell just beyond the chain end.
+        const int v = chain_end[k] - 1;
+        for (int i = v + 1; i <= ix; ++i) {
+          qx[grid.Index(i, js)] += dqx;
+          qs[grid.Index(i, js)] += dqs;
+        }
+        for (int jm = 0; jm < grid.ns; ++jm) {
+          const size_t row = static_cast<size_t>(jm - js + grid.ns - 1) * tx + grid.nx;
+          const double* pxx = a_xx.data() + row;
+          const double* pxs = a_xs.data() + row;
+          const double* pss = a_ss.data() + row;
+          double* sxm = sx.data() + static_cast<size_t>(jm) * grid.nx;
+          double* ssm = ss.data() + static_cast<size_t>(jm) * grid.nx;
+          for (int im = 0; im < grid.nx; ++im) {
+            const int d1 = im - ix;
+            const int d2 = im - v;
+            const double bxx = pxx[d1] - pxx[d2];
+            const double bxs = pxs[d1] - pxs[d2];
+            const double bss = pss[d1] - pss[d2];
+            sxm[im] += bxx * dqx + bxs * dqs;
+            ssm[im] += bxs * dqx + bss * dqs;
+          }
+        }
+      }
+    }
+  }
+
+  // 3. Results from the last exact slip (sx, ss are w + B q for the returned q).
+  sol.iterations = iteration;
+  sol.status = converged ? SolverStatus::kConverged : SolverStatus::kNotConverged;
+  {
+    std::ostringstream msg;
+    msg << (converged ? "converged" : "not converged") << " after " << iteration
+        << " iterations; largest local traction change " << residual << " Pa (threshold "
+        << threshold << " Pa)";
+    sol.message = msg.str();
+  }
+  const double area = grid.CellArea();
+  const double v = in.speed_m_s;
+  for (int js = 0; js < grid.ns; ++js) {
+    for (int ix = 0; ix < grid.nx; ++ix) {
+      const int k = grid.Index(ix, js);
+      if (!(pressure_Pa[k] > 0.0)) continue;
+      const LocalResult loc = local_solve(ix, js);
+      // The returned traction is the final local solution (it differs from the iterate by at
+      // most the residual): it satisfies the bound exactly, which chain updates of the last
+      // sweep need not.
+      qx[k] = loc.qx;
+      qs[k] = loc.qs;
+      sol.stick[k] = loc.stick ? 1 : 0;
+      if (loc.stick) {
+        sol.stick_area_m2 += area;
+      } else {
+        sol.slip_area_m2 += area;
+        sol.slip_x_m_s[k] = v * sx[k];
+        sol.slip_s_m_s[k] = v * ss[k];
+      }
+      sol.force_x_N += qx[k] * area;
+      sol.force_s_N += qs[k] * area;
+      sol.force_s_yz_N += qs[k] * area * grid.tangent_yz[js];
+      sol.spin_moment_Nm += (grid.X(ix) * qs[k] - grid.S(js) * qx[k]) * area;
+      sol.frictional_power_W +=
+          std::abs(qx[k] * sol.slip_x_m_s[k] + qs[k] * sol.slip_s_m_s[k]) * area;
+    }
+  }
+  return sol;
+}
+
+}  // namespace railwear

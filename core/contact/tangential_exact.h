@@ -1,0 +1,132 @@
+// Exact steady-rolling tangential contact (Kalker's theory as in his program CONTACT): given the
+// normal pressure on a patch grid and the rigid slip (creepage) of every cell, find the
+// tangential tractions q with |q| <= mu p, the stick and slip areas and the local slip.
+//
+// Conventions: see tangential_types.h (tractions on the wheel, creepage w = rigid slip / V, the
+// wheel rolls toward +x so material enters the patch at the largest x).
+//
+// Elasticity. u = u_wheel - u_rail, the tangential displacement difference at the cell centres,
+// is u_i = sum_j A_ij q_j with 2 x 2 blocks A_ij (directions x and s) from Cerruti's half-space
+// surface solution, per body b with its own G_b and nu_b, integrated over the source cell
+// (uniform traction on a dx by ds rectangle) in closed form:
+//   A_xx = sum_b 1/(2 pi G_b) int [(1 - nu_b)/R + nu_b X^2/R^3] dA
+//   A_ss = sum_b 1/(2 pi G_b) int [(1 - nu_b)/R + nu_b S^2/R^3] dA
+//   A_xs = A_sx = sum_b nu_b/(2 pi G_b) int X S/R^3 dA
+// (X, S) = field point minus source point, R = |(X, S)|. The rail carries -q and its half-space
+// faces the other way, so both bodies' in-plane compliances add. For identical materials this is
+// Kalker's (1/(pi G)) [(1 - nu)/R + nu X^2/R^3].
+// Neglected: the normal-tangential coupling (zero for quasi-identical materials; the coupled
+// problem is a separate effect, DESIGN.md §1), so the pressure is an input and stays fixed.
+// Curved grids: the coefficients are the flat half-space ones with arc-length offsets
+// (X, S) = (x_i - x_j, s_i - s_j), and the s direction of each cell is its own tangent. This
+// neglects the out-of-plane offset dn and the rotation of the tangent across the patch (both of
+// relative order (patch width / lateral radius)^2 on the coefficients); it keeps the operator
+// Toeplitz in x and s on every grid, so one 2-D FFT product serves planar and curved patches.
+//
+// Steady rolling. A material particle at x_i was at x_i + dx one step dt = dx/V earlier (material
+// moves toward -x through the patch), so the time derivative of u at the particle becomes
+//   du/dt = -V du/dx  ~  V (u(x_i) - u(x_i + dx)) / dx        (first-order upwind),
+// and the slip per unit rolling speed is
+//   s_i = w_i + (u_i - u'_i) / dx,   u'_i = sum_j A(x_i + dx - x_j, s_i - s_j) q_j,
+// i.e. s = w + B q with the rolling operator B(d) = (A(d) - A(d + 1)) / dx (d = x-index offset
+// field minus source). u' is evaluated with the same kernel at the shifted point, so the cells of
+// the last (leading) column need no displacement from outside the grid. The local slip velocity
+// is V s [m/s].
+// Conditions per cell with p > 0: stick: s = 0 and |q| <= mu p; slip: q = -mu p s / |s|.
+// Cells with p = 0 carry no traction.
+//
+// Method: nonlinear block Gauss-Seidel with the exact 2 x 2 local problem per cell, in
+// "chain" form. In plain variables B is a difference operator (a constant traction along x gives
+// no slip), and Gauss-Seidel on it does not converge in full stick. So a Gauss-Seidel step at
+// cell k changes the traction of k and of every loaded cell downstream of it in its x-row, up to
+// the contact edge (the chain): q_j += dq for j = e .. k. This is Gauss-Seidel on the increments
+// q_k - q_(k+1), where the operator becomes (A(m - k) - A(m - e + 1)) / dx, close to the
+// symmetric positive A / dx. The local diagonal is D_k = (A(0) - A(k - e + 1)) / dx (diagonal,
+// positive); with r the slip the cell would have with q_k = 0, stick is q_k = -D^-1 r when that
+// lies in the friction disc, otherwise q_k = -mu p r_k / (sigma + mu p D_kk) with sigma = |s| > 0
+// the root of sum_k r_k^2 / (sigma + mu p D_kk)^2 = 1 (Newton, monotone from sigma = 0). Cells
+// are swept from the leading edge (largest x) to the trailing edge, so a chain update only moves
+// cells not yet visited in the sweep. The step is under-relaxed (`relaxation`): the chain
+// operator is not symmetric near the trailing edge and the unrelaxed sweep diverges in full stick
+// on fine grids (measured: 1.0 and 0.5 diverge in full stick at 32 x 16 cells of the Hertz
+// test case, 0.3
+// converges there and at 64 x 32 in about 110 iterations).
+// Each outer iteration evaluates s = w + B q exactly (one FFT product of the four blocks, or the
+// dense matrix), checks convergence, then sweeps once; during the sweep every update refreshes
+// the slip of all cells exactly from a table of A on the offsets (O(N) per update, so a sweep is
+// O(N_contact N): this, not the FFT, dominates the cost on large grids).
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "core/contact/contact_types.h"
+#include "core/contact/patch_grid.h"
+#include "core/contact/tangential_types.h"
+
+namespace railwear {
+
+struct ExactTangentialOptions {
+  // How the rolling operator B is applied.
+  //   kFft:   2-D FFT products (padded, exact to rounding), O(N log N) per product,
+  //           N = grid.cells().
+  //   kDense: the full 2N x 2N matrix (the naive reference, for tests; memory 32 N^2 bytes).
+  // Both run the same sweeps, so they give the same iterates to rounding.
+  enum class Method { kFft, kDense };
+  Method method = Method::kFft;
+  // Stopping criterion (dimensionless, > 0): the largest change of any cell's traction that one
+  // exact local solve would make, with a freshly applied operator, relative to mu * max(p):
+  //   max_k |q_k - LocalSolve_k(q)| <= tolerance * mu * max_k p_k.
+  double tolerance = 1e-9;
+  // Outer iterations (one operator product and one sweep each) before giving up with
+  // kNotConverged. >= 1.
+  int max_iterations = 2000;
+  // Under-relaxation of the Gauss-Seidel step, in (0, 1]. The fixed point does not depend on it;
+  // 0.3 converges on every Hertz case of the tests (see the header comment). The solver halves it
+  // when the residual grows tenfold above its best value.
+  double relaxation = 0.3;
+  // Returns "" when valid, otherwise what is wrong.
+  std::string Validate() const;
+};
+
+// grid: the patch grid (planar or curved, see the header comment for the curved approximation).
+// pressure_Pa: [grid.cells()] normal pressure per cell, >= 0 (cells with 0 carry no traction).
+// in: creep_x, creep_s of size grid.cells() [-]; speed_m_s > 0; friction mu > 0.
+// wheel, rail: each body's elastic constants.
+// Throws InputError for bad options, materials (E <= 0, nu outside [0, 0.5)) or inputs (sizes,
+// negative or non-finite pressure, speed or friction <= 0). Returns kNoContact when no cell is
+// loaded, kNotConverged (with the last iterate) when max_iterations is reached.
+TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                                        const RollingInput& in, const Material& wheel,
+                                        const Material& rail,
+                                        const ExactTangentialOptions& opt = {});
+
+namespace internal {
+
+// Cerruti coefficients of the cell kernel, both bodies summed [1/Pa]:
+//   inv_r = sum_b (1 - nu_b)/(2 pi G_b),  quad = sum_b nu_b/(2 pi G_b).
+struct CerrutiCoefficients {
+  double inv_r = 0.0;
+  double quad = 0.0;
+};
+CerrutiCoefficients MakeCerrutiCoefficients(const Material& wheel, const Material& rail);
+
+// Tangential displacement difference [m/Pa] at offset (x, s) [m] (field point minus the centre
+// of the source cell) from a unit uniform traction on a hx by hs rectangle: xx = u_x per q_x,
+// xs = u_x per q_s (= u_s per q_x), ss = u_s per q_s.
+struct TangentialBlock {
+  double xx = 0.0, xs = 0.0, ss = 0.0;
+};
+TangentialBlock CerrutiCellInfluence(const CerrutiCoefficients& c, double x, double s, double hx,
+                                     double hs);
+
+// Closed-form rectangle integrals on the plane (field point in the plane), arguments as
+// RectangleIntegralInvR [m]: int X^2/R^3 dA, int S^2/R^3 dA, int X S/R^3 dA, with (X, S) the
+// field point minus the integration point.
+double RectangleIntegralX2R3(double x, double s, double hx, double hs);
+double RectangleIntegralS2R3(double x, double s, double hx, double hs);
+double RectangleIntegralXSR3(double x, double s, double hx, double hs);
+
+}  // namespace internal
+}  // namespace railwear
