@@ -362,11 +362,6 @@ void ReadWheelset(const Fields& top, Scene* scene) {
 void CheckRolling(const Fields& top, const Scene& scene) {
   if (!scene.tangential) return;
   if (const auto model = top.Table("model", "a table")) {
-    if (scene.tangential_method == "exact") {
-      model->Fail("tangential",
-                  "\"fastsim\": the exact steady-rolling solver is not available in this "
-                  "version of railwear");
-    }
     if (scene.problem.model.kind == ModelKind::kHertz) {
       model->Fail("kind",
                   "\"halfspace\" or \"conformal\" with the tangential effect (rolling contact "

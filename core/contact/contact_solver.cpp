@@ -17,6 +17,7 @@
 
 #include "core/contact/fastsim.h"
 #include "core/contact/grid_resolution.h"
+#include "core/contact/tangential_exact.h"
 #include "core/contact/influence_operator.h"
 #include "core/geometry/patch_builder.h"
 #include "core/geometry/wheel_rail_geometry.h"
@@ -281,7 +282,14 @@ void SolveRolling(const ContactProblem& problem, const WheelRailGeometry& geom,
     fo.shear_modulus_Pa = elastic.shear_modulus_Pa;
     fo.poisson_ratio = elastic.poisson_ratio;
     FastsimPatch used;
+    // FASTSIM also yields the patch's semi-axes (a/b and size from the contact cells), which the
+    // damage indices use whichever solver gives the tractions.
     rolling.tangential = SolveFastsim(patch.grid, patch.pressure_Pa, in, fo, &used);
+    if (o.method == TangentialMethod::kExact) {
+      rolling.tangential = SolveTangentialExact(patch.grid, patch.pressure_Pa, in,
+                                                problem.wheel_material, problem.rail_material,
+                                                ExactTangentialOptions{});
+    }
     rolling.semi_axis_x_m = used.semi_axis_x_m;
     rolling.semi_axis_s_m = used.semi_axis_s_m;
     if (o.damage && rolling.tangential.status == SolverStatus::kConverged) {
@@ -357,10 +365,6 @@ ContactResult SolveContact(const ContactProblem& problem) {
   if (problem.rolling && problem.model.kind == ModelKind::kHertz) {
     throw InputError(
         "rolling contact needs a patch grid: use the halfspace or conformal model, not hertz");
-  }
-  if (problem.rolling && problem.rolling->method == TangentialMethod::kExact) {
-    throw InputError("tangential = \"exact\": the exact steady-rolling solver is not available in "
-                     "this version of railwear; expected \"fastsim\"");
   }
   if (problem.rolling && problem.rolling->damage &&
       !(problem.rail_material.shear_yield_Pa > 0)) {
