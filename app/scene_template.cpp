@@ -4,7 +4,7 @@
 namespace railwear::app {
 
 std::string_view SceneTemplate() {
-  return R"toml(# railwear scene: one wheel on one rail, normal contact.
+  return R"toml(# railwear scene: one wheel on one rail (or a wheelset on a track).
 # Run it with:   railwear contact THIS_FILE.toml [--json -] [--csv p.csv] [--plot p.png]
 #
 # Units are in the key names (mm, N, MPa, rad, m/s). Frames (core/notation.md): y lateral,
@@ -13,8 +13,11 @@ std::string_view SceneTemplate() {
 
 [scene]
 name = "S1002 on UIC60"       # optional; default: the file name without extension
-effects = ["normal"]          # optional; "normal" is the only effect in this version
-                              # ("tangential", "coupling", "wear", "damage" come later)
+effects = ["normal"]          # optional; "normal" is implied. Add "tangential" for rolling
+                              # contact (creep forces, slip; needs [load] friction and
+                              # speed_m_s) and "damage" (T-gamma, WLRM RCF damage, FI_surf,
+                              # shakedown; implies "tangential", needs the rail's
+                              # shear_yield_MPa). "coupling" and "wear" come later.
 
 [model]                       # optional table
 kind = "conformal"            # "hertz" | "halfspace" (planar + boussinesq)
@@ -28,8 +31,8 @@ kind = "conformal"            # "hertz" | "halfspace" (planar + boussinesq)
                               # table of the same keys.
 accuracy = "standard"         # "draft" | "standard" | "reference" | "fine"; default "standard"
 # cell_mm = [0.2, 0.2]        # explicit cell size [dx, ds] in mm (> 0); overrides accuracy
-tangential = "fastsim"        # "fastsim" | "exact"; default "fastsim" (for the later
-                              # "tangential" effect; read and checked now)
+tangential = "fastsim"        # "fastsim" | "exact"; default "fastsim": the tangential solver
+                              # of the "tangential" effect (not with kind = "hertz")
 
 [materials]                   # optional table; without it both bodies are steel,
                               # E_MPa = 210000 and nu = 0.28. With it, give both bodies.
@@ -54,13 +57,30 @@ vertical_N = 100000           # give exactly one of vertical_N (> 0) ...
 lateral_shift_mm = 0.0        # wheel profile origin relative to the rail's, toward the field
                               # side; default 0
 roll_rad = 0.0                # roll of the wheel, |roll_rad| < 0.5; default 0
-friction = 0.3                # optional, in (0, 2]; for the later "tangential" effect
-speed_m_s = 20.0              # optional, >= 0; for the later "tangential" effect
-# creepage = { xi = -0.004, eta = 0.0, spin_per_mm = 0.0 }    # comes with rolling contact
+friction = 0.3                # in (0, 2]; needed by the "tangential" effect
+speed_m_s = 20.0              # > 0; needed by the "tangential" effect
+# yaw_mrad = 0.0              # yaw of the wheel (positive turns its nose to the field side)
+# pitch_velocity_rad_s = -43.5  # about the axle; default pure rolling, -speed / rolling radius
+# creepage = { xi = -0.004, eta = 0.0, spin_per_mm = 0.0 }
+                              # prescribed creepages about the patch's pressure centre, instead
+                              # of the wheel's motion (not with yaw_mrad/pitch_velocity_rad_s)
 
-# Coming in later versions (rolling contact, wear runs); these tables are errors for now:
-# [track]      gauge_mm, gauge_height_mm
-# [wheelset]   flange_back_distance_mm, lateral_displacement_mm, yaw_mrad, ...
+# A wheelset on a track instead of the single wheel of [load] (then [load] holds only friction
+# and creepage); left wheel and rail are the mirror images of the profiles above:
+# [track]
+# gauge_mm = 1435             # between the gauge faces
+# gauge_height_mm = 14        # below the top of rail
+# [wheelset]
+# flange_back_distance_mm = 1360
+# flange_back_position_mm = -70   # y of the flange back in the wheel profile (S1002: -70)
+# lateral_displacement_mm = 5.0   # toward the right: right-wheel flange contact
+# yaw_mrad = 12.0
+# roll_rad = -0.0006
+# vertical_load_per_wheel_N = 10000
+# speed_m_s = 2.0
+# pitch_velocity_rad_s = -4.33   # default pure rolling
+
+# Coming in later versions (wear runs); these tables are errors for now:
 # [wear]       law, k, max_depth_per_step_mm, total_passes, db
 # [[traffic]]  wheel_profile, vertical_N, lateral_shift_mm, yaw_mrad, friction, speed_m_s, share
 )toml";

@@ -231,7 +231,8 @@ TEST_F(CliTest, JsonAndCsvCannotBothUseStdout) {
 }
 
 TEST_F(CliTest, ExamplesRun) {
-  for (const char* name : {"gauge_corner.toml", "tread.toml", "groove_conformal.toml"}) {
+  for (const char* name : {"gauge_corner.toml", "tread.toml", "groove_conformal.toml",
+                           "rolling_gauge_corner.toml", "wheelset.toml"}) {
     const Outcome o = Run(std::string("contact '" RAILWEAR_SOURCE_DIR "/examples/") + name +
                           "' --accuracy draft --json -");
     EXPECT_EQ(o.exit_code, 0) << name << ": " << o.err;

@@ -487,7 +487,8 @@ TEST(SceneTest, TemplateLoads) {
 }
 
 TEST(SceneTest, ExamplesLoad) {
-  for (const char* name : {"gauge_corner.toml", "tread.toml", "groove_conformal.toml"}) {
+  for (const char* name : {"gauge_corner.toml", "tread.toml", "groove_conformal.toml",
+                           "rolling_gauge_corner.toml", "wheelset.toml"}) {
     const Scene s = LoadScene(std::string(RAILWEAR_SOURCE_DIR) + "/examples/" + name);
     EXPECT_FALSE(s.name.empty()) << name;
     EXPECT_EQ(s.problem.model.kind, ModelKind::kConformal) << name;
