@@ -217,7 +217,9 @@ std::string FormatSummary(const Scene& scene, const ContactResult& r) {
   out += fmt::format("patches     {}\n", r.patches.size());
   if (!r.patches.empty()) out += fmt::format("\n{}", PatchTable(r));
   if (!r.patches.empty() && r.patches[0].rolling) {
-    out += fmt::format("\nrolling (creep forces of the rail on the wheel)\n{}", RollingTable(r));
+    out += fmt::format("\nrolling (creep forces of the rail on the wheel; pitch velocity {:.4f} "
+                       "rad/s)\n{}",
+                       r.pitch_velocity_rad_s, RollingTable(r));
   }
   return out;
 }
@@ -240,6 +242,12 @@ nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r) {
                 {"lateral_force_N", r.lateral_force_N}};
   j["patches"] = nlohmann::json::array();
   for (const auto& p : r.patches) j["patches"].push_back(PatchJson(p));
+  if (!r.patches.empty() && r.patches[0].rolling) {
+    j["pitch_velocity_rad_s"] = r.pitch_velocity_rad_s;
+    double fx = 0.0;
+    for (const auto& p : r.patches) fx += p.rolling->tangential.force_x_N;
+    j["total"]["creep_force_x_N"] = fx;
+  }
   CheckFinite(j, "$");
   return j;
 }

@@ -278,6 +278,12 @@ void ReadMotion(const Fields& t, Scene* scene) {
     scene->motion.yaw_rad = *yaw * 1e-3;
   }
   scene->motion.pitch_velocity_rad_s = t.Number("pitch_velocity_rad_s", AnyFinite());
+  scene->longitudinal_force_N = t.Number("longitudinal_force_N", AnyFinite());
+  if (scene->longitudinal_force_N && t.Has("pitch_velocity_rad_s")) {
+    t.Fail("longitudinal_force_N",
+           "either longitudinal_force_N or pitch_velocity_rad_s (the force sets the pitch "
+           "velocity), not both");
+  }
 }
 
 void ReadLoad(const Fields& top, Scene* scene) {
@@ -293,7 +299,8 @@ void ReadLoad(const Fields& top, Scene* scene) {
   }
   const Fields t = RequiredTable(top, "load", "a [load] table with vertical_N or approach_mm");
   t.AllowOnly({"vertical_N", "approach_mm", "lateral_shift_mm", "roll_rad", "friction",
-               "speed_m_s", "yaw_mrad", "pitch_velocity_rad_s", "creepage"});
+               "speed_m_s", "yaw_mrad", "pitch_velocity_rad_s", "longitudinal_force_N",
+               "creepage"});
   ContactLoad& load = scene->problem.load;
   load.vertical_force_N = t.Number("vertical_N", Positive());
   if (const auto a = t.Number("approach_mm", Positive())) load.approach_m = *a * kMm;
@@ -309,10 +316,10 @@ void ReadLoad(const Fields& top, Scene* scene) {
   scene->friction = t.Number("friction", OpenClosed(0.0, 2.0));
   ReadMotion(t, scene);
   if (t.Has("creepage")) {
-    if (t.Has("yaw_mrad") || t.Has("pitch_velocity_rad_s")) {
+    if (t.Has("yaw_mrad") || t.Has("pitch_velocity_rad_s") || t.Has("longitudinal_force_N")) {
       t.Fail("creepage",
              "either prescribed creepages or the wheel's motion (yaw_mrad, "
-             "pitch_velocity_rad_s), not both");
+             "pitch_velocity_rad_s, longitudinal_force_N), not both");
     }
     scene->creepage = ReadCreepage(t);
   }
@@ -335,7 +342,7 @@ void ReadWheelset(const Fields& top, Scene* scene) {
   }
   ws->AllowOnly({"flange_back_distance_mm", "flange_back_position_mm", "lateral_displacement_mm",
                  "yaw_mrad", "roll_rad", "vertical_load_per_wheel_N", "speed_m_s",
-                 "pitch_velocity_rad_s"});
+                 "pitch_velocity_rad_s", "longitudinal_force_N"});
   WheelsetSpec w;
   w.flange_back_distance_m =
       ws->Number("flange_back_distance_mm", Positive()).value_or(w.flange_back_distance_m / kMm) *
@@ -348,8 +355,11 @@ void ReadWheelset(const Fields& top, Scene* scene) {
   w.rolling_radius_m = scene->problem.placement.rolling_radius_m;
   ReadMotion(*ws, scene);
   w.yaw_rad = scene->motion.yaw_rad;
-  if (scene->creepage && (ws->Has("yaw_mrad") || ws->Has("pitch_velocity_rad_s"))) {
-    ws->Fail(ws->Has("yaw_mrad") ? "yaw_mrad" : "pitch_velocity_rad_s",
+  if (scene->creepage &&
+      (ws->Has("yaw_mrad") || ws->Has("pitch_velocity_rad_s") || ws->Has("longitudinal_force_N"))) {
+    ws->Fail(ws->Has("yaw_mrad")             ? "yaw_mrad"
+             : ws->Has("pitch_velocity_rad_s") ? "pitch_velocity_rad_s"
+                                               : "longitudinal_force_N",
              "no wheelset motion next to prescribed creepages in [load]");
   }
   scene->problem.load = {};
@@ -422,6 +432,7 @@ Scene ParseScene(const std::string& text, const std::string& path) {
     rolling.creepage = scene.creepage;
     rolling.friction = *scene.friction;
     rolling.damage = scene.damage;
+    rolling.longitudinal_force_N = scene.longitudinal_force_N;
     scene.problem.rolling = rolling;
   }
   return scene;

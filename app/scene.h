@@ -39,6 +39,9 @@ struct Scene {
   // Rolling: the wheel's motion (speed, pitch velocity, yaw), or prescribed creepages instead.
   WheelMotion motion;
   std::optional<Creepage> creepage;
+  // Prescribed total longitudinal force [N] ([load] for the wheel, [wheelset] for the axle)
+  // instead of a pitch velocity: > 0 traction, < 0 braking.
+  std::optional<double> longitudinal_force_N;
 
   // A wheelset on a track ([track] + [wheelset]) instead of the single wheel of [load]; then
   // `problem` holds the right wheel's placement and the left one is its mirror image.

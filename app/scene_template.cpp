@@ -61,6 +61,8 @@ friction = 0.3                # in (0, 2]; needed by the "tangential" effect
 speed_m_s = 20.0              # > 0; needed by the "tangential" effect
 # yaw_mrad = 0.0              # yaw of the wheel (positive turns its nose to the field side)
 # pitch_velocity_rad_s = -43.5  # about the axle; default pure rolling, -speed / rolling radius
+# longitudinal_force_N = 10000  # or a total longitudinal creep force on the wheel (> 0
+                              # traction, < 0 braking): the pitch velocity is solved for it
 # creepage = { xi = -0.004, eta = 0.0, spin_per_mm = 0.0 }
                               # prescribed creepages about the patch's pressure centre, instead
                               # of the wheel's motion (not with yaw_mrad/pitch_velocity_rad_s)
@@ -79,6 +81,7 @@ speed_m_s = 20.0              # > 0; needed by the "tangential" effect
 # vertical_load_per_wheel_N = 10000
 # speed_m_s = 2.0
 # pitch_velocity_rad_s = -4.33   # default pure rolling
+# longitudinal_force_N = 5000    # or the axle's total longitudinal force (sets the pitch velocity)
 
 # Coming in later versions (wear runs); these tables are errors for now:
 # [wear]       law, k, max_depth_per_step_mm, total_passes, db

@@ -21,6 +21,7 @@
 #include "core/contact/influence_operator.h"
 #include "core/geometry/patch_builder.h"
 #include "core/geometry/wheel_rail_geometry.h"
+#include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
 
 namespace railwear {
@@ -270,6 +271,8 @@ PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
 void SolveRolling(const ContactProblem& problem, const WheelRailGeometry& geom,
                   ContactResult* result) {
   const RollingOptions& o = *problem.rolling;
+  result->pitch_velocity_rad_s =
+      o.motion.pitch_velocity_rad_s.value_or(-o.motion.speed_m_s / problem.placement.rolling_radius_m);
   const CombinedElastic elastic = CombineElastic(problem.wheel_material, problem.rail_material);
   for (PatchResult& patch : result->patches) {
     const RollingInput in =
@@ -308,7 +311,95 @@ void SolveRolling(const ContactProblem& problem, const WheelRailGeometry& geom,
   }
 }
 
+double TotalForceX(const ContactResult& r) {
+  double fx = 0.0;
+  for (const auto& p : r.patches) fx += p.rolling ? p.rolling->tangential.force_x_N : 0.0;
+  return fx;
+}
+
+double TotalNormalForce(const ContactResult& r) {
+  double fn = 0.0;
+  for (const auto& p : r.patches) fn += p.normal_force_N;
+  return fn;
+}
+
+// The rolling stage with a prescribed total longitudinal force: the pitch velocity is solved for.
+void SolveRollingForForce(const ContactProblem& problem, const WheelRailGeometry& geom,
+                          ContactResult* result) {
+  ContactProblem trial = problem;
+  const RollingOptions& o = *problem.rolling;
+  const double target = *o.longitudinal_force_N;
+  auto fx = [&](double omega) {
+    trial.rolling->motion.pitch_velocity_rad_s = omega;
+    SolveRolling(trial, geom, result);
+    return TotalForceX(*result);
+  };
+  const double tolerance = 1e-6 * o.friction * TotalNormalForce(*result);
+  const auto omega = SolvePitchVelocityForForce(fx, target, o.motion.speed_m_s,
+                                                problem.placement.rolling_radius_m, tolerance);
+  if (!omega) {
+    result->status = SolverStatus::kNotConverged;
+    result->message = fmt::format(
+        "the longitudinal force {:.1f} N cannot be carried: friction limits it to about "
+        "{:.1f} N here (mu F_n = {:.1f} N)",
+        target, std::abs(TotalForceX(*result)), o.friction * TotalNormalForce(*result));
+    return;
+  }
+  fx(*omega);  // leave the result at the solution
+}
+
 }  // namespace
+
+std::optional<double> SolvePitchVelocityForForce(const std::function<double(double)>& fx,
+                                                 double target_N, double speed_m_s,
+                                                 double rolling_radius_m, double tolerance_N) {
+  auto omega_of = [&](double c) { return -speed_m_s * (1.0 + c) / rolling_radius_m; };
+  auto g = [&](double c) { return fx(omega_of(c)) - target_N; };
+  // Bracket: step the creepage c outward from 0 (doubling) in the direction that moves fx toward
+  // the target, until g changes sign.
+  double a = 0.0, ga = g(0.0);
+  if (std::abs(ga) <= tolerance_N) return omega_of(0.0);
+  const double dir = ga < 0 ? 1.0 : -1.0;
+  double b = a, gb = ga;
+  for (double step = 1e-4;; step *= 2.0) {
+    if (step > 1.0) return std::nullopt;  // beyond adhesion: the force never reaches the target
+    b = dir * step;
+    gb = g(b);
+    if ((gb > 0) != (ga > 0)) break;
+    a = b;
+    ga = gb;
+  }
+  double lo = std::min(a, b), hi = std::max(a, b);
+  double f_lo = lo == a ? ga : gb, f_hi = hi == a ? ga : gb;
+  // Now f_lo < 0 < f_hi on [lo, hi]: bisection with secant (regula falsi, Illinois) steps.
+  int side = 0;
+  for (int it = 0; it < 200; ++it) {
+    double c = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    if (!(c > lo && c < hi)) c = 0.5 * (lo + hi);
+    const double f = g(c);
+    if (std::abs(f) <= tolerance_N || hi - lo < 1e-14) return omega_of(c);
+    if (f < 0) {
+      lo = c;
+      f_lo = f;
+      if (side == -1) f_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = c;
+      f_hi = f;
+      if (side == +1) f_lo *= 0.5;
+      side = +1;
+    }
+  }
+  return omega_of(0.5 * (lo + hi));
+}
+
+void ApplyRolling(const ContactProblem& problem, ContactResult* result) {
+  RAILWEAR_CHECK(problem.rolling.has_value());
+  const WheelPose pose{problem.placement.lateral_shift_m, problem.placement.roll_rad,
+                       problem.placement.rolling_radius_m};
+  const WheelRailGeometry geom(problem.wheel_profile, problem.rail_profile, pose);
+  SolveRolling(problem, geom, result);
+}
 
 std::string_view ToString(TangentialMethod v) {
   return v == TangentialMethod::kFastsim ? "fastsim" : "exact";
@@ -538,7 +629,11 @@ ContactResult SolveContact(const ContactProblem& problem) {
     }
     if (problem.rolling && result.status == SolverStatus::kConverged) {
       t0 = Clock::now();
-      SolveRolling(problem, geom, &result);
+      if (problem.rolling->longitudinal_force_N) {
+        SolveRollingForForce(problem, geom, &result);
+      } else {
+        SolveRolling(problem, geom, &result);
+      }
       AddStage(&result.stages, "tangential", SecondsSince(t0));
     }
     return finish(result);

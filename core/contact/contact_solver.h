@@ -2,6 +2,7 @@
 // and gaps -> influence operators -> normal solve -> patch results.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,6 +48,10 @@ struct RollingOptions {
   std::optional<Creepage> creepage;   // ... or prescribed creepages about each patch's origin
   double friction = 0.3;              // mu > 0
   bool damage = false;  // the "damage" effect: T-gamma, WLRM RCF damage, FI_surf, shakedown
+  // Prescribed total longitudinal creep force on the wheel [N] (> 0 traction: the rail pushes
+  // the wheel forward; < 0 braking) instead of a prescribed pitch velocity: the pitch velocity
+  // is found so that the patches' F_x add up to it. Not with prescribed creepages.
+  std::optional<double> longitudinal_force_N;
 };
 
 struct ContactProblem {
@@ -107,7 +112,22 @@ struct ContactResult {
   double lateral_force_N = 0.0;
   std::vector<PatchResult> patches;
   std::vector<StageTime> stages;
+  double pitch_velocity_rad_s = 0.0;  // of the rolling stage (0 without one)
 };
+
+// The rolling stage alone on a result of SolveContact (its normal patches): rigid slip, the
+// tangential solution and, when asked, damage per patch. The pitch velocity used is stored in
+// result->pitch_velocity_rad_s. problem.rolling must be set (and not hold a force target: that
+// is SolveContact's and SolveWheelset's business).
+void ApplyRolling(const ContactProblem& problem, ContactResult* result);
+
+// The pitch velocity Omega = -V (1 + c) / r0 for which fx(Omega) = target_N, with fx increasing
+// in the spin-up creepage c (a driving wheel turns faster than it rolls). Brackets c outward up
+// to |c| = 1, then bisection with secant steps to |fx - target| <= tolerance_N. nullopt when the
+// target lies beyond the largest force the bracket reaches (beyond adhesion).
+std::optional<double> SolvePitchVelocityForForce(const std::function<double(double)>& fx,
+                                                 double target_N, double speed_m_s,
+                                                 double rolling_radius_m, double tolerance_N);
 
 // Throws InputError for inconsistent input (both or neither load given, non-positive radius,
 // rolling contact asked of the Hertz model, which has no grid; damage without the rail's shear

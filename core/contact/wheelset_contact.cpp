@@ -1,6 +1,11 @@
 // Both wheels of a wheelset on their rails.
 #include "core/contact/wheelset_contact.h"
 
+#include <cmath>
+#include <optional>
+
+#include <fmt/format.h>
+
 namespace railwear {
 
 WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
@@ -20,8 +25,49 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
   left.placement = {l.lateral_shift_m, l.roll_rad, l.rolling_radius_m};
   if (left.rolling) left.rolling->motion.yaw_rad = -problem.wheelset.yaw_rad;
 
+  // A force target applies to the axle: both wheels share its pitch velocity, and their F_x add
+  // up to the target. Solve both normal problems once, then only the rolling stage per trial.
+  std::optional<double> target;
+  if (right.rolling && right.rolling->longitudinal_force_N) {
+    target = right.rolling->longitudinal_force_N;
+    right.rolling->longitudinal_force_N.reset();
+    left.rolling->longitudinal_force_N.reset();
+  }
   out.right = SolveContact(right);
   out.left = SolveContact(left);
+  if (!target || out.right.status != SolverStatus::kConverged ||
+      out.left.status != SolverStatus::kConverged) {
+    return out;
+  }
+  auto total = [](const ContactResult& r, bool normal) {
+    double f = 0.0;
+    for (const auto& p : r.patches) {
+      f += normal ? p.normal_force_N : (p.rolling ? p.rolling->tangential.force_x_N : 0.0);
+    }
+    return f;
+  };
+  auto fx = [&](double omega) {
+    right.rolling->motion.pitch_velocity_rad_s = omega;
+    left.rolling->motion.pitch_velocity_rad_s = omega;
+    ApplyRolling(right, &out.right);
+    ApplyRolling(left, &out.left);
+    return total(out.right, false) + total(out.left, false);
+  };
+  const double mu_fn = right.rolling->friction * (total(out.right, true) + total(out.left, true));
+  const auto omega = SolvePitchVelocityForForce(fx, *target, right.rolling->motion.speed_m_s,
+                                                problem.wheelset.rolling_radius_m, 1e-6 * mu_fn);
+  if (!omega) {
+    const std::string message = fmt::format(
+        "the axle's longitudinal force {:.1f} N cannot be carried: friction limits it to about "
+        "{:.1f} N here (mu F_n = {:.1f} N)",
+        *target, std::abs(total(out.right, false) + total(out.left, false)), mu_fn);
+    for (ContactResult* r : {&out.right, &out.left}) {
+      r->status = SolverStatus::kNotConverged;
+      r->message = message;
+    }
+    return out;
+  }
+  fx(*omega);
   return out;
 }
 

@@ -348,6 +348,20 @@ TEST(SceneTest, PrescribedCreepageOrMotionNotBoth) {
   EXPECT_EQ(yawed.motion.pitch_velocity_rad_s, -43.0);
 }
 
+TEST(SceneTest, LongitudinalForceInsteadOfPitchVelocity) {
+  const std::string base = std::string("[scene]\neffects = [\"tangential\"]\n") + kMinimal +
+                           "friction = 0.3\nspeed_m_s = 20\n";
+  const Scene s = ParseScene(base + "longitudinal_force_N = -12000\n", "scene.toml");
+  ASSERT_TRUE(s.problem.rolling.has_value());
+  EXPECT_EQ(s.problem.rolling->longitudinal_force_N, -12000.0);
+  EXPECT_TRUE(Contains(ErrorOf(base + "longitudinal_force_N = 1\npitch_velocity_rad_s = -43\n"),
+                       "key 'load.longitudinal_force_N' = 1: expected either "
+                       "longitudinal_force_N or pitch_velocity_rad_s"));
+  EXPECT_TRUE(Contains(
+      ErrorOf(base + "longitudinal_force_N = 1\ncreepage = { xi = 0.001 }\n"),
+      "expected either prescribed creepages or the wheel's motion"));
+}
+
 TEST(SceneTest, WheelsetOnTrackReplacesThePlacementOfLoad) {
   const char* const kWheelset = R"(
 [wheel]

@@ -118,3 +118,36 @@ TEST(RollingContact, DamageOnlyWhenAskedAndNeedsShearYield) {
 
 }  // namespace
 }  // namespace railwear
+
+namespace railwear {
+namespace {
+
+TEST(RollingContact, PrescribedLongitudinalForceUpToFullSliding) {
+  // Issue 3: a total longitudinal force instead of a pitch velocity, robust up to full sliding:
+  // the pitch velocity is found so that F_x meets the target; beyond adhesion it is a status,
+  // not an exception.
+  ContactProblem p = ConformalExample();
+  p.rolling->motion.yaw_rad = 0.0;
+  p.rolling->motion.pitch_velocity_rad_s.reset();
+  const ContactResult free_rolling = SolveContact(p);
+  double fn = 0.0;
+  for (const auto& patch : free_rolling.patches) fn += patch.normal_force_N;
+  const double mu_fn = 0.3 * fn;
+  for (double share : {-0.98, -0.5, 0.2, 0.9, 0.99}) {
+    p.rolling->longitudinal_force_N = share * mu_fn;
+    const ContactResult r = SolveContact(p);
+    ASSERT_EQ(r.status, SolverStatus::kConverged) << share << ": " << r.message;
+    double fx = 0.0;
+    for (const auto& patch : r.patches) fx += patch.rolling->tangential.force_x_N;
+    EXPECT_NEAR(fx, share * mu_fn, 1e-5 * mu_fn) << share;  // the solver's 1e-6 mu Fn, rounded
+    // Traction needs the wheel to turn faster than it rolls (Omega more negative), braking slower.
+    EXPECT_EQ(r.pitch_velocity_rad_s < free_rolling.pitch_velocity_rad_s, share > 0) << share;
+  }
+  p.rolling->longitudinal_force_N = 1.2 * mu_fn;
+  const ContactResult beyond = SolveContact(p);
+  EXPECT_EQ(beyond.status, SolverStatus::kNotConverged);
+  EXPECT_NE(beyond.message.find("cannot be carried"), std::string::npos) << beyond.message;
+}
+
+}  // namespace
+}  // namespace railwear

@@ -63,3 +63,21 @@ TEST(WheelsetContact, MirroredInputsGiveMirroredOutputs) {
 
 }  // namespace
 }  // namespace railwear
+
+namespace railwear {
+namespace {
+
+TEST(WheelsetContact, AxleLongitudinalForceIsSharedByBothWheels) {
+  WheelsetProblem p = Problem(0.002, 0.0);
+  p.wheel_rail.rolling->longitudinal_force_N = 8000.0;  // traction on the axle
+  const WheelsetResult r = SolveWheelset(p);
+  ASSERT_EQ(r.right.status, SolverStatus::kConverged) << r.right.message;
+  ASSERT_EQ(r.left.status, SolverStatus::kConverged);
+  EXPECT_DOUBLE_EQ(r.right.pitch_velocity_rad_s, r.left.pitch_velocity_rad_s);  // one axle
+  const double fx = r.right.patches[0].rolling->tangential.force_x_N +
+                    r.left.patches[0].rolling->tangential.force_x_N;
+  EXPECT_NEAR(fx, 8000.0, 1e-5 * 0.3 * 100e3);
+}
+
+}  // namespace
+}  // namespace railwear
