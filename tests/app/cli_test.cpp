@@ -311,6 +311,10 @@ yaw_mrad = 5
   std::string header;
   std::getline(in, header);
   EXPECT_EQ(header, "patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa,qx_MPa,qs_MPa,slip_x_m_s,slip_s_m_s,stick");
+  // --plot draws the traction and slip maps under the pressure map.
+  const Outcome plot = Run("contact rolling.toml --plot maps.png");
+  ASSERT_EQ(plot.exit_code, 0) << plot.err;
+  EXPECT_GT(std::filesystem::file_size(dir_ / "maps.png"), 1000u);
   // The exact steady-rolling solver gives the same kind of result, within the Coulomb bound.
   Write("exact.toml", std::string(scene).replace(scene.find("accuracy"), 0, "tangential = \"exact\"\n"));
   const Outcome exact = Run("contact exact.toml --json -");
