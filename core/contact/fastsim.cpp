@@ -85,12 +85,7 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
   std::string error;
   Require(opt.IsValid(&error), "options: " + error);
 
-  TangentialSolution sol;
-  sol.traction_x_Pa = Eigen::VectorXd::Zero(n);
-  sol.traction_s_Pa = Eigen::VectorXd::Zero(n);
-  sol.slip_x_m_s = Eigen::VectorXd::Zero(n);
-  sol.slip_s_m_s = Eigen::VectorXd::Zero(n);
-  sol.stick = Eigen::VectorXi::Constant(n, -1);
+  TangentialSolution sol = EmptyTangentialSolution(n);
   const double dA = grid.CellArea();
 
   // 1. The contact region: cell count, extents (to the cell faces), centroid, normal force.

@@ -19,23 +19,14 @@
 
 #include "core/contact/influence_kernels.h"
 #include "core/numerics/check.h"
+#include "core/numerics/fft_size.h"
 
 namespace railwear {
 namespace {
 
 using Complex = std::complex<double>;
 
-// Smallest L >= n of the form 2^a 3^b 5^c (kissfft's fast radices) that is a multiple of
-// `multiple` (4 for real transforms: kissfft's packed real FFT needs it), and at least 2.
-int NextFftSize(int n, int multiple) {
-  for (int l = multiple;; l += multiple) {
-    int m = l;
-    for (int p : {2, 3, 5}) {
-      while (m % p == 0) m /= p;
-    }
-    if (m == 1 && l >= n && l >= 2) return l;
-  }
-}
+using internal::NextFftSize;
 // Lengths of the real (x) and complex (s) transforms for a Toeplitz direction of n cells.
 int RealFftSize(int n) { return NextFftSize(2 * n - 1, 4); }
 int ComplexFftSize(int n) { return NextFftSize(2 * n - 1, 1); }

@@ -16,6 +16,7 @@
 #include "core/contact/influence_operator.h"
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/fft_size.h"
 
 namespace railwear {
 namespace internal {
@@ -127,18 +128,7 @@ class RollingKernel {
   double dx_, ds_;
 };
 
-// Smallest L >= n of the form 2^a 3^b 5^c (kissfft's fast radices), a multiple of `multiple`
-// (4 for real transforms: kissfft's packed real FFT), and at least 2. Same rule as
-// influence_operator.cpp.
-int NextFftSize(int n, int multiple) {
-  for (int l = multiple;; l += multiple) {
-    int m = l;
-    for (int p : {2, 3, 5}) {
-      while (m % p == 0) m /= p;
-    }
-    if (m == 1 && l >= n && l >= 2) return l;
-  }
-}
+using internal::NextFftSize;
 
 // The rolling operator applied to a traction field: s = B q, (q_x, q_s) -> (s_x, s_s).
 class RollingOperator {
@@ -359,12 +349,7 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
   const int n = grid.cells();
   const double mu = in.friction;
 
-  TangentialSolution sol;
-  sol.traction_x_Pa = Eigen::VectorXd::Zero(n);
-  sol.traction_s_Pa = Eigen::VectorXd::Zero(n);
-  sol.slip_x_m_s = Eigen::VectorXd::Zero(n);
-  sol.slip_s_m_s = Eigen::VectorXd::Zero(n);
-  sol.stick = Eigen::VectorXi::Constant(n, -1);
+  TangentialSolution sol = EmptyTangentialSolution(n);
   const double p_max = pressure_Pa.maxCoeff();
   if (!(p_max > 0.0)) {
     sol.status = SolverStatus::kNoContact;

@@ -46,4 +46,16 @@ struct TangentialSolution {
   double frictional_power_W = 0.0;  // sum of |q . v_slip| dA
 };
 
+// A solution with zero traction and slip on `cells` cells, all marked outside the contact (-1):
+// where the solvers start.
+inline TangentialSolution EmptyTangentialSolution(int cells) {
+  TangentialSolution sol;
+  sol.traction_x_Pa = Eigen::VectorXd::Zero(cells);
+  sol.traction_s_Pa = Eigen::VectorXd::Zero(cells);
+  sol.slip_x_m_s = Eigen::VectorXd::Zero(cells);
+  sol.slip_s_m_s = Eigen::VectorXd::Zero(cells);
+  sol.stick = Eigen::VectorXi::Constant(cells, -1);
+  return sol;
+}
+
 }  // namespace railwear

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "core/contact/fastsim.h"
+#include "tests/core/contact/hertz_grid.h"
 
 namespace railwear {
 namespace {
@@ -14,19 +15,7 @@ namespace {
 void BM_Fastsim(benchmark::State& state) {
   const int nx = static_cast<int>(state.range(0)), ns = static_cast<int>(state.range(1));
   const double a = 8e-3, b = 4e-3, fn = 82e3;
-  PatchGrid g;
-  g.nx = nx;
-  g.ns = ns;
-  g.dx_m = 2.0 * a / nx;
-  g.ds_m = 2.0 * b / ns;
-  g.x0_m = -a + 0.5 * g.dx_m;
-  g.s0_m = -b + 0.5 * g.ds_m;
-  g.planar = true;
-  for (int j = 0; j < ns; ++j) {
-    g.point_yz_m.emplace_back(g.S(j), 0.0);
-    g.tangent_yz.emplace_back(1.0, 0.0);
-    g.normal_yz.emplace_back(0.0, -1.0);
-  }
+  const PatchGrid g = testing::MakeHertzGrid(a, b, nx, ns);
   const double p0 = 3.0 * fn / (2.0 * std::numbers::pi * a * b);
   Eigen::VectorXd p = Eigen::VectorXd::Zero(g.cells());
   RollingInput in;

@@ -8,6 +8,7 @@
 #include <benchmark/benchmark.h>
 
 #include "core/contact/tangential_exact.h"
+#include "tests/core/contact/hertz_grid.h"
 
 namespace railwear {
 namespace {
@@ -16,20 +17,7 @@ void BM_TangentialExactCheckCase(benchmark::State& state) {
   const int nx = static_cast<int>(state.range(0));
   const int ns = static_cast<int>(state.range(1));
   const double a = 8e-3, b = 4e-3, fn = 82e3;
-  PatchGrid g;
-  g.nx = nx;
-  g.ns = ns;
-  g.dx_m = 2 * a / nx;
-  g.ds_m = 2 * b / ns;
-  g.x0_m = -a + 0.5 * g.dx_m;
-  g.s0_m = -b + 0.5 * g.ds_m;
-  g.planar = true;
-  for (int j = 0; j < ns; ++j) {
-    g.point_yz_m.emplace_back(g.S(j), 0.0);
-    g.tangent_yz.emplace_back(1.0, 0.0);
-    g.normal_yz.emplace_back(0.0, -1.0);
-  }
-  g.gap_m = Eigen::VectorXd::Zero(g.cells());
+  const PatchGrid g = testing::MakeHertzGrid(a, b, nx, ns);
   Eigen::VectorXd p(g.cells());
   RollingInput in;
   in.creep_x.resize(g.cells());

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "core/contact/kalker_coefficients.h"
+#include "tests/core/contact/hertz_grid.h"
 
 namespace railwear {
 namespace {
@@ -43,20 +44,8 @@ struct HertzPatch {
 
 HertzPatch MakeHertzPatch(int nx, int ns, double a = kA, double b = kB, double fn = kFn) {
   HertzPatch h;
-  PatchGrid& g = h.grid;
-  g.nx = nx;
-  g.ns = ns;
-  g.dx_m = 2.0 * a / nx;
-  g.ds_m = 2.0 * b / ns;
-  g.x0_m = -a + 0.5 * g.dx_m;
-  g.s0_m = -b + 0.5 * g.ds_m;
-  g.planar = true;
-  for (int j = 0; j < ns; ++j) {
-    g.point_yz_m.emplace_back(g.S(j), 0.0);
-    g.tangent_yz.emplace_back(1.0, 0.0);
-    g.normal_yz.emplace_back(0.0, -1.0);
-  }
-  g.gap_m = Eigen::VectorXd::Zero(g.cells());
+  h.grid = testing::MakeHertzGrid(a, b, nx, ns);
+  const PatchGrid& g = h.grid;
   const double p0 = 3.0 * fn / (2.0 * std::numbers::pi * a * b);
   h.pressure_Pa = Eigen::VectorXd::Zero(g.cells());
   for (int j = 0; j < ns; ++j) {

@@ -13,6 +13,7 @@
 
 #include "core/contact/influence_operator.h"
 #include "core/numerics/input_error.h"
+#include "tests/core/contact/hertz_grid.h"
 
 namespace railwear {
 namespace {
@@ -33,24 +34,7 @@ Material SteelG() {
   return m;
 }
 
-// Planar grid of nx x ns cells covering [-a, a] x [-b, b] exactly.
-PatchGrid MakeHertzGrid(double a, double b, int nx, int ns) {
-  PatchGrid g;
-  g.nx = nx;
-  g.ns = ns;
-  g.dx_m = 2.0 * a / nx;
-  g.ds_m = 2.0 * b / ns;
-  g.x0_m = -a + 0.5 * g.dx_m;
-  g.s0_m = -b + 0.5 * g.ds_m;
-  g.planar = true;
-  for (int j = 0; j < ns; ++j) {
-    g.point_yz_m.emplace_back(g.S(j), 0.0);
-    g.tangent_yz.emplace_back(1.0, 0.0);
-    g.normal_yz.emplace_back(0.0, -1.0);
-  }
-  g.gap_m = Eigen::VectorXd::Zero(nx * ns);
-  return g;
-}
+using testing::MakeHertzGrid;
 
 // Hertz pressure p0 sqrt(1 - x^2/a^2 - s^2/b^2), scaled so that sum p dA = Fn on the grid.
 Eigen::VectorXd HertzPressure(const PatchGrid& g, double a, double b, double fn) {
