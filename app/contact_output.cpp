@@ -214,6 +214,11 @@ std::string FormatSummary(const Scene& scene, const ContactResult& r) {
                      "lateral {:.1f} N\n",
                      r.area_m2 * kToMm2, r.p_max_Pa * kToMPa, r.vertical_force_N,
                      r.lateral_force_N);
+  if (r.coupling_iterations > 0) {
+    out += fmt::format("coupling    {} normal-tangential iterations: area {:+.3f} %, p_max {:+.3f} %\n",
+                       r.coupling_iterations, 100.0 * r.coupling_area_change,
+                       100.0 * r.coupling_p_max_change);
+  }
   out += fmt::format("patches     {}\n", r.patches.size());
   if (!r.patches.empty()) out += fmt::format("\n{}", PatchTable(r));
   if (!r.patches.empty() && r.patches[0].rolling) {
@@ -247,6 +252,11 @@ nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r) {
     double fx = 0.0;
     for (const auto& p : r.patches) fx += p.rolling->tangential.force_x_N;
     j["total"]["creep_force_x_N"] = fx;
+  }
+  if (r.coupling_iterations > 0) {
+    j["coupling"] = {{"iterations", r.coupling_iterations},
+                     {"area_change_percent", 100.0 * r.coupling_area_change},
+                     {"p_max_change_percent", 100.0 * r.coupling_p_max_change}};
   }
   CheckFinite(j, "$");
   return j;

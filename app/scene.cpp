@@ -69,20 +69,23 @@ void ReadSceneTable(const Fields& top, Scene* scene) {
     bool known = false;
     for (const auto& k : kKnownEffects) known = known || *name == k;
     if (!known) throw InputError(FieldError(t->file(), e, key, "one of " + JoinQuoted(kKnownEffects)));
-    if (*name == "tangential" || *name == "damage") {
-      scene->tangential = true;  // damage needs the creep forces and slip of the tangential stage
+    if (*name == "tangential" || *name == "damage" || *name == "coupling") {
+      // damage and coupling need the tractions and slip of the tangential stage
+      scene->tangential = true;
       scene->damage = scene->damage || *name == "damage";
+      scene->coupling = scene->coupling || *name == "coupling";
       scene->effects.push_back(*name);
       continue;
     }
     throw InputError(fmt::format(
-        "{}: expected 'normal', 'tangential' or 'damage': effect '{}' is not available in this "
-        "version of railwear",
+        "{}: expected 'normal', 'tangential', 'coupling' or 'damage': effect '{}' is not "
+        "available in this version of railwear",
         FieldPrefix(t->file(), e, key), *name));
   }
-  if (scene->damage && std::find(scene->effects.begin(), scene->effects.end(), "tangential") ==
-                           scene->effects.end()) {
-    scene->effects.insert(scene->effects.begin() + 1, "tangential");  // implied by damage
+  if ((scene->damage || scene->coupling) &&
+      std::find(scene->effects.begin(), scene->effects.end(), "tangential") ==
+          scene->effects.end()) {
+    scene->effects.insert(scene->effects.begin() + 1, "tangential");  // implied
   }
 }
 
@@ -433,6 +436,7 @@ Scene ParseScene(const std::string& text, const std::string& path) {
     rolling.friction = *scene.friction;
     rolling.damage = scene.damage;
     rolling.longitudinal_force_N = scene.longitudinal_force_N;
+    rolling.coupling = scene.coupling;
     scene.problem.rolling = rolling;
   }
   return scene;

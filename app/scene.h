@@ -33,9 +33,10 @@ struct Scene {
   std::optional<double> friction;   // [load] friction, in (0, 2]; used by rolling contact
   std::optional<double> speed_m_s;  // [load] or [wheelset] speed_m_s; used by rolling contact
 
-  // Effects beyond "normal" (DESIGN.md §3). "damage" implies "tangential".
+  // Effects beyond "normal" (DESIGN.md §3). "damage" and "coupling" imply "tangential".
   bool tangential = false;
   bool damage = false;
+  bool coupling = false;  // "coupling" implies "tangential" too
   // Rolling: the wheel's motion (speed, pitch velocity, yaw), or prescribed creepages instead.
   WheelMotion motion;
   std::optional<Creepage> creepage;

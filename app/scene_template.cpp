@@ -17,7 +17,9 @@ effects = ["normal"]          # optional; "normal" is implied. Add "tangential" 
                               # contact (creep forces, slip; needs [load] friction and
                               # speed_m_s) and "damage" (T-gamma, WLRM RCF damage, FI_surf,
                               # shakedown; implies "tangential", needs the rail's
-                              # shear_yield_MPa). "coupling" and "wear" come later.
+                              # shear_yield_MPa) and "coupling" (tractions change the normal
+                              # gap, seed eq. 4 cross terms; implies "tangential").
+                              # "wear" comes later.
 
 [model]                       # optional table
 kind = "conformal"            # "hertz" | "halfspace" (planar + boussinesq)

@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "core/contact/coupling.h"
 #include "core/contact/fastsim.h"
 #include "core/contact/grid_resolution.h"
 #include "core/contact/tangential_exact.h"
@@ -348,6 +349,73 @@ void SolveRollingForForce(const ContactProblem& problem, const WheelRailGeometry
   fx(*omega);  // leave the result at the solution
 }
 
+// The coupling effect: the tangential tractions add CouplingDisplacement to each patch's gap;
+// the normal and rolling stages are repeated until the pressure settles.
+void SolveCoupled(const ContactProblem& problem, const WheelRailGeometry& geom,
+                  const std::vector<ContactCandidate>& cands, const std::vector<int>& kept_build,
+                  const std::vector<int>& kept_offset, NormalProblem* np,
+                  Eigen::VectorXd pressure, ContactResult* result) {
+  const RollingOptions& o = *problem.rolling;
+  auto totals = [](const ContactResult& r) {
+    double area = 0.0, p_max = 0.0;
+    for (const auto& p : r.patches) {
+      area += p.area_m2;
+      p_max = std::max(p_max, p.p_max_Pa);
+    }
+    return std::pair{area, p_max};
+  };
+  const auto [area0, p_max0] = totals(*result);
+  const Eigen::VectorXd base_gap = np->gap_m;
+  std::vector<double> kappa;
+  for (int b : kept_build) {
+    // Curvature signs of the patch: convex (positive lateral curvature) -1, concave +1.
+    const int wheel_sign = cands[b].wheel_lateral_curvature > 0 ? -1 : +1;
+    const int rail_sign = cands[b].rail_lateral_curvature > 0 ? -1 : +1;
+    kappa.push_back(CouplingCoefficient(problem.model.constants, problem.wheel_material,
+                                        wheel_sign, problem.rail_material, rail_sign));
+  }
+  for (int it = 1; it <= o.coupling_max_iterations; ++it) {
+    result->coupling_iterations = it;
+    np->gap_m = base_gap;
+    for (size_t k = 0; k < result->patches.size(); ++k) {
+      const PatchResult& patch = result->patches[k];
+      np->gap_m.segment(kept_offset[k], patch.grid.cells()) +=
+          CouplingDisplacement(patch.grid, patch.rolling->tangential, kappa[k]);
+    }
+    const NormalSolution sol = SolveNormal(*np, problem.solver);
+    result->iterations += sol.iterations;
+    if (sol.status != SolverStatus::kConverged) {
+      result->status = sol.status;
+      result->message = "coupled normal solve: " + sol.message;
+      return;
+    }
+    for (size_t k = 0; k < result->patches.size(); ++k) {
+      PatchGrid grid = result->patches[k].grid;
+      const int n = grid.cells();
+      result->patches[k] =
+          NumericalPatch(geom, std::move(grid), sol.pressure_Pa.segment(kept_offset[k], n));
+    }
+    result->approach_m = sol.approach_m;
+    if (o.longitudinal_force_N) {
+      SolveRollingForForce(problem, geom, result);
+    } else {
+      SolveRolling(problem, geom, result);
+    }
+    const double change =
+        (sol.pressure_Pa - pressure).cwiseAbs().maxCoeff() / std::max(pressure.maxCoeff(), 1.0);
+    pressure = sol.pressure_Pa;
+    if (change < o.coupling_tolerance) {
+      const auto [area1, p_max1] = totals(*result);
+      result->coupling_area_change = area1 / area0 - 1.0;
+      result->coupling_p_max_change = p_max1 / p_max0 - 1.0;
+      return;
+    }
+  }
+  result->status = SolverStatus::kNotConverged;
+  result->message = fmt::format("normal-tangential coupling did not settle in {} iterations",
+                                o.coupling_max_iterations);
+}
+
 }  // namespace
 
 std::optional<double> SolvePitchVelocityForForce(const std::function<double(double)>& fx,
@@ -524,6 +592,7 @@ ContactResult SolveContact(const ContactProblem& problem) {
     const std::vector<ContactCandidate> cands = geom.FindCandidates(threshold);
     std::vector<PatchBuild> builds;
     std::vector<CellMemory> build_cells;
+    std::vector<ContactCandidate> build_cands;
     for (const auto& c : cands) {
       CellSize cc = cell;
       for (const auto& m : cell_memory) {
@@ -539,6 +608,7 @@ ContactResult SolveContact(const ContactProblem& problem) {
       if (b.valid) {
         builds.push_back(std::move(b));
         build_cells.push_back({c.y_lo_m, c.y_hi_m, cc});
+        build_cands.push_back(c);
       }
     }
     AddStage(&result.stages, "grid", SecondsSince(t0));
@@ -617,11 +687,17 @@ ContactResult SolveContact(const ContactProblem& problem) {
     result.approach_m = sol.approach_m;
     result.iterations = total_iterations;
     offset = 0;
-    for (auto& b : builds) {
-      const int n = b.grid.cells();
-      PatchResult pr = NumericalPatch(geom, std::move(b.grid), sol.pressure_Pa.segment(offset, n));
+    std::vector<int> kept_build, kept_offset;  // build index and vector offset of each patch
+    for (size_t k = 0; k < builds.size(); ++k) {
+      const int n = builds[k].grid.cells();
+      PatchResult pr =
+          NumericalPatch(geom, std::move(builds[k].grid), sol.pressure_Pa.segment(offset, n));
+      if (pr.cells_in_contact > 0) {
+        result.patches.push_back(std::move(pr));
+        kept_build.push_back(static_cast<int>(k));
+        kept_offset.push_back(offset);
+      }
       offset += n;
-      if (pr.cells_in_contact > 0) result.patches.push_back(std::move(pr));
     }
     if (grow) {
       result.message += (result.message.empty() ? "" : "; ");
@@ -635,6 +711,12 @@ ContactResult SolveContact(const ContactProblem& problem) {
         SolveRolling(problem, geom, &result);
       }
       AddStage(&result.stages, "tangential", SecondsSince(t0));
+      if (problem.rolling->coupling) {
+        t0 = Clock::now();
+        SolveCoupled(problem, geom, build_cands, kept_build, kept_offset, &np, sol.pressure_Pa,
+                     &result);
+        AddStage(&result.stages, "coupling", SecondsSince(t0));
+      }
     }
     return finish(result);
   }

@@ -52,6 +52,12 @@ struct RollingOptions {
   // the wheel forward; < 0 braking) instead of a prescribed pitch velocity: the pitch velocity
   // is found so that the patches' F_x add up to it. Not with prescribed creepages.
   std::optional<double> longitudinal_force_N;
+  // The "coupling" effect: the tangential tractions change the normal gap through the cross
+  // terms of seed eq. 4 (core/contact/coupling.h); normal and tangential solutions are iterated
+  // until the pressure changes by less than coupling_tolerance of its maximum.
+  bool coupling = false;
+  double coupling_tolerance = 1e-6;
+  int coupling_max_iterations = 50;
 };
 
 struct ContactProblem {
@@ -113,6 +119,11 @@ struct ContactResult {
   std::vector<PatchResult> patches;
   std::vector<StageTime> stages;
   double pitch_velocity_rad_s = 0.0;  // of the rolling stage (0 without one)
+  // The coupling effect: normal-tangential iterations, and the relative change coupling made to
+  // the total area and the peak pressure against the uncoupled solution (0 without coupling).
+  int coupling_iterations = 0;
+  double coupling_area_change = 0.0;
+  double coupling_p_max_change = 0.0;
 };
 
 // The rolling stage alone on a result of SolveContact (its normal patches): rigid slip, the

@@ -301,8 +301,8 @@ TEST(SceneTest, EffectsTangentialAndDamageAreAvailableOthersNotYet) {
   const std::string text = std::string("[scene]\neffects = [\"normal\", \"wear\"]\n") + kMinimal;
   EXPECT_TRUE(Contains(ErrorOf(text),
                        "scene.toml:2: key 'scene.effects' = \"wear\": expected 'normal', "
-                       "'tangential' or 'damage': effect 'wear' is not available in this "
-                       "version of railwear"));
+                       "'tangential', 'coupling' or 'damage': effect 'wear' is not available "
+                       "in this version of railwear"));
   const std::string unknown = std::string("[scene]\neffects = [\"friction\"]\n") + kMinimal;
   EXPECT_TRUE(Contains(ErrorOf(unknown),
                        "key 'scene.effects' = \"friction\": expected one of 'normal', "
