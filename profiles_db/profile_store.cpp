@@ -330,6 +330,18 @@ int InspectDatabase(const Connection& c) {
   return version;
 }
 
+int QueryAuthorizer(void*, int action, const char*, const char*, const char*, const char*) {
+  switch (action) {
+    case SQLITE_ATTACH:
+    case SQLITE_DETACH:
+    case SQLITE_TRANSACTION:
+    case SQLITE_SAVEPOINT:
+      return SQLITE_DENY;
+    default:
+      return SQLITE_OK;
+  }
+}
+
 RunInfo ReadRun(const Statement& s) {
   RunInfo r;
   r.id = s.Int64(0);
@@ -405,8 +417,6 @@ ProfileStore ProfileStore::Open(const std::string& path) {
     throw InputError(fmt::format("database '{}': is a directory; expected a railwear "
                                  "profile-history database file", path));
   }
-  // SQLITE_OPEN_NOFOLLOW is not used: a symlinked study file is fine. URI names are not
-  // interpreted, so a file name is always a file name.
   impl->db = Connection(path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
   const Connection& c = impl->db;
   // Nothing is written before InspectDatabase has accepted the file.
@@ -612,10 +622,16 @@ QueryResult ProfileStore::Query(const std::string& sql) const {
   if (!impl_->in_memory) own.emplace(path(), SQLITE_OPEN_READONLY);
   const Connection& c = own ? *own : impl_->db;
   c.Exec("PRAGMA query_only = ON");
-  struct QueryOnlyOff {
+  // sqlite3_stmt_readonly() accepts ATTACH, DETACH and transaction control, which would change
+  // the connection (or create an attached file): the authorizer refuses them at prepare time.
+  sqlite3_set_authorizer(c.get(), &internal::QueryAuthorizer, nullptr);
+  struct Restore {
     const Connection& c;
-    ~QueryOnlyOff() { sqlite3_exec(c.get(), "PRAGMA query_only = OFF", nullptr, nullptr, nullptr); }
-  } query_only_off{c};
+    ~Restore() {
+      sqlite3_set_authorizer(c.get(), nullptr, nullptr);
+      sqlite3_exec(c.get(), "PRAGMA query_only = OFF", nullptr, nullptr, nullptr);
+    }
+  } restore{c};
 
   sqlite3_stmt* raw = nullptr;
   const char* tail = nullptr;

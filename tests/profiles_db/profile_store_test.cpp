@@ -269,6 +269,28 @@ TEST(ProfileStore, ReopensFileInWalMode) {
   EXPECT_EQ(db.Steps(run).size(), 3u);
 }
 
+TEST(ProfileStore, EmptyFilesBecomeNewDatabases) {
+  TempDir tmp;
+  const std::string empty_file = tmp.File("empty.rwdb");
+  WriteBytes(empty_file, "");
+  const std::string empty_db = tmp.File("empty.db");
+  RawExec(empty_db, "PRAGMA page_size = 4096; VACUUM;");
+  for (const std::string& path : {empty_file, empty_db, tmp.File("new.rwdb")}) {
+    SCOPED_TRACE(path);
+    {
+      ProfileStore db = ProfileStore::Open(path);
+      EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
+      db.CreateRun(TestRun("r"));
+    }
+    EXPECT_EQ(ProfileStore::Open(path).Runs().size(), 1u);
+  }
+  // Two in-memory stores are independent.
+  ProfileStore a = ProfileStore::Open(":memory:");
+  ProfileStore b = ProfileStore::Open(":memory:");
+  a.CreateRun(TestRun("r"));
+  EXPECT_TRUE(b.Runs().empty());
+}
+
 TEST(ProfileStore, RefusesNonSqliteFileUntouched) {
   TempDir tmp;
   const std::string path = tmp.File("profile.csv");
@@ -341,7 +363,8 @@ TEST(ProfileStore, QueryIsReadOnly) {
     for (const char* sql :
          {"DELETE FROM steps", "UPDATE runs SET name = 'x'", "DROP TABLE runs",
           "INSERT INTO meta VALUES ('a', 'b')", "PRAGMA user_version = 7",
-          "CREATE TABLE t(x)"}) {
+          "CREATE TABLE t(x)", "BEGIN", "SAVEPOINT a", "ATTACH 'other.db' AS other",
+          "DETACH main"}) {
       ExpectInputError([&] { db.Query(sql); }, {"query on", "read-only"});
     }
     ExpectInputError([&] { db.Query("SELECT 1; DELETE FROM steps"); }, {"more than one"});
