@@ -1,0 +1,689 @@
+// ProfileStore on the SQLite C API: thin RAII wrappers (connection, statement, a transaction that
+// rolls back unless committed), the schema migrations keyed by version, the float64 BLOB codec,
+// and the store's operations. The only place, with the rest of profiles_db/*.cpp, that sees SQLite.
+#include "profiles_db/profile_store.h"
+
+#include <sqlite3.h>
+
+#include <bit>
+#include <cctype>
+#include <filesystem>
+#include <iterator>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "core/numerics/input_error.h"
+
+namespace railwear {
+namespace internal {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Float64 BLOB codec: little-endian IEEE-754 doubles whatever the host byte order.
+
+static_assert(sizeof(double) == 8 && std::numeric_limits<double>::is_iec559);
+
+void AppendDouble(double v, std::string* out) {
+  auto bits = std::bit_cast<uint64_t>(v);
+  for (int i = 0; i < 8; ++i) out->push_back(static_cast<char>((bits >> (8 * i)) & 0xffu));
+}
+
+double ReadDouble(const unsigned char* p) {
+  uint64_t bits = 0;
+  for (int i = 0; i < 8; ++i) bits |= static_cast<uint64_t>(p[i]) << (8 * i);
+  return std::bit_cast<double>(bits);
+}
+
+std::string EncodeDoubles(const std::vector<double>& v) {
+  std::string out;
+  out.reserve(8 * v.size());
+  for (double x : v) AppendDouble(x, &out);
+  return out;
+}
+
+std::string EncodePoints(const std::vector<Eigen::Vector2d>& points) {
+  std::string out;
+  out.reserve(16 * points.size());
+  for (const auto& p : points) {
+    AppendDouble(p.x(), &out);
+    AppendDouble(p.y(), &out);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// RAII wrappers.
+
+[[noreturn]] void ThrowSqlite(sqlite3* db, const std::string& path, const std::string& what) {
+  throw std::runtime_error(fmt::format("database '{}': {} failed: {}", path, what,
+                                       db ? sqlite3_errmsg(db) : "out of memory"));
+}
+
+class Connection {
+ public:
+  Connection() = default;
+  Connection(const std::string& path, int flags) : path_(path) {
+    const int rc = sqlite3_open_v2(path.c_str(), &db_, flags, nullptr);
+    if (rc != SQLITE_OK) {
+      const std::string msg = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
+      sqlite3_close_v2(db_);
+      db_ = nullptr;
+      throw InputError(fmt::format("database '{}': cannot open it ({}); expected a railwear "
+                                   "profile-history database or a new file in an existing folder",
+                                   path, msg));
+    }
+    sqlite3_extended_result_codes(db_, 1);
+    sqlite3_busy_timeout(db_, 5000);
+  }
+  Connection(Connection&& o) noexcept : db_(std::exchange(o.db_, nullptr)), path_(std::move(o.path_)) {}
+  Connection& operator=(Connection&& o) noexcept {
+    if (this != &o) {
+      Close();
+      db_ = std::exchange(o.db_, nullptr);
+      path_ = std::move(o.path_);
+    }
+    return *this;
+  }
+  Connection(const Connection&) = delete;
+  Connection& operator=(const Connection&) = delete;
+  ~Connection() { Close(); }
+
+  sqlite3* get() const { return db_; }
+  const std::string& path() const { return path_; }
+
+  // Runs SQL without results (may be several statements).
+  void Exec(const std::string& sql) const {
+    char* err = nullptr;
+    if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &err) != SQLITE_OK) {
+      const std::string msg = err ? err : sqlite3_errmsg(db_);
+      sqlite3_free(err);
+      throw std::runtime_error(fmt::format("database '{}': '{}' failed: {}", path_,
+                                           sql.substr(0, 60), msg));
+    }
+  }
+
+ private:
+  void Close() {
+    if (db_) sqlite3_close_v2(db_);
+    db_ = nullptr;
+  }
+  sqlite3* db_ = nullptr;
+  std::string path_;
+};
+
+class Statement {
+ public:
+  Statement(const Connection& c, const std::string& sql) : c_(&c) {
+    if (sqlite3_prepare_v2(c.get(), sql.c_str(), static_cast<int>(sql.size()), &stmt_, nullptr) !=
+        SQLITE_OK) {
+      ThrowSqlite(c.get(), c.path(), fmt::format("preparing '{}'", sql));
+    }
+  }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+  ~Statement() { sqlite3_finalize(stmt_); }
+
+  Statement& Bind(int i, int64_t v) { return Check(sqlite3_bind_int64(stmt_, i, v)); }
+  Statement& Bind(int i, int v) { return Check(sqlite3_bind_int(stmt_, i, v)); }
+  Statement& Bind(int i, double v) { return Check(sqlite3_bind_double(stmt_, i, v)); }
+  Statement& Bind(int i, const std::string& v) {
+    return Check(sqlite3_bind_text64(stmt_, i, v.data(), v.size(), SQLITE_TRANSIENT, SQLITE_UTF8));
+  }
+  Statement& BindBlob(int i, const std::string& bytes) {
+    return Check(sqlite3_bind_blob64(stmt_, i, bytes.data(), bytes.size(), SQLITE_TRANSIENT));
+  }
+
+  // True while there is a row; throws on error. A constraint failure is returned to the caller
+  // through *constraint (when given) instead of throwing.
+  bool Step(int* constraint = nullptr) {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    if (constraint && (rc & 0xff) == SQLITE_CONSTRAINT) {
+      *constraint = rc;
+      return false;
+    }
+    ThrowSqlite(c_->get(), c_->path(), fmt::format("'{}'", sqlite3_sql(stmt_)));
+  }
+  void Run() {
+    while (Step()) {
+    }
+  }
+
+  int64_t Int64(int col) const { return sqlite3_column_int64(stmt_, col); }
+  double Double(int col) const { return sqlite3_column_double(stmt_, col); }
+  std::string Text(int col) const {
+    const auto* p = sqlite3_column_text(stmt_, col);
+    return p ? std::string(reinterpret_cast<const char*>(p),
+                           static_cast<size_t>(sqlite3_column_bytes(stmt_, col)))
+             : std::string();
+  }
+  std::vector<double> Doubles(int col) const {
+    const auto* p = static_cast<const unsigned char*>(sqlite3_column_blob(stmt_, col));
+    const int n = sqlite3_column_bytes(stmt_, col);
+    std::vector<double> v(static_cast<size_t>(n) / 8);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = ReadDouble(p + 8 * i);
+    return v;
+  }
+  sqlite3_stmt* get() const { return stmt_; }
+
+ private:
+  Statement& Check(int rc) {
+    if (rc != SQLITE_OK) ThrowSqlite(c_->get(), c_->path(), "binding a parameter");
+    return *this;
+  }
+  const Connection* c_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+// A write transaction (BEGIN IMMEDIATE) that rolls back on destruction unless committed.
+class Transaction {
+ public:
+  explicit Transaction(const Connection& c) : c_(c) { c_.Exec("BEGIN IMMEDIATE"); }
+  Transaction(const Transaction&) = delete;
+  Transaction& operator=(const Transaction&) = delete;
+  ~Transaction() {
+    if (!committed_) sqlite3_exec(c_.get(), "ROLLBACK", nullptr, nullptr, nullptr);
+  }
+  void Commit() {
+    c_.Exec("COMMIT");
+    committed_ = true;
+  }
+
+ private:
+  const Connection& c_;
+  bool committed_ = false;
+};
+
+int PragmaInt(const Connection& c, const char* pragma) {
+  Statement s(c, fmt::format("PRAGMA {}", pragma));
+  return s.Step() ? static_cast<int>(s.Int64(0)) : 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Schema migrations. kMigrations[v] takes a database from user_version v to v + 1; each runs in
+// the transaction that also sets user_version.
+
+void MigrateTo1(const Connection& c) {
+  c.Exec(fmt::format("PRAGMA application_id = {}", ProfileStore::kApplicationId));
+  c.Exec(R"sql(
+CREATE TABLE meta(
+  key   TEXT PRIMARY KEY,
+  value TEXT NOT NULL);
+CREATE TABLE runs(
+  id              INTEGER PRIMARY KEY,
+  name            TEXT NOT NULL UNIQUE,
+  created_utc     TEXT NOT NULL,
+  program_version TEXT NOT NULL,
+  scene_text      TEXT NOT NULL,
+  wear_law_json   TEXT NOT NULL,
+  state           TEXT NOT NULL CHECK (state IN ('running', 'complete', 'aborted')));
+CREATE TABLE steps(
+  run_id               INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+  step                 INTEGER NOT NULL CHECK (step >= 0),
+  passes               REAL NOT NULL,
+  mgt                  REAL NOT NULL,
+  worn_area_mm2        REAL NOT NULL,
+  max_depth_mm         REAL NOT NULL,
+  max_depth_y_mm       REAL NOT NULL,
+  w1_mm                REAL NOT NULL,
+  w2_mm                REAL NOT NULL,
+  w3_mm                REAL NOT NULL,
+  smoothing_area_error REAL NOT NULL,
+  created_utc          TEXT NOT NULL,
+  PRIMARY KEY (run_id, step));
+CREATE TABLE profiles(
+  run_id   INTEGER NOT NULL,
+  step     INTEGER NOT NULL,
+  n_points INTEGER NOT NULL,
+  yz       BLOB NOT NULL CHECK (length(yz) = 16 * n_points),
+  PRIMARY KEY (run_id, step),
+  FOREIGN KEY (run_id, step) REFERENCES steps(run_id, step) ON DELETE CASCADE);
+CREATE TABLE load_cases(
+  run_id     INTEGER NOT NULL,
+  step       INTEGER NOT NULL,
+  case_index INTEGER NOT NULL,
+  json       TEXT NOT NULL,
+  PRIMARY KEY (run_id, step, case_index),
+  FOREIGN KEY (run_id, step) REFERENCES steps(run_id, step) ON DELETE CASCADE);
+CREATE TABLE distributions(
+  run_id INTEGER NOT NULL,
+  step   INTEGER NOT NULL,
+  kind   TEXT NOT NULL,
+  y      BLOB NOT NULL,
+  value  BLOB NOT NULL CHECK (length(value) = length(y)),
+  PRIMARY KEY (run_id, step, kind),
+  FOREIGN KEY (run_id, step) REFERENCES steps(run_id, step) ON DELETE CASCADE);
+)sql");
+  Statement ins(c, "INSERT INTO meta(key, value) VALUES ('format', ?1), ('schema_doc', ?2)");
+  ins.Bind(1, std::string(ProfileStore::kFormatName))
+      .Bind(2, std::string("profiles_db/SCHEMA.md in the railwear sources"));
+  ins.Run();
+}
+
+using Migration = void (*)(const Connection&);
+constexpr Migration kMigrations[] = {&MigrateTo1};
+static_assert(std::size(kMigrations) == ProfileStore::kSchemaVersion);
+
+const char* kNowUtc = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
+
+bool TableExists(const Connection& c, const std::string& name) {
+  Statement s(c, "SELECT 1 FROM sqlite_schema WHERE type = 'table' AND name = ?1");
+  s.Bind(1, name);
+  return s.Step();
+}
+
+// Checks that `c` holds a railwear database this program can use, or an empty database, without
+// writing anything. Returns the user_version (0 for an empty database).
+int InspectDatabase(const Connection& c) {
+  const std::string& path = c.path();
+  sqlite3_stmt* raw = nullptr;
+  const int rc = sqlite3_prepare_v2(c.get(), "SELECT count(*) FROM sqlite_schema", -1, &raw,
+                                    nullptr);
+  int objects = 0;
+  int step_rc = rc;
+  if (rc == SQLITE_OK) {
+    step_rc = sqlite3_step(raw);
+    if (step_rc == SQLITE_ROW) objects = sqlite3_column_int(raw, 0);
+  }
+  sqlite3_finalize(raw);
+  if (rc != SQLITE_OK || step_rc != SQLITE_ROW) {
+    if ((step_rc & 0xff) == SQLITE_NOTADB || (rc & 0xff) == SQLITE_NOTADB ||
+        (step_rc & 0xff) == SQLITE_CORRUPT || (rc & 0xff) == SQLITE_CORRUPT) {
+      throw InputError(fmt::format(
+          "database '{}': not an SQLite database ({}); expected a railwear profile-history "
+          "database (SQLite, application_id 0x{:08x}) or a new file",
+          path, sqlite3_errmsg(c.get()), ProfileStore::kApplicationId));
+    }
+    ThrowSqlite(c.get(), path, "reading the schema");
+  }
+  const int app_id = PragmaInt(c, "application_id");
+  const int version = PragmaInt(c, "user_version");
+  if (app_id == 0 && version == 0 && objects == 0) return 0;  // empty: a new database
+  if (app_id != ProfileStore::kApplicationId) {
+    throw InputError(fmt::format(
+        "database '{}': an SQLite database of another application (application_id 0x{:08x}, "
+        "{} schema objects); expected a railwear profile-history database (application_id "
+        "0x{:08x}, table meta)",
+        path, static_cast<uint32_t>(app_id), objects, ProfileStore::kApplicationId));
+  }
+  if (version > ProfileStore::kSchemaVersion) {
+    throw InputError(fmt::format(
+        "database '{}': written by a newer railwear (schema version {}); this program knows "
+        "schema versions up to {}, upgrade railwear to open it",
+        path, version, ProfileStore::kSchemaVersion));
+  }
+  bool format_ok = false;
+  if (TableExists(c, "meta")) {
+    Statement s(c, "SELECT value FROM meta WHERE key = 'format'");
+    format_ok = s.Step() && s.Text(0) == ProfileStore::kFormatName;
+  }
+  if (!format_ok) {
+    throw InputError(fmt::format(
+        "database '{}': has the railwear application_id but no meta table with format '{}'; "
+        "expected a railwear profile-history database (damaged or written by another program?)",
+        path, ProfileStore::kFormatName));
+  }
+  return version;
+}
+
+int QueryAuthorizer(void*, int action, const char*, const char*, const char*, const char*) {
+  switch (action) {
+    case SQLITE_ATTACH:
+    case SQLITE_DETACH:
+    case SQLITE_TRANSACTION:
+    case SQLITE_SAVEPOINT:
+      return SQLITE_DENY;
+    default:
+      return SQLITE_OK;
+  }
+}
+
+RunInfo ReadRun(const Statement& s) {
+  RunInfo r;
+  r.id = s.Int64(0);
+  r.name = s.Text(1);
+  r.created_utc = s.Text(2);
+  r.program_version = s.Text(3);
+  r.scene_text = s.Text(4);
+  r.wear_law_json = s.Text(5);
+  r.state = RunStateFromString(s.Text(6));
+  return r;
+}
+
+constexpr const char* kRunColumns =
+    "id, name, created_utc, program_version, scene_text, wear_law_json, state";
+constexpr const char* kStepColumns =
+    "step, passes, mgt, worn_area_mm2, max_depth_mm, max_depth_y_mm, w1_mm, w2_mm, w3_mm, "
+    "smoothing_area_error, created_utc";
+
+StepRecord ReadStep(const Statement& s) {
+  StepRecord r;
+  r.step = static_cast<int>(s.Int64(0));
+  r.passes = s.Double(1);
+  r.mgt = s.Double(2);
+  r.worn_area_mm2 = s.Double(3);
+  r.max_depth_mm = s.Double(4);
+  r.max_depth_y_mm = s.Double(5);
+  r.w1_mm = s.Double(6);
+  r.w2_mm = s.Double(7);
+  r.w3_mm = s.Double(8);
+  r.smoothing_area_error = s.Double(9);
+  r.created_utc = s.Text(10);
+  return r;
+}
+
+}  // namespace
+}  // namespace internal
+
+using internal::Connection;
+using internal::Statement;
+using internal::Transaction;
+
+std::string ToString(RunState state) {
+  switch (state) {
+    case RunState::kRunning: return "running";
+    case RunState::kComplete: return "complete";
+    case RunState::kAborted: return "aborted";
+  }
+  return "running";
+}
+
+RunState RunStateFromString(const std::string& text) {
+  if (text == "running") return RunState::kRunning;
+  if (text == "complete") return RunState::kComplete;
+  if (text == "aborted") return RunState::kAborted;
+  throw InputError(fmt::format("run state '{}': expected running, complete or aborted", text));
+}
+
+struct ProfileStore::Impl {
+  Connection db;
+  bool in_memory = false;
+};
+
+ProfileStore::ProfileStore(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+ProfileStore::ProfileStore(ProfileStore&&) noexcept = default;
+ProfileStore& ProfileStore::operator=(ProfileStore&&) noexcept = default;
+ProfileStore::~ProfileStore() = default;
+
+ProfileStore ProfileStore::Open(const std::string& path) {
+  auto impl = std::make_unique<Impl>();
+  impl->in_memory = path == ":memory:" || path.empty();
+  std::error_code ec;
+  if (!impl->in_memory && std::filesystem::is_directory(path, ec)) {
+    throw InputError(fmt::format("database '{}': is a directory; expected a railwear "
+                                 "profile-history database file", path));
+  }
+  impl->db = Connection(path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  const Connection& c = impl->db;
+  // Nothing is written before InspectDatabase has accepted the file.
+  int version = internal::InspectDatabase(c);
+  c.Exec("PRAGMA foreign_keys = ON");
+  if (!impl->in_memory) {
+    Statement wal(c, "PRAGMA journal_mode = WAL");
+    if (!wal.Step() || wal.Text(0) != "wal") {
+      throw std::runtime_error(fmt::format("database '{}': cannot switch to WAL mode", path));
+    }
+  }
+  while (version < kSchemaVersion) {
+    Transaction t(c);
+    internal::kMigrations[version](c);
+    c.Exec(fmt::format("PRAGMA user_version = {}", version + 1));
+    t.Commit();
+    ++version;
+  }
+  return ProfileStore(std::move(impl));
+}
+
+const std::string& ProfileStore::path() const { return impl_->db.path(); }
+
+int ProfileStore::SchemaVersion() const { return internal::PragmaInt(impl_->db, "user_version"); }
+
+int64_t ProfileStore::CreateRun(const RunInfo& run) {
+  const Connection& c = impl_->db;
+  if (run.name.empty()) {
+    throw InputError(fmt::format("database '{}': run name is empty; expected a name", path()));
+  }
+  Statement s(c, fmt::format("INSERT INTO runs(name, created_utc, program_version, scene_text, "
+                             "wear_law_json, state) VALUES (?1, coalesce(?2, {}), ?3, ?4, ?5, ?6)",
+                             internal::kNowUtc));
+  s.Bind(1, run.name);
+  if (!run.created_utc.empty()) s.Bind(2, run.created_utc);
+  s.Bind(3, run.program_version).Bind(4, run.scene_text).Bind(5, run.wear_law_json);
+  s.Bind(6, ToString(run.state));
+  int constraint = 0;
+  s.Step(&constraint);
+  if (constraint != 0) {
+    throw InputError(fmt::format("database '{}': a run named '{}' already exists; expected a new "
+                                 "run name (or resume that run)", path(), run.name));
+  }
+  return sqlite3_last_insert_rowid(c.get());
+}
+
+std::optional<RunInfo> ProfileStore::FindRun(const std::string& name) const {
+  Statement s(impl_->db, fmt::format("SELECT {} FROM runs WHERE name = ?1", internal::kRunColumns));
+  s.Bind(1, name);
+  if (!s.Step()) return std::nullopt;
+  return internal::ReadRun(s);
+}
+
+std::vector<RunInfo> ProfileStore::Runs() const {
+  Statement s(impl_->db, fmt::format("SELECT {} FROM runs ORDER BY id", internal::kRunColumns));
+  std::vector<RunInfo> runs;
+  while (s.Step()) runs.push_back(internal::ReadRun(s));
+  return runs;
+}
+
+void ProfileStore::SetRunState(int64_t run, RunState state) {
+  Statement s(impl_->db, "UPDATE runs SET state = ?1 WHERE id = ?2");
+  s.Bind(1, ToString(state)).Bind(2, run);
+  s.Run();
+  if (sqlite3_changes(impl_->db.get()) == 0) {
+    throw InputError(fmt::format("database '{}': no run with id {}", path(), run));
+  }
+}
+
+void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
+  const Connection& c = impl_->db;
+  if (step.profile.size() == 0) {
+    throw InputError(fmt::format("database '{}': run {} step {}: the profile is empty; expected "
+                                 "the rail profile after the step", path(), run, step.step));
+  }
+  for (const auto& d : step.distributions) {
+    if (d.kind.empty() || d.y_m.size() != d.value.size()) {
+      throw InputError(fmt::format(
+          "database '{}': run {} step {}: distribution '{}' ({} positions, {} values); expected a "
+          "unique non-empty kind and as many values as positions",
+          path(), run, step.step, d.kind, d.y_m.size(), d.value.size()));
+    }
+  }
+  Transaction t(c);
+  {
+    Statement s(c, "SELECT 1 FROM runs WHERE id = ?1");
+    s.Bind(1, run);
+    if (!s.Step()) throw InputError(fmt::format("database '{}': no run with id {}", path(), run));
+  }
+  const std::optional<int> last = LastStep(run);
+  const int expected = last ? *last + 1 : 0;
+  if (step.step != expected) {
+    throw InputError(fmt::format("database '{}': run {} step {}: steps are appended in order; "
+                                 "expected step {}", path(), run, step.step, expected));
+  }
+  {
+    Statement s(c, fmt::format("INSERT INTO steps(run_id, {}) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, "
+                               "?8, ?9, ?10, ?11, {})", internal::kStepColumns, internal::kNowUtc));
+    s.Bind(1, run).Bind(2, step.step).Bind(3, step.passes).Bind(4, step.mgt);
+    s.Bind(5, step.worn_area_mm2).Bind(6, step.max_depth_mm).Bind(7, step.max_depth_y_mm);
+    s.Bind(8, step.w1_mm).Bind(9, step.w2_mm).Bind(10, step.w3_mm);
+    s.Bind(11, step.smoothing_area_error);
+    s.Run();
+  }
+  {
+    Statement s(c, "INSERT INTO profiles(run_id, step, n_points, yz) VALUES (?1, ?2, ?3, ?4)");
+    s.Bind(1, run).Bind(2, step.step).Bind(3, step.profile.size());
+    s.BindBlob(4, internal::EncodePoints(step.profile.points()));
+    s.Run();
+  }
+  {
+    Statement s(c, "INSERT INTO load_cases(run_id, step, case_index, json) VALUES (?1, ?2, ?3, ?4)");
+    for (size_t i = 0; i < step.load_cases_json.size(); ++i) {
+      sqlite3_reset(s.get());
+      s.Bind(1, run).Bind(2, step.step).Bind(3, static_cast<int>(i)).Bind(4, step.load_cases_json[i]);
+      s.Run();
+    }
+  }
+  {
+    Statement s(c, "INSERT INTO distributions(run_id, step, kind, y, value) "
+                   "VALUES (?1, ?2, ?3, ?4, ?5)");
+    for (const auto& d : step.distributions) {
+      sqlite3_reset(s.get());
+      s.Bind(1, run).Bind(2, step.step).Bind(3, d.kind);
+      s.BindBlob(4, internal::EncodeDoubles(d.y_m)).BindBlob(5, internal::EncodeDoubles(d.value));
+      int constraint = 0;
+      s.Step(&constraint);
+      if (constraint != 0) {  // the transaction rolls back the rows already written
+        throw InputError(fmt::format("database '{}': run {} step {}: distribution kind '{}' "
+                                     "given twice; expected each kind once", path(), run,
+                                     step.step, d.kind));
+      }
+    }
+  }
+  t.Commit();
+}
+
+std::vector<StepRecord> ProfileStore::Steps(int64_t run) const {
+  Statement s(impl_->db, fmt::format("SELECT {} FROM steps WHERE run_id = ?1 ORDER BY step",
+                                     internal::kStepColumns));
+  s.Bind(1, run);
+  std::vector<StepRecord> steps;
+  while (s.Step()) steps.push_back(internal::ReadStep(s));
+  return steps;
+}
+
+Profile ProfileStore::LoadProfile(int64_t run, int step) const {
+  Statement s(impl_->db, "SELECT n_points, yz FROM profiles WHERE run_id = ?1 AND step = ?2");
+  s.Bind(1, run).Bind(2, step);
+  if (!s.Step()) {
+    throw InputError(fmt::format("database '{}': run {} has no step {}", path(), run, step));
+  }
+  const std::vector<double> yz = s.Doubles(1);
+  if (yz.size() != 2 * static_cast<size_t>(s.Int64(0))) {
+    throw InputError(fmt::format("database '{}': run {} step {}: profile BLOB of {} values for {} "
+                                 "points; expected 2 per point", path(), run, step, yz.size(),
+                                 s.Int64(0)));
+  }
+  std::vector<Eigen::Vector2d> points(yz.size() / 2);
+  for (size_t i = 0; i < points.size(); ++i) points[i] = {yz[2 * i], yz[2 * i + 1]};
+  return Profile(std::move(points), fmt::format("{}:run {} step {}", path(), run, step));
+}
+
+StepRecord ProfileStore::LoadStep(int64_t run, int step) const {
+  const Connection& c = impl_->db;
+  StepRecord r;
+  {
+    Statement s(c, fmt::format("SELECT {} FROM steps WHERE run_id = ?1 AND step = ?2",
+                               internal::kStepColumns));
+    s.Bind(1, run).Bind(2, step);
+    if (!s.Step()) {
+      throw InputError(fmt::format("database '{}': run {} has no step {}", path(), run, step));
+    }
+    r = internal::ReadStep(s);
+  }
+  r.profile = LoadProfile(run, step);
+  {
+    Statement s(c, "SELECT json FROM load_cases WHERE run_id = ?1 AND step = ?2 "
+                   "ORDER BY case_index");
+    s.Bind(1, run).Bind(2, step);
+    while (s.Step()) r.load_cases_json.push_back(s.Text(0));
+  }
+  {
+    Statement s(c, "SELECT kind, y, value FROM distributions WHERE run_id = ?1 AND step = ?2 "
+                   "ORDER BY kind");
+    s.Bind(1, run).Bind(2, step);
+    while (s.Step()) r.distributions.push_back({s.Text(0), s.Doubles(1), s.Doubles(2)});
+  }
+  return r;
+}
+
+std::optional<int> ProfileStore::LastStep(int64_t run) const {
+  Statement s(impl_->db, "SELECT max(step) FROM steps WHERE run_id = ?1");
+  s.Bind(1, run);
+  if (!s.Step() || sqlite3_column_type(s.get(), 0) == SQLITE_NULL) return std::nullopt;
+  return static_cast<int>(s.Int64(0));
+}
+
+QueryResult ProfileStore::Query(const std::string& sql) const {
+  // A file database gets its own read-only connection: SQLite itself refuses any write there.
+  // ":memory:" cannot be shared with a second connection, so it is queried here, query_only.
+  std::optional<Connection> own;
+  if (!impl_->in_memory) own.emplace(path(), SQLITE_OPEN_READONLY);
+  const Connection& c = own ? *own : impl_->db;
+  c.Exec("PRAGMA query_only = ON");
+  // sqlite3_stmt_readonly() accepts ATTACH, DETACH and transaction control, which would change
+  // the connection (or create an attached file): the authorizer refuses them at prepare time.
+  sqlite3_set_authorizer(c.get(), &internal::QueryAuthorizer, nullptr);
+  struct Restore {
+    const Connection& c;
+    ~Restore() {
+      sqlite3_set_authorizer(c.get(), nullptr, nullptr);
+      sqlite3_exec(c.get(), "PRAGMA query_only = OFF", nullptr, nullptr, nullptr);
+    }
+  } restore{c};
+
+  sqlite3_stmt* raw = nullptr;
+  const char* tail = nullptr;
+  if (sqlite3_prepare_v2(c.get(), sql.c_str(), static_cast<int>(sql.size()), &raw, &tail) !=
+      SQLITE_OK) {
+    const std::string msg = sqlite3_errmsg(c.get());
+    sqlite3_finalize(raw);
+    throw InputError(fmt::format("query on '{}': {}; expected one read-only SQL statement "
+                                 "(see profiles_db/SCHEMA.md)", path(), msg));
+  }
+  std::unique_ptr<sqlite3_stmt, int (*)(sqlite3_stmt*)> stmt(raw, &sqlite3_finalize);
+  if (!stmt) throw InputError(fmt::format("query on '{}': empty; expected a SELECT", path()));
+  for (const char* p = tail; p && *p; ++p) {
+    if (!std::isspace(static_cast<unsigned char>(*p)) && *p != ';') {
+      throw InputError(fmt::format("query on '{}': more than one statement ('{}'); expected one",
+                                   path(), p));
+    }
+  }
+  if (!sqlite3_stmt_readonly(stmt.get())) {
+    throw InputError(fmt::format("query on '{}': '{}' would modify the database; expected a "
+                                 "read-only statement such as SELECT", path(), sql));
+  }
+  QueryResult result;
+  const int n = sqlite3_column_count(stmt.get());
+  for (int i = 0; i < n; ++i) result.columns.emplace_back(sqlite3_column_name(stmt.get(), i));
+  int rc;
+  while ((rc = sqlite3_step(stmt.get())) == SQLITE_ROW) {
+    std::vector<std::string> row;
+    row.reserve(n);
+    for (int i = 0; i < n; ++i) {
+      switch (sqlite3_column_type(stmt.get(), i)) {
+        case SQLITE_NULL: row.emplace_back("NULL"); break;
+        case SQLITE_BLOB:
+          row.push_back(fmt::format("<blob {} bytes>", sqlite3_column_bytes(stmt.get(), i)));
+          break;
+        default:
+          row.emplace_back(reinterpret_cast<const char*>(sqlite3_column_text(stmt.get(), i)),
+                           static_cast<size_t>(sqlite3_column_bytes(stmt.get(), i)));
+      }
+    }
+    result.rows.push_back(std::move(row));
+  }
+  if (rc != SQLITE_DONE) {
+    const int code = rc & 0xff;
+    const std::string msg = sqlite3_errmsg(c.get());
+    if (code == SQLITE_READONLY || code == SQLITE_ERROR || code == SQLITE_CONSTRAINT) {
+      throw InputError(fmt::format("query on '{}': {}; expected one read-only SQL statement",
+                                   path(), msg));
+    }
+    throw std::runtime_error(fmt::format("query on '{}' failed: {}", path(), msg));
+  }
+  return result;
+}
+
+}  // namespace railwear

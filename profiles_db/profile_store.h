@@ -1,0 +1,148 @@
+// ProfileStore: the profile history of one study, kept in one SQLite database file (DESIGN.md §5).
+//
+// A study database holds wear runs; each run holds numbered steps; each step holds the summary
+// numbers of the rail profile after that step, the profile itself (float64 points), the per-load-
+// case results as JSON text and per-position distributions (wear depth, damage). Every run keeps
+// its full scene text, the program version and the wear-law parameters, so any step can be re-run.
+// The wear loop (wear/) knows nothing of this; app/ hands its finished steps to AppendStep.
+//
+// Schema version 1 (PRAGMA user_version = 1, PRAGMA application_id = kApplicationId), also
+// documented for users of the sqlite3 shell in profiles_db/SCHEMA.md:
+//
+//   meta(key TEXT PRIMARY KEY, value TEXT)          -- ('format', 'railwear-profile-history'), ...
+//   runs(id INTEGER PRIMARY KEY, name TEXT UNIQUE, created_utc TEXT, program_version TEXT,
+//        scene_text TEXT, wear_law_json TEXT, state TEXT)   -- state: running|complete|aborted
+//   steps(run_id, step, passes, mgt, worn_area_mm2, max_depth_mm, max_depth_y_mm,
+//         w1_mm, w2_mm, w3_mm, smoothing_area_error, created_utc, PRIMARY KEY(run_id, step))
+//   profiles(run_id, step, n_points, yz BLOB, PRIMARY KEY(run_id, step))
+//         -- yz: n_points pairs (y, z) as little-endian IEEE-754 float64, metres, 16 bytes a point
+//   load_cases(run_id, step, case_index, json TEXT, PRIMARY KEY(run_id, step, case_index))
+//   distributions(run_id, step, kind TEXT, y BLOB, value BLOB, PRIMARY KEY(run_id, step, kind))
+//         -- y: rail-profile lateral positions [m], value: same count, little-endian float64
+//
+// The database runs in WAL mode with foreign keys on. Each AppendStep is one transaction: a crash
+// loses at most the step in flight. Opening never modifies a file it refuses.
+//
+// Errors: bad input (a file that is not a railwear database, a duplicate run name, a step out of
+// order, a write statement given to Query) throws InputError naming the file and what was
+// expected; any other SQLite failure throws std::runtime_error with SQLite's message.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/profile/profile.h"
+
+namespace railwear {
+
+enum class RunState { kRunning, kComplete, kAborted };
+// "running", "complete", "aborted"; FromString throws InputError for anything else.
+std::string ToString(RunState state);
+RunState RunStateFromString(const std::string& text);
+
+// One wear run: what it was started from. Everything needed to re-run any of its steps.
+struct RunInfo {
+  int64_t id = 0;               // assigned by CreateRun; ignored on input
+  std::string name;             // unique within the database, not empty
+  std::string created_utc;      // ISO 8601 "YYYY-MM-DDTHH:MM:SS.sssZ"; set by CreateRun if empty
+  std::string program_version;  // e.g. "0.1.0"
+  std::string scene_text;       // the full scene file (TOML), verbatim
+  std::string wear_law_json;    // the wear-law parameters as JSON text
+  RunState state = RunState::kRunning;
+};
+
+// A quantity sampled along the rail profile, e.g. kind "wear_depth_mm" or "damage".
+struct Distribution {
+  std::string kind;          // unique within a step, not empty
+  std::vector<double> y_m;   // lateral positions on the rail profile [m], shape [n]
+  std::vector<double> value; // the quantity at each y (units in `kind`), shape [n]
+};
+
+// One wear step. Step 0 is conventionally the unworn profile (passes = 0).
+struct StepRecord {
+  int step = 0;
+  double passes = 0.0;            // cumulative wheel passes up to the end of this step
+  double mgt = 0.0;               // cumulative traffic [million gross tonnes]
+  double worn_area_mm2 = 0.0;     // cumulative worn cross-section area [mm^2]
+  double max_depth_mm = 0.0;      // largest cumulative wear depth [mm]
+  double max_depth_y_mm = 0.0;    // lateral position of that depth [mm]
+  double w1_mm = 0.0;             // W1/W2/W3-style wear measures [mm] (defined in wear/)
+  double w2_mm = 0.0;
+  double w3_mm = 0.0;
+  double smoothing_area_error = 0.0;  // relative area change caused by profile smoothing [-]
+  std::string created_utc;        // set by AppendStep; filled in by Steps()
+  Profile profile;                // the rail profile after this step (not filled by Steps())
+  std::vector<std::string> load_cases_json;  // per load case (index = case_index): JSON text
+  std::vector<Distribution> distributions;   // wear and damage per rail-profile position
+};
+
+// Result of Query: column names and rows, every value as text (NULL -> "NULL",
+// a BLOB -> "<blob N bytes>", numbers as SQLite prints them).
+struct QueryResult {
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;
+};
+
+class ProfileStore {
+ public:
+  // Schema version written by this program (PRAGMA user_version).
+  static constexpr int kSchemaVersion = 1;
+  // PRAGMA application_id of railwear databases: "RWDB" in ASCII.
+  static constexpr int32_t kApplicationId = 0x52574442;
+  // Value of meta.format in railwear databases.
+  static constexpr const char* kFormatName = "railwear-profile-history";
+
+  // Opens `path` (a file name, or ":memory:" for a private in-memory database). A missing or
+  // empty file becomes a new database of schema kSchemaVersion; an older railwear database is
+  // migrated in one transaction. Throws InputError, leaving the file untouched, when the file is
+  // not an SQLite database, is an SQLite database of another application, or was written by a
+  // newer railwear (user_version > kSchemaVersion), or cannot be opened at all.
+  static ProfileStore Open(const std::string& path);
+
+  ProfileStore(ProfileStore&&) noexcept;
+  ProfileStore& operator=(ProfileStore&&) noexcept;
+  ~ProfileStore();
+
+  const std::string& path() const;
+  // The database's PRAGMA user_version (kSchemaVersion once open).
+  int SchemaVersion() const;
+
+  // Stores a new run and returns its id. Throws InputError when the name is empty or already used.
+  int64_t CreateRun(const RunInfo& run);
+  std::optional<RunInfo> FindRun(const std::string& name) const;
+  // All runs, in creation (id) order.
+  std::vector<RunInfo> Runs() const;
+  // Throws InputError for an unknown run id.
+  void SetRunState(int64_t run, RunState state);
+
+  // Writes the step row, its profile, load cases and distributions in one transaction (all or
+  // nothing). Throws InputError when the run does not exist, step.step is not LastStep()+1 (0 for
+  // a run without steps), the profile is empty, or a distribution is malformed (empty or
+  // duplicate kind, y and value of different lengths).
+  void AppendStep(int64_t run, const StepRecord& step);
+  // The steps of a run in order, summary columns only (profile, load cases and distributions
+  // are left empty; see LoadProfile / LoadStep).
+  std::vector<StepRecord> Steps(int64_t run) const;
+  // One step in full: summary, profile, load cases and distributions. Throws InputError when absent.
+  StepRecord LoadStep(int64_t run, int step) const;
+  // The profile stored for a step, points bit-for-bit as appended. Throws InputError when absent.
+  Profile LoadProfile(int64_t run, int step) const;
+  // The last stored step of a run, nullopt when it has none.
+  std::optional<int> LastStep(int64_t run) const;
+
+  // Runs one read-only SQL statement (a SELECT, or a read-only PRAGMA) and returns all its rows.
+  // File databases are queried through a separate read-only connection (SQLITE_OPEN_READONLY);
+  // ":memory:" through this connection with PRAGMA query_only. Throws InputError for a syntax
+  // error, more than one statement, or any statement that would write.
+  QueryResult Query(const std::string& sql) const;
+
+ private:
+  struct Impl;
+  explicit ProfileStore(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace railwear

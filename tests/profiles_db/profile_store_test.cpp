@@ -1,0 +1,380 @@
+// Tests of ProfileStore: create/open/reopen, schema version, runs, steps in order, exact profile
+// round trip, all-or-nothing steps, refusal of files that are not railwear databases (with the
+// file left byte-for-byte untouched), and the read-only query helper. Mostly on ":memory:".
+#include "profiles_db/profile_store.h"
+
+#include <sqlite3.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/numerics/input_error.h"
+
+namespace railwear {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A temporary folder per test, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("railwear_db_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  std::string File(const std::string& name) const { return (dir_ / name).string(); }
+
+ private:
+  fs::path dir_;
+};
+
+std::string ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void WriteBytes(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out << bytes;
+}
+
+// Runs SQL on a file with the raw C API (to build foreign or future databases).
+void RawExec(const std::string& path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  char* err = nullptr;
+  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &err);
+  const std::string msg = err ? err : "";
+  sqlite3_free(err);
+  sqlite3_close(db);
+  ASSERT_EQ(rc, SQLITE_OK) << msg;
+}
+
+// A rail-like profile whose coordinates use all 53 mantissa bits (and one negative zero).
+Profile TestProfile(int n = 40, double shift_m = 0.0) {
+  std::vector<Eigen::Vector2d> p(n);
+  for (int i = 0; i < n; ++i) {
+    const double t = -0.6 + 1.2 * i / (n - 1);
+    p[i] = {0.3 * std::sin(t) + shift_m, 0.3 * (1.0 - std::cos(t)) / 3.0};
+  }
+  p[0].y() = -0.0;
+  return Profile(std::move(p), "test");
+}
+
+RunInfo TestRun(const std::string& name) {
+  RunInfo r;
+  r.name = name;
+  r.program_version = "0.1.0";
+  r.scene_text = "[wheel]\nprofile = \"builtin:S1002\"\n# \xc3\xa9t\xc3\xa9\n";
+  r.wear_law_json = R"({"law":"archard","k":1e-4})";
+  return r;
+}
+
+StepRecord TestStep(int step) {
+  StepRecord s;
+  s.step = step;
+  s.passes = 1000.0 * step;
+  s.mgt = 0.02 * step;
+  s.worn_area_mm2 = 0.5 * step;
+  s.max_depth_mm = 0.01 * step;
+  s.max_depth_y_mm = -31.25;
+  s.w1_mm = 0.1;
+  s.w2_mm = 0.2;
+  s.w3_mm = 0.3;
+  s.smoothing_area_error = 1e-4;
+  s.profile = TestProfile(40, 1e-5 * step);
+  s.load_cases_json = {R"({"case":0,"T_gamma":12.5})", R"({"case":1,"T_gamma":3.25})"};
+  s.distributions = {{"wear_depth_mm", {-0.01, 0.0, 0.01}, {0.0, 1e-3, 2e-3}},
+                     {"damage", {-0.01, 0.0, 0.01}, {1e-7, 2e-7, 3e-7}}};
+  return s;
+}
+
+// Expects `f` to throw InputError whose message contains every one of `parts`.
+template <typename F>
+void ExpectInputError(F f, std::initializer_list<std::string> parts) {
+  try {
+    f();
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    for (const auto& part : parts) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos)
+          << "message '" << e.what() << "' lacks '" << part << "'";
+    }
+  }
+}
+
+TEST(ProfileStore, CreatesSchemaInMemory) {
+  ProfileStore db = ProfileStore::Open(":memory:");
+  EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
+  EXPECT_TRUE(db.Runs().empty());
+  const QueryResult tables =
+      db.Query("SELECT name FROM sqlite_schema WHERE type = 'table' ORDER BY name");
+  std::vector<std::string> names;
+  for (const auto& row : tables.rows) names.push_back(row[0]);
+  EXPECT_EQ(names, (std::vector<std::string>{"distributions", "load_cases", "meta", "profiles",
+                                             "runs", "steps"}));
+  EXPECT_EQ(db.Query("PRAGMA application_id").rows[0][0],
+            std::to_string(ProfileStore::kApplicationId));
+}
+
+TEST(ProfileStore, RunsAreUniqueAndFound) {
+  ProfileStore db = ProfileStore::Open(":memory:");
+  const int64_t a = db.CreateRun(TestRun("baseline"));
+  const int64_t b = db.CreateRun(TestRun("dry"));
+  EXPECT_NE(a, b);
+  ExpectInputError([&] { db.CreateRun(TestRun("baseline")); },
+                   {":memory:", "'baseline' already exists", "expected a new run name"});
+  ExpectInputError([&] { db.CreateRun(TestRun("")); }, {"run name is empty"});
+  const auto found = db.FindRun("dry");
+  ASSERT_TRUE(found.has_value());
+  EXPECT_EQ(found->id, b);
+  EXPECT_EQ(found->scene_text, TestRun("dry").scene_text);
+  EXPECT_EQ(found->wear_law_json, TestRun("dry").wear_law_json);
+  EXPECT_EQ(found->program_version, "0.1.0");
+  EXPECT_EQ(found->state, RunState::kRunning);
+  EXPECT_EQ(found->created_utc.size(), std::string("2024-01-01T00:00:00.000Z").size());
+  EXPECT_FALSE(db.FindRun("wet").has_value());
+  ASSERT_EQ(db.Runs().size(), 2u);
+  EXPECT_EQ(db.Runs()[0].name, "baseline");
+  db.SetRunState(a, RunState::kComplete);
+  EXPECT_EQ(db.FindRun("baseline")->state, RunState::kComplete);
+  ExpectInputError([&] { db.SetRunState(999, RunState::kAborted); }, {"no run with id 999"});
+}
+
+TEST(ProfileStore, StepsAppendInOrder) {
+  ProfileStore db = ProfileStore::Open(":memory:");
+  const int64_t run = db.CreateRun(TestRun("r"));
+  EXPECT_FALSE(db.LastStep(run).has_value());
+  ExpectInputError([&] { db.AppendStep(run, TestStep(1)); },
+                   {"run 1 step 1", "expected step 0"});
+  db.AppendStep(run, TestStep(0));
+  db.AppendStep(run, TestStep(1));
+  ExpectInputError([&] { db.AppendStep(run, TestStep(1)); }, {"expected step 2"});
+  ExpectInputError([&] { db.AppendStep(run, TestStep(3)); }, {"expected step 2"});
+  ExpectInputError([&] { db.AppendStep(run + 7, TestStep(0)); }, {"no run with id"});
+  db.AppendStep(run, TestStep(2));
+  EXPECT_EQ(db.LastStep(run), 2);
+
+  const auto steps = db.Steps(run);
+  ASSERT_EQ(steps.size(), 3u);
+  for (int i = 0; i < 3; ++i) {
+    const StepRecord want = TestStep(i);
+    EXPECT_EQ(steps[i].step, i);
+    EXPECT_EQ(steps[i].passes, want.passes);
+    EXPECT_EQ(steps[i].mgt, want.mgt);
+    EXPECT_EQ(steps[i].worn_area_mm2, want.worn_area_mm2);
+    EXPECT_EQ(steps[i].max_depth_mm, want.max_depth_mm);
+    EXPECT_EQ(steps[i].max_depth_y_mm, want.max_depth_y_mm);
+    EXPECT_EQ(steps[i].w3_mm, want.w3_mm);
+    EXPECT_EQ(steps[i].smoothing_area_error, want.smoothing_area_error);
+    EXPECT_FALSE(steps[i].created_utc.empty());
+    EXPECT_EQ(steps[i].profile.size(), 0);  // summaries only
+    EXPECT_TRUE(steps[i].load_cases_json.empty());
+  }
+
+  const StepRecord full = db.LoadStep(run, 1);
+  EXPECT_EQ(full.load_cases_json, TestStep(1).load_cases_json);
+  ASSERT_EQ(full.distributions.size(), 2u);
+  EXPECT_EQ(full.distributions[0].kind, "damage");  // ordered by kind
+  EXPECT_EQ(full.distributions[0].value, TestStep(1).distributions[1].value);
+  EXPECT_EQ(full.distributions[1].y_m, TestStep(1).distributions[0].y_m);
+  ExpectInputError([&] { db.LoadStep(run, 9); }, {"has no step 9"});
+}
+
+TEST(ProfileStore, ProfileBlobRoundTripIsExact) {
+  ProfileStore db = ProfileStore::Open(":memory:");
+  const int64_t run = db.CreateRun(TestRun("r"));
+  StepRecord s = TestStep(0);
+  s.profile = TestProfile(257, 1.0 / 3.0);
+  db.AppendStep(run, s);
+  const Profile back = db.LoadProfile(run, 0);
+  ASSERT_EQ(back.size(), s.profile.size());
+  // Bit-for-bit: memcmp also tells -0.0 from 0.0.
+  EXPECT_EQ(std::memcmp(back.points().data(), s.profile.points().data(),
+                        sizeof(Eigen::Vector2d) * back.points().size()),
+            0);
+  EXPECT_TRUE(std::signbit(back.points()[0].y()));
+  // Layout documented in SCHEMA.md: 16 bytes a point.
+  EXPECT_EQ(db.Query("SELECT n_points, length(yz) FROM profiles").rows[0],
+            (std::vector<std::string>{"257", "4112"}));
+  ExpectInputError([&] { db.LoadProfile(run, 1); }, {"has no step 1"});
+}
+
+TEST(ProfileStore, FailedStepLeavesNothing) {
+  ProfileStore db = ProfileStore::Open(":memory:");
+  const int64_t run = db.CreateRun(TestRun("r"));
+  db.AppendStep(run, TestStep(0));
+  // The duplicate distribution kind fails after the step row, its profile and its load cases
+  // have been written: the transaction must take all of them back.
+  StepRecord bad = TestStep(1);
+  bad.distributions.push_back(bad.distributions[0]);
+  ExpectInputError([&] { db.AppendStep(run, bad); }, {"'wear_depth_mm' given twice"});
+  EXPECT_EQ(db.LastStep(run), 0);
+  for (const char* table : {"steps", "profiles", "load_cases", "distributions"}) {
+    EXPECT_EQ(db.Query(std::string("SELECT count(*) FROM ") + table + " WHERE step = 1")
+                  .rows[0][0],
+              "0")
+        << table;
+  }
+  // Malformed input is refused before anything is written.
+  bad = TestStep(1);
+  bad.distributions[0].value.pop_back();
+  ExpectInputError([&] { db.AppendStep(run, bad); }, {"3 positions, 2 values"});
+  bad = TestStep(1);
+  bad.profile = Profile();
+  ExpectInputError([&] { db.AppendStep(run, bad); }, {"the profile is empty"});
+  // And the store is still usable.
+  db.AppendStep(run, TestStep(1));
+  EXPECT_EQ(db.LastStep(run), 1);
+}
+
+TEST(ProfileStore, ReopensFileInWalMode) {
+  TempDir tmp;
+  const std::string path = tmp.File("study.rwdb");
+  int64_t run = 0;
+  {
+    ProfileStore db = ProfileStore::Open(path);
+    run = db.CreateRun(TestRun("r"));
+    db.AppendStep(run, TestStep(0));
+    db.AppendStep(run, TestStep(1));
+  }
+  // File header bytes 18 and 19 (write and read format versions) are 2 in WAL mode.
+  const std::string header = ReadBytes(path).substr(0, 20);
+  EXPECT_EQ(header.substr(0, 16), std::string("SQLite format 3\0", 16));
+  EXPECT_EQ(header[18], 2);
+  EXPECT_EQ(header[19], 2);
+  ProfileStore db = ProfileStore::Open(path);
+  EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
+  EXPECT_EQ(db.FindRun("r")->id, run);
+  EXPECT_EQ(db.LastStep(run), 1);
+  const Profile p = db.LoadProfile(run, 1);
+  EXPECT_EQ(p.points(), TestStep(1).profile.points());
+  db.AppendStep(run, TestStep(2));
+  EXPECT_EQ(db.Steps(run).size(), 3u);
+}
+
+TEST(ProfileStore, EmptyFilesBecomeNewDatabases) {
+  TempDir tmp;
+  const std::string empty_file = tmp.File("empty.rwdb");
+  WriteBytes(empty_file, "");
+  const std::string empty_db = tmp.File("empty.db");
+  RawExec(empty_db, "PRAGMA page_size = 4096; VACUUM;");
+  for (const std::string& path : {empty_file, empty_db, tmp.File("new.rwdb")}) {
+    SCOPED_TRACE(path);
+    {
+      ProfileStore db = ProfileStore::Open(path);
+      EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
+      db.CreateRun(TestRun("r"));
+    }
+    EXPECT_EQ(ProfileStore::Open(path).Runs().size(), 1u);
+  }
+  // Two in-memory stores are independent.
+  ProfileStore a = ProfileStore::Open(":memory:");
+  ProfileStore b = ProfileStore::Open(":memory:");
+  a.CreateRun(TestRun("r"));
+  EXPECT_TRUE(b.Runs().empty());
+}
+
+TEST(ProfileStore, RefusesNonSqliteFileUntouched) {
+  TempDir tmp;
+  const std::string path = tmp.File("profile.csv");
+  std::string bytes = "y_mm,z_mm\n";
+  for (int i = 0; i < 500; ++i) bytes += std::to_string(i) + ",0.5\n";
+  WriteBytes(path, bytes);
+  ExpectInputError([&] { ProfileStore::Open(path); },
+                   {path, "not an SQLite database", "expected a railwear profile-history"});
+  EXPECT_EQ(ReadBytes(path), bytes);
+  EXPECT_FALSE(fs::exists(path + "-wal"));
+  EXPECT_FALSE(fs::exists(path + "-journal"));
+}
+
+TEST(ProfileStore, RefusesForeignSqliteDatabaseUntouched) {
+  TempDir tmp;
+  const std::string path = tmp.File("other.db");
+  RawExec(path, "CREATE TABLE accounts(id INTEGER PRIMARY KEY, owner TEXT);"
+                "INSERT INTO accounts(owner) VALUES ('x');");
+  const std::string before = ReadBytes(path);
+  ExpectInputError([&] { ProfileStore::Open(path); },
+                   {path, "another application", "application_id 0x00000000",
+                    "expected a railwear profile-history database"});
+  EXPECT_EQ(ReadBytes(path), before);
+
+  // The railwear application_id without the meta table is refused too.
+  RawExec(path, "PRAGMA application_id = " + std::to_string(ProfileStore::kApplicationId));
+  const std::string before2 = ReadBytes(path);
+  ExpectInputError([&] { ProfileStore::Open(path); }, {path, "no meta table"});
+  EXPECT_EQ(ReadBytes(path), before2);
+}
+
+TEST(ProfileStore, RefusesNewerSchemaUntouched) {
+  TempDir tmp;
+  const std::string path = tmp.File("future.rwdb");
+  {
+    ProfileStore db = ProfileStore::Open(path);
+    db.CreateRun(TestRun("r"));
+  }
+  RawExec(path, "PRAGMA user_version = " + std::to_string(ProfileStore::kSchemaVersion + 1));
+  const std::string before = ReadBytes(path);
+  ExpectInputError([&] { ProfileStore::Open(path); },
+                   {path, "newer railwear",
+                    "schema version " + std::to_string(ProfileStore::kSchemaVersion + 1),
+                    "up to " + std::to_string(ProfileStore::kSchemaVersion)});
+  EXPECT_EQ(ReadBytes(path), before);
+}
+
+TEST(ProfileStore, RefusesUnopenablePaths) {
+  TempDir tmp;
+  ExpectInputError([&] { ProfileStore::Open(tmp.File("no/such/folder/x.rwdb")); },
+                   {"no/such/folder/x.rwdb", "cannot open"});
+  ExpectInputError([&] { ProfileStore::Open(tmp.File("")); }, {"is a directory"});
+}
+
+TEST(ProfileStore, QueryIsReadOnly) {
+  TempDir tmp;
+  for (const std::string& path : {std::string(":memory:"), tmp.File("q.rwdb")}) {
+    SCOPED_TRACE(path);
+    ProfileStore db = ProfileStore::Open(path);
+    const int64_t run = db.CreateRun(TestRun("r"));
+    db.AppendStep(run, TestStep(0));
+    db.AppendStep(run, TestStep(1));
+    const QueryResult q = db.Query(
+        "SELECT r.name, s.step, s.mgt, p.yz, NULL AS empty FROM steps s JOIN runs r "
+        "ON r.id = s.run_id JOIN profiles p USING (run_id, step) ORDER BY s.step;");
+    EXPECT_EQ(q.columns, (std::vector<std::string>{"name", "step", "mgt", "yz", "empty"}));
+    ASSERT_EQ(q.rows.size(), 2u);
+    EXPECT_EQ(q.rows[1], (std::vector<std::string>{"r", "1", "0.02", "<blob 640 bytes>", "NULL"}));
+
+    for (const char* sql :
+         {"DELETE FROM steps", "UPDATE runs SET name = 'x'", "DROP TABLE runs",
+          "INSERT INTO meta VALUES ('a', 'b')", "PRAGMA user_version = 7",
+          "CREATE TABLE t(x)", "BEGIN", "SAVEPOINT a", "ATTACH 'other.db' AS other",
+          "DETACH main"}) {
+      ExpectInputError([&] { db.Query(sql); }, {"query on", "read-only"});
+    }
+    ExpectInputError([&] { db.Query("SELECT 1; DELETE FROM steps"); }, {"more than one"});
+    ExpectInputError([&] { db.Query("SELEC nonsense"); }, {"syntax error"});
+    EXPECT_EQ(db.Steps(run).size(), 2u);
+    EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
+    // The store still writes after a query (query_only is switched back off).
+    db.AppendStep(run, TestStep(2));
+  }
+}
+
+}  // namespace
+}  // namespace railwear
