@@ -52,9 +52,17 @@
 // test case, 0.3
 // converges there and at 64 x 32 in about 110 iterations).
 // Each outer iteration evaluates s = w + B q exactly (one FFT product of the four blocks, or the
-// dense matrix), checks convergence, then sweeps once; during the sweep every update refreshes
-// the slip of all cells exactly from a table of A on the offsets (O(N) per update, so a sweep is
-// O(N_contact N): this, not the FFT, dominates the cost on large grids).
+// dense matrix), checks convergence, then sweeps once. The sweep runs over blocks of adjacent
+// x-columns, leading block first. Inside a block every update refreshes exactly, from a table of
+// A on the offsets, the slip of the block's loaded cells not yet visited (columns block_lo .. ix;
+// the chain's effect (A(m - k) - A(m - v)) / dx). After a block one operator product refreshes
+// the slip of all cells at once. Cells of later blocks are read only after that product and
+// visited cells not again in the sweep, so every local solve sees the exact slip of the current
+// iterate: the iterates are those of the plain sweep with a full refresh after every update (to
+// rounding), at a cost per sweep of about N_contact * (block / 2) * (loaded column length)
+// multiply-adds plus nx / block products. The block width balances the two (FftBlockColumns in
+// the .cpp; 16 to 25 columns on the benchmark grids). With the dense operator a product costs a
+// full sweep of refreshes, so there one block spans the grid (the plain sweep, O(N_contact N)).
 #pragma once
 
 #include <string>
