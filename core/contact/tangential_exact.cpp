@@ -527,7 +527,9 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
             qs[grid.Index(i, js)] += dqs;
           }
           for (int im = block_lo; im <= ix; ++im) {
-            const int jm_lo = first_loaded_col[im];
+            // In column ix only the cells after js are still to be visited.
+            const int jm_lo = im == ix ? std::max(js + 1, first_loaded_col[im])
+                                       : first_loaded_col[im];
             const int len = last_loaded_col[im] - jm_lo + 1;
             if (len <= 0) continue;
             // Table entries (d, e = jm - js) for d = im - ix (the cell) and im - v (the virtual
@@ -535,15 +537,21 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
             const size_t e0 = static_cast<size_t>(grid.ns - 1 - js + jm_lo);
             const size_t r1 = static_cast<size_t>(im - ix + grid.nx) * col_table + e0;
             const size_t r2 = static_cast<size_t>(im - v + grid.nx) * col_table + e0;
-            using ConstLine = Eigen::Map<const Eigen::ArrayXd>;
-            const ConstLine xx1(c_xx.data() + r1, len), xx2(c_xx.data() + r2, len);
-            const ConstLine xs1(c_xs.data() + r1, len), xs2(c_xs.data() + r2, len);
-            const ConstLine ss1(c_ss.data() + r1, len), ss2(c_ss.data() + r2, len);
+            const double* __restrict xx1 = c_xx.data() + r1;
+            const double* __restrict xx2 = c_xx.data() + r2;
+            const double* __restrict xs1 = c_xs.data() + r1;
+            const double* __restrict xs2 = c_xs.data() + r2;
+            const double* __restrict ss1 = c_ss.data() + r1;
+            const double* __restrict ss2 = c_ss.data() + r2;
             const size_t at = static_cast<size_t>(im) * grid.ns + jm_lo;
-            Eigen::Map<Eigen::ArrayXd>(sx_col.data() + at, len) +=
-                (xx1 - xx2) * dqx + (xs1 - xs2) * dqs;
-            Eigen::Map<Eigen::ArrayXd>(ss_col.data() + at, len) +=
-                (xs1 - xs2) * dqx + (ss1 - ss2) * dqs;
+            double* __restrict ox = sx_col.data() + at;
+            double* __restrict os = ss_col.data() + at;
+#pragma GCC ivdep
+            for (int j = 0; j < len; ++j) {
+              const double bxs = xs1[j] - xs2[j];
+              ox[j] += (xx1[j] - xx2[j]) * dqx + bxs * dqs;
+              os[j] += bxs * dqx + (ss1[j] - ss2[j]) * dqs;
+            }
           }
         }
       }
