@@ -96,6 +96,7 @@ std::string ExactTangentialOptions::Validate() const {
   if (!(relaxation > 0.0 && relaxation <= 1.0)) {
     msg << "relaxation = " << relaxation << ", expected in (0, 1]; ";
   }
+  if (block_columns < 0) msg << "block_columns = " << block_columns << ", expected >= 0; ";
   if (max_iterations < 1) msg << "max_iterations = " << max_iterations << ", expected >= 1; ";
   return msg.str();
 }
@@ -436,7 +437,9 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
   // Blocks of the sweep: with the dense operator a product costs as much as a sweep of direct
   // refreshes, so one block spans the grid (the plain sweep).
   int block_columns = grid.nx;
-  if (!dense) {
+  if (!dense && opt.block_columns > 0) {
+    block_columns = std::min(opt.block_columns, grid.nx);
+  } else if (!dense) {
     int cells_loaded = 0, columns_loaded = 0;
     for (int ix = 0; ix < grid.nx; ++ix) {
       if (last_loaded_col[ix] < 0) continue;

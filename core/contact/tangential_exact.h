@@ -61,8 +61,12 @@
 // iterate: the iterates are those of the plain sweep with a full refresh after every update (to
 // rounding), at a cost per sweep of about N_contact * (block / 2) * (loaded column length)
 // multiply-adds plus nx / block products. The block width balances the two (FftBlockColumns in
-// the .cpp; 16 to 25 columns on the benchmark grids). With the dense operator a product costs a
-// full sweep of refreshes, so there one block spans the grid (the plain sweep, O(N_contact N)).
+// the .cpp: 18 to 26 columns on the benchmark grids), or ExactTangentialOptions::block_columns
+// sets it. With the dense operator a product costs a full sweep of refreshes, so there one block
+// spans the grid (the plain sweep, O(N_contact N)).
+// Measured (tangential_exact_bench, README check case, one core): 70 x 80 cells 3.4 s with the
+// plain sweep, about 0.75 to 1.0 s with the block sweep; the 109 sweeps (relaxation 0.3) now
+// dominate, so a faster method needs fewer sweeps (e.g. Vollebregt's TangCG), not cheaper ones.
 #pragma once
 
 #include <string>
@@ -94,6 +98,10 @@ struct ExactTangentialOptions {
   // 0.3 converges on every Hertz case of the tests (see the header comment). The solver halves it
   // when the residual grows tenfold above its best value.
   double relaxation = 0.3;
+  // Columns per block of the sweep with kFft (see the header comment), >= 0; 0 chooses the width
+  // that balances refreshes against products. The iterates do not depend on it (to rounding).
+  // kDense always sweeps in one block.
+  int block_columns = 0;
   // Returns "" when valid, otherwise what is wrong.
   std::string Validate() const;
 };
