@@ -52,9 +52,21 @@
 // test case, 0.3
 // converges there and at 64 x 32 in about 110 iterations).
 // Each outer iteration evaluates s = w + B q exactly (one FFT product of the four blocks, or the
-// dense matrix), checks convergence, then sweeps once; during the sweep every update refreshes
-// the slip of all cells exactly from a table of A on the offsets (O(N) per update, so a sweep is
-// O(N_contact N): this, not the FFT, dominates the cost on large grids).
+// dense matrix), checks convergence, then sweeps once. The sweep runs over blocks of adjacent
+// x-columns, leading block first. Inside a block every update refreshes exactly, from a table of
+// A on the offsets, the slip of the block's loaded cells not yet visited (columns block_lo .. ix;
+// the chain's effect (A(m - k) - A(m - v)) / dx). After a block one operator product refreshes
+// the slip of all cells at once. Cells of later blocks are read only after that product and
+// visited cells not again in the sweep, so every local solve sees the exact slip of the current
+// iterate: the iterates are those of the plain sweep with a full refresh after every update (to
+// rounding), at a cost per sweep of about N_contact * (block / 2) * (loaded column length)
+// multiply-adds plus nx / block products. The block width balances the two (FftBlockColumns in
+// the .cpp: 18 to 26 columns on the benchmark grids), or ExactTangentialOptions::block_columns
+// sets it. With the dense operator a product costs a full sweep of refreshes, so there one block
+// spans the grid (the plain sweep, O(N_contact N)).
+// Measured (tangential_exact_bench, README check case, one core): 70 x 80 cells 3.4 s with the
+// plain sweep, about 0.75 to 1.0 s with the block sweep; the 109 sweeps (relaxation 0.3) now
+// dominate, so a faster method needs fewer sweeps (e.g. Vollebregt's TangCG), not cheaper ones.
 #pragma once
 
 #include <string>
@@ -86,6 +98,10 @@ struct ExactTangentialOptions {
   // 0.3 converges on every Hertz case of the tests (see the header comment). The solver halves it
   // when the residual grows tenfold above its best value.
   double relaxation = 0.3;
+  // Columns per block of the sweep with kFft (see the header comment), >= 0; 0 chooses the width
+  // that balances refreshes against products. The iterates do not depend on it (to rounding).
+  // kDense always sweeps in one block.
+  int block_columns = 0;
   // Returns "" when valid, otherwise what is wrong.
   std::string Validate() const;
 };
