@@ -282,18 +282,18 @@ void SolveRolling(const ContactProblem& problem, const WheelRailGeometry& geom,
                    : RigidSlipFromMotion(geom, patch.grid, o.motion, o.friction);
     RollingPatch rolling;
     rolling.creepage = AverageCreepage(patch.grid, patch.pressure_Pa, in);
-    FastsimOptions fo;
-    fo.shear_modulus_Pa = elastic.shear_modulus_Pa;
-    fo.poisson_ratio = elastic.poisson_ratio;
-    FastsimPatch used;
-    // FASTSIM also yields the patch's semi-axes (a/b and size from the contact cells), which the
-    // damage indices use whichever solver gives the tractions.
-    rolling.tangential = SolveFastsim(patch.grid, patch.pressure_Pa, in, fo, &used);
     if (o.method == TangentialMethod::kExact) {
       rolling.tangential = SolveTangentialExact(patch.grid, patch.pressure_Pa, in,
                                                 problem.wheel_material, problem.rail_material,
                                                 ExactTangentialOptions{});
+    } else {
+      FastsimOptions fo;
+      fo.shear_modulus_Pa = elastic.shear_modulus_Pa;
+      fo.poisson_ratio = elastic.poisson_ratio;
+      rolling.tangential = SolveFastsim(patch.grid, patch.pressure_Pa, in, fo);
     }
+    // The patch's equivalent ellipse (the semi-axes FASTSIM uses), for the damage indices.
+    const ContactEllipse used = EstimateContactEllipse(patch.grid, patch.pressure_Pa);
     rolling.semi_axis_x_m = used.semi_axis_x_m;
     rolling.semi_axis_s_m = used.semi_axis_s_m;
     if (o.damage && rolling.tangential.status == SolverStatus::kConverged) {
@@ -461,12 +461,10 @@ std::optional<double> SolvePitchVelocityForForce(const std::function<double(doub
   return omega_of(0.5 * (lo + hi));
 }
 
-void ApplyRolling(const ContactProblem& problem, ContactResult* result) {
+void ApplyRolling(const ContactProblem& problem, const WheelRailGeometry& geometry,
+                  ContactResult* result) {
   RAILWEAR_CHECK(problem.rolling.has_value());
-  const WheelPose pose{problem.placement.lateral_shift_m, problem.placement.roll_rad,
-                       problem.placement.rolling_radius_m};
-  const WheelRailGeometry geom(problem.wheel_profile, problem.rail_profile, pose);
-  SolveRolling(problem, geom, result);
+  SolveRolling(problem, geometry, result);
 }
 
 std::string_view ToString(TangentialMethod v) {

@@ -15,6 +15,7 @@
 #include "core/contact/kinematics.h"
 #include "core/contact/normal_solver.h"
 #include "core/contact/tangential_types.h"
+#include "core/geometry/wheel_rail_geometry.h"
 #include "core/contact/patch_grid.h"
 #include "core/profile/profile.h"
 
@@ -130,7 +131,9 @@ struct ContactResult {
 // tangential solution and, when asked, damage per patch. The pitch velocity used is stored in
 // result->pitch_velocity_rad_s. problem.rolling must be set (and not hold a force target: that
 // is SolveContact's and SolveWheelset's business).
-void ApplyRolling(const ContactProblem& problem, ContactResult* result);
+// `geometry` is the problem's placed wheel and rail (to reuse it across repeated calls).
+void ApplyRolling(const ContactProblem& problem, const WheelRailGeometry& geometry,
+                  ContactResult* result);
 
 // The pitch velocity Omega = -V (1 + c) / r0 for which fx(Omega) = target_N, with fx increasing
 // in the spin-up creepage c (a driving wheel turns faster than it rolls). Brackets c outward up

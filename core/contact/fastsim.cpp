@@ -62,6 +62,35 @@ void Require(bool ok, const std::string& what) {
 
 }  // namespace
 
+ContactEllipse EstimateContactEllipse(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa) {
+  ContactEllipse e;
+  double xmin = 1e300, xmax = -1e300, smin = 1e300, smax = -1e300, xsum = 0.0, ssum = 0.0;
+  const double dA = grid.CellArea();
+  for (int j = 0; j < grid.ns; ++j) {
+    for (int i = 0; i < grid.nx; ++i) {
+      const double p = pressure_Pa[grid.Index(i, j)];
+      if (p <= 0.0) continue;
+      ++e.cells;
+      const double x = grid.X(i), s = grid.S(j);
+      xmin = std::min(xmin, x);
+      xmax = std::max(xmax, x);
+      smin = std::min(smin, s);
+      smax = std::max(smax, s);
+      xsum += x;
+      ssum += s;
+      e.normal_force_N += p * dA;
+    }
+  }
+  if (e.cells == 0) return e;
+  e.centroid_x_m = xsum / e.cells;
+  e.centroid_s_m = ssum / e.cells;
+  const double ratio = (xmax - xmin + grid.dx_m) / (smax - smin + grid.ds_m);  // a/b
+  const double ab = e.cells * dA / std::numbers::pi;
+  e.semi_axis_x_m = std::sqrt(ab * ratio);
+  e.semi_axis_s_m = std::sqrt(ab / ratio);
+  return e;
+}
+
 TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                                 const RollingInput& in, const FastsimOptions& opt,
                                 FastsimPatch* patch_out) {
@@ -89,37 +118,20 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
   const double dA = grid.CellArea();
 
   // 1. The contact region: cell count, extents (to the cell faces), centroid, normal force.
-  int count = 0;
-  double xmin = 1e300, xmax = -1e300, smin = 1e300, smax = -1e300, xsum = 0.0, ssum = 0.0;
-  double fn = 0.0;
-  for (int j = 0; j < grid.ns; ++j) {
-    for (int i = 0; i < grid.nx; ++i) {
-      const double p = pressure_Pa[grid.Index(i, j)];
-      if (p <= 0.0) continue;
-      ++count;
-      const double x = grid.X(i), s = grid.S(j);
-      xmin = std::min(xmin, x);
-      xmax = std::max(xmax, x);
-      smin = std::min(smin, s);
-      smax = std::max(smax, s);
-      xsum += x;
-      ssum += s;
-      fn += p * dA;
-    }
-  }
-  if (count == 0) {
+  const ContactEllipse region = EstimateContactEllipse(grid, pressure_Pa);
+  if (region.cells == 0) {
     sol.status = SolverStatus::kNoContact;
     sol.message = "no cell carries pressure";
     return sol;
   }
+  const int count = region.cells;
+  const double fn = region.normal_force_N;
   FastsimPatch patch;
   patch.normal_force_N = fn;
-  patch.centroid_x_m = xsum / count;
-  patch.centroid_s_m = ssum / count;
+  patch.centroid_x_m = region.centroid_x_m;
+  patch.centroid_s_m = region.centroid_s_m;
   {
-    const double ratio = (xmax - xmin + grid.dx_m) / (smax - smin + grid.ds_m);  // a/b
-    const double ab = count * dA / std::numbers::pi;
-    const double a_est = std::sqrt(ab * ratio), b_est = std::sqrt(ab / ratio);
+    const double ratio = region.semi_axis_x_m / region.semi_axis_s_m;  // a/b
     if (opt.semi_axis_x_m && opt.semi_axis_s_m) {
       patch.semi_axis_x_m = *opt.semi_axis_x_m;
       patch.semi_axis_s_m = *opt.semi_axis_s_m;
@@ -130,8 +142,8 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
       patch.semi_axis_s_m = *opt.semi_axis_s_m;
       patch.semi_axis_x_m = *opt.semi_axis_s_m * ratio;
     } else {
-      patch.semi_axis_x_m = a_est;
-      patch.semi_axis_s_m = b_est;
+      patch.semi_axis_x_m = region.semi_axis_x_m;
+      patch.semi_axis_s_m = region.semi_axis_s_m;
     }
   }
   const double a = patch.semi_axis_x_m, b = patch.semi_axis_s_m, c = std::sqrt(a * b);

@@ -90,6 +90,17 @@ struct FastsimPatch {
   double normal_force_N = 0.0;      // sum p dA over the grid
 };
 
+// The contact region of a patch (cells with p > 0) as an equivalent ellipse: a/b from the
+// extents of those cells (to their faces), size from their area (pi a b = cells dA); the area
+// centroid and the normal force sum p dA. All zero when no cell carries pressure.
+struct ContactEllipse {
+  int cells = 0;
+  double semi_axis_x_m = 0.0, semi_axis_s_m = 0.0;
+  double centroid_x_m = 0.0, centroid_s_m = 0.0;
+  double normal_force_N = 0.0;
+};
+ContactEllipse EstimateContactEllipse(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa);
+
 // Solves the tangential problem by FASTSIM.
 //   grid: the patch grid (cells k = j*nx + i).
 //   pressure_Pa: size grid.cells(), p >= 0 [Pa]; cells with p <= 0 are outside the contact

@@ -46,11 +46,14 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
     }
     return f;
   };
+  // Each wheel's placed geometry, built once for all trials of the search.
+  const WheelRailGeometry right_geom(right.wheel_profile, right.rail_profile, r);
+  const WheelRailGeometry left_geom(left.wheel_profile, left.rail_profile, l);
   auto fx = [&](double omega) {
     right.rolling->motion.pitch_velocity_rad_s = omega;
     left.rolling->motion.pitch_velocity_rad_s = omega;
-    ApplyRolling(right, &out.right);
-    ApplyRolling(left, &out.left);
+    ApplyRolling(right, right_geom, &out.right);
+    ApplyRolling(left, left_geom, &out.left);
     return total(out.right, false) + total(out.left, false);
   };
   const double mu_fn = right.rolling->friction * (total(out.right, true) + total(out.left, true));

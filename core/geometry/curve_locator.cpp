@@ -90,11 +90,6 @@ CurveLocator::Projection CurveLocator::Project(const Eigen::Vector2d& q, double 
   return p;
 }
 
-CurveLocator::Projection CurveLocator::ProjectNear(const Eigen::Vector2d& q, double s_guess,
-                                                   double window_m) const {
-  return Project(q, s_guess - window_m, s_guess + window_m);
-}
-
 std::optional<CurveLocator::Crossing> CurveLocator::IntersectLine(const Eigen::Vector2d& b,
                                                                   const Eigen::Vector2d& n,
                                                                   double s_lo,

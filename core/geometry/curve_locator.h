@@ -34,8 +34,6 @@ class CurveLocator {
   // Closest point to q among profile parameters in [s_lo, s_hi] (clipped to the profile).
   Projection Project(const Eigen::Vector2d& q, double s_lo, double s_hi) const;
   Projection Project(const Eigen::Vector2d& q) const { return Project(q, 0.0, length_); }
-  // Refine from a nearby parameter (warm start): searches [s_guess - window, s_guess + window].
-  Projection ProjectNear(const Eigen::Vector2d& q, double s_guess, double window_m) const;
 
   // Outward unit normal (pointing out of the body's material) at parameter s.
   Eigen::Vector2d OutwardNormal(double s) const;

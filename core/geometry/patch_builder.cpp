@@ -22,11 +22,6 @@ struct Section {
   double rail_s = 0.0, wheel_s = 0.0;
 };
 
-// Direction of R expressed in the wheel profile frame (rotation by -roll).
-Eigen::Vector2d DirectionInWheel(const WheelRailGeometry& g, const Eigen::Vector2d& d) {
-  return g.RailToWheel(d + g.WheelToRail({0.0, 0.0})) ;
-}
-
 // Rail and wheel crossings of the line P_c + tau t0 + lambda n0, near the previous crossing.
 bool CrossSection(const WheelRailGeometry& g, const Eigen::Vector2d& pc, const Eigen::Vector2d& t0,
                   const Eigen::Vector2d& n0, double tau, double rail_s_guess,
@@ -35,7 +30,7 @@ bool CrossSection(const WheelRailGeometry& g, const Eigen::Vector2d& pc, const E
   auto r = g.rail().IntersectLine(b, n0, rail_s_guess - window, rail_s_guess + window);
   if (!r) r = g.rail().IntersectLine(b, n0, 0.0, kInf);
   const Eigen::Vector2d b_w = g.RailToWheel(b);
-  const Eigen::Vector2d n_w = DirectionInWheel(g, n0);
+  const Eigen::Vector2d n_w = g.RailDirectionToWheel(n0);
   auto w = g.wheel().IntersectLine(b_w, n_w, wheel_s_guess - window, wheel_s_guess + window);
   if (!w) w = g.wheel().IntersectLine(b_w, n_w, 0.0, kInf);
   if (!r || !w) return false;
@@ -160,7 +155,6 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
                      g.wheel().profile().Position(sections[k].wheel_s).y();
     r_max = std::max(r_max, r);
   }
-  build.wheel_radius_max_m = r_max;
   const double x_half = std::sqrt(2.0 * r_max * o.threshold_m);
   const int half_cells = std::max(1, static_cast<int>(std::ceil(x_half / o.cell_dx_m - 0.5)));
   grid.nx = 2 * half_cells + 1;

@@ -35,7 +35,6 @@ struct PatchBuild {
   PatchGrid grid;
   bool valid = false;           // false when the candidate gives no usable cross-section
   bool lateral_limited = false; // the lateral range stopped at a profile end or a steep normal
-  double wheel_radius_max_m = 0.0;
 };
 
 PatchBuild BuildPatchGrid(const WheelRailGeometry& geometry, const ContactCandidate& candidate,

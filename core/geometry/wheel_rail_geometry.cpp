@@ -115,7 +115,7 @@ double WheelRailGeometry::ExactVerticalGap(double y, int sample) const {
   // Crossings of the vertical line at y with both splines, near the sampled envelopes.
   const auto r = rail_locator_.IntersectLine({y, rail_top_[sample]}, {0.0, 1.0}, 0.0, kInf);
   const Eigen::Vector2d b_w = RailToWheel({y, wheel_bottom_[sample]});
-  const Eigen::Vector2d n_w = {sin_roll_, cos_roll_};  // R's +z seen in W
+  const Eigen::Vector2d n_w = RailDirectionToWheel({0.0, 1.0});
   const auto w = wheel_locator_.IntersectLine(b_w, n_w, 0.0, kInf);
   if (!r || !w) return kInf;
   return (rail_top_[sample] + r->lambda) - (wheel_bottom_[sample] + w->lambda);
@@ -135,6 +135,10 @@ Eigen::Vector2d WheelRailGeometry::WheelToRail(const Eigen::Vector2d& p) const {
 Eigen::Vector2d WheelRailGeometry::RailToWheel(const Eigen::Vector2d& p) const {
   const double dy = p.x() - pose_.lateral_shift_m, dzz = p.y() - dz_;
   return {cos_roll_ * dy + sin_roll_ * dzz, -sin_roll_ * dy + cos_roll_ * dzz};
+}
+
+Eigen::Vector2d WheelRailGeometry::RailDirectionToWheel(const Eigen::Vector2d& d) const {
+  return {cos_roll_ * d.x() + sin_roll_ * d.y(), -sin_roll_ * d.x() + cos_roll_ * d.y()};
 }
 
 Eigen::Vector2d WheelRailGeometry::Meridian(const Eigen::Vector3d& p) const {

@@ -51,11 +51,6 @@ class WheelRailGeometry {
   const WheelPose& pose() const { return pose_; }
   double dz_m() const { return dz_; }
 
-  // Vertical gap samples at x = 0 after lowering: y (R) and g(y) >= 0 (NaN where only one body
-  // is present).
-  const std::vector<double>& gap_y_m() const { return gap_y_; }
-  const std::vector<double>& gap_m() const { return gap_; }
-
   // Connected lateral intervals where g(y) < threshold, split at saddles that rise by more than
   // a tenth of the threshold above the minima on both sides; each with its contact point.
   std::vector<ContactCandidate> FindCandidates(double threshold_m) const;
@@ -63,6 +58,8 @@ class WheelRailGeometry {
   // Transforms between the wheel profile frame W (x = 0 cross-section) and R.
   Eigen::Vector2d WheelToRail(const Eigen::Vector2d& p_W) const;
   Eigen::Vector2d RailToWheel(const Eigen::Vector2d& p_R) const;
+  // A direction of R in the wheel profile frame (the roll undone).
+  Eigen::Vector2d RailDirectionToWheel(const Eigen::Vector2d& d_R) const;
   // A 3-D point (x, y, z) in R in the wheel's meridian coordinates (y_W, r - r0): the point's
   // position in the wheel profile frame after rotating it about the axle into the x = 0 plane.
   Eigen::Vector2d Meridian(const Eigen::Vector3d& p_R) const;

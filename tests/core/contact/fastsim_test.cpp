@@ -60,18 +60,7 @@ HertzPatch MakeHertzPatch(int nx, int ns, double a = kA, double b = kB, double f
 
 // Kalker's planar creepage field w_x = xi - phi s, w_s = eta + phi x.
 RollingInput MakeCreepage(const PatchGrid& g, double xi, double eta, double phi) {
-  RollingInput in;
-  in.creep_x.resize(g.cells());
-  in.creep_s.resize(g.cells());
-  for (int j = 0; j < g.ns; ++j) {
-    for (int i = 0; i < g.nx; ++i) {
-      in.creep_x[g.Index(i, j)] = xi - phi * g.S(j);
-      in.creep_s[g.Index(i, j)] = eta + phi * g.X(i);
-    }
-  }
-  in.speed_m_s = 10.0;
-  in.friction = kMu;
-  return in;
+  return testing::KalkerCreepage(g, xi, eta, phi, 10.0, kMu);
 }
 
 FastsimOptions MakeOptions() {

@@ -1,8 +1,10 @@
 // A planar patch grid of nx x ns cells covering the Hertz rectangle [-a, a] x [-b, b] exactly,
-// zero gap: the grid the tangential solvers' tests and benchmarks put a Hertz pressure on.
+// zero gap, and Kalker's planar creepage field on it: what the tangential solvers' tests and
+// benchmarks put a Hertz pressure and creepages on.
 #pragma once
 
 #include "core/contact/patch_grid.h"
+#include "core/contact/tangential_types.h"
 
 namespace railwear::testing {
 
@@ -22,6 +24,24 @@ inline PatchGrid MakeHertzGrid(double a_m, double b_m, int nx, int ns) {
   }
   g.gap_m = Eigen::VectorXd::Zero(g.cells());
   return g;
+}
+
+// Kalker's planar creepage field about the grid origin, w_x = xi - phi s, w_s = eta + phi x
+// (phi in 1/m), at speed V and friction mu.
+inline RollingInput KalkerCreepage(const PatchGrid& g, double xi, double eta, double phi,
+                                   double speed_m_s, double friction) {
+  RollingInput in;
+  in.creep_x.resize(g.cells());
+  in.creep_s.resize(g.cells());
+  for (int j = 0; j < g.ns; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      in.creep_x[g.Index(i, j)] = xi - phi * g.S(j);
+      in.creep_s[g.Index(i, j)] = eta + phi * g.X(i);
+    }
+  }
+  in.speed_m_s = speed_m_s;
+  in.friction = friction;
+  return in;
 }
 
 }  // namespace railwear::testing

@@ -50,18 +50,7 @@ Eigen::VectorXd HertzPressure(const PatchGrid& g, double a, double b, double fn)
 
 // Kalker's w_x = xi - phi s, w_s = eta + phi x (phi in 1/m).
 RollingInput Creepage(const PatchGrid& g, double xi, double eta, double phi) {
-  RollingInput in;
-  in.creep_x.resize(g.cells());
-  in.creep_s.resize(g.cells());
-  for (int j = 0; j < g.ns; ++j) {
-    for (int i = 0; i < g.nx; ++i) {
-      in.creep_x[g.Index(i, j)] = xi - phi * g.S(j);
-      in.creep_s[g.Index(i, j)] = eta + phi * g.X(i);
-    }
-  }
-  in.friction = kMu;
-  in.speed_m_s = 1.0;
-  return in;
+  return testing::KalkerCreepage(g, xi, eta, phi, 1.0, kMu);
 }
 
 // Kalker's coefficients at b/a = 0.5 (README §4, row "b/a 0.5": a = 8 mm along the rolling
