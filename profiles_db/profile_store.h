@@ -80,7 +80,7 @@ struct StepRecord {
   double worn_area_mm2 = 0.0;     // cumulative worn cross-section area [mm^2]
   double max_depth_mm = 0.0;      // largest cumulative wear depth [mm]
   double max_depth_y_mm = 0.0;    // lateral position of that depth [mm]
-  double w1_mm = 0.0;             // W1/W2/W3-style wear measures [mm] (defined in wear/)
+  double w1_mm = 0.0;             // W1/W2/W3 wear measures [mm] (wear/wear_measures.h)
   double w2_mm = 0.0;
   double w3_mm = 0.0;
   double smoothing_area_error = 0.0;  // relative area change caused by profile smoothing [-]
@@ -108,9 +108,10 @@ class ProfileStore {
 
   // Opens `path` (a file name, or ":memory:" for a private in-memory database). A missing or
   // empty file becomes a new database of schema kSchemaVersion; an older railwear database is
-  // migrated in one transaction (its data kept; on failure it stays at its old version). Throws InputError, leaving the file untouched, when the file is
-  // not an SQLite database, is an SQLite database of another application, or was written by a
-  // newer railwear (user_version > kSchemaVersion), or cannot be opened at all.
+  // migrated in one transaction (its data kept; on failure it stays at its old version).
+  // Throws InputError, leaving the file untouched, when the file is not an SQLite database, is
+  // an SQLite database of another application, or was written by a newer railwear
+  // (user_version > kSchemaVersion), or cannot be opened at all.
   static ProfileStore Open(const std::string& path);
 
   ProfileStore(ProfileStore&&) noexcept;
