@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/contact_command.h"
+#include "app/history_command.h"
 #include "app/init_command.h"
 #include "app/profile_command.h"
 #include "core/numerics/input_error.h"
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   railwear::app::SetupContact(app);
   railwear::app::SetupProfile(app);
+  railwear::app::SetupHistory(app);
   railwear::app::SetupInit(app);
   try {
     app.parse(argc, argv);

@@ -1,7 +1,9 @@
-// Path helpers for scene files.
+// Path helpers for scene files; the scoped temporary directory.
 #include "app/paths.h"
 
+#include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
 
 namespace railwear::app {
 
@@ -14,6 +16,19 @@ std::string ResolveRelativeTo(const std::string& base_dir, const std::string& pa
   const std::filesystem::path p(path);
   if (p.is_absolute()) return path;
   return (std::filesystem::path(base_dir) / p).lexically_normal().string();
+}
+
+ScopedTempDir::ScopedTempDir(const std::string& prefix) {
+  std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
+  if (mkdtemp(pattern.data()) == nullptr) {
+    throw std::runtime_error("cannot create a temporary directory " + pattern);
+  }
+  path_ = pattern;
+}
+
+ScopedTempDir::~ScopedTempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
 }
 
 }  // namespace railwear::app

@@ -11,40 +11,11 @@
 #include <fmt/format.h>
 
 #include "app/contact_output.h"
+#include "app/gnuplot.h"
 
 namespace railwear::app {
 namespace fs = std::filesystem;
 namespace {
-
-// A path inside single quotes for /bin/sh.
-std::string ShellQuote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-// A string inside gnuplot single quotes ('' stands for ').
-std::string GnuplotQuote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
-// Removes the temporary directory however the plot ends.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "railwear-plot-XXXXXX").string();
-    if (mkdtemp(pattern.data()) == nullptr) {
-      throw std::runtime_error("cannot create a temporary directory for the plot");
-    }
-    path = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
 
 // One data file per patch: x_mm s_mm p_MPa, and with rolling contact also |q|_MPa and
 // |v_slip|_mm_s; a blank line after each s row.
@@ -83,10 +54,7 @@ std::string Script(const Scene& scene, const ContactResult& r, const fs::path& d
   const int n = static_cast<int>(r.patches.size());
   const int height = (n > 0 && r.patches[0].rolling) ? 1500 : 600;
   std::ostringstream s;
-  s << fmt::format(
-      "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {{ set terminal pngcairo size {},{} "
-      "noenhanced }} else {{ set terminal png size {},{} noenhanced }}\n",
-      500 * std::max(n, 2), height, 500 * std::max(n, 2), height);
+  s << GnuplotPngTerminal(500 * std::max(n, 2), height);
   s << "set output " << GnuplotQuote(png_path) << "\n";
   s << "set xlabel 'x [mm] (rolling)'\nset ylabel 's [mm] (lateral arc)'\n";
   s << "set cblabel 'p [MPa]'\nset size ratio -1\nset palette rgb 33,13,10\n";
@@ -112,49 +80,15 @@ std::string Script(const Scene& scene, const ContactResult& r, const fs::path& d
   return s.str();
 }
 
-std::string ReadAll(const fs::path& file) {
-  std::ifstream in(file);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
-
 }  // namespace
 
-void RequireGnuplot() {
-  const char* path_env = std::getenv("PATH");
-  std::stringstream dirs(path_env != nullptr ? path_env : "");
-  std::string dir;
-  while (std::getline(dirs, dir, ':')) {
-    if (dir.empty()) continue;
-    std::error_code ec;
-    if (fs::is_regular_file(fs::path(dir) / "gnuplot", ec)) return;
-  }
-  throw std::runtime_error(
-      "--plot needs the program 'gnuplot', which is not on PATH; install gnuplot (e.g. "
-      "apt-get install gnuplot-nox) or leave out --plot");
-}
+void RequireGnuplot() { RequireGnuplotFor("--plot", "leave out --plot"); }
 
 void PlotPressure(const Scene& scene, const ContactResult& result, const std::string& png_path) {
   RequireGnuplot();
-  const TempDir tmp;
-  const fs::path script = tmp.path / "pressure.gp";
-  const fs::path log = tmp.path / "gnuplot.log";
-  {
-    std::ofstream out(script);
-    out << Script(scene, result, tmp.path, fs::absolute(png_path).string());
-    if (!out) throw std::runtime_error("cannot write the gnuplot script to " + script.string());
-  }
-  const std::string command = fmt::format("gnuplot {} > {} 2>&1", ShellQuote(script.string()),
-                                          ShellQuote(log.string()));
-  const int rc = std::system(command.c_str());
-  if (rc != 0) {
-    throw std::runtime_error(
-        fmt::format("gnuplot failed (status {}) writing {}:\n{}", rc, png_path, ReadAll(log)));
-  }
-  if (!fs::exists(png_path)) {
-    throw std::runtime_error(fmt::format("gnuplot wrote no {}:\n{}", png_path, ReadAll(log)));
-  }
+  const ScopedTempDir tmp("railwear-plot");
+  const std::string png = fs::absolute(png_path).string();
+  RunGnuplot(Script(scene, result, tmp.path(), png), tmp, {png});
 }
 
 }  // namespace railwear::app

@@ -264,8 +264,15 @@ CREATE TABLE distributions(
   ins.Run();
 }
 
+// Version 2: wear distributions are functions of the arc length along the unworn profile.
+// Rows written by version 1 keep s NULL; the CHECK holds for them.
+void MigrateTo2(const Connection& c) {
+  c.Exec("ALTER TABLE distributions ADD COLUMN s BLOB "
+         "CHECK (s IS NULL OR length(s) = length(value))");
+}
+
 using Migration = void (*)(const Connection&);
-constexpr Migration kMigrations[] = {&MigrateTo1};
+constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2};
 static_assert(std::size(kMigrations) == ProfileStore::kSchemaVersion);
 
 const char* kNowUtc = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
@@ -428,12 +435,12 @@ ProfileStore ProfileStore::Open(const std::string& path) {
       throw std::runtime_error(fmt::format("database '{}': cannot switch to WAL mode", path));
     }
   }
-  while (version < kSchemaVersion) {
+  // All migrations in one transaction: a failure leaves the database at its old version.
+  if (version < kSchemaVersion) {
     Transaction t(c);
-    internal::kMigrations[version](c);
-    c.Exec(fmt::format("PRAGMA user_version = {}", version + 1));
+    for (int v = version; v < kSchemaVersion; ++v) internal::kMigrations[v](c);
+    c.Exec(fmt::format("PRAGMA user_version = {}", kSchemaVersion));
     t.Commit();
-    ++version;
   }
   return ProfileStore(std::move(impl));
 }
@@ -499,6 +506,12 @@ void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
           "unique non-empty kind and as many values as positions",
           path(), run, step.step, d.kind, d.y_m.size(), d.value.size()));
     }
+    if (!d.s_m.empty() && d.s_m.size() != d.value.size()) {
+      throw InputError(fmt::format(
+          "database '{}': run {} step {}: distribution '{}' ({} arc lengths s, {} values); "
+          "expected no s or one s per value", path(), run, step.step, d.kind, d.s_m.size(),
+          d.value.size()));
+    }
   }
   Transaction t(c);
   {
@@ -536,12 +549,14 @@ void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
     }
   }
   {
-    Statement s(c, "INSERT INTO distributions(run_id, step, kind, y, value) "
-                   "VALUES (?1, ?2, ?3, ?4, ?5)");
+    Statement s(c, "INSERT INTO distributions(run_id, step, kind, y, value, s) "
+                   "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
     for (const auto& d : step.distributions) {
       sqlite3_reset(s.get());
+      sqlite3_clear_bindings(s.get());  // ?6 stays NULL for a distribution without s
       s.Bind(1, run).Bind(2, step.step).Bind(3, d.kind);
       s.BindBlob(4, internal::EncodeDoubles(d.y_m)).BindBlob(5, internal::EncodeDoubles(d.value));
+      if (!d.s_m.empty()) s.BindBlob(6, internal::EncodeDoubles(d.s_m));
       int constraint = 0;
       s.Step(&constraint);
       if (constraint != 0) {  // the transaction rolls back the rows already written
@@ -600,10 +615,12 @@ StepRecord ProfileStore::LoadStep(int64_t run, int step) const {
     while (s.Step()) r.load_cases_json.push_back(s.Text(0));
   }
   {
-    Statement s(c, "SELECT kind, y, value FROM distributions WHERE run_id = ?1 AND step = ?2 "
+    Statement s(c, "SELECT kind, y, value, s FROM distributions WHERE run_id = ?1 AND step = ?2 "
                    "ORDER BY kind");
     s.Bind(1, run).Bind(2, step);
-    while (s.Step()) r.distributions.push_back({s.Text(0), s.Doubles(1), s.Doubles(2)});
+    while (s.Step()) {
+      r.distributions.push_back({s.Text(0), s.Doubles(1), s.Doubles(2), s.Doubles(3)});
+    }
   }
   return r;
 }

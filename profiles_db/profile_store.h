@@ -6,7 +6,7 @@
 // its full scene text, the program version and the wear-law parameters, so any step can be re-run.
 // The wear loop (wear/) knows nothing of this; app/ hands its finished steps to AppendStep.
 //
-// Schema version 1 (PRAGMA user_version = 1, PRAGMA application_id = kApplicationId), also
+// Schema version 2 (PRAGMA user_version = 2, PRAGMA application_id = kApplicationId), also
 // documented for users of the sqlite3 shell in profiles_db/SCHEMA.md:
 //
 //   meta(key TEXT PRIMARY KEY, value TEXT)          -- ('format', 'railwear-profile-history'), ...
@@ -17,8 +17,13 @@
 //   profiles(run_id, step, n_points, yz BLOB, PRIMARY KEY(run_id, step))
 //         -- yz: n_points pairs (y, z) as little-endian IEEE-754 float64, metres, 16 bytes a point
 //   load_cases(run_id, step, case_index, json TEXT, PRIMARY KEY(run_id, step, case_index))
-//   distributions(run_id, step, kind TEXT, y BLOB, value BLOB, PRIMARY KEY(run_id, step, kind))
-//         -- y: rail-profile lateral positions [m], value: same count, little-endian float64
+//   distributions(run_id, step, kind TEXT, y BLOB, value BLOB, s BLOB NULL,
+//                 PRIMARY KEY(run_id, step, kind))
+//         -- y: rail-profile lateral positions [m], value: same count, little-endian float64;
+//         -- s: arc length along the run's step-0 profile [m], same count, or NULL (since v2)
+//
+// Migrations (applied on open, all of them in one transaction): 0 -> 1 creates the schema;
+// 1 -> 2 adds the nullable column distributions.s (rows written by version 1 keep s NULL).
 //
 // The database runs in WAL mode with foreign keys on. Each AppendStep is one transaction: a crash
 // loses at most the step in flight. Opening never modifies a file it refuses.
@@ -55,10 +60,16 @@ struct RunInfo {
 };
 
 // A quantity sampled along the rail profile, e.g. kind "wear_depth_mm" or "damage".
+// Wear is naturally a function of the arc length s along the unworn profile (y is not single-
+// valued on the gauge face), so a distribution may carry s next to y.
 struct Distribution {
   std::string kind;          // unique within a step, not empty
   std::vector<double> y_m;   // lateral positions on the rail profile [m], shape [n]
   std::vector<double> value; // the quantity at each y (units in `kind`), shape [n]
+  // Arc length of each sample along the run's step-0 (unworn) profile, measured from its first
+  // point [m], shape [n]; empty when the distribution has none (always so for schema-1 rows).
+  // (The "= {}" keeps three-member brace initialisation free of -Wmissing-field-initializers.)
+  std::vector<double> s_m = {};
 };
 
 // One wear step. Step 0 is conventionally the unworn profile (passes = 0).
@@ -69,7 +80,7 @@ struct StepRecord {
   double worn_area_mm2 = 0.0;     // cumulative worn cross-section area [mm^2]
   double max_depth_mm = 0.0;      // largest cumulative wear depth [mm]
   double max_depth_y_mm = 0.0;    // lateral position of that depth [mm]
-  double w1_mm = 0.0;             // W1/W2/W3-style wear measures [mm] (defined in wear/)
+  double w1_mm = 0.0;             // W1/W2/W3 wear measures [mm] (wear/wear_measures.h)
   double w2_mm = 0.0;
   double w3_mm = 0.0;
   double smoothing_area_error = 0.0;  // relative area change caused by profile smoothing [-]
@@ -89,7 +100,7 @@ struct QueryResult {
 class ProfileStore {
  public:
   // Schema version written by this program (PRAGMA user_version).
-  static constexpr int kSchemaVersion = 1;
+  static constexpr int kSchemaVersion = 2;
   // PRAGMA application_id of railwear databases: "RWDB" in ASCII.
   static constexpr int32_t kApplicationId = 0x52574442;
   // Value of meta.format in railwear databases.
@@ -97,9 +108,10 @@ class ProfileStore {
 
   // Opens `path` (a file name, or ":memory:" for a private in-memory database). A missing or
   // empty file becomes a new database of schema kSchemaVersion; an older railwear database is
-  // migrated in one transaction. Throws InputError, leaving the file untouched, when the file is
-  // not an SQLite database, is an SQLite database of another application, or was written by a
-  // newer railwear (user_version > kSchemaVersion), or cannot be opened at all.
+  // migrated in one transaction (its data kept; on failure it stays at its old version).
+  // Throws InputError, leaving the file untouched, when the file is not an SQLite database, is
+  // an SQLite database of another application, or was written by a newer railwear
+  // (user_version > kSchemaVersion), or cannot be opened at all.
   static ProfileStore Open(const std::string& path);
 
   ProfileStore(ProfileStore&&) noexcept;
@@ -121,7 +133,7 @@ class ProfileStore {
   // Writes the step row, its profile, load cases and distributions in one transaction (all or
   // nothing). Throws InputError when the run does not exist, step.step is not LastStep()+1 (0 for
   // a run without steps), the profile is empty, or a distribution is malformed (empty or
-  // duplicate kind, y and value of different lengths).
+  // duplicate kind, y and value of different lengths, s neither empty nor as long as value).
   void AppendStep(int64_t run, const StepRecord& step);
   // The steps of a run in order, summary columns only (profile, load cases and distributions
   // are left empty; see LoadProfile / LoadStep).

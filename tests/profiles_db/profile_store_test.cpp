@@ -6,7 +6,9 @@
 #include <sqlite3.h>
 #include <unistd.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -64,6 +66,86 @@ void RawExec(const std::string& path, const std::string& sql) {
   sqlite3_free(err);
   sqlite3_close(db);
   ASSERT_EQ(rc, SQLITE_OK) << msg;
+}
+
+// An SQL BLOB literal X'..' of doubles as little-endian IEEE-754 float64 (SCHEMA.md layout).
+std::string BlobLiteral(const std::vector<double>& values) {
+  static const char* kHex = "0123456789ABCDEF";
+  std::string out = "X'";
+  for (double v : values) {
+    const auto bits = std::bit_cast<uint64_t>(v);
+    for (int i = 0; i < 8; ++i) {
+      const unsigned byte = (bits >> (8 * i)) & 0xffu;
+      out += kHex[byte >> 4];
+      out += kHex[byte & 0xf];
+    }
+  }
+  return out + "'";
+}
+
+// The schema of railwear's version 1, verbatim (what MigrateTo1 created), with one run, one step,
+// its profile, a load case and a distribution: a database as version 1 left it.
+std::string Version1Database() {
+  const std::vector<double> yz = {-0.02, 0.0016, -0.01, 0.0004, 0.0, 0.0,
+                                  0.01,  0.0004, 0.02,  0.0016};
+  return std::string(R"sql(
+PRAGMA application_id = 1381450818;
+CREATE TABLE meta(
+  key   TEXT PRIMARY KEY,
+  value TEXT NOT NULL);
+CREATE TABLE runs(
+  id              INTEGER PRIMARY KEY,
+  name            TEXT NOT NULL UNIQUE,
+  created_utc     TEXT NOT NULL,
+  program_version TEXT NOT NULL,
+  scene_text      TEXT NOT NULL,
+  wear_law_json   TEXT NOT NULL,
+  state           TEXT NOT NULL CHECK (state IN ('running', 'complete', 'aborted')));
+CREATE TABLE steps(
+  run_id               INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+  step                 INTEGER NOT NULL CHECK (step >= 0),
+  passes               REAL NOT NULL,
+  mgt                  REAL NOT NULL,
+  worn_area_mm2        REAL NOT NULL,
+  max_depth_mm         REAL NOT NULL,
+  max_depth_y_mm       REAL NOT NULL,
+  w1_mm                REAL NOT NULL,
+  w2_mm                REAL NOT NULL,
+  w3_mm                REAL NOT NULL,
+  smoothing_area_error REAL NOT NULL,
+  created_utc          TEXT NOT NULL,
+  PRIMARY KEY (run_id, step));
+CREATE TABLE profiles(
+  run_id   INTEGER NOT NULL,
+  step     INTEGER NOT NULL,
+  n_points INTEGER NOT NULL,
+  yz       BLOB NOT NULL CHECK (length(yz) = 16 * n_points),
+  PRIMARY KEY (run_id, step),
+  FOREIGN KEY (run_id, step) REFERENCES steps(run_id, step) ON DELETE CASCADE);
+CREATE TABLE load_cases(
+  run_id     INTEGER NOT NULL,
+  step       INTEGER NOT NULL,
+  case_index INTEGER NOT NULL,
+  json       TEXT NOT NULL,
+  PRIMARY KEY (run_id, step, case_index),
+  FOREIGN KEY (run_id, step) REFERENCES steps(run_id, step) ON DELETE CASCADE);
+CREATE TABLE distributions(
+  run_id INTEGER NOT NULL,
+  step   INTEGER NOT NULL,
+  kind   TEXT NOT NULL,
+  y      BLOB NOT NULL,
+  value  BLOB NOT NULL CHECK (length(value) = length(y)),
+  PRIMARY KEY (run_id, step, kind),
+  FOREIGN KEY (run_id, step) REFERENCES steps(run_id, step) ON DELETE CASCADE);
+INSERT INTO meta(key, value) VALUES ('format', 'railwear-profile-history'),
+                                    ('schema_doc', 'profiles_db/SCHEMA.md in the railwear sources');
+INSERT INTO runs VALUES (1, 'old', '2024-05-01T12:00:00.000Z', '0.0.9', 'scene', '{}', 'complete');
+INSERT INTO steps VALUES (1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, '2024-05-01T12:00:01.000Z');
+INSERT INTO load_cases VALUES (1, 0, 0, '{"case":0}');
+)sql") + "INSERT INTO profiles VALUES (1, 0, 5, " + BlobLiteral(yz) + ");\n" +
+         "INSERT INTO distributions VALUES (1, 0, 'wear_depth_mm', " +
+         BlobLiteral({-0.01, 0.0, 0.01}) + ", " + BlobLiteral({0.0, 0.25, 0.5}) + ");\n" +
+         "PRAGMA user_version = 1;\n";
 }
 
 // A rail-like profile whose coordinates use all 53 mantissa bits (and one negative zero).
@@ -131,6 +213,97 @@ TEST(ProfileStore, CreatesSchemaInMemory) {
                                              "runs", "steps"}));
   EXPECT_EQ(db.Query("PRAGMA application_id").rows[0][0],
             std::to_string(ProfileStore::kApplicationId));
+}
+
+TEST(ProfileStore, DistributionsHaveANullableArcLengthColumn) {
+  ProfileStore db = ProfileStore::Open(":memory:");
+  const QueryResult cols = db.Query("SELECT name, type, \"notnull\" FROM pragma_table_info("
+                                    "'distributions') WHERE name = 's'");
+  ASSERT_EQ(cols.rows.size(), 1u);
+  EXPECT_EQ(cols.rows[0], (std::vector<std::string>{"s", "BLOB", "0"}));
+}
+
+TEST(ProfileStore, DistributionArcLengthRoundTripsExactly) {
+  ProfileStore db = ProfileStore::Open(":memory:");
+  const int64_t run = db.CreateRun(TestRun("r"));
+  StepRecord step = TestStep(0);
+  // Values that use all mantissa bits, a negative zero and a subnormal.
+  step.distributions[0].s_m = {-0.0, 1.0 / 3.0, 4.9e-324};
+  db.AppendStep(run, step);
+  const StepRecord back = db.LoadStep(run, 0);
+  ASSERT_EQ(back.distributions.size(), 2u);
+  const Distribution& wear = back.distributions[1];  // ordered by kind: damage, wear_depth_mm
+  ASSERT_EQ(wear.kind, "wear_depth_mm");
+  ASSERT_EQ(wear.s_m.size(), 3u);
+  EXPECT_EQ(std::memcmp(wear.s_m.data(), step.distributions[0].s_m.data(), 3 * sizeof(double)), 0);
+  EXPECT_TRUE(std::signbit(wear.s_m[0]));
+  EXPECT_TRUE(back.distributions[0].s_m.empty());  // "damage" was given no s
+  EXPECT_EQ(db.Query("SELECT kind, s IS NULL, length(s) FROM distributions ORDER BY kind").rows,
+            (std::vector<std::vector<std::string>>{{"damage", "1", "NULL"},
+                                                   {"wear_depth_mm", "0", "24"}}));
+  // s of another length than value is refused, naming the distribution.
+  StepRecord bad = TestStep(1);
+  bad.distributions[1].s_m = {0.0, 1.0};
+  ExpectInputError([&] { db.AppendStep(run, bad); },
+                   {"distribution 'damage'", "2 arc lengths s, 3 values", "one s per value"});
+  EXPECT_EQ(db.LastStep(run), 0);
+}
+
+TEST(ProfileStore, MigratesVersion1KeepingItsData) {
+  TempDir tmp;
+  const std::string path = tmp.File("v1.rwdb");
+  RawExec(path, Version1Database());
+  {
+    ProfileStore db = ProfileStore::Open(path);
+    EXPECT_EQ(db.SchemaVersion(), 2);
+    const auto run = db.FindRun("old");
+    ASSERT_TRUE(run.has_value());
+    EXPECT_EQ(run->program_version, "0.0.9");
+    EXPECT_EQ(run->state, RunState::kComplete);
+    const StepRecord old = db.LoadStep(run->id, 0);
+    EXPECT_EQ(old.created_utc, "2024-05-01T12:00:01.000Z");
+    EXPECT_EQ(old.profile.size(), 5);
+    EXPECT_EQ(old.profile.points()[4], Eigen::Vector2d(0.02, 0.0016));
+    EXPECT_EQ(old.load_cases_json, (std::vector<std::string>{R"({"case":0})"}));
+    ASSERT_EQ(old.distributions.size(), 1u);
+    EXPECT_EQ(old.distributions[0].y_m, (std::vector<double>{-0.01, 0.0, 0.01}));
+    EXPECT_EQ(old.distributions[0].value, (std::vector<double>{0.0, 0.25, 0.5}));
+    EXPECT_TRUE(old.distributions[0].s_m.empty());  // NULL after the migration
+    EXPECT_EQ(db.Query("SELECT count(*) FROM distributions WHERE s IS NULL").rows[0][0], "1");
+
+    // New rows get s.
+    StepRecord next = TestStep(1);
+    next.distributions[0].s_m = {0.0, 0.1 / 3.0, 0.2};
+    db.AppendStep(run->id, next);
+  }
+  ProfileStore db = ProfileStore::Open(path);  // reopening a version-2 file migrates nothing
+  EXPECT_EQ(db.SchemaVersion(), 2);
+  const StepRecord back = db.LoadStep(db.FindRun("old")->id, 1);
+  ASSERT_EQ(back.distributions.size(), 2u);
+  EXPECT_EQ(back.distributions[1].kind, "wear_depth_mm");
+  const std::vector<double> want = {0.0, 0.1 / 3.0, 0.2};
+  EXPECT_EQ(std::memcmp(back.distributions[1].s_m.data(), want.data(), 3 * sizeof(double)), 0);
+}
+
+TEST(ProfileStore, FailedMigrationLeavesVersion1) {
+  TempDir tmp;
+  const std::string path = tmp.File("v1_clash.rwdb");
+  // A version-1 file that (against the rules) already has a column named s: ALTER TABLE fails,
+  // and the whole migration must roll back.
+  RawExec(path, Version1Database() + "ALTER TABLE distributions ADD COLUMN s TEXT;");
+  EXPECT_THROW(ProfileStore::Open(path), std::runtime_error);
+  sqlite3* raw = nullptr;
+  ASSERT_EQ(sqlite3_open_v2(path.c_str(), &raw, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  sqlite3_stmt* stmt = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(raw, "PRAGMA user_version", -1, &stmt, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(stmt), SQLITE_ROW);
+  EXPECT_EQ(sqlite3_column_int(stmt, 0), 1);
+  sqlite3_finalize(stmt);
+  ASSERT_EQ(sqlite3_prepare_v2(raw, "SELECT count(*) FROM steps", -1, &stmt, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(stmt), SQLITE_ROW);
+  EXPECT_EQ(sqlite3_column_int(stmt, 0), 1);
+  sqlite3_finalize(stmt);
+  sqlite3_close(raw);
 }
 
 TEST(ProfileStore, RunsAreUniqueAndFound) {

@@ -1,0 +1,405 @@
+// `railwear history ...`: the CLI11 wiring and the six readers of a profile-history database.
+#include "app/history_command.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "app/gnuplot.h"
+#include "app/history_plot.h"
+#include "app/paths.h"
+#include "core/numerics/input_error.h"
+#include "core/profile/profile_io.h"
+#include "profiles_db/profile_store.h"
+#include "wear/wear_measures.h"
+
+namespace railwear::app {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kToMm = 1e3;
+constexpr double kToMm2 = 1e6;
+
+// ---------------------------------------------------------------------------------------------
+// Opening the database and finding runs and steps; every failure names the file.
+
+ProfileStore OpenExisting(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) {
+    throw InputError(fmt::format(
+        "database '{}': no such file; expected an existing railwear profile-history database "
+        "(--db FILE; `railwear wear` creates one, `history` never does)", path));
+  }
+  if (fs::is_regular_file(path, ec) && fs::file_size(path, ec) == 0) {
+    throw InputError(fmt::format("database '{}': empty file; expected a railwear "
+                                 "profile-history database", path));
+  }
+  return ProfileStore::Open(path);
+}
+
+RunInfo FindRunOrThrow(const ProfileStore& db, const std::string& name) {
+  if (auto run = db.FindRun(name)) return *run;
+  std::string known;
+  for (const auto& r : db.Runs()) known += (known.empty() ? "" : ", ") + ("'" + r.name + "'");
+  throw InputError(fmt::format("database '{}': no run named '{}'; expected {}", db.path(), name,
+                               known.empty() ? "a run name, but the database has no runs"
+                                             : "one of " + known));
+}
+
+// The run's step summaries; InputError when it has none.
+std::vector<StepRecord> StepsOrThrow(const ProfileStore& db, const RunInfo& run) {
+  std::vector<StepRecord> steps = db.Steps(run.id);
+  if (steps.empty()) {
+    throw InputError(fmt::format("database '{}': run '{}' has no steps yet", db.path(), run.name));
+  }
+  return steps;
+}
+
+void CheckStep(const ProfileStore& db, const RunInfo& run, const std::vector<StepRecord>& steps,
+               int step, const std::string& what) {
+  if (step < steps.front().step || step > steps.back().step) {
+    throw InputError(fmt::format("database '{}': run '{}': {} {} is out of range; expected a step "
+                                 "from {} to {}", db.path(), run.name, what, step,
+                                 steps.front().step, steps.back().step));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Tables.
+
+bool IsNumber(const std::string& s) {
+  if (s.empty()) return false;
+  char* end = nullptr;
+  std::strtod(s.c_str(), &end);
+  return end == s.c_str() + s.size();
+}
+
+// Columns padded to their widest cell, two spaces apart; numbers right-aligned, text left-aligned;
+// a rule of dashes under the header.
+std::string AlignedTable(const std::vector<std::string>& columns,
+                         const std::vector<std::vector<std::string>>& rows) {
+  std::vector<size_t> width(columns.size());
+  std::vector<bool> numeric(columns.size(), !rows.empty());
+  for (size_t c = 0; c < columns.size(); ++c) {
+    width[c] = columns[c].size();
+    for (const auto& row : rows) {
+      width[c] = std::max(width[c], row[c].size());
+      if (!IsNumber(row[c]) && row[c] != "NULL" && row[c] != "nan") numeric[c] = false;
+    }
+  }
+  auto line = [&](const std::vector<std::string>& cells) {
+    std::string out;
+    for (size_t c = 0; c < cells.size(); ++c) {
+      const bool last = c + 1 == cells.size();
+      if (c > 0) out += "  ";
+      out += numeric[c] ? fmt::format("{:>{}}", cells[c], width[c])
+                        : (last ? cells[c] : fmt::format("{:<{}}", cells[c], width[c]));
+    }
+    return out + "\n";
+  };
+  std::string out = line(columns);
+  std::vector<std::string> rule;
+  for (size_t w : width) rule.emplace_back(w, '-');
+  out += line(rule);
+  for (const auto& row : rows) out += line(row);
+  return out;
+}
+
+// Tab-separated: header line, then one line per row (tabs and newlines in cells become spaces).
+std::string TsvTable(const std::vector<std::string>& columns,
+                     const std::vector<std::vector<std::string>>& rows) {
+  auto line = [](const std::vector<std::string>& cells) {
+    std::string out;
+    for (size_t c = 0; c < cells.size(); ++c) {
+      if (c > 0) out += '\t';
+      for (char ch : cells[c]) out += (ch == '\t' || ch == '\n' || ch == '\r') ? ' ' : ch;
+    }
+    return out + "\n";
+  };
+  std::string out = line(columns);
+  for (const auto& row : rows) out += line(row);
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// profile: format choice and writers.
+
+std::string Lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+HistoryProfileFormat ChooseFormat(const HistoryProfileOptions& o) {
+  const std::string ext = Lower(fs::path(o.out).extension().string());
+  if (!o.format.empty()) {
+    const HistoryProfileFormat f = HistoryProfileFormatFromString(o.format);
+    // The CSV and BAN writers choose by extension (core/profile/profile_io.h).
+    if (!o.out.empty() && f != HistoryProfileFormat::kJson && ext != "." + ToString(f)) {
+      throw InputError(fmt::format("--out '{}': extension '{}' does not match --format {}; "
+                                   "expected a file name ending in .{}", o.out, ext, o.format,
+                                   ToString(f)));
+    }
+    return f;
+  }
+  if (o.out.empty()) return HistoryProfileFormat::kCsv;
+  if (ext == ".csv" || ext == ".ban" || ext == ".json") {
+    return HistoryProfileFormatFromString(ext.substr(1));
+  }
+  throw InputError(fmt::format("--out '{}': cannot tell the format from extension '{}'; expected "
+                               ".csv, .ban or .json, or give --format", o.out, ext));
+}
+
+nlohmann::json ProfileJson(const ProfileStore& db, const RunInfo& run, const StepRecord& step,
+                           const Profile& profile) {
+  nlohmann::json y = nlohmann::json::array(), z = nlohmann::json::array();
+  for (const auto& p : profile.points()) {
+    y.push_back(p.x() * kToMm);
+    z.push_back(p.y() * kToMm);
+  }
+  return {{"database", db.path()}, {"run", run.name},     {"step", step.step},
+          {"passes", step.passes}, {"mgt", step.mgt},     {"points", profile.size()},
+          {"frame", "rail frame: y toward the field side, z downward, mm"},
+          {"y_mm", std::move(y)},  {"z_mm", std::move(z)}};
+}
+
+std::string ReadAll(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// diff.
+
+std::string Mm(double metres, int decimals = 4) {
+  return std::isnan(metres) ? std::string("nan") : fmt::format("{:.{}f}", metres * kToMm, decimals);
+}
+
+}  // namespace
+
+std::string ToString(HistoryProfileFormat format) {
+  switch (format) {
+    case HistoryProfileFormat::kCsv: return "csv";
+    case HistoryProfileFormat::kBan: return "ban";
+    case HistoryProfileFormat::kJson: return "json";
+  }
+  return "csv";
+}
+
+HistoryProfileFormat HistoryProfileFormatFromString(const std::string& text) {
+  if (text == "csv") return HistoryProfileFormat::kCsv;
+  if (text == "ban") return HistoryProfileFormat::kBan;
+  if (text == "json") return HistoryProfileFormat::kJson;
+  throw InputError(fmt::format("--format '{}': expected csv, ban or json", text));
+}
+
+void SetupHistory(CLI::App& app) {
+  auto common = std::make_shared<HistoryOptions>();
+  CLI::App* history = app.add_subcommand(
+      "history", "Read a profile-history database: runs, steps, profiles, wear, plots, SQL");
+  history->require_subcommand(1);
+  history->fallthrough();  // --db also after the subcommand
+  history->add_option("--db", common->db, "Profile-history database (SQLite)")
+      ->capture_default_str();
+
+  history->add_subcommand("runs", "Table of the runs: name, state, created, steps, last MGT, "
+                                  "program version")
+      ->callback([common]() { RunHistoryRuns(*common); });
+
+  auto steps = std::make_shared<HistoryStepsOptions>();
+  CLI::App* steps_cmd = history->add_subcommand(
+      "steps", "Table of a run's steps: passes, MGT, worn area, max depth, W1 W2 W3, smoothing");
+  steps_cmd->add_option("run", steps->run, "Run name")->required();
+  steps_cmd->callback([common, steps]() { RunHistorySteps(*common, *steps); });
+
+  auto profile = std::make_shared<HistoryProfileOptions>();
+  CLI::App* profile_cmd =
+      history->add_subcommand("profile", "A step's rail profile as CSV, MiniProf BAN or JSON");
+  profile_cmd->add_option("run", profile->run, "Run name")->required();
+  profile_cmd->add_option("--step", profile->step, "Step number (default: the last step)");
+  profile_cmd->add_option("--format", profile->format,
+                          "csv, ban or json (default: by --out's extension, else csv)");
+  profile_cmd->add_option("--out", profile->out, "File to write (default: stdout)");
+  profile_cmd->callback([common, profile]() { RunHistoryProfile(*common, *profile); });
+
+  auto diff = std::make_shared<HistoryDiffOptions>();
+  CLI::App* diff_cmd = history->add_subcommand(
+      "diff", "Wear between two steps: worn area, max depth and where, W1 W2 W3");
+  diff_cmd->add_option("run", diff->run, "Run name")->required();
+  diff_cmd->add_option("A", diff->from_step, "Earlier step")->required();
+  diff_cmd->add_option("B", diff->to_step, "Later step")->required();
+  diff_cmd->add_flag("--json", diff->json, "One JSON object on stdout");
+  diff_cmd->callback([common, diff]() { RunHistoryDiff(*common, *diff); });
+
+  auto plot = std::make_shared<HistoryPlotOptions>();
+  CLI::App* plot_cmd = history->add_subcommand(
+      "plot", "PNGs (gnuplot): profiles by MGT, wear depth, W1 W2 W3 against MGT");
+  plot_cmd->add_option("run", plot->run, "Run name")->required();
+  plot_cmd->add_option("--out", plot->prefix,
+                       "File prefix: PREFIX_profiles.png, _depth.png, _measures.png "
+                       "(default: RUN)");
+  plot_cmd->callback([common, plot]() { RunHistoryPlot(*common, *plot); });
+
+  auto sql = std::make_shared<HistorySqlOptions>();
+  CLI::App* sql_cmd = history->add_subcommand(
+      "sql", "One read-only SQL statement (schema: profiles_db/SCHEMA.md)");
+  sql_cmd->add_option("query", sql->sql, "e.g. \"SELECT step, mgt FROM steps\"")->required();
+  sql_cmd->add_flag("--tsv", sql->tsv, "Tab-separated output instead of aligned columns");
+  sql_cmd->callback([common, sql]() { RunHistorySql(*common, *sql); });
+}
+
+void RunHistoryRuns(const HistoryOptions& o) {
+  const ProfileStore db = OpenExisting(o.db);
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& run : db.Runs()) {
+    const std::vector<StepRecord> steps = db.Steps(run.id);
+    rows.push_back({run.name, ToString(run.state), run.created_utc,
+                    std::to_string(steps.size()),
+                    steps.empty() ? std::string("NULL") : fmt::format("{:.4f}", steps.back().mgt),
+                    run.program_version});
+  }
+  std::cout << AlignedTable({"name", "state", "created_utc", "steps", "last_MGT",
+                             "program_version"}, rows);
+  std::cerr << fmt::format("railwear: {} run(s) in {}\n", rows.size(), db.path());
+}
+
+void RunHistorySteps(const HistoryOptions& o, const HistoryStepsOptions& s) {
+  const ProfileStore db = OpenExisting(o.db);
+  const RunInfo run = FindRunOrThrow(db, s.run);
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& st : db.Steps(run.id)) {
+    rows.push_back({std::to_string(st.step), fmt::format("{:.6g}", st.passes),
+                    fmt::format("{:.4f}", st.mgt), fmt::format("{:.4f}", st.worn_area_mm2),
+                    fmt::format("{:.4f}", st.max_depth_mm),
+                    fmt::format("{:.3f}", st.max_depth_y_mm),
+                    fmt::format("{:.4f}", st.w1_mm), fmt::format("{:.4f}", st.w2_mm),
+                    fmt::format("{:.4f}", st.w3_mm),
+                    fmt::format("{:.3e}", st.smoothing_area_error)});
+  }
+  std::cout << AlignedTable({"step", "passes", "MGT", "worn_area_mm2", "max_depth_mm", "at_y_mm",
+                             "W1_mm", "W2_mm", "W3_mm", "smoothing_area_error"},
+                            rows);
+  std::cerr << fmt::format("railwear: run '{}' ({}), {} step(s), in {}\n", run.name,
+                           ToString(run.state), rows.size(), db.path());
+}
+
+void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) {
+  const HistoryProfileFormat format = ChooseFormat(p);  // before touching the database
+  const ProfileStore db = OpenExisting(o.db);
+  const RunInfo run = FindRunOrThrow(db, p.run);
+  const std::vector<StepRecord> steps = StepsOrThrow(db, run);
+  const int step_number = p.step.value_or(steps.back().step);
+  CheckStep(db, run, steps, step_number, "--step");
+  const StepRecord& step = steps[static_cast<size_t>(step_number - steps.front().step)];
+  const Profile profile = db.LoadProfile(run.id, step_number);
+
+  if (format == HistoryProfileFormat::kJson) {
+    const std::string text = ProfileJson(db, run, step, profile).dump(1) + "\n";
+    if (p.out.empty()) {
+      std::cout << text;
+    } else {
+      std::ofstream out(p.out);
+      out << text;
+      if (!out) throw InputError(fmt::format("--out '{}': cannot write the file", p.out));
+    }
+  } else if (!p.out.empty()) {
+    WriteProfileFile(profile, p.out);
+  } else {
+    // To stdout through the file writer, so stdout and --out hold the same bytes.
+    const ScopedTempDir tmp("railwear-profile");
+    const fs::path file = tmp.path() / fmt::format("{}_step{}.{}", run.name, step_number,
+                                                   ToString(format));
+    WriteProfileFile(profile, file.string());
+    std::cout << ReadAll(file);
+  }
+  std::cerr << fmt::format("railwear: run '{}' step {} ({:.4f} MGT), {} points{}\n", run.name,
+                           step_number, step.mgt, profile.size(),
+                           p.out.empty() ? std::string() : ", written to " + p.out);
+}
+
+void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
+  const ProfileStore db = OpenExisting(o.db);
+  const RunInfo run = FindRunOrThrow(db, d.run);
+  const std::vector<StepRecord> steps = StepsOrThrow(db, run);
+  CheckStep(db, run, steps, d.from_step, "step A =");
+  CheckStep(db, run, steps, d.to_step, "step B =");
+  const StepRecord& a = steps[static_cast<size_t>(d.from_step - steps.front().step)];
+  const StepRecord& b = steps[static_cast<size_t>(d.to_step - steps.front().step)];
+  const Profile unworn = db.LoadProfile(run.id, steps.front().step);
+  const Profile pa = db.LoadProfile(run.id, a.step);
+  const Profile pb = db.LoadProfile(run.id, b.step);
+  WearMeasureOptions options;
+  options.gauge = MakeWearGauge(unworn, options.side_wear_depth_m);
+  const WearMeasures m = CompareProfiles(pa, pb, options);
+
+  if (d.json) {
+    // NaN (a line that misses a profile) is written as null.
+    const nlohmann::json j = {
+        {"database", db.path()},
+        {"run", run.name},
+        {"from", {{"step", a.step}, {"passes", a.passes}, {"mgt", a.mgt}}},
+        {"to", {{"step", b.step}, {"passes", b.passes}, {"mgt", b.mgt}}},
+        {"worn_area_mm2", m.worn_area_m2 * kToMm2},
+        {"max_depth_mm", m.max_depth_m * kToMm},
+        {"max_depth_s_mm", m.max_depth_s_m * kToMm},
+        {"max_depth_y_mm", m.max_depth_y_m * kToMm},
+        {"max_depth_z_mm", m.max_depth_z_m * kToMm},
+        {"w1_mm", m.vertical_wear_m * kToMm},
+        {"w2_mm", m.side_wear_m * kToMm},
+        {"w3_mm", m.wear_45_m * kToMm},
+        {"unmatched_samples", m.unmatched_samples}};
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::string out;
+    out += fmt::format("run           {}\n", run.name);
+    out += fmt::format("from step     {} ({:.4f} MGT, {:.6g} passes)\n", a.step, a.mgt, a.passes);
+    out += fmt::format("to step       {} ({:.4f} MGT, {:.6g} passes)\n", b.step, b.mgt, b.passes);
+    out += fmt::format("worn area     {:.4f} mm^2\n", m.worn_area_m2 * kToMm2);
+    out += fmt::format("max depth     {} mm at s = {} mm (y = {}, z = {} mm) on step {}\n",
+                       Mm(m.max_depth_m), Mm(m.max_depth_s_m, 2), Mm(m.max_depth_y_m, 2),
+                       Mm(m.max_depth_z_m, 2), a.step);
+    out += fmt::format("W1 vertical   {} mm (centre line)\n", Mm(m.vertical_wear_m));
+    out += fmt::format("W2 side       {} mm (14 mm below the top of rail)\n", Mm(m.side_wear_m));
+    out += fmt::format("W3 45 deg     {} mm (gauge corner)\n", Mm(m.wear_45_m));
+    std::cout << out;
+  }
+  if (m.unmatched_samples > 0) {
+    std::cerr << fmt::format("railwear: {} of {} depth samples found no worn surface within {} mm "
+                             "of step {} (left out of area and max depth)\n",
+                             m.unmatched_samples, m.s_m.size(),
+                             options.max_normal_distance_m * kToMm, a.step);
+  }
+}
+
+void RunHistoryPlot(const HistoryOptions& o, const HistoryPlotOptions& p) {
+  RequireGnuplotFor("history plot", "use `history profile` / `history sql` for the numbers");
+  const ProfileStore db = OpenExisting(o.db);
+  const RunInfo run = FindRunOrThrow(db, p.run);
+  const std::vector<StepRecord> summaries = StepsOrThrow(db, run);
+  std::vector<StepRecord> steps;
+  steps.reserve(summaries.size());
+  for (const auto& s : summaries) steps.push_back(db.LoadStep(run.id, s.step));
+  const std::string prefix = p.prefix.empty() ? run.name : p.prefix;
+  for (const auto& file : PlotHistory(run.name, steps, prefix)) {
+    std::cerr << fmt::format("railwear: wrote {}\n", file);
+  }
+}
+
+void RunHistorySql(const HistoryOptions& o, const HistorySqlOptions& s) {
+  const ProfileStore db = OpenExisting(o.db);
+  const QueryResult r = db.Query(s.sql);
+  std::cout << (s.tsv ? TsvTable(r.columns, r.rows) : AlignedTable(r.columns, r.rows));
+  std::cerr << fmt::format("railwear: {} row(s)\n", r.rows.size());
+}
+
+}  // namespace railwear::app

@@ -1,0 +1,78 @@
+// `railwear history [--db FILE] runs | steps RUN | profile RUN | diff RUN A B | plot RUN | sql Q`:
+// reading a study's profile-history database (profiles_db/SCHEMA.md) — runs, the steps of a run,
+// a step's profile as CSV/BAN/JSON, the wear between two steps, plots, and read-only SQL.
+//
+// Data goes to stdout, messages to stderr. The database must exist and be a railwear profile-
+// history database: history never creates one (a missing or empty file is InputError, exit 2),
+// and refuses other files untouched. An older-schema database is migrated on open, as by every
+// railwear command (ProfileStore::Open). Unknown runs, steps out of range and SQL that would
+// write throw InputError (exit 2) naming the file, the run and the step.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace railwear::app {
+
+// Shared by every history subcommand.
+struct HistoryOptions {
+  std::string db = "wear.sqlite";  // the study database (the scene template's [wear] db default)
+};
+
+struct HistoryStepsOptions {
+  std::string run;
+};
+
+enum class HistoryProfileFormat { kCsv, kBan, kJson };
+std::string ToString(HistoryProfileFormat format);  // "csv", "ban", "json"
+// Throws InputError naming the value and the choices.
+HistoryProfileFormat HistoryProfileFormatFromString(const std::string& text);
+
+struct HistoryProfileOptions {
+  std::string run;
+  std::optional<int> step;     // default: the run's last step
+  std::string format;          // "csv", "ban" or "json"; default: by --out's extension, else csv
+  std::string out;             // file to write; empty: stdout
+};
+
+struct HistoryDiffOptions {
+  std::string run;
+  int from_step = 0;  // A
+  int to_step = 0;    // B
+  bool json = false;  // one JSON object instead of the text report
+};
+
+struct HistoryPlotOptions {
+  std::string run;
+  std::string prefix;  // PNG files PREFIX_profiles.png, _depth.png, _measures.png; default: RUN
+};
+
+struct HistorySqlOptions {
+  std::string sql;
+  bool tsv = false;  // tab-separated instead of aligned columns
+};
+
+// Adds `history` with its subcommands runs, steps, profile, diff, plot and sql.
+void SetupHistory(CLI::App& app);
+
+// Each opens options.db (InputError when missing, empty or not a railwear database).
+// runs: table name, state, created, steps, last MGT, program version.
+void RunHistoryRuns(const HistoryOptions& options);
+// steps: table step, passes, MGT, worn area, max depth and its y, W1 W2 W3, smoothing error.
+void RunHistorySteps(const HistoryOptions& options, const HistoryStepsOptions& steps);
+// profile: the step's rail profile (mm) as CSV or MiniProf BAN (core/profile/profile_io.h), or
+// JSON {run, step, passes, mgt, points, y_mm[], z_mm[]}.
+void RunHistoryProfile(const HistoryOptions& options, const HistoryProfileOptions& profile);
+// diff: CompareProfiles(step A, step B) with the wear gauge of the run's step 0, so W1/W2/W3
+// between A and B are the differences of their values against step 0 (wear/wear_measures.h).
+void RunHistoryDiff(const HistoryOptions& options, const HistoryDiffOptions& diff);
+// plot: three PNGs via gnuplot (app/history_plot.h); std::runtime_error when gnuplot is missing.
+void RunHistoryPlot(const HistoryOptions& options, const HistoryPlotOptions& plot);
+// sql: ProfileStore::Query (read-only; a statement that would write is InputError).
+void RunHistorySql(const HistoryOptions& options, const HistorySqlOptions& sql);
+
+}  // namespace railwear::app

@@ -1,0 +1,198 @@
+// History plots via gnuplot: one data file per plot (blocks per step, MGT in the colour column),
+// one script writing all three PNGs.
+#include "app/history_plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "app/gnuplot.h"
+#include "wear/wear_measures.h"
+
+namespace railwear::app {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kToMm = 1e3;
+constexpr const char* kWearDepthKind = "wear_depth_mm";
+// The gauge-corner zoom around the 45-degree point P45 of the unworn profile [mm]: on UIC60 it
+// spans y -40..-10 mm and z -2..20 mm, the corner, the gauge face down to 20 mm and the shoulder.
+constexpr double kZoomGaugeSide_mm = 8.0, kZoomCrownSide_mm = 22.0;
+constexpr double kZoomAbove_mm = 8.0, kZoomBelow_mm = 14.0;
+
+const Distribution* FindDistribution(const StepRecord& step, const std::string& kind) {
+  for (const auto& d : step.distributions) {
+    if (d.kind == kind) return &d;
+  }
+  return nullptr;
+}
+
+// The colour range of the MGT palette; gnuplot refuses an empty range.
+std::string CbRange(const std::vector<StepRecord>& steps) {
+  double lo = steps.front().mgt, hi = steps.front().mgt;
+  for (const auto& s : steps) {
+    lo = std::min(lo, s.mgt);
+    hi = std::max(hi, s.mgt);
+  }
+  if (!(hi > lo)) hi = lo + 1.0;
+  return fmt::format("set cbrange [{:.9g}:{:.9g}]\n", lo, hi);
+}
+
+void WriteFile(const fs::path& file, const std::string& text) {
+  std::ofstream out(file);
+  out << text;
+  if (!out) throw std::runtime_error("cannot write plot data to " + file.string());
+}
+
+std::string ProfilesScript(const std::string& run, const std::vector<StepRecord>& steps,
+                           const WearGauge& gauge, const fs::path& dir, const std::string& png) {
+  std::string data;
+  for (const auto& s : steps) {
+    for (const auto& p : s.profile.points()) {
+      data += fmt::format("{:.6f} {:.6f} {:.9g}\n", p.x() * kToMm, p.y() * kToMm, s.mgt);
+    }
+    data += "\n";
+  }
+  const fs::path file = dir / "profiles.dat";
+  WriteFile(file, data);
+
+  std::ostringstream g;
+  g << GnuplotPngTerminal(900, 800) << "set output " << GnuplotQuote(png) << "\n";
+  g << "set title " << GnuplotQuote(fmt::format("run {}: rail profile after each step "
+                                                "(gauge corner)", run)) << "\n";
+  g << "set xlabel 'y [mm] (gauge side left)'\nset ylabel 'z [mm] (down)'\n";
+  g << "set cblabel 'MGT'\nset palette rgb 33,13,10\nset size ratio -1\nset grid\n";
+  g << CbRange(steps);
+  const Eigen::Vector2d p45 = gauge.corner45.point_m * kToMm;
+  g << fmt::format("set xrange [{:.3f}:{:.3f}]\nset yrange [{:.3f}:{:.3f}]\n",
+                   p45.x() - kZoomGaugeSide_mm, p45.x() + kZoomCrownSide_mm,
+                   p45.y() + kZoomBelow_mm, p45.y() - kZoomAbove_mm);
+  g << "plot " << GnuplotQuote(file.string()) << " using 1:2:3 with lines lc palette lw 1.5 "
+    << "notitle\n";
+  return g.str();
+}
+
+std::string DepthScript(const std::string& run, const std::vector<StepRecord>& steps,
+                        const std::vector<DepthCurve>& curves, const fs::path& dir,
+                        const std::string& png) {
+  std::string data;
+  int stored = 0;
+  for (const auto& c : curves) {
+    if (c.source == DepthSource::kStoredWithS) ++stored;
+    for (size_t i = 0; i < c.s_mm.size(); ++i) {
+      if (std::isnan(c.depth_mm[i])) {  // a gap: a blank line breaks the curve there
+        if (!data.empty() && !data.ends_with("\n\n")) data += "\n";
+        continue;
+      }
+      data += fmt::format("{:.6f} {:.9g} {:.9g}\n", c.s_mm[i], c.depth_mm[i], c.mgt);
+    }
+    data += "\n";
+  }
+  const fs::path file = dir / "depth.dat";
+  WriteFile(file, data);
+
+  const std::string source =
+      stored == static_cast<int>(curves.size())
+          ? "stored wear_depth_mm"
+          : (stored == 0 ? "normal depth against step 0"
+                         : fmt::format("stored for {} of {} steps, else normal depth against "
+                                       "step 0", stored, curves.size()));
+  std::ostringstream g;
+  g << GnuplotPngTerminal(1000, 600) << "set output " << GnuplotQuote(png) << "\n";
+  g << "set title " << GnuplotQuote(fmt::format("run {}: wear depth ({})", run, source)) << "\n";
+  g << "set xlabel 's [mm] along the step-0 profile (from its first point)'\n";
+  g << "set ylabel 'wear depth [mm]'\nset cblabel 'MGT'\nset palette rgb 33,13,10\nset grid\n";
+  g << CbRange(steps);
+  if (curves.empty()) {
+    g << "unset colorbox\nset label 1 'no wear steps yet' at graph 0.5, 0.5 center\n"
+      << "plot [0:1][0:1] NaN notitle\n";
+  } else {
+    g << "plot " << GnuplotQuote(file.string()) << " using 1:2:3 with lines lc palette lw 1.5 "
+      << "notitle\n";
+  }
+  return g.str();
+}
+
+std::string MeasuresScript(const std::string& run, const std::vector<StepRecord>& steps,
+                           const fs::path& dir, const std::string& png) {
+  std::string data;
+  for (const auto& s : steps) {
+    data += fmt::format("{:.9g} {:.9g} {:.9g} {:.9g}\n", s.mgt, s.w1_mm, s.w2_mm, s.w3_mm);
+  }
+  const fs::path file = dir / "measures.dat";
+  WriteFile(file, data);
+  const std::string q = GnuplotQuote(file.string());
+  std::ostringstream g;
+  g << GnuplotPngTerminal(900, 600) << "set output " << GnuplotQuote(png) << "\n";
+  g << "set title " << GnuplotQuote(fmt::format("run {}: wear measures", run)) << "\n";
+  g << "set xlabel 'traffic [MGT]'\nset ylabel 'wear [mm]'\nset grid\nset key top left\n";
+  if (steps.size() < 2) g << "set xrange [*:*] noextend\nset offsets 0.5, 0.5, 0, 0\n";
+  g << "plot " << q << " using 1:2 with linespoints title 'W1 vertical (centre line)', \\\n"
+    << "     " << q << " using 1:3 with linespoints title 'W2 side (14 mm below top)', \\\n"
+    << "     " << q << " using 1:4 with linespoints title 'W3 45 degrees (gauge corner)'\n";
+  return g.str();
+}
+
+}  // namespace
+
+std::vector<DepthCurve> WearDepthCurves(const std::vector<StepRecord>& steps) {
+  std::vector<DepthCurve> curves;
+  if (steps.size() < 2) return curves;
+  const Profile& unworn = steps.front().profile;
+  WearMeasureOptions options;
+  bool gauge_made = false;
+  for (size_t k = 1; k < steps.size(); ++k) {
+    const StepRecord& step = steps[k];
+    DepthCurve c;
+    c.step = step.step;
+    c.mgt = step.mgt;
+    const Distribution* d = FindDistribution(step, kWearDepthKind);
+    if (d != nullptr && !d->s_m.empty()) {
+      c.source = DepthSource::kStoredWithS;
+      for (size_t i = 0; i < d->s_m.size(); ++i) {
+        c.s_mm.push_back(d->s_m[i] * kToMm);
+        c.depth_mm.push_back(d->value[i]);
+      }
+    } else {
+      if (!gauge_made) {  // one gauge for every step, built on the unworn profile
+        options.gauge = MakeWearGauge(unworn, options.side_wear_depth_m);
+        gauge_made = true;
+      }
+      const WearMeasures m = CompareProfiles(unworn, step.profile, options);
+      c.source = DepthSource::kFromProfiles;
+      for (size_t i = 0; i < m.s_m.size(); ++i) {
+        c.s_mm.push_back(m.s_m[i] * kToMm);
+        c.depth_mm.push_back(m.depth_m[i] * kToMm);
+      }
+    }
+    curves.push_back(std::move(c));
+  }
+  return curves;
+}
+
+std::vector<std::string> PlotHistory(const std::string& run_name,
+                                     const std::vector<StepRecord>& steps,
+                                     const std::string& prefix) {
+  RequireGnuplotFor("history plot", "use `history profile` / `history sql` for the numbers");
+  if (steps.empty()) {
+    throw std::runtime_error(fmt::format("run '{}' has no steps to plot", run_name));
+  }
+  const WearGauge gauge = MakeWearGauge(steps.front().profile);  // InputError: not a rail head
+  const std::vector<DepthCurve> curves = WearDepthCurves(steps);
+  const ScopedTempDir tmp("railwear-plot");
+  const std::vector<std::string> outputs = {fs::absolute(prefix + "_profiles.png").string(),
+                                            fs::absolute(prefix + "_depth.png").string(),
+                                            fs::absolute(prefix + "_measures.png").string()};
+  std::string script = ProfilesScript(run_name, steps, gauge, tmp.path(), outputs[0]);
+  script += "reset\n" + DepthScript(run_name, steps, curves, tmp.path(), outputs[1]);
+  script += "reset\n" + MeasuresScript(run_name, steps, tmp.path(), outputs[2]);
+  RunGnuplot(script, tmp, outputs);
+  return {prefix + "_profiles.png", prefix + "_depth.png", prefix + "_measures.png"};
+}
+
+}  // namespace railwear::app

@@ -1,0 +1,42 @@
+// The PNG plots of `railwear history plot RUN`, drawn by gnuplot (app/gnuplot.h):
+//   PREFIX_profiles.png  the rail profile after every step, coloured by MGT, zoomed on the gauge
+//                        corner (equal axes, z downward as in the rail frame);
+//   PREFIX_depth.png     wear depth against the arc length s along the step-0 profile, one curve
+//                        per step coloured by MGT;
+//   PREFIX_measures.png  W1, W2, W3 (wear/wear_measures.h) against MGT.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "profiles_db/profile_store.h"
+
+namespace railwear::app {
+
+// Where a step's wear-depth curve came from.
+enum class DepthSource {
+  kStoredWithS,    // the step's "wear_depth_mm" distribution, which carries s
+  kFromProfiles,   // CompareProfiles(step 0, step) — the distribution is missing or has no s
+};
+
+// One step's wear depth against the arc length along the step-0 profile.
+struct DepthCurve {
+  int step = 0;
+  double mgt = 0.0;
+  DepthSource source = DepthSource::kFromProfiles;
+  std::vector<double> s_mm, depth_mm;  // shape [n] each; NaN depths are gaps
+};
+
+// The depth curve of every step after step 0. `steps` are LoadStep results of one run (profiles
+// and distributions filled), in step order, steps[0] the unworn profile. Throws InputError when
+// steps[0] is not a rail head CompareProfiles can measure (wear/wear_measures.h).
+std::vector<DepthCurve> WearDepthCurves(const std::vector<StepRecord>& steps);
+
+// Writes the three PNGs for the run and returns their paths. Throws std::runtime_error when gnuplot
+// is missing (checked first) or fails; InputError when steps[0] is not a rail head on which
+// MakeWearGauge can find the gauge corner (the profile plot is zoomed on it).
+std::vector<std::string> PlotHistory(const std::string& run_name,
+                                     const std::vector<StepRecord>& steps,
+                                     const std::string& prefix);
+
+}  // namespace railwear::app
