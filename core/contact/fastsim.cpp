@@ -29,6 +29,21 @@ std::string_view ToString(FlexibilityModel v) {
   return "unknown";
 }
 
+std::string_view ToString(FastsimMarch v) {
+  switch (v) {
+    case FastsimMarch::kTrapezoidal: return "trapezoidal";
+    case FastsimMarch::kContactEuler: return "contact_euler";
+  }
+  return "unknown";
+}
+
+std::optional<FastsimMarch> FastsimMarchFromString(std::string_view s) {
+  for (FastsimMarch v : {FastsimMarch::kTrapezoidal, FastsimMarch::kContactEuler}) {
+    if (s == ToString(v)) return v;
+  }
+  return std::nullopt;
+}
+
 bool FastsimOptions::IsValid(std::string* error) const {
   std::ostringstream msg;
   if (!std::isfinite(shear_modulus_Pa) || shear_modulus_Pa <= 0.0) {
@@ -42,6 +57,8 @@ bool FastsimOptions::IsValid(std::string* error) const {
   } else if ((xi && !std::isfinite(*xi)) || (eta && !std::isfinite(*eta)) ||
              (phi_per_m && !std::isfinite(*phi_per_m))) {
     msg << "patch-average creepages xi, eta, phi_per_m must be finite";
+  } else if (blend_flexibilities && flexibility != FlexibilityModel::kThree) {
+    msg << "blend_flexibilities needs flexibility = three, got " << ToString(flexibility);
   }
   const std::string text = msg.str();
   if (error != nullptr) *error = text;
@@ -171,9 +188,30 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
   // 3. Flexibilities.
   const double g_mod = opt.shear_modulus_Pa;
   const CreepCoefficients cc = KalkerCoefficients(a / b, opt.poisson_ratio);
-  const double l1 = 8.0 * a / (3.0 * cc.c11 * g_mod);
-  const double l2 = 8.0 * a / (3.0 * cc.c22 * g_mod);
-  const double l3 = std::numbers::pi * a * std::sqrt(a / b) / (4.0 * cc.c23 * g_mod);
+  double l1 = 8.0 * a / (3.0 * cc.c11 * g_mod);
+  double l2 = 8.0 * a / (3.0 * cc.c22 * g_mod);
+  double l3 = std::numbers::pi * a * std::sqrt(a / b) / (4.0 * cc.c23 * g_mod);
+  if (opt.blend_flexibilities) {
+    // CONTACT's simpflex (fastsim.h): blend toward the combined flexibility as creepage grows.
+    const double xi = patch.xi, eta = patch.eta, phi = patch.phi_per_m;
+    const double f_phi = phi * 3.0 * std::numbers::pi * a / 32.0;  // phi (pi a^2/4)/(8a/3)
+    const double num = xi * xi + eta * eta + f_phi * f_phi;
+    if (num > 0.0) {
+      const double l_comb = num / (xi * xi / l1 + eta * eta / l2 + f_phi * f_phi / l3);
+      const double mu_fn = in.friction * fn;
+      const double ch_xi = mu_fn / (c * c * g_mod * cc.c11);
+      const double ch_eta = mu_fn / (c * c * g_mod * cc.c22);
+      const double ch_phi = mu_fn / (c * c * c * g_mod * cc.c23) * kContactLengthUnit_m;
+      const double phi_unit = phi * kContactLengthUnit_m;
+      const double creep = std::sqrt((xi * xi + eta * eta + phi_unit * phi_unit) /
+                                     (ch_xi * ch_xi + ch_eta * ch_eta + ch_phi * ch_phi));
+      const double w = std::min(1.0, creep / 3.0);
+      l1 = (1.0 - w) * l1 + w * l_comb;
+      l2 = (1.0 - w) * l2 + w * l_comb;
+      l3 = (1.0 - w) * l3 + w * l_comb;
+      patch.blend_weight = w;
+    }
+  }
   if (opt.flexibility == FlexibilityModel::kSeparate) {
     patch.flexibility_x_m_Pa = l1;
     patch.flexibility_s_m_Pa = l2;
@@ -235,6 +273,14 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
 
   // 5. March every strip from its leading edge (largest x) to its trailing edge.
   const double mu = in.friction, v = in.speed_m_s;
+  const bool euler = opt.march == FastsimMarch::kContactEuler;
+  // kContactEuler: the cell's rate taken kContactSpinShift of a cell upstream (toward +x), by
+  // linear interpolation to the upstream neighbour (extrapolation in the last column).
+  auto shifted = [&](const Eigen::VectorXd& rate, int i, int k) {
+    if (grid.nx == 1) return rate[k];
+    const double up = i + 1 < grid.nx ? rate[k + 1] - rate[k] : rate[k] - rate[k - 1];
+    return rate[k] + kContactSpinShift * up;
+  };
   double stick_cells = 0, slip_cells = 0;
   for (int j = 0; j < grid.ns; ++j) {
     double qx = 0.0, qs = 0.0;
@@ -246,11 +292,21 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
         inside = false;
         continue;
       }
-      // Trapezoidal rule between cell centres (second order for creepage varying along x);
-      // from the leading face of the first cell the cell's own rate.
-      const double h = inside ? grid.dx_m : 0.5 * grid.dx_m;
-      const double rx = inside ? 0.5 * (rate_x[k] + rate_x[k + 1]) : rate_x[k];
-      const double rs = inside ? 0.5 * (rate_s[k] + rate_s[k + 1]) : rate_s[k];
+      double h = grid.dx_m, rx = 0.0, rs = 0.0;
+      if (euler) {
+        // A full step from the previous cell (from q = 0 at the strip's first cell).
+        rx = shifted(rate_x, i, k);
+        rs = shifted(rate_s, i, k);
+      } else if (inside) {
+        // Trapezoidal rule between cell centres (second order for creepage varying along x).
+        rx = 0.5 * (rate_x[k] + rate_x[k + 1]);
+        rs = 0.5 * (rate_s[k] + rate_s[k + 1]);
+      } else {
+        // From the leading face of the first cell, the cell's own rate.
+        h = 0.5 * grid.dx_m;
+        rx = rate_x[k];
+        rs = rate_s[k];
+      }
       inside = true;
       const double tx = qx - rx * h, ts = qs - rs * h;
       const double g = mu * bound_Pa[k];

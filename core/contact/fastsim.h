@@ -4,7 +4,8 @@
 // (Kalker 1982). In steady rolling the material moves through the patch from its leading edge
 // (largest x) to its trailing edge at the rolling speed V, so the slip of a cell is
 //   s = V (w - du/dx),   w = (creep_x, creep_s) the rigid creepage of the cell,
-// and sticking cells carry du/dx = w. Each s strip j is marched from its leading edge down:
+// and sticking cells carry du/dx = w. Each s strip j is marched from its leading edge down
+// (default march; kContactEuler below differs in h and in where w is taken):
 //   q_trial = q_prev - (w / L) h,   h = dx between cell centres (dx/2 from the leading face of
 //                                   the first cell, where q = 0),
 //   q = q_trial            if |q_trial| <= g   (stick),
@@ -30,9 +31,37 @@
 //     |Fy| by ~7 %); the slip is exactly opposite the traction.
 //   kSeparate: L1 for x, L2 for s, no spin flexibility (the classical choice when creepage varies
 //     across the patch); wrong by the ratio L3/L2 for spin. Slip direction set to -q/|q|.
-// Discretisation: cell-centre values; the traction rate w/L is integrated between centres by the
-// trapezoidal rule (second order, so a spin's linearly varying creepage costs no first-order
-// error), from the leading face of each strip's first contact cell where q = 0.
+// Discretisation (FastsimMarch):
+//   kTrapezoidal (default): cell-centre values; the traction rate w/L is integrated between
+//     centres by the trapezoidal rule (second order, so a spin's linearly varying creepage costs
+//     no first-order error), from the leading face of each strip's first contact cell where
+//     q = 0. Converges to the continuum simplified theory as the cells shrink.
+//   kContactEuler: the march of Vollebregt's CONTACT (open-source CONTACT, src/m_solvpt.f90
+//     modif_fastsim with T=3, M=3): implicit Euler in x, q_i = q_(i-1) - (w_i/L) dx with a full
+//     step dx also at the first contact cell of a strip (q_(i-1) = 0), and the creepage taken
+//     kContactSpinShift = 1/6 of a cell upstream (CONTACT applies its default FACPHI = 1/6 to the
+//     spin term, w_s = eta + phi (x + dx/6), src/m_sdis.f90 set_tang_rhs; here the whole
+//     per-cell rate is interpolated linearly toward the upstream neighbour, the same for Kalker's
+//     planar field). First order: its error falls like dx.
+// blend_flexibilities (kThree only): CONTACT's simpflex (src/m_hertz.f90) blends L1, L2, L3
+//   toward one combined flexibility as the creepage grows,
+//     L_comb = (xi^2 + eta^2 + (phi f)^2) / (xi^2/L1 + eta^2/L2 + (phi f)^2/L3),  f = 3 pi a/32,
+//     w = min(1, |(xi, eta, phi)| / (3 |(ch_xi, ch_eta, ch_phi)|)),  L_k <- (1 - w) L_k + w L_comb,
+//   with ch_xi = mu Fn/(c^2 G C11), ch_eta = mu Fn/(c^2 G C22), ch_phi = mu Fn/(c^3 G C23). The
+//   weight mixes the dimensionless xi, eta with phi; as in CONTACT, phi and ch_phi enter it in
+//   1/mm (kContactLengthUnit_m).
+//
+// Why the README §4 FASTSIM figures (Fy/(mu Fn) = -0.6118 parabolic bound, -0.6016 elliptic)
+// were missed by 5.6 % with the parabolic bound: they are not continuum values of the simplified
+// theory but CONTACT's FASTSIM on its own example (examples/fastsim.inp, the case of the README:
+// cases 2 and 3, M=3, 40 x 40 cells in the contact on a 44 x 44 grid over 1.1 times the Hertz
+// rectangle), i.e. the first-order march and the blended flexibilities above on a coarse grid.
+// That algorithm, re-implemented here from CONTACT's open source (its output for the example was
+// not available), gives -0.6095 and -0.6004 on that grid: 0.4 % and 0.2 % from the README
+// (fastsim_test.cpp). The converged simplified theory with the README's L1..L3 is -0.647
+// (parabolic) and -0.596 (elliptic), which the default kTrapezoidal march reaches (-0.646 on
+// 200 x 200 cells); CONTACT's 40-cell first-order march lies 4.6 % below it with the parabolic
+// bound, and the blending removes another 1.2 %.
 #pragma once
 
 #include <optional>
@@ -60,6 +89,18 @@ std::string_view ToString(TractionBound v);
 enum class FlexibilityModel { kWeighted, kSeparate, kThree };
 std::string_view ToString(FlexibilityModel v);
 
+// How each strip is marched from its leading edge (see the file comment).
+enum class FastsimMarch { kTrapezoidal, kContactEuler };
+std::string_view ToString(FastsimMarch v);
+// "trapezoidal", "contact_euler"; nullopt for anything else.
+std::optional<FastsimMarch> FastsimMarchFromString(std::string_view s);
+
+// CONTACT's FACPHI default: the creepage of a cell is taken this fraction of a cell upstream in
+// the kContactEuler march.
+inline constexpr double kContactSpinShift = 1.0 / 6.0;
+// CONTACT works in mm: the unit in which phi enters the blending weight [m].
+inline constexpr double kContactLengthUnit_m = 1e-3;
+
 struct FastsimOptions {
   // Combined elastic constants of the two bodies: 2/G = 1/G1 + 1/G2, nu = (G/2)(nu1/G1 +
   // nu2/G2) (CombineElastic below). Defaults: steel, E = 210 GPa, nu = 0.28.
@@ -67,6 +108,9 @@ struct FastsimOptions {
   double poisson_ratio = 0.28;                     // nu in [0, 0.5]
   TractionBound bound = TractionBound::kActualPressure;
   FlexibilityModel flexibility = FlexibilityModel::kThree;
+  FastsimMarch march = FastsimMarch::kTrapezoidal;
+  // CONTACT's blending of L1..L3 toward one flexibility (file comment); needs kThree.
+  bool blend_flexibilities = false;
   // Semi-axes of the contact along x and s [m] used for a/b and the flexibilities. When not
   // given: the ratio a/b is that of the extents of the contact cells (cells with p > 0, counted
   // to their faces) and the size follows from the contact area, pi a b = (number of cells) dA.
@@ -87,6 +131,7 @@ struct FastsimPatch {
   double flexibility_x_m_Pa = 0.0;  // L used for the x component (L1 for kThree) [m/Pa]
   double flexibility_s_m_Pa = 0.0;  // L used for the s component (L2 for kThree) [m/Pa]
   double flexibility_spin_m_Pa = 0.0;  // L3 for kThree, else 0 [m/Pa]
+  double blend_weight = 0.0;        // w of blend_flexibilities (0 when not blending)
   double normal_force_N = 0.0;      // sum p dA over the grid
 };
 

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <vector>
 
+#include <Eigen/Cholesky>
 #include <unsupported/Eigen/FFT>
 
 #include "core/contact/influence_operator.h"
@@ -98,6 +99,7 @@ std::string ExactTangentialOptions::Validate() const {
   }
   if (block_columns < 0) msg << "block_columns = " << block_columns << ", expected >= 0; ";
   if (max_iterations < 1) msg << "max_iterations = " << max_iterations << ", expected >= 1; ";
+  if (anderson_depth < 0) msg << "anderson_depth = " << anderson_depth << ", expected >= 0; ";
   return msg.str();
 }
 
@@ -295,6 +297,58 @@ class FftRollingOperator final : public RollingOperator {
   mutable std::vector<Complex> qx_hat_, qs_hat_, out_hat_;
 };
 
+// Anderson acceleration (type II, Walker & Ni 2011) of the fixed-point map x -> G(x) of one
+// sweep: with the last m differences of the residuals f = G(x) - x (columns of dF) and of the
+// images (dG), the next iterate is G(x_k) - dG gamma, gamma = argmin |f_k - dF gamma|_2. The
+// least-squares problem is solved through the m x m Gram matrix dF^T dF, kept up to date as
+// columns enter and leave (O(size m) work per iteration), with a relative Tikhonov term
+// kAndersonRegularisation against dependent columns. A fixed point of G is one of the
+// accelerated iteration; depth 0 gives the plain iteration.
+constexpr double kAndersonRegularisation = 1e-10;
+class AndersonMixer {
+ public:
+  // depth >= 0 columns of vectors of the given size.
+  AndersonMixer(int depth, int size)
+      : depth_(depth), df_(size, depth), dg_(size, depth), gram_(depth, depth) {}
+  void Clear() {
+    count_ = next_ = 0;
+    have_previous_ = false;
+  }
+  // x: the iterate the sweep started from; g: G(x), overwritten by the next iterate.
+  void Mix(const Eigen::VectorXd& x, Eigen::VectorXd* g) {
+    if (depth_ == 0) return;
+    const Eigen::VectorXd f = *g - x;
+    if (have_previous_) {
+      const int slot = next_;
+      next_ = (next_ + 1) % depth_;
+      count_ = std::min(count_ + 1, depth_);
+      df_.col(slot) = f - f_prev_;
+      dg_.col(slot) = *g - g_prev_;
+      for (int c = 0; c < count_; ++c) {
+        gram_(slot, c) = gram_(c, slot) = df_.col(slot).dot(df_.col(c));
+      }
+    }
+    f_prev_ = f;
+    g_prev_ = *g;
+    have_previous_ = true;
+    if (count_ == 0) return;
+    // The columns in use are slots 0 .. count_ - 1 (the ring fills from slot 0).
+    const int m = count_;
+    Eigen::MatrixXd a = gram_.topLeftCorner(m, m);
+    a.diagonal().array() += kAndersonRegularisation * a.diagonal().maxCoeff();
+    const Eigen::VectorXd rhs = df_.leftCols(m).transpose() * f;
+    const Eigen::VectorXd gamma = a.ldlt().solve(rhs);
+    *g -= dg_.leftCols(m) * gamma;
+  }
+
+ private:
+  int depth_;
+  Eigen::MatrixXd df_, dg_, gram_;
+  Eigen::VectorXd f_prev_, g_prev_;
+  int count_ = 0, next_ = 0;
+  bool have_previous_ = false;
+};
+
 // The exact local problem of one cell. r: slip the cell would have with zero traction [-];
 // d: the cell's own diagonal block of B (both > 0) [1/Pa]; g = mu p [Pa]. Returns the traction
 // and whether the cell sticks.
@@ -466,6 +520,20 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
   int iteration = 0;
   double w = opt.relaxation;
   double best_residual = std::numeric_limits<double>::infinity();
+  // The accelerated vector: [q_x; q_s] of the loaded cells (the others stay 0).
+  std::vector<int> loaded;
+  for (int k = 0; k < n; ++k) {
+    if (pressure_Pa[k] > 0.0) loaded.push_back(k);
+  }
+  const int n_loaded = static_cast<int>(loaded.size());
+  AndersonMixer mixer(opt.anderson_depth, 2 * n_loaded);
+  Eigen::VectorXd x_start(2 * n_loaded), x_next(2 * n_loaded);  // before and after a sweep
+  auto gather = [&](Eigen::VectorXd* v) {
+    for (int t = 0; t < n_loaded; ++t) {
+      (*v)[t] = qx[loaded[t]];
+      (*v)[n_loaded + t] = qs[loaded[t]];
+    }
+  };
   auto local_solve = [&](int ix, int js) {
     const int k = grid.Index(ix, js);
     double dxx = 0.0, dss = 0.0;
@@ -482,7 +550,8 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
         const int k = grid.Index(ix, js);
         if (!(pressure_Pa[k] > 0.0)) continue;
         const LocalResult loc = local_solve(ix, js);
-        residual = std::max(residual, std::hypot(loc.qx - qx[k], loc.qs - qs[k]));
+        const double ex = loc.qx - qx[k], es = loc.qs - qs[k];
+        residual = std::max(residual, std::sqrt(ex * ex + es * es));
       }
     }
     if (residual <= threshold) {
@@ -496,8 +565,10 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
     if (residual > kDivergenceFactor * best_residual) {
       w *= 0.5;
       best_residual = residual;
+      mixer.Clear();
     }
     ++iteration;
+    gather(&x_start);
     for (int block_hi = grid.nx - 1; block_hi >= 0; block_hi -= block_columns) {
       const int block_lo = std::max(0, block_hi - block_columns + 1);
       // Column-major copy of the block's slip (the refreshes run along s, contiguous).
@@ -565,6 +636,13 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
         sx += in.creep_x;
         ss += in.creep_s;
       }
+    }
+    // The accelerated next iterate (the next iteration starts with its exact slip).
+    gather(&x_next);
+    mixer.Mix(x_start, &x_next);
+    for (int t = 0; t < n_loaded; ++t) {
+      qx[loaded[t]] = x_next[t];
+      qs[loaded[t]] = x_next[n_loaded + t];
     }
   }
 

@@ -23,28 +23,33 @@ constexpr double kLinearRelTol = 0.02;
 // (b): in full slip every cell carries mu p, so |F_t| = mu Fn up to round-off; 0.1 % is the
 // issue's bound.
 constexpr double kFullSlipRelTol = 1e-3;
-// (c): the README's reference values (CONTACT's FASTSIM, "M=3" three flexibilities; see
-// eve70a/CONTACT examples/fastsim.inp) are printed to 4 digits from a different discretisation;
-// the issue asks for 1 %. Met for the elliptic bound (-0.5972 against -0.6016 on 200 x 200).
+// (c): the README's reference values are CONTACT's FASTSIM results for its example
+// examples/fastsim.inp (cases 2 and 3: M=3, 40 x 40 cells in the contact, first-order march,
+// blended flexibilities; see fastsim.h). The same discretisation here reproduces them; the
+// issue asks for 1 %.
 constexpr double kCheckRelTol = 0.01;
-// The parabolic bound is NOT met to 1 %: this implementation converges (200 ... 880 cells per
-// axis, also with CONTACT's first-order march) to -0.645 against the README's -0.6118. Scanning
-// the flexibilities shows that ~5 % larger L1..L3 than the README table's C coefficients give
-// reproduces BOTH reference values to 0.3 %, so the reference code's coefficients probably differ
-// from the table; until that is resolved the parabolic case is held to 6 %, sign and ordering.
-constexpr double kParabolicCheckRelTol = 0.06;
+// CONTACT's grid of that example: 44 x 44 cells over SCALE = 1.1 times the Hertz rectangle.
+constexpr int kContactCells = 44;
+constexpr double kContactScale = 1.1;
+// The continuum limit of the simplified theory: the second-order march on 200 x 200 and on
+// 400 x 400 cells agree to better than this (measured 0.1 %; cells cut by the ellipse edge).
+constexpr double kConvergedRelTol = 3e-3;
+// First-order convergence of CONTACT's march: doubling the cells halves its error against the
+// continuum (measured ratio printed); the bounds leave room for the irregular edge cells.
+constexpr double kFirstOrderRatioMin = 1.6, kFirstOrderRatioMax = 2.5;
 
-// Planar grid of nx x ns cells exactly covering [-a, a] x [-b, b] with the Hertz pressure
-// p0 sqrt(1 - x^2/a^2 - s^2/b^2), p0 = 3 Fn/(2 pi a b).
+// Planar grid of nx x ns cells exactly covering scale * [-a, a] x [-b, b] with the Hertz
+// pressure p0 sqrt(1 - x^2/a^2 - s^2/b^2), p0 = 3 Fn/(2 pi a b).
 struct HertzPatch {
   PatchGrid grid;
   Eigen::VectorXd pressure_Pa;
   double fn_N = 0.0;  // sum p dA (the discrete normal force)
 };
 
-HertzPatch MakeHertzPatch(int nx, int ns, double a = kA, double b = kB, double fn = kFn) {
+HertzPatch MakeHertzPatch(int nx, int ns, double a = kA, double b = kB, double fn = kFn,
+                          double scale = 1.0) {
   HertzPatch h;
-  h.grid = testing::MakeHertzGrid(a, b, nx, ns);
+  h.grid = testing::MakeHertzGrid(scale * a, scale * b, nx, ns);
   const PatchGrid& g = h.grid;
   const double p0 = 3.0 * fn / (2.0 * std::numbers::pi * a * b);
   h.pressure_Pa = Eigen::VectorXd::Zero(g.cells());
@@ -107,27 +112,31 @@ TEST(Fastsim, SmallCreepageMatchesLinearTheory) {
 TEST(Fastsim, LargeCreepageSaturatesAtCoulomb) {
   const HertzPatch h = MakeHertzPatch(70, 80);
   for (TractionBound bound : {TractionBound::kActualPressure, TractionBound::kParabolic}) {
-    FastsimOptions o = MakeOptions();
-    o.bound = bound;
-    const RollingInput in = MakeCreepage(h.grid, 0.3, -0.4, 0.0);
-    const TangentialSolution sol = SolveFastsim(h.grid, h.pressure_Pa, in, o);
-    const double ft = std::hypot(sol.force_x_N, sol.force_s_N);
-    EXPECT_NEAR(ft, kMu * h.fn_N, kFullSlipRelTol * kMu * h.fn_N) << ToString(bound);
-    EXPECT_LT(sol.force_x_N, 0.0);  // opposes xi > 0
-    EXPECT_GT(sol.force_s_N, 0.0);  // opposes eta < 0
-    EXPECT_EQ(sol.stick_area_m2, 0.0);
-    for (int k = 0; k < h.grid.cells(); ++k) {
-      const double q = std::hypot(sol.traction_x_Pa[k], sol.traction_s_Pa[k]);
-      if (h.pressure_Pa[k] <= 0.0) {
-        EXPECT_EQ(q, 0.0);
-        EXPECT_EQ(sol.stick[k], -1);
-      } else if (bound == TractionBound::kActualPressure) {
-        EXPECT_LE(q, kMu * h.pressure_Pa[k] * (1.0 + 1e-12));
-        EXPECT_EQ(sol.stick[k], 0);
+    for (FastsimMarch march : {FastsimMarch::kTrapezoidal, FastsimMarch::kContactEuler}) {
+      FastsimOptions o = MakeOptions();
+      o.bound = bound;
+      o.march = march;
+      const RollingInput in = MakeCreepage(h.grid, 0.3, -0.4, 0.0);
+      const TangentialSolution sol = SolveFastsim(h.grid, h.pressure_Pa, in, o);
+      const double ft = std::hypot(sol.force_x_N, sol.force_s_N);
+      EXPECT_NEAR(ft, kMu * h.fn_N, kFullSlipRelTol * kMu * h.fn_N)
+          << ToString(bound) << " " << ToString(march);
+      EXPECT_LT(sol.force_x_N, 0.0);  // opposes xi > 0
+      EXPECT_GT(sol.force_s_N, 0.0);  // opposes eta < 0
+      EXPECT_EQ(sol.stick_area_m2, 0.0);
+      for (int k = 0; k < h.grid.cells(); ++k) {
+        const double q = std::hypot(sol.traction_x_Pa[k], sol.traction_s_Pa[k]);
+        if (h.pressure_Pa[k] <= 0.0) {
+          EXPECT_EQ(q, 0.0);
+          EXPECT_EQ(sol.stick[k], -1);
+        } else if (bound == TractionBound::kActualPressure) {
+          EXPECT_LE(q, kMu * h.pressure_Pa[k] * (1.0 + 1e-12));
+          EXPECT_EQ(sol.stick[k], 0);
+        }
       }
+      // Frictional power in full slip: every cell slides at about V |w|.
+      EXPECT_GT(sol.frictional_power_W, 0.0);
     }
-    // Frictional power in full slip: every cell slides at about V |w|.
-    EXPECT_GT(sol.frictional_power_W, 0.0);
   }
 }
 
@@ -154,22 +163,68 @@ TEST(Fastsim, TractionBoundAndSlipDirection) {
   }
 }
 
-TEST(Fastsim, ReadmeCheckCase) {
-  // reference README §4: xi = 0, eta = -6.25e-4, phi = +6.25e-4 /mm, Fy/(mu Fn) = -0.6118
-  // (parabolic bound) and -0.6016 (elliptic bound).
-  const HertzPatch h = MakeHertzPatch(200, 200);
+// Fy/(mu Fn) of the README check case: xi = 0, eta = -6.25e-4, phi = +6.25e-4 /mm.
+double CheckCaseRatio(const HertzPatch& h, const FastsimOptions& o) {
   const RollingInput in = MakeCreepage(h.grid, 0.0, -6.25e-4, 0.625);
+  const TangentialSolution sol = SolveFastsim(h.grid, h.pressure_Pa, in, o);
+  EXPECT_EQ(sol.status, SolverStatus::kConverged);
+  return sol.force_s_N / (kMu * h.fn_N);
+}
+
+TEST(Fastsim, ReadmeCheckCaseOnContactsDiscretisation) {
+  // Reference README §4: Fy/(mu Fn) = -0.6118 (parabolic bound) and -0.6016 (elliptic bound),
+  // CONTACT's FASTSIM on its 40 x 40-cell example (fastsim.h).
+  const HertzPatch h = MakeHertzPatch(kContactCells, kContactCells, kA, kB, kFn, kContactScale);
   struct Case { TractionBound bound; double expected; };
   for (const Case& c : {Case{TractionBound::kParabolic, -0.6118},
                         Case{TractionBound::kActualPressure, -0.6016}}) {
     FastsimOptions o = MakeOptions();
     o.bound = c.bound;
-    const TangentialSolution sol = SolveFastsim(h.grid, h.pressure_Pa, in, o);
+    o.march = FastsimMarch::kContactEuler;
+    o.blend_flexibilities = true;
+    o.semi_axis_x_m = kA;  // CONTACT takes a, b from its Hertz input
+    o.semi_axis_s_m = kB;
+    FastsimPatch patch;
+    const RollingInput in = MakeCreepage(h.grid, 0.0, -6.25e-4, 0.625);
+    const TangentialSolution sol = SolveFastsim(h.grid, h.pressure_Pa, in, o, &patch);
     const double ratio = sol.force_s_N / (kMu * h.fn_N);
-    std::printf("README check, %s bound: Fy/(mu Fn) = %.4f (reference %.4f)\n",
-                std::string(ToString(c.bound)).c_str(), ratio, c.expected);
-    const double tol = c.bound == TractionBound::kParabolic ? kParabolicCheckRelTol : kCheckRelTol;
-    EXPECT_NEAR(ratio, c.expected, tol * std::abs(c.expected)) << ToString(c.bound);
+    std::printf("README check, CONTACT discretisation, %s bound: Fy/(mu Fn) = %.4f (reference "
+                "%.4f, %+.2f %%), blend weight %.4f\n",
+                std::string(ToString(c.bound)).c_str(), ratio, c.expected,
+                100.0 * (ratio / c.expected - 1.0), patch.blend_weight);
+    EXPECT_NEAR(ratio, c.expected, kCheckRelTol * std::abs(c.expected)) << ToString(c.bound);
+    EXPECT_GT(patch.blend_weight, 0.0);
+    EXPECT_LT(patch.blend_weight, 1.0);
+  }
+}
+
+TEST(Fastsim, ReadmeCheckCaseConvergence) {
+  // Why the reference figures are not the simplified theory's continuum values: the second-order
+  // march converges (200 vs 400 cells per axis), and CONTACT's first-order march (unblended,
+  // same flexibilities) approaches that limit with an error halving with the cell size.
+  for (TractionBound bound : {TractionBound::kParabolic, TractionBound::kActualPressure}) {
+    FastsimOptions o = MakeOptions();
+    o.bound = bound;
+    o.semi_axis_x_m = kA;
+    o.semi_axis_s_m = kB;
+    const double r200 = CheckCaseRatio(MakeHertzPatch(200, 200), o);
+    const double r400 = CheckCaseRatio(MakeHertzPatch(400, 400), o);
+    EXPECT_NEAR(r200, r400, kConvergedRelTol * std::abs(r400)) << ToString(bound);
+    o.march = FastsimMarch::kContactEuler;
+    const double e40 = CheckCaseRatio(
+        MakeHertzPatch(kContactCells, kContactCells, kA, kB, kFn, kContactScale), o) - r400;
+    const double e80 = CheckCaseRatio(
+        MakeHertzPatch(2 * kContactCells, 2 * kContactCells, kA, kB, kFn, kContactScale), o) -
+        r400;
+    std::printf("%s bound: continuum %.4f (200: %.4f), first-order march error %.4f on 40 "
+                "cells, %.4f on 80 (ratio %.2f)\n",
+                std::string(ToString(bound)).c_str(), r400, r200, e40, e80, e40 / e80);
+    if (bound == TractionBound::kParabolic) {
+      // The parabolic case is where the reference differs: its 40-cell error is several %.
+      EXPECT_GT(e40 / e80, kFirstOrderRatioMin);
+      EXPECT_LT(e40 / e80, kFirstOrderRatioMax);
+      EXPECT_GT(std::abs(e40), 0.03 * std::abs(r400));
+    }
   }
 }
 
@@ -235,8 +290,22 @@ TEST(Fastsim, NoContactAndBadInput) {
   std::string error;
   EXPECT_FALSE(o.IsValid(&error));
   EXPECT_NE(error.find("poisson_ratio = 0.7"), std::string::npos) << error;
+  FastsimOptions blend = MakeOptions();
+  blend.blend_flexibilities = true;
+  blend.flexibility = FlexibilityModel::kWeighted;
+  EXPECT_FALSE(blend.IsValid(&error));
+  EXPECT_NE(error.find("blend_flexibilities needs flexibility = three, got weighted"),
+            std::string::npos)
+      << error;
   EXPECT_THROW(SolveFastsim(h.grid, Eigen::VectorXd::Zero(3), in, MakeOptions()),
                std::invalid_argument);
+}
+
+TEST(Fastsim, MarchNamesRoundTrip) {
+  for (FastsimMarch m : {FastsimMarch::kTrapezoidal, FastsimMarch::kContactEuler}) {
+    EXPECT_EQ(FastsimMarchFromString(ToString(m)), m);
+  }
+  EXPECT_FALSE(FastsimMarchFromString("euler").has_value());
 }
 
 }  // namespace
