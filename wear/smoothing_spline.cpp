@@ -609,6 +609,12 @@ struct CeresOutcome {
   int iterations = 0;
 };
 
+// Active-set rounds (each one Ceres solve) before giving up; a round moves one coefficient
+// into or out of the set, and only coefficients near the support's edges ever are.
+constexpr int kMaxActiveSetRounds = 100;
+// An active coefficient leaves the set when the normalised cost's gradient is below minus this.
+constexpr double kReleaseGradient = 1e-12;
+
 // Solves the full problem with Ceres from *c (updated in place; kept on failure).
 // loss_scale: a in normalised units (ignored for kNone); points with inlier[i] == 0 are left out.
 CeresOutcome SolveWithCeres(const Setup& s, const SmoothingSplineOptions& o, double lambda,
@@ -657,13 +663,12 @@ CeresOutcome SolveWithCeres(const Setup& s, const SmoothingSplineOptions& o, dou
     problem.AddResidualBlock(new SumResidual(s.dim, std::move(beta), scale, s.sum_target),
                              nullptr, blocks);
   }
+  const double lb = o.lower_bound ? *o.lower_bound / s.value_scale : 0.0;
   for (int j = 0; j < m; ++j) {
     if (!s.IsFree(j)) {
       problem.SetParameterBlockConstant(block(j));
     } else if (o.lower_bound) {
-      for (int d = 0; d < s.dim; ++d) {
-        problem.SetParameterLowerBound(block(j), d, *o.lower_bound / s.value_scale);
-      }
+      problem.SetParameterLowerBound(block(j), 0, lb);  // dimension 1 (checked by the caller)
     }
   }
 
@@ -674,6 +679,9 @@ CeresOutcome SolveWithCeres(const Setup& s, const SmoothingSplineOptions& o, dou
       ceres::IsSparseLinearAlgebraLibraryTypeAvailable(options.sparse_linear_algebra_library_type)
           ? ceres::SPARSE_NORMAL_CHOLESKY
           : ceres::DENSE_QR;
+  // Without a loss the problem is linear least squares: a huge initial trust region makes the
+  // first Levenberg-Marquardt step the Gauss-Newton step, i.e. the solution.
+  if (o.loss == RobustLoss::kNone) options.initial_trust_region_radius = 1e16;
   options.max_num_iterations = o.max_num_iterations;
   options.function_tolerance = o.function_tolerance;
   options.parameter_tolerance = o.parameter_tolerance;
@@ -683,19 +691,72 @@ CeresOutcome SolveWithCeres(const Setup& s, const SmoothingSplineOptions& o, dou
   options.num_threads = 1;
   options.logging_type = ceres::SILENT;
   options.minimizer_progress_to_stdout = false;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
 
-  CeresOutcome out;
-  out.message = summary.message;
-  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  if (!summary.IsSolutionUsable()) {
-    out.status = SmoothingSplineStatus::kFailure;
-    return out;
+  // With a lower bound, an active-set loop around Ceres: coefficients at the bound are held
+  // constant, so every solve is an unconstrained one that converges in a step or two (Ceres'
+  // projected steps alone crawl along active bounds). A free coefficient that a solve pushes
+  // onto its bound joins the set; the active coefficient whose gradient most wants it to
+  // increase leaves it; the loop ends when neither happens (the KKT conditions hold).
+  std::vector<int> active;
+  if (o.lower_bound) {
+    for (int j = s.free_begin; j < s.free_end; ++j) {
+      if (x[j] <= lb) {
+        x[j] = lb;
+        problem.SetParameterBlockConstant(block(j));
+        active.push_back(j);
+      }
+    }
   }
-  out.status = (summary.termination_type == ceres::CONVERGENCE)
-                   ? SmoothingSplineStatus::kConverged
-                   : SmoothingSplineStatus::kNoConvergence;
+  CeresOutcome out;
+  for (int round = 0; round < kMaxActiveSetRounds; ++round) {
+    ceres::Solver::Summary summary;
+    ceres::Solve(options, &problem, &summary);
+    out.message = summary.message;
+    out.iterations += static_cast<int>(summary.iterations.size()) - 1;
+    if (!summary.IsSolutionUsable()) {
+      out.status = SmoothingSplineStatus::kFailure;
+      return out;
+    }
+    out.status = (summary.termination_type == ceres::CONVERGENCE)
+                     ? SmoothingSplineStatus::kConverged
+                     : SmoothingSplineStatus::kNoConvergence;
+    if (!o.lower_bound) break;
+    bool changed = false;
+    for (int j = s.free_begin; j < s.free_end; ++j) {
+      if (x[j] <= lb && !problem.IsParameterBlockConstant(block(j))) {
+        x[j] = lb;
+        problem.SetParameterBlockConstant(block(j));
+        active.push_back(j);
+        changed = true;
+      }
+    }
+    if (changed) continue;
+    if (active.empty()) break;
+    // Gradient of the cost with respect to the active coefficients.
+    ceres::Problem::EvaluateOptions eval;
+    for (int j : active) {
+      problem.SetParameterBlockVariable(block(j));
+      eval.parameter_blocks.push_back(block(j));
+    }
+    std::vector<double> gradient;
+    problem.Evaluate(eval, nullptr, nullptr, &gradient, nullptr);
+    for (int j : active) problem.SetParameterBlockConstant(block(j));
+    int release = -1;
+    double most = -kReleaseGradient;
+    for (std::size_t a = 0; a < active.size(); ++a) {
+      if (gradient[a] < most) {
+        most = gradient[a];
+        release = static_cast<int>(a);
+      }
+    }
+    if (release < 0) break;
+    problem.SetParameterBlockVariable(block(active[release]));
+    active.erase(active.begin() + release);
+    if (round + 1 == kMaxActiveSetRounds) {
+      out.status = SmoothingSplineStatus::kNoConvergence;
+      out.message = "active-set limit reached";
+    }
+  }
   for (int j = 0; j < m; ++j) {
     for (int d = 0; d < s.dim; ++d) (*c)(j, d) = x[j * s.dim + d];
   }
@@ -796,6 +857,12 @@ SmoothingSplineFit FitSmoothingSpline(const Eigen::VectorXd& t, const Eigen::Mat
   s.num_coefficients = s.num_intervals + 3;
   s.free_begin = o.clamp_start ? 3 : 0;
   s.free_end = o.clamp_end ? s.num_coefficients - 3 : s.num_coefficients;
+  if (o.lower_bound && s.dim != 1) {
+    throw InputError(fmt::format("smoothing spline: lower_bound = {} with value dimension {}: "
+                                 "expected dimension 1 (a bound on each coefficient of a scalar "
+                                 "field)",
+                                 *o.lower_bound, s.dim));
+  }
   if (s.num_free() < 1) {
     throw InputError(fmt::format("smoothing spline: {} knot intervals cannot be clamped at both "
                                  "ends: expected a knot_spacing below {} (a quarter of the range)",

@@ -318,6 +318,11 @@ TEST(SmoothingSplineTest, BadInputNamesTheValue) {
   EXPECT_NE(ThrownMessage(t, v, w, o).find("weight[4] = -1"), std::string::npos);
   EXPECT_NE(ThrownMessage(t, Eigen::MatrixXd::Zero(5, 4), {}, o).find("dimension 4"),
             std::string::npos);
+  o.lower_bound = 0.0;
+  EXPECT_NE(ThrownMessage(t, Eigen::MatrixXd::Zero(5, 2), {}, o)
+                .find("lower_bound = 0 with value dimension 2: expected dimension 1"),
+            std::string::npos);
+  o.lower_bound.reset();
 
   std::string error;
   o.knot_spacing = 0.0;
