@@ -1039,7 +1039,8 @@ SmoothingSplineFit FitSmoothingSpline(const Eigen::VectorXd& t, const Eigen::Mat
   fit.spline = SmoothingSpline(s.t_begin, s.h, s.num_intervals, c * s.value_scale);
   fit.rejected.resize(s.n);
   for (int i = 0; i < s.n; ++i) fit.rejected[i] = !inlier[i];
-  sum.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  const auto elapsed = std::chrono::steady_clock::now() - clock_start;
+  sum.time_s = std::chrono::duration<double>(elapsed).count();
   return fit;
 }
 
