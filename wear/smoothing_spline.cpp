@@ -541,25 +541,40 @@ GcvChoice ChooseLambdaByGcv(const Setup& s, const Eigen::VectorXd& w,
 // ---------------------------------------------------------------------------------------------
 // Ceres cost functions.
 
-// r = scale * (sum_r a_r c_{k+r} - target), dim residuals; four parameter blocks of size dim.
+// Rows on one knot interval k, each r = scale * (sum_r a_r c_{k+r} - target) (dim residuals);
+// the four parameter blocks c_k..c_k+3 of size dim. Data points and the two Gauss points of
+// the penalty on the same interval share one residual block unless a loss needs them apart.
+struct BandRow {
+  Weights4 a;
+  double scale;
+  Eigen::VectorXd target;  // [dim]
+};
+
 class BandResidual final : public ceres::CostFunction {
  public:
-  BandResidual(int dim, const Weights4& a, double scale, Eigen::VectorXd target)
-      : dim_(dim), a_(a), scale_(scale), target_(std::move(target)) {
-    set_num_residuals(dim);
+  BandResidual(int dim, std::vector<BandRow> rows) : dim_(dim), rows_(std::move(rows)) {
+    set_num_residuals(dim * static_cast<int>(rows_.size()));
     for (int r = 0; r < kOrder; ++r) mutable_parameter_block_sizes()->push_back(dim);
   }
   bool Evaluate(double const* const* c, double* residuals, double** jacobians) const override {
-    for (int d = 0; d < dim_; ++d) {
-      double g = 0.0;
-      for (int r = 0; r < kOrder; ++r) g += a_[r] * c[r][d];
-      residuals[d] = scale_ * (g - target_[d]);
+    const int n = num_residuals();
+    for (std::size_t q = 0; q < rows_.size(); ++q) {
+      const BandRow& row = rows_[q];
+      for (int d = 0; d < dim_; ++d) {
+        double g = 0.0;
+        for (int r = 0; r < kOrder; ++r) g += row.a[r] * c[r][d];
+        residuals[q * dim_ + d] = row.scale * (g - row.target[d]);
+      }
     }
     if (jacobians != nullptr) {
       for (int r = 0; r < kOrder; ++r) {
         if (jacobians[r] == nullptr) continue;
-        std::fill(jacobians[r], jacobians[r] + dim_ * dim_, 0.0);
-        for (int d = 0; d < dim_; ++d) jacobians[r][d * dim_ + d] = scale_ * a_[r];
+        std::fill(jacobians[r], jacobians[r] + n * dim_, 0.0);
+        for (std::size_t q = 0; q < rows_.size(); ++q) {
+          for (int d = 0; d < dim_; ++d) {
+            jacobians[r][(q * dim_ + d) * dim_ + d] = rows_[q].scale * rows_[q].a[r];
+          }
+        }
       }
     }
     return true;
@@ -567,9 +582,7 @@ class BandResidual final : public ceres::CostFunction {
 
  private:
   int dim_;
-  Weights4 a_;
-  double scale_;
-  Eigen::VectorXd target_;
+  std::vector<BandRow> rows_;
 };
 
 // r = scale * (sum_j beta_j c_j - target), dim residuals; one parameter block per coefficient.
@@ -633,23 +646,31 @@ CeresOutcome SolveWithCeres(const Setup& s, const SmoothingSplineOptions& o, dou
 
   ceres::Problem problem;
   for (int j = 0; j < m; ++j) problem.AddParameterBlock(block(j), s.dim);
+  // One residual block per knot interval: its data rows (unless a loss needs each point in a
+  // block of its own) and its two penalty rows.
+  const bool robust = o.loss != RobustLoss::kNone;
+  std::vector<std::vector<BandRow>> rows(s.num_intervals);
   for (int i = 0; i < s.n; ++i) {
     if (!inlier[i]) continue;  // rejected as a gross outlier
     const int k = s.interval[i];
     const double sw = std::sqrt(s.w[i]);
+    BandRow row{s.basis[i], sw, s.v.row(i).transpose()};
+    if (!robust) {
+      rows[k].push_back(std::move(row));
+      continue;
+    }
     ceres::LossFunction* loss = nullptr;
     if (o.loss == RobustLoss::kHuber) loss = new ceres::HuberLoss(loss_scale * sw);
     if (o.loss == RobustLoss::kCauchy) loss = new ceres::CauchyLoss(loss_scale * sw);
-    problem.AddResidualBlock(new BandResidual(s.dim, s.basis[i], sw, s.v.row(i).transpose()),
-                             loss, block(k), block(k + 1), block(k + 2), block(k + 3));
+    problem.AddResidualBlock(new BandResidual(s.dim, {std::move(row)}), loss, block(k),
+                             block(k + 1), block(k + 2), block(k + 3));
   }
   const double sl = std::sqrt(lambda);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.dim);
   for (int k = 0; k < s.num_intervals; ++k) {
-    for (int q = 0; q < 2; ++q) {
-      problem.AddResidualBlock(new BandResidual(s.dim, PenaltyRow(s.h, q), sl, zero), nullptr,
-                               block(k), block(k + 1), block(k + 2), block(k + 3));
-    }
+    for (int q = 0; q < 2; ++q) rows[k].push_back(BandRow{PenaltyRow(s.h, q), sl, zero});
+    problem.AddResidualBlock(new BandResidual(s.dim, std::move(rows[k])), nullptr, block(k),
+                             block(k + 1), block(k + 2), block(k + 3));
   }
   if (o.preserve_weighted_sum) {
     std::vector<double> beta;

@@ -76,8 +76,11 @@ struct SmoothingSplineOptions {
   // Penalty weight lambda [t^4] (>= 0). Empty: chosen by GCV.
   std::optional<double> lambda;
   // GCV searches the smoothing length l = lambda^(1/4) between these multiples of the knot
-  // spacing, log-evenly on gcv_grid_points points, then refines by golden section.
-  double gcv_min_length_ratio = 0.01;
+  // spacing, log-evenly on gcv_grid_points points, then refines by golden section. The lower
+  // end 0.1: below it the penalty no longer controls a coefficient that only a point or two at
+  // the edge of a data gap (rejected glitches) touch, and bridges go wild; l = 0.05 mm still
+  // reproduces S1002 to 0.5 um.
+  double gcv_min_length_ratio = 0.1;
   double gcv_max_length_ratio = 100.0;
   int gcv_grid_points = 25;  // >= 3
   // V uses n - gcv_dof_factor * tr A (>= 1). 1 is GCV proper; 1.4 is the "modified GCV" of
@@ -178,7 +181,8 @@ struct SmoothingSplineSummary {
   // correction by the caller; 0 unless preserve_weighted_sum.
   double relative_sum_error = 0.0;
 
-  int num_ceres_iterations = 0;  // Levenberg-Marquardt iterations of the final Ceres solve
+  // Levenberg-Marquardt iterations of the final Ceres solve (summed over its active-set rounds)
+  int num_ceres_iterations = 0;
   int num_ceres_solves = 0;      // Ceres solves (1, or 2 with a robust loss and GCV)
   double time_s = 0.0;           // wall time of the whole fit
 
