@@ -1,7 +1,7 @@
 // Fitting a smooth profile to measured (or tabulated) profile points: the smoothing spline of
-// wear/smoothing_spline.h applied to (y, z) as functions of the raw points' arc length s, with
-// one lambda for both coordinates, chosen by GCV unless given, and a robust loss against scan
-// glitches. Used by `railwear profile fit` and for smoothing worn profiles.
+// wear/smoothing_spline.h applied to (y, z) as functions of arc length s, with one lambda for
+// both coordinates, chosen by GCV unless given, and outlier rejection plus a Huber loss against
+// scan glitches. Used by `railwear profile fit` and for smoothing worn profiles.
 //
 // The parameter: the arc length of the raw points is the natural one, but a scan glitch (a
 // spike) lengthens it by twice the spike's height, so in (s, y, z) the spike is a smooth bump
@@ -29,8 +29,8 @@ namespace railwear {
 
 struct ProfileFitOptions {
   // Spline options; t is the arc length s [m], values (y, z) [m], so lambda is in m^4 and the
-  // smoothing length lambda^(1/4) in m. Defaults: knots every 0.5 mm, lambda by GCV, Huber loss
-  // at 3 sigma with sigma >= 1 um.
+  // smoothing length lambda^(1/4) in m. Defaults: knots every 0.5 mm, lambda by GCV, gross
+  // outliers beyond 10 sigma rejected, Huber loss at 3 sigma, sigma >= 1 um.
   SmoothingSplineOptions spline;
   // Point spacing of the resampled fitted profile along s [m], > 0.
   double output_spacing_m = 0.1e-3;
@@ -45,7 +45,7 @@ struct ProfileFitOptions {
 
 struct ProfileFit {
   Profile profile;                 // the fitted curve resampled every ~output_spacing_m
-  SmoothingSpline spline;          // (y, z)(s) [m], s the raw profile's arc length
+  SmoothingSpline spline;          // (y, z)(s) [m], s the arc length along the pilot
   SmoothingSplineSummary summary;  // the spline fit (residuals there are 2-D vectors at equal s)
 
   // Signed normal distance of each raw point from the fitted curve [m], shape [n], positive on

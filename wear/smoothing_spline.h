@@ -9,7 +9,7 @@
 //
 // where rho is the identity (least squares) or a robust loss (Huber, Cauchy) with scale a.
 // g'' is linear on each interval, so the two-point Gauss rule per interval integrates the
-// penalty exactly; each Gauss point is one Ceres residual. The default weights are the mean data
+// penalty exactly; each Gauss point is a residual row. The default weights are the mean data
 // spacing, so that the data term approximates integral |g - v|^2 dt and lambda has the units
 // [t]^4: for dense, evenly weighted data the fit damps a Fourier component of wavelength L by the
 // factor 1 / (1 + lambda (2 pi / L)^4) (the Reinsch smoothing spline's transfer function). The
@@ -26,8 +26,11 @@
 //
 // How the fit runs: the closed-form least-squares solution at the chosen lambda is the starting
 // point; the Ceres problem (LEVENBERG_MARQUARDT, SPARSE_NORMAL_CHOLESKY: the Jacobian is
-// banded) then adds what the closed form does not have: the robust loss, coefficient bounds
-// (lower_bound; B-splines are non-negative and sum to one, so c_j >= b implies g >= b), and a
+// banded; one residual block per knot interval, or per point with a loss) then adds what the
+// closed form does not have: the robust loss, coefficient bounds (lower_bound, dimension 1;
+// B-splines are non-negative and sum to one, so c_j >= b implies g >= b; Ceres' bounds plus an
+// active-set loop that holds coefficients at the bound constant and releases them by the sign
+// of the gradient, because projected steps alone crawl along active bounds), and a
 // weighted-sum constraint (one heavily weighted residual keeping sum_i w_i g(t_i) equal to
 // sum_i w_i v_i: the worn area of a depth field).
 //
@@ -104,7 +107,8 @@ struct SmoothingSplineOptions {
   // coefficients are held at 0, so the spline joins a zero field outside with C2 continuity.
   bool clamp_start = false;
   bool clamp_end = false;
-  // Lower bound on every coefficient (hence on g) [value units]; empty: unbounded.
+  // Lower bound on every coefficient (hence on g) [value units]; empty: unbounded. Needs value
+  // dimension 1 (FitSmoothingSpline throws otherwise).
   std::optional<double> lower_bound;
   // Keep sum_i w_i g(t_i) = sum_i w_i v_i (per component) through one residual whose weight is
   // sum_constraint_weight (> 0) times that of the data term; the remaining relative error is
