@@ -240,14 +240,15 @@ Profile MakeGroove(double radius_m, BodyRole role) {
   return MakeArc(radius_m, role == BodyRole::kRail ? -1.0 : 1.0, source);
 }
 
-Profile ApplyCant(const Profile& rail, double ratio) {
+CantTransform CalcCantTransform(const Profile& rail, double ratio) {
   if (!std::isfinite(ratio)) {
     throw InputError(fmt::format("{}: cant ratio = {}; expected a finite number", rail.source(),
                                  ratio));
   }
   // Transformed() turns +y toward +z for a positive angle; the gauge side (-y) must go down
   // (+z), so the angle is negative.
-  const Profile turned = rail.Transformed(-std::atan(ratio), Eigen::Vector2d::Zero());
+  const double angle = -std::atan(ratio);
+  const Profile turned = rail.Transformed(angle, Eigen::Vector2d::Zero());
   // New highest point: minimum z of the spline, found on the points then refined by a parabola
   // through the neighbouring knots' spline values.
   const auto& p = turned.points();
@@ -270,7 +271,12 @@ Profile ApplyCant(const Profile& rail, double ratio) {
     }
     top = turned.Position(0.5 * (a + b));
   }
-  return turned.Transformed(0.0, -top);
+  return CantTransform{angle, -top};
+}
+
+Profile ApplyCant(const Profile& rail, double ratio) {
+  const CantTransform cant = CalcCantTransform(rail, ratio);
+  return rail.Transformed(cant.angle_rad, cant.shift_m);
 }
 
 double ParseCant(const std::string& text) {

@@ -34,6 +34,14 @@ Profile MakeGroove(double radius_m, BodyRole role);
 // atan(ratio) (1:40 -> ratio = 0.025), then moves the origin to the new highest point (minimum z
 // of the spline). UIC60 canted 1:40: its old crown lands at y = -7.4977 mm.
 Profile ApplyCant(const Profile& rail, double ratio);
+// The rigid motion ApplyCant performs: ApplyCant(rail, ratio) == rail.Transformed(angle_rad,
+// shift_m). A wear run computes it once on the unworn rail and applies the same motion to every
+// worn profile, so the track frame does not follow the rail's changing highest point.
+struct CantTransform {
+  double angle_rad = 0.0;
+  Eigen::Vector2d shift_m = Eigen::Vector2d::Zero();
+};
+CantTransform CalcCantTransform(const Profile& rail, double ratio);
 // Parses "1:40" -> 0.025, "0" -> 0. Throws InputError otherwise.
 double ParseCant(const std::string& text);
 
