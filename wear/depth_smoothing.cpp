@@ -86,19 +86,29 @@ DepthSmoothing SmoothDepthField(const std::vector<double>& depth_m, double h_m,
     return out;
   }
 
-  // 1. Windows: support runs widened by the margin, merged where they touch.
+  // 1. Bands: runs of bins above the threshold. Each band is smoothed on its own window (the
+  //    band widened by the margin; windows of neighbouring bands may overlap, their results
+  //    add). Smoothing bands one by one keeps each band's own area: with two bands in one window
+  //    the area residual let the fit trade a low band's area against a high band's (a band of
+  //    1 % of the peak 20 mm away kept 2 % of its area).
   const double threshold = o.support_threshold * max_depth;
   const int margin = std::max(1, static_cast<int>(std::ceil(o.margin_lengths * l / h_m)));
-  std::vector<std::pair<int, int>> windows;  // [first, last] bins
+  struct Band {
+    int first, last;            // bins of the band
+    int window_first, window_last;
+  };
+  std::vector<Band> bands;
   for (int i = 0; i < n; ++i) {
     if (!(depth_m[i] > threshold)) continue;
-    const int first = std::max(0, i - margin);
-    const int last = std::min(n - 1, i + margin);
-    if (!windows.empty() && first <= windows.back().second + 1) {
-      windows.back().second = std::max(windows.back().second, last);
+    if (!bands.empty() && bands.back().last == i - 1) {
+      bands.back().last = i;
     } else {
-      windows.emplace_back(first, last);
+      bands.push_back({i, i, 0, 0});
     }
+  }
+  for (Band& b : bands) {
+    b.window_first = std::max(0, b.first - margin);
+    b.window_last = std::min(n - 1, b.last + margin);
   }
 
   // 2. One constrained smoothing spline per window.
@@ -110,17 +120,22 @@ DepthSmoothing SmoothDepthField(const std::vector<double>& depth_m, double h_m,
   so.preserve_weighted_sum = true;
   so.sum_constraint_weight = o.area_constraint_weight;
   so.max_num_iterations = o.max_num_iterations;
-  for (const auto& [first, last] : windows) {
+  for (const Band& band : bands) {
+    const int first = band.window_first, last = band.window_last;
     const int m = last - first + 1;
+    // The band's own depth: zero outside it (another band's bins belong to that band).
+    const auto band_depth = [&](int i) {
+      return i >= band.first && i <= band.last ? depth_m[i] : 0.0;
+    };
     if (m < 4) {  // a window of 1-3 bins (tiny array end): nothing to smooth
-      for (int i = first; i <= last; ++i) out.depth_m[i] = depth_m[i];
+      for (int i = first; i <= last; ++i) out.depth_m[i] += band_depth(i);
       continue;
     }
     Eigen::VectorXd t(m), w = Eigen::VectorXd::Constant(m, h_m);
     Eigen::MatrixXd v(m, 1);
     for (int i = 0; i < m; ++i) {
       t[i] = (first + i) * h_m;
-      v(i, 0) = depth_m[first + i];
+      v(i, 0) = band_depth(first + i);
     }
     const double range = (m - 1) * h_m;
     // Knots every l / knots_per_length, not finer than a bin, and at least 8 intervals so that
@@ -130,7 +145,7 @@ DepthSmoothing SmoothDepthField(const std::vector<double>& depth_m, double h_m,
     so.clamp_end = last < n - 1;
     const SmoothingSplineFit fit = FitSmoothingSpline(t, v, w, so);
     for (int i = 0; i < m; ++i) {
-      out.depth_m[first + i] = std::max(0.0, fit.spline.Value(t[i])[0]);
+      out.depth_m[first + i] += std::max(0.0, fit.spline.Value(t[i])[0]);
     }
     ++out.num_windows;
     out.num_fitted_bins += m;

@@ -3,8 +3,8 @@
 // into waviness of the worn profile, while keeping the worn area, the position of the wear
 // peak, and depth >= 0.
 //
-// What is solved: on each window of the field (the non-zero support plus a margin of
-// margin_lengths smoothing lengths; zeros elsewhere stay zeros), the smoothing spline of
+// What is solved: on each band of the field (a run of non-zero bins) widened by a margin of
+// margin_lengths smoothing lengths (bands one by one; zeros elsewhere stay zeros), the spline of
 // wear/smoothing_spline.h with
 //     minimise  sum_i h (g(s_i) - d_i)^2 + l^4 integral g''(s)^2 ds
 //     subject to  B-spline coefficients >= 0        (so g >= 0)
