@@ -1,0 +1,85 @@
+#include "wear/traffic.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/numerics/input_error.h"
+#include "core/profile/builtin_profiles.h"
+
+namespace railwear {
+namespace {
+
+TEST(TrafficTest, GaussHermiteIntegratesNormalMoments) {
+  // E[X^2k] of N(0,1) = (2k-1)!!; an n-point rule is exact up to degree 2n-1.
+  for (int n = 1; n <= 9; ++n) {
+    std::vector<double> x, w;
+    GaussHermiteProbabilists(n, &x, &w);
+    double moment[10] = {};
+    for (int k = 0; k < n; ++k) {
+      double p = 1.0;
+      for (int d = 0; d < 10; ++d, p *= x[k]) moment[d] += w[k] * p;
+    }
+    const double exact[10] = {1, 0, 1, 0, 3, 0, 15, 0, 105, 0};
+    for (int d = 0; d < std::min(10, 2 * n); ++d) {
+      EXPECT_NEAR(moment[d], exact[d], 1e-12 * std::max(1.0, exact[d])) << "n " << n << " d " << d;
+    }
+    for (int k = 0; k < n; ++k) {  // symmetric rule
+      EXPECT_EQ(x[k], -x[n - 1 - k]);
+      EXPECT_EQ(w[k], w[n - 1 - k]);
+    }
+  }
+}
+
+TrafficCase MakeCase(double share, double std_mm) {
+  TrafficCase c;
+  c.name = "test";
+  c.wheel_profile = MakeS1002();
+  c.vertical_force_N = 100e3;
+  c.axle_load_t = 20.0;
+  c.lateral_shift_mean_m = -4e-3;
+  c.lateral_shift_std_m = std_mm * 1e-3;
+  c.share = share;
+  return c;
+}
+
+TEST(TrafficTest, ExpandWeightsSumToOneAndMeanIsKept) {
+  const std::vector<TrafficCase> traffic = {MakeCase(0.7, 1.5), MakeCase(0.3, 0.0)};
+  const std::vector<LoadCase> cases = ExpandTraffic(traffic, 5);
+  ASSERT_EQ(cases.size(), 6u);  // 5 nodes + 1 (std = 0)
+  double sum = 0.0, mean0 = 0.0, var0 = 0.0;
+  for (const LoadCase& c : cases) {
+    sum += c.weight;
+    if (c.traffic_index == 0) {
+      mean0 += c.weight / 0.7 * c.lateral_shift_m;
+      var0 += c.weight / 0.7 * std::pow(c.lateral_shift_m + 4e-3, 2);
+    }
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-14);
+  EXPECT_NEAR(mean0, -4e-3, 1e-15);
+  EXPECT_NEAR(var0, 1.5e-3 * 1.5e-3, 1e-18);
+  EXPECT_NEAR(cases.back().weight, 0.3, 1e-15);
+}
+
+TEST(TrafficTest, MgtPerPassIsShareWeightedAxleLoad) {
+  std::vector<TrafficCase> traffic = {MakeCase(3.0, 0.0), MakeCase(1.0, 0.0)};
+  traffic[1].axle_load_t = 10.0;
+  EXPECT_NEAR(MgtPerPass(traffic), (3 * 20.0 + 10.0) / 4.0 / 1e6, 1e-20);
+}
+
+TEST(TrafficTest, BadEntriesNameTheKey) {
+  std::vector<TrafficCase> traffic = {MakeCase(1.0, -1.0)};
+  traffic[0].name = "freight";
+  try {
+    ExpandTraffic(traffic, 5);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("freight: lateral_shift_mm.std = -1"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(ExpandTraffic({}, 5), InputError);
+  EXPECT_THROW(ExpandTraffic({MakeCase(1.0, 1.0)}, 0), InputError);
+}
+
+}  // namespace
+}  // namespace railwear

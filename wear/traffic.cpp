@@ -1,0 +1,103 @@
+#include "wear/traffic.h"
+
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+#include <fmt/format.h>
+
+#include "core/numerics/check.h"
+#include "core/numerics/input_error.h"
+
+namespace railwear {
+
+void GaussHermiteProbabilists(int n, std::vector<double>* nodes, std::vector<double>* weights) {
+  RAILWEAR_CHECK(n >= 1 && n <= 20);
+  // Golub-Welsch: the Jacobi matrix of the monic probabilists' Hermite polynomials has zero
+  // diagonal and off-diagonal sqrt(k); nodes are its eigenvalues, weights the squared first
+  // components of its normalised eigenvectors (the total mass of N(0,1) is 1).
+  Eigen::MatrixXd jacobi = Eigen::MatrixXd::Zero(n, n);
+  for (int k = 1; k < n; ++k) {
+    jacobi(k, k - 1) = jacobi(k - 1, k) = std::sqrt(static_cast<double>(k));
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(jacobi);
+  nodes->assign(n, 0.0);
+  weights->assign(n, 0.0);
+  for (int k = 0; k < n; ++k) {
+    (*nodes)[k] = eig.eigenvalues()(k);
+    (*weights)[k] = eig.eigenvectors()(0, k) * eig.eigenvectors()(0, k);
+  }
+  // Symmetrise exactly (the distribution is symmetric; keeps mirrored cases mirrored).
+  for (int k = 0; k < n / 2; ++k) {
+    const double x = 0.5 * ((*nodes)[n - 1 - k] - (*nodes)[k]);
+    const double w = 0.5 * ((*weights)[n - 1 - k] + (*weights)[k]);
+    (*nodes)[k] = -x;
+    (*nodes)[n - 1 - k] = x;
+    (*weights)[k] = (*weights)[n - 1 - k] = w;
+  }
+  if (n % 2 == 1) (*nodes)[n / 2] = 0.0;
+}
+
+namespace {
+
+void Require(bool ok, const TrafficCase& c, const char* key, double value, const char* expected) {
+  if (!ok || !std::isfinite(value)) {
+    throw InputError(fmt::format("{}: {} = {}: expected {}", c.name, key, value, expected));
+  }
+}
+
+}  // namespace
+
+void ValidateTraffic(const std::vector<TrafficCase>& traffic) {
+  if (traffic.empty()) throw InputError("traffic: no entries: expected at least one [[traffic]]");
+  for (const TrafficCase& c : traffic) {
+    Require(c.rolling_radius_m > 0.0, c, "rolling_radius_mm", c.rolling_radius_m * 1e3, "> 0");
+    Require(c.vertical_force_N > 0.0, c, "vertical_N", c.vertical_force_N, "> 0");
+    Require(c.axle_load_t > 0.0, c, "axle_load_t", c.axle_load_t, "> 0");
+    Require(true, c, "lateral_shift_mm.mean", c.lateral_shift_mean_m * 1e3, "a finite number");
+    Require(c.lateral_shift_std_m >= 0.0, c, "lateral_shift_mm.std", c.lateral_shift_std_m * 1e3,
+            ">= 0");
+    Require(true, c, "roll_rad", c.roll_rad, "a finite number");
+    Require(std::abs(c.yaw_rad) < 0.1, c, "yaw_mrad", c.yaw_rad * 1e3, "|yaw| < 100 mrad");
+    Require(c.friction > 0.0 && c.friction <= 2.0, c, "friction", c.friction, "in (0, 2]");
+    Require(c.speed_m_s > 0.0, c, "speed_m_s", c.speed_m_s, "> 0");
+    Require(c.share > 0.0, c, "share", c.share, "> 0");
+  }
+}
+
+std::vector<LoadCase> ExpandTraffic(const std::vector<TrafficCase>& traffic,
+                                    int quadrature_points) {
+  ValidateTraffic(traffic);
+  if (quadrature_points < 1 || quadrature_points > 20) {
+    throw InputError(fmt::format("wear: quadrature_points = {}: expected 1 to 20",
+                                 quadrature_points));
+  }
+  double total_share = 0.0;
+  for (const TrafficCase& c : traffic) total_share += c.share;
+  std::vector<double> nodes, weights;
+  GaussHermiteProbabilists(quadrature_points, &nodes, &weights);
+  std::vector<LoadCase> cases;
+  for (int t = 0; t < static_cast<int>(traffic.size()); ++t) {
+    const TrafficCase& c = traffic[t];
+    const double share = c.share / total_share;
+    if (c.lateral_shift_std_m == 0.0) {
+      cases.push_back({t, 0, c.lateral_shift_mean_m, share});
+      continue;
+    }
+    for (int k = 0; k < quadrature_points; ++k) {
+      cases.push_back({t, k, c.lateral_shift_mean_m + c.lateral_shift_std_m * nodes[k],
+                       share * weights[k]});
+    }
+  }
+  return cases;
+}
+
+double MgtPerPass(const std::vector<TrafficCase>& traffic) {
+  double share = 0.0, tonnes = 0.0;
+  for (const TrafficCase& c : traffic) {
+    share += c.share;
+    tonnes += c.share * c.axle_load_t;
+  }
+  return tonnes / share / 1e6;
+}
+
+}  // namespace railwear

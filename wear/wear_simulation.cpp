@@ -1,0 +1,325 @@
+#include "wear/wear_simulation.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <stdexcept>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "core/geometry/curve_locator.h"
+#include "core/numerics/check.h"
+#include "core/numerics/input_error.h"
+#include "core/profile/builtin_profiles.h"
+
+namespace railwear {
+
+namespace {
+
+void RequirePositive(const char* key, double value) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw InputError(fmt::format("wear: {} = {}: expected a finite number > 0", key, value));
+  }
+}
+
+double TotalPasses(const WearStudy& study) {
+  if (study.options.total_passes) return *study.options.total_passes;
+  return *study.options.total_mgt / MgtPerPass(study.traffic);
+}
+
+// What one load case contributes to a step.
+struct CaseOutcome {
+  LoadCaseSummary summary;
+  std::vector<double> depth_per_pass_m;  // [grid.n]
+  std::vector<double> damage_per_pass;   // [grid.n], empty without the damage effect
+};
+
+CaseOutcome SolveLoadCase(const WearStudy& study, const CurveLocator& rail, const WearGrid& grid,
+                          const LoadCase& load_case) {
+  const Profile& rail_track = rail.profile();
+  const TrafficCase& traffic = study.traffic[load_case.traffic_index];
+  ContactProblem problem;
+  problem.wheel_profile = traffic.wheel_profile;
+  problem.rail_profile = rail_track;
+  problem.wheel_material = study.wheel_material;
+  problem.rail_material = study.rail_material;
+  problem.placement.lateral_shift_m = load_case.lateral_shift_m;
+  problem.placement.roll_rad = traffic.roll_rad;
+  problem.placement.rolling_radius_m = traffic.rolling_radius_m;
+  problem.load.vertical_force_N = traffic.vertical_force_N;
+  problem.model = study.model;
+  problem.solver = study.solver;
+  RollingOptions rolling;
+  rolling.method = study.tangential;
+  rolling.motion.speed_m_s = traffic.speed_m_s;
+  rolling.motion.yaw_rad = traffic.yaw_rad;
+  rolling.friction = traffic.friction;
+  rolling.damage = study.damage;
+  problem.rolling = rolling;
+
+  const ContactResult result = SolveContact(problem);
+  CaseOutcome out;
+  out.depth_per_pass_m.assign(grid.n, 0.0);
+  if (study.damage) out.damage_per_pass.assign(grid.n, 0.0);
+  LoadCaseSummary& s = out.summary;
+  s.load_case = load_case;
+  s.status = result.status;
+  s.message = result.message;
+  if (result.status == SolverStatus::kNotConverged) {
+    throw std::runtime_error(fmt::format(
+        "wear: {} at lateral shift {:.3f} mm: the contact solution did not converge: {}",
+        traffic.name, load_case.lateral_shift_m * 1e3, result.message));
+  }
+  if (result.status == SolverStatus::kNoContact) return out;
+  s.patches = static_cast<int>(result.patches.size());
+  s.vertical_force_N = result.vertical_force_N;
+  s.lateral_force_N = result.lateral_force_N;
+  s.area_m2 = result.area_m2;
+  s.p_max_Pa = result.p_max_Pa;
+  double largest = -1.0;
+  for (const PatchResult& patch : result.patches) {
+    const std::vector<double> depth = CalcPatchPassDepth(
+        patch, rail, study.options.law, study.rail_material.hardness_Pa, traffic.speed_m_s,
+        grid);
+    for (int b = 0; b < grid.n; ++b) out.depth_per_pass_m[b] += depth[b];
+    if (patch.rolling) {
+      s.creep_force_x_N += patch.rolling->tangential.force_x_N;
+      s.creep_force_s_N += patch.rolling->tangential.force_s_N;
+      if (patch.rolling->damage) {
+        s.t_gamma_N += patch.rolling->damage->t_gamma_N;
+        s.rcf_damage_per_pass = std::max(s.rcf_damage_per_pass, patch.rolling->damage->wlrm_damage);
+      }
+    }
+    if (study.damage) {
+      const std::vector<double> damage = CalcPatchDamageSpread(patch, rail, grid);
+      for (int b = 0; b < grid.n; ++b) out.damage_per_pass[b] += damage[b];
+    }
+    if (patch.normal_force_N > largest) {
+      largest = patch.normal_force_N;
+      s.contact_angle_rad = patch.contact_angle_rad;
+      s.contact_y_m = patch.contact_point_yz_m.x();
+    }
+  }
+  for (int b = 0; b < grid.n; ++b) s.worn_area_per_pass_m2 += out.depth_per_pass_m[b] * grid.h_m;
+  return out;
+}
+
+// Solves every case on `threads` workers. Each result goes to its own slot; exceptions are
+// rethrown in case order after all workers have stopped.
+std::vector<CaseOutcome> SolveLoadCases(const WearStudy& study, const CurveLocator& rail,
+                                        const WearGrid& grid, const std::vector<LoadCase>& cases) {
+  const int n = static_cast<int>(cases.size());
+  std::vector<CaseOutcome> outcomes(n);
+  std::vector<std::exception_ptr> errors(n);
+  std::atomic<int> next{0};
+  auto worker = [&]() {
+    for (int c = next++; c < n; c = next++) {
+      try {
+        outcomes[c] = SolveLoadCase(study, rail, grid, cases[c]);
+      } catch (...) {
+        errors[c] = std::current_exception();
+      }
+    }
+  };
+  int threads = study.options.threads > 0
+                    ? study.options.threads
+                    : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  threads = std::min(threads, n);
+  if (threads <= 1) {
+    worker();
+  } else {
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
+    for (std::thread& t : pool) t.join();
+  }
+  for (const std::exception_ptr& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+  return outcomes;
+}
+
+// sum_c weight_c * field_c[b] per bin, adding the terms of each bin in increasing order so the
+// sum does not depend on the order of the cases.
+std::vector<double> WeightedSum(const std::vector<CaseOutcome>& outcomes,
+                                const std::vector<LoadCase>& cases, int n,
+                                std::vector<double> CaseOutcome::*field) {
+  std::vector<double> sum(n, 0.0), terms(outcomes.size());
+  for (int b = 0; b < n; ++b) {
+    int count = 0;
+    for (size_t c = 0; c < outcomes.size(); ++c) {
+      const std::vector<double>& f = outcomes[c].*field;
+      if (!f.empty() && f[b] != 0.0) terms[count++] = cases[c].weight * f[b];
+    }
+    std::sort(terms.begin(), terms.begin() + count);
+    double s = 0.0;
+    for (int k = 0; k < count; ++k) s += terms[k];
+    sum[b] = s;
+  }
+  return sum;
+}
+
+// Value at arc length s of a field given at the bin centres (linear; constant beyond the ends).
+double AtArcLength(const WearGrid& grid, const std::vector<double>& field, double s) {
+  const double u = s / grid.h_m - 0.5;
+  if (u <= 0.0) return field.front();
+  const int b = static_cast<int>(u);
+  if (b >= grid.n - 1) return field.back();
+  const double t = u - b;
+  return (1.0 - t) * field[b] + t * field[b + 1];
+}
+
+// Moves every point of `rail` (own frame) along the rail's inward normal by depth(s).
+Profile MoveAlongInwardNormal(const Profile& rail, const WearGrid& grid,
+                              const std::vector<double>& depth_m) {
+  const CurveLocator locator(rail, /*material_toward_plus_z=*/true);
+  std::vector<Eigen::Vector2d> points = rail.points();
+  for (int i = 0; i < rail.size(); ++i) {
+    const double s = rail.KnotS(i);
+    const double dz = AtArcLength(grid, depth_m, s);
+    if (dz != 0.0) points[i] -= dz * locator.OutwardNormal(s);
+  }
+  return Profile(std::move(points), rail.source());
+}
+
+}  // namespace
+
+void ValidateWearStudy(const WearStudy& study) {
+  const WearOptions& o = study.options;
+  ValidateWearLaw(o.law);
+  ValidateTraffic(study.traffic);
+  if (study.model.kind == ModelKind::kHertz) {
+    throw InputError("wear: model.kind = \"hertz\": expected a grid model (halfspace or conformal):"
+                     " wear needs the pressure and slip of every cell");
+  }
+  if (o.law.kind != WearLawKind::kUsfd && !(study.rail_material.hardness_Pa > 0.0)) {
+    throw InputError(fmt::format("wear: materials.rail.hardness_MPa is missing: expected the rail"
+                                 " hardness for the {} law", ToString(o.law.kind)));
+  }
+  if (study.damage && !(study.rail_material.shear_yield_Pa > 0.0)) {
+    throw InputError("wear: materials.rail.shear_yield_MPa is missing: expected the rail's shear"
+                     " yield stress for the damage effect");
+  }
+  if (o.total_passes.has_value() == o.total_mgt.has_value()) {
+    throw InputError("wear: expected exactly one of total_passes and total_MGT");
+  }
+  if (o.total_passes) RequirePositive("total_passes", *o.total_passes);
+  if (o.total_mgt) RequirePositive("total_MGT", *o.total_mgt);
+  RequirePositive("max_depth_per_step_mm", o.max_depth_per_step_m * 1e3);
+  RequirePositive("bin_mm", o.bin_m * 1e3);
+  RequirePositive("profile_spacing_mm", o.profile_spacing_m * 1e3);
+  RequirePositive("damage_layer_mm", o.damage_layer_m * 1e3);
+  if (o.quadrature_points < 1 || o.quadrature_points > 20) {
+    throw InputError(fmt::format("wear: quadrature_points = {}: expected 1 to 20",
+                                 o.quadrature_points));
+  }
+  if (o.threads < 0) {
+    throw InputError(fmt::format("wear: threads = {}: expected >= 0 (0: all cores)", o.threads));
+  }
+}
+
+Profile ResampleProfile(const Profile& profile, double spacing_m) {
+  RAILWEAR_CHECK(spacing_m > 0.0);
+  const double length = profile.Length();
+  const int m = std::max(3, static_cast<int>(std::ceil(length / spacing_m)));
+  std::vector<Eigen::Vector2d> points(m + 1);
+  for (int k = 0; k <= m; ++k) points[k] = profile.Position(length * k / m);
+  return Profile(std::move(points), profile.source());
+}
+
+WearState MakeInitialState(const WearStudy& study) {
+  ValidateWearStudy(study);
+  WearState state;
+  state.rail = ResampleProfile(study.rail_profile, study.options.profile_spacing_m);
+  return state;
+}
+
+StepResult RunWearStep(const WearStudy& study, const Profile& unworn, const WearState& state,
+                       double passes_left) {
+  const auto start = std::chrono::steady_clock::now();
+  const WearOptions& o = study.options;
+  // The track frame is fixed by the unworn rail: the same rigid motion cants every worn profile.
+  const CantTransform cant = CalcCantTransform(unworn, study.cant_ratio);
+  const Profile rail_track = state.rail.Transformed(cant.angle_rad, cant.shift_m);
+
+  StepResult step;
+  step.grid = WearGrid::ForProfile(state.rail, o.bin_m);
+  const int n = step.grid.n;
+  const std::vector<LoadCase> cases = ExpandTraffic(study.traffic, o.quadrature_points);
+  const CurveLocator rail_locator(rail_track, /*material_toward_plus_z=*/true);
+  const std::vector<CaseOutcome> outcomes =
+      SolveLoadCases(study, rail_locator, step.grid, cases);
+  step.depth_per_pass_m = WeightedSum(outcomes, cases, n, &CaseOutcome::depth_per_pass_m);
+  for (const CaseOutcome& c : outcomes) step.cases.push_back(c.summary);
+
+  // The per-pass field is smoothed first (scaled to a unit maximum: the smoothing is
+  // homogeneous in the field), then the step control makes the deepest smoothed wear of the
+  // step equal max_depth_per_step, or takes the passes left when they are fewer.
+  const double deepest = *std::max_element(step.depth_per_pass_m.begin(),
+                                           step.depth_per_pass_m.end());
+  WearState& next = step.state;
+  next.step = state.step + 1;
+  if (deepest > 0.0) {
+    std::vector<double> unit(n);
+    for (int b = 0; b < n; ++b) unit[b] = step.depth_per_pass_m[b] / deepest;
+    const DepthSmoothing smoothed = SmoothDepthField(unit, step.grid.h_m, o.smoothing);
+    step.smoothing_area_error = smoothed.area_error;
+    const double peak = *std::max_element(smoothed.depth_m.begin(), smoothed.depth_m.end());
+    step.step_passes = std::min(passes_left, o.max_depth_per_step_m / (deepest * peak));
+    step.step_depth_m.resize(n);
+    for (int b = 0; b < n; ++b) {
+      step.step_depth_m[b] = step.step_passes * deepest * smoothed.depth_m[b];
+    }
+    next.rail = ResampleProfile(MoveAlongInwardNormal(state.rail, step.grid, step.step_depth_m),
+                                o.profile_spacing_m);
+  } else {
+    step.step_passes = passes_left;  // nothing wears: the rest of the run in one step
+    step.step_depth_m.assign(n, 0.0);
+    next.rail = state.rail;
+  }
+  next.passes = state.passes + step.step_passes;
+  next.mgt = state.mgt + step.step_passes * MgtPerPass(study.traffic);
+
+  if (study.damage) {
+    const std::vector<double> damage_per_pass =
+        WeightedSum(outcomes, cases, n, &CaseOutcome::damage_per_pass);
+    // Damage stays with its arc-length bin; the worn profile's bins are the same positions.
+    const int n_next = WearGrid::ForProfile(next.rail, o.bin_m).n;
+    next.damage.assign(n_next, 0.0);
+    for (int b = 0; b < std::min(n, n_next); ++b) {
+      const double previous = b < static_cast<int>(state.damage.size()) ? state.damage[b] : 0.0;
+      const double removed = std::min(1.0, step.step_depth_m[b] / o.damage_layer_m);
+      next.damage[b] = (previous + step.step_passes * damage_per_pass[b]) * (1.0 - removed);
+    }
+  }
+  step.measures = CompareProfiles(unworn, next.rail);
+  step.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return step;
+}
+
+WearRunSummary RunWear(const WearStudy& study, const Profile& unworn, WearState start,
+                       const WearStepCallback& on_step, int max_steps) {
+  ValidateWearStudy(study);
+  const double total = TotalPasses(study);
+  WearRunSummary summary;
+  summary.state = std::move(start);
+  while (true) {
+    const double left = total - summary.state.passes;
+    if (left <= 1e-12 * total) {
+      summary.finished = true;
+      break;
+    }
+    if (max_steps > 0 && summary.steps_done >= max_steps) break;
+    StepResult step = RunWearStep(study, unworn, summary.state, left);
+    ++summary.steps_done;
+    summary.state = step.state;
+    if (on_step && !on_step(step)) break;
+  }
+  if (total - summary.state.passes <= 1e-12 * total) summary.finished = true;
+  return summary;
+}
+
+}  // namespace railwear

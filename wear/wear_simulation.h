@@ -1,0 +1,146 @@
+// The wear simulation loop: a rail profile worn by a traffic mix over many wheel passes.
+//
+// One step (DESIGN.md §1, §2):
+//   1. the current rail profile (rail's own frame) is canted into the track frame with the
+//      motion computed once on the unworn rail (CantTransform), so the track frame stays fixed;
+//   2. every load case of the traffic mix (wear/traffic.h) is solved as a rolling contact (normal
+//      + tangential, and damage when asked), in parallel threads;
+//   3. each case's per-pass wear depth and RCF damage are binned along the rail's arc length
+//      (wear/pass_depth.h) and summed with the case weights in a fixed order per bin (sorted
+//      by value), so the result depends neither on the thread count nor on the order of cases;
+//   4. the summed per-pass depth is smoothed (wear/depth_smoothing.h: area kept, peak not
+//      moved, non-negative, bin-scale noise removed);
+//   5. step control: the passes of the step are chosen so the deepest smoothed wear of the step
+//      equals max_depth_per_step (or the passes left, whichever is fewer); every profile point
+//      moves along the rail's inward normal by the step's depth, and the moved curve is
+//      resampled at a uniform arc-length spacing;
+//   6. accumulated damage grows by the step's damage and loses the fraction of the damaged
+//      surface layer that wear removed (D <- D * max(0, 1 - dz / damage_layer));
+//   7. the finished step goes to a callback (app/ stores it in the database).
+//
+// The loop knows nothing of storage. Its whole state between steps is WearState (profile,
+// passes, MGT, damage per position), so a run resumed from a stored state continues exactly as
+// the uninterrupted run would have.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/contact/contact_solver.h"
+#include "core/profile/profile.h"
+#include "wear/pass_depth.h"
+#include "wear/depth_smoothing.h"
+#include "wear/traffic.h"
+#include "wear/wear_law.h"
+#include "wear/wear_measures.h"
+
+namespace railwear {
+
+struct WearOptions {
+  WearLaw law;
+  // Step control: the deepest wear of one step [m], > 0.
+  double max_depth_per_step_m = 1e-4;
+  // Length of the run: exactly one of the two, > 0.
+  std::optional<double> total_passes;
+  std::optional<double> total_mgt;
+  // Gauss-Hermite nodes per traffic entry with a lateral spread, 1..20.
+  int quadrature_points = 5;
+  // Width of the arc-length bins the wear depth is collected on [m], > 0.
+  double bin_m = 1e-4;
+  // Arc-length spacing of the rail profile's points after each update [m], > 0.
+  double profile_spacing_m = 2e-4;
+  DepthSmoothingOptions smoothing;
+  // Depth of the surface layer that carries RCF damage [m], > 0: removing dz of it removes the
+  // fraction dz / damage_layer of the accumulated damage (railwear's model; see README).
+  double damage_layer_m = 5e-4;
+  // Worker threads for the load cases; 0 = std::thread::hardware_concurrency().
+  int threads = 0;
+};
+
+// Everything a wear run needs.
+struct WearStudy {
+  Profile rail_profile;           // the unworn rail, its own frame (as in the scene)
+  double cant_ratio = 0.0;        // 1:40 -> 0.025
+  Material wheel_material;
+  Material rail_material;         // hardness_Pa required (Archard, KTH); shear_yield_Pa for damage
+  ModelOptions model;             // a grid model (not Hertz)
+  NormalSolverOptions solver;
+  TangentialMethod tangential = TangentialMethod::kFastsim;
+  bool damage = false;            // the "damage" effect: RCF damage per position
+  std::vector<TrafficCase> traffic;
+  WearOptions options;
+};
+
+// Throws InputError for an inconsistent study (Hertz model, missing hardness, both or neither
+// total, non-positive limits, bad traffic, damage without shear yield).
+void ValidateWearStudy(const WearStudy& study);
+
+// The state between steps: all a run needs to continue.
+struct WearState {
+  int step = 0;                 // steps done (0: the unworn profile)
+  double passes = 0.0;          // cumulative wheel passes
+  double mgt = 0.0;             // cumulative million gross tonnes
+  Profile rail;                 // current rail profile, rail's own frame
+  // Accumulated RCF damage per arc-length bin of `rail` (WearGrid::ForProfile(rail, bin_m)).
+  // Empty means zero everywhere (no damage effect, or nothing accumulated yet).
+  std::vector<double> damage;
+};
+
+// Step 0 of a run: the unworn rail resampled at the study's profile spacing.
+WearState MakeInitialState(const WearStudy& study);
+
+// What one load case of a step gave.
+struct LoadCaseSummary {
+  LoadCase load_case;
+  SolverStatus status = SolverStatus::kNoContact;
+  std::string message;
+  int patches = 0;
+  double vertical_force_N = 0.0, lateral_force_N = 0.0;  // on the rail
+  double area_m2 = 0.0, p_max_Pa = 0.0;
+  double creep_force_x_N = 0.0, creep_force_s_N = 0.0;   // sum over patches, on the wheel
+  double t_gamma_N = 0.0;                                 // sum over patches
+  double rcf_damage_per_pass = 0.0;                       // largest over patches
+  double worn_area_per_pass_m2 = 0.0;                     // sum_b depth_b h
+  double contact_angle_rad = 0.0;                         // of the most loaded patch
+  double contact_y_m = 0.0;                               // its pressure centre on the rail (track frame)
+};
+
+struct StepResult {
+  WearState state;                  // after this step
+  double step_passes = 0.0;         // passes of this step
+  WearGrid grid;                    // the bins of the profile the step started from
+  std::vector<double> depth_per_pass_m;  // weighted mean depth per wheel pass, shape [grid.n]
+  std::vector<double> step_depth_m;      // smoothed depth removed in this step, shape [grid.n]
+  double smoothing_area_error = 0.0;     // relative, before the area correction
+  WearMeasures measures;            // against step 0 (cumulative)
+  std::vector<LoadCaseSummary> cases;
+  double seconds = 0.0;             // wall time of the step
+};
+
+// Called after each finished step; return false to stop the run after it.
+using WearStepCallback = std::function<bool(const StepResult&)>;
+
+struct WearRunSummary {
+  int steps_done = 0;       // steps completed in this call
+  bool finished = false;    // the total (passes or MGT) is reached
+  WearState state;          // the last state
+};
+
+// Runs steps from `start` until the total is reached, `max_steps` steps were done in this call
+// (<= 0: no limit) or the callback returns false. `unworn` is the step-0 profile (the wear
+// measures are taken against it). Throws InputError for a bad study; std::runtime_error when a
+// load case fails to converge (the steps before it are complete and were handed out).
+WearRunSummary RunWear(const WearStudy& study, const Profile& unworn, WearState start,
+                       const WearStepCallback& on_step, int max_steps = 0);
+
+// One step from `state` (exposed for tests and benchmarks): solves the load cases and returns
+// the step. `passes_left` caps the step's passes.
+StepResult RunWearStep(const WearStudy& study, const Profile& unworn, const WearState& state,
+                       double passes_left);
+
+// A profile resampled at uniform arc length: ceil(L / spacing) + 1 points including both ends.
+Profile ResampleProfile(const Profile& profile, double spacing_m);
+
+}  // namespace railwear
