@@ -101,6 +101,12 @@ void SetupContact(CLI::App& app) {
 void RunContact(const ContactOptions& o) {
   CheckOptions(o);
   Scene scene = LoadScene(o.scene_path);
+  if (scene.wear) {
+    throw InputError(fmt::format(
+        "{}: a wear scene (effect \"wear\", [[traffic]]): expected a single contact ([load] or "
+        "[wheelset]); run it with `railwear wear {}`",
+        o.scene_path, o.scene_path));
+  }
   ApplyOverrides(o, &scene.problem.model);
   if (scene.wheelset) {
     RunWheelset(o, scene);

@@ -9,6 +9,7 @@
 #include "app/history_command.h"
 #include "app/init_command.h"
 #include "app/profile_command.h"
+#include "app/wear_command.h"
 #include "core/numerics/input_error.h"
 
 namespace {
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   railwear::app::SetupContact(app);
   railwear::app::SetupProfile(app);
+  railwear::app::SetupWear(app);
   railwear::app::SetupHistory(app);
   railwear::app::SetupInit(app);
   try {

@@ -32,18 +32,6 @@ std::string ReadTextFile(const std::string& path, const std::string& what) {
   return os.str();
 }
 
-// [wear] and [[traffic]] describe wear runs, which this version cannot do yet.
-void RejectLaterTables(const Fields& top) {
-  for (const std::string_view key : {"wear", "traffic"}) {
-    if (top.Has(key)) {
-      throw InputError(fmt::format(
-          "{}: expected contact tables only: [{}] belongs to worn-profile evolution runs, which "
-          "this version of railwear does not provide yet",
-          FieldPrefix(top.file(), *top.Node(key), key), key));
-    }
-  }
-}
-
 Fields RequiredTable(const Fields& top, std::string_view key, std::string_view expected) {
   auto t = top.Table(key, "a table");
   if (!t) top.FailMissing(key, expected);
@@ -69,20 +57,17 @@ void ReadSceneTable(const Fields& top, Scene* scene) {
     bool known = false;
     for (const auto& k : kKnownEffects) known = known || *name == k;
     if (!known) throw InputError(FieldError(t->file(), e, key, "one of " + JoinQuoted(kKnownEffects)));
-    if (*name == "tangential" || *name == "damage" || *name == "coupling") {
-      // damage and coupling need the tractions and slip of the tangential stage
+    if (*name == "tangential" || *name == "damage" || *name == "coupling" || *name == "wear") {
+      // damage, coupling and wear need the tractions and slip of the tangential stage
       scene->tangential = true;
       scene->damage = scene->damage || *name == "damage";
       scene->coupling = scene->coupling || *name == "coupling";
+      scene->wear_effect = scene->wear_effect || *name == "wear";
       scene->effects.push_back(*name);
       continue;
     }
-    throw InputError(fmt::format(
-        "{}: expected 'normal', 'tangential', 'coupling' or 'damage': effect '{}' is not "
-        "available in this version of railwear",
-        FieldPrefix(t->file(), e, key), *name));
   }
-  if ((scene->damage || scene->coupling) &&
+  if ((scene->damage || scene->coupling || scene->wear_effect) &&
       std::find(scene->effects.begin(), scene->effects.end(), "tangential") ==
           scene->effects.end()) {
     scene->effects.insert(scene->effects.begin() + 1, "tangential");  // implied
@@ -212,13 +197,13 @@ void ReadMaterials(const Fields& top, Scene* scene) {
 }
 
 // Loads a profile spec; errors from the profile reader get the scene key in front.
-Profile LoadProfile(const Fields& t, BodyRole role, const std::string& spec,
-                    const std::string& scene_path) {
+Profile LoadProfileFor(const Fields& t, std::string_view key, BodyRole role,
+                       const std::string& spec, const std::string& scene_path) {
   try {
     return LoadProfileSpec(spec, role, DirectoryOf(scene_path));
   } catch (const InputError& e) {
-    throw InputError(fmt::format("{}:{}: key '{}' = \"{}\": {}", t.file(), LineOf(*t.Node("profile")),
-                                 t.KeyName("profile"), spec, e.what()));
+    throw InputError(fmt::format("{}:{}: key '{}' = \"{}\": {}", t.file(), LineOf(*t.Node(key)),
+                                 t.KeyName(key), spec, e.what()));
   }
 }
 
@@ -232,7 +217,7 @@ void ReadWheel(const Fields& top, Scene* scene) {
   scene->wheel_profile_spec = t.RequiredString("profile", kProfileExpected);
   scene->problem.placement.rolling_radius_m =
       t.RequiredNumber("rolling_radius_mm", Positive()) * kMm;
-  Profile p = LoadProfile(t, BodyRole::kWheel, scene->wheel_profile_spec, scene->path);
+  Profile p = LoadProfileFor(t, "profile", BodyRole::kWheel, scene->wheel_profile_spec, scene->path);
   if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
   scene->problem.wheel_profile = std::move(p);
 }
@@ -257,8 +242,12 @@ void ReadRail(const Fields& top, Scene* scene) {
   t.AllowOnly({"profile", "cant", "mirror_y"});
   scene->rail_profile_spec = t.RequiredString("profile", kProfileExpected);
   scene->cant_ratio = ReadCant(t, scene);
-  Profile p = LoadProfile(t, BodyRole::kRail, scene->rail_profile_spec, scene->path);
+  Profile p = LoadProfileFor(t, "profile", BodyRole::kRail, scene->rail_profile_spec, scene->path);
   if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
+  if (scene->wear_effect) {
+    // A wear run cants each worn profile itself (with the motion of the unworn one).
+    scene->wear.emplace().rail_profile = p;
+  }
   if (scene->cant_ratio != 0.0) p = ApplyCant(p, scene->cant_ratio);
   scene->problem.rail_profile = std::move(p);
 }
@@ -402,6 +391,196 @@ void CheckRolling(const Fields& top, const Scene& scene) {
   }
 }
 
+
+// ---- wear scenes: [wear] and [[traffic]] ----
+
+constexpr double kGravity_m_s2 = 9.80665;
+
+WearLaw ReadWearLaw(const Fields& t) {
+  WearLaw law;
+  if (const auto name = t.Choice("law", {"archard", "kth", "kth-continuous", "usfd"})) {
+    law.kind = *WearLawKindFromString(*name);
+  }
+  law.archard_k = t.Number("k", Positive()).value_or(law.archard_k);
+  if (t.Has("k") && law.kind != WearLawKind::kArchard) {
+    t.Fail("k", "no 'k' with this law (the constant coefficient belongs to law = \"archard\")");
+  }
+  const bool kth = law.kind == WearLawKind::kKth || law.kind == WearLawKind::kKthContinuous;
+  const std::vector<std::pair<std::string_view, double*>> kth_keys = {
+      {"kth_k_seizure", &law.kth_k_seizure},     {"kth_k_mild_low", &law.kth_k_mild_low},
+      {"kth_k_severe", &law.kth_k_severe},       {"kth_k_mild_high", &law.kth_k_mild_high},
+      {"kth_v1_m_s", &law.kth_v1_m_s},           {"kth_v2_m_s", &law.kth_v2_m_s},
+      {"kth_pressure_ratio", &law.kth_pressure_ratio},
+      {"kth_velocity_band", &law.kth_velocity_band},
+      {"kth_pressure_band", &law.kth_pressure_band}};
+  for (const auto& [key, value] : kth_keys) {
+    if (!t.Has(key)) continue;
+    if (!kth) t.Fail(key, "KTH map keys only with law = \"kth\" or \"kth-continuous\"");
+    *value = t.RequiredNumber(key, Positive());
+  }
+  if (law.kth_v1_m_s >= law.kth_v2_m_s) {
+    t.Fail("kth_v2_m_s", fmt::format("a speed above kth_v1_m_s = {}", law.kth_v1_m_s));
+  }
+  if (t.Has("density_kg_m3")) {
+    if (law.kind != WearLawKind::kUsfd) t.Fail("density_kg_m3", "density only with law = \"usfd\"");
+    law.density_kg_m3 = t.RequiredNumber("density_kg_m3", Positive());
+  }
+  return law;
+}
+
+void ReadWearTable(const Fields& top, Scene* scene) {
+  const Fields t = RequiredTable(top, "wear", "a [wear] table (law, total_passes or total_MGT)");
+  t.AllowOnly({"law", "k", "kth_k_seizure", "kth_k_mild_low", "kth_k_severe", "kth_k_mild_high",
+               "kth_v1_m_s", "kth_v2_m_s", "kth_pressure_ratio", "kth_velocity_band",
+               "kth_pressure_band", "density_kg_m3", "max_depth_per_step_mm", "total_passes",
+               "total_MGT", "quadrature_points", "bin_mm", "profile_spacing_mm", "smoothing_mm",
+               "damage_layer_mm", "threads", "db"});
+  WearOptions& o = scene->wear->options;
+  o.law = ReadWearLaw(t);
+  o.max_depth_per_step_m =
+      t.Number("max_depth_per_step_mm", OpenClosed(0.0, 1.0)).value_or(o.max_depth_per_step_m / kMm) *
+      kMm;
+  o.total_passes = t.Number("total_passes", Positive());
+  o.total_mgt = t.Number("total_MGT", Positive());
+  if (o.total_passes && o.total_mgt) {
+    t.Fail("total_MGT", "exactly one of 'wear.total_passes' and 'wear.total_MGT' (both given)");
+  }
+  if (!o.total_passes && !o.total_mgt) {
+    t.FailMissing("total_passes", "exactly one of 'wear.total_passes' and 'wear.total_MGT'");
+  }
+  const auto whole = [&](std::string_view key, double lo, double hi, int fallback) {
+    const auto v = t.Number(key, InRange(lo, hi + 1.0));
+    if (!v) return fallback;
+    if (*v != std::floor(*v)) t.Fail(key, fmt::format("a whole number from {} to {}", lo, hi));
+    return static_cast<int>(*v);
+  };
+  o.quadrature_points = whole("quadrature_points", 1, 20, o.quadrature_points);
+  o.threads = whole("threads", 0, 256, o.threads);
+  o.bin_m = t.Number("bin_mm", OpenClosed(0.0, 1.0)).value_or(o.bin_m / kMm) * kMm;
+  o.profile_spacing_m =
+      t.Number("profile_spacing_mm", OpenClosed(0.0, 2.0)).value_or(o.profile_spacing_m / kMm) * kMm;
+  o.smoothing.smoothing_length_m =
+      t.Number("smoothing_mm", OpenClosed(0.0, 20.0)).value_or(o.smoothing.smoothing_length_m / kMm) *
+      kMm;
+  o.damage_layer_m =
+      t.Number("damage_layer_mm", Positive()).value_or(o.damage_layer_m / kMm) * kMm;
+  if (const auto db = t.String("db")) {
+    scene->wear_db = ResolveRelativeTo(DirectoryOf(scene->path), *db);
+  }
+}
+
+// lateral_shift_mm = 5.0 or { mean = 5.0, std = 1.5 }
+void ReadLateralShift(const Fields& t, TrafficCase* c) {
+  const toml::node* node = t.Node("lateral_shift_mm");
+  if (node == nullptr) {
+    t.FailMissing("lateral_shift_mm", "a lateral shift in mm, or { mean, std }");
+  }
+  if (node->is_table()) {
+    const auto d = t.Table("lateral_shift_mm", "{ mean, std }");
+    d->AllowOnly({"mean", "std"});
+    c->lateral_shift_mean_m = d->RequiredNumber("mean", AnyFinite()) * kMm;
+    c->lateral_shift_std_m = d->Number("std", AtLeast(0.0)).value_or(0.0) * kMm;
+    return;
+  }
+  c->lateral_shift_mean_m = t.RequiredNumber("lateral_shift_mm", AnyFinite()) * kMm;
+}
+
+void ReadTraffic(const Fields& top, Scene* scene) {
+  // A [wheel] table, when a wear scene has one, gives each entry its default wheel.
+  const bool has_wheel = top.Has("wheel");
+  const toml::node* node = top.Node("traffic");
+  if (node == nullptr || !node->is_array_of_tables()) {
+    if (node != nullptr) top.Fail("traffic", "[[traffic]] tables, one per load case");
+    top.FailMissing("traffic", "at least one [[traffic]] table for the wear effect");
+  }
+  const toml::array& entries = *node->as_array();
+  int index = 0;
+  for (const toml::node& entry : entries) {
+    const Fields t(*entry.as_table(), fmt::format("traffic[{}]", index), top.file());
+    t.AllowOnly({"name", "wheel_profile", "mirror_y", "rolling_radius_mm", "vertical_N",
+                 "axle_load_t", "lateral_shift_mm", "roll_rad", "yaw_mrad", "friction",
+                 "speed_m_s", "share"});
+    TrafficCase c;
+    c.name = t.String("name").value_or(fmt::format("traffic[{}]", index));
+    if (const auto spec = t.String("wheel_profile")) {
+      Profile p = LoadProfileFor(t, "wheel_profile", BodyRole::kWheel, *spec, scene->path);
+      if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
+      c.wheel_profile = std::move(p);
+    } else if (has_wheel) {
+      c.wheel_profile = scene->problem.wheel_profile;
+    } else {
+      t.FailMissing("wheel_profile", std::string(kProfileExpected) + " (or a [wheel] table)");
+    }
+    if (const auto r = t.Number("rolling_radius_mm", Positive())) {
+      c.rolling_radius_m = *r * kMm;
+    } else if (has_wheel) {
+      c.rolling_radius_m = scene->problem.placement.rolling_radius_m;
+    } else {
+      t.FailMissing("rolling_radius_mm", "the wheel radius at the profile's z = 0 in mm (or a [wheel] table)");
+    }
+    c.vertical_force_N = t.RequiredNumber("vertical_N", Positive());
+    c.axle_load_t = t.Number("axle_load_t", Positive())
+                        .value_or(2.0 * c.vertical_force_N / kGravity_m_s2 / 1000.0);
+    ReadLateralShift(t, &c);
+    c.roll_rad = t.Number("roll_rad", InRange(-kMaxRoll_rad, kMaxRoll_rad)).value_or(0.0);
+    c.yaw_rad = t.Number("yaw_mrad", InRange(-100.0, 100.0)).value_or(0.0) * 1e-3;
+    c.friction = t.RequiredNumber("friction", OpenClosed(0.0, 2.0));
+    c.speed_m_s = t.RequiredNumber("speed_m_s", Positive());
+    c.share = t.Number("share", Positive()).value_or(1.0);
+    scene->wear->traffic.push_back(std::move(c));
+    ++index;
+  }
+}
+
+// A wear scene: model, materials, rail, optional default wheel, [wear] and [[traffic]].
+void ReadWearScene(const Fields& top, Scene* scene) {
+  for (const std::string_view key : {"load", "track", "wheelset"}) {
+    if (top.Has(key)) {
+      throw InputError(fmt::format(
+          "{}: expected no [{}] in a wear scene: its wheels, loads and positions come from the "
+          "[[traffic]] entries",
+          FieldPrefix(top.file(), *top.Node(key), key), key));
+    }
+  }
+  if (top.Has("wheel")) ReadWheel(top, scene);
+  ReadRail(top, scene);
+  ReadWearTable(top, scene);
+  ReadTraffic(top, scene);
+  if (scene->problem.model.kind == ModelKind::kHertz) {
+    const auto model = top.Table("model", "a table");
+    model->Fail("kind", "\"halfspace\" or \"conformal\" for a wear run (wear needs the "
+                        "pressure and slip of every cell of the patch grid)");
+  }
+  WearStudy& study = *scene->wear;
+  study.cant_ratio = scene->cant_ratio;
+  study.wheel_material = scene->problem.wheel_material;
+  study.rail_material = scene->problem.rail_material;
+  study.model = scene->problem.model;
+  study.solver = scene->problem.solver;
+  study.tangential = *TangentialMethodFromString(scene->tangential_method);
+  study.damage = scene->damage;
+  if (study.options.law.kind != WearLawKind::kUsfd && !(study.rail_material.hardness_Pa > 0)) {
+    throw InputError(fmt::format(
+        "{}:{}: key 'materials.rail.hardness_MPa' is missing: expected the rail hardness in MPa "
+        "for the {} wear law",
+        top.file(), top.Has("materials") ? LineOf(*top.Node("materials")) : 1,
+        ToString(study.options.law.kind)));
+  }
+  if (scene->damage && !(study.rail_material.shear_yield_Pa > 0)) {
+    throw InputError(fmt::format(
+        "{}:{}: key 'materials.rail.shear_yield_MPa' is missing: expected the rail's shear yield "
+        "stress k in MPa for the damage effect",
+        top.file(), top.Has("materials") ? LineOf(*top.Node("materials")) : 1));
+  }
+  if (scene->coupling) {
+    throw InputError(fmt::format(
+        "{}: effect 'coupling' is not available in wear runs (each load case is solved "
+        "uncoupled); remove it from scene.effects",
+        top.file()));
+  }
+  ValidateWearStudy(study);
+}
+
 }  // namespace
 
 Material DefaultSteel() {
@@ -414,14 +593,28 @@ Material DefaultSteel() {
 Scene ParseScene(const std::string& text, const std::string& path) {
   const toml::table root = ParseToml(text, path);
   const Fields top(root, "", path);
-  RejectLaterTables(top);
-  top.AllowOnly({"scene", "model", "materials", "wheel", "rail", "load", "track", "wheelset"});
+  top.AllowOnly({"scene", "model", "materials", "wheel", "rail", "load", "track", "wheelset",
+                 "wear", "traffic"});
   Scene scene;
   scene.path = path;
   scene.text = text;
   ReadSceneTable(top, &scene);
+  if (!scene.wear_effect) {
+    for (const std::string_view key : {"wear", "traffic"}) {
+      if (top.Has(key)) {
+        throw InputError(fmt::format(
+            "{}: expected [{}] only in a wear scene: add \"wear\" to scene.effects to run the "
+            "traffic mix with `railwear wear`",
+            FieldPrefix(top.file(), *top.Node(key), key), key));
+      }
+    }
+  }
   ReadModel(top, &scene);
   ReadMaterials(top, &scene);
+  if (scene.wear_effect) {
+    ReadWearScene(top, &scene);
+    return scene;
+  }
   ReadLoad(top, &scene);
   ReadWheel(top, &scene);
   ReadRail(top, &scene);

@@ -13,6 +13,7 @@
 #include "core/contact/contact_solver.h"
 #include "core/contact/kinematics.h"
 #include "core/geometry/wheelset.h"
+#include "wear/wear_simulation.h"
 
 namespace railwear::app {
 
@@ -37,6 +38,7 @@ struct Scene {
   bool tangential = false;
   bool damage = false;
   bool coupling = false;  // "coupling" implies "tangential" too
+  bool wear_effect = false;  // "wear" implies "tangential"; needs [wear] and [[traffic]]
   // Rolling: the wheel's motion (speed, pitch velocity, yaw), or prescribed creepages instead.
   WheelMotion motion;
   std::optional<Creepage> creepage;
@@ -50,6 +52,11 @@ struct Scene {
   std::optional<WheelsetSpec> wheelset;
 
   ContactProblem problem;  // profiles loaded (cant, mirroring applied), SI units throughout
+
+  // A wear scene (effect "wear", [wear] and [[traffic]] tables): the study to run. Then
+  // `problem` carries only the model, materials and rail; the loads come from the traffic mix.
+  std::optional<WearStudy> wear;  // its rail_profile is the [rail] profile before cant
+  std::string wear_db;  // [wear] db resolved against the scene's directory; empty when not given
 };
 
 // Reads and validates the scene file at `path`; profile paths are relative to its directory.

@@ -16,55 +16,15 @@
 #include <nlohmann/json.hpp>
 
 #include "app/scene_template.h"
+#include "tests/app/cli_runner.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "\n  text:  " << text << "\n  lacks: " << part;
-}
-
-std::string ReadFile(const fs::path& file) {
-  std::ifstream in(file);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
-
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-// Each test gets its own working directory; the binary runs there.
-class CliTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / (std::string("railwear_cli_test_") + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  // Runs `ENV railwear ARGS` in dir_ with stdout and stderr captured.
-  Outcome Run(const std::string& args, const std::string& env = "") const {
-    const std::string command = "cd '" + dir_.string() + "' && " + env + " '" RAILWEAR_BINARY
-                                "' " + args + " > stdout.txt 2> stderr.txt";
-    const int status = std::system(command.c_str());
-    Outcome o;
-    o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    o.out = ReadFile(dir_ / "stdout.txt");
-    o.err = ReadFile(dir_ / "stderr.txt");
-    return o;
-  }
-  void Write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name) << text;
-  }
-  fs::path dir_;
-};
+using railwear::test::Contains;
+using railwear::test::Outcome;
+using railwear::test::ReadFile;
+using CliTest = railwear::test::CliFixture;
 
 const char* const kScene = R"([wheel]
 profile = "builtin:S1002"

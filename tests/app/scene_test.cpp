@@ -10,6 +10,7 @@
 
 #include "app/scene_template.h"
 #include "core/numerics/input_error.h"
+#include "core/profile/builtin_profiles.h"
 
 namespace railwear::app {
 namespace {
@@ -297,12 +298,10 @@ TEST(SceneTest, SyntaxErrorGivesLineAndColumn) {
   EXPECT_TRUE(Contains(ErrorOf("[load]\nvertical_N = = 3\n"), "scene.toml:2:14: TOML syntax"));
 }
 
-TEST(SceneTest, EffectsTangentialAndDamageAreAvailableOthersNotYet) {
+TEST(SceneTest, EffectsAreCheckedAndWearNeedsItsTables) {
   const std::string text = std::string("[scene]\neffects = [\"normal\", \"wear\"]\n") + kMinimal;
   EXPECT_TRUE(Contains(ErrorOf(text),
-                       "scene.toml:2: key 'scene.effects' = \"wear\": expected 'normal', "
-                       "'tangential', 'coupling' or 'damage': effect 'wear' is not available "
-                       "in this version of railwear"));
+                       "scene.toml:11: key 'load' = (table): expected no [load] in a wear scene"));
   const std::string unknown = std::string("[scene]\neffects = [\"friction\"]\n") + kMinimal;
   EXPECT_TRUE(Contains(ErrorOf(unknown),
                        "key 'scene.effects' = \"friction\": expected one of 'normal', "
@@ -403,13 +402,11 @@ speed_m_s = 2.0
   EXPECT_TRUE(Contains(ErrorOf(no_load), "key 'wheelset.vertical_load_per_wheel_N' is missing"));
 }
 
-TEST(SceneTest, WearTablesAreNotYetProvided) {
+TEST(SceneTest, WearTablesNeedTheWearEffect) {
   for (const std::string table : {"[wear]\nk = 1e-4\n", "[[traffic]]\nshare = 1\n"}) {
     const std::string msg = ErrorOf(std::string(kMinimal) + table);
     EXPECT_TRUE(Contains(msg, "scene.toml:11: key '")) << table;
-    EXPECT_TRUE(Contains(msg, "belongs to worn-profile evolution runs, which this version of "
-                              "railwear does not provide yet"))
-        << table;
+    EXPECT_TRUE(Contains(msg, "only in a wear scene: add \"wear\" to scene.effects")) << table;
   }
 }
 
@@ -507,6 +504,113 @@ TEST(SceneTest, ExamplesLoad) {
     EXPECT_FALSE(s.name.empty()) << name;
     EXPECT_EQ(s.problem.model.kind, ModelKind::kConformal) << name;
   }
+}
+
+}  // namespace
+}  // namespace railwear::app
+
+namespace railwear::app {
+namespace {
+
+const char* const kWearScene = R"([scene]
+name = "wear test"
+effects = ["wear", "damage"]
+[model]
+geometry = "conformal"
+kernel = "boussinesq"
+accuracy = "draft"
+[materials]
+wheel = { E_MPa = 210000, nu = 0.28 }
+rail = { E_MPa = 210000, nu = 0.28, hardness_MPa = 2600, shear_yield_MPa = 350 }
+[rail]
+profile = "builtin:UIC60"
+cant = "1:40"
+[wheel]
+profile = "builtin:S1002"
+rolling_radius_mm = 460
+[wear]
+law = "kth"
+total_MGT = 2.0
+max_depth_per_step_mm = 0.05
+db = "study.sqlite"
+[[traffic]]
+name = "freight"
+vertical_N = 110000
+axle_load_t = 22.5
+lateral_shift_mm = { mean = -4.5, std = 1.0 }
+yaw_mrad = 4.0
+friction = 0.35
+speed_m_s = 22.0
+share = 0.4
+[[traffic]]
+wheel_profile = "circle:460"
+rolling_radius_mm = 450
+vertical_N = 80000
+lateral_shift_mm = -5
+friction = 0.3
+speed_m_s = 33.0
+)";
+
+TEST(SceneTest, WearSceneBecomesAStudyInSi) {
+  const Scene s = ParseScene(kWearScene, "dir/wear.toml");
+  ASSERT_TRUE(s.wear.has_value());
+  const WearStudy& w = *s.wear;
+  EXPECT_EQ(s.effects, (std::vector<std::string>{"normal", "tangential", "wear", "damage"}));
+  EXPECT_TRUE(w.damage);
+  EXPECT_EQ(w.options.law.kind, WearLawKind::kKth);
+  EXPECT_EQ(*w.options.total_mgt, 2.0);
+  EXPECT_FALSE(w.options.total_passes.has_value());
+  EXPECT_NEAR(w.options.max_depth_per_step_m, 0.05e-3, 1e-18);
+  EXPECT_EQ(s.wear_db, "dir/study.sqlite");  // relative to the scene, like profile paths
+  EXPECT_NEAR(w.cant_ratio, 0.025, kTight);
+  // The study keeps the rail before cant: the loop cants each worn profile itself.
+  EXPECT_EQ(w.rail_profile.points(), MakeUic60().points());
+  ASSERT_EQ(w.traffic.size(), 2u);
+  const TrafficCase& a = w.traffic[0];
+  EXPECT_EQ(a.name, "freight");
+  EXPECT_NEAR(a.lateral_shift_mean_m, -4.5e-3, kTight);
+  EXPECT_NEAR(a.lateral_shift_std_m, 1.0e-3, kTight);
+  EXPECT_NEAR(a.yaw_rad, 4e-3, kTight);
+  EXPECT_NEAR(a.rolling_radius_m, 0.46, kTight);  // from [wheel]
+  const TrafficCase& b = w.traffic[1];
+  EXPECT_EQ(b.name, "traffic[1]");
+  EXPECT_NEAR(b.rolling_radius_m, 0.45, kTight);
+  EXPECT_EQ(b.lateral_shift_std_m, 0.0);
+  EXPECT_NEAR(b.axle_load_t, 2 * 80000 / 9.80665 / 1000, 1e-12);  // default: twice the wheel load
+  EXPECT_EQ(b.share, 1.0);
+}
+
+TEST(SceneTest, WearSceneErrorsNameTheKey) {
+  const std::string scene = kWearScene;
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string t = scene;
+    t.replace(t.find(from), from.size(), to);
+    return ErrorOf(t);
+  };
+  EXPECT_TRUE(Contains(with("law = \"kth\"", "law = \"kth2\""),
+                       "scene.toml:18: key 'wear.law' = \"kth2\": expected one of 'archard', "
+                       "'kth', 'kth-continuous', 'usfd'"));
+  EXPECT_TRUE(Contains(with("law = \"kth\"", "law = \"kth\"\nk = 1e-4"),
+                       "key 'wear.k' = 0.0001: expected no 'k' with this law"));
+  EXPECT_TRUE(Contains(with("total_MGT = 2.0", "total_MGT = 2.0\ntotal_passes = 1e6"),
+                       "expected exactly one of 'wear.total_passes' and 'wear.total_MGT'"));
+  EXPECT_TRUE(Contains(with("total_MGT = 2.0", ""),
+                       "key 'wear.total_passes' is missing: expected exactly one of"));
+  EXPECT_TRUE(Contains(with("lateral_shift_mm = -5", "lateral_shift_mm = { mean = -5, sd = 1 }"),
+                       "key 'traffic[1].lateral_shift_mm.sd'"));
+  EXPECT_TRUE(Contains(with("share = 0.4", "share = -0.4"),
+                       "key 'traffic[0].share' = -0.4: expected a number > 0"));
+  EXPECT_TRUE(Contains(with("friction = 0.3\n", ""),
+                       "key 'traffic[1].friction' is missing"));
+  EXPECT_TRUE(Contains(with("hardness_MPa = 2600, ", ""),
+                       "key 'materials.rail.hardness_MPa' is missing: expected the rail hardness "
+                       "in MPa for the kth wear law"));
+  EXPECT_TRUE(Contains(with("geometry = \"conformal\"\nkernel = \"boussinesq\"", "kind = \"hertz\""),
+                       "key 'model.kind' = \"hertz\": expected \"halfspace\" or \"conformal\" for a "
+                       "wear run"));
+  EXPECT_TRUE(Contains(with("effects = [\"wear\", \"damage\"]", "effects = [\"damage\"]"),
+                       "expected [wear] only in a wear scene: add \"wear\" to scene.effects"));
+  EXPECT_TRUE(Contains(with("[[traffic]]\nname", "[traffic_]\nname"), "traffic_"));
 }
 
 }  // namespace

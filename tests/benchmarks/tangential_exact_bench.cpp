@@ -3,7 +3,7 @@
 // nx x ns grid covering the ellipse's bounding box, with the default options (Anderson-
 // accelerated sweeps) and, for comparison, the previous method (plain sweeps, relaxation 0.3).
 // Run e.g.
-//   build/tests/benchmarks/tangential_exact_bench --benchmark_repetitions=5 \
+//   build/tests/benchmarks/tangential_exact_bench --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true
 #include <algorithm>
 #include <cmath>

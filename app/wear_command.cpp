@@ -1,0 +1,358 @@
+// `railwear wear`: scene -> wear study -> steps stored in the profile history database.
+#include "app/wear_command.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "app/gnuplot.h"
+#include "app/history_plot.h"
+#include "app/scene.h"
+#include "core/numerics/input_error.h"
+#include "profiles_db/profile_store.h"
+#include "wear/wear_simulation.h"
+
+namespace railwear::app {
+namespace {
+
+using nlohmann::json;
+
+json WearLawJson(const WearStudy& study) {
+  const WearLaw& law = study.options.law;
+  json j;
+  j["law"] = std::string(ToString(law.kind));
+  switch (law.kind) {
+    case WearLawKind::kArchard: j["k"] = law.archard_k; break;
+    case WearLawKind::kKth:
+    case WearLawKind::kKthContinuous:
+      j["kth_k_seizure"] = law.kth_k_seizure;
+      j["kth_k_mild_low"] = law.kth_k_mild_low;
+      j["kth_k_severe"] = law.kth_k_severe;
+      j["kth_k_mild_high"] = law.kth_k_mild_high;
+      j["kth_v1_m_s"] = law.kth_v1_m_s;
+      j["kth_v2_m_s"] = law.kth_v2_m_s;
+      j["kth_pressure_ratio"] = law.kth_pressure_ratio;
+      if (law.kind == WearLawKind::kKthContinuous) {
+        j["kth_velocity_band"] = law.kth_velocity_band;
+        j["kth_pressure_band"] = law.kth_pressure_band;
+      }
+      break;
+    case WearLawKind::kUsfd: j["density_kg_m3"] = law.density_kg_m3; break;
+  }
+  j["hardness_MPa"] = study.rail_material.hardness_Pa * 1e-6;
+  j["max_depth_per_step_mm"] = study.options.max_depth_per_step_m * 1e3;
+  j["smoothing_mm"] = study.options.smoothing.smoothing_length_m * 1e3;
+  j["quadrature_points"] = study.options.quadrature_points;
+  return j;
+}
+
+json LoadCaseJson(const LoadCaseSummary& c, const WearStudy& study) {
+  json j;
+  j["traffic"] = study.traffic[c.load_case.traffic_index].name;
+  j["node"] = c.load_case.node;
+  j["lateral_shift_mm"] = c.load_case.lateral_shift_m * 1e3;
+  j["weight"] = c.load_case.weight;
+  j["status"] = std::string(ToString(c.status));
+  j["patches"] = c.patches;
+  j["vertical_force_N"] = c.vertical_force_N;
+  j["lateral_force_N"] = c.lateral_force_N;
+  j["area_mm2"] = c.area_m2 * 1e6;
+  j["p_max_MPa"] = c.p_max_Pa * 1e-6;
+  j["creep_force_N"] = {{"x", c.creep_force_x_N}, {"s", c.creep_force_s_N}};
+  j["t_gamma_N"] = c.t_gamma_N;
+  j["rcf_damage_per_pass"] = c.rcf_damage_per_pass;
+  j["worn_area_per_pass_mm2"] = c.worn_area_per_pass_m2 * 1e6;
+  j["contact_angle_deg"] = c.contact_angle_rad * 180.0 / M_PI;
+  j["contact_y_mm"] = c.contact_y_m * 1e3;
+  return j;
+}
+
+// A quantity on the bins of `profile` (arc length), with the lateral position of each bin.
+Distribution BinDistribution(const std::string& kind, const Profile& profile, const WearGrid& grid,
+                             const std::vector<double>& value) {
+  Distribution d;
+  d.kind = kind;
+  d.value = value;
+  for (int b = 0; b < grid.n; ++b) {
+    const double s = std::min(grid.Centre(b), profile.Length());
+    d.s_m.push_back(s);
+    d.y_m.push_back(profile.Position(s).x());
+  }
+  return d;
+}
+
+// No NaN or infinity reaches the database: a measure that cannot be taken is a failure.
+void RequireFinite(const StepResult& step) {
+  const WearMeasures& m = step.measures;
+  for (const double v : {m.worn_area_m2, m.max_depth_m, m.max_depth_y_m, m.vertical_wear_m,
+                         m.side_wear_m, m.wear_45_m, step.state.passes, step.state.mgt,
+                         step.smoothing_area_error}) {
+    if (!std::isfinite(v)) {
+      throw std::runtime_error(fmt::format(
+          "wear step {}: a wear measure is not finite (a measuring line missed the worn "
+          "profile, or the profile degenerated); the run stops before storing it",
+          step.state.step));
+    }
+  }
+}
+
+StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const Profile& unworn,
+                          const Profile& previous) {
+  RequireFinite(step);
+  StepRecord r;
+  r.step = step.state.step;
+  r.passes = step.state.passes;
+  r.mgt = step.state.mgt;
+  const WearMeasures& m = step.measures;
+  r.worn_area_mm2 = m.worn_area_m2 * 1e6;
+  r.max_depth_mm = m.max_depth_m * 1e3;
+  r.max_depth_y_mm = m.max_depth_y_m * 1e3;
+  r.w1_mm = m.vertical_wear_m * 1e3;
+  r.w2_mm = m.side_wear_m * 1e3;
+  r.w3_mm = m.wear_45_m * 1e3;
+  r.smoothing_area_error = step.smoothing_area_error;
+  r.profile = step.state.rail;
+  for (const LoadCaseSummary& c : step.cases) r.load_cases_json.push_back(LoadCaseJson(c, study).dump());
+  Distribution depth;
+  depth.kind = "wear_depth_mm";
+  depth.s_m = m.s_m;
+  for (size_t k = 0; k < m.s_m.size(); ++k) {
+    depth.y_m.push_back(unworn.Position(m.s_m[k]).x());
+    depth.value.push_back(m.depth_m[k] * 1e3);
+  }
+  r.distributions.push_back(std::move(depth));
+  std::vector<double> step_mm(step.step_depth_m), per_pass_nm(step.depth_per_pass_m);
+  for (double& v : step_mm) v *= 1e3;
+  for (double& v : per_pass_nm) v *= 1e9;
+  r.distributions.push_back(BinDistribution("step_depth_mm", previous, step.grid, step_mm));
+  r.distributions.push_back(
+      BinDistribution("depth_per_pass_nm", previous, step.grid, per_pass_nm));
+  if (study.damage) {
+    // Stored as computed (no unit change): --resume reads it back bit for bit.
+    const WearGrid grid = WearGrid::ForProfile(step.state.rail, study.options.bin_m);
+    r.distributions.push_back(
+        BinDistribution("rcf_damage", step.state.rail, grid, step.state.damage));
+  }
+  return r;
+}
+
+StepRecord MakeInitialRecord(const WearState& state) {
+  StepRecord r;
+  r.step = 0;
+  r.profile = state.rail;
+  return r;
+}
+
+WearState StateFromStore(const ProfileStore& store, int64_t run, int step) {
+  const StepRecord r = store.LoadStep(run, step);
+  WearState state;
+  state.step = r.step;
+  state.passes = r.passes;
+  state.mgt = r.mgt;
+  state.rail = r.profile;
+  for (const Distribution& d : r.distributions) {
+    if (d.kind == "rcf_damage") state.damage = d.value;
+  }
+  return state;
+}
+
+std::string Duration(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return "--:--";
+  const long s = std::lround(seconds);
+  return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
+                   : fmt::format("{}:{:02}", s / 60, s % 60);
+}
+
+// Progress on stderr: a bar redrawn in place on a terminal, one line per step otherwise.
+class Progress {
+ public:
+  Progress(double total_passes, double start_passes)
+      : total_(total_passes), start_passes_(start_passes), tty_(isatty(fileno(stderr)) != 0),
+        start_(std::chrono::steady_clock::now()) {}
+
+  void Step(const StepResult& step) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double done = step.state.passes - start_passes_;
+    const double rate = elapsed > 0 ? done / elapsed : 0.0;
+    const double eta = rate > 0 ? (total_ - step.state.passes) / rate : -1.0;
+    const double fraction = std::min(1.0, step.state.passes / total_);
+    if (tty_) {
+      constexpr int kWidth = 30;
+      const int filled = static_cast<int>(fraction * kWidth);
+      std::cerr << fmt::format("\r[{}{}] {:5.1f}%  step {}  {:.3g} MGT  {:.3g} passes/s  ETA {}  ",
+                               std::string(filled, '#'), std::string(kWidth - filled, '.'),
+                               100.0 * fraction, step.state.step, step.state.mgt, rate,
+                               Duration(eta))
+                << std::flush;
+    } else {
+      std::cerr << fmt::format(
+          "railwear: step {}: {:.4g} passes ({:.3g} MGT, {:.1f} %), max depth {:.3f} mm at y = "
+          "{:.2f} mm, {:.2f} s\n",
+          step.state.step, step.state.passes, step.state.mgt, 100.0 * fraction,
+          step.measures.max_depth_m * 1e3, step.measures.max_depth_y_m * 1e3, step.seconds);
+    }
+  }
+  void Finish() {
+    if (tty_) std::cerr << "\n";
+  }
+
+ private:
+  double total_, start_passes_;
+  bool tty_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+void PrintSummary(const ProfileStore& store, int64_t run, const std::string& name, bool finished,
+                  double seconds, int new_steps) {
+  const std::vector<StepRecord> steps = store.Steps(run);
+  std::cout << fmt::format("run '{}' in {}: {} steps{}, {} new in {:.1f} s\n", name, store.path(),
+                           steps.size() - 1, finished ? " (complete)" : " (not complete: --resume)",
+                           new_steps, seconds);
+  std::cout << fmt::format("{:>5} {:>12} {:>9} {:>12} {:>10} {:>9} {:>7} {:>7} {:>7}\n", "step",
+                           "passes", "MGT", "area_mm2", "depth_mm", "at_y_mm", "W1_mm", "W2_mm",
+                           "W3_mm");
+  // Long runs: the first, every k-th and the last step, at most about 25 lines.
+  const int n = static_cast<int>(steps.size());
+  const int every = std::max(1, n / 24);
+  for (int i = 0; i < n; ++i) {
+    if (i % every != 0 && i != n - 1) continue;
+    const StepRecord& s = steps[i];
+    std::cout << fmt::format("{:>5} {:>12.5g} {:>9.4g} {:>12.4f} {:>10.4f} {:>9.2f} {:>7.3f} "
+                             "{:>7.3f} {:>7.3f}\n",
+                             s.step, s.passes, s.mgt, s.worn_area_mm2, s.max_depth_mm,
+                             s.max_depth_y_mm, s.w1_mm, s.w2_mm, s.w3_mm);
+  }
+}
+
+}  // namespace
+
+void SetupWear(CLI::App& app) {
+  auto options = std::make_shared<WearCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "wear", "Worn-profile evolution: wear the rail by the scene's traffic mix, step by step, "
+              "storing every step in the profile history database");
+  cmd->add_option("scene", options->scene_path, "Scene file (TOML) with effect \"wear\", [wear] "
+                                                "and [[traffic]]")
+      ->required();
+  cmd->add_option("--db", options->db,
+                  fmt::format("Database file (default: the scene's [wear] db, else {})",
+                              kDefaultDatabase));
+  cmd->add_option("--run", options->run, "Run name (default: the scene's name)");
+  cmd->add_flag("--resume", options->resume,
+                "Continue the named run from its last complete step");
+  cmd->add_option("--steps", options->steps, "Stop after N new steps (continue with --resume)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--plot", options->plot,
+                  "Write the history plots of the run to PREFIX_*.png when it ends");
+  cmd->callback([options]() { RunWearCommand(*options); });
+}
+
+void RunWearCommand(const WearCommandOptions& options) {
+  const Scene scene = LoadScene(options.scene_path);
+  if (!scene.wear) {
+    throw InputError(fmt::format(
+        "{}: scene.effects has no \"wear\": expected a wear scene with [wear] and [[traffic]] "
+        "(use `railwear contact` for a single contact)",
+        options.scene_path));
+  }
+  // Before the run, so nobody waits for nothing.
+  if (options.plot) RequireGnuplotFor("wear --plot", "leave out --plot");
+  WearStudy study = *scene.wear;
+  if (options.threads) study.options.threads = *options.threads;
+  const std::string db = options.db ? *options.db
+                         : !scene.wear_db.empty() ? scene.wear_db
+                                                  : std::string(kDefaultDatabase);
+  const std::string name = options.run.value_or(scene.name);
+
+  ProfileStore store = ProfileStore::Open(db);
+  int64_t run_id = 0;
+  WearState state;
+  Profile unworn;
+  const std::optional<RunInfo> existing = store.FindRun(name);
+  if (options.resume) {
+    if (!existing) {
+      throw InputError(fmt::format("{}: no run '{}' to resume: expected one of the runs listed "
+                                   "by `railwear history --db {} runs`",
+                                   db, name, db));
+    }
+    if (existing->scene_text != scene.text) {
+      throw InputError(fmt::format(
+          "{}: run '{}' was started from a different scene than {}: expected the same scene "
+          "text to resume (start a new run with --run NAME)",
+          db, name, options.scene_path));
+    }
+    run_id = existing->id;
+    const std::optional<int> last = store.LastStep(run_id);
+    if (!last) {
+      throw InputError(fmt::format("{}: run '{}' has no stored step to resume from", db, name));
+    }
+    unworn = store.LoadProfile(run_id, 0);
+    state = StateFromStore(store, run_id, *last);
+    std::cerr << fmt::format("railwear: resuming run '{}' from step {} ({:.4g} passes)\n", name,
+                             state.step, state.passes);
+  } else {
+    if (existing) {
+      throw InputError(fmt::format(
+          "{}: run '{}' exists already: expected a new run name (--run NAME), or --resume to "
+          "continue it",
+          db, name));
+    }
+    state = MakeInitialState(study);
+    unworn = state.rail;
+    RunInfo info;
+    info.name = name;
+    info.program_version = RAILWEAR_VERSION;
+    info.scene_text = scene.text;
+    info.wear_law_json = WearLawJson(study).dump();
+    run_id = store.CreateRun(info);
+    store.AppendStep(run_id, MakeInitialRecord(state));
+  }
+  store.SetRunState(run_id, RunState::kRunning);
+
+  const double total = study.options.total_passes
+                           ? *study.options.total_passes
+                           : *study.options.total_mgt / MgtPerPass(study.traffic);
+  Progress progress(total, state.passes);
+  const auto start = std::chrono::steady_clock::now();
+  Profile previous = state.rail;
+  WearRunSummary summary;
+  try {
+    summary = railwear::RunWear(
+        study, unworn, state,
+        [&](const StepResult& step) {
+          store.AppendStep(run_id, MakeStepRecord(step, study, unworn, previous));
+          previous = step.state.rail;
+          progress.Step(step);
+          return true;
+        },
+        options.steps);
+  } catch (...) {
+    progress.Finish();
+    store.SetRunState(run_id, RunState::kAborted);
+    throw;
+  }
+  progress.Finish();
+  store.SetRunState(run_id, summary.finished ? RunState::kComplete : RunState::kRunning);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  PrintSummary(store, run_id, name, summary.finished, seconds, summary.steps_done);
+  if (options.plot) {
+    std::vector<StepRecord> steps;
+    for (const StepRecord& s : store.Steps(run_id)) steps.push_back(store.LoadStep(run_id, s.step));
+    for (const std::string& png : PlotHistory(name, steps, *options.plot)) {
+      std::cout << "wrote " << png << "\n";
+    }
+  }
+}
+
+}  // namespace railwear::app

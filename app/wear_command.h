@@ -1,0 +1,40 @@
+// `railwear wear SCENE.toml [--db FILE] [--run NAME] [--resume] [--steps N] [--plot PREFIX]`:
+// runs a worn-profile evolution study (wear/wear_simulation.h) and stores every step in the
+// profile history database (profiles_db/), one transaction per step.
+//
+// A new run stores step 0 (the unworn rail) first. --resume continues the named run from its
+// last complete step (a run killed with kill -9 loses at most the step in flight) and ends with
+// the same profile as an uninterrupted run; it refuses a scene that differs from the stored one.
+// Progress goes to stderr: a progress bar when stderr is a terminal, one log line per step
+// otherwise. The summary table goes to stdout.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace railwear::app {
+
+struct WearCommandOptions {
+  std::string scene_path;
+  std::optional<std::string> db;    // default: [wear] db, else "wear.sqlite"
+  std::optional<std::string> run;   // default: the scene's name
+  bool resume = false;
+  int steps = 0;                    // > 0: stop after this many new steps (resume later)
+  std::optional<int> threads;       // overrides [wear] threads
+  std::optional<std::string> plot;  // PNG file prefix: history plots after the run
+};
+
+void SetupWear(CLI::App& app);
+
+// Throws InputError for a bad scene, database or option (exit 2); std::runtime_error for a
+// numerical failure (exit 1; the steps before it stay stored and the run can be resumed).
+void RunWearCommand(const WearCommandOptions& options);
+
+// The database a wear or history command uses when --db is not given.
+constexpr const char* kDefaultDatabase = "wear.sqlite";
+
+}  // namespace railwear::app

@@ -1,0 +1,196 @@
+// `railwear wear` end to end: a small wear study stored step by step, killed with SIGKILL in the
+// middle and resumed to the same final profile as an uninterrupted run; bad databases refused
+// and left untouched; wrong scenes and run names refused with exit code 2.
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "profiles_db/profile_store.h"
+#include "tests/app/cli_runner.h"
+
+namespace railwear::test {
+namespace {
+
+// Draft accuracy, one traffic entry at three nodes: a step takes a few tens of milliseconds.
+const char* const kStudy = R"([scene]
+name = "small study"
+effects = ["wear", "damage"]
+[model]
+geometry = "conformal"
+kernel = "boussinesq"
+accuracy = "draft"
+[materials]
+wheel = { E_MPa = 210000, nu = 0.28 }
+rail = { E_MPa = 210000, nu = 0.28, hardness_MPa = 2600, shear_yield_MPa = 350 }
+[rail]
+profile = "builtin:UIC60"
+cant = "1:40"
+[wheel]
+profile = "builtin:S1002"
+rolling_radius_mm = 460
+[wear]
+law = "archard"
+k = 1e-4
+total_passes = 4e5
+max_depth_per_step_mm = 0.05
+quadrature_points = 3
+[[traffic]]
+vertical_N = 80000
+axle_load_t = 16
+lateral_shift_mm = { mean = -4.5, std = 1.0 }
+yaw_mrad = 4.0
+friction = 0.4
+speed_m_s = 20.0
+)";
+
+using WearCommandTest = CliFixture;
+
+Profile LastProfile(const fs::path& db, const std::string& run) {
+  ProfileStore store = ProfileStore::Open(db.string());
+  const auto info = store.FindRun(run);
+  EXPECT_TRUE(info.has_value());
+  return store.LoadProfile(info->id, *store.LastStep(info->id));
+}
+
+TEST_F(WearCommandTest, RunStoresEveryStepAndPrintsASummary) {
+  Write("study.toml", kStudy);
+  const Outcome o = Run("wear study.toml --db a.sqlite --steps 3");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(Contains(o.out, "run 'small study' in a.sqlite: 3 steps (not complete: --resume)"));
+  EXPECT_TRUE(Contains(o.err, "railwear: step 1: "));  // plain log lines: stderr is no terminal
+  ProfileStore store = ProfileStore::Open((dir_ / "a.sqlite").string());
+  const auto run = store.FindRun("small study");
+  ASSERT_TRUE(run.has_value());
+  const std::vector<StepRecord> steps = store.Steps(run->id);
+  ASSERT_EQ(steps.size(), 4u);  // step 0 (unworn) + 3
+  for (int i = 1; i < 4; ++i) {
+    EXPECT_GT(steps[i].passes, steps[i - 1].passes);
+    EXPECT_GT(steps[i].max_depth_mm, steps[i - 1].max_depth_mm);
+    EXPECT_GT(steps[i].worn_area_mm2, 0.0);
+  }
+  const StepRecord last = store.LoadStep(run->id, 3);
+  EXPECT_EQ(last.load_cases_json.size(), 3u);  // three quadrature nodes
+  bool has_depth = false, has_damage = false;
+  for (const Distribution& d : last.distributions) {
+    has_depth = has_depth || d.kind == "wear_depth_mm";
+    has_damage = has_damage || d.kind == "rcf_damage";
+  }
+  EXPECT_TRUE(has_depth);
+  EXPECT_TRUE(has_damage);
+  // The same name again is refused; the database keeps its steps.
+  const Outcome again = Run("wear study.toml --db a.sqlite --steps 1");
+  EXPECT_EQ(again.exit_code, 2);
+  EXPECT_TRUE(Contains(again.err, "run 'small study' exists already"));
+  EXPECT_EQ(ProfileStore::Open((dir_ / "a.sqlite").string()).Steps(run->id).size(), 4u);
+}
+
+TEST_F(WearCommandTest, KilledRunResumesToTheSameProfile) {
+  Write("study.toml", kStudy);
+  const Outcome whole = Run("wear study.toml --db whole.sqlite --threads 1");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const Profile expected = LastProfile(dir_ / "whole.sqlite", "small study");
+
+  // Start the same run in the background and kill it with SIGKILL once two steps are stored.
+  const std::string pid_file = (dir_ / "pid").string();
+  const std::string start = Command("wear study.toml --db killed.sqlite --threads 1") +
+                            " > /dev/null 2>&1 & echo $! > '" + pid_file + "'";
+  ASSERT_EQ(std::system(start.c_str()), 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  pid_t pid = 0;
+  int stored = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (pid == 0) pid = std::atoi(ReadFile(pid_file).c_str());
+    if (pid == 0 || !fs::exists(dir_ / "killed.sqlite")) continue;
+    try {
+      const QueryResult q = ProfileStore::Open((dir_ / "killed.sqlite").string())
+                                .Query("SELECT COUNT(*) FROM steps");
+      stored = std::stoi(q.rows.at(0).at(0));
+    } catch (const std::exception&) {
+      continue;  // the database is still being created
+    }
+    if (stored >= 3) break;
+  }
+  ASSERT_GT(pid, 0);
+  ASSERT_EQ(kill(pid, SIGKILL), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_GE(stored, 3);
+  ProfileStore killed = ProfileStore::Open((dir_ / "killed.sqlite").string());
+  const auto run = killed.FindRun("small study");
+  ASSERT_TRUE(run.has_value());
+  EXPECT_NE(run->state, RunState::kComplete);  // it was killed before the end
+  const int steps_at_kill = *killed.LastStep(run->id);
+
+  const Outcome resumed = Run("wear study.toml --db killed.sqlite --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_TRUE(Contains(resumed.err, "resuming run 'small study' from step"));
+  const Profile got = LastProfile(dir_ / "killed.sqlite", "small study");
+  ASSERT_EQ(got.size(), expected.size());
+  EXPECT_EQ(got.points(), expected.points());  // bit for bit
+  ProfileStore after = ProfileStore::Open((dir_ / "killed.sqlite").string());
+  EXPECT_EQ(after.FindRun("small study")->state, RunState::kComplete);
+  EXPECT_GT(*after.LastStep(run->id), steps_at_kill);
+}
+
+TEST_F(WearCommandTest, ForeignOrCorruptDatabaseIsRefusedAndUntouched) {
+  Write("study.toml", kStudy);
+  const std::string junk = "this is not a database\n";
+  Write("notes.sqlite", junk);
+  const Outcome o = Run("wear study.toml --db notes.sqlite --steps 1");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_TRUE(Contains(o.err, "notes.sqlite"));
+  EXPECT_EQ(ReadFile(dir_ / "notes.sqlite"), junk);
+  EXPECT_FALSE(fs::exists(dir_ / "notes.sqlite-wal"));
+}
+
+TEST_F(WearCommandTest, BadInvocationsExitTwo) {
+  Write("study.toml", kStudy);
+  const Outcome resume = Run("wear study.toml --db new.sqlite --resume");
+  EXPECT_EQ(resume.exit_code, 2);
+  EXPECT_TRUE(Contains(resume.err, "no run 'small study' to resume"));
+  // A contact scene is not a wear scene, and the other way round.
+  Write("contact.toml", "[wheel]\nprofile = \"builtin:S1002\"\nrolling_radius_mm = 460\n"
+                        "[rail]\nprofile = \"builtin:UIC60\"\n[load]\nvertical_N = 1e5\n");
+  const Outcome contact = Run("wear contact.toml --db c.sqlite");
+  EXPECT_EQ(contact.exit_code, 2);
+  EXPECT_TRUE(Contains(contact.err, "scene.effects has no \"wear\""));
+  const Outcome wear_as_contact = Run("contact study.toml");
+  EXPECT_EQ(wear_as_contact.exit_code, 2);
+  EXPECT_TRUE(Contains(wear_as_contact.err, "run it with `railwear wear study.toml`"));
+  // Resuming with a changed scene is refused.
+  ASSERT_EQ(Run("wear study.toml --db s.sqlite --steps 1").exit_code, 0);
+  std::string changed = kStudy;
+  changed.replace(changed.find("k = 1e-4"), 8, "k = 2e-4");
+  Write("study.toml", changed);
+  const Outcome mismatch = Run("wear study.toml --db s.sqlite --resume");
+  EXPECT_EQ(mismatch.exit_code, 2);
+  EXPECT_TRUE(Contains(mismatch.err, "was started from a different scene"));
+}
+
+}  // namespace
+}  // namespace railwear::test
+
+namespace railwear::test {
+namespace {
+
+TEST_F(WearCommandTest, DefaultStudyExampleRunsTwoSteps) {
+  // The README's main job, cut to two steps (the full run is the README command).
+  const Outcome o = Run("wear '" RAILWEAR_SOURCE_DIR "/examples/wear_high_rail.toml' --db demo.sqlite --steps 2");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(Contains(o.out, "run 'UIC60 high rail' in demo.sqlite: 2 steps"));
+  ProfileStore store = ProfileStore::Open((dir_ / "demo.sqlite").string());
+  const auto run = store.FindRun("UIC60 high rail");
+  ASSERT_TRUE(run.has_value());
+  const std::vector<StepRecord> steps = store.Steps(run->id);
+  ASSERT_EQ(steps.size(), 3u);
+  // Gauge-corner wear: the deepest point lies on the gauge side of the crown (y < -25 mm).
+  EXPECT_NEAR(steps[2].max_depth_mm, 0.2, 0.02);
+  EXPECT_LT(steps[2].max_depth_y_mm, -25.0);
+}
+
+}  // namespace
+}  // namespace railwear::test
