@@ -19,7 +19,8 @@ effects = ["normal"]          # optional; "normal" is implied. Add "tangential" 
                               # shakedown; implies "tangential", needs the rail's
                               # shear_yield_MPa) and "coupling" (tractions change the normal
                               # gap, seed eq. 4 cross terms; implies "tangential").
-                              # "wear" comes later.
+                              # "wear" makes this a wear scene for `railwear wear`: it
+                              # needs [wear] and [[traffic]] (below) instead of [load].
 
 [model]                       # optional table
 kind = "conformal"            # "hertz" | "halfspace" (planar + boussinesq)
@@ -85,9 +86,39 @@ speed_m_s = 20.0              # > 0; needed by the "tangential" effect
 # pitch_velocity_rad_s = -4.33   # default pure rolling
 # longitudinal_force_N = 5000    # or the axle's total longitudinal force (sets the pitch velocity)
 
-# Coming in later versions (wear runs); these tables are errors for now:
-# [wear]       law, k, max_depth_per_step_mm, total_passes, db
-# [[traffic]]  wheel_profile, vertical_N, lateral_shift_mm, yaw_mrad, friction, speed_m_s, share
+# A wear scene (effects = ["wear"], or ["wear", "damage"]; run with `railwear wear`) replaces
+# [load] by [wear] and one [[traffic]] table per kind of wheel; [wheel] is then optional and gives
+# the entries their default wheel profile and rolling radius. The rail needs hardness_MPa (not
+# for law "usfd"), and shear_yield_MPa with "damage".
+# [wear]
+# law = "kth-continuous"       # "archard" | "kth" | "kth-continuous" | "usfd"
+# k = 1.0e-4                   # Archard coefficient, only with law = "archard"
+# # kth_k_seizure = 350e-4, kth_k_mild_low = 5.5e-4, kth_k_severe = 35e-4, kth_k_mild_high = 5.5e-4,
+# # kth_v1_m_s = 0.2, kth_v2_m_s = 0.7, kth_pressure_ratio = 0.8     (KTH map, law "kth*")
+# # kth_velocity_band = 0.25, kth_pressure_band = 0.05              (law "kth-continuous")
+# # density_kg_m3 = 7850                                             (law "usfd")
+# max_depth_per_step_mm = 0.1  # step control: the deepest wear of one step, in (0, 1]
+# total_MGT = 10.0             # or total_passes = 1e6 (exactly one)
+# quadrature_points = 5        # Gauss-Hermite nodes over each lateral-position spread, 1-20
+# smoothing_mm = 1.0           # smoothing length of the per-pass depth (lambda = l^4)
+# bin_mm = 0.1                 # arc-length bins the depth is collected on
+# profile_spacing_mm = 0.2     # point spacing of the updated rail profile
+# damage_layer_mm = 0.5        # wearing this depth removes all accumulated RCF damage there
+# threads = 0                  # load cases in parallel; 0 = all cores
+# db = "wear.sqlite"           # relative to this file; --db overrides
+#
+# [[traffic]]                  # one per kind of wheel; at least one
+# name = "freight"             # optional
+# wheel_profile = "builtin:S1002"  # default: [wheel] profile (mirror_y = true mirrors it)
+# rolling_radius_mm = 460      # default: [wheel] rolling_radius_mm
+# vertical_N = 110000          # wheel load on this rail, > 0
+# axle_load_t = 22.5           # for the MGT count; default twice the wheel load
+# lateral_shift_mm = { mean = -4.5, std = 1.0 }   # or a number (no spread)
+# roll_rad = 0.0
+# yaw_mrad = 4.0               # angle of attack, |yaw| < 100 mrad
+# friction = 0.35              # required, (0, 2]
+# speed_m_s = 22.0             # required, > 0
+# share = 0.4                  # relative share of passes, > 0
 )toml";
 }
 
