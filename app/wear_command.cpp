@@ -319,9 +319,7 @@ void RunWearCommand(const WearCommandOptions& options) {
   }
   store.SetRunState(run_id, RunState::kRunning);
 
-  const double total = study.options.total_passes
-                           ? *study.options.total_passes
-                           : *study.options.total_mgt / MgtPerPass(study.traffic);
+  const double total = TotalPasses(study);
   Progress progress(total, state.passes);
   const auto start = std::chrono::steady_clock::now();
   Profile previous = state.rail;

@@ -25,11 +25,6 @@ void RequirePositive(const char* key, double value) {
   }
 }
 
-double TotalPasses(const WearStudy& study) {
-  if (study.options.total_passes) return *study.options.total_passes;
-  return *study.options.total_mgt / MgtPerPass(study.traffic);
-}
-
 // What one load case contributes to a step.
 struct CaseOutcome {
   LoadCaseSummary summary;
@@ -218,6 +213,11 @@ void ValidateWearStudy(const WearStudy& study) {
   if (o.threads < 0) {
     throw InputError(fmt::format("wear: threads = {}: expected >= 0 (0: all cores)", o.threads));
   }
+}
+
+double TotalPasses(const WearStudy& study) {
+  if (study.options.total_passes) return *study.options.total_passes;
+  return *study.options.total_mgt / MgtPerPass(study.traffic);
 }
 
 Profile ResampleProfile(const Profile& profile, double spacing_m) {

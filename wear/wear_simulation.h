@@ -77,6 +77,9 @@ struct WearStudy {
 // total, non-positive limits, bad traffic, damage without shear yield).
 void ValidateWearStudy(const WearStudy& study);
 
+// The run's length in wheel passes: total_passes, or total_MGT over the mix's MGT per pass.
+double TotalPasses(const WearStudy& study);
+
 // The state between steps: all a run needs to continue.
 struct WearState {
   int step = 0;                 // steps done (0: the unworn profile)

@@ -26,6 +26,8 @@
 #include "profiles_db/profile_store.h"
 #include "wear/wear_measures.h"
 
+#include "tests/app/cli_runner.h"
+
 namespace railwear {
 namespace {
 
@@ -43,17 +45,9 @@ constexpr double kTableTol = 0.5e-4 + 1e-12;
 // Profile files hold mm with 6 decimals: half a unit of the last place, in metres.
 constexpr double kFileTol_m = 0.5e-9 + 1e-15;
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "\n  text:  " << text << "\n  lacks: " << part;
-}
-
-std::string ReadFile(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
+using railwear::test::Contains;
+using railwear::test::Outcome;
+using railwear::test::ReadFile;
 
 // The worn profile C(s) + depth(s) * inward normal, points every 0.05 mm along the original.
 Profile OffsetProfile(const Profile& original, const std::function<double(double)>& depth) {
@@ -95,21 +89,12 @@ double HandW2_mm(double depth_mm) {
   return kGaugePointY_mm - kR13CentreY_mm - std::sqrt(std::pow(kR13_mm - depth_mm, 2) - dz * dz);
 }
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-class HistoryTest : public ::testing::Test {
+class HistoryTest : public railwear::test::CliFixture {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / (std::string("railwear_history_test_") + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    CliFixture::SetUp();
     BuildStudy((dir_ / "study.rwdb").string());
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   // Run "baseline": step 0 the unworn UIC60, steps 1 and 2 the gauge bump 0.5 and 1.0 mm deep,
   // with the summary columns from CompareProfiles. Step 1's wear_depth_mm has no s (as a
@@ -165,18 +150,6 @@ class HistoryTest : public ::testing::Test {
            std::to_string(10 * step + index) + "}";
   }
 
-  // Runs `ENV railwear ARGS` in dir_ with stdout and stderr captured.
-  Outcome Run(const std::string& args, const std::string& env = "") const {
-    const std::string command = "cd '" + dir_.string() + "' && " + env + " '" RAILWEAR_BINARY
-                                "' " + args + " > stdout.txt 2> stderr.txt";
-    const int status = std::system(command.c_str());
-    Outcome o;
-    o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    o.out = ReadFile(dir_ / "stdout.txt");
-    o.err = ReadFile(dir_ / "stderr.txt");
-    return o;
-  }
-
   // Data rows of an aligned table (after the header and the rule), split on blanks.
   static std::vector<std::vector<std::string>> TableRows(const std::string& text) {
     std::istringstream in(text);
@@ -192,7 +165,6 @@ class HistoryTest : public ::testing::Test {
     return rows;
   }
 
-  fs::path dir_;
   std::vector<StepRecord> stored_;
 };
 

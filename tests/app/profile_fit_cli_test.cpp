@@ -19,36 +19,22 @@
 #include "core/numerics/input_error.h"
 #include "core/profile/profile_io.h"
 
+#include "tests/app/cli_runner.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "\n  text:  " << text << "\n  lacks: " << part;
-}
-
-std::string ReadFile(const fs::path& file) {
-  std::ifstream in(file);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
-
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-};
+using railwear::test::Contains;
+using railwear::test::Outcome;
+using railwear::test::ReadFile;
 
 constexpr double kRadius_mm = 50.0;
 
-class ProfileFitCliTest : public ::testing::Test {
+class ProfileFitCliTest : public railwear::test::CliFixture {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / (std::string("railwear_fit_cli_test_") + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    CliFixture::SetUp();
     // A rail-head-like arc of radius 50 mm, 300 points 0.2 mm apart, with 1 um of normal noise
     // (fixed seed), and one 0.5 mm scan glitch at point 151 (1-based).
     std::mt19937 rng(3);
@@ -64,19 +50,7 @@ class ProfileFitCliTest : public ::testing::Test {
     }
     std::ofstream(dir_ / "arc.csv") << csv;
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
-  Outcome Run(const std::string& args) const {
-    const std::string command = "cd '" + dir_.string() + "' && '" RAILWEAR_BINARY "' " + args +
-                                " > stdout.txt 2> stderr.txt";
-    const int status = std::system(command.c_str());
-    Outcome o;
-    o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    o.out = ReadFile(dir_ / "stdout.txt");
-    o.err = ReadFile(dir_ / "stderr.txt");
-    return o;
-  }
-  fs::path dir_;
 };
 
 TEST_F(ProfileFitCliTest, ReportsResidualsOutliersLambdaAndCurvatureAndWritesBan) {
