@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libgsl-dev libceres-dev libsqlite3-dev sqlite3
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libbenchmark-dev gnuplot-nox
+  calculix-ccx gmsh
 )
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
