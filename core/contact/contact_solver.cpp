@@ -690,10 +690,13 @@ ContactResult SolveContact(const ContactProblem& problem) {
       if (v.choice.model == PatchModel::kHertz) {
         return "Hertz would do here, but another patch needs a grid";
       }
+      if (v.choice.model == PatchModel::kConformal) {
+        return "on the larger estimate of the patch the Hertz check found it conformal";
+      }
       const std::string& r = v.choice.reason;
       const size_t at = r.find("not Hertz: ");
-      return at == std::string::npos ? "the patch is not Hertzian"
-                                     : r.substr(at + 11) + " (on the larger estimate of the patch)";
+      return r.substr(at == std::string::npos ? 0 : at + 11) +
+             " (on the larger estimate of the patch)";
     }
     return "the patch appeared after the Hertz check";
   };

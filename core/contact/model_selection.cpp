@@ -77,6 +77,7 @@ PatchConformity MeasureConformity(const WheelRailGeometry& geometry,
     w_hi = std::max(w_hi, -s.normal.y());
     dg = std::max(dg, std::abs(s.gap - centre.gap - B0 * t * t));
   }
+  c.normal_angle_rad = std::acos(std::clamp(-centre.normal.y(), -1.0, 1.0));
   c.normal_turn_rad = angle_hi - angle_lo;
   c.approach_weight_change = (w_hi - w_lo) / w0;
   c.gap_deviation = B0 > 0 ? dg / (B0 * b * b) : std::numeric_limits<double>::infinity();
@@ -166,12 +167,17 @@ PatchModelChoice ChoosePatchModel(const PatchConformity& conformity, const Model
       c.measured ? "solved" : "estimated", c.t_lo_m * 1e3, c.t_hi_m * 1e3,
       c.lateral_radius_m * 1e3, c.normal_turn_rad / kDeg, turn_limit / kDeg,
       100.0 * c.approach_weight_change, 100.0 * weight_limit, level);
-  if (c.normal_turn_rad > turn_limit || c.approach_weight_change > weight_limit) {
+  const bool steep = c.normal_angle_rad > kMaxPlanarContactAngle_rad;
+  if (steep || c.normal_turn_rad > turn_limit || c.approach_weight_change > weight_limit) {
     choice.model = PatchModel::kConformal;
     choice.geometry = GeometryModel::kConformal;
     choice.kernel = options.kernel;
     choice.label = fmt::format("conformal+{}", ToString(options.kernel));
-    choice.reason = fmt::format("conformal: {}", where);
+    choice.reason =
+        steep ? fmt::format("conformal: the contact normal stands at {:.1f} deg to the vertical, "
+                            "steeper than the {:.0f} deg a planar grid is trusted with; {}",
+                            c.normal_angle_rad / kDeg, kMaxPlanarContactAngle_rad / kDeg, where)
+              : fmt::format("conformal: {}", where);
     return choice;
   }
   // Planar: always the half-space kernel (the seed's kernel does not tend to Hertz on flat

@@ -8,19 +8,23 @@
 // seed's constants 25-30 % high on peak pressure (DESIGN.md §1); the seed's kernel (Model B) is
 // about 1.45x stiffer than half-space on any patch and is never used on a planar patch.
 //
-// The criterion looks at the estimated patch, t in [-b, b] along the rail profile around the
-// contact point (b the estimated lateral semi-axis, arc length):
+// The criterion measures the patch over t in [t_lo, t_hi] along the rail profile around the
+// contact point (first an estimate of the patch, later the solved one):
 //  - the normal turn: the range of the angle of the intermediate surface's normal
 //    (K (-n_wheel) + (1 - K) n_rail) over the patch. A planar grid has one normal; the
 //    conformal grid's cells turn with the surface, which changes the approach each cell sees
 //    (delta cos theta), the direction of its pressure and its gap. The error of halfspace against
 //    the conformal geometry (same kernel) grows with this turn;
-//  - the curvature change: max |B(t) - B(0)| / B(0), B = (k_rail + k_wheel) / 2 the relative
-//    lateral curvature (convex positive). Hertz assumes B constant over the patch.
-// Halfspace is chosen when the normal turn is below MaxPlanarNormalTurn(accuracy), Hertz when
-// in addition the curvature change is below MaxHertzCurvatureChange(accuracy) and the problem
-// needs no grid (no rolling contact); otherwise the conformal geometry. The limits were
-// calibrated on S1002 / UIC60 1:40 (see model_selection.cpp for the measurements).
+//  - the approach-weight change: the range of cos(theta) over the patch against its value at the
+//    contact point, theta the normal's angle against the (vertical) load direction;
+//  - the gap deviation: how far the gap across the patch is from Hertz's quadratic (Hertz
+//    assumes constant curvatures over the patch).
+// Halfspace is chosen when the contact is no steeper than 45 degrees and the turn and the
+// approach-weight change are within the preset's limits, on the estimated patch and again on the
+// solved one; Hertz when in addition the gap deviation is within the preset's tolerance and the
+// problem needs no grid (no rolling contact, no other patch that needs one); otherwise the
+// conformal geometry. The limits were calibrated on S1002/UIC60 1:40, grooves and rolled crowns
+// (the measurements are in model_selection.cpp).
 #pragma once
 
 #include <string>
@@ -38,7 +42,8 @@ struct PatchConformity {
   // solved patch (cells with p > 0), false for an estimate.
   double t_lo_m = 0.0, t_hi_m = 0.0;
   bool measured = false;
-  double normal_turn_rad = 0.0;  // range of the intermediate surface's normal angle [rad]
+  double normal_angle_rad = 0.0;  // of the intermediate normal against the vertical at t = 0
+  double normal_turn_rad = 0.0;   // range of the intermediate surface's normal angle [rad]
   // Range of cos(theta) over the patch divided by its value at the contact point, theta the
   // intermediate normal's angle against the vertical: how unevenly a vertical approach closes
   // the gap across the patch (a planar grid closes it evenly).
@@ -74,6 +79,10 @@ double PresetTolerance(AccuracyPreset preset);
 // PresetTolerance(preset) of the conformal geometry in the calibration (model_selection.cpp).
 double MaxPlanarNormalTurn(AccuracyPreset preset);
 double MaxPlanarApproachWeightChange(AccuracyPreset preset);
+// Steepest contact (normal against the vertical) given to a planar grid at any preset [rad]: the
+// planar model fails on the 68-70 degree S1002 flange (its solution collapses onto a few cells,
+// at 100 kN at standard, at 2-2.4 mm shifts at reference); its calibration reaches 40 degrees.
+constexpr double kMaxPlanarContactAngle_rad = 0.7853981633974483;  // 45 degrees
 // The largest gap deviation for which Hertz is used: PresetTolerance(preset).
 double MaxHertzGapDeviation(AccuracyPreset preset);
 
