@@ -130,9 +130,8 @@ HertzSearch SearchHertz(const WheelRailGeometry& geom, const ContactProblem& pro
   return out;
 }
 
-ContactResult SolveHertzModel(const WheelRailGeometry& geom, const ContactProblem& problem,
-                              double estar, ContactResult result, Clock::time_point t0) {
-  const HertzSearch search = SearchHertz(geom, problem, estar);
+ContactResult SolveHertzModel(const HertzSearch& search, ContactResult result,
+                              Clock::time_point t0) {
   result.approach_m = search.delta;
   for (size_t k = 0; k < search.cands.size(); ++k) {
     if (search.hs[k].force_N <= 0) continue;
@@ -151,11 +150,13 @@ ContactResult SolveHertzModel(const WheelRailGeometry& geom, const ContactProble
 // where Hertz's b is far too large; larger where the gap flattens and the patch spreads). `lo`
 // is the smaller of the two (the first grid estimate of SolveContact), `hi` the larger. A
 // candidate that delta does not reach yet gets the reach of its potential area (its interval).
+// at_delta: geom.FindCandidates(delta).
 struct SemiAxisEstimate {
   double lo = 0.0, hi = 0.0;
 };
 SemiAxisEstimate EstimateSemiAxisS(const WheelRailGeometry& geom, const ContactCandidate& c,
-                                   double estar, double delta) {
+                                   double estar, double delta,
+                                   const std::vector<ContactCandidate>& at_delta) {
   constexpr double kMinSemiAxis_m = 1e-5;
   static constexpr double kMinApproachWeight = 0.1;  // as the reach bound of SolveContact
   const Curvatures k = CandidateCurvatures(c, geom.pose().roll_rad);
@@ -169,7 +170,7 @@ SemiAxisEstimate EstimateSemiAxisS(const WheelRailGeometry& geom, const ContactC
   }
   const double hertz_b = SolveHertzForApproach(k.A, k.B, estar, dn).semi_axis_y_m;
   SemiAxisEstimate e{hertz_b, hertz_b};
-  for (const auto& ci : geom.FindCandidates(delta)) {
+  for (const auto& ci : at_delta) {
     if (c.y_m >= ci.y_lo_m && c.y_m <= ci.y_hi_m) {
       const double reach_b = reach_of(ci) / std::sqrt(2.0);
       e = {std::min(hertz_b, reach_b), std::max(hertz_b, reach_b)};
@@ -596,7 +597,8 @@ ContactResult SolveContact(const ContactProblem& problem) {
   }
   const double estar = ContactModulus(problem.wheel_material, problem.rail_material);
   if (problem.model.kind == ModelKind::kHertz) {
-    return finish(SolveHertzModel(geom, problem, estar, std::move(result), Clock::now()));
+    const auto t_hertz = Clock::now();
+    return finish(SolveHertzModel(SearchHertz(geom, problem, estar), std::move(result), t_hertz));
   }
   const double k_w = problem.wheel_material.Compliance();
   const double k_r = problem.rail_material.Compliance();
@@ -608,32 +610,6 @@ ContactResult SolveContact(const ContactProblem& problem) {
     PatchModelChoice choice;
   };
   std::vector<ChoiceMemory> hertz_verdicts;  // of the Hertz check, per Hertz patch
-  if (auto_model && !problem.rolling) {
-    // Hertz when every patch Hertz finds qualifies for it (Hertz and grid patches are not
-    // mixed in one solve: they would need one common approach).
-    t0 = Clock::now();
-    const HertzSearch search = SearchHertz(geom, problem, estar);
-    std::vector<PatchModelChoice> choices;
-    bool all_hertz = true;
-    for (size_t k = 0; k < search.cands.size(); ++k) {
-      if (search.hs[k].force_N <= 0) continue;
-      const ContactCandidate& c = search.cands[k];
-      // The larger estimate of the patch: Hertz gets no check on a solved patch.
-      const double b = EstimateSemiAxisS(geom, c, estar, search.delta).hi;
-      choices.push_back(ChoosePatchModel(MeasureConformity(geom, c, -b, b, stiffness_ratio_K),
-                                         problem.model, ""));
-      all_hertz = all_hertz && choices.back().model == PatchModel::kHertz;
-      hertz_verdicts.push_back({c.y_lo_m, c.y_hi_m, choices.back()});
-    }
-    AddStage(&result.stages, "model selection", SecondsSince(t0));
-    if (all_hertz && !choices.empty()) {
-      ContactResult r = SolveHertzModel(geom, problem, estar, std::move(result), Clock::now());
-      RAILWEAR_CHECK(r.patches.size() == choices.size());
-      for (size_t k = 0; k < choices.size(); ++k) r.patches[k].model_reason = choices[k].reason;
-      return finish(std::move(r));
-    }
-  }
-
   // Hertz estimate of the approach and of the patch size at the first contact point.
   // (Widen the search when no gap sample lies within 1 um of first contact, e.g. at a corner.)
   std::vector<ContactCandidate> first = geom.FindCandidates(1e-6);
@@ -651,13 +627,56 @@ ContactResult SolveContact(const ContactProblem& problem) {
   }
   // In nearly conformal contact Hertz's lateral semi-axis is far too large; bound it by the
   // lateral reach of the interpenetration at the estimated approach.
+  const std::vector<ContactCandidate> at_delta_est = geom.FindCandidates(delta_est);
   {
-    const std::vector<ContactCandidate> interp = geom.FindCandidates(delta_est);
     double reach = 0.0;
-    for (const auto& c : interp) {
+    for (const auto& c : at_delta_est) {
       reach = std::max(reach, 0.5 * (c.y_hi_m - c.y_lo_m) / std::max(-c.normal.y(), 0.1));
     }
     if (reach > 0) bs = std::min(bs, reach / std::sqrt(2.0));
+  }
+  if (auto_model && !problem.rolling) {
+    // Hertz when every patch qualifies for it (Hertz and grid patches are not mixed in one
+    // solve: they would need one common approach). Checked on the patches at the first contact
+    // point first (the usual verdict, at no extra search), then on all Hertz's patches.
+    t0 = Clock::now();
+    auto verdicts = [&](const std::vector<ContactCandidate>& cands,
+                        const std::vector<HertzSolution>& hertz, double delta,
+                        const std::vector<ContactCandidate>& at_delta) {
+      std::vector<ChoiceMemory> out;
+      for (size_t k = 0; k < cands.size(); ++k) {
+        if (hertz[k].force_N <= 0) continue;
+        const ContactCandidate& c = cands[k];
+        // The larger estimate of the patch: Hertz gets no check on a solved patch.
+        const double b = EstimateSemiAxisS(geom, c, estar, delta, at_delta).hi;
+        out.push_back({c.y_lo_m, c.y_hi_m,
+                       ChoosePatchModel(MeasureConformity(geom, c, -b, b, stiffness_ratio_K),
+                                        problem.model, "")});
+      }
+      return out;
+    };
+    auto all_hertz = [](const std::vector<ChoiceMemory>& v) {
+      return !v.empty() && std::all_of(v.begin(), v.end(), [](const ChoiceMemory& m) {
+        return m.choice.model == PatchModel::kHertz;
+      });
+    };
+    hertz_verdicts = verdicts(first, hs, delta_est, at_delta_est);
+    if (all_hertz(hertz_verdicts)) {
+      const HertzSearch search = SearchHertz(geom, problem, estar);
+      hertz_verdicts =
+          verdicts(search.cands, search.hs, search.delta, geom.FindCandidates(search.delta));
+      AddStage(&result.stages, "model selection", SecondsSince(t0));
+      if (all_hertz(hertz_verdicts)) {
+        ContactResult r = SolveHertzModel(search, std::move(result), Clock::now());
+        RAILWEAR_CHECK(r.patches.size() == hertz_verdicts.size());
+        for (size_t k = 0; k < r.patches.size(); ++k) {
+          r.patches[k].model_reason = hertz_verdicts[k].choice.reason;
+        }
+        return finish(std::move(r));
+      }
+    } else {
+      AddStage(&result.stages, "model selection", SecondsSince(t0));
+    }
   }
   // Floors keep a degenerate estimate (no Hertz solution, a zero approach) from producing an
   // empty grid; the re-gridding below corrects the cell size from the first solution.
@@ -705,6 +724,8 @@ ContactResult SolveContact(const ContactProblem& problem) {
   fixed_choice.kernel = problem.model.kernel;
   fixed_choice.label = PatchModelLabel(problem.model);
   double approach_now = delta_est;  // the best estimate of the approach so far
+  std::vector<ContactCandidate> at_approach = at_delta_est;  // FindCandidates(approach_now)
+  double at_approach_delta = delta_est;
   int regrids = 0, total_iterations = 0;
   for (int attempt = 0; attempt < 12; ++attempt) {
     t0 = Clock::now();
@@ -727,7 +748,11 @@ ContactResult SolveContact(const ContactProblem& problem) {
         if (known != nullptr) {
           choice = known->choice;
         } else {
-          const double b = EstimateSemiAxisS(geom, c, estar, approach_now).lo;
+          if (approach_now != at_approach_delta) {
+            at_approach = geom.FindCandidates(approach_now);
+            at_approach_delta = approach_now;
+          }
+          const double b = EstimateSemiAxisS(geom, c, estar, approach_now, at_approach).lo;
           choice = ChoosePatchModel(MeasureConformity(geom, c, -b, b, stiffness_ratio_K),
                                     problem.model, no_hertz_reason(c));
           choice_memory.push_back({c.y_lo_m, c.y_hi_m, choice});
