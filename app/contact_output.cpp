@@ -136,6 +136,9 @@ nlohmann::json PatchJson(const PatchResult& p) {
   j["contact_angle_deg"] = p.contact_angle_rad * kToDeg;
   j["cells"] = p.cells;
   j["cells_in_contact"] = p.cells_in_contact;
+  // The model the patch was solved with; with kind = auto also why it was chosen.
+  if (!p.model.empty()) j["model"] = p.model;
+  if (!p.model_reason.empty()) j["model_reason"] = p.model_reason;
   if (p.grid.cells() > 0) {
     j["cell_mm"] = {p.grid.dx_m * kToMm, p.grid.ds_m * kToMm};
   } else {
@@ -153,7 +156,10 @@ nlohmann::json ModelJson(const ModelOptions& m) {
   nlohmann::json j;
   j["kind"] = ToString(m.kind);
   const bool hertz = m.kind == ModelKind::kHertz;
-  j["geometry"] = hertz ? nlohmann::json(nullptr) : nlohmann::json(ToString(m.geometry));
+  // auto: the geometry is chosen per patch (patches[].model); kernel is that of its conformal
+  // patches.
+  const bool per_patch = hertz || m.kind == ModelKind::kAuto;
+  j["geometry"] = per_patch ? nlohmann::json(nullptr) : nlohmann::json(ToString(m.geometry));
   j["kernel"] = hertz ? nlohmann::json(nullptr) : nlohmann::json(ToString(m.kernel));
   j["accuracy"] = ToString(m.accuracy);
   j["influence_constants"] = {
@@ -164,6 +170,10 @@ nlohmann::json ModelJson(const ModelOptions& m) {
 std::string ModelLine(const ModelOptions& m) {
   if (m.kind == ModelKind::kHertz) {
     return fmt::format("hertz (analytic), accuracy {}", ToString(m.accuracy));
+  }
+  if (m.kind == ModelKind::kAuto) {
+    return fmt::format("auto (per patch: hertz, halfspace or conformal+{}), accuracy {}",
+                       ToString(m.kernel), ToString(m.accuracy));
   }
   return fmt::format("{} (geometry {}, kernel {}), accuracy {}, c_f {} c_z {} c_s {}",
                      ToString(m.kind), ToString(m.geometry), ToString(m.kernel),
@@ -221,6 +231,12 @@ std::string FormatSummary(const Scene& scene, const ContactResult& r) {
   }
   out += fmt::format("patches     {}\n", r.patches.size());
   if (!r.patches.empty()) out += fmt::format("\n{}", PatchTable(r));
+  if (r.model.kind == ModelKind::kAuto) {
+    out += "\n";
+    for (size_t k = 0; k < r.patches.size(); ++k) {
+      out += fmt::format("patch {} model: {}\n", k + 1, r.patches[k].model_reason);
+    }
+  }
   if (!r.patches.empty() && r.patches[0].rolling) {
     out += fmt::format("\nrolling (creep forces of the rail on the wheel; pitch velocity {:.4f} "
                        "rad/s)\n{}",

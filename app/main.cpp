@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/accuracy_command.h"
 #include "app/contact_command.h"
 #include "app/history_command.h"
 #include "app/init_command.h"
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
   railwear::app::SetupWear(app);
   railwear::app::SetupHistory(app);
   railwear::app::SetupInit(app);
+  railwear::app::SetupAccuracy(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -128,6 +128,11 @@ void ReadGeometryAndKernel(const Fields& t, ModelOptions* model) {
            "no geometry or kernel with kind = 'hertz' (Hertz is analytic; use kind = "
            "'halfspace' or 'conformal', or drop this key)");
   }
+  if (model->kind == ModelKind::kAuto) {  // auto picks the geometry per patch
+    if (geometry) t.Fail("geometry", "no geometry with kind = 'auto' (it picks one per patch)");
+    model->kernel = *KernelModelFromString(*kernel);  // of its conformal patches
+    return;
+  }
   if (geometry) model->geometry = *GeometryModelFromString(*geometry);
   if (kernel) model->kernel = *KernelModelFromString(*kernel);
   model->kind = KindOf(model->geometry, model->kernel);
@@ -156,7 +161,7 @@ void ReadModel(const Fields& top, Scene* scene) {
   if (!t) return;
   t->AllowOnly({"kind", "geometry", "kernel", "influence_constants", "accuracy", "cell_mm",
                 "tangential"});
-  if (const auto kind = t->Choice("kind", {"hertz", "halfspace", "conformal"})) {
+  if (const auto kind = t->Choice("kind", {"hertz", "halfspace", "conformal", "auto"})) {
     model = MakeModelOptions(*ModelKindFromString(*kind));
   }
   ReadGeometryAndKernel(*t, &model);

@@ -20,6 +20,7 @@
 #include "core/contact/grid_resolution.h"
 #include "core/contact/tangential_exact.h"
 #include "core/contact/influence_operator.h"
+#include "core/contact/model_selection.h"
 #include "core/geometry/patch_builder.h"
 #include "core/geometry/wheel_rail_geometry.h"
 #include "core/numerics/check.h"
@@ -46,28 +47,32 @@ void AddStage(std::vector<StageTime>* stages, const std::string& name, double se
 }
 
 // Hertz's relative curvatures at a candidate: A along x (the wheel's parallel circle, normal
-// curvature cos(gamma)/r), B laterally (sum of the convex-positive profile curvatures).
+// curvature cos(gamma)/r by Meusnier, gamma the angle between the contact normal and the wheel's
+// radial direction, which the wheel's roll turns away from the vertical), B laterally (sum of the
+// convex-positive profile curvatures); w0 the normal's cosine against the vertical.
 // B is bounded below to stay meaningful in nearly conformal contact, where it only seeds the
 // estimate of the approach.
 struct Curvatures {
   double A = 0.0, B = 0.0, w0 = 1.0;
 };
-Curvatures CandidateCurvatures(const ContactCandidate& c) {
+Curvatures CandidateCurvatures(const ContactCandidate& c, double roll_rad) {
   Curvatures k;
   k.w0 = std::max(-c.normal.y(), 1e-3);
-  k.A = k.w0 / (2.0 * c.wheel_radius_m);
+  // The wheel's radial direction (toward the rail) in R: (-sin roll, cos roll).
+  const double cos_gamma = c.normal.x() * std::sin(roll_rad) - c.normal.y() * std::cos(roll_rad);
+  k.A = std::max(cos_gamma, 1e-3) / (2.0 * c.wheel_radius_m);
   k.B = std::max(0.5 * (c.rail_lateral_curvature + c.wheel_lateral_curvature), 1e-4 * k.A);
   return k;
 }
 
 // Vertical approach for which Hertz contacts at all candidates carry the vertical load F
 // (bisection on the common approach), or their loads for a given approach.
-double HertzVerticalLoad(const std::vector<ContactCandidate>& cands, double estar, double delta,
-                         std::vector<HertzSolution>* out) {
+double HertzVerticalLoad(const std::vector<ContactCandidate>& cands, double roll_rad,
+                         double estar, double delta, std::vector<HertzSolution>* out) {
   double total = 0.0;
   if (out) out->clear();
   for (const auto& c : cands) {
-    const Curvatures k = CandidateCurvatures(c);
+    const Curvatures k = CandidateCurvatures(c, roll_rad);
     const double dn = std::max(0.0, (delta - c.gap_m) * k.w0);
     const HertzSolution h = SolveHertzForApproach(k.A, k.B, estar, dn);
     total += h.force_N * k.w0;
@@ -76,14 +81,14 @@ double HertzVerticalLoad(const std::vector<ContactCandidate>& cands, double esta
   return total;
 }
 
-double HertzApproachForLoad(const std::vector<ContactCandidate>& cands, double estar,
-                            double force) {
+double HertzApproachForLoad(const std::vector<ContactCandidate>& cands, double roll_rad,
+                            double estar, double force) {
   double hi = 1e-6;
-  while (HertzVerticalLoad(cands, estar, hi, nullptr) < force && hi < 1.0) hi *= 2.0;
+  while (HertzVerticalLoad(cands, roll_rad, estar, hi, nullptr) < force && hi < 1.0) hi *= 2.0;
   double lo = 0.0;
   for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
     const double mid = 0.5 * (lo + hi);
-    (HertzVerticalLoad(cands, estar, mid, nullptr) < force ? lo : hi) = mid;
+    (HertzVerticalLoad(cands, roll_rad, estar, mid, nullptr) < force ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi);
 }
@@ -101,26 +106,37 @@ PatchResult HertzPatch(const ContactCandidate& c, const HertzSolution& h) {
   return p;
 }
 
-ContactResult SolveHertzModel(const WheelRailGeometry& geom, const ContactProblem& problem,
-                              double estar, ContactResult result, Clock::time_point t0) {
-  // Candidates within a generous threshold; widen it while the approach passes it.
-  double threshold = 1e-4;
+// The Hertz model's candidates and common approach: candidates within a generous threshold,
+// widened while the approach passes it; hs[k] is candidate k's ellipse (force 0: no contact).
+struct HertzSearch {
   std::vector<ContactCandidate> cands;
-  double delta = 0.0;
-  for (int attempt = 0; attempt < 20; ++attempt) {
-    cands = geom.FindCandidates(threshold);
-    delta = problem.load.approach_m
-                ? *problem.load.approach_m
-                : HertzApproachForLoad(cands, estar, *problem.load.vertical_force_N);
-    if (delta < 0.8 * threshold) break;
-    threshold = 2.0 * delta;
-  }
   std::vector<HertzSolution> hs;
-  HertzVerticalLoad(cands, estar, delta, &hs);
-  result.approach_m = delta;
-  for (size_t k = 0; k < cands.size(); ++k) {
-    if (hs[k].force_N <= 0) continue;
-    result.patches.push_back(HertzPatch(cands[k], hs[k]));
+  double delta = 0.0;
+};
+HertzSearch SearchHertz(const WheelRailGeometry& geom, const ContactProblem& problem,
+                        double estar) {
+  HertzSearch out;
+  double threshold = 1e-4;
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    out.cands = geom.FindCandidates(threshold);
+    out.delta = problem.load.approach_m
+                    ? *problem.load.approach_m
+                    : HertzApproachForLoad(out.cands, problem.placement.roll_rad, estar,
+                                           *problem.load.vertical_force_N);
+    if (out.delta < 0.8 * threshold) break;
+    threshold = 2.0 * out.delta;
+  }
+  HertzVerticalLoad(out.cands, problem.placement.roll_rad, estar, out.delta, &out.hs);
+  return out;
+}
+
+ContactResult SolveHertzModel(const HertzSearch& search, ContactResult result,
+                              Clock::time_point t0) {
+  result.approach_m = search.delta;
+  for (size_t k = 0; k < search.cands.size(); ++k) {
+    if (search.hs[k].force_N <= 0) continue;
+    result.patches.push_back(HertzPatch(search.cands[k], search.hs[k]));
+    result.patches.back().model = "hertz";
   }
   result.status = result.patches.empty() ? SolverStatus::kNoContact : SolverStatus::kConverged;
   if (result.patches.empty()) result.message = "no contact at this approach";
@@ -128,9 +144,47 @@ ContactResult SolveHertzModel(const WheelRailGeometry& geom, const ContactProble
   return result;
 }
 
+// Lateral semi-axis (arc length) of a candidate's patch at the vertical approach delta, for the
+// auto model's criterion: Hertz's b, and the lateral reach of the interpenetration at delta
+// divided by sqrt(2) (equal to b for Hertz's quadratic gap; smaller in nearly conformal contact,
+// where Hertz's b is far too large; larger where the gap flattens and the patch spreads). `lo`
+// is the smaller of the two (the first grid estimate of SolveContact), `hi` the larger. A
+// candidate that delta does not reach yet gets the reach of its potential area (its interval).
+// at_delta: geom.FindCandidates(delta).
+struct SemiAxisEstimate {
+  double lo = 0.0, hi = 0.0;
+};
+SemiAxisEstimate EstimateSemiAxisS(const WheelRailGeometry& geom, const ContactCandidate& c,
+                                   double estar, double delta,
+                                   const std::vector<ContactCandidate>& at_delta) {
+  constexpr double kMinSemiAxis_m = 1e-5;
+  static constexpr double kMinApproachWeight = 0.1;  // as the reach bound of SolveContact
+  const Curvatures k = CandidateCurvatures(c, geom.pose().roll_rad);
+  const double dn = (delta - c.gap_m) * k.w0;
+  auto reach_of = [](const ContactCandidate& ci) {
+    return 0.5 * (ci.y_hi_m - ci.y_lo_m) / std::max(-ci.normal.y(), kMinApproachWeight);
+  };
+  if (!(dn > 0)) {
+    const double b = std::max(reach_of(c) / std::sqrt(2.0), kMinSemiAxis_m);
+    return {b, b};
+  }
+  const double hertz_b = SolveHertzForApproach(k.A, k.B, estar, dn).semi_axis_y_m;
+  SemiAxisEstimate e{hertz_b, hertz_b};
+  for (const auto& ci : at_delta) {
+    if (c.y_m >= ci.y_lo_m && c.y_m <= ci.y_hi_m) {
+      const double reach_b = reach_of(ci) / std::sqrt(2.0);
+      e = {std::min(hertz_b, reach_b), std::max(hertz_b, reach_b)};
+    }
+  }
+  e.lo = std::max(e.lo, kMinSemiAxis_m);
+  e.hi = std::max(e.hi, kMinSemiAxis_m);
+  return e;
+}
+
 // Measured extent of the contact on a grid: half-lengths along x and s of the cells with p > 0.
 struct Extent {
   double half_x = 0.0, half_s = 0.0;
+  double s_lo = 0.0, s_hi = 0.0;  // s range of the cells in contact, cell edges included
   bool touches_x_edge = false, touches_s_edge = false;
   int cells = 0;
 };
@@ -148,7 +202,11 @@ Extent MeasureExtent(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>
       if (j == 0 || j == g.ns - 1) e.touches_s_edge = true;
     }
   }
-  if (e.cells > 0) e.half_s = 0.5 * (s_hi - s_lo);
+  if (e.cells > 0) {
+    e.half_s = 0.5 * (s_hi - s_lo);
+    e.s_lo = s_lo;
+    e.s_hi = s_hi;
+  }
   return e;
 }
 
@@ -392,8 +450,11 @@ void SolveCoupled(const ContactProblem& problem, const WheelRailGeometry& geom,
     for (size_t k = 0; k < result->patches.size(); ++k) {
       PatchGrid grid = result->patches[k].grid;
       const int n = grid.cells();
-      result->patches[k] =
+      PatchResult updated =
           NumericalPatch(geom, std::move(grid), sol.pressure_Pa.segment(kept_offset[k], n));
+      updated.model = std::move(result->patches[k].model);
+      updated.model_reason = std::move(result->patches[k].model_reason);
+      result->patches[k] = std::move(updated);
     }
     result->approach_m = sol.approach_m;
     if (o.longitudinal_force_N) {
@@ -536,18 +597,29 @@ ContactResult SolveContact(const ContactProblem& problem) {
   }
   const double estar = ContactModulus(problem.wheel_material, problem.rail_material);
   if (problem.model.kind == ModelKind::kHertz) {
-    return finish(SolveHertzModel(geom, problem, estar, std::move(result), Clock::now()));
+    const auto t_hertz = Clock::now();
+    return finish(SolveHertzModel(SearchHertz(geom, problem, estar), std::move(result), t_hertz));
   }
-
+  const double k_w = problem.wheel_material.Compliance();
+  const double k_r = problem.rail_material.Compliance();
+  const double stiffness_ratio_K = k_r / (k_w + k_r);
+  const bool auto_model = problem.model.kind == ModelKind::kAuto;
+  // The auto model's choice per patch, found again by position (the candidate's interval).
+  struct ChoiceMemory {
+    double y_lo_m, y_hi_m;
+    PatchModelChoice choice;
+  };
+  std::vector<ChoiceMemory> hertz_verdicts;  // of the Hertz check, per Hertz patch
   // Hertz estimate of the approach and of the patch size at the first contact point.
   // (Widen the search when no gap sample lies within 1 um of first contact, e.g. at a corner.)
   std::vector<ContactCandidate> first = geom.FindCandidates(1e-6);
   for (double t = 1e-5; first.empty() && t < 1e-2; t *= 10) first = geom.FindCandidates(t);
   double delta_est = load_given
-                         ? HertzApproachForLoad(first, estar, *problem.load.vertical_force_N)
+                         ? HertzApproachForLoad(first, problem.placement.roll_rad, estar,
+                                                *problem.load.vertical_force_N)
                          : *problem.load.approach_m;
   std::vector<HertzSolution> hs;
-  HertzVerticalLoad(first, estar, delta_est, &hs);
+  HertzVerticalLoad(first, problem.placement.roll_rad, estar, delta_est, &hs);
   double ax = 0.0, bs = 0.0;
   for (const auto& h : hs) {
     ax = std::max(ax, h.semi_axis_x_m);
@@ -555,13 +627,56 @@ ContactResult SolveContact(const ContactProblem& problem) {
   }
   // In nearly conformal contact Hertz's lateral semi-axis is far too large; bound it by the
   // lateral reach of the interpenetration at the estimated approach.
+  const std::vector<ContactCandidate> at_delta_est = geom.FindCandidates(delta_est);
   {
-    const std::vector<ContactCandidate> interp = geom.FindCandidates(delta_est);
     double reach = 0.0;
-    for (const auto& c : interp) {
+    for (const auto& c : at_delta_est) {
       reach = std::max(reach, 0.5 * (c.y_hi_m - c.y_lo_m) / std::max(-c.normal.y(), 0.1));
     }
     if (reach > 0) bs = std::min(bs, reach / std::sqrt(2.0));
+  }
+  if (auto_model && !problem.rolling) {
+    // Hertz when every patch qualifies for it (Hertz and grid patches are not mixed in one
+    // solve: they would need one common approach). Checked on the patches at the first contact
+    // point first (the usual verdict, at no extra search), then on all Hertz's patches.
+    t0 = Clock::now();
+    auto verdicts = [&](const std::vector<ContactCandidate>& cands,
+                        const std::vector<HertzSolution>& hertz, double delta,
+                        const std::vector<ContactCandidate>& at_delta) {
+      std::vector<ChoiceMemory> out;
+      for (size_t k = 0; k < cands.size(); ++k) {
+        if (hertz[k].force_N <= 0) continue;
+        const ContactCandidate& c = cands[k];
+        // The larger estimate of the patch: Hertz gets no check on a solved patch.
+        const double b = EstimateSemiAxisS(geom, c, estar, delta, at_delta).hi;
+        out.push_back({c.y_lo_m, c.y_hi_m,
+                       ChoosePatchModel(MeasureConformity(geom, c, -b, b, stiffness_ratio_K),
+                                        problem.model, "")});
+      }
+      return out;
+    };
+    auto all_hertz = [](const std::vector<ChoiceMemory>& v) {
+      return !v.empty() && std::all_of(v.begin(), v.end(), [](const ChoiceMemory& m) {
+        return m.choice.model == PatchModel::kHertz;
+      });
+    };
+    hertz_verdicts = verdicts(first, hs, delta_est, at_delta_est);
+    if (all_hertz(hertz_verdicts)) {
+      const HertzSearch search = SearchHertz(geom, problem, estar);
+      hertz_verdicts =
+          verdicts(search.cands, search.hs, search.delta, geom.FindCandidates(search.delta));
+      AddStage(&result.stages, "model selection", SecondsSince(t0));
+      if (all_hertz(hertz_verdicts)) {
+        ContactResult r = SolveHertzModel(search, std::move(result), Clock::now());
+        RAILWEAR_CHECK(r.patches.size() == hertz_verdicts.size());
+        for (size_t k = 0; k < r.patches.size(); ++k) {
+          r.patches[k].model_reason = hertz_verdicts[k].choice.reason;
+        }
+        return finish(std::move(r));
+      }
+    } else {
+      AddStage(&result.stages, "model selection", SecondsSince(t0));
+    }
   }
   // Floors keep a degenerate estimate (no Hertz solution, a zero approach) from producing an
   // empty grid; the re-gridding below corrects the cell size from the first solution.
@@ -570,8 +685,6 @@ ContactResult SolveContact(const ContactProblem& problem) {
                                  std::max(bs, kMinSemiAxis_m));
   double threshold = std::max(2.0 * delta_est, kMinThreshold_m);
 
-  const double k_w = problem.wheel_material.Compliance();
-  const double k_r = problem.rail_material.Compliance();
   InfluenceSettings settings{problem.model.kernel, problem.model.constants,
                              problem.wheel_material, problem.rail_material};
   const double n_per_axis = CellsPerSemiAxis(problem.model.accuracy);
@@ -584,6 +697,35 @@ ContactResult SolveContact(const ContactProblem& problem) {
     CellSize cell;
   };
   std::vector<CellMemory> cell_memory;
+  // The auto model's choice per patch: made from the estimated patch when it first appears,
+  // checked again on each solution while it is planar (the estimate can miss a patch that
+  // spreads), and then only ever switched to the conformal geometry.
+  std::vector<ChoiceMemory> choice_memory;
+  // Why a grid patch is not Hertz (Hertz and grid patches are not mixed in one solve).
+  auto no_hertz_reason = [&](const ContactCandidate& c) -> std::string {
+    if (problem.rolling) return "rolling contact needs a grid";
+    for (const auto& v : hertz_verdicts) {
+      if (c.y_m < v.y_lo_m || c.y_m > v.y_hi_m) continue;
+      if (v.choice.model == PatchModel::kHertz) {
+        return "Hertz would do here, but another patch needs a grid";
+      }
+      if (v.choice.model == PatchModel::kConformal) {
+        return "on the larger estimate of the patch the Hertz check found it conformal";
+      }
+      const std::string& r = v.choice.reason;
+      const size_t at = r.find("not Hertz: ");
+      return r.substr(at == std::string::npos ? 0 : at + 11) +
+             " (on the larger estimate of the patch)";
+    }
+    return "the patch appeared after the Hertz check";
+  };
+  PatchModelChoice fixed_choice;  // the scene's model for every patch when it is not auto
+  fixed_choice.geometry = problem.model.geometry;
+  fixed_choice.kernel = problem.model.kernel;
+  fixed_choice.label = PatchModelLabel(problem.model);
+  double approach_now = delta_est;  // the best estimate of the approach so far
+  std::vector<ContactCandidate> at_approach = at_delta_est;  // FindCandidates(approach_now)
+  double at_approach_delta = delta_est;
   int regrids = 0, total_iterations = 0;
   for (int attempt = 0; attempt < 12; ++attempt) {
     t0 = Clock::now();
@@ -591,22 +733,43 @@ ContactResult SolveContact(const ContactProblem& problem) {
     std::vector<PatchBuild> builds;
     std::vector<CellMemory> build_cells;
     std::vector<ContactCandidate> build_cands;
+    std::vector<PatchModelChoice> build_choices;
     for (const auto& c : cands) {
       CellSize cc = cell;
       for (const auto& m : cell_memory) {
         if (c.y_m >= m.y_lo_m && c.y_m <= m.y_hi_m) cc = m.cell;
       }
+      PatchModelChoice choice = fixed_choice;
+      if (auto_model) {
+        const ChoiceMemory* known = nullptr;
+        for (const auto& m : choice_memory) {
+          if (c.y_m >= m.y_lo_m && c.y_m <= m.y_hi_m) known = &m;
+        }
+        if (known != nullptr) {
+          choice = known->choice;
+        } else {
+          if (approach_now != at_approach_delta) {
+            at_approach = geom.FindCandidates(approach_now);
+            at_approach_delta = approach_now;
+          }
+          const double b = EstimateSemiAxisS(geom, c, estar, approach_now, at_approach).lo;
+          choice = ChoosePatchModel(MeasureConformity(geom, c, -b, b, stiffness_ratio_K),
+                                    problem.model, no_hertz_reason(c));
+          choice_memory.push_back({c.y_lo_m, c.y_hi_m, choice});
+        }
+      }
       PatchGridOptions o;
-      o.geometry = problem.model.geometry;
+      o.geometry = choice.geometry;
       o.cell_dx_m = cc.dx_m;
       o.cell_ds_m = cc.ds_m;
       o.threshold_m = threshold;
-      o.stiffness_ratio_K = k_r / (k_w + k_r);
+      o.stiffness_ratio_K = stiffness_ratio_K;
       PatchBuild b = BuildPatchGrid(geom, c, o);
       if (b.valid) {
         builds.push_back(std::move(b));
         build_cells.push_back({c.y_lo_m, c.y_hi_m, cc});
         build_cands.push_back(c);
+        build_choices.push_back(std::move(choice));
       }
     }
     AddStage(&result.stages, "grid", SecondsSince(t0));
@@ -625,8 +788,11 @@ ContactResult SolveContact(const ContactProblem& problem) {
     np.approach_weight.resize(total);
     np.cell_area_m2.resize(total);
     int offset = 0;
-    for (const auto& b : builds) {
-      ops.push_back(MakeInfluenceOperator(b.grid, settings));
+    for (size_t k = 0; k < builds.size(); ++k) {
+      const PatchBuild& b = builds[k];
+      InfluenceSettings patch_settings = settings;
+      patch_settings.kernel = build_choices[k].kernel;
+      ops.push_back(MakeInfluenceOperator(b.grid, patch_settings));
       np.blocks.push_back(ops.back().get());
       np.gap_m.segment(offset, b.grid.cells()) = b.grid.gap_m;
       for (int j = 0; j < b.grid.ns; ++j) {
@@ -644,9 +810,11 @@ ContactResult SolveContact(const ContactProblem& problem) {
     const NormalSolution sol = SolveNormal(np, problem.solver);
     AddStage(&result.stages, "solve", SecondsSince(t0));
     total_iterations += sol.iterations;
+    if (sol.status == SolverStatus::kConverged) approach_now = sol.approach_m;
 
-    // Decide whether the grid fits the solution.
-    bool grow = false, regrid = false;
+    // Decide whether the grid fits the solution (and, for auto, whether a planar patch still
+    // qualifies for the planar grid on its solved extent).
+    bool grow = false, regrid = false, switched = false;
     std::vector<CellMemory> next_memory;
     offset = 0;
     for (size_t k = 0; k < builds.size(); ++k) {
@@ -655,6 +823,21 @@ ContactResult SolveContact(const ContactProblem& problem) {
       const Extent e = MeasureExtent(b.grid, sol.pressure_Pa.segment(offset, b.grid.cells()));
       offset += b.grid.cells();
       if (e.cells == 0) continue;
+      if (auto_model && build_choices[k].model != PatchModel::kConformal &&
+          sol.status == SolverStatus::kConverged) {
+        constexpr double kTiny_m = 1e-9;  // keeps the measured stretch around the contact point
+        PatchConformity post =
+            MeasureConformity(geom, build_cands[k], std::min(e.s_lo, -kTiny_m),
+                              std::max(e.s_hi, kTiny_m), stiffness_ratio_K);
+        post.measured = true;
+        const PatchModelChoice again =
+            ChoosePatchModel(post, problem.model, no_hertz_reason(build_cands[k]));
+        for (auto& m : choice_memory) {
+          if (build_cands[k].y_m >= m.y_lo_m && build_cands[k].y_m <= m.y_hi_m) m.choice = again;
+        }
+        build_choices[k] = again;
+        switched = switched || again.model == PatchModel::kConformal;
+      }
       if (e.touches_x_edge || (e.touches_s_edge && !b.lateral_limited)) grow = true;
       if (!cell_fixed && regrids < 3) {
         const double nx_ratio = e.half_x / mem.cell.dx_m / n_per_axis;
@@ -669,7 +852,7 @@ ContactResult SolveContact(const ContactProblem& problem) {
     cell_memory = std::move(next_memory);
     const bool more_candidates = sol.status == SolverStatus::kConverged &&
                                  sol.approach_m > 0.7 * threshold;
-    if (sol.status == SolverStatus::kConverged && (grow || regrid || more_candidates) &&
+    if (sol.status == SolverStatus::kConverged && (grow || regrid || more_candidates || switched) &&
         attempt < 11) {
       if (grow) threshold *= 1.8;
       if (more_candidates) threshold = std::max(threshold, 2.0 * sol.approach_m);
@@ -691,6 +874,8 @@ ContactResult SolveContact(const ContactProblem& problem) {
       PatchResult pr =
           NumericalPatch(geom, std::move(builds[k].grid), sol.pressure_Pa.segment(offset, n));
       if (pr.cells_in_contact > 0) {
+        pr.model = build_choices[k].label;
+        if (auto_model) pr.model_reason = build_choices[k].reason;
         result.patches.push_back(std::move(pr));
         kept_build.push_back(static_cast<int>(k));
         kept_offset.push_back(offset);

@@ -99,6 +99,10 @@ struct PatchResult {
   Eigen::VectorXd pressure_Pa;  // per grid cell
   std::optional<HertzSolution> hertz;  // the Hertz model's ellipse
   std::optional<RollingPatch> rolling;  // when the problem asked for rolling contact
+  // The model this patch was solved with ("hertz", "halfspace", "conformal+boussinesq", ...;
+  // model_selection.h PatchModelLabel), and with kind = auto why it was chosen (empty otherwise).
+  std::string model;
+  std::string model_reason;
 };
 
 struct StageTime {

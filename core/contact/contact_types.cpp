@@ -28,6 +28,7 @@ std::string_view ToString(ModelKind v) {
     case ModelKind::kHalfspace: return "halfspace";
     case ModelKind::kConformal: return "conformal";
     case ModelKind::kCustom: return "custom";
+    case ModelKind::kAuto: return "auto";
   }
   return "?";
 }
@@ -55,6 +56,7 @@ std::optional<ModelKind> ModelKindFromString(std::string_view s) {
   if (s == "hertz") return ModelKind::kHertz;
   if (s == "halfspace") return ModelKind::kHalfspace;
   if (s == "conformal") return ModelKind::kConformal;
+  if (s == "auto") return ModelKind::kAuto;
   return std::nullopt;
 }
 std::optional<AccuracyPreset> AccuracyPresetFromString(std::string_view s) {
@@ -78,6 +80,10 @@ ModelOptions MakeModelOptions(ModelKind kind) {
     case ModelKind::kCustom:
       o.geometry = GeometryModel::kConformal;
       o.kernel = KernelModel::kGolubenko;
+      break;
+    case ModelKind::kAuto:  // the conformal patches' choice; FEM evidence, DESIGN.md §1
+      o.geometry = GeometryModel::kConformal;
+      o.kernel = KernelModel::kBoussinesq;
       break;
   }
   return o;

@@ -35,8 +35,11 @@ enum class KernelModel {
   kBoussinesq,  // half-space, Love's closed form per cell
   kGolubenko,   // seed eq. 4, semi-empirical Kelvin type, cell-integrated
 };
-// The scene's `kind` shorthand. kHertz is analytic and uses no grid.
-enum class ModelKind { kHertz, kHalfspace, kConformal, kCustom };
+// The scene's `kind` shorthand. kHertz is analytic and uses no grid. kAuto chooses per patch
+// the cheapest model whose error stays within the accuracy preset (core/contact/
+// model_selection.h): Hertz or halfspace on non-conformal patches, the conformal geometry where
+// the surface turns across the patch.
+enum class ModelKind { kHertz, kHalfspace, kConformal, kCustom, kAuto };
 
 std::string_view ToString(GeometryModel v);
 std::string_view ToString(KernelModel v);
@@ -64,8 +67,10 @@ std::optional<AccuracyPreset> AccuracyPresetFromString(std::string_view s);
 
 struct ModelOptions {
   ModelKind kind = ModelKind::kConformal;
-  GeometryModel geometry = GeometryModel::kConformal;  // ignored for kHertz
-  KernelModel kernel = KernelModel::kGolubenko;        // ignored for kHertz
+  GeometryModel geometry = GeometryModel::kConformal;  // ignored for kHertz and kAuto
+  // Ignored for kHertz; for kAuto the kernel of the patches it solves on the conformal geometry
+  // (its planar patches always use Boussinesq).
+  KernelModel kernel = KernelModel::kGolubenko;
   InfluenceConstants constants;
   AccuracyPreset accuracy = AccuracyPreset::kStandard;
   // Explicit cell size (dx along rolling, ds along the lateral arc) [m]; overrides accuracy.
@@ -73,7 +78,7 @@ struct ModelOptions {
 };
 
 // Builds ModelOptions for a `kind` shorthand: hertz, halfspace = planar + boussinesq,
-// conformal = conformal + golubenko.
+// conformal = conformal + golubenko, auto = per patch, conformal patches with boussinesq.
 ModelOptions MakeModelOptions(ModelKind kind);
 
 }  // namespace railwear

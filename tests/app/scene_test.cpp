@@ -252,9 +252,9 @@ TEST(SceneTest, OutOfRangeValues) {
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\naccuracy = \"ultra\"\n"),
               "scene.toml:12: key 'model.accuracy' = \"ultra\": expected one of "
                         "'draft', 'standard', 'reference', 'fine'"));
-  EXPECT_TRUE(Contains(ErrorOf(m + "[model]\nkind = \"auto\"\n"),
-              "key 'model.kind' = \"auto\": expected one of 'hertz', 'halfspace', "
-                        "'conformal'"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "[model]\nkind = \"fem\"\n"),
+              "key 'model.kind' = \"fem\": expected one of 'hertz', 'halfspace', "
+                        "'conformal', 'auto'"));
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\ngeometry = \"curved\"\n"),
               "expected one of 'planar', 'conformal'"));
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\nkernel = \"kelvin\"\n"),

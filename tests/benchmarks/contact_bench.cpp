@@ -8,10 +8,14 @@
 //                             in a 10.25 mm groove; ~2,000 cells at 45 x 45.
 //  Both time operator construction plus the normal solve, prescribed load, one thread.
 //  BM_GaugeCorner/model/preset  the whole pipeline (SolveContact) on examples/gauge_corner.toml's
-//                             problem: S1002 on UIC60 1:40, shift -4 mm, 100 kN.
+//                             problem: S1002 on UIC60 1:40, shift -4 mm, 100 kN. model: 0 hertz,
+//                             1 halfspace, 2 conformal+boussinesq, 3 conformal+golubenko, 4 auto;
+//                             preset: 0 draft, 1 standard, 2 reference, 3 fine.
 //
 // Run: build/tests/benchmarks/contact_bench --benchmark_repetitions=3
 //        --benchmark_report_aggregates_only=true
+// Scaling exponents of time against cell count (log-log fit per benchmark family and series):
+//      ... --benchmark_format=json | python3 tests/benchmarks/scaling_exponent.py
 #include <cmath>
 #include <string>
 #include <utility>
@@ -120,8 +124,10 @@ void BM_GaugeCorner(benchmark::State& state) {
   p.placement.rolling_radius_m = 0.46;
   p.load.vertical_force_N = 100e3;
   const int model = static_cast<int>(state.range(0));
-  p.model = MakeModelOptions(model == 0 ? ModelKind::kHertz
-                                        : model == 1 ? ModelKind::kHalfspace : ModelKind::kConformal);
+  p.model = MakeModelOptions(model == 0   ? ModelKind::kHertz
+                             : model == 1 ? ModelKind::kHalfspace
+                             : model == 4 ? ModelKind::kAuto
+                                          : ModelKind::kConformal);
   if (model == 2) p.model.kernel = KernelModel::kBoussinesq;  // conformal geometry, half-space kernel
   p.model.accuracy = static_cast<AccuracyPreset>(state.range(1));
   ContactResult r;
@@ -130,7 +136,7 @@ void BM_GaugeCorner(benchmark::State& state) {
     benchmark::DoNotOptimize(r.patches.data());
   }
   static const char* kModels[] = {"hertz", "halfspace", "conformal+boussinesq",
-                                  "conformal+golubenko"};
+                                  "conformal+golubenko", "auto"};
   state.SetLabel(std::string(kModels[model]) + " " + std::string(ToString(p.model.accuracy)));
   int cells = 0, in_contact = 0;
   for (const auto& pr : r.patches) {
@@ -144,7 +150,7 @@ void BM_GaugeCorner(benchmark::State& state) {
   state.counters["iterations"] = r.iterations;
 }
 BENCHMARK(BM_GaugeCorner)
-    ->ArgsProduct({{0, 1, 2, 3}, {0, 1, 2}})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2, 3}})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
