@@ -24,6 +24,7 @@
 
 #include "app/gnuplot.h"
 #include "app/paths.h"
+#include "app/wear_accuracy.h"
 #include "core/contact/grid_resolution.h"
 #include "core/numerics/input_error.h"
 
@@ -584,46 +585,102 @@ void SetupAccuracy(CLI::App& app) {
                   "memory and errors against a reference (table, CSV, Pareto plot)");
   sub->add_option("scene", options->scene_path, "Scene file (TOML), one wheel on one rail")
       ->required();
-  sub->add_option("--models", options->models,
+  CLI::Option* models = sub->add_option("--models", options->models,
                   "Models, comma-separated: hertz, halfspace, conformal+boussinesq, "
                   "conformal+golubenko (or conformal), auto (default: all)")
       ->delimiter(',');
-  sub->add_option("--levels", options->levels,
+  CLI::Option* levels = sub->add_option("--levels", options->levels,
                   "Accuracy levels, comma-separated: draft, standard, reference, fine "
-                  "(default: all)")
+                  "(default: all; a wear scene: draft, standard, reference)")
       ->delimiter(',');
   sub->add_option("--repeats", options->repeats, "Solves per run; the time is their median")
       ->check(CLI::PositiveNumber);
   sub->add_option("--out", options->out_dir,
                   "Write DIR/accuracy.csv and the Pareto plot DIR/accuracy.png");
   sub->add_flag("--no-plot", *no_plot, "With --out: no plot (gnuplot not needed)");
-  sub->add_option("--reference", options->reference,
+  CLI::Option* reference = sub->add_option("--reference", options->reference,
                   "Compare against this JSON (as `railwear contact --json` writes it; any of "
                   "total.area_mm2, p_max_MPa, vertical_force_N + lateral_force_N)");
-  sub->add_option("--reference-model", options->reference_model,
+  CLI::Option* reference_model = sub->add_option("--reference-model", options->reference_model,
                   "Model whose finest (extrapolated) solution is the reference "
                   "(default conformal+boussinesq)");
-  sub->callback([options, no_plot]() {
+  sub->add_option("--step-limits", options->step_limits_mm,
+                  "Wear scenes: step limits (max_depth_per_step) in mm, comma-separated "
+                  "(default 0.2,0.1,0.05)")
+      ->delimiter(',');
+  sub->add_option("--mgt", options->total_mgt,
+                  "Wear scenes: run every study to this many MGT instead of the scene's total");
+  sub->add_option("--threads", options->threads, "Wear scenes: load-case workers (0: the scene's)")
+      ->check(CLI::NonNegativeNumber);
+  sub->callback([options, no_plot, levels, models, reference, reference_model]() {
     options->plot = !*no_plot;
+    options->levels_given = levels->count() > 0;
+    options->contact_options_given =
+        models->count() + reference->count() + reference_model->count() > 0;
     RunAccuracy(*options);
   });
 }
+
+namespace {
+
+fs::path CreateOutDir(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) {
+    throw InputError(fmt::format("--out {}: cannot create the directory ({})", dir,
+                                 ec ? ec.message() : "a file of that name exists"));
+  }
+  return fs::path(dir);
+}
+
+void RunWearAccuracy(const Scene& scene, const AccuracyOptions& o) {
+  if (o.contact_options_given) {
+    throw InputError(fmt::format("{}: a wear scene runs with its own [model]; --models, "
+                                 "--reference and --reference-model are for contact scenes",
+                                 o.scene_path));
+  }
+  WearAccuracyOptions w;
+  if (o.levels_given) w.levels = o.levels;
+  if (o.step_limits_mm) w.step_limits_mm = *o.step_limits_mm;
+  w.total_mgt = o.total_mgt;
+  w.threads = o.threads;
+  const WearAccuracyStudy study = RunWearAccuracyStudy(
+      scene, w, [](const std::string& line) { std::cerr << "railwear accuracy: " << line << "\n"; });
+  std::cout << FormatWearAccuracyTable(study) << std::flush;
+  if (!o.out_dir) return;
+  const fs::path csv = CreateOutDir(*o.out_dir) / "wear_accuracy.csv";
+  {
+    std::ofstream out(csv);
+    WriteWearAccuracyCsv(study, out);
+    if (!out) throw InputError(fmt::format("{}: cannot write the CSV", csv.string()));
+  }
+  std::cerr << "railwear accuracy: wrote " << csv.string() << "\n";
+  if (o.plot) {
+    const fs::path png = fs::path(*o.out_dir) / "wear_accuracy.png";
+    PlotWearAccuracy(study, png.string());
+    std::cerr << "railwear accuracy: wrote " << png.string() << "\n";
+  }
+}
+
+}  // namespace
 
 void RunAccuracy(const AccuracyOptions& o) {
   // Before the runs, so nobody waits for nothing.
   if (o.out_dir && o.plot) RequireGnuplotFor("railwear accuracy's Pareto plot", "pass --no-plot");
   const Scene scene = LoadScene(o.scene_path);
+  if (scene.wear) {
+    RunWearAccuracy(scene, o);
+    return;
+  }
+  if (o.step_limits_mm || o.total_mgt || o.threads > 0) {
+    throw InputError(fmt::format("{}: --step-limits, --mgt and --threads are for wear scenes; "
+                                 "this scene has no wear study", o.scene_path));
+  }
   const AccuracyStudy study = RunAccuracyStudy(
       scene, o, [](const std::string& line) { std::cerr << "railwear accuracy: " << line << "\n"; });
   std::cout << FormatAccuracyTable(study) << std::flush;
   if (!o.out_dir) return;
-  std::error_code ec;
-  fs::create_directories(*o.out_dir, ec);
-  if (ec || !fs::is_directory(*o.out_dir)) {
-    throw InputError(fmt::format("--out {}: cannot create the directory ({})", *o.out_dir,
-                                 ec ? ec.message() : "a file of that name exists"));
-  }
-  const fs::path csv = fs::path(*o.out_dir) / "accuracy.csv";
+  const fs::path csv = CreateOutDir(*o.out_dir) / "accuracy.csv";
   {
     std::ofstream out(csv);
     WriteAccuracyCsv(study, out);

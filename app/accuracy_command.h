@@ -1,4 +1,5 @@
-// `railwear accuracy SCENE.toml`: what accuracy costs in time (issue 6). The scene's contact
+// `railwear accuracy SCENE.toml`: what accuracy costs in time (issue 6). A wear scene runs the
+// wear-step study of wear_accuracy.h instead of what follows. The scene's contact
 // problem is solved with each model at each accuracy level; per run the median time per solve,
 // the peak memory the solve adds, and the errors of contact area, peak pressure, total force
 // and (when rolling) creep force against a reference: the finest solution of the reference model
@@ -40,6 +41,13 @@ struct AccuracyOptions {
   bool plot = true;                      // --no-plot: no accuracy.png (then no gnuplot needed)
   std::optional<std::string> reference;  // --reference FILE: JSON as `contact --json` writes
   std::string reference_model = "conformal+boussinesq";
+  // Wear scenes only (wear_accuracy.h): step limits [mm], a shorter total [MGT], threads.
+  // levels_given: --levels was on the command line (a wear study's default omits "fine").
+  bool levels_given = false;
+  bool contact_options_given = false;  // --models, --reference or --reference-model given
+  std::optional<std::vector<double>> step_limits_mm;
+  std::optional<double> total_mgt;
+  int threads = 0;
 };
 
 // The quantities compared, totals over all patches. Creep forces only with rolling contact.

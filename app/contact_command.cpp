@@ -88,7 +88,7 @@ void SetupContact(CLI::App& app) {
   sub->add_option("scene", options->scene_path, "Scene file (TOML); see `railwear init`")
       ->required();
   sub->add_option("--model", options->model, "Replace the scene's model kind")
-      ->check(CLI::IsMember({"hertz", "halfspace", "conformal"}));
+      ->check(CLI::IsMember({"hertz", "halfspace", "conformal", "auto"}));
   sub->add_option("--accuracy", options->accuracy,
                   "Replace the scene's accuracy (and its cell_mm)")
       ->check(CLI::IsMember({"draft", "standard", "reference", "fine"}));

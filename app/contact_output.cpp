@@ -56,20 +56,6 @@ std::vector<PressureSample> HertzSamples(const PatchResult& patch, int patch_num
   return out;
 }
 
-// Walks the JSON and throws at the first NaN or infinity, naming its key path.
-void CheckFinite(const nlohmann::json& j, const std::string& where) {
-  if (j.is_number_float() && !std::isfinite(j.get<double>())) {
-    throw std::runtime_error(fmt::format(
-        "the result has a non-finite value at '{}' ({}); no JSON written", where,
-        j.get<double>()));
-  }
-  if (j.is_object()) {
-    for (const auto& [key, value] : j.items()) CheckFinite(value, where + "." + key);
-  } else if (j.is_array()) {
-    for (size_t i = 0; i < j.size(); ++i) CheckFinite(j[i], fmt::format("{}[{}]", where, i));
-  }
-}
-
 // Creep forces are those of the rail on the wheel: x along the rolling direction, y along the
 // patch's lateral arc (its s tangent), and the latter also as rail-frame (y, z) components.
 void AddRollingJson(const RollingPatch& r, nlohmann::json* j) {
@@ -274,7 +260,7 @@ nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r) {
                      {"area_change_percent", 100.0 * r.coupling_area_change},
                      {"p_max_change_percent", 100.0 * r.coupling_p_max_change}};
   }
-  CheckFinite(j, "$");
+  RequireFiniteJson(j, "contact result $");
   return j;
 }
 
@@ -282,27 +268,41 @@ void WritePressureCsv(const ContactResult& r, std::ostream& out, const std::stri
                       bool header) {
   const bool rolling = !r.patches.empty() && r.patches[0].rolling.has_value();
   const std::string lead = wheel.empty() ? "" : wheel + ",";
+  // The whole table is formatted first and checked, so a non-finite value writes nothing.
+  std::string text;
   if (header) {
-    out << (wheel.empty() ? "" : "wheel,") << "patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa"
-        << (rolling ? ",qx_MPa,qs_MPa,slip_x_m_s,slip_s_m_s,stick\n" : "\n");
+    text += (wheel.empty() ? "" : "wheel,") + std::string("patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa") +
+            (rolling ? ",qx_MPa,qs_MPa,slip_x_m_s,slip_s_m_s,stick\n" : "\n");
   }
+  auto finite = [](std::initializer_list<double> values, int patch, int ix, int js) {
+    for (double v : values) {
+      if (!std::isfinite(v)) {
+        throw std::runtime_error(fmt::format("the pressure CSV has a non-finite value ({}) at "
+                                             "patch {} cell ({}, {}); nothing written",
+                                             v, patch, ix, js));
+      }
+    }
+  };
   for (size_t k = 0; k < r.patches.size(); ++k) {
     const PatchResult& patch = r.patches[k];
     for (const auto& s : PressureSamples(patch, static_cast<int>(k) + 1)) {
-      out << lead
-          << fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}", s.patch, s.ix, s.js,
-                         s.x_mm, s.s_mm, s.y_mm, s.z_mm, s.p_MPa);
+      finite({s.x_mm, s.s_mm, s.y_mm, s.z_mm, s.p_MPa}, s.patch, s.ix, s.js);
+      text += lead + fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}", s.patch, s.ix,
+                                 s.js, s.x_mm, s.s_mm, s.y_mm, s.z_mm, s.p_MPa);
       if (rolling && patch.rolling) {
         // Traction, slip velocity and stick (1) / slip (0) / outside (-1) per cell.
         const TangentialSolution& t = patch.rolling->tangential;
         const int c = patch.grid.Index(s.ix, s.js);
-        out << fmt::format(",{:.6f},{:.6f},{:.6g},{:.6g},{}", t.traction_x_Pa[c] * kToMPa,
-                           t.traction_s_Pa[c] * kToMPa, t.slip_x_m_s[c], t.slip_s_m_s[c],
-                           t.stick[c]);
+        finite({t.traction_x_Pa[c], t.traction_s_Pa[c], t.slip_x_m_s[c], t.slip_s_m_s[c]},
+               s.patch, s.ix, s.js);
+        text += fmt::format(",{:.6f},{:.6f},{:.6g},{:.6g},{}", t.traction_x_Pa[c] * kToMPa,
+                            t.traction_s_Pa[c] * kToMPa, t.slip_x_m_s[c], t.slip_s_m_s[c],
+                            t.stick[c]);
       }
-      out << "\n";
+      text += "\n";
     }
   }
+  out << text;
 }
 
 nlohmann::json MakeWheelsetJson(const Scene& scene, const WheelsetResult& r) {
@@ -331,6 +331,18 @@ std::string FormatWheelsetSummary(const Scene& scene, const WheelsetResult& r) {
       "toward its field side) ==\n{}",
       r.placement.right.lateral_shift_m * kToMm, r.placement.left.lateral_shift_m * kToMm,
       FormatSummary(scene, r.right), FormatSummary(scene, r.left));
+}
+
+void RequireFiniteJson(const nlohmann::json& j, const std::string& where) {
+  if (j.is_number_float() && !std::isfinite(j.get<double>())) {
+    throw std::runtime_error(
+        fmt::format("{}: a non-finite value ({}); nothing written", where, j.get<double>()));
+  }
+  if (j.is_object()) {
+    for (const auto& [key, value] : j.items()) RequireFiniteJson(value, where + "." + key);
+  } else if (j.is_array()) {
+    for (size_t i = 0; i < j.size(); ++i) RequireFiniteJson(j[i], fmt::format("{}[{}]", where, i));
+  }
 }
 
 }  // namespace railwear::app

@@ -37,6 +37,11 @@ std::string FormatSummary(const Scene& scene, const ContactResult& result);
 // the key when a number is NaN or infinite, so that no such value reaches a file.
 nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& result);
 
+// No NaN or infinity reaches an output (issue 6): throws std::runtime_error naming the key path
+// (`where` + ".key[i]...") of the first non-finite number in `j`. MakeContactJson calls it; so
+// does everything else that writes or stores JSON.
+void RequireFiniteJson(const nlohmann::json& j, const std::string& where);
+
 // Header "patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa" (plus traction, slip velocity and stick when
 // the result has rolling contact), then one row per sample of every patch. With a `wheel`
 // label every row starts with it, under a leading "wheel" column; `header` = false leaves the

@@ -25,6 +25,10 @@ effects = ["normal"]          # optional; "normal" is implied. Add "tangential" 
 [model]                       # optional table
 kind = "conformal"            # "hertz" | "halfspace" (planar + boussinesq)
                               # | "conformal" (conformal + golubenko); default "conformal"
+                              # | "auto": per patch the cheapest model within the accuracy
+                              #   (Hertz or half-space on non-conformal patches, conformal
+                              #   geometry where the curvature changes across the patch;
+                              #   the choice and its reason are reported per patch)
 # geometry = "conformal"      # "planar" | "conformal"; overrides kind (not with "hertz")
 # kernel = "golubenko"        # "boussinesq" | "golubenko"; overrides kind (not with "hertz")
 # influence_constants = { c_f = 0.75, c_z = 1.0, c_s = 0.25 }

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/gnuplot.h"
+#include "app/contact_output.h"
 #include "app/history_plot.h"
 #include "app/scene.h"
 #include "core/numerics/input_error.h"
@@ -119,11 +120,17 @@ StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const 
   r.w3_mm = m.wear_45_m * 1e3;
   r.smoothing_area_error = step.smoothing_area_error;
   r.profile = step.state.rail;
-  for (const LoadCaseSummary& c : step.cases) r.load_cases_json.push_back(LoadCaseJson(c, study).dump());
+  for (const LoadCaseSummary& c : step.cases) {
+    const nlohmann::json j = LoadCaseJson(c, study);
+    RequireFiniteJson(j, fmt::format("wear step {} load case", step.state.step));
+    r.load_cases_json.push_back(j.dump());
+  }
   Distribution depth;
   depth.kind = "wear_depth_mm";
-  depth.s_m = m.s_m;
   for (size_t k = 0; k < m.s_m.size(); ++k) {
+    // A sample whose normal misses the worn profile has no depth (NaN): left out, never stored.
+    if (!std::isfinite(m.depth_m[k])) continue;
+    depth.s_m.push_back(m.s_m[k]);
     depth.y_m.push_back(unworn.Position(m.s_m[k]).x());
     depth.value.push_back(m.depth_m[k] * 1e3);
   }

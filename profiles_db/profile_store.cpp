@@ -6,6 +6,7 @@
 #include <sqlite3.h>
 
 #include <bit>
+#include <cmath>
 #include <cctype>
 #include <filesystem>
 #include <iterator>
@@ -37,19 +38,34 @@ double ReadDouble(const unsigned char* p) {
   return std::bit_cast<double>(bits);
 }
 
+// No NaN or infinity is ever stored (issue 6): every double that goes into the database passes
+// here, as a bound parameter or as an element of a BLOB, and the statement's transaction rolls
+// back when one fails.
+void RequireFiniteToStore(double v, const std::string& what) {
+  if (!std::isfinite(v)) {
+    throw std::runtime_error(fmt::format("refusing to store a non-finite value ({}) {}; nothing "
+                                         "of this write was stored", v, what));
+  }
+}
+
 std::string EncodeDoubles(const std::vector<double>& v) {
   std::string out;
   out.reserve(8 * v.size());
-  for (double x : v) AppendDouble(x, &out);
+  for (size_t i = 0; i < v.size(); ++i) {
+    RequireFiniteToStore(v[i], fmt::format("at element {} of an array", i));
+    AppendDouble(v[i], &out);
+  }
   return out;
 }
 
 std::string EncodePoints(const std::vector<Eigen::Vector2d>& points) {
   std::string out;
   out.reserve(16 * points.size());
-  for (const auto& p : points) {
-    AppendDouble(p.x(), &out);
-    AppendDouble(p.y(), &out);
+  for (size_t i = 0; i < points.size(); ++i) {
+    RequireFiniteToStore(points[i].x(), fmt::format("at point {} of a profile", i));
+    RequireFiniteToStore(points[i].y(), fmt::format("at point {} of a profile", i));
+    AppendDouble(points[i].x(), &out);
+    AppendDouble(points[i].y(), &out);
   }
   return out;
 }
@@ -116,7 +132,7 @@ class Connection {
 
 class Statement {
  public:
-  Statement(const Connection& c, const std::string& sql) : c_(&c) {
+  Statement(const Connection& c, const std::string& sql) : c_(&c), sql_(sql) {
     if (sqlite3_prepare_v2(c.get(), sql.c_str(), static_cast<int>(sql.size()), &stmt_, nullptr) !=
         SQLITE_OK) {
       ThrowSqlite(c.get(), c.path(), fmt::format("preparing '{}'", sql));
@@ -128,7 +144,11 @@ class Statement {
 
   Statement& Bind(int i, int64_t v) { return Check(sqlite3_bind_int64(stmt_, i, v)); }
   Statement& Bind(int i, int v) { return Check(sqlite3_bind_int(stmt_, i, v)); }
-  Statement& Bind(int i, double v) { return Check(sqlite3_bind_double(stmt_, i, v)); }
+  Statement& Bind(int i, double v) {
+    internal::RequireFiniteToStore(
+        v, fmt::format("in database '{}' as parameter {} of '{}'", c_->path(), i, sql_.substr(0, 60)));
+    return Check(sqlite3_bind_double(stmt_, i, v));
+  }
   Statement& Bind(int i, const std::string& v) {
     return Check(sqlite3_bind_text64(stmt_, i, v.data(), v.size(), SQLITE_TRANSIENT, SQLITE_UTF8));
   }
@@ -177,6 +197,7 @@ class Statement {
   }
   const Connection* c_;
   sqlite3_stmt* stmt_ = nullptr;
+  std::string sql_;  // for messages
 };
 
 // A write transaction (BEGIN IMMEDIATE) that rolls back on destruction unless committed.

@@ -56,7 +56,7 @@ TEST_F(CliTest, UsageErrorsExitTwo) {
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_TRUE(Contains(unknown.err, "railwear: error: "));
   EXPECT_TRUE(Contains(unknown.err, "--bogus"));
-  const Outcome model = Run("contact scene.toml --model auto");
+  const Outcome model = Run("contact scene.toml --model fem");
   EXPECT_EQ(model.exit_code, 2);
   EXPECT_TRUE(Contains(model.err, "--model"));
   EXPECT_EQ(Run("contact scene.toml --accuracy ultra").exit_code, 2);
@@ -221,6 +221,18 @@ TEST_F(CliTest, GaugeCornerExampleRunsWithAllThreeModels) {
   }
   EXPECT_LT(double(r[2]["total"]["area_mm2"]), double(r[1]["total"]["area_mm2"]));
   EXPECT_GT(double(r[2]["total"]["p_max_MPa"]), double(r[1]["total"]["p_max_MPa"]));
+}
+
+TEST_F(CliTest, ContactModelAutoReportsItsChoicePerPatch) {
+  // Issue 6: --model auto on the gauge corner chooses the conformal geometry for the patch and
+  // says why.
+  const Outcome o = Run("contact '" RAILWEAR_SOURCE_DIR
+                        "/examples/gauge_corner.toml' --accuracy draft --model auto --json -");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  const nlohmann::json r = nlohmann::json::parse(o.out);
+  ASSERT_EQ(r["patches"].size(), 1u);
+  EXPECT_EQ(r["patches"][0]["model"], "conformal+boussinesq");
+  EXPECT_FALSE(std::string(r["patches"][0]["model_reason"]).empty());
 }
 
 TEST_F(CliTest, RollingContactReportsCreepForcesSlipAndDamage) {

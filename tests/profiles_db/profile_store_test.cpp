@@ -12,6 +12,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -413,6 +415,36 @@ TEST(ProfileStore, FailedStepLeavesNothing) {
   bad.profile = Profile();
   ExpectInputError([&] { db.AppendStep(run, bad); }, {"the profile is empty"});
   // And the store is still usable.
+  db.AppendStep(run, TestStep(1));
+  EXPECT_EQ(db.LastStep(run), 1);
+}
+
+TEST(ProfileStore, NonFiniteValuesAreNeverStored) {
+  // Issue 6: no NaN or infinity reaches the database, whether a scalar column, a profile point
+  // or an element of a distribution; the step's transaction rolls back, the store stays usable.
+  ProfileStore db = ProfileStore::Open(":memory:");
+  const int64_t run = db.CreateRun(TestRun("r"));
+  db.AppendStep(run, TestStep(0));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<std::function<void(StepRecord*)>> corrupt = {
+      [&](StepRecord* r) { r->max_depth_mm = nan; },
+      [&](StepRecord* r) { r->w3_mm = inf; },
+      [&](StepRecord* r) { r->distributions[0].value[1] = nan; },
+  };
+  for (const auto& c : corrupt) {
+    StepRecord bad = TestStep(1);
+    c(&bad);
+    try {
+      db.AppendStep(run, bad);
+      ADD_FAILURE() << "a non-finite value was stored";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("refusing to store a non-finite value"),
+                std::string::npos) << e.what();
+    }
+    EXPECT_EQ(db.LastStep(run), 0);
+    EXPECT_EQ(db.Query("SELECT count(*) FROM steps WHERE step = 1").rows[0][0], "0");
+  }
   db.AppendStep(run, TestStep(1));
   EXPECT_EQ(db.LastStep(run), 1);
 }

@@ -1,0 +1,38 @@
+// Scene texts shared by the CLI tests of wear studies (wear_command_test, wear_accuracy_test).
+#pragma once
+
+namespace railwear::test {
+
+// Draft accuracy, one traffic entry at three nodes: a step takes a few tens of milliseconds.
+inline const char* const kSmallWearStudy = R"([scene]
+name = "small study"
+effects = ["wear", "damage"]
+[model]
+geometry = "conformal"
+kernel = "boussinesq"
+accuracy = "draft"
+[materials]
+wheel = { E_MPa = 210000, nu = 0.28 }
+rail = { E_MPa = 210000, nu = 0.28, hardness_MPa = 2600, shear_yield_MPa = 350 }
+[rail]
+profile = "builtin:UIC60"
+cant = "1:40"
+[wheel]
+profile = "builtin:S1002"
+rolling_radius_mm = 460
+[wear]
+law = "archard"
+k = 1e-4
+total_passes = 4e5
+max_depth_per_step_mm = 0.05
+quadrature_points = 3
+[[traffic]]
+vertical_N = 80000
+axle_load_t = 16
+lateral_shift_mm = { mean = -4.5, std = 1.0 }
+yaw_mrad = 4.0
+friction = 0.4
+speed_m_s = 20.0
+)";
+
+}  // namespace railwear::test
