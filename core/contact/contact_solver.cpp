@@ -681,6 +681,9 @@ ContactResult SolveContact(const ContactProblem& problem) {
   // Floors keep a degenerate estimate (no Hertz solution, a zero approach) from producing an
   // empty grid; the re-gridding below corrects the cell size from the first solution.
   constexpr double kMinSemiAxis_m = 1e-5, kMinThreshold_m = 1e-8;
+  // Initial overlap a cell may show from the first-contact search's tolerance and the gap
+  // projections' rounding (both ~1e-10 m) before it counts as a failed gap computation.
+  constexpr double kMaxInitialOverlap_m = 1e-7;
   CellSize cell = ChooseCellSize(problem.model, std::max(ax, kMinSemiAxis_m),
                                  std::max(bs, kMinSemiAxis_m));
   double threshold = std::max(2.0 * delta_est, kMinThreshold_m);
@@ -806,6 +809,17 @@ ContactResult SolveContact(const ContactProblem& problem) {
     np.approach_m = problem.load.approach_m;
     AddStage(&result.stages, "influence", SecondsSince(t0));
 
+    // The wheel was lowered to first contact, so no cell may start inside the rail: a negative
+    // initial separation is a geometry failure (a projection that found the wrong branch), and a
+    // solve on it "converges" to nonsense (a lifted wheel on a few cells). Say so instead.
+    if (Eigen::Index at = 0; np.gap_m.minCoeff(&at) < -kMaxInitialOverlap_m) {
+      result.status = SolverStatus::kNotConverged;
+      result.message = fmt::format(
+          "the initial separation is negative ({:.4g} um) in a cell of the potential contact "
+          "area: the gap computation failed there; try the other geometry model",
+          np.gap_m[at] * 1e6);
+      return finish(result);
+    }
     t0 = Clock::now();
     const NormalSolution sol = SolveNormal(np, problem.solver);
     AddStage(&result.stages, "solve", SecondsSince(t0));

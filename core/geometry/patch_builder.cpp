@@ -215,26 +215,39 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
       const double s_centre =
           g.ProjectOnWheel({0.0, (b + lambda_w[j] * n0).x(), (b + lambda_w[j] * n0).y()},
                            wheel_s[j] - window, wheel_s[j] + window).s;
-      for (int i = 0; i < grid.nx; ++i) {
-        const double x = grid.X(i);
-        // Root of the wheel's signed distance along the line (x, b + lambda n0); secant steps
-        // from the x = 0 crossing plus the lift of a body of revolution.
-        auto dist = [&](double lambda) {
-          const Eigen::Vector2d yz = b + lambda * n0;
-          return g.ProjectOnWheel({x, yz.x(), yz.y()}, s_centre - warm_window,
-                                  s_centre + warm_window)
-              .signed_distance;
-        };
-        double l0 = lambda_w[j] + x * x * w0 / (2.0 * r_max);
-        double f0 = dist(l0);
-        double l1 = l0 + f0, f1 = dist(l1);
-        for (int it = 0; it < 30 && std::abs(f1) > 1e-13; ++it) {
-          const double slope = (f1 - f0) / (l1 - l0);
-          const double l2 = (slope != 0) ? l1 - f1 / slope : l1 + f1;
-          l0 = l1; f0 = f1; l1 = l2; f1 = dist(l1);
-          if (std::abs(l1 - l0) < 1e-13) break;
+      // March outward from the x = 0 column, each column starting from its neighbour's root and
+      // closest wheel point: the closest point moves along the flange as the wheel lifts with
+      // |x|, by far more than one search window over the whole grid on a steep flange (a window
+      // fixed at the centre column's point made the far columns' gaps negative there).
+      for (int dir : {+1, -1}) {
+        double sg = s_centre;
+        double root = lambda_w[j];
+        for (int i = (dir > 0 ? ic : ic - 1); i >= 0 && i < grid.nx; i += dir) {
+          const double x = grid.X(i);
+          const double x_prev = i == ic ? 0.0 : grid.X(i - dir);
+          // Root of the wheel's signed distance along the line (x, b + lambda n0); secant steps
+          // from the neighbour's root plus the change of a body of revolution's lift.
+          double s_found = sg;
+          auto dist = [&](double lambda) {
+            const Eigen::Vector2d yz = b + lambda * n0;
+            const auto pw = g.ProjectOnWheel({x, yz.x(), yz.y()}, sg - warm_window,
+                                             sg + warm_window);
+            s_found = pw.s;
+            return pw.signed_distance;
+          };
+          double l0 = root + (x * x - x_prev * x_prev) * w0 / (2.0 * r_max);
+          double f0 = dist(l0);
+          double l1 = l0 + f0, f1 = dist(l1);
+          for (int it = 0; it < 30 && std::abs(f1) > 1e-13; ++it) {
+            const double slope = (f1 - f0) / (l1 - l0);
+            const double l2 = (slope != 0) ? l1 - f1 / slope : l1 + f1;
+            l0 = l1; f0 = f1; l1 = l2; f1 = dist(l1);
+            if (std::abs(l1 - l0) < 1e-13) break;
+          }
+          root = l1;
+          sg = s_found;
+          grid.gap_m[grid.Index(i, j)] = l1 - lr;
         }
-        grid.gap_m[grid.Index(i, j)] = l1 - lr;
       }
     }
   }

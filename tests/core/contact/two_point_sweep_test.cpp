@@ -20,6 +20,13 @@
 // kernel keeps the tread and gauge-corner patches apart until -5.55 mm and then merges them, the
 // lateral force drops by about 1 % of the load (0.1 mm either side: 15.6 kN, 14.9 kN at
 // reference). With the Boussinesq kernel the two regions share one grid throughout this sweep.
+//
+// Not swept: the half-space model (Model A) is discontinuous here by construction. Its patch
+// lies in the tangent plane of the first contact point, which jumps from the gauge corner (33
+// degrees) to the flange (70 degrees) between -3.95 and -3.9 mm; the lateral force jumps from
+// 65 kN to 275 kN with it (draft), where the conformal geometry passes through 44 and 62
+// degrees. That is the seed paper's case against Model A at the gauge corner, and why auto
+// puts conformal geometry there.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
