@@ -8,6 +8,7 @@
 #include "core/contact/contact_solver.h"
 
 #include <algorithm>
+#include <limits>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -684,6 +685,15 @@ ContactResult SolveContact(const ContactProblem& problem) {
   // Initial overlap a cell may show from the first-contact search's tolerance and the gap
   // projections' rounding (both ~1e-10 m) before it counts as a failed gap computation.
   constexpr double kMaxInitialOverlap_m = 1e-7;
+  // Re-gridding never makes a patch finer than this many cells across its potential area (the
+  // fine preset's patches need about 250).
+  constexpr double kMaxCellsAlong = 300.0;
+  // Patches carrying at least this share of the load get the preset's cells per semi-axis.
+  constexpr double kFullShare = 0.1;
+  constexpr double kMinCellsAlong = 40.0;
+  // Memory one patch's influence operator may take (the curved one holds about 2 nx ns^2
+  // doubles with its preconditioner, the planar one a few FFT buffers of the padded grid).
+  constexpr double kMaxOperatorBytes = 4e9;
   CellSize cell = ChooseCellSize(problem.model, std::max(ax, kMinSemiAxis_m),
                                  std::max(bs, kMinSemiAxis_m));
   double threshold = std::max(2.0 * delta_est, kMinThreshold_m);
@@ -730,6 +740,10 @@ ContactResult SolveContact(const ContactProblem& problem) {
   std::vector<ContactCandidate> at_approach = at_delta_est;  // FindCandidates(approach_now)
   double at_approach_delta = delta_est;
   int regrids = 0, total_iterations = 0;
+  // Grids are cropped to the cells an approach of trim_approach could close (patch_builder.h):
+  // unbounded until a solve has measured the approach, then kTrimFactor times the last one.
+  constexpr double kTrimFactor = 1.2;
+  double trim_approach = std::numeric_limits<double>::infinity();
   for (int attempt = 0; attempt < 12; ++attempt) {
     t0 = Clock::now();
     const std::vector<ContactCandidate> cands = geom.FindCandidates(threshold);
@@ -767,7 +781,21 @@ ContactResult SolveContact(const ContactProblem& problem) {
       o.cell_ds_m = cc.ds_m;
       o.threshold_m = threshold;
       o.stiffness_ratio_K = stiffness_ratio_K;
+      o.trim_approach_m = trim_approach;
+      o.max_operator_bytes = kMaxOperatorBytes;
       PatchBuild b = BuildPatchGrid(geom, c, o);
+      if (b.too_large) {
+        // A status, not std::bad_alloc, when a grid outgrows memory (the cell rules of the
+        // re-gridding below keep within it; an explicit cell_mm may not).
+        result.status = SolverStatus::kNotConverged;
+        result.message = fmt::format(
+            "the potential contact area needs a {} x {} grid, whose influence operator would "
+            "take {:.1f} GB (at most {:.0f} GB): choose a coarser accuracy or larger cell_mm",
+            b.grid.nx, b.grid.ns,
+            EstimateOperatorBytes(b.grid.nx, b.grid.ns, b.grid.planar) / 1e9,
+            kMaxOperatorBytes / 1e9);
+        return finish(result);
+      }
       if (b.valid) {
         builds.push_back(std::move(b));
         build_cells.push_back({c.y_lo_m, c.y_hi_m, cc});
@@ -780,6 +808,19 @@ ContactResult SolveContact(const ContactProblem& problem) {
       result.status = SolverStatus::kNoContact;
       result.message = "no usable contact patch (surfaces too steep for a vertical approach)";
       return finish(result);
+    }
+    for (const PatchBuild& b : builds) {
+      // The wheel was lowered to first contact, so no cell may start inside the rail: a
+      // negative initial separation is a geometry failure (a projection that found the wrong
+      // branch), and a solve on it "converges" to nonsense (a lifted wheel on a few cells).
+      if (const double g = b.grid.gap_m.minCoeff(); g < -kMaxInitialOverlap_m) {
+        result.status = SolverStatus::kNotConverged;
+        result.message = fmt::format(
+            "the initial separation is negative ({:.4g} um) in a cell of the potential contact "
+            "area: the gap computation failed there; try the other geometry model",
+            g * 1e6);
+        return finish(result);
+      }
     }
 
     t0 = Clock::now();
@@ -809,17 +850,6 @@ ContactResult SolveContact(const ContactProblem& problem) {
     np.approach_m = problem.load.approach_m;
     AddStage(&result.stages, "influence", SecondsSince(t0));
 
-    // The wheel was lowered to first contact, so no cell may start inside the rail: a negative
-    // initial separation is a geometry failure (a projection that found the wrong branch), and a
-    // solve on it "converges" to nonsense (a lifted wheel on a few cells). Say so instead.
-    if (Eigen::Index at = 0; np.gap_m.minCoeff(&at) < -kMaxInitialOverlap_m) {
-      result.status = SolverStatus::kNotConverged;
-      result.message = fmt::format(
-          "the initial separation is negative ({:.4g} um) in a cell of the potential contact "
-          "area: the gap computation failed there; try the other geometry model",
-          np.gap_m[at] * 1e6);
-      return finish(result);
-    }
     t0 = Clock::now();
     const NormalSolution sol = SolveNormal(np, problem.solver);
     AddStage(&result.stages, "solve", SecondsSince(t0));
@@ -830,11 +860,15 @@ ContactResult SolveContact(const ContactProblem& problem) {
     // qualifies for the planar grid on its solved extent).
     bool grow = false, regrid = false, switched = false;
     std::vector<CellMemory> next_memory;
+    const double total_load = sol.pressure_Pa.dot(np.cell_area_m2);
     offset = 0;
     for (size_t k = 0; k < builds.size(); ++k) {
       const PatchBuild& b = builds[k];
       CellMemory mem = build_cells[k];
-      const Extent e = MeasureExtent(b.grid, sol.pressure_Pa.segment(offset, b.grid.cells()));
+      const auto p_k = sol.pressure_Pa.segment(offset, b.grid.cells());
+      const Extent e = MeasureExtent(b.grid, p_k);
+      const double share =
+          total_load > 0.0 ? p_k.sum() * b.grid.CellArea() / total_load : 1.0;
       offset += b.grid.cells();
       if (e.cells == 0) continue;
       if (auto_model && build_choices[k].model != PatchModel::kConformal &&
@@ -854,11 +888,24 @@ ContactResult SolveContact(const ContactProblem& problem) {
       }
       if (e.touches_x_edge || (e.touches_s_edge && !b.lateral_limited)) grow = true;
       if (!cell_fixed && regrids < 3) {
-        const double nx_ratio = e.half_x / mem.cell.dx_m / n_per_axis;
-        const double ns_ratio = e.half_s / mem.cell.ds_m / n_per_axis;
-        if (std::abs(nx_ratio - 1.0) > 0.3 || std::abs(ns_ratio - 1.0) > 0.3) {
+        // The preset's cells per semi-axis for every patch that carries at least
+        // kFullShare of the load. A patch that barely touches (a third candidate on a worn
+        // rail: 0.03 mm2 beside 126 mm2) would otherwise be re-gridded into millions of tiny
+        // cells over its potential area, and the curved operator's nx ns^2 memory with them;
+        // its force error is its share times its relative error, so it keeps
+        // n sqrt(share / kFullShare) cells per semi-axis (at least the draft preset's), and
+        // never more than kMaxCellsAlong (scaled alike, at least kMinCellsAlong) across its
+        // potential area.
+        const double weight = std::sqrt(std::min(1.0, share / kFullShare));
+        const double n_patch =
+            std::max(CellsPerSemiAxis(AccuracyPreset::kDraft), n_per_axis * weight);
+        const double along = std::max(kMinCellsAlong, kMaxCellsAlong * weight);
+        const CellSize target{std::max(e.half_x / n_patch, b.grid.nx * b.grid.dx_m / along),
+                              std::max(e.half_s / n_patch, b.grid.ns * b.grid.ds_m / along)};
+        if (std::abs(target.dx_m / mem.cell.dx_m - 1.0) > 0.3 ||
+            std::abs(target.ds_m / mem.cell.ds_m - 1.0) > 0.3) {
           regrid = true;
-          mem.cell = {e.half_x / n_per_axis, e.half_s / n_per_axis};
+          mem.cell = target;
         }
       }
       next_memory.push_back(mem);
@@ -866,8 +913,11 @@ ContactResult SolveContact(const ContactProblem& problem) {
     cell_memory = std::move(next_memory);
     const bool more_candidates = sol.status == SolverStatus::kConverged &&
                                  sol.approach_m > 0.7 * threshold;
-    if (sol.status == SolverStatus::kConverged && (grow || regrid || more_candidates || switched) &&
-        attempt < 11) {
+    // The crop is exact only while the approach stays below the one it was made for.
+    const bool outgrew_trim = sol.status == SolverStatus::kConverged && sol.approach_m > trim_approach;
+    if (sol.status == SolverStatus::kConverged) trim_approach = kTrimFactor * sol.approach_m;
+    if (sol.status == SolverStatus::kConverged &&
+        (grow || regrid || more_candidates || switched || outgrew_trim) && attempt < 11) {
       if (grow) threshold *= 1.8;
       if (more_candidates) threshold = std::max(threshold, 2.0 * sol.approach_m);
       if (regrid) {

@@ -342,4 +342,10 @@ std::unique_ptr<InfluenceOperator> MakeInfluenceOperator(const PatchGrid& grid,
   return std::make_unique<CurvedFftOperator>(grid, coefficients);
 }
 
+double EstimateOperatorBytes(int nx, int ns, bool planar) {
+  const double n_x = nx, n_s = ns;
+  const double doubles = planar ? 8.0 * (2.0 * n_x) * (2.0 * n_s) : 2.0 * (n_x + 1.0) * n_s * n_s;
+  return doubles * sizeof(double);
+}
+
 }  // namespace railwear

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/contact/influence_operator.h"
 #include "core/numerics/check.h"
 
 namespace railwear {
@@ -76,6 +77,49 @@ std::vector<Section> Walk(const WheelRailGeometry& g, const Eigen::Vector2d& pc,
   }
   if (*within < 0) *within = static_cast<int>(out.size());
   return out;
+}
+
+// Crops `grid` to the bounding box of the cells with gap <= approach * w (w the vertical
+// component of the cell normal), widened by kTrimMarginCells and kept symmetric in x about 0.
+// False when no cell qualifies.
+bool TrimToClosableCells(double approach_m, PatchGrid* grid) {
+  PatchGrid& g = *grid;
+  int i_lo = g.nx, i_hi = -1, j_lo = g.ns, j_hi = -1;
+  for (int j = 0; j < g.ns; ++j) {
+    const double w = -g.normal_yz[j].y();
+    for (int i = 0; i < g.nx; ++i) {
+      if (g.gap_m[g.Index(i, j)] > approach_m * w) continue;
+      i_lo = std::min(i_lo, i);
+      i_hi = std::max(i_hi, i);
+      j_lo = std::min(j_lo, j);
+      j_hi = std::max(j_hi, j);
+    }
+  }
+  if (i_hi < 0) return false;
+  const int ic = (g.nx - 1) / 2;  // the x = 0 column (grids are symmetric in x)
+  const int half = std::min(ic, std::max(ic - i_lo, i_hi - ic) + kTrimMarginCells);
+  i_lo = ic - half;
+  i_hi = ic + half;
+  j_lo = std::max(0, j_lo - kTrimMarginCells);
+  j_hi = std::min(g.ns - 1, j_hi + kTrimMarginCells);
+  if (i_lo == 0 && i_hi == g.nx - 1 && j_lo == 0 && j_hi == g.ns - 1) return true;
+  PatchGrid t;
+  t.nx = i_hi - i_lo + 1;
+  t.ns = j_hi - j_lo + 1;
+  t.dx_m = g.dx_m;
+  t.ds_m = g.ds_m;
+  t.x0_m = g.X(i_lo);
+  t.s0_m = g.S(j_lo);
+  t.planar = g.planar;
+  t.point_yz_m.assign(g.point_yz_m.begin() + j_lo, g.point_yz_m.begin() + j_hi + 1);
+  t.tangent_yz.assign(g.tangent_yz.begin() + j_lo, g.tangent_yz.begin() + j_hi + 1);
+  t.normal_yz.assign(g.normal_yz.begin() + j_lo, g.normal_yz.begin() + j_hi + 1);
+  t.gap_m.resize(t.cells());
+  for (int j = 0; j < t.ns; ++j) {
+    for (int i = 0; i < t.nx; ++i) t.gap_m[t.Index(i, j)] = g.gap_m[g.Index(i_lo + i, j_lo + j)];
+  }
+  *grid = std::move(t);
+  return true;
 }
 
 }  // namespace
@@ -159,6 +203,11 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
   const int half_cells = std::max(1, static_cast<int>(std::ceil(x_half / o.cell_dx_m - 0.5)));
   grid.nx = 2 * half_cells + 1;
   grid.x0_m = -half_cells * o.cell_dx_m;
+
+  if (EstimateOperatorBytes(grid.nx, grid.ns, planar) > o.max_operator_bytes) {
+    build.too_large = true;
+    return build;
+  }
 
   grid.point_yz_m.resize(grid.ns);
   grid.tangent_yz.resize(grid.ns);
@@ -250,6 +299,10 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
         }
       }
     }
+  }
+  if (std::isfinite(o.trim_approach_m)) {
+    if (!TrimToClosableCells(o.trim_approach_m, &grid)) return build;  // nothing can touch
+    build.trimmed = true;
   }
   build.valid = true;
   return build;

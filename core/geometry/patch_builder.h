@@ -14,6 +14,8 @@
 // longitudinal range where the wheel's lift x^2 / (2 r) stays below the threshold.
 #pragma once
 
+#include <limits>
+
 #include "core/contact/contact_types.h"
 #include "core/contact/patch_grid.h"
 #include "core/geometry/wheel_rail_geometry.h"
@@ -29,12 +31,28 @@ struct PatchGridOptions {
   // Cells whose surface normal is steeper than this against the vertical are left out (a
   // vertical approach cannot close them). cos of 85 degrees.
   double min_approach_weight = 0.0872;
+  // When finite: the grid is cropped to the cells that a vertical approach of up to this much
+  // could close, d_ij <= trim_approach_m * w_j (w_j = the vertical component of the cell's
+  // normal), plus kTrimMarginCells around them (x symmetric about 0). This is exact, not an
+  // approximation: elastic displacements only open gaps (every influence coefficient is > 0),
+  // so no other cell can come into contact while the approach stays below trim_approach_m. The
+  // threshold alone can leave a barely touching patch a potential area thousands of times its
+  // contact (the threshold is shared by all patches and grows with the largest).
+  double trim_approach_m = std::numeric_limits<double>::infinity();
+  // A grid whose influence operator would take more memory than this (EstimateOperatorBytes)
+  // is not built: the result has too_large set and the grid's nx, ns, but no gaps.
+  double max_operator_bytes = std::numeric_limits<double>::infinity();
 };
+
+// Cells kept around the closable cells when trimming (so the contact's edge lies inside).
+inline constexpr int kTrimMarginCells = 2;
 
 struct PatchBuild {
   PatchGrid grid;
   bool valid = false;           // false when the candidate gives no usable cross-section
   bool lateral_limited = false; // the lateral range stopped at a profile end or a steep normal
+  bool trimmed = false;         // trim_approach_m cropped the grid
+  bool too_large = false;       // over max_operator_bytes: not built (valid is false)
 };
 
 PatchBuild BuildPatchGrid(const WheelRailGeometry& geometry, const ContactCandidate& candidate,

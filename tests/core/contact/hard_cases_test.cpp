@@ -203,6 +203,54 @@ TEST(HardCases, HalfspaceOnTheSteepFlangeStaysOnTheFlange) {
   }
 }
 
+TEST(HardCases, BarelyTouchingPatchOnAWornRailStaysSmall) {
+  // A worn high rail (42 steps of 0.2 mm) under an S1002 at -1.643 mm, 110 kN, rolling: the
+  // flange and gauge corner carry the load, and the worn crown barely touches (0.03 mm2) inside
+  // a flat potential area of ~20 x 8 mm. Re-gridding it to the preset's cells per semi-axis once
+  // asked for a 659 x 4017 grid and std::bad_alloc in the wear run; a patch's cells now scale
+  // with its share of the load and grids are cropped to the cells the approach can close.
+  // Measured: 3 patches, 3243 cells in all, 126.0 mm2, < 1 s (it was 15 s with the cap alone).
+  const std::string file =
+      std::string(RAILWEAR_SOURCE_DIR) + "/tests/data/worn_high_rail_step42_canted.csv";
+  ContactProblem p;
+  p.wheel_profile = MakeS1002();
+  p.rail_profile = ReadProfileFile(file).profile;
+  p.wheel_material = p.rail_material = {210e9, 0.28};
+  p.placement = {-1.643e-3, 0.0, 0.46};
+  p.load.vertical_force_N = 110e3;
+  p.model = MakeModelOptions(ModelKind::kConformal);
+  p.model.kernel = KernelModel::kBoussinesq;
+  RollingOptions rolling;
+  rolling.motion.speed_m_s = 22.0;
+  rolling.motion.yaw_rad = 4e-3;
+  rolling.friction = 0.35;
+  p.rolling = rolling;
+  const ContactResult r = SolveContact(p);
+  ExpectSound(r, 110e3, "worn rail step 42");
+  ASSERT_EQ(r.patches.size(), 3u);
+  int cells = 0;
+  for (const auto& patch : r.patches) cells += patch.cells;
+  EXPECT_LT(cells, 10000);  // the flange patch needs ~1300 at the standard preset
+  EXPECT_NEAR(r.area_m2 * 1e6, 126.0, 1.5);
+}
+
+TEST(HardCases, AGridTooLargeForMemoryIsAStatusNotACrash) {
+  // An explicit 5 um cell on the 100 kN gauge corner: a 4000 x 2000 curved grid would need
+  // tens of GB for its operator. The solver says so instead of throwing std::bad_alloc.
+  ContactProblem p;
+  p.wheel_profile = MakeS1002();
+  p.rail_profile = ApplyCant(MakeUic60(), 1.0 / 40.0);
+  p.wheel_material = p.rail_material = {210e9, 0.28};
+  p.placement = {-4e-3, 0.0, 0.46};
+  p.load.vertical_force_N = 1e5;
+  p.model = MakeModelOptions(ModelKind::kConformal);
+  p.model.cell_dx_m = p.model.cell_ds_m = 5e-6;
+  const ContactResult r = SolveContact(p);
+  EXPECT_EQ(r.status, SolverStatus::kNotConverged);
+  EXPECT_NE(r.message.find("choose a coarser accuracy or larger cell_mm"), std::string::npos)
+      << r.message;
+}
+
 TEST(HardCases, ProfilesApartGiveNoContactNotAnError) {
   ContactProblem p = Groove(0.01025, 1e4, ModelKind::kConformal);
   p.load = {};
