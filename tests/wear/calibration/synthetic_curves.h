@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <string>
 #include <utility>
@@ -28,11 +29,36 @@ struct SyntheticCurveSpec {
   double offset = 0.0;  // added to every point of a curve, relative to its RMS
 };
 
-// The noise comes from std::mt19937(seed).
+// Standard normal deviates by Box-Muller from std::mt19937's raw output: unlike
+// std::normal_distribution, the same on every standard library, so that generated files can be
+// compared with committed ones (examples/calibration).
+class PortableGauss {
+ public:
+  explicit PortableGauss(unsigned seed) : rng_(seed) {}
+  double operator()() {
+    if (have_spare_) {
+      have_spare_ = false;
+      return spare_;
+    }
+    const double u1 = (static_cast<double>(rng_()) + 0.5) / 4294967296.0;
+    const double u2 = (static_cast<double>(rng_()) + 0.5) / 4294967296.0;
+    const double r = std::sqrt(-2.0 * std::log(u1));
+    spare_ = r * std::sin(2.0 * std::numbers::pi * u2);
+    have_spare_ = true;
+    return r * std::cos(2.0 * std::numbers::pi * u2);
+  }
+
+ private:
+  std::mt19937 rng_;
+  bool have_spare_ = false;
+  double spare_ = 0.0;
+};
+
+// The noise comes from PortableGauss(seed).
 inline DisplacementCurves MakeSyntheticCurves(const InfluenceConstants& truth,
                                               const SyntheticCurveSpec& spec, unsigned seed = 1,
                                               const std::string& path = "") {
-  std::mt19937 rng(seed);
+  PortableGauss gauss(seed);
   DisplacementCurves out;
   out.path = path;
   out.body = spec.body;
@@ -40,7 +66,6 @@ inline DisplacementCurves MakeSyntheticCurves(const InfluenceConstants& truth,
   out.material.youngs_modulus_Pa = 210e9;
   out.material.poisson_ratio = 0.28;
   out.metadata = {{"source", "synthetic: eq. 4 with known constants, noise and offset"}};
-  std::normal_distribution<double> gauss(0.0, 1.0);
   for (const auto& [load, curve_path] : spec.curves) {
     std::vector<DisplacementPoint> points;
     double sum = 0.0;
@@ -60,7 +85,7 @@ inline DisplacementCurves MakeSyntheticCurves(const InfluenceConstants& truth,
     const double rms = std::sqrt(sum / n);
     for (DisplacementPoint& p : points) {
       p.w_m_per_N += spec.offset * rms;
-      if (spec.noise > 0.0) p.w_m_per_N += spec.noise * rms * gauss(rng);
+      if (spec.noise > 0.0) p.w_m_per_N += spec.noise * rms * gauss();
       out.points.push_back(p);
     }
   }
