@@ -119,8 +119,9 @@ void ReadCalibrationTable(const Fields& top, Config* c) {
     if (db->empty()) t->Fail("db", "the path of a study database");
     c->db = ResolveRelativeTo(DirectoryOf(c->path), *db);
   }
-  c->fit.contact_relative_step =
-      t->Number("contact_relative_step", OpenClosed(0.0, 0.5)).value_or(c->fit.contact_relative_step);
+  if (const auto step = t->Number("contact_relative_step", OpenClosed(0.0, 0.5))) {
+    c->fit.contact_relative_step = *step;
+  }
   if (const auto n = t->Number("max_iterations", AtLeast(1.0))) {
     if (*n != std::floor(*n) || *n > 100000) t->Fail("max_iterations", "an integer in [1, 100000]");
     c->fit.max_num_iterations = static_cast<int>(*n);
@@ -487,7 +488,8 @@ std::string ConstantsToml(const Config& c, const InfluenceFitSummary& s, const s
                      e.target.area_m2 * kToMm2, e.target.p_max_Pa * kToMPa, e.target.weight);
   }
   t += fmt::format("# status:      {}, {} (condition number {:.3g}), residual s = {:.4g}\n",
-                   ToString(s.status), s.well_conditioned ? "well conditioned" : "badly conditioned",
+                   ToString(s.status),
+                   s.well_conditioned ? "well conditioned" : "badly conditioned",
                    s.condition_number, std::sqrt(s.residual_variance));
   t += "# fitted:      start -> value +- standard error\n";
   for (const FittedConstant& k : s.constants) {

@@ -105,11 +105,14 @@ TEST_F(CalibrateCli, ExampleCalibratesAndASceneUsesTheConstants) {
       "input_index\" --tsv");
   EXPECT_EQ(inputs.exit_code, 0) << inputs.err;
   const std::string convex = ReadFile(kExampleDir + "synthetic_r15_convex.csv");
-  const std::string scene = ReadFile(std::string(RAILWEAR_SOURCE_DIR) + "/examples/groove_conformal.toml");
-  EXPECT_TRUE(Contains(inputs.out, "config\t" + std::to_string(ReadFile(kExampleDir + "synthetic.toml").size())));
+  const std::string scene =
+      ReadFile(std::string(RAILWEAR_SOURCE_DIR) + "/examples/groove_conformal.toml");
+  const std::string config = ReadFile(kExampleDir + "synthetic.toml");
+  EXPECT_TRUE(Contains(inputs.out, "config\t" + std::to_string(config.size())));
   EXPECT_TRUE(Contains(inputs.out, "displacement_curves\t" + std::to_string(convex.size())));
   EXPECT_TRUE(Contains(inputs.out, "scene\t" + std::to_string(scene.size())));
-  const Outcome stored = Run("history --db cal.sqlite sql \"SELECT constants_toml FROM calibrations\" --tsv");
+  const Outcome stored =
+      Run("history --db cal.sqlite sql \"SELECT constants_toml FROM calibrations\" --tsv");
   EXPECT_TRUE(Contains(stored.out, "[influence_constants]"));
 }
 

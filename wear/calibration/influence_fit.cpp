@@ -139,7 +139,9 @@ class CurveCost final : public ceres::CostFunction {
       // The model is affine in each constant: the derivative is the change for a unit step.
       InfluenceConstants up = c;
       Slot(&up, params_[k].set, params_[k].name) += 1.0;
-      for (int i = 0; i < n; ++i) jacobians[k][i] = f * (curve_.Model(up, *curve_.points[i]) - w[i]);
+      for (int i = 0; i < n; ++i) {
+        jacobians[k][i] = f * (curve_.Model(up, *curve_.points[i]) - w[i]);
+      }
     }
     if (offsets_ && jacobians[params_.size()] != nullptr) {
       for (int i = 0; i < n; ++i) jacobians[params_.size()][i] = curve_.sqrt_weight;
@@ -535,6 +537,9 @@ std::string InfluenceFitSummary::BriefReport() const {
 InfluenceFitSummary FitInfluenceConstants(const InfluenceFitData& data,
                                           const InfluenceFitOptions& options) {
   const auto t_start = std::chrono::steady_clock::now();
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  };
   std::string error;
   if (!options.IsValid(&error)) throw InputError("influence fit options: " + error);
   CheckData(data, options);
@@ -567,14 +572,20 @@ InfluenceFitSummary FitInfluenceConstants(const InfluenceFitData& data,
 
   int solves = 0;
   std::vector<std::unique_ptr<ContactModel>> models;
-  for (const ContactTarget& t : data.contacts) models.push_back(std::make_unique<ContactModel>(t, &solves));
+  for (const ContactTarget& t : data.contacts) {
+    models.push_back(std::make_unique<ContactModel>(t, &solves));
+  }
 
   ceres::Problem problem;
   std::vector<double*> blocks;  // every parameter block, constants first
   for (int k = 0; k < num_params; ++k) {
     problem.AddParameterBlock(&theta[k], 1);
-    if (std::isfinite(params[k].lower)) problem.SetParameterLowerBound(&theta[k], 0, params[k].lower);
-    if (std::isfinite(params[k].upper)) problem.SetParameterUpperBound(&theta[k], 0, params[k].upper);
+    if (std::isfinite(params[k].lower)) {
+      problem.SetParameterLowerBound(&theta[k], 0, params[k].lower);
+    }
+    if (std::isfinite(params[k].upper)) {
+      problem.SetParameterUpperBound(&theta[k], 0, params[k].upper);
+    }
     blocks.push_back(&theta[k]);
   }
   if (options.fit_offsets) {
@@ -719,7 +730,7 @@ InfluenceFitSummary FitInfluenceConstants(const InfluenceFitData& data,
     if (!summary.IsSolutionUsable()) {
       out.status = InfluenceFitStatus::kFailure;
       out.contact_solves = solves;
-      out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+      out.time_s = elapsed();
       return out;
     }
     out.status = summary.termination_type == ceres::CONVERGENCE
@@ -767,7 +778,7 @@ InfluenceFitSummary FitInfluenceConstants(const InfluenceFitData& data,
   if (free_blocks.empty()) {
     out.cost_after = out.cost_before;
     out.contact_solves = solves;
-    out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    out.time_s = elapsed();
     return out;
   }
   ceres::Problem::EvaluateOptions free_eval;
@@ -846,7 +857,8 @@ InfluenceFitSummary FitInfluenceConstants(const InfluenceFitData& data,
     }
     for (int k = 0; k < num_params; ++k) {
       if (free_index[k] >= 0) {
-        out.constants[k].standard_error = std::sqrt(std::max(0.0, cov(free_index[k], free_index[k])));
+        const int f_k = free_index[k];
+        out.constants[k].standard_error = std::sqrt(std::max(0.0, cov(f_k, f_k)));
       }
     }
     if (options.fit_offsets) {
@@ -881,7 +893,7 @@ InfluenceFitSummary FitInfluenceConstants(const InfluenceFitData& data,
     }
   }
   out.contact_solves = solves;
-  out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  out.time_s = elapsed();
   return out;
 }
 

@@ -140,8 +140,10 @@ TEST(InfluenceFit, StandardErrorsMatchTheScatterOfReplicates) {
 }
 
 TEST(InfluenceFit, StandardErrorsShrinkWithLessNoiseAndMoreData) {
-  const InfluenceFitSummary base = FitInfluenceConstants(PaperExperiment(kTruth, 0.02, 0.0, 7), {});
-  const InfluenceFitSummary quiet = FitInfluenceConstants(PaperExperiment(kTruth, 0.01, 0.0, 7), {});
+  const InfluenceFitSummary base =
+      FitInfluenceConstants(PaperExperiment(kTruth, 0.02, 0.0, 7), {});
+  const InfluenceFitSummary quiet =
+      FitInfluenceConstants(PaperExperiment(kTruth, 0.01, 0.0, 7), {});
   const InfluenceFitSummary dense =
       FitInfluenceConstants(PaperExperiment(kTruth, 0.02, 0.0, 7, 0.125), {});
   for (int k = 0; k < 3; ++k) {

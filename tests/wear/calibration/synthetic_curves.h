@@ -1,5 +1,5 @@
-// Test helper: displacement curves generated from eq. 4 with known constants (SeedKernelDisplacement),
-// plus Gaussian noise and a constant offset per curve, both relative to the curve's RMS: the data
+// Test helper: displacement curves generated from eq. 4 with known constants
+// (SeedKernelDisplacement), plus Gaussian noise and a constant offset per curve, both relative to the curve's RMS: the data
 // of the calibration's recovery tests (wear and CLI).
 #pragma once
 
