@@ -138,6 +138,28 @@ nlohmann::json PatchJson(const PatchResult& p) {
   return j;
 }
 
+}  // namespace
+
+nlohmann::json InfluenceConstantsJson(const InfluenceConstants& c) {
+  auto set = [](double c_f, double c_z, double c_s) {
+    return nlohmann::json{{"c_f", c_f}, {"c_z", c_z}, {"c_s", c_s}};
+  };
+  if (!c.separate) return set(c.c_f, c.c_z, c.c_s);
+  const auto& s = *c.separate;
+  return {{"convex", set(s.convex.c_f, s.convex.c_z, s.convex.c_s)},
+          {"concave", set(s.concave.c_f, s.concave.c_z, s.concave.c_s)}};
+}
+
+std::string InfluenceConstantsText(const InfluenceConstants& c) {
+  auto set = [](const InfluenceConstantSet& s) {
+    return fmt::format("c_f {} c_z {} c_s {}", s.c_f, s.c_z, s.c_s);
+  };
+  if (!c.separate) return set({c.c_f, c.c_z, c.c_s});
+  return fmt::format("convex {}, concave {}", set(c.separate->convex), set(c.separate->concave));
+}
+
+namespace {
+
 nlohmann::json ModelJson(const ModelOptions& m) {
   nlohmann::json j;
   j["kind"] = ToString(m.kind);
@@ -148,8 +170,7 @@ nlohmann::json ModelJson(const ModelOptions& m) {
   j["geometry"] = per_patch ? nlohmann::json(nullptr) : nlohmann::json(ToString(m.geometry));
   j["kernel"] = hertz ? nlohmann::json(nullptr) : nlohmann::json(ToString(m.kernel));
   j["accuracy"] = ToString(m.accuracy);
-  j["influence_constants"] = {
-      {"c_f", m.constants.c_f}, {"c_z", m.constants.c_z}, {"c_s", m.constants.c_s}};
+  j["influence_constants"] = InfluenceConstantsJson(m.constants);
   return j;
 }
 
@@ -161,9 +182,9 @@ std::string ModelLine(const ModelOptions& m) {
     return fmt::format("auto (per patch: hertz, halfspace or conformal+{}), accuracy {}",
                        ToString(m.kernel), ToString(m.accuracy));
   }
-  return fmt::format("{} (geometry {}, kernel {}), accuracy {}, c_f {} c_z {} c_s {}",
-                     ToString(m.kind), ToString(m.geometry), ToString(m.kernel),
-                     ToString(m.accuracy), m.constants.c_f, m.constants.c_z, m.constants.c_s);
+  return fmt::format("{} (geometry {}, kernel {}), accuracy {}, {}", ToString(m.kind),
+                     ToString(m.geometry), ToString(m.kernel), ToString(m.accuracy),
+                     InfluenceConstantsText(m.constants));
 }
 
 std::string StagesLine(const ContactResult& r) {

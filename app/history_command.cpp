@@ -216,6 +216,10 @@ void SetupHistory(CLI::App& app) {
                                   "program version")
       ->callback([common]() { RunHistoryRuns(*common); });
 
+  history->add_subcommand("calibrations", "Table of the influence-constant calibrations: id, "
+                                          "name, created, status, conditioning, fitted constants")
+      ->callback([common]() { RunHistoryCalibrations(*common); });
+
   auto steps = std::make_shared<HistoryStepsOptions>();
   CLI::App* steps_cmd = history->add_subcommand(
       "steps", "Table of a run's steps: passes, MGT, worn area, max depth, W1 W2 W3, smoothing");
@@ -271,6 +275,33 @@ void RunHistoryRuns(const HistoryOptions& o) {
   std::cout << AlignedTable({"name", "state", "created_utc", "steps", "last_MGT",
                              "program_version"}, rows);
   std::cerr << fmt::format("railwear: {} run(s) in {}\n", rows.size(), db.path());
+}
+
+void RunHistoryCalibrations(const HistoryOptions& o) {
+  const ProfileStore db = OpenExisting(o.db);
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& c : db.Calibrations()) {
+    // "c_f 1.05 +- 0.001, c_z ..." from the stored constants (calibrate_command.cpp writes it).
+    std::string fitted;
+    const nlohmann::json j = nlohmann::json::parse(c.constants_json, nullptr, false);
+    if (j.is_object() && j.contains("constants") && j["constants"].is_array()) {
+      for (const auto& k : j["constants"]) {
+        if (!k.is_object() || !k.contains("name") || !k.contains("value")) continue;
+        fitted += fmt::format("{}{} {:.4g}", fitted.empty() ? "" : ", ",
+                              k["name"].get<std::string>(), k["value"].get<double>());
+        if (k.contains("standard_error") && k["standard_error"].is_number()) {
+          fitted += fmt::format(" +- {:.2g}", k["standard_error"].get<double>());
+        }
+      }
+    }
+    rows.push_back({std::to_string(c.id), c.name, c.created_utc, c.status,
+                    c.well_conditioned ? "yes" : "no", fitted.empty() ? "NULL" : fitted,
+                    c.program_version});
+  }
+  std::cout << AlignedTable({"id", "name", "created_utc", "status", "well_conditioned",
+                             "fitted", "program_version"},
+                            rows);
+  std::cerr << fmt::format("railwear: {} calibration(s) in {}\n", rows.size(), db.path());
 }
 
 void RunHistorySteps(const HistoryOptions& o, const HistoryStepsOptions& s) {

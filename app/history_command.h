@@ -1,5 +1,6 @@
-// `railwear history [--db FILE] runs | steps RUN | profile RUN | diff RUN A B | plot RUN | sql Q`:
-// reading a study's profile-history database (profiles_db/SCHEMA.md) — runs, the steps of a run,
+// `railwear history [--db FILE] runs | calibrations | steps RUN | profile RUN | diff RUN A B |
+// plot RUN | sql Q`: reading a study's profile-history database (profiles_db/SCHEMA.md) — runs,
+// influence-constant calibrations, the steps of a run,
 // a step's profile as CSV/BAN/JSON, the wear between two steps, plots, and read-only SQL.
 //
 // Data goes to stdout, messages to stderr. The database must exist and be a railwear profile-
@@ -62,6 +63,9 @@ void SetupHistory(CLI::App& app);
 // Each opens options.db (InputError when missing, empty or not a railwear database).
 // runs: table name, state, created, steps, last MGT, program version.
 void RunHistoryRuns(const HistoryOptions& options);
+// calibrations: table id, name, created, status, well conditioned, fitted constants, version
+// (the rows `railwear calibrate --db` stores; their inputs: `history sql`).
+void RunHistoryCalibrations(const HistoryOptions& options);
 // steps: table step, passes, MGT, worn area, max depth and its y, W1 W2 W3, smoothing error.
 void RunHistorySteps(const HistoryOptions& options, const HistoryStepsOptions& steps);
 // profile: the step's rail profile (mm) as CSV or MiniProf BAN (core/profile/profile_io.h), or

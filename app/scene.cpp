@@ -74,40 +74,74 @@ void ReadSceneTable(const Fields& top, Scene* scene) {
   }
 }
 
-InfluenceConstants ReadConstants(const Fields& t) {
+constexpr const char* kConstantSetExpected = "a table { c_f, c_z, c_s }";
+constexpr const char* kConstantsExpected =
+    "{ c_f, c_z, c_s } (one set for both bodies) or { convex = { c_f, c_z, c_s }, concave = "
+    "{ c_f, c_z, c_s } } (a set for each curvature sign)";
+
+InfluenceConstantSet ReadConstantSet(const Fields& t) {
   t.AllowOnly({"c_f", "c_z", "c_s"});
-  InfluenceConstants c;
+  InfluenceConstantSet c;
   c.c_f = t.Number("c_f", Positive()).value_or(c.c_f);
   c.c_z = t.Number("c_z", Positive()).value_or(c.c_z);
   c.c_s = t.Number("c_s", AnyFinite()).value_or(c.c_s);
   return c;
 }
 
-InfluenceConstants ReadConstantsFile(const std::string& path) {
+}  // namespace
+
+InfluenceConstants ReadInfluenceConstantsTable(const Fields& t) {
+  t.AllowOnly({"c_f", "c_z", "c_s", "convex", "concave"});
+  InfluenceConstants c;
+  if (!t.Has("convex") && !t.Has("concave")) {
+    const InfluenceConstantSet one = ReadConstantSet(t);
+    c.c_f = one.c_f;
+    c.c_z = one.c_z;
+    c.c_s = one.c_s;
+    return c;
+  }
+  for (const std::string_view key : {"c_f", "c_z", "c_s"}) {
+    if (t.Has(key)) {
+      t.Fail(key, std::string("either one set or convex and concave sets, not both: ") +
+                      kConstantsExpected);
+    }
+  }
+  const auto convex = t.Table("convex", kConstantSetExpected);
+  const auto concave = t.Table("concave", kConstantSetExpected);
+  if (!convex) t.FailMissing("convex", "the convex set too: " + std::string(kConstantsExpected));
+  if (!concave) t.FailMissing("concave", "the concave set too: " + std::string(kConstantsExpected));
+  c.separate = SeparateInfluenceConstants{ReadConstantSet(*convex), ReadConstantSet(*concave)};
+  return c;
+}
+
+InfluenceConstants ReadInfluenceConstantsFile(const std::string& path) {
   const std::string text = ReadTextFile(path, "influence constants file");
   const toml::table root = ParseToml(text, path);
   const Fields top(root, "", path);
-  const auto t = top.Table("influence_constants", "a table { c_f, c_z, c_s }");
+  const auto t = top.Table("influence_constants", std::string("a table ") + kConstantsExpected);
   if (!t) {
-    top.FailMissing("influence_constants", "an [influence_constants] table with c_f, c_z, c_s");
+    top.FailMissing("influence_constants",
+                    std::string("an [influence_constants] table ") + kConstantsExpected);
   }
-  return ReadConstants(*t);
+  return ReadInfluenceConstantsTable(*t);
 }
+
+namespace {
 
 void ReadInfluenceConstants(const Fields& model, const std::string& scene_path, Scene* scene) {
   const toml::node* node = model.Node("influence_constants");
   if (node == nullptr) return;
-  const std::string expected =
-      "an inline table { c_f, c_z, c_s } or the path of a TOML file with [influence_constants]";
+  const std::string expected = std::string("an inline table ") + kConstantsExpected +
+                               " or the path of a TOML file with [influence_constants]";
   if (const auto file = node->value_exact<std::string>()) {
     const std::string path = ResolveRelativeTo(DirectoryOf(scene_path), *file);
     scene->influence_constants_source = path;
-    scene->problem.model.constants = ReadConstantsFile(path);
+    scene->problem.model.constants = ReadInfluenceConstantsFile(path);
     return;
   }
   const auto t = model.Table("influence_constants", expected);
   scene->influence_constants_source = "inline";
-  scene->problem.model.constants = ReadConstants(*t);
+  scene->problem.model.constants = ReadInfluenceConstantsTable(*t);
 }
 
 // geometry/kernel given explicitly: the kind becomes the shorthand they match, else custom.

@@ -33,9 +33,14 @@ kind = "conformal"            # "hertz" | "halfspace" (planar + boussinesq)
 # kernel = "golubenko"        # "boussinesq" | "golubenko"; overrides kind (not with "hertz")
 # influence_constants = { c_f = 0.75, c_z = 1.0, c_s = 0.25 }
                               # seed eq. 4 constants; each optional (defaults shown);
-                              # c_f, c_z > 0, c_s any finite number. Or the path (relative
-                              # to this file) of a TOML file with an [influence_constants]
-                              # table of the same keys.
+                              # c_f, c_z > 0, c_s any finite number. One set for both
+                              # bodies, or a set for each curvature sign (each body of a
+                              # patch uses the set of its lateral curvature there):
+                              #   { convex = { c_f = 0.9, c_z = 1.0, c_s = 0.25 },
+                              #     concave = { c_f = 0.8, c_z = 1.0, c_s = 0.25 } }
+                              # Or the path (relative to this file) of a TOML file with an
+                              # [influence_constants] table of either form, such as the one
+                              # `railwear calibrate` writes.
 accuracy = "standard"         # "draft" | "standard" | "reference" | "fine"; default "standard"
 # cell_mm = [0.2, 0.2]        # explicit cell size [dx, ds] in mm (> 0); overrides accuracy
 tangential = "fastsim"        # "fastsim" | "exact"; default "fastsim": the tangential solver

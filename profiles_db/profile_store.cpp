@@ -292,8 +292,36 @@ void MigrateTo2(const Connection& c) {
          "CHECK (s IS NULL OR length(s) = length(value))");
 }
 
+// Version 3: influence-constant calibrations (`railwear calibrate`) with the text of every input
+// they were made from, so that each can be redone.
+void MigrateTo3(const Connection& c) {
+  c.Exec(R"sql(
+CREATE TABLE calibrations(
+  id               INTEGER PRIMARY KEY,
+  name             TEXT NOT NULL,
+  created_utc      TEXT NOT NULL,
+  program_version  TEXT NOT NULL,
+  config_path      TEXT NOT NULL,
+  config_text      TEXT NOT NULL,
+  status           TEXT NOT NULL,
+  well_conditioned INTEGER NOT NULL CHECK (well_conditioned IN (0, 1)),
+  constants_json   TEXT NOT NULL,
+  correlation_json TEXT NOT NULL,
+  residuals_json   TEXT NOT NULL,
+  ceres_report     TEXT NOT NULL,
+  constants_toml   TEXT NOT NULL);
+CREATE TABLE calibration_inputs(
+  calibration_id INTEGER NOT NULL REFERENCES calibrations(id) ON DELETE CASCADE,
+  input_index    INTEGER NOT NULL,
+  kind           TEXT NOT NULL,
+  path           TEXT NOT NULL,
+  text           TEXT NOT NULL,
+  PRIMARY KEY (calibration_id, input_index));
+)sql");
+}
+
 using Migration = void (*)(const Connection&);
-constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2};
+constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3};
 static_assert(std::size(kMigrations) == ProfileStore::kSchemaVersion);
 
 const char* kNowUtc = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
@@ -387,6 +415,29 @@ constexpr const char* kRunColumns =
 constexpr const char* kStepColumns =
     "step, passes, mgt, worn_area_mm2, max_depth_mm, max_depth_y_mm, w1_mm, w2_mm, w3_mm, "
     "smoothing_area_error, created_utc";
+
+constexpr const char* kCalibrationColumns =
+    "id, name, created_utc, program_version, config_path, config_text, status, "
+    "well_conditioned, constants_json, correlation_json, residuals_json, ceres_report, "
+    "constants_toml";
+
+CalibrationRecord ReadCalibration(const Statement& s) {
+  CalibrationRecord r;
+  r.id = s.Int64(0);
+  r.name = s.Text(1);
+  r.created_utc = s.Text(2);
+  r.program_version = s.Text(3);
+  r.config_path = s.Text(4);
+  r.config_text = s.Text(5);
+  r.status = s.Text(6);
+  r.well_conditioned = s.Int64(7) != 0;
+  r.constants_json = s.Text(8);
+  r.correlation_json = s.Text(9);
+  r.residuals_json = s.Text(10);
+  r.ceres_report = s.Text(11);
+  r.constants_toml = s.Text(12);
+  return r;
+}
 
 StepRecord ReadStep(const Statement& s) {
   StepRecord r;
@@ -651,6 +702,79 @@ std::optional<int> ProfileStore::LastStep(int64_t run) const {
   s.Bind(1, run);
   if (!s.Step() || sqlite3_column_type(s.get(), 0) == SQLITE_NULL) return std::nullopt;
   return static_cast<int>(s.Int64(0));
+}
+
+int64_t ProfileStore::AddCalibration(const CalibrationRecord& calibration) {
+  const Connection& c = impl_->db;
+  if (calibration.name.empty()) {
+    throw InputError(fmt::format("database '{}': calibration name is empty; expected a name",
+                                 path()));
+  }
+  for (const auto& input : calibration.inputs) {
+    if (input.kind.empty() || input.path.empty()) {
+      throw InputError(fmt::format("database '{}': calibration '{}': an input without kind or "
+                                   "path; expected both",
+                                   path(), calibration.name));
+    }
+  }
+  Transaction t(c);
+  int64_t id = 0;
+  {
+    Statement s(c, fmt::format("INSERT INTO calibrations(name, created_utc, program_version, "
+                               "config_path, config_text, status, well_conditioned, "
+                               "constants_json, correlation_json, residuals_json, ceres_report, "
+                               "constants_toml) VALUES (?1, coalesce(?2, {}), ?3, ?4, ?5, ?6, "
+                               "?7, ?8, ?9, ?10, ?11, ?12)",
+                               internal::kNowUtc));
+    s.Bind(1, calibration.name);
+    if (!calibration.created_utc.empty()) s.Bind(2, calibration.created_utc);
+    s.Bind(3, calibration.program_version).Bind(4, calibration.config_path);
+    s.Bind(5, calibration.config_text).Bind(6, calibration.status);
+    s.Bind(7, calibration.well_conditioned ? 1 : 0).Bind(8, calibration.constants_json);
+    s.Bind(9, calibration.correlation_json).Bind(10, calibration.residuals_json);
+    s.Bind(11, calibration.ceres_report).Bind(12, calibration.constants_toml);
+    s.Run();
+    id = sqlite3_last_insert_rowid(c.get());
+  }
+  {
+    Statement s(c, "INSERT INTO calibration_inputs(calibration_id, input_index, kind, path, text) "
+                   "VALUES (?1, ?2, ?3, ?4, ?5)");
+    for (size_t i = 0; i < calibration.inputs.size(); ++i) {
+      const CalibrationInput& input = calibration.inputs[i];
+      sqlite3_reset(s.get());
+      s.Bind(1, id).Bind(2, static_cast<int>(i)).Bind(3, input.kind).Bind(4, input.path);
+      s.Bind(5, input.text);
+      s.Run();
+    }
+  }
+  t.Commit();
+  return id;
+}
+
+std::vector<CalibrationRecord> ProfileStore::Calibrations() const {
+  Statement s(impl_->db, fmt::format("SELECT {} FROM calibrations ORDER BY id",
+                                     internal::kCalibrationColumns));
+  std::vector<CalibrationRecord> out;
+  while (s.Step()) out.push_back(internal::ReadCalibration(s));
+  return out;
+}
+
+CalibrationRecord ProfileStore::LoadCalibration(int64_t id) const {
+  CalibrationRecord r;
+  {
+    Statement s(impl_->db, fmt::format("SELECT {} FROM calibrations WHERE id = ?1",
+                                       internal::kCalibrationColumns));
+    s.Bind(1, id);
+    if (!s.Step()) {
+      throw InputError(fmt::format("database '{}': no calibration with id {}", path(), id));
+    }
+    r = internal::ReadCalibration(s);
+  }
+  Statement s(impl_->db, "SELECT kind, path, text FROM calibration_inputs WHERE "
+                         "calibration_id = ?1 ORDER BY input_index");
+  s.Bind(1, id);
+  while (s.Step()) r.inputs.push_back({s.Text(0), s.Text(1), s.Text(2)});
+  return r;
 }
 
 QueryResult ProfileStore::Query(const std::string& sql) const {

@@ -6,7 +6,10 @@
 // its full scene text, the program version and the wear-law parameters, so any step can be re-run.
 // The wear loop (wear/) knows nothing of this; app/ hands its finished steps to AppendStep.
 //
-// Schema version 2 (PRAGMA user_version = 2, PRAGMA application_id = kApplicationId), also
+// A study database may also hold influence-constant calibrations (`railwear calibrate`), each
+// with the text of every input it was made from.
+//
+// Schema version 3 (PRAGMA user_version = 3, PRAGMA application_id = kApplicationId), also
 // documented for users of the sqlite3 shell in profiles_db/SCHEMA.md:
 //
 //   meta(key TEXT PRIMARY KEY, value TEXT)          -- ('format', 'railwear-profile-history'), ...
@@ -21,9 +24,15 @@
 //                 PRIMARY KEY(run_id, step, kind))
 //         -- y: rail-profile lateral positions [m], value: same count, little-endian float64;
 //         -- s: arc length along the run's step-0 profile [m], same count, or NULL (since v2)
+//   calibrations(id INTEGER PRIMARY KEY, name, created_utc, program_version, config_path,
+//                config_text, status, well_conditioned, constants_json, correlation_json,
+//                residuals_json, ceres_report, constants_toml)             -- since v3
+//   calibration_inputs(calibration_id, input_index, kind, path, text,
+//                      PRIMARY KEY(calibration_id, input_index))           -- since v3
 //
 // Migrations (applied on open, all of them in one transaction): 0 -> 1 creates the schema;
-// 1 -> 2 adds the nullable column distributions.s (rows written by version 1 keep s NULL).
+// 1 -> 2 adds the nullable column distributions.s (rows written by version 1 keep s NULL);
+// 2 -> 3 adds the calibrations and calibration_inputs tables.
 //
 // The database runs in WAL mode with foreign keys on. Each AppendStep is one transaction: a crash
 // loses at most the step in flight. Opening never modifies a file it refuses.
@@ -90,6 +99,33 @@ struct StepRecord {
   std::vector<Distribution> distributions;   // wear and damage per rail-profile position
 };
 
+// One input of a calibration, verbatim: kind "config", "displacement_curves", "scene" or
+// "profile" (a profile file a scene names), the path as resolved when it was read, its text.
+struct CalibrationInput {
+  std::string kind;
+  std::string path;
+  std::string text;
+};
+
+// An influence-constant calibration (`railwear calibrate`): what it was made from and what it
+// found. The JSON texts are as the calibrate command writes them (SCHEMA.md).
+struct CalibrationRecord {
+  int64_t id = 0;               // assigned by AddCalibration; ignored on input
+  std::string name;             // not empty (need not be unique: the id identifies)
+  std::string created_utc;      // set by AddCalibration if empty
+  std::string program_version;
+  std::string config_path;      // the calibration config as given
+  std::string config_text;      // its full text
+  std::string status;           // "converged", "no-convergence", "failure"
+  bool well_conditioned = true;
+  std::string constants_json;   // fitted constants: start, value, standard error, flags
+  std::string correlation_json; // correlation matrix of the fitted constants
+  std::string residuals_json;   // per curve and per contact result, before and after
+  std::string ceres_report;     // Ceres's full report
+  std::string constants_toml;   // the [influence_constants] file written for scenes
+  std::vector<CalibrationInput> inputs;  // filled by LoadCalibration, not by Calibrations()
+};
+
 // Result of Query: column names and rows, every value as text (NULL -> "NULL",
 // a BLOB -> "<blob N bytes>", numbers as SQLite prints them).
 struct QueryResult {
@@ -100,7 +136,7 @@ struct QueryResult {
 class ProfileStore {
  public:
   // Schema version written by this program (PRAGMA user_version).
-  static constexpr int kSchemaVersion = 2;
+  static constexpr int kSchemaVersion = 3;
   // PRAGMA application_id of railwear databases: "RWDB" in ASCII.
   static constexpr int32_t kApplicationId = 0x52574442;
   // Value of meta.format in railwear databases.
@@ -144,6 +180,14 @@ class ProfileStore {
   Profile LoadProfile(int64_t run, int step) const;
   // The last stored step of a run, nullopt when it has none.
   std::optional<int> LastStep(int64_t run) const;
+
+  // Stores a calibration and its inputs in one transaction; returns its id. Throws InputError
+  // for an empty name or an input without kind or path.
+  int64_t AddCalibration(const CalibrationRecord& calibration);
+  // All calibrations in id order, without their inputs.
+  std::vector<CalibrationRecord> Calibrations() const;
+  // One calibration with its inputs. Throws InputError for an unknown id.
+  CalibrationRecord LoadCalibration(int64_t id) const;
 
   // Runs one read-only SQL statement (a SELECT, or a read-only PRAGMA) and returns all its rows.
   // File databases are queried through a separate read-only connection (SQLITE_OPEN_READONLY);

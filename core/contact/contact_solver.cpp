@@ -427,9 +427,8 @@ void SolveCoupled(const ContactProblem& problem, const WheelRailGeometry& geom,
   const Eigen::VectorXd base_gap = np->gap_m;
   std::vector<double> kappa;
   for (int b : kept_build) {
-    // Curvature signs of the patch: convex (positive lateral curvature) -1, concave +1.
-    const int wheel_sign = cands[b].wheel_lateral_curvature > 0 ? -1 : +1;
-    const int rail_sign = cands[b].rail_lateral_curvature > 0 ? -1 : +1;
+    const int wheel_sign = BodyCurvatureSign(cands[b].wheel_lateral_curvature);
+    const int rail_sign = BodyCurvatureSign(cands[b].rail_lateral_curvature);
     kappa.push_back(CouplingCoefficient(problem.model.constants, problem.wheel_material,
                                         wheel_sign, problem.rail_material, rail_sign));
   }
@@ -836,6 +835,9 @@ ContactResult SolveContact(const ContactProblem& problem) {
       const PatchBuild& b = builds[k];
       InfluenceSettings patch_settings = settings;
       patch_settings.kernel = build_choices[k].kernel;
+      patch_settings.wheel_curvature_sign =
+          BodyCurvatureSign(build_cands[k].wheel_lateral_curvature);
+      patch_settings.rail_curvature_sign = BodyCurvatureSign(build_cands[k].rail_lateral_curvature);
       ops.push_back(MakeInfluenceOperator(b.grid, patch_settings));
       np.blocks.push_back(ops.back().get());
       np.gap_m.segment(offset, b.grid.cells()) = b.grid.gap_m;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/numerics/check.h"
+
 namespace railwear {
 
 double Material::Compliance() const {
@@ -15,6 +17,14 @@ double ContactModulus(const Material& a, const Material& b) {
                      (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus_Pa;
   return 1.0 / inv;
 }
+
+InfluenceConstantSet InfluenceConstants::ForBody(int sign) const {
+  if (!separate) return {c_f, c_z, c_s};
+  RAILWEAR_CHECK(sign == -1 || sign == +1);
+  return sign < 0 ? separate->convex : separate->concave;
+}
+
+int BodyCurvatureSign(double curvature_per_m) { return curvature_per_m > 0 ? -1 : +1; }
 
 std::string_view ToString(GeometryModel v) {
   return v == GeometryModel::kPlanar ? "planar" : "conformal";

@@ -49,14 +49,44 @@ std::optional<GeometryModel> GeometryModelFromString(std::string_view s);
 std::optional<KernelModel> KernelModelFromString(std::string_view s);
 std::optional<ModelKind> ModelKindFromString(std::string_view s);
 
-// Constants of the seed's eq. 4; the seed's values are the defaults. Dimensionless.
-//   w_z = (1/rho) [c_f k_f + c_z k_d dn^2/rho^2],  w_x,y = c_t k_d d(x,s)/rho^2,
-//   c_t = 1 + c_s sign(body)  (+1 concave body, -1 convex body).
-struct InfluenceConstants {
+// One set of the constants of the seed's eq. 4 (dimensionless; the seed's values).
+struct InfluenceConstantSet {
   double c_f = 0.75;
   double c_z = 1.0;
   double c_s = 0.25;
 };
+
+// A convex set and a concave set (issue 5: calibration may give bodies of either curvature
+// sign their own constants).
+struct SeparateInfluenceConstants {
+  InfluenceConstantSet convex;
+  InfluenceConstantSet concave;
+};
+
+// Constants of the seed's eq. 4; the seed's values are the defaults. Dimensionless.
+//   w_z = (1/rho) [c_f k_f + c_z k_d dn^2/rho^2],  w_x,y = c_t k_d d(x,s)/rho^2,
+//   c_t = 1 + c_s sign(body)  (+1 concave body, -1 convex body).
+// Either one set for both bodies (c_f, c_z, c_s: the default) or, when `separate` is given, a
+// convex and a concave set: each body of a patch then uses the set of its own curvature sign
+// (BodyCurvatureSign of its lateral curvature at the patch), both in the normal kernel (which
+// sums the bodies: a = sum_b c_f(b) k_f,b, b = sum_b c_z(b) k_d,b) and in the coupling terms
+// (c_t(b) = 1 + c_s(b) sign(b)); c_f, c_z, c_s are then unused.
+struct InfluenceConstants {
+  double c_f = 0.75;
+  double c_z = 1.0;
+  double c_s = 0.25;
+  std::optional<SeparateInfluenceConstants> separate = std::nullopt;
+
+  bool IsSeparate() const { return separate.has_value(); }
+  // The set that applies to a body of curvature sign `sign` (+1 concave, -1 convex; 0, a flat
+  // body, only without separate sets). With one set, that set whatever the sign.
+  InfluenceConstantSet ForBody(int sign) const;
+};
+
+// The curvature sign of eq. 4 for a body with lateral curvature `curvature_per_m` (convex
+// positive, as ContactCandidate's): -1 convex (> 0), +1 concave (<= 0; a straight profile counts
+// as concave, as the coupling effect always did). The one place this decision is made.
+int BodyCurvatureSign(double curvature_per_m);
 
 // Accuracy presets map to cell sizes relative to the estimated patch (see core/contact/grid_
 // resolution.h for the definition and tests/core/contact for the errors they reach on Hertz

@@ -11,7 +11,8 @@ double CouplingCoefficient(const InfluenceConstants& c, const Material& wheel, i
   auto kd = [](const Material& m) {
     return 1.0 / (8.0 * std::numbers::pi * (1.0 - m.poisson_ratio) * m.ShearModulus());
   };
-  return (1.0 + c.c_s * wheel_sign) * kd(wheel) - (1.0 + c.c_s * rail_sign) * kd(rail);
+  return (1.0 + c.ForBody(wheel_sign).c_s * wheel_sign) * kd(wheel) -
+         (1.0 + c.ForBody(rail_sign).c_s * rail_sign) * kd(rail);
 }
 
 Eigen::VectorXd CouplingDisplacement(const PatchGrid& g, const TangentialSolution& t,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <utility>
 
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
@@ -42,16 +43,20 @@ KernelCoefficients MakeKernelCoefficients(const InfluenceSettings& settings) {
   CheckMaterial(settings.wheel, "wheel");
   CheckMaterial(settings.rail, "rail");
   KernelCoefficients c;
-  for (const Material* m : {&settings.wheel, &settings.rail}) {
+  const std::pair<const Material*, int> bodies[2] = {
+      {&settings.wheel, settings.wheel_curvature_sign},
+      {&settings.rail, settings.rail_curvature_sign}};
+  for (const auto& [m, sign] : bodies) {
     const double nu = m->poisson_ratio;
     const double g = m->ShearModulus();
     if (settings.kernel == KernelModel::kBoussinesq) {
       c.inv_r += (1.0 - nu) / (2.0 * std::numbers::pi * g);
     } else {
+      const InfluenceConstantSet set = settings.constants.ForBody(sign);
       const double k_d = 1.0 / (8.0 * std::numbers::pi * (1.0 - nu) * g);
       const double k_f = (3.0 - 4.0 * nu) * k_d;
-      c.inv_r += settings.constants.c_f * k_f;
-      c.n2_r3 += settings.constants.c_z * k_d;
+      c.inv_r += set.c_f * k_f;
+      c.n2_r3 += set.c_z * k_d;
     }
   }
   return c;

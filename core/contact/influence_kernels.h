@@ -10,7 +10,9 @@ namespace railwear::internal {
 // The cell kernel of either model is a C_ij = a * I_invR + b * I_n2R3 with the rectangle
 // integrals of influence_operator.h; a [1/Pa] and b [1/Pa] sum both bodies:
 //   boussinesq: a = sum_b (1 - nu_b) / (2 pi G_b),  b = 0
-//   golubenko:  a = c_f sum_b k_f,b,                b = c_z sum_b k_d,b
+//   golubenko:  a = sum_b c_f(b) k_f,b,             b = sum_b c_z(b) k_d,b
+// (c_f(b), c_z(b) of body b's set: InfluenceConstants::ForBody with the settings' curvature
+// signs; one set for both bodies unless the constants are separate).
 struct KernelCoefficients {
   double inv_r = 0.0;  // a [1/Pa]
   double n2_r3 = 0.0;  // b [1/Pa]

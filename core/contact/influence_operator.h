@@ -10,6 +10,8 @@
 //   boussinesq:  (1 - nu) / (2 pi G) / rho                       (Love's closed form per cell)
 //   golubenko:   (1/rho) [c_f k_f + c_z k_d dn^2 / rho^2]          (seed eq. 4)
 //                k_d = 1 / (8 pi (1 - nu) G),  k_f = (3 - 4 nu) k_d
+//                (c_f, c_z of that body's set when the constants are separate per curvature
+//                sign: InfluenceConstants::ForBody)
 // Every kernel is integrated over cell j's tangent rectangle (dx by ds, centred at P_j, spanned
 // by the x axis and the s tangent at j) in closed form (RectangleIntegral* below). Cells farther
 // than 8.5 cell diagonals use the midpoint rule with its h^2/24 Taylor correction instead: its
@@ -72,6 +74,10 @@ struct InfluenceSettings {
   InfluenceConstants constants;
   Material wheel;
   Material rail;
+  // Curvature signs of the two bodies on this patch (+1 concave, -1 convex; BodyCurvatureSign).
+  // Used only with separate convex and concave constant sets, which then require +1 or -1.
+  int wheel_curvature_sign = 0;
+  int rail_curvature_sign = 0;
 };
 
 // Chooses the fastest exact-structure implementation for the grid (2-D FFT when grid.planar,

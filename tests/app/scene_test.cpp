@@ -479,6 +479,57 @@ TEST(SceneTest, InfluenceConstantsFileErrorsNameThatFile) {
   }
 }
 
+TEST(SceneTest, SeparateInfluenceConstantsInlineAndFromFile) {
+  const Scene inline_scene = ParseScene(
+      std::string(kMinimal) + "[model]\ninfluence_constants = { convex = { c_f = 0.9, c_s = 0.1 }, "
+                              "concave = { c_f = 0.8, c_z = 1.2 } }\n",
+      "scene.toml");
+  const InfluenceConstants& c = inline_scene.problem.model.constants;
+  ASSERT_TRUE(c.IsSeparate());
+  EXPECT_DOUBLE_EQ(c.separate->convex.c_f, 0.9);
+  EXPECT_DOUBLE_EQ(c.separate->convex.c_z, 1.0);  // default kept
+  EXPECT_DOUBLE_EQ(c.separate->convex.c_s, 0.1);
+  EXPECT_DOUBLE_EQ(c.separate->concave.c_f, 0.8);
+  EXPECT_DOUBLE_EQ(c.separate->concave.c_z, 1.2);
+  EXPECT_DOUBLE_EQ(c.separate->concave.c_s, 0.25);
+  EXPECT_EQ(c.ForBody(-1).c_f, 0.9);
+  EXPECT_EQ(c.ForBody(+1).c_f, 0.8);
+
+  const TempDir dir("constants_separate");
+  dir.Write("fit.toml", "[influence_constants.convex]\nc_f = 1.1\nc_z = 0.7\nc_s = 0.2\n"
+                        "[influence_constants.concave]\nc_f = 0.95\nc_z = 0.5\nc_s = 0.4\n");
+  const Scene from_file = LoadScene(dir.Write(
+      "scene.toml", std::string(kMinimal) + "[model]\ninfluence_constants = \"fit.toml\"\n"));
+  const InfluenceConstants& f = from_file.problem.model.constants;
+  ASSERT_TRUE(f.IsSeparate());
+  EXPECT_DOUBLE_EQ(f.separate->convex.c_z, 0.7);
+  EXPECT_DOUBLE_EQ(f.separate->concave.c_s, 0.4);
+  // One set stays one set.
+  EXPECT_FALSE(ParseScene(kMinimal, "scene.toml").problem.model.constants.IsSeparate());
+}
+
+TEST(SceneTest, SeparateInfluenceConstantsErrors) {
+  const std::string m = std::string(kMinimal) + "[model]\ninfluence_constants = ";
+  EXPECT_TRUE(Contains(ErrorOf(m + "{ c_f = 0.8, convex = { c_f = 0.9 }, concave = {} }\n"),
+                       "key 'model.influence_constants.c_f' = 0.8: expected either one set or "
+                       "convex and concave sets, not both"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "{ convex = { c_f = 0.9 } }\n"),
+                       "key 'model.influence_constants.concave' is missing: expected the concave "
+                       "set too"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "{ convex = {}, concave = { c_f = -1 } }\n"),
+                       "scene.toml:12: key 'model.influence_constants.concave.c_f' = -1: expected "
+                       "a number > 0"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "{ convex = {}, concave = { c_t = 1 } }\n"),
+                       "key 'model.influence_constants.concave.c_t' = 1: expected one of the keys "
+                       "allowed in [model.influence_constants.concave]: 'c_f', 'c_z', 'c_s'"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "{ convex = 0.9, concave = {} }\n"),
+                       "key 'model.influence_constants.convex' = 0.9: expected a table "
+                       "{ c_f, c_z, c_s }"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "{ flat = {} }\n"),
+                       "expected one of the keys allowed in [model.influence_constants]: 'c_f', "
+                       "'c_z', 'c_s', 'convex', 'concave'"));
+}
+
 TEST(SceneTest, MaterialsTableNeedsBothBodies) {
   EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "[materials]\nwheel = { E_MPa = 1, nu = 0.3 }\n"),
               "scene.toml:11: key 'materials.rail' is missing: expected an inline table "

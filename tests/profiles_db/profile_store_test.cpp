@@ -150,6 +150,41 @@ INSERT INTO load_cases VALUES (1, 0, 0, '{"case":0}');
          "PRAGMA user_version = 1;\n";
 }
 
+// A database as version 2 left it: version 1's, distributions.s added (MigrateTo2, verbatim),
+// and a step-1 distribution that has s.
+std::string Version2Database() {
+  std::string sql = Version1Database();
+  sql.replace(sql.find("PRAGMA user_version = 1;"), 24,
+              "ALTER TABLE distributions ADD COLUMN s BLOB "
+              "CHECK (s IS NULL OR length(s) = length(value));\n"
+              "INSERT INTO steps VALUES (1, 1, 100, 0.002, 0.5, 0.01, -0.03, 0, 0.1, 0.2, 1e-6, "
+              "'2024-05-02T12:00:00.000Z');\n"
+              "INSERT INTO profiles VALUES (1, 1, 4, " +
+              BlobLiteral({-0.02, 0.0016, -0.01, 0.0004, 0.0, 0.0, 0.01, 0.0004}) + ");\n" +
+              "INSERT INTO distributions VALUES (1, 1, 'wear_depth_mm', " + BlobLiteral({0.0}) +
+              ", " + BlobLiteral({0.125}) + ", " + BlobLiteral({0.5}) + ");\n" +
+              "PRAGMA user_version = 2;");
+  return sql;
+}
+
+CalibrationRecord TestCalibration() {
+  CalibrationRecord c;
+  c.name = "paper experiment";
+  c.program_version = "0.1.0";
+  c.config_path = "calibrate.toml";
+  c.config_text = "[calibration]\nname = \"paper experiment\"\n";
+  c.status = "converged";
+  c.well_conditioned = false;
+  c.constants_json = R"([{"name":"c_f","value":1.05,"standard_error":0.001}])";
+  c.correlation_json = "[[1.0]]";
+  c.residuals_json = R"({"curves":[]})";
+  c.ceres_report = "Solver Summary ...";
+  c.constants_toml = "[influence_constants]\nc_f = 1.05\n";
+  c.inputs = {{"config", "calibrate.toml", c.config_text},
+              {"displacement_curves", "r15.csv", "# railwear displacement curves v1\n\xc3\xa9"}};
+  return c;
+}
+
 // A rail-like profile whose coordinates use all 53 mantissa bits (and one negative zero).
 Profile TestProfile(int n = 40, double shift_m = 0.0) {
   std::vector<Eigen::Vector2d> p(n);
@@ -211,8 +246,8 @@ TEST(ProfileStore, CreatesSchemaInMemory) {
       db.Query("SELECT name FROM sqlite_schema WHERE type = 'table' ORDER BY name");
   std::vector<std::string> names;
   for (const auto& row : tables.rows) names.push_back(row[0]);
-  EXPECT_EQ(names, (std::vector<std::string>{"distributions", "load_cases", "meta", "profiles",
-                                             "runs", "steps"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"calibration_inputs", "calibrations", "distributions",
+                                             "load_cases", "meta", "profiles", "runs", "steps"}));
   EXPECT_EQ(db.Query("PRAGMA application_id").rows[0][0],
             std::to_string(ProfileStore::kApplicationId));
 }
@@ -257,7 +292,7 @@ TEST(ProfileStore, MigratesVersion1KeepingItsData) {
   RawExec(path, Version1Database());
   {
     ProfileStore db = ProfileStore::Open(path);
-    EXPECT_EQ(db.SchemaVersion(), 2);
+    EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
     const auto run = db.FindRun("old");
     ASSERT_TRUE(run.has_value());
     EXPECT_EQ(run->program_version, "0.0.9");
@@ -278,13 +313,74 @@ TEST(ProfileStore, MigratesVersion1KeepingItsData) {
     next.distributions[0].s_m = {0.0, 0.1 / 3.0, 0.2};
     db.AppendStep(run->id, next);
   }
-  ProfileStore db = ProfileStore::Open(path);  // reopening a version-2 file migrates nothing
-  EXPECT_EQ(db.SchemaVersion(), 2);
+  ProfileStore db = ProfileStore::Open(path);  // reopening a current file migrates nothing
+  EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
   const StepRecord back = db.LoadStep(db.FindRun("old")->id, 1);
   ASSERT_EQ(back.distributions.size(), 2u);
   EXPECT_EQ(back.distributions[1].kind, "wear_depth_mm");
   const std::vector<double> want = {0.0, 0.1 / 3.0, 0.2};
   EXPECT_EQ(std::memcmp(back.distributions[1].s_m.data(), want.data(), 3 * sizeof(double)), 0);
+}
+
+TEST(ProfileStore, MigratesVersion2KeepingItsDataAndAddsCalibrations) {
+  TempDir tmp;
+  const std::string path = tmp.File("v2.rwdb");
+  RawExec(path, Version2Database());
+  {
+    ProfileStore db = ProfileStore::Open(path);
+    EXPECT_EQ(db.SchemaVersion(), 3);
+    const auto run = db.FindRun("old");
+    ASSERT_TRUE(run.has_value());
+    EXPECT_EQ(run->scene_text, "scene");
+    ASSERT_EQ(db.LastStep(run->id), 1);
+    const StepRecord one = db.LoadStep(run->id, 1);
+    EXPECT_EQ(one.passes, 100.0);
+    ASSERT_EQ(one.distributions.size(), 1u);
+    EXPECT_EQ(one.distributions[0].s_m, (std::vector<double>{0.5}));
+    EXPECT_EQ(db.LoadStep(run->id, 0).load_cases_json, (std::vector<std::string>{R"({"case":0})"}));
+    EXPECT_TRUE(db.Calibrations().empty());
+    db.AddCalibration(TestCalibration());
+  }
+  ProfileStore db = ProfileStore::Open(path);
+  ASSERT_EQ(db.Calibrations().size(), 1u);
+  EXPECT_EQ(db.Runs().size(), 1u);
+}
+
+TEST(ProfileStore, CalibrationsRoundTripWithTheirInputs) {
+  ProfileStore db = ProfileStore::Open(":memory:");
+  const CalibrationRecord in = TestCalibration();
+  const int64_t a = db.AddCalibration(in);
+  const int64_t b = db.AddCalibration(in);  // the same name again: a new calibration
+  EXPECT_NE(a, b);
+  const std::vector<CalibrationRecord> all = db.Calibrations();
+  ASSERT_EQ(all.size(), 2u);
+  EXPECT_EQ(all[0].id, a);
+  EXPECT_TRUE(all[0].inputs.empty());  // listed without inputs
+  const CalibrationRecord back = db.LoadCalibration(a);
+  EXPECT_EQ(back.name, in.name);
+  EXPECT_FALSE(back.created_utc.empty());
+  EXPECT_EQ(back.config_text, in.config_text);
+  EXPECT_EQ(back.status, "converged");
+  EXPECT_FALSE(back.well_conditioned);
+  EXPECT_EQ(back.constants_json, in.constants_json);
+  EXPECT_EQ(back.correlation_json, in.correlation_json);
+  EXPECT_EQ(back.residuals_json, in.residuals_json);
+  EXPECT_EQ(back.ceres_report, in.ceres_report);
+  EXPECT_EQ(back.constants_toml, in.constants_toml);
+  ASSERT_EQ(back.inputs.size(), 2u);
+  EXPECT_EQ(back.inputs[1].kind, "displacement_curves");
+  EXPECT_EQ(back.inputs[1].path, "r15.csv");
+  EXPECT_EQ(back.inputs[1].text, in.inputs[1].text);
+  ExpectInputError([&] { db.LoadCalibration(99); }, {"no calibration with id 99"});
+  CalibrationRecord unnamed = in;
+  unnamed.name.clear();
+  ExpectInputError([&] { db.AddCalibration(unnamed); }, {"calibration name is empty"});
+  // A bad input rolls the whole calibration back.
+  CalibrationRecord bad = in;
+  bad.inputs.push_back({"scene", "", "x"});
+  ExpectInputError([&] { db.AddCalibration(bad); }, {"an input without kind or path"});
+  EXPECT_EQ(db.Calibrations().size(), 2u);
+  EXPECT_EQ(db.Query("SELECT count(*) FROM calibration_inputs").rows[0][0], "4");
 }
 
 TEST(ProfileStore, FailedMigrationLeavesVersion1) {

@@ -347,11 +347,12 @@ double SeedKernelDisplacement(const InfluenceConstants& c, CurveBody body, doubl
     d_t = radius_m * std::sin(theta);
   }
   const double k_d = KD(material);
+  const InfluenceConstantSet set = c.ForBody(CurvatureSign(body));
   if (load == CurveLoad::kNormal) {
     const double k_f = (3.0 - 4.0 * material.poisson_ratio) * k_d;
-    return (c.c_f * k_f + c.c_z * k_d * dn2 / (rho * rho)) / rho;
+    return (set.c_f * k_f + set.c_z * k_d * dn2 / (rho * rho)) / rho;
   }
-  const double c_t = 1.0 + c.c_s * CurvatureSign(body);
+  const double c_t = 1.0 + set.c_s * CurvatureSign(body);
   return c_t * k_d * d_t / (rho * rho);
 }
 

@@ -43,6 +43,59 @@ TEST(Coupling, UniformTractionGivesAnOddField) {
   }
 }
 
+// The sign convention, pinned against Cerruti's half-space solution (Landau & Lifshitz §8): a
+// tangential point load Q on a body moves its surface into the body ahead of the load,
+// u_z = (1 - 2 nu)/(4 pi G) Q / x at distance x along the load. Eq. 4 gives exactly that with
+// c_t k_d = (1 - 2 nu)/(4 pi G), i.e. c_t = 2 (1 - 2 nu)(1 - nu). One loaded cell on a flat
+// grid, the other body rigid, so that only one body deforms:
+//  - the wheel carries q: ahead of q its surface moves into the wheel, the gap opens;
+//  - the rail carries -q: ahead of q (behind its own load) its surface rises, the gap closes.
+TEST(Coupling, SignFollowsCerrutiForEachBody) {
+  const Material steel{210e9, 0.28};
+  const Material rigid{210e21, 0.28};  // k_d 1e-12 of steel's: a rigid body
+  const double nu = steel.poisson_ratio;
+  const double cerruti = (1.0 - 2.0 * nu) / (4.0 * std::numbers::pi * steel.ShearModulus());
+  InfluenceConstants c;
+  // Convex bodies: c_t = 1 - c_s = 2 (1 - 2 nu)(1 - nu).
+  c.c_s = 1.0 - 2.0 * (1.0 - 2.0 * nu) * (1.0 - nu);
+  const double kappa_wheel = CouplingCoefficient(c, steel, -1, rigid, -1);
+  const double kappa_rail = CouplingCoefficient(c, rigid, -1, steel, -1);
+  EXPECT_NEAR(kappa_wheel, cerruti, 1e-9 * cerruti);
+  EXPECT_NEAR(kappa_rail, -cerruti, 1e-9 * cerruti);
+
+  const PatchGrid g = testing::MakeHertzGrid(10e-3, 1e-3, 41, 3);  // 0.49 mm cells
+  const int centre = g.Index(20, 1);
+  TangentialSolution t = EmptyTangentialSolution(g.cells());
+  const double q = 50e6;  // toward +x, on the wheel
+  t.traction_x_Pa[centre] = q;
+  const double load_N = q * g.CellArea();
+  const Eigen::VectorXd u_wheel = CouplingDisplacement(g, t, kappa_wheel);
+  const Eigen::VectorXd u_rail = CouplingDisplacement(g, t, kappa_rail);
+  // Beyond the Gauss-integrated near cells (2 cells) the source cell acts as a point load.
+  for (int i : {25, 30, 40}) {
+    const double x = g.X(i) - g.X(20);
+    const double ahead_wheel = u_wheel[g.Index(i, 1)];
+    const double behind_wheel = u_wheel[g.Index(40 - i, 1)];
+    EXPECT_GT(ahead_wheel, 0.0) << "the wheel's surface must move into the wheel ahead of q";
+    EXPECT_LT(behind_wheel, 0.0);
+    EXPECT_NEAR(ahead_wheel, cerruti * load_N / x, 1e-9 * cerruti * load_N / x) << i;
+    EXPECT_LT(u_rail[g.Index(i, 1)], 0.0) << "the rail's surface must rise ahead of q";
+    EXPECT_NEAR(u_rail[g.Index(i, 1)], -ahead_wheel, 1e-12 * ahead_wheel);
+  }
+}
+
+// Separate convex and concave sets: each body's c_t uses the c_s of its own set.
+TEST(Coupling, SeparateSetsUseEachBodysOwnCs) {
+  const Material steel{210e9, 0.28};
+  const double kd = 1.0 / (8.0 * std::numbers::pi * (1.0 - 0.28) * steel.ShearModulus());
+  InfluenceConstants c;
+  c.separate = SeparateInfluenceConstants{{0.9, 1.0, 0.1}, {0.8, 1.0, 0.4}};
+  // Concave wheel (c_t = 1 + 0.4) on a convex rail (c_t = 1 - 0.1).
+  EXPECT_NEAR(CouplingCoefficient(c, steel, +1, steel, -1), (1.4 - 0.9) * kd, 1e-12 * kd);
+  // Convex wheel on a concave rail.
+  EXPECT_NEAR(CouplingCoefficient(c, steel, -1, steel, +1), (0.9 - 1.4) * kd, 1e-12 * kd);
+}
+
 // The flange-root-on-gauge-corner pair of CONTACT's conformal example (as in
 // rolling_contact_test.cpp), tilted 45 degrees, rolling with longitudinal creepage.
 ContactProblem Tilted(double c_s) {

@@ -371,6 +371,34 @@ TEST(CellKernel, CurvatureTermRaisesGolubenkoAboveItsFlatValue) {
             kMatrixRoundingTolerance * c.maxCoeff());
 }
 
+// Separate convex and concave sets: the kernel sums each body with its own set,
+// a = c_f(wheel's set) k_f,wheel + c_f(rail's set) k_f,rail (and b likewise with c_z).
+TEST(CellKernel, SeparateSetsWeighEachBodyWithItsOwnSet) {
+  const PatchGrid arc = MakeArcGrid(3, 6, 2e-4, 5e-4, 10e-3);
+  InfluenceSettings wheel_only = MakeDissimilarSettings(KernelModel::kGolubenko);
+  InfluenceSettings rail_only = wheel_only;
+  wheel_only.rail.youngs_modulus_Pa *= 1e12;  // rigid: its share vanishes
+  rail_only.wheel.youngs_modulus_Pa *= 1e12;
+  InfluenceSettings both = MakeDissimilarSettings(KernelModel::kGolubenko);
+  both.constants.separate = SeparateInfluenceConstants{{0.9, 1.2, 0.1}, {0.6, 0.8, 0.3}};
+  both.wheel_curvature_sign = -1;  // a convex wheel in a concave groove
+  both.rail_curvature_sign = +1;
+  wheel_only.constants = {0.9, 1.2, 0.1};
+  rail_only.constants = {0.6, 0.8, 0.3};
+  const Eigen::MatrixXd sum =
+      AssembleDenseInfluence(arc, wheel_only) + AssembleDenseInfluence(arc, rail_only);
+  const Eigen::MatrixXd c = AssembleDenseInfluence(arc, both);
+  EXPECT_LT((c - sum).cwiseAbs().maxCoeff(), 1e-9 * c.cwiseAbs().maxCoeff());
+  // Equal sets are the one set, bit for bit.
+  InfluenceSettings one = MakeDissimilarSettings(KernelModel::kGolubenko);
+  InfluenceSettings equal = one;
+  const InfluenceConstantSet set{one.constants.c_f, one.constants.c_z, one.constants.c_s};
+  equal.constants.separate = SeparateInfluenceConstants{set, set};
+  equal.wheel_curvature_sign = -1;
+  equal.rail_curvature_sign = +1;
+  EXPECT_EQ(AssembleDenseInfluence(arc, equal), AssembleDenseInfluence(arc, one));
+}
+
 TEST(CellKernel, RejectsBadMaterialWithMessage) {
   InfluenceSettings s = MakeSettings(KernelModel::kBoussinesq);
   s.rail.poisson_ratio = 0.5;
