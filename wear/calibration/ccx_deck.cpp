@@ -16,6 +16,10 @@ namespace {
 
 constexpr int kIdsPerLine = 10;  // ccx: at most 16 entries and 132 characters per line
 
+// A number for a ccx data line: 12 significant digits, at most 18 characters (ccx reads at most
+// 20 characters per number and stops with "*ERROR reading *NODE" on longer ones).
+std::string Num(double v) { return fmt::format("{:.12g}", v); }
+
 void AppendIdList(const std::vector<int>& ids, std::string* out) {
   for (size_t i = 0; i < ids.size(); ++i) {
     *out += fmt::format("{}{}", ids[i], (i + 1) % kIdsPerLine == 0 || i + 1 == ids.size() ? ",\n" : ", ");
@@ -37,7 +41,7 @@ std::string CcxMeshText(const FemMesh& mesh, const CcxMeshSets& sets,
   std::string out = "*NODE\n";
   for (int id : mesh.node_ids()) {
     const Eigen::Vector3d& p = mesh.Position_mm(id);
-    out += fmt::format("{}, {}, {}, {}\n", id, p.x(), p.y(), p.z());
+    out += fmt::format("{}, {}, {}, {}\n", id, Num(p.x()), Num(p.y()), Num(p.z()));
   }
   std::map<MeshElementType, std::vector<const MeshElement*>> by_type;
   for (const MeshElement* e : mesh.SolidElements()) by_type[e->type].push_back(e);
@@ -80,8 +84,8 @@ CcxDeck& CcxDeck::Include(std::string_view file) {
 
 CcxDeck& CcxDeck::ElasticMaterial(std::string_view name, double youngs_modulus,
                                   double poisson_ratio) {
-  text_ += fmt::format("*MATERIAL, NAME={}\n*ELASTIC\n{}, {}\n", name, youngs_modulus,
-                       poisson_ratio);
+  text_ += fmt::format("*MATERIAL, NAME={}\n*ELASTIC\n{}, {}\n", name, Num(youngs_modulus),
+                       Num(poisson_ratio));
   return *this;
 }
 
@@ -92,7 +96,7 @@ CcxDeck& CcxDeck::SolidSection(std::string_view elset, std::string_view material
 
 CcxDeck& CcxDeck::Boundary(std::string_view nodes, int first_dof, int last_dof, double value) {
   RAILWEAR_CHECK(1 <= first_dof && first_dof <= last_dof && last_dof <= 3);
-  text_ += fmt::format("*BOUNDARY\n{}, {}, {}, {}\n", nodes, first_dof, last_dof, value);
+  text_ += fmt::format("*BOUNDARY\n{}, {}, {}, {}\n", nodes, first_dof, last_dof, Num(value));
   return *this;
 }
 
@@ -106,7 +110,7 @@ CcxDeck& CcxDeck::BeginStaticStep(std::string_view step_parameters,
 
 CcxDeck& CcxDeck::Cload(std::string_view nodes, int dof, double force) {
   RAILWEAR_CHECK(1 <= dof && dof <= 3);
-  text_ += fmt::format("*CLOAD\n{}, {}, {}\n", nodes, dof, force);
+  text_ += fmt::format("*CLOAD\n{}, {}, {}\n", nodes, dof, Num(force));
   return *this;
 }
 

@@ -29,7 +29,8 @@ std::vector<int> ElementIds(const FemMesh& mesh, std::string_view volume_group);
 // The mesh part of a deck: *NODE (all nodes), *ELEMENT blocks of the solid elements (one per
 // type, all in element set `solid_elset`), then *NSET, *ELSET and *SURFACE (TYPE=ELEMENT)
 // blocks.
-// Numbers in their shortest exact form.
+// Numbers with 12 significant digits (ccx reads
+// at most 20 characters per number).
 std::string CcxMeshText(const FemMesh& mesh, const CcxMeshSets& sets,
                         std::string_view solid_elset = "EALL");
 

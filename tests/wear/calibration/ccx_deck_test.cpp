@@ -53,8 +53,8 @@ TEST_F(CcxDeckTest, BuilderWritesKeywordLines) {
 TEST_F(CcxDeckTest, MeshTextHasSolidsSetsAndSurfaces) {
   FemMesh mesh;
   mesh.AddNode(1, {0, 0, 0});
-  mesh.AddNode(2, {1, 0, 0});
-  mesh.AddNode(3, {0, 1, 0});
+  mesh.AddNode(2, {1.0 / 3.0, 0, 0});
+  mesh.AddNode(3, {0, 1, -9.086986490380866e-05});
   mesh.AddNode(4, {0, 0, 1});
   mesh.AddGroup({"BOTTOM", 2, 2});
   mesh.AddGroup({"BODY", 3, 1});
@@ -66,7 +66,7 @@ TEST_F(CcxDeckTest, MeshTextHasSolidsSetsAndSurfaces) {
   EXPECT_TRUE(ElementIds(mesh, "BOTTOM").empty());  // no solids in a surface group
   sets.surfaces.push_back({"BOT", mesh.FaceSurface("BOTTOM")});
   EXPECT_EQ(CcxMeshText(mesh, sets),
-            "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n"
+            "*NODE\n1, 0, 0, 0\n2, 0.333333333333, 0, 0\n3, 0, 1, -9.08698649038e-05\n4, 0, 0, 1\n"
             "*ELEMENT, TYPE=C3D4, ELSET=EALL\n11, 1, 2, 3, 4\n"
             "*NSET, NSET=MANY\n1, 2, 3, 4, 5, 6, 7, 8, 9, 10,\n11, 12,\n"
             "*ELSET, ELSET=WHEEL\n11,\n"
