@@ -13,7 +13,6 @@
 #include <memory>
 #include <regex>
 #include <sstream>
-#include <thread>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
