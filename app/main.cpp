@@ -8,6 +8,7 @@
 #include "app/accuracy_command.h"
 #include "app/calibrate_command.h"
 #include "app/contact_command.h"
+#include "app/fem_reference_command.h"
 #include "app/history_command.h"
 #include "app/init_command.h"
 #include "app/profile_command.h"
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
   railwear::app::SetupInit(app);
   railwear::app::SetupAccuracy(app);
   railwear::app::SetupCalibrate(app);
+  railwear::app::SetupFemReference(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
