@@ -470,21 +470,26 @@ std::string NowUtc() {
 
 std::string ConstantsToml(const Config& c, const InfluenceFitSummary& s, const std::string& out,
                           const std::string& created) {
+  // Paths relative to the constants file's folder, so the file can move with its data.
+  const fs::path base = fs::absolute(fs::path(out)).parent_path();
+  auto where = [&](const std::string& file) {
+    return fs::absolute(file).lexically_normal().lexically_relative(base).string();
+  };
   std::string t;
   t += "# Influence constants of the seed's eq. 4, fitted by `railwear calibrate`.\n";
-  t += fmt::format("# Use in a scene:  [model] influence_constants = \"{}\"\n",
+  t += fmt::format("# Use in a scene:  [model] influence_constants = \"{}\" (relative to the scene)\n",
                    fs::path(out).filename().string());
   t += fmt::format("# calibration: {}\n", c.name);
-  t += fmt::format("# config:      {}\n", fs::absolute(c.path).lexically_normal().string());
+  t += fmt::format("# config:      {}\n", where(c.path));
   t += fmt::format("# created:     {} by railwear {}\n", created, RAILWEAR_VERSION);
   for (const CurveEntry& e : c.curves) {
     t += fmt::format("# data:        {} (weight {:g}, {:g} to {:g} mm)\n",
-                     fs::absolute(e.file).lexically_normal().string(), e.data.weight,
+                     where(e.file), e.data.weight,
                      e.data.min_distance_m / kMm, e.data.max_distance_m / kMm);
   }
   for (const ContactEntry& e : c.contacts) {
     t += fmt::format("# data:        {} (area {:g} mm2, p_max {:g} MPa, weight {:g})\n",
-                     fs::absolute(e.scene).lexically_normal().string(),
+                     where(e.scene),
                      e.target.area_m2 * kToMm2, e.target.p_max_Pa * kToMPa, e.target.weight);
   }
   t += fmt::format("# status:      {}, {} (condition number {:.3g}), residual s = {:.4g}\n",

@@ -5,7 +5,9 @@
 // bad configs and bad CSVs exit 2 with messages naming file, line and key.
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -46,6 +48,33 @@ TEST_F(CalibrateCli, ExampleDataAreTheDocumentedSyntheticCurves) {
     WriteDisplacementCurves(f.curves, fresh);
     EXPECT_EQ(ReadFile(fresh), ReadFile(kExampleDir + f.name)) << f.name;
   }
+}
+
+// The committed constants fitted to the CalculiX curves (examples/calibration/
+// calibrated_paper.toml) are what `railwear calibrate` makes of its config, to the digits a
+// TOML double keeps; and what FEM says about the seed's constants holds: the normal kernel is
+// Boussinesq's (c_f = 4 (1 - nu)^2 / (3 - 4 nu) = 1.103 at nu = 0.28, within 1 %), not 0.75,
+// and both bodies' tangential kernels are near Cerruti's c_t = 0.634 (within 10 %).
+TEST_F(CalibrateCli, PaperExperimentConstantsAreReproduced) {
+  const Outcome o = Run("calibrate '" + kExampleDir + "paper_experiment.toml' --out fresh.toml");
+  ASSERT_EQ(o.exit_code, 0) << o.err << o.out;
+  auto constants = [](const std::string& text) {
+    std::vector<double> v;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.rfind("c_", 0) == 0) v.push_back(std::stod(line.substr(line.find('=') + 1)));
+    }
+    return v;
+  };
+  const std::vector<double> fresh = constants(ReadFile(dir_ / "fresh.toml"));
+  const std::vector<double> committed = constants(ReadFile(kExampleDir + "calibrated_paper.toml"));
+  ASSERT_EQ(fresh.size(), 6u);  // convex c_f c_z c_s, concave c_f c_z c_s
+  ASSERT_EQ(committed.size(), 6u);
+  for (size_t k = 0; k < 6; ++k) EXPECT_NEAR(fresh[k], committed[k], 1e-6) << k;
+  for (size_t k : {0u, 3u}) EXPECT_NEAR(fresh[k] / 1.1030, 1.0, 0.01) << k;
+  EXPECT_NEAR((1.0 - fresh[2]) / 0.634, 1.0, 0.1);  // convex: c_t = 1 - c_s
+  EXPECT_NEAR((1.0 + fresh[5]) / 0.634, 1.0, 0.1);  // concave: c_t = 1 + c_s
 }
 
 TEST_F(CalibrateCli, ExampleCalibratesAndASceneUsesTheConstants) {
