@@ -545,8 +545,9 @@ std::vector<ElementFace> ZoneFaces(const FemMesh& mesh, const char* group, const
   return out;
 }
 
-// The slave surface's triangles and nodal pressures from the last CONTACT block (CPRESS) [SI].
-FemContactSurface SlaveSurface(const FemMesh& mesh, const std::vector<ElementFace>& faces,
+}  // namespace
+
+FemContactSurface FemContactSlaveSurface(const FemMesh& mesh, const std::vector<ElementFace>& faces,
                                const FrdFile& frd) {
   const FrdResultBlock* contact = frd.Find("CONTACT");
   if (contact == nullptr) {
@@ -576,6 +577,8 @@ FemContactSurface SlaveSurface(const FemMesh& mesh, const std::vector<ElementFac
   }
   return s;
 }
+
+namespace {
 
 int CountIterations(const std::string& log_path) {
   std::ifstream in(log_path);
@@ -648,7 +651,7 @@ FemContactResult RunFemContact(const FemContactOptions& options, const FemProgra
       for (int id : top) sum_uz += FrdDisplacement(*disp, id).z();
       L.spring_force_N = 4.0 * o.spring_N_per_m * kMm / static_cast<double>(top.size()) * sum_uz;
     }
-    L.patch = CalcFemContactPatch(SlaveSurface(mesh, slave, frd), SlaveFrame(o), o.sectors);
+    L.patch = CalcFemContactPatch(FemContactSlaveSurface(mesh, slave, frd), SlaveFrame(o), o.sectors);
     if (L.patch.status == FemContactStatus::kOk &&
         (L.patch.half_length_x_m > o.zone_x_m || L.patch.half_width_s_m > o.zone_s_m)) {
       L.patch.status = FemContactStatus::kPatchAtZoneEdge;

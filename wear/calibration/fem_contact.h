@@ -40,7 +40,8 @@
 //   area        in normalised coordinates (x/a, s/b) the patch edge is fitted the same way in
 //               each of `sectors` angular sectors of the quarter, area = 4 a b sum(rho^2/2 dphi)
 //               (an ellipse gives pi a b whatever the sectors).
-//   area_nodes  the lumped area of the slave nodes with p > 0 (includes the tail; larger).
+//   area_nodes  the lumped area of the slave nodes with p > 0 (with ccx's pressure tail past
+//               the edge it is 10-25 % larger than area; without a tail, about equal).
 //   force       the vertical and normal resultants of the nodal pressure field integrated over
 //               the slave faces with the 6-node triangle's shape functions (x 4), which the
 //               report compares with the load.
@@ -57,7 +58,9 @@
 #include <Eigen/Core>
 
 #include "core/contact/contact_types.h"
+#include "wear/calibration/fem_mesh.h"
 #include "wear/calibration/fem_programs.h"
+#include "wear/calibration/frd_file.h"
 
 namespace railwear {
 
@@ -145,6 +148,13 @@ struct FemContactPatch {
 // come from the outermost contact nodes).
 FemContactPatch CalcFemContactPatch(const FemContactSurface& surface, const FemContactFrame& frame,
                                     int sectors = 9);
+
+// The slave surface of `faces` (C3D10 faces of `mesh`, positions in mm) with the nodal
+// pressures of the last CONTACT block of `frd` (CPRESS, MPa; negative values and nodes the block
+// lacks count as 0), converted to SI. Throws std::runtime_error when the file has no CONTACT
+// block with CPRESS.
+FemContactSurface FemContactSlaveSurface(const FemMesh& mesh, const std::vector<ElementFace>& faces,
+                                         const FrdFile& frd);
 
 // One mesh level: the model and its result.
 struct FemContactLevel {
