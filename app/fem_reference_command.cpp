@@ -119,12 +119,12 @@ void ReadCommonKeys(const Fields& t, FemExperiment* e) {
 
 // The keys of a contact experiment (kind = "contact").
 const std::vector<std::string_view> kContactKeys = {
-    "name",         "kind",          "case",          "scene",
+    "name",          "kind",           "case",               "scene",
     "convex_radius_mm", "groove_radius_mm", "rolling_radius_mm", "load_N",
-    "material",     "length_mm",     "width_mm",      "depth_mm",
-    "zone_x_mm",    "zone_s_mm",     "zone_depth_mm", "mesh_sizes_mm",
-    "mesh_growth",  "max_element_mm", "penalty_MPa_per_mm", "initial_overlap_mm",
-    "spring_N_per_mm", "sectors",    "output"};
+    "material",      "length_mm",      "width_mm",           "depth_mm",
+    "zone_x_mm",     "zone_s_mm",      "zone_depth_mm",      "mesh_sizes_mm",
+    "mesh_growth",   "max_element_mm", "penalty_MPa_per_mm", "initial_overlap_mm",
+    "spring_N_per_mm", "sectors",      "output"};
 
 std::vector<double> ReadMeshSizes(const Fields& t) {
   const std::string expected = "a non-empty array of element sizes in mm, each > 0";
@@ -503,7 +503,6 @@ void RunFemReference(const FemReferenceOptions& options) {
     };
     if (e.kind == FemExperimentKind::kContact) {
       e.contact.work_dir = work.path().string();
-      e.contact.threads_per_job = std::max(1, e.contact.threads_per_job);
       e.contact.progress = e.options.progress;
       const FemContactResult r = RunFemContact(e.contact, programs);
       const fs::path folder = fs::absolute(e.output).parent_path();

@@ -28,8 +28,9 @@
 //   output = "r15_convex.csv"       default NAME.csv; relative to the config file or --out-dir
 //   compare_with = "other"          an experiment of this config (run now or its output file)
 //
-// A contact experiment (wear/calibration/fem_contact.h) takes from [fem] only material,
-// threads_per_job and timeout_s; its own keys (defaults per case, DefaultFemContactOptions):
+// A contact experiment (wear/calibration/fem_contact.h) runs its mesh levels one after the
+// other (--jobs does not apply) and takes from [fem] only material, threads_per_job and
+// timeout_s; its own keys (defaults per case, DefaultFemContactOptions):
 //   [[experiment]]
 //   name = "wheel_in_groove"
 //   kind = "contact"
