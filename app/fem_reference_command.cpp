@@ -13,7 +13,6 @@
 #include <memory>
 #include <regex>
 #include <sstream>
-#include <thread>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -244,11 +243,18 @@ std::string ComparisonText(const FemExperiment& e, const DisplacementCurves& cur
                                 title, from / kMm, to / kMm, "w", ref_name);
   out += fmt::format("    {:<16} {:<5} {:>6} {:>16} {:>14} {:>22}\n", "load", "path", "points",
                      "offset_nm_per_N", "max_error_%", "max_error_no_offset_%");
+  size_t skipped = 0;
   for (const CurveComparison& c : in_range) {
     out += fmt::format("    {:<16} {:<5} {:>6} {:>16.5f} {:>14.2f} {:>22.2f}\n",
                        ToString(c.load), ToString(c.path), c.points.size(),
                        c.offset_m_per_N / kNmPerN, 100.0 * c.max_raw_error,
                        100.0 * c.max_corrected_error);
+    skipped += c.num_skipped;
+  }
+  if (skipped > 0) {
+    out += fmt::format("    ({} point(s) near a zero crossing, where |{}| < {:g} % of its largest, "
+                       "are left out of the errors)\n",
+                       skipped, ref_name, 100.0 * kSmallReferenceFraction);
   }
   for (const CurveComparison& c : in_range) {
     const auto full = std::find_if(all.begin(), all.end(), [&](const CurveComparison& a) {
@@ -425,21 +431,23 @@ FemReferenceConfig ReadFemReferenceConfig(const std::string& path, const std::st
     }
     config.experiments.push_back(std::move(e));
   }
-  // compare_with names another experiment of the file.
+  // compare_with names an earlier experiment of the file (run before it, or read from its file).
   index = 0;
   for (const toml::node& entry : *node->as_array()) {
     const Fields t(*entry.as_table(), fmt::format("experiment[{}]", index), path);
     const FemExperiment& e = config.experiments[static_cast<size_t>(index++)];
     if (e.compare_with.empty()) continue;
     std::vector<std::string_view> names;
-    bool found = false;
     for (const FemExperiment& other : config.experiments) {
-      if (other.name == e.name) continue;
-      names.push_back(other.name);
-      found = found || other.name == e.compare_with;
+      if (other.name == e.name) break;
+      if (other.kind == FemExperimentKind::kDisplacement) names.push_back(other.name);
     }
-    if (!found) {
-      t.Fail("compare_with", "the name of another experiment of this file: " + JoinQuoted(names));
+    if (std::find(names.begin(), names.end(), e.compare_with) == names.end()) {
+      // Contact experiments have no curves to compare with: only displacement ones are named.
+      t.Fail("compare_with", names.empty() ? std::string("the name of an earlier experiment of "
+                                                         "this file (there is none)")
+                                           : "the name of an earlier experiment of this file: " +
+                                                 JoinQuoted(names));
     }
   }
   return config;
@@ -460,8 +468,45 @@ void SetupFemReference(CLI::App& app) {
   cmd->add_option("--only", options->only, "Run only this experiment (repeatable)");
   cmd->add_option("--jobs", options->jobs, "ccx solves at once (default: [fem] jobs, else 2)")
       ->check(CLI::Range(1, 64));
+  cmd->add_flag("--report-only", options->report_only,
+                "Run nothing: print the comparisons of the CSVs an earlier run wrote");
   cmd->callback([options]() { RunFemReference(*options); });
 }
+
+namespace {
+
+// The curves of an experiment that is not run now: its output file, which must exist.
+DisplacementCurves ReadOutput(const FemReferenceConfig& config, const FemExperiment& e,
+                              const std::string& why) {
+  std::error_code ec;
+  if (!fs::exists(e.output, ec)) {
+    throw InputError(fmt::format("{}:{}: experiment '{}': {} its output {}, which does not exist; "
+                                 "run that experiment first",
+                                 config.path, e.line, e.name, why, e.output));
+  }
+  return ReadDisplacementCurves(e.output);
+}
+
+// The comparisons of one experiment's curves: with the half-space (for a flat body the
+// validation, for a curved one how far curvature and size take it from flat), and with the
+// compare_with experiment (from `done`, or read from its file).
+std::string ComparisonsText(const FemReferenceConfig& config, const FemExperiment& e,
+                            const DisplacementCurves& curves,
+                            std::map<std::string, DisplacementCurves>* done) {
+  std::string text = ComparisonText(e, curves, HalfSpaceReference(e.options.material),
+                                    "half-space (Boussinesq normal, Cerruti tangential)",
+                                    "halfspace");
+  if (e.compare_with.empty()) return text;
+  if (done->count(e.compare_with) == 0) {
+    const auto other = std::find_if(config.experiments.begin(), config.experiments.end(),
+                                    [&](const FemExperiment& x) { return x.name == e.compare_with; });
+    (*done)[e.compare_with] = ReadOutput(config, *other, "compare_with reads");
+  }
+  return text + ComparisonText(e, curves, CurvesReference(done->at(e.compare_with)),
+                               fmt::format("against '{}'", e.compare_with), "other");
+}
+
+}  // namespace
 
 void RunFemReference(const FemReferenceOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -477,6 +522,31 @@ void RunFemReference(const FemReferenceOptions& options) {
                                    options.config, JoinQuoted(names)));
     }
   }
+  auto selected = [&](const FemExperiment& e) {
+    return options.only.empty() ||
+           std::find(options.only.begin(), options.only.end(), e.name) != options.only.end();
+  };
+  std::map<std::string, DisplacementCurves> done;
+  if (options.report_only) {  // the tables of an earlier run, from its files
+    for (const FemExperiment& e : config.experiments) {
+      if (!selected(e)) continue;
+      if (e.kind == FemExperimentKind::kContact) {
+        const FemContactTarget t = ReadFemContactTarget(e.output);
+        std::cout << fmt::format(
+            "{}: area {:.2f} mm2, p_max {:.1f} MPa, half-length x {:.3f} mm, half-width s {:.3f} "
+            "mm, pressure resultant {:.1f} N of {:g} N ({} mesh levels), read from {}\n",
+            e.name, t.area_mm2, t.p_max_MPa, t.half_length_x_mm, t.half_width_s_mm,
+            t.total_force_N, t.load_N, t.levels, e.output);
+        continue;
+      }
+      const DisplacementCurves curves = ReadOutput(config, e, "--report-only reads");
+      std::cout << fmt::format("{}: {} points read from {}\n", e.name, curves.points.size(),
+                               e.output)
+                << ComparisonsText(config, e, curves, &done) << std::flush;
+      done[e.name] = curves;
+    }
+    return;
+  }
   FemPrograms programs;
   {
     ScopedTempDir probe("railwear-fem-probe");
@@ -487,13 +557,9 @@ void RunFemReference(const FemReferenceOptions& options) {
                            programs.ccx);
   const std::string out_dir =
       options.out_dir.empty() ? DirectoryOf(options.config) : options.out_dir;
-  std::map<std::string, DisplacementCurves> done;
   int run = 0;
   for (FemExperiment& e : config.experiments) {
-    if (!options.only.empty() &&
-        std::find(options.only.begin(), options.only.end(), e.name) == options.only.end()) {
-      continue;
-    }
+    if (!selected(e)) continue;
     if (options.jobs > 0) e.options.jobs = options.jobs;
     WorkFolder work(out_dir, e.name, options.keep_work);
     e.options.work_dir = work.path().string();
@@ -524,35 +590,16 @@ void RunFemReference(const FemReferenceOptions& options) {
       continue;
     }
     FemDisplacementResult r = RunFemDisplacement(e.options, programs);
-    r.curves.metadata.insert(r.curves.metadata.begin(),
-                             {"generated_by", fmt::format("railwear {} fem-reference {}, experiment {}",
-                                                          RAILWEAR_VERSION, options.config, e.name)});
-    fs::create_directories(fs::path(e.output).parent_path().empty()
-                               ? fs::path(".")
-                               : fs::path(e.output).parent_path());
+    r.curves.metadata.insert(
+        r.curves.metadata.begin(),
+        {"generated_by", fmt::format("railwear {} fem-reference {}, experiment {}",
+                                     RAILWEAR_VERSION, options.config, e.name)});
+    const fs::path parent = fs::path(e.output).parent_path();
+    if (!parent.empty()) fs::create_directories(parent);
     WriteDisplacementCurves(r.curves, e.output);
     const int jobs = std::min(e.options.jobs, static_cast<int>(e.options.loads.size()));
-    std::string text = SummaryText(e, r, jobs);
-    if (e.options.body == CurveBody::kFlat) {
-      text += ComparisonText(e, r.curves, HalfSpaceReference(e.options.material),
-                             "half-space (Boussinesq normal, Cerruti tangential)", "halfspace");
-    }
-    if (!e.compare_with.empty()) {
-      const auto other = std::find_if(config.experiments.begin(), config.experiments.end(),
-                                      [&](const FemExperiment& x) { return x.name == e.compare_with; });
-      if (done.count(e.compare_with) == 0) {
-        std::error_code ec;
-        if (!fs::exists(other->output, ec)) {
-          throw InputError(fmt::format("{}:{}: experiment '{}': compare_with '{}': its output {} "
-                                       "does not exist; run that experiment first",
-                                       config.path, e.line, e.name, e.compare_with, other->output));
-        }
-        done[e.compare_with] = ReadDisplacementCurves(other->output);
-      }
-      text += ComparisonText(e, r.curves, CurvesReference(done.at(e.compare_with)),
-                             fmt::format("against '{}'", e.compare_with), "other");
-    }
-    std::cout << text << std::flush;
+    std::cout << SummaryText(e, r, jobs) << ComparisonsText(config, e, r.curves, &done)
+              << std::flush;
     done[e.name] = r.curves;
     ++run;
   }

@@ -1,9 +1,10 @@
-// `railwear fem-reference CONFIG.toml [--out-dir DIR] [--keep-work] [--only NAME] [--jobs N]`:
+// `railwear fem-reference CONFIG.toml [--out-dir DIR] [--keep-work] [--only NAME] [--jobs N]
+// [--report-only]`:
 // builds the seed paper's displacement experiment as a 3-D FEM model per [[experiment]] of the
 // config (gmsh mesh, CalculiX solves; wear/calibration/fem_displacement.h), writes the
 // displacement-curve CSVs that `calibrate` reads, and prints a summary per experiment, with the
-// half-space comparison for flat bodies and the comparison with another experiment when asked
-// (compare_with).
+// comparison with the half-space (the validation for a flat body, the effect of curvature and
+// size for a curved one) and with another experiment when asked (compare_with).
 //
 // The config (keys of [fem] are defaults that an [[experiment]] may override):
 //   [fem]
@@ -26,7 +27,8 @@
 //   radius_mm = 15                  convex and concave only
 //   length_mm, width_mm, depth_mm   body size; defaults per body (DefaultFemBodySize)
 //   output = "r15_convex.csv"       default NAME.csv; relative to the config file or --out-dir
-//   compare_with = "other"          an experiment of this config (run now or its output file)
+//   compare_with = "other"          an earlier experiment of this config (run before this one,
+//                                   or its output file when --only skipped it)
 //
 // A contact experiment (wear/calibration/fem_contact.h) runs its mesh levels one after the
 // other (--jobs does not apply) and takes from [fem] only material, threads_per_job and
@@ -64,6 +66,8 @@ struct FemReferenceOptions {
   bool keep_work = false;         // keep each experiment's work folder as OUT/NAME.work
   std::vector<std::string> only;  // run only these experiments (empty: all)
   int jobs = 0;                   // ccx solves at once; 0: from the config
+  // Run nothing: read the CSVs an earlier run wrote and print their comparisons again.
+  bool report_only = false;
 };
 
 enum class FemExperimentKind { kDisplacement, kContact };

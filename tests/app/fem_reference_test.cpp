@@ -3,6 +3,7 @@
 // log's path when ccx fails, and a tiny real run (a coarse flat block, about a second) whose
 // CSV the calibration reader accepts. Runs the built binary (RAILWEAR_BINARY).
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -154,8 +155,8 @@ TEST_F(FemReferenceTest, BadConfigsNameFileLineKeyAndExpectation) {
                        "bad.toml:1: experiment 'a': body length 50 mm: expected at least 4 "
                        "max_distance = 100 mm"));
   EXPECT_TRUE(Contains(ConfigError(head + "compare_with = \"b\"\n"),
-                       "key 'experiment[0].compare_with' = \"b\": expected the name of another "
-                       "experiment of this file"));
+                       "key 'experiment[0].compare_with' = \"b\": expected the name of an earlier "
+                       "experiment of this file (there is none)"));
   EXPECT_TRUE(Contains(ConfigError(head + "[[experiment]]\nname = \"b\"\nbody = \"flat\"\n"
                                           "output = \"a.csv\"\n"),
                        "key 'experiment[1].output' = \"a.csv\": expected a file no other "
@@ -219,6 +220,54 @@ TEST_F(FemReferenceTest, TinyRunWritesCurvesCalibrationReads) {
   EXPECT_TRUE(Contains(ReadFile(dir_ / "out/tiny.csv"), "# supports = bottom face z = -100 mm "
                                                          "clamped (u = 0); every other face free"));
   EXPECT_TRUE(fs::exists(dir_ / "tiny.work" / "normal.frd"));  // --keep-work: next to the config
+
+  // --report-only prints the comparison again from the CSV, running nothing.
+  const Outcome report = Run("fem-reference c.toml --report-only", "RAILWEAR_CCX=/nonexistent");
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  EXPECT_TRUE(Contains(report.out, "tiny: " + std::to_string(c.points.size()) +
+                                       " points read from out/tiny.csv"));
+  EXPECT_TRUE(Contains(report.out, "normal load, axis path:"));
+}
+
+TEST_F(FemReferenceTest, ReportOnlyNeedsTheOutputs) {
+  Write("c.toml", kTinyConfig);
+  const Outcome o = Run("fem-reference c.toml --report-only");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_TRUE(Contains(o.err, "c.toml:8: experiment 'tiny': --report-only reads its output "
+                              "out/tiny.csv, which does not exist; run that experiment first"));
+}
+
+// The example configs are valid (running them takes minutes: README), and the committed
+// reference data of the paper experiment is what its config says, with every curve calibration
+// fits.
+TEST_F(FemReferenceTest, ExampleConfigsAndCommittedReferenceData) {
+  const std::string examples = std::string(RAILWEAR_SOURCE_DIR) + "/examples/fem/";
+  using railwear::app::ReadFemReferenceConfig;
+  EXPECT_EQ(ReadFemReferenceConfig(examples + "boussinesq_block.toml", "").experiments.size(), 4u);
+  EXPECT_EQ(ReadFemReferenceConfig(examples + "mesh_convergence.toml", "").experiments.size(), 2u);
+  EXPECT_EQ(ReadFemReferenceConfig(examples + "convex_height.toml", "").experiments.size(), 3u);
+  const auto paper = ReadFemReferenceConfig(examples + "paper_experiment.toml", "");
+  ASSERT_EQ(paper.experiments.size(), 4u);
+  for (const auto& e : paper.experiments) {
+    SCOPED_TRACE(e.name);
+    ASSERT_TRUE(fs::exists(e.output)) << "run: railwear fem-reference " << paper.path;
+    const railwear::DisplacementCurves c = railwear::ReadDisplacementCurves(e.output);
+    EXPECT_EQ(c.body, e.options.body);
+    EXPECT_DOUBLE_EQ(c.radius_m, e.options.radius_m);
+    EXPECT_DOUBLE_EQ(c.material.poisson_ratio, 0.28);
+    std::map<std::string, int> curves;
+    for (const auto& p : c.points) {
+      ++curves[std::string(railwear::ToString(p.load)) + "/" + std::string(railwear::ToString(p.path))];
+    }
+    for (const char* curve : {"normal/arc", "normal/axis", "axial/axis", "circumferential/arc"}) {
+      EXPECT_GE(curves[curve], 20) << curve;
+    }
+    std::map<std::string, std::string> meta(c.metadata.begin(), c.metadata.end());
+    for (const char* key : {"source", "supports", "body_length_mm", "body_width_mm",
+                            "body_depth_mm", "mesh_size_at_load_mm", "nodes"}) {
+      EXPECT_EQ(meta.count(key), 1u) << key;
+    }
+  }
 }
 
 // ccx that fails: exit code 1, the message names the log, which is kept.

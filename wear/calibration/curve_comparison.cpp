@@ -56,7 +56,13 @@ std::vector<CurveComparison> CompareCurves(const DisplacementCurves& curves,
     double sum = 0.0;
     for (const ComparedPoint& p : c.points) sum += p.w_m_per_N - p.reference_m_per_N;
     c.offset_m_per_N = sum / static_cast<double>(c.points.size());
+    double largest = 0.0;
+    for (const ComparedPoint& p : c.points) largest = std::max(largest, std::abs(p.reference_m_per_N));
     for (const ComparedPoint& p : c.points) {
+      if (std::abs(p.reference_m_per_N) < kSmallReferenceFraction * largest) {
+        ++c.num_skipped;
+        continue;
+      }
       c.max_raw_error = std::max(c.max_raw_error, std::abs(c.RawRatio(p) - 1.0));
       c.max_corrected_error = std::max(c.max_corrected_error, std::abs(c.CorrectedRatio(p) - 1.0));
     }

@@ -3,7 +3,10 @@
 // supports deflects by a nearly constant offset that a half-space does not (only differences of
 // w across a contact patch matter for contact), so every comparison also fits that offset: the
 // least-squares constant c = mean(w - w_ref) over the compared range, and reports both the raw
-// and the offset-removed relative errors.
+// and the offset-removed relative errors. Where a curve crosses zero (a convex body under a
+// tangential load) a relative error means nothing: points whose reference is below
+// kSmallReferenceFraction of the curve's largest |reference| in the range are left out of the
+// largest errors (not out of the offset).
 #pragma once
 
 #include <functional>
@@ -13,6 +16,8 @@
 #include "wear/calibration/displacement_curves.h"
 
 namespace railwear {
+
+constexpr double kSmallReferenceFraction = 0.05;
 
 // w_ref(load, path, distance) [m/N], or nullopt where the reference has no value.
 using CurveReference = std::function<std::optional<double>(CurveLoad, CurvePath, double)>;
@@ -38,6 +43,7 @@ struct CurveComparison {
   double offset_m_per_N = 0.0;        // mean(w - w_ref) over `points`
   double max_raw_error = 0.0;         // max |w / w_ref - 1|
   double max_corrected_error = 0.0;   // max |(w - offset) / w_ref - 1|
+  size_t num_skipped = 0;  // points left out of the two maxima (|w_ref| small, see above)
 
   double RawRatio(const ComparedPoint& p) const { return p.w_m_per_N / p.reference_m_per_N; }
   double CorrectedRatio(const ComparedPoint& p) const {

@@ -37,6 +37,17 @@ constexpr const char* kBottom = "BOTTOM";
 constexpr const char* kEnd = "END";
 constexpr const char* kSide = "SIDE";
 
+// A file that gmsh or ccx wrote and that cannot be read is their failure (exit code 1), not bad
+// input: the readers' InputError becomes a runtime error.
+template <class Read>
+auto ReadProgramOutput(Read read) {
+  try {
+    return read();
+  } catch (const InputError& e) {
+    throw std::runtime_error(e.what());
+  }
+}
+
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
@@ -205,7 +216,7 @@ FemBodySize DefaultFemBodySize(CurveBody body, double radius_m) {
   // distances. A convex body is 2R wide (the rail head) and 2R deep: the half-cylinder on a
   // block R tall. Under a tangential load a convex body sways as a whole (its curves are not a
   // local response plus an offset, and the sway grows with the height: README), so it is kept
-  // short. A concave body is 100 mm wider than its groove.
+  // short. A concave body is at least 200 mm wide and 100 mm wider than its groove.
   FemBodySize s;
   s.length_m = 200.0 * kMm;
   switch (body) {
@@ -392,7 +403,8 @@ FemDisplacementResult RunFemDisplacement(const FemDisplacementOptions& o,
   const ProgramResult meshed = RunGmsh(programs.gmsh, o.work_dir, "body.geo", "body.msh", 1,
                                        o.timeout_s);
   summary.mesh_time_s = meshed.wall_time_s;
-  const FemMesh mesh = ReadGmshMesh((dir / "body.msh").string());
+  const FemMesh mesh =
+      ReadProgramOutput([&] { return ReadGmshMesh((dir / "body.msh").string()); });
   CheckGroups(mesh, q);
   summary.nodes = mesh.NumNodes();
   summary.elements = mesh.SolidElements().size();
@@ -455,7 +467,8 @@ FemDisplacementResult RunFemDisplacement(const FemDisplacementOptions& o,
   curves.material = o.material;
   for (size_t i = 0; i < jobs.size(); ++i) {
     const CurveLoad load = o.loads[i];
-    const FrdFile frd = ReadFrd((dir / (jobs[i] + ".frd")).string());
+    const FrdFile frd =
+        ReadProgramOutput([&] { return ReadFrd((dir / (jobs[i] + ".frd")).string()); });
     const FrdResultBlock* disp = frd.Find("DISP", 1);
     if (disp == nullptr) {
       throw std::runtime_error(fmt::format("{}: ccx wrote no DISP block",

@@ -28,7 +28,8 @@
 // antisymmetry plane through O halves what the model carries).
 //
 // Mesh: 10-node tetrahedra (C3D10) graded from h0 at O by h = h0 + growth * r (r the distance
-// from O) up to max_element; gmsh places mid-side nodes on the curved surfaces. Curves: every
+// from O) up to max_element, at least 12 elements per circle on curved faces; gmsh places
+// mid-side nodes on the curved surfaces. Curves: every
 // surface node on a path (the arc in the plane x = 0, the axis y = 0 on the top) between
 // min_distance and max_distance; w = u . n_in per newton, n_in the inward normal at the node.
 // An approximation of the continuum: its error near the load is set by h0 (a point load is
@@ -37,9 +38,9 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
-#include <optional>
 #include <vector>
 
 #include "core/contact/contact_types.h"
@@ -52,7 +53,10 @@ enum class FemSupports { kBottom, kFarFaces };
 std::string_view ToString(FemSupports v);  // "bottom", "far_faces"
 std::optional<FemSupports> FemSupportsFromString(std::string_view s);
 
-// The body size [m] a body gets when its options leave it at 0 (see the .cpp for the choice).
+// The body size [m] a body gets when its options leave it at 0: 200 mm long (8 times the
+// sampled 25 mm) and, below O, flat 200 x 100 mm (width x depth), convex 2R x 2R (the
+// half-cylinder on a block R tall: short, as a convex head sways under tangential loads more the
+// taller it is), concave max(200 mm, 2R + 100 mm) x 100 mm.
 struct FemBodySize {
   double length_m = 0.0;  // along x, the whole body (the quarter model is half as long)
   double width_m = 0.0;   // along y, the whole body (convex: 2R)
@@ -68,8 +72,8 @@ struct FemDisplacementOptions {
   std::vector<CurveLoad> loads = {CurveLoad::kNormal, CurveLoad::kAxial,
                                   CurveLoad::kCircumferential};
   // Body size [m]; 0 takes DefaultFemBodySize. Width is ignored for convex bodies (2R).
-  // Checked: the length and the width at least 4 max_distance (so the sampled paths stay in
-  // the body), depth > R for convex bodies, width > 2R for concave ones.
+  // Checked: the length (and a flat body's width) at least 4 max_distance, so the sampled paths
+  // stay well inside the body; depth > R for convex bodies, width > 2R for concave ones.
   double length_m = 0.0;
   double width_m = 0.0;
   double depth_m = 0.0;
@@ -113,8 +117,8 @@ FemDisplacementResult RunFemDisplacement(const FemDisplacementOptions& options,
                                          const FemPrograms& programs);
 
 // The gmsh .geo text of the quarter model (mm), with physical groups BODY, LOAD (the point O),
-// TOP (the loaded surface), SYMX (x = 0), SYMY (y = 0), BOTTOM, END (x = L/2) and, when the
-// body has them, SIDE (y = W/2) and TOPFLAT (the flat top of a concave body).
+// TOP (the loaded surface), SYMX (x = 0), SYMY (y = 0), BOTTOM, END (x = L/2), SIDE (y = W/2;
+// convex: y = R) and, for a concave body, TOPFLAT (its flat top beside the groove).
 std::string FemDisplacementGeo(const FemDisplacementOptions& options, const FemBodySize& size);
 
 }  // namespace railwear

@@ -5,6 +5,7 @@
 #include "wear/calibration/fem_displacement.h"
 
 #include <cmath>
+#include <iostream>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -26,9 +27,9 @@ constexpr double kFrom = 1e-3, kTo = 10e-3;
 
 class FemDisplacementTest : public TempDirTest {
  protected:
-  // A coarse mesh (h0 0.2 mm, growth 0.3: about 3k nodes, under a second per solve). On the
-  // 200 mm block it is within 0.8 % of Boussinesq from 1 to 10 mm once the offset is removed
-  // and within 1.8 % of Cerruti (the default mesh: 0.1 % and 0.3 %; README).
+  // A coarse mesh (h0 0.2 mm, growth 0.3, elements up to 100 mm: 2.6k nodes, under a second
+  // per solve). On the 200 mm block it is within 0.8 % of Boussinesq from 1 to 10 mm once the
+  // offset is removed and within 2.8 % of Cerruti (the default mesh: 0.1 % and 0.4 %; README).
   FemDisplacementOptions Coarse(CurveBody body, double radius_mm = 0.0) const {
     FemDisplacementOptions o;
     o.body = body;
@@ -136,10 +137,18 @@ TEST_F(FemDisplacementTest, FlatBlockMatchesHalfSpaceAfterTheOffset) {
   EXPECT_LT(r.summary.nodes, 10000u);
 
   const auto cmp = CompareCurves(r.curves, HalfSpaceReference(r.curves.material), kFrom, kTo);
-  // The issue asks for 5 %; the coarse mesh does 0.8 % (normal) and 1.8 % (tangential), so
-  // these bounds catch a wrong load share or boundary condition (a factor 2 or worse).
+  for (const CurveComparison& c : cmp) {
+    std::cout << "[ measured ] coarse flat block (" << r.summary.nodes << " nodes), "
+              << ToString(c.load) << " load, " << ToString(c.path) << ": offset "
+              << c.offset_m_per_N / kNmPerN << " nm/N, largest error 1-10 mm "
+              << 100 * c.max_raw_error << " % raw, " << 100 * c.max_corrected_error
+              << " % offset removed\n";
+  }
+  // The issue asks for 5 %. The coarse mesh does 0.8 % (normal) and 2.1-2.8 % (tangential:
+  // its far elements are coarser than the defaults', which do 0.1 % and 0.4 %: README); either
+  // bound catches a wrong load share or boundary condition (a factor 2 or worse).
   constexpr double kNormalTolerance = 0.02;
-  constexpr double kTangentialTolerance = 0.03;
+  constexpr double kTangentialTolerance = 0.05;
   for (CurvePath path : {CurvePath::kArc, CurvePath::kAxis}) {
     const CurveComparison* c = Find(cmp, CurveLoad::kNormal, path);
     ASSERT_NE(c, nullptr);
@@ -191,6 +200,10 @@ TEST_F(FemDisplacementTest, LargeBlockRawCurveAndOffsetDecay) {
     const CurveComparison* s = Find(small, CurveLoad::kNormal, path);
     const CurveComparison* l = Find(large, CurveLoad::kNormal, path);
     ASSERT_TRUE(s != nullptr && l != nullptr);
+    std::cout << "[ measured ] coarse flat block, normal load, " << ToString(path)
+              << ": offset " << s->offset_m_per_N / kNmPerN << " nm/N (200 mm) and "
+              << l->offset_m_per_N / kNmPerN << " nm/N (800 mm); raw error 1-10 mm on the "
+              << "800 mm block " << 100 * l->max_raw_error << " %\n";
     EXPECT_LT(l->max_raw_error, kRawTolerance) << ToString(path);
     const double ratio = l->offset_m_per_N / s->offset_m_per_N;
     EXPECT_GT(ratio, 0.15) << ToString(path);  // 1/4 for an exact 1/size decay
