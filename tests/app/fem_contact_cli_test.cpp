@@ -6,6 +6,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "app/fem_contact_result.h"
 #include "app/fem_reference_command.h"
@@ -166,6 +167,34 @@ TEST_F(FemContactCliTest, ExampleConfigAndCommittedResults) {
     // The finest level's pressure resultant: within 1 % of the load.
     EXPECT_NEAR(t.total_force_N / t.load_N, 1.0, 0.01) << e.name;
   }
+}
+
+// The scenes place the bodies as the FEM model does: first contact at the bottom of the groove
+// (y = z = 0, contact angle 0), the load vertical, the profiles and rolling radius of the case.
+TEST_F(FemContactCliTest, ScenesMatchTheFemGeometry) {
+  const fs::path examples = fs::path(RAILWEAR_SOURCE_DIR) / "examples" / "fem";
+  const struct {
+    const char* scene;
+    double load_N;
+  } cases[] = {{"wheel_in_groove.toml", 10000.0}, {"rail_in_wheel_groove.toml", 50000.0}};
+  for (const auto& c : cases) {
+    const Outcome o =
+        Run("contact '" + (examples / c.scene).string() + "' --accuracy draft --json -");
+    ASSERT_EQ(o.exit_code, 0) << o.err;
+    const auto j = nlohmann::json::parse(o.out);
+    ASSERT_EQ(j["patches"].size(), 1u) << c.scene;
+    const auto& p = j["patches"][0];
+    EXPECT_NEAR(p["contact_y_mm"].get<double>(), 0.0, 0.01) << c.scene;
+    EXPECT_NEAR(p["contact_z_mm"].get<double>(), 0.0, 0.01) << c.scene;
+    EXPECT_NEAR(p["contact_angle_deg"].get<double>(), 0.0, 0.1) << c.scene;
+    EXPECT_NEAR(p["vertical_force_N"].get<double>(), c.load_N, 1e-6 * c.load_N) << c.scene;
+  }
+  const std::string a = railwear::test::ReadFile(examples / "wheel_in_groove.toml");
+  EXPECT_TRUE(Contains(a, "profile = \"circle:10\"\nrolling_radius_mm = 460"));
+  EXPECT_TRUE(Contains(a, "profile = \"groove:10.1\""));
+  const std::string b = railwear::test::ReadFile(examples / "rail_in_wheel_groove.toml");
+  EXPECT_TRUE(Contains(b, "profile = \"groove:15.1\"\nrolling_radius_mm = 460"));
+  EXPECT_TRUE(Contains(b, "profile = \"circle:15\""));
 }
 
 // A real run: case A on small bodies with one coarse level (h = 1.2 mm, 3 elements across
