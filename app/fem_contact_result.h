@@ -18,7 +18,9 @@
 //   [metadata]                       generated_by, gmsh_version, ccx_version, wall_time_s
 //   [[convergence]]                  one per mesh level, coarse to fine: mesh_size_mm, nodes,
 //                                    elements, slave_faces, mesh_time_s, solve_time_s,
-//                                    iterations, the measures above, status
+//                                    iterations, spring_force_N (the wheel's force on its
+//                                    far-face springs, z up: -0.33 means they carry 0.33 N),
+//                                    the measures above, status
 // Units are in the key names (mm, MPa, N, s).
 #pragma once
 

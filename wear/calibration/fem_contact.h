@@ -166,7 +166,9 @@ struct FemContactLevel {
   double mesh_time_s = 0.0;   // gmsh wall time
   double solve_time_s = 0.0;  // ccx wall time
   int iterations = 0;         // ccx's contact iterations (all increments)
-  double spring_force_N = 0.0;  // taken by the far-face springs (full model)
+  // Vertical force the wheel puts on its far-face springs, k * sum(u_z) x 4 [N] (z up:
+  // negative when the wheel moved down, the springs then carry |spring_force_N| of the load).
+  double spring_force_N = 0.0;
   FemContactPatch patch;
 };
 
