@@ -8,12 +8,12 @@
 //                                       this file's folder ("" when the config names none)
 //   status = "ok"                    "ok" | "no_contact" | "patch_at_zone_edge" | "fit_failed"
 //   load_N = 10000                   applied vertical load (whole wheel)
-//   area_mm2 = 39.1                  contact area (edge fit, see wear/calibration/fem_contact.h)
-//   p_max_MPa = 401.0                peak contact pressure
-//   half_length_x_mm = 2.90          patch half-length along x (rolling direction)
-//   half_width_s_mm = 4.44           patch half-width along the lateral arc
-//   total_force_N = 10040            vertical resultant of the FEM contact pressure
-//   area_nodes_mm2 = 44.6            lumped area of the nodes with p > 0 (upper bound)
+//   area_mm2 = 38.63                 contact area (edge fit, see wear/calibration/fem_contact.h)
+//   p_max_MPa = 400.9                peak contact pressure
+//   half_length_x_mm = 2.82          patch half-length along x (rolling direction)
+//   half_width_s_mm = 4.34           patch half-width along the lateral arc
+//   total_force_N = 10037.5          vertical resultant of the FEM contact pressure
+//   area_nodes_mm2 = 44.1            lumped area of the nodes with p > 0 (upper bound)
 //   [model]                          the model: radii, material, body size, supports, contact
 //   [metadata]                       generated_by, gmsh_version, ccx_version, wall_time_s
 //   [[convergence]]                  one per mesh level, coarse to fine: mesh_size_mm, nodes,

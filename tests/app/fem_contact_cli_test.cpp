@@ -148,7 +148,7 @@ TEST_F(FemContactCliTest, ResultFileRoundTrip) {
   }
 }
 
-// The example config reads, and the committed results are valid result files whose scenes
+// The example configs read, and the committed results are valid result files whose scenes
 // exist and whose pressure resultant matches the load (the README's force check).
 TEST_F(FemContactCliTest, ExampleConfigAndCommittedResults) {
   const fs::path examples = fs::path(RAILWEAR_SOURCE_DIR) / "examples" / "fem";
@@ -167,6 +167,9 @@ TEST_F(FemContactCliTest, ExampleConfigAndCommittedResults) {
     // The finest level's pressure resultant: within 1 % of the load.
     EXPECT_NEAR(t.total_force_N / t.load_N, 1.0, 0.01) << e.name;
   }
+  const auto sensitivity =
+      railwear::app::ReadFemReferenceConfig((examples / "contact_sensitivity.toml").string(), "");
+  EXPECT_EQ(sensitivity.experiments.size(), 4u);
 }
 
 // The scenes place the bodies as the FEM model does: first contact at the bottom of the groove
