@@ -19,7 +19,8 @@
 namespace railwear::app {
 namespace {
 
-// --model replaces kind, geometry and kernel; constants, accuracy and cell size stay.
+// --model replaces kind, geometry and kernel; constants, accuracy and cell size stay. --kernel
+// then replaces the kernel (the kind becomes the shorthand that matches, else custom).
 void ApplyOverrides(const ContactOptions& o, ModelOptions* model) {
   if (o.model) {
     ModelOptions replaced = MakeModelOptions(*ModelKindFromString(*o.model));
@@ -28,6 +29,22 @@ void ApplyOverrides(const ContactOptions& o, ModelOptions* model) {
     replaced.cell_dx_m = model->cell_dx_m;
     replaced.cell_ds_m = model->cell_ds_m;
     *model = replaced;
+  }
+  if (o.kernel) {
+    if (model->kind == ModelKind::kHertz) {
+      throw InputError(fmt::format(
+          "--kernel {}: expected a model with an influence kernel (halfspace, conformal, auto); "
+          "hertz is analytic",
+          *o.kernel));
+    }
+    model->kernel = *KernelModelFromString(*o.kernel);
+    if (model->kind != ModelKind::kAuto) {  // auto keeps picking the geometry per patch
+      model->kind = ModelKind::kCustom;
+      for (const ModelKind k : {ModelKind::kHalfspace, ModelKind::kConformal}) {
+        const ModelOptions m = MakeModelOptions(k);
+        if (m.geometry == model->geometry && m.kernel == model->kernel) model->kind = k;
+      }
+    }
   }
   if (o.accuracy) {
     model->accuracy = *AccuracyPresetFromString(*o.accuracy);
@@ -92,6 +109,9 @@ void SetupContact(CLI::App& app) {
   sub->add_option("--accuracy", options->accuracy,
                   "Replace the scene's accuracy (and its cell_mm)")
       ->check(CLI::IsMember({"draft", "standard", "reference", "fine"}));
+  sub->add_option("--kernel", options->kernel,
+                  "Replace the influence kernel (after --model), keeping the geometry")
+      ->check(CLI::IsMember({"boussinesq", "golubenko"}));
   sub->add_option("--json", options->json, "Write the result as JSON to FILE ('-' = stdout)");
   sub->add_option("--csv", options->csv, "Write the pressure field as CSV to FILE ('-' = stdout)");
   sub->add_option("--plot", options->plot, "Draw the pressure map to PNG (needs gnuplot)");

@@ -17,9 +17,11 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "app/fem_contact_result.h"
 #include "app/paths.h"
 #include "app/toml_fields.h"
 #include "core/numerics/input_error.h"
+#include "wear/calibration/ccx_deck.h"
 #include "wear/calibration/curve_comparison.h"
 
 namespace railwear::app {
@@ -112,6 +114,68 @@ void ReadCommonKeys(const Fields& t, FemExperiment* e) {
   if (t.Has("material")) o.material = ReadMaterial(t);
   if (t.Has("loads")) o.loads = ReadLoads(t);
   if (t.Has("compare_range_mm")) ReadCompareRange(t, e);
+}
+
+// The keys of a contact experiment (kind = "contact").
+const std::vector<std::string_view> kContactKeys = {
+    "name",          "kind",           "case",               "scene",
+    "convex_radius_mm", "groove_radius_mm", "rolling_radius_mm", "load_N",
+    "material",      "length_mm",      "width_mm",           "depth_mm",
+    "zone_x_mm",     "zone_s_mm",      "zone_depth_mm",      "mesh_sizes_mm",
+    "mesh_growth",   "max_element_mm", "penalty_MPa_per_mm", "initial_overlap_mm",
+    "spring_N_per_mm", "sectors",      "output"};
+
+std::vector<double> ReadMeshSizes(const Fields& t) {
+  const std::string expected = "a non-empty array of element sizes in mm, each > 0";
+  const toml::array* a = t.Node("mesh_sizes_mm")->as_array();
+  if (a == nullptr || a->empty()) t.Fail("mesh_sizes_mm", expected);
+  std::vector<double> sizes;
+  for (const toml::node& n : *a) {
+    const auto x = n.value<double>();
+    if (!n.is_number() || !x || !std::isfinite(*x) || !(*x > 0.0)) t.Fail("mesh_sizes_mm", expected);
+    sizes.push_back(*x * kMm);
+  }
+  return sizes;
+}
+
+// A contact experiment's keys on top of the case defaults (and [fem]'s material, threads and
+// timeout already in e->contact).
+void ReadContactKeys(const Fields& t, FemExperiment* e) {
+  const auto contact_case = t.Choice("case", {"wheel_in_groove", "rail_in_wheel_groove"});
+  if (!contact_case) t.FailMissing("case", "'wheel_in_groove' or 'rail_in_wheel_groove'");
+  FemContactOptions o = DefaultFemContactOptions(*FemContactCaseFromString(*contact_case));
+  o.material = e->contact.material;
+  o.threads_per_job = e->contact.threads_per_job;
+  o.timeout_s = e->contact.timeout_s;
+  o.work_dir = e->contact.work_dir;
+  if (auto v = t.Number("convex_radius_mm", Positive())) o.convex_radius_m = *v * kMm;
+  if (auto v = t.Number("groove_radius_mm", Positive())) o.groove_radius_m = *v * kMm;
+  if (auto v = t.Number("rolling_radius_mm", Positive())) o.rolling_radius_m = *v * kMm;
+  if (auto v = t.Number("load_N", Positive())) o.load_N = *v;
+  if (t.Has("material")) o.material = ReadMaterial(t);
+  if (auto v = t.Number("length_mm", Positive())) o.length_m = *v * kMm;
+  if (auto v = t.Number("width_mm", Positive())) o.width_m = *v * kMm;
+  if (auto v = t.Number("depth_mm", Positive())) o.depth_m = *v * kMm;
+  if (auto v = t.Number("zone_x_mm", Positive())) o.zone_x_m = *v * kMm;
+  if (auto v = t.Number("zone_s_mm", Positive())) o.zone_s_m = *v * kMm;
+  if (auto v = t.Number("zone_depth_mm", Positive())) o.zone_depth_m = *v * kMm;
+  if (t.Has("mesh_sizes_mm")) o.mesh_sizes_m = ReadMeshSizes(t);
+  if (auto v = t.Number("mesh_growth", OpenClosed(0.0, 2.0))) o.mesh_growth = *v;
+  if (auto v = t.Number("max_element_mm", Positive())) o.max_element_m = *v * kMm;
+  if (auto v = t.Number("penalty_MPa_per_mm", Positive())) o.penalty_Pa_per_m = *v * kMPa / kMm;
+  if (auto v = t.Number("initial_overlap_mm", AtLeast(0.0))) o.initial_overlap_m = *v * kMm;
+  if (auto v = t.Number("spring_N_per_mm", Positive())) o.spring_N_per_m = *v / kMm;
+  o.sectors = IntegerAtLeast(t, "sectors", 2, o.sectors);
+  e->contact = o;
+  e->scene = t.String("scene").value_or("");
+  if (!e->scene.empty()) {
+    const std::string resolved = ResolveRelativeTo(DirectoryOf(t.file()), e->scene);
+    std::error_code ec;
+    if (!fs::is_regular_file(resolved, ec)) {
+      t.Fail("scene", fmt::format("an existing railwear scene file ({} does not exist)", resolved));
+    }
+    e->scene = resolved;
+  }
 }
 
 bool ValidName(const std::string& name) {
@@ -234,6 +298,39 @@ std::string SummaryText(const FemExperiment& e, const FemDisplacementResult& r, 
   return out;
 }
 
+std::string ContactSummaryText(const FemExperiment& e, const FemContactResult& r) {
+  const FemContactOptions& o = r.options;
+  std::string out = fmt::format(
+      "{}: contact case {}, convex R {:g} mm in groove R {:g} mm, rolling radius {:g} mm, load "
+      "{:g} N, E = {:g} MPa, nu = {:g}\n",
+      e.name, ToString(o.contact_case), o.convex_radius_m / kMm, o.groove_radius_m / kMm,
+      o.rolling_radius_m / kMm, o.load_N, o.material.youngs_modulus_Pa / kMPa,
+      o.material.poisson_ratio);
+  out += fmt::format(
+      "  model     quarter; bodies {:g} x {:g} x {:g} mm (length x width x depth); zone {:g} x "
+      "{:g} x {:g} mm; penalty {:g} MPa/mm; C3D10, growth {:g}\n",
+      o.length_m / kMm, o.width_m / kMm, o.depth_m / kMm, o.zone_x_m / kMm, o.zone_s_m / kMm,
+      o.zone_depth_m / kMm, o.penalty_Pa_per_m / kMPa * kMm, o.mesh_growth);
+  out += fmt::format("  {:>6} {:>7} {:>6} {:>7} {:>8} {:>5} {:>9} {:>10} {:>8} {:>8} {:>9} {:>8} "
+                     "{:>10}  {}\n",
+                     "h_mm", "nodes", "faces", "mesh_s", "solve_s", "iter", "area_mm2",
+                     "p_max_MPa", "a_x_mm", "b_s_mm", "force_N", "force_%", "area_nd_mm2",
+                     "status");
+  for (const FemContactLevel& L : r.levels) {
+    const FemContactPatch& p = L.patch;
+    out += fmt::format(
+        "  {:>6.3f} {:>7} {:>6} {:>7.1f} {:>8.1f} {:>5} {:>9.3f} {:>10.2f} {:>8.3f} {:>8.3f} "
+        "{:>9.1f} {:>8.2f} {:>10.3f}  {}\n",
+        L.mesh_size_m / kMm, L.nodes, L.slave_faces, L.mesh_time_s, L.solve_time_s, L.iterations,
+        p.area_m2 / (kMm * kMm), p.p_max_Pa / kMPa, p.half_length_x_m / kMm,
+        p.half_width_s_m / kMm, p.vertical_force_N, 100.0 * (p.vertical_force_N / o.load_N - 1.0),
+        p.area_nodes_m2 / (kMm * kMm), ToString(p.status));
+    if (!p.message.empty()) out += "         " + p.message + "\n";
+  }
+  out += fmt::format("  result    written to {}\n  time      {:.1f} s\n", e.output, r.wall_time_s);
+  return out;
+}
+
 }  // namespace
 
 FemReferenceConfig ReadFemReferenceConfig(const std::string& path, const std::string& out_dir) {
@@ -264,14 +361,32 @@ FemReferenceConfig ReadFemReferenceConfig(const std::string& path, const std::st
   config.path = path;
   const std::string base = out_dir.empty() ? DirectoryOf(path) : out_dir;
   std::map<std::string, std::string> outputs;  // output path -> experiment
+  // Each output file is written by one experiment.
+  auto claim_output = [&outputs](const Fields& t, const FemExperiment& e) {
+    if (const auto it = outputs.find(e.output); it != outputs.end()) {
+      t.Fail("output", fmt::format("a file no other experiment writes ('{}' writes it)", it->second));
+    }
+    outputs[e.output] = e.name;
+  };
   int index = 0;
   for (const toml::node& entry : *node->as_array()) {
     const Fields t(*entry.as_table(), fmt::format("experiment[{}]", index++), path);
-    std::vector<std::string_view> allowed = kCommonKeys;
-    allowed.insert(allowed.end(), {"name", "kind", "body", "radius_mm", "length_mm", "width_mm",
-                                   "depth_mm", "output", "compare_with"});
+    const auto kind = t.Choice("kind", {"displacement", "contact"});
+    const bool contact = kind && *kind == "contact";
+    std::vector<std::string_view> allowed = contact ? kContactKeys : kCommonKeys;
+    if (!contact) {
+      allowed.insert(allowed.end(), {"name", "kind", "body", "radius_mm", "length_mm", "width_mm",
+                                     "depth_mm", "output", "compare_with"});
+    }
     t.AllowOnly(allowed);
     FemExperiment e = defaults;
+    if (contact) {
+      e.kind = FemExperimentKind::kContact;
+      e.contact.material = defaults.options.material;
+      e.contact.threads_per_job = defaults.options.threads_per_job;
+      e.contact.timeout_s = defaults.options.timeout_s;
+      e.contact.work_dir = defaults.options.work_dir;
+    }
     e.line = t.Line();
     e.name = t.RequiredString("name", "a name of letters, digits, '_', '-' and '.'");
     if (!ValidName(e.name)) t.Fail("name", "a name of letters, digits, '_', '-' and '.'");
@@ -280,8 +395,16 @@ FemReferenceConfig ReadFemReferenceConfig(const std::string& path, const std::st
         t.Fail("name", fmt::format("a name not used before (line {} has it)", other.line));
       }
     }
-    if (const auto kind = t.String("kind"); kind && *kind != "displacement") {
-      t.Fail("kind", "'displacement' (the displacement-curve experiment; the only kind so far)");
+    if (e.kind == FemExperimentKind::kContact) {
+      ReadContactKeys(t, &e);
+      e.output = ResolveRelativeTo(base, t.String("output").value_or(e.name + ".toml"));
+      claim_output(t, e);
+      std::string error;
+      if (!e.contact.IsValid(&error)) {
+        throw InputError(fmt::format("{}:{}: experiment '{}': {}", path, e.line, e.name, error));
+      }
+      config.experiments.push_back(std::move(e));
+      continue;
     }
     const auto body = t.Choice("body", {"flat", "convex", "concave"});
     if (!body) t.FailMissing("body", "one of 'flat', 'convex', 'concave'");
@@ -300,10 +423,7 @@ FemReferenceConfig ReadFemReferenceConfig(const std::string& path, const std::st
     o.depth_m = t.Number("depth_mm", Positive()).value_or(0.0) * kMm;
     ReadCommonKeys(t, &e);
     e.output = ResolveRelativeTo(base, t.String("output").value_or(e.name + ".csv"));
-    if (const auto it = outputs.find(e.output); it != outputs.end()) {
-      t.Fail("output", fmt::format("a file no other experiment writes ('{}' writes it)", it->second));
-    }
-    outputs[e.output] = e.name;
+    claim_output(t, e);
     e.compare_with = t.String("compare_with").value_or("");
     std::string error;
     if (!o.IsValid(&error)) {
@@ -320,9 +440,10 @@ FemReferenceConfig ReadFemReferenceConfig(const std::string& path, const std::st
     std::vector<std::string_view> names;
     for (const FemExperiment& other : config.experiments) {
       if (other.name == e.name) break;
-      names.push_back(other.name);
+      if (other.kind == FemExperimentKind::kDisplacement) names.push_back(other.name);
     }
     if (std::find(names.begin(), names.end(), e.compare_with) == names.end()) {
+      // Contact experiments have no curves to compare with: only displacement ones are named.
       t.Fail("compare_with", names.empty() ? std::string("the name of an earlier experiment of "
                                                          "this file (there is none)")
                                            : "the name of an earlier experiment of this file: " +
@@ -336,8 +457,9 @@ void SetupFemReference(CLI::App& app) {
   auto options = std::make_shared<FemReferenceOptions>();
   CLI::App* cmd = app.add_subcommand(
       "fem-reference",
-      "Build the seed paper's displacement experiment as 3-D FEM models (gmsh + CalculiX) and "
-      "write the displacement-curve CSVs that calibration reads");
+      "Build FEM reference data with gmsh + CalculiX: the seed paper's displacement experiment "
+      "(displacement-curve CSVs) and conformal contact cases (contact result TOML files) that "
+      "calibration reads");
   cmd->add_option("config", options->config, "Experiment config (TOML)")->required();
   cmd->add_option("--out-dir", options->out_dir,
                   "Write the CSVs here (created) instead of next to the config");
@@ -408,6 +530,15 @@ void RunFemReference(const FemReferenceOptions& options) {
   if (options.report_only) {  // the tables of an earlier run, from its files
     for (const FemExperiment& e : config.experiments) {
       if (!selected(e)) continue;
+      if (e.kind == FemExperimentKind::kContact) {
+        const FemContactTarget t = ReadFemContactTarget(e.output);
+        std::cout << fmt::format(
+            "{}: area {:.2f} mm2, p_max {:.1f} MPa, half-length x {:.3f} mm, half-width s {:.3f} "
+            "mm, pressure resultant {:.1f} N of {:g} N ({} mesh levels), read from {}\n",
+            e.name, t.area_mm2, t.p_max_MPa, t.half_length_x_mm, t.half_width_s_mm,
+            t.total_force_N, t.load_N, t.levels, e.output);
+        continue;
+      }
       const DisplacementCurves curves = ReadOutput(config, e, "--report-only reads");
       std::cout << fmt::format("{}: {} points read from {}\n", e.name, curves.points.size(),
                                e.output)
@@ -436,6 +567,28 @@ void RunFemReference(const FemReferenceOptions& options) {
     e.options.progress = [name](std::string_view message) {
       std::cerr << fmt::format("fem-reference: {}: {}\n", name, message);
     };
+    if (e.kind == FemExperimentKind::kContact) {
+      e.contact.work_dir = work.path().string();
+      e.contact.progress = e.options.progress;
+      const FemContactResult r = RunFemContact(e.contact, programs);
+      const fs::path folder = fs::absolute(e.output).parent_path();
+      const std::string scene =
+          e.scene.empty()
+              ? ""
+              : fs::absolute(e.scene).lexically_normal().lexically_relative(folder).string();
+      fs::create_directories(folder);
+      WriteTextFile(
+          e.output,
+          FemContactResultText(
+              e.name, r, scene,
+              {{"generated_by", fmt::format("railwear {} fem-reference {}, experiment {}",
+                                            RAILWEAR_VERSION, options.config, e.name)},
+               {"gmsh_version", programs.gmsh_version},
+               {"ccx_version", programs.ccx_version}}));
+      std::cout << ContactSummaryText(e, r) << std::flush;
+      ++run;
+      continue;
+    }
     FemDisplacementResult r = RunFemDisplacement(e.options, programs);
     r.curves.metadata.insert(
         r.curves.metadata.begin(),

@@ -22,18 +22,36 @@
 //   timeout_s = 3600                per gmsh or ccx run ([fem] only)
 //   [[experiment]]
 //   name = "r15_convex"             letters, digits, '_', '-', '.'; unique
-//   kind = "displacement"           the default (other kinds may come later)
+//   kind = "displacement"           the default; "contact" is a contact case (below)
 //   body = "convex"                 "flat" | "convex" | "concave"
 //   radius_mm = 15                  convex and concave only
 //   length_mm, width_mm, depth_mm   body size; defaults per body (DefaultFemBodySize)
 //   output = "r15_convex.csv"       default NAME.csv; relative to the config file or --out-dir
 //   compare_with = "other"          an earlier experiment of this config (run before this one,
 //                                   or its output file when --only skipped it)
+//
+// A contact experiment (wear/calibration/fem_contact.h) runs its mesh levels one after the
+// other (--jobs does not apply) and takes from [fem] only material, threads_per_job and
+// timeout_s; its own keys (defaults per case, DefaultFemContactOptions):
+//   [[experiment]]
+//   name = "wheel_in_groove"
+//   kind = "contact"
+//   case = "wheel_in_groove"        "wheel_in_groove" | "rail_in_wheel_groove"
+//   scene = "wheel_in_groove.toml"  the railwear scene of the same contact (config-relative;
+//                                   written relative to the output into the result)
+//   convex_radius_mm, groove_radius_mm, rolling_radius_mm = 460, load_N, material
+//   length_mm = 80, width_mm = 60, depth_mm = 40       body size (whole length and width)
+//   zone_x_mm, zone_s_mm, zone_depth_mm                refined and contact-search zone
+//   mesh_sizes_mm = [0.7, 0.5, 0.35]                   one model per level, coarse to fine
+//   mesh_growth = 0.4, max_element_mm = 8
+//   penalty_MPa_per_mm = 5e6, initial_overlap_mm = 0.01, spring_N_per_mm = 10, sectors = 9
+//   output = "wheel_in_groove.toml" default NAME.toml (format: app/fem_contact_result.h)
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "wear/calibration/fem_contact.h"
 #include "wear/calibration/fem_displacement.h"
 
 namespace CLI {
@@ -52,11 +70,16 @@ struct FemReferenceOptions {
   bool report_only = false;
 };
 
+enum class FemExperimentKind { kDisplacement, kContact };
+
 struct FemExperiment {
   std::string name;
   int line = 0;                    // of its [[experiment]] table
-  FemDisplacementOptions options;  // work_dir and progress are set when it runs
-  std::string output;              // the CSV path, resolved
+  FemExperimentKind kind = FemExperimentKind::kDisplacement;
+  FemDisplacementOptions options;  // kDisplacement; work_dir and progress are set when it runs
+  FemContactOptions contact;       // kContact; likewise
+  std::string scene;               // kContact: the matching scene as written (config-relative)
+  std::string output;              // the CSV (contact: TOML) path, resolved
   std::string compare_with;        // empty: none
   double compare_from_m = 1e-3;
   double compare_to_m = 10e-3;
