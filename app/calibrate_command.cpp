@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/contact_output.h"
+#include "app/fem_contact_result.h"
 #include "app/paths.h"
 #include "app/scene.h"
 #include "app/toml_fields.h"
@@ -42,6 +43,7 @@ struct CurveEntry {
 
 struct ContactEntry {
   std::string scene;  // resolved
+  std::string fem_result;  // resolved fem-reference result file, when the target came from one
   Scene loaded;
   ContactTarget target;
 };
@@ -169,15 +171,37 @@ void ReadCurveEntries(const Fields& top, Config* c) {
 void ReadContactEntries(const Fields& top, Config* c) {
   for (const Fields& t : ArrayOfTables(top, "contact_results",
                                        "[[contact_results]] tables with scene, area_mm2, "
-                                       "p_max_MPa, weight")) {
-    t.AllowOnly({"scene", "area_mm2", "p_max_MPa", "weight"});
+                                       "p_max_MPa (or fem_result), weight")) {
+    t.AllowOnly({"scene", "area_mm2", "p_max_MPa", "weight", "fem_result"});
     ContactEntry e;
-    e.scene = ExistingFile(t, "scene", c->path, "a contact scene (TOML)");
-    e.target.area_m2 = t.RequiredNumber("area_mm2", Positive()) / kToMm2;
-    e.target.p_max_Pa = t.RequiredNumber("p_max_MPa", Positive()) / kToMPa;
+    std::string prefix;
+    if (t.Has("fem_result")) {
+      // A fem-reference result file: its scene and its finest level's area and peak pressure.
+      for (const char* key : {"scene", "area_mm2", "p_max_MPa"}) {
+        if (t.Has(key)) {
+          t.Fail(key, "no scene, area_mm2 or p_max_MPa with fem_result (the result file holds "
+                      "them)");
+        }
+      }
+      e.fem_result = ExistingFile(t, "fem_result", c->path, "a fem-reference contact result");
+      const FemContactTarget fem = ReadFemContactTarget(e.fem_result);  // FILE:LINE messages
+      prefix = FieldPrefix(t.file(), *t.Node("fem_result"), t.KeyName("fem_result"));
+      if (fem.status != "ok" || fem.scene.empty()) {
+        throw InputError(fmt::format(
+            "{}: the result has status '{}'{}; expected status 'ok' and a scene", prefix,
+            fem.status, fem.scene.empty() ? " and no scene" : ""));
+      }
+      e.scene = fem.scene;
+      e.target.area_m2 = fem.area_mm2 / kToMm2;
+      e.target.p_max_Pa = fem.p_max_MPa / kToMPa;
+    } else {
+      e.scene = ExistingFile(t, "scene", c->path, "a contact scene (TOML)");
+      e.target.area_m2 = t.RequiredNumber("area_mm2", Positive()) / kToMm2;
+      e.target.p_max_Pa = t.RequiredNumber("p_max_MPa", Positive()) / kToMPa;
+      prefix = FieldPrefix(t.file(), *t.Node("scene"), t.KeyName("scene"));
+    }
     e.target.weight = t.Number("weight", Positive()).value_or(1.0);
     e.loaded = LoadScene(e.scene);  // its own FILE:LINE messages
-    const std::string prefix = FieldPrefix(t.file(), *t.Node("scene"), t.KeyName("scene"));
     if (e.loaded.wear || e.loaded.track) {
       throw InputError(fmt::format("{}: expected a single-wheel contact scene ([load]), not a {}",
                                    prefix, e.loaded.wear ? "wear scene" : "wheelset"));
@@ -558,6 +582,9 @@ std::vector<CalibrationInput> Inputs(const Config& c) {
     in.push_back({"displacement_curves", e.file, ReadText(e.file, "displacement curves")});
   }
   for (const ContactEntry& e : c.contacts) {
+    if (!e.fem_result.empty()) {
+      in.push_back({"fem_result", e.fem_result, ReadText(e.fem_result, "fem-reference result")});
+    }
     in.push_back({"scene", e.scene, e.loaded.text});
     for (const std::string& spec : {e.loaded.wheel_profile_spec, e.loaded.rail_profile_spec}) {
       if (!IsProfileFile(spec)) continue;

@@ -77,6 +77,67 @@ TEST_F(CalibrateCli, PaperExperimentConstantsAreReproduced) {
   EXPECT_NEAR((1.0 + fresh[5]) / 0.634, 1.0, 0.1);  // concave: c_t = 1 + c_s
 }
 
+// Issue 5's target: Model B with the constants fitted to the CalculiX displacement curves
+// (never to a contact result) within 3 % of the CalculiX contact results of both conformal
+// cases on area and peak pressure; and the direction the fit implies: c_f rose from 0.75 to
+// ~1.1 (a softer kernel), so against the seed's constants the area grows and p_max drops.
+// Standard accuracy (the README's table is at reference, within 0.7 % of it). Measured: case A
+// -2.2 % / +1.1 %, case B -2.4 % / +1.9 %; the seed's constants -24 % / +29 %.
+TEST_F(CalibrateCli, CalibratedConstantsMatchTheFemContactCases) {
+  const std::string fem = std::string(RAILWEAR_SOURCE_DIR) + "/examples/fem/";
+  constexpr double kTarget = 0.03;  // issue 5: calibrated Model B within 3 % of FEM
+  for (const std::string name : {"wheel_in_groove", "rail_in_wheel_groove"}) {
+    std::string scene = ReadFile(fem + name + ".toml");
+    const std::string result = ReadFile(fem + "reference/" + name + ".toml");
+    auto number = [&](const std::string& key) {
+      const size_t at = result.find("\n" + key + " = ");
+      EXPECT_NE(at, std::string::npos) << key;
+      return std::stod(result.substr(at + key.size() + 4));
+    };
+    const double area = number("area_mm2"), p_max = number("p_max_MPa");
+    const size_t at = scene.find("accuracy = \"reference\"");
+    ASSERT_NE(at, std::string::npos);
+    scene.replace(at, 22, "accuracy = \"standard\"");
+    Write("seed.toml", scene);
+    std::string with = scene;
+    with.insert(with.find("accuracy = \"standard\""),
+                "influence_constants = \"" + kExampleDir + "calibrated_paper.toml\"\n");
+    Write("calibrated.toml", with);
+    const nlohmann::json seed = ContactTotals("seed.toml");
+    const nlohmann::json cal = ContactTotals("calibrated.toml");
+    const double a_cal = cal["area_mm2"].get<double>(), p_cal = cal["p_max_MPa"].get<double>();
+    std::printf("[ figure ] %s: FEM %.2f mm2 %.1f MPa; calibrated %+.2f %% %+.2f %%; seed's "
+                "constants %+.2f %% %+.2f %%\n",
+                name.c_str(), area, p_max, 100 * (a_cal / area - 1), 100 * (p_cal / p_max - 1),
+                100 * (seed["area_mm2"].get<double>() / area - 1),
+                100 * (seed["p_max_MPa"].get<double>() / p_max - 1));
+    EXPECT_NEAR(a_cal / area, 1.0, kTarget) << name;
+    EXPECT_NEAR(p_cal / p_max, 1.0, kTarget) << name;
+    EXPECT_GT(a_cal, seed["area_mm2"].get<double>()) << name;
+    EXPECT_LT(p_cal, seed["p_max_MPa"].get<double>()) << name;
+  }
+}
+
+// A contact result from a fem-reference result file: fitting c_f to FEM case A alone brings
+// Model B from -24 % / +29 % to within 1 % of it, and to within 3 % of case B, which it has
+// not seen (measured at reference accuracy: c_f 1.130; case B -0.8 % / +0.8 %).
+TEST_F(CalibrateCli, FemContactResultIsATarget) {
+  const Outcome o =
+      Run("calibrate '" + kExampleDir + "contact_case_a.toml' --out a.toml --json fit.json");
+  ASSERT_EQ(o.exit_code, 0) << o.err << o.out;
+  const nlohmann::json j = nlohmann::json::parse(ReadFile(dir_ / "fit.json"));
+  const double c_f = j["constants"][0]["value"].get<double>();
+  EXPECT_NEAR(c_f, 1.13, 0.02);
+  EXPECT_TRUE(Contains(o.out, "wheel_in_groove.toml"));
+  std::string scene =
+      ReadFile(std::string(RAILWEAR_SOURCE_DIR) + "/examples/fem/rail_in_wheel_groove.toml");
+  scene.insert(scene.find("accuracy = "), "influence_constants = \"a.toml\"\n");
+  Write("b.toml", scene);
+  const nlohmann::json b = ContactTotals("b.toml");
+  EXPECT_NEAR(b["area_mm2"].get<double>() / 138.40, 1.0, 0.03);  // FEM case B
+  EXPECT_NEAR(b["p_max_MPa"].get<double>() / 578.947, 1.0, 0.03);
+}
+
 TEST_F(CalibrateCli, ExampleCalibratesAndASceneUsesTheConstants) {
   const Outcome o = Run("calibrate '" + kExampleDir +
                         "synthetic.toml' --out cal.toml --json fit.json --csv points.csv "
@@ -219,7 +280,14 @@ TEST_F(CalibrateCli, BadConfigsExitTwoWithMessages) {
        "broken.toml:1: key 'wheels'"},
       {"[[contact_results]]\nscene = \"default.toml\"\np_max_MPa = 600\n",
        "key 'contact_results[0].area_mm2' is missing: expected a number > 0"},
+      {"[[contact_results]]\nfem_result = \"fem.toml\"\np_max_MPa = 600\n",
+       "c.toml:3: key 'contact_results[0].p_max_MPa' = 600: expected no scene, area_mm2 or "
+       "p_max_MPa with fem_result"},
+      {"[[contact_results]]\nfem_result = \"nowhere.toml\"\n",
+       "key 'contact_results[0].fem_result' = \"nowhere.toml\": expected an existing file"},
+      {"[[contact_results]]\nfem_result = \"default.toml\"\n", "default.toml"},
   };
+  Write("fem.toml", "[contact_result]\n");
   Write("planar.toml", "[model]\nkind = \"halfspace\"\n[wheel]\nprofile = \"circle:10\"\n"
                        "rolling_radius_mm = 460\n[rail]\nprofile = \"groove:10.25\"\n"
                        "[load]\nvertical_N = 10000\n");
