@@ -1,5 +1,5 @@
 // The synthetic reference data of examples/calibration/: displacement curves made from eq. 4
-// with known constants, 1 % Gaussian noise and a +5 % support term per curve (both relative to the
+// with known constants, 1 % Gaussian noise and a +5 % offset per curve (both relative to the
 // curve's RMS). calibrate_command_test.cpp checks that the committed CSVs are exactly these.
 #pragma once
 
@@ -35,7 +35,7 @@ inline std::vector<CalibrationExampleFile> CalibrationExampleFiles() {
     spec.offset = 0.05;
     DisplacementCurves c = MakeSyntheticCurves(kCalibrationExampleTruth, spec, b.seed);
     c.metadata = {{"source", "synthetic: eq. 4 with c_f = 1.05, c_z = 0.6, c_s = 0.3, 1 % "
-                             "Gaussian noise and a +5 % support term per curve (of its RMS), seed " +
+                             "Gaussian noise and a +5 % offset per curve (of its RMS), seed " +
                                  std::to_string(b.seed)},
                   {"generator", "tests/app/calibration_example.h"}};
     out.push_back({b.name, std::move(c)});

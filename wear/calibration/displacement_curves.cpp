@@ -356,23 +356,6 @@ double SeedKernelDisplacement(const InfluenceConstants& c, CurveBody body, doubl
   return c_t * k_d * d_t / (rho * rho);
 }
 
-double SupportModeShape(CurveBody body, double radius_m, CurveLoad load, CurvePath path,
-                        double distance_m) {
-  RAILWEAR_CHECK(!Vanishes(load, path));
-  constexpr double kFlatLength_m = 10e-3;
-  const bool curved = body != CurveBody::kFlat;
-  const double angle = curved ? distance_m / radius_m : distance_m / kFlatLength_m;
-  switch (load) {
-    case CurveLoad::kNormal:
-      return path == CurvePath::kArc && curved ? std::cos(angle) : 1.0;
-    case CurveLoad::kAxial:
-      return angle;
-    case CurveLoad::kCircumferential:
-      return curved ? std::sin(angle) : angle;
-  }
-  return 1.0;
-}
-
 double HalfSpaceDisplacement(const Material& material, CurveLoad load, double distance_m) {
   const double g = material.ShearModulus();
   const double nu = material.poisson_ratio;

@@ -101,22 +101,6 @@ double SeedKernelDisplacement(const InfluenceConstants& c, CurveBody body, doubl
                               const Material& material, CurveLoad load, CurvePath path,
                               double distance_m);
 
-// The shape phi(d) of the support term of a curve (dimensionless, 1 at the load point or of
-// order 1 over the curve). A finite body on supports moves near the load like a rigid body on
-// top of the half-space response (the supports' share is smooth there), and the load's symmetry
-// leaves one rigid motion per curve whose normal component the curve sees:
-//   normal load, arc:            vertical translation  cos(d/R)   (flat: 1)
-//   normal load, axis:           vertical translation  1
-//   axial load, axis:            rotation about y      d/R        (flat: d / 10 mm)
-//   circumferential load, arc:   lateral translation   sin(d/R)   (flat: d / 10 mm, a rotation
-//                                                                  about x)
-// (a rotation about the cylinder's axis moves its surface tangentially; about a parallel axis it
-// is the lateral translation again). The fit carries one amplitude per curve for it: the
-// support-dependent offset of a clamped FE body, and the sway of a convex head under a
-// tangential load.
-double SupportModeShape(CurveBody body, double radius_m, CurveLoad load, CurvePath path,
-                        double distance_m);
-
 // The half-space (Boussinesq-Cerruti) values for a flat body [m/N]: normal (1 - nu)/(2 pi G d),
 // tangential (1 - 2 nu)/(4 pi G d) (both into the body, ahead of a tangential load).
 double HalfSpaceDisplacement(const Material& material, CurveLoad load, double distance_m);

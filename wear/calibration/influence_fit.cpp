@@ -101,11 +101,6 @@ struct Curve {
     const DisplacementCurves& f = data->curves;
     return SeedKernelDisplacement(c, f.body, f.radius_m, f.material, load, path, p.distance_m);
   }
-  // The shape of the curve's support term at a point (SupportModeShape).
-  double Shape(const DisplacementPoint& p) const {
-    const DisplacementCurves& f = data->curves;
-    return SupportModeShape(f.body, f.radius_m, load, path, p.distance_m);
-  }
   // Which constants can move this curve at all (before asking the numbers).
   bool Depends(const Parameter& p) const {
     const int sign = CurvatureSign(data->curves.body);
@@ -136,9 +131,7 @@ class CurveCost final : public ceres::CostFunction {
     std::vector<double> w(n);
     for (int i = 0; i < n; ++i) {
       w[i] = curve_.Model(c, *curve_.points[i]);
-      residuals[i] =
-          f * (w[i] + t * curve_.scale * curve_.Shape(*curve_.points[i]) -
-               curve_.points[i]->w_m_per_N);
+      residuals[i] = f * (w[i] + t * curve_.scale - curve_.points[i]->w_m_per_N);
     }
     if (jacobians == nullptr) return true;
     for (size_t k = 0; k < params_.size(); ++k) {
@@ -151,9 +144,7 @@ class CurveCost final : public ceres::CostFunction {
       }
     }
     if (offsets_ && jacobians[params_.size()] != nullptr) {
-      for (int i = 0; i < n; ++i) {
-        jacobians[params_.size()][i] = curve_.sqrt_weight * curve_.Shape(*curve_.points[i]);
-      }
+      for (int i = 0; i < n; ++i) jacobians[params_.size()][i] = curve_.sqrt_weight;
     }
     return true;
   }
@@ -571,13 +562,11 @@ InfluenceFitSummary FitInfluenceConstants(const InfluenceFitData& data,
   std::vector<double> offsets(num_curves, 0.0);
   if (options.fit_offsets) {
     for (int c = 0; c < num_curves; ++c) {  // best offsets for the starting constants
-      double num = 0.0, den = 0.0;  // least squares amplitude of the support term
+      double sum = 0.0;
       for (const DisplacementPoint* p : curves[c].points) {
-        const double phi = curves[c].Shape(*p);
-        num += phi * (p->w_m_per_N - curves[c].Model(base, *p));
-        den += phi * phi;
+        sum += p->w_m_per_N - curves[c].Model(base, *p);
       }
-      offsets[c] = den > 0.0 ? num / den / curves[c].scale : 0.0;
+      offsets[c] = sum / static_cast<double>(curves[c].points.size()) / curves[c].scale;
     }
   }
 
@@ -624,9 +613,7 @@ InfluenceFitSummary FitInfluenceConstants(const InfluenceFitData& data,
     const InfluenceConstants now = Apply(base, params, values.data());
     std::vector<double> m;
     const double o = offsets[c] * curves[c].scale;
-    for (const DisplacementPoint* p : curves[c].points) {
-      m.push_back(curves[c].Model(now, *p) + o * curves[c].Shape(*p));
-    }
+    for (const DisplacementPoint* p : curves[c].points) m.push_back(curves[c].Model(now, *p) + o);
     return m;
   };
   out.curves.resize(num_curves);

@@ -1,5 +1,5 @@
 // Test helper: displacement curves generated from eq. 4 with known constants
-// (SeedKernelDisplacement), plus Gaussian noise and a support term per curve (SupportModeShape times an amplitude), both relative to the curve's RMS: the data
+// (SeedKernelDisplacement), plus Gaussian noise and a constant offset per curve, both relative to the curve's RMS: the data
 // of the calibration's recovery tests (wear and CLI).
 #pragma once
 
@@ -26,7 +26,7 @@ struct SyntheticCurveSpec {
   double distance_max_mm = 20.0;
   double distance_step_mm = 0.5;
   double noise = 0.0;   // standard deviation per point, relative to the curve's RMS
-  double offset = 0.0;  // support-term amplitude of every curve, relative to its RMS
+  double offset = 0.0;  // added to every point of a curve, relative to its RMS
 };
 
 // Standard normal deviates by Box-Muller from std::mt19937's raw output: unlike
@@ -84,8 +84,7 @@ inline DisplacementCurves MakeSyntheticCurves(const InfluenceConstants& truth,
     }
     const double rms = std::sqrt(sum / n);
     for (DisplacementPoint& p : points) {
-      p.w_m_per_N += spec.offset * rms *
-                     SupportModeShape(out.body, out.radius_m, p.load, p.path, p.distance_m);
+      p.w_m_per_N += spec.offset * rms;
       if (spec.noise > 0.0) p.w_m_per_N += spec.noise * rms * gauss();
       out.points.push_back(p);
     }
