@@ -13,7 +13,7 @@
 #include "core/numerics/input_error.h"
 #include "wear/calibration/external_program.h"
 
-#include "tests/app/cli_runner.h"
+#include "tests/app/fem_reference_fixture.h"
 
 namespace {
 
@@ -25,18 +25,7 @@ using railwear::app::FemExperimentKind;
 using railwear::test::Contains;
 using railwear::test::Outcome;
 
-class FemContactCliTest : public railwear::test::CliFixture {
- protected:
-  std::string ConfigError(const std::string& text) const {
-    Write("bad.toml", text);
-    try {
-      railwear::app::ReadFemReferenceConfig((dir_ / "bad.toml").string(), "");
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "";
-  }
-};
+class FemContactCliTest : public railwear::test::FemReferenceFixture {};
 
 constexpr const char* kHead = "[[experiment]]\nname = \"c\"\nkind = \"contact\"\n";
 
@@ -204,11 +193,8 @@ TEST_F(FemContactCliTest, ScenesMatchTheFemGeometry) {
 // the patch; about 3k nodes and 5 s of CPU). Loose bounds: the converged values are 39 mm2 and
 // 401 MPa (README), a mesh this coarse is within 25 % on the area and 5 % on the peak.
 TEST_F(FemContactCliTest, CoarseRealRunWritesAReadableResult) {
-  try {
-    railwear::FindProgram(railwear::GmshProgram());
-    railwear::FindProgram(railwear::CcxProgram());
-  } catch (const InputError& e) {
-    GTEST_SKIP() << e.what();
+  if (const std::string why = railwear::test::MissingFemPrograms(); !why.empty()) {
+    GTEST_SKIP() << why;
   }
   Write("cfg.toml",
         "[[experiment]]\nname = \"tiny\"\nkind = \"contact\"\ncase = \"wheel_in_groove\"\n"

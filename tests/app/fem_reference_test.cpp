@@ -13,7 +13,7 @@
 #include "wear/calibration/displacement_curves.h"
 #include "wear/calibration/external_program.h"
 
-#include "tests/app/cli_runner.h"
+#include "tests/app/fem_reference_fixture.h"
 
 namespace {
 
@@ -40,29 +40,7 @@ constexpr const char* kTinyConfig =
     "body = \"flat\"\n"
     "output = \"out/tiny.csv\"\n";
 
-class FemReferenceTest : public railwear::test::CliFixture {
- protected:
-  // The InputError message of reading config text ("" when it reads).
-  std::string ConfigError(const std::string& text) const {
-    Write("bad.toml", text);
-    try {
-      railwear::app::ReadFemReferenceConfig((dir_ / "bad.toml").string(), "");
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "";
-  }
-  static bool ProgramsMissing(std::string* why) {
-    try {
-      railwear::FindProgram(railwear::GmshProgram());
-      railwear::FindProgram(railwear::CcxProgram());
-    } catch (const InputError& e) {
-      *why = e.what();
-      return true;
-    }
-    return false;
-  }
-};
+class FemReferenceTest : public railwear::test::FemReferenceFixture {};
 
 TEST_F(FemReferenceTest, ConfigDefaultsAndOverrides) {
   Write("c.toml",
@@ -203,8 +181,9 @@ TEST_F(FemReferenceTest, UnknownOnlyNameExitsWith2) {
 }
 
 TEST_F(FemReferenceTest, TinyRunWritesCurvesCalibrationReads) {
-  std::string why;
-  if (ProgramsMissing(&why)) GTEST_SKIP() << why;
+  if (const std::string why = railwear::test::MissingFemPrograms(); !why.empty()) {
+    GTEST_SKIP() << why;
+  }
   Write("c.toml", kTinyConfig);
   const Outcome o = Run("fem-reference c.toml --keep-work");
   ASSERT_EQ(o.exit_code, 0) << o.err;
@@ -274,8 +253,9 @@ TEST_F(FemReferenceTest, ExampleConfigsAndCommittedReferenceData) {
 
 // ccx that fails: exit code 1, the message names the log, which is kept.
 TEST_F(FemReferenceTest, FailingCcxExitsWith1AndKeepsItsLog) {
-  std::string why;
-  if (ProgramsMissing(&why)) GTEST_SKIP() << why;
+  if (const std::string why = railwear::test::MissingFemPrograms(); !why.empty()) {
+    GTEST_SKIP() << why;
+  }
   Write("c.toml", kTinyConfig);
   const Outcome o = Run("fem-reference c.toml", "RAILWEAR_CCX=false");
   EXPECT_EQ(o.exit_code, 1);

@@ -1,7 +1,5 @@
 #include "wear/calibration/displacement_curves.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,31 +9,15 @@
 #include <gtest/gtest.h>
 
 #include "core/numerics/input_error.h"
+#include "tests/test_support.h"
 
 namespace railwear {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A temporary folder per test, removed afterwards.
-class DisplacementCurvesTest : public ::testing::Test {
+class DisplacementCurvesTest : public test::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("railwear_curves_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string Write(const std::string& name, const std::string& text) const {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path) << text;
-    return path;
-  }
   // The message of the InputError reading `text` throws ("" when it does not throw).
   std::string ErrorOf(const std::string& text) const {
     const std::string path = Write("bad.csv", text);
@@ -46,7 +28,6 @@ class DisplacementCurvesTest : public ::testing::Test {
     }
     return "";
   }
-  fs::path dir_;
 };
 
 constexpr const char* kHeader =
