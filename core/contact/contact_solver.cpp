@@ -8,9 +8,9 @@
 #include "core/contact/contact_solver.h"
 
 #include <algorithm>
-#include <limits>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numbers>
 
@@ -689,6 +689,7 @@ ContactResult SolveContact(const ContactProblem& problem) {
   constexpr double kMaxCellsAlong = 300.0;
   // Patches carrying at least this share of the load get the preset's cells per semi-axis.
   constexpr double kFullShare = 0.1;
+  // ... and at most kMaxCellsAlong scaled alike, but never fewer than this many across.
   constexpr double kMinCellsAlong = 40.0;
   // Memory one patch's influence operator may take (the curved one holds about 2 nx ns^2
   // doubles with its preconditioner, the planar one a few FFT buffers of the padded grid).

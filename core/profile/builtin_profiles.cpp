@@ -16,6 +16,7 @@
 
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/text.h"
 #include "core/profile/profile_io.h"
 
 namespace railwear {
@@ -92,12 +93,6 @@ Profile MakeArc(double radius_m, double sign, const std::string& source) {
   return Profile(std::move(pts), source);
 }
 
-std::string Trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return {};
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
-}
 
 std::string Lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 
 #include "core/numerics/input_error.h"
+#include "core/numerics/text.h"
 
 namespace railwear {
 
@@ -45,12 +46,6 @@ struct Line {
   std::string text;
 };
 
-std::string Trim(std::string_view s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string_view::npos) return {};
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return std::string(s.substr(b, e - b + 1));
-}
 
 std::string Lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

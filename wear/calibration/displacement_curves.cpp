@@ -1,9 +1,7 @@
 // Displacement curves: CSV reading and writing, eq. 4's prediction. See displacement_curves.h.
 #include "wear/calibration/displacement_curves.h"
 
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -14,6 +12,7 @@
 
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/text.h"
 
 namespace railwear {
 namespace {
@@ -23,12 +22,6 @@ constexpr double kMm = 1e-3;
 constexpr double kNmPerN = 1e-9;  // nm/N -> m/N
 constexpr const char* kColumns = "load,path,distance_mm,w_nm_per_N";
 
-std::string Trim(std::string_view s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string_view::npos) return "";
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return std::string(s.substr(b, e - b + 1));
-}
 
 std::vector<std::string> SplitCommas(std::string_view s) {
   std::vector<std::string> out;
@@ -41,17 +34,6 @@ std::vector<std::string> SplitCommas(std::string_view s) {
   }
 }
 
-// A finite number, the whole token; nullopt otherwise.
-std::optional<double> ParseNumber(const std::string& token) {
-  if (token.empty()) return std::nullopt;
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(token.c_str(), &end);
-  if (end != token.c_str() + token.size() || errno == ERANGE || !std::isfinite(v)) {
-    return std::nullopt;
-  }
-  return v;
-}
 
 double KD(const Material& m) {
   return 1.0 / (8.0 * std::numbers::pi * (1.0 - m.poisson_ratio) * m.ShearModulus());
@@ -65,7 +47,7 @@ bool Vanishes(CurveLoad load, CurvePath path) {
 // Metadata values: the number after "key =", checked.
 double MetadataNumber(const std::string& file, int line, const std::string& key,
                       const std::string& value, bool (*ok)(double), const char* expected) {
-  const auto v = ParseNumber(value);
+  const auto v = ParseFiniteDouble(value);
   if (!v || !ok(*v)) {
     throw InputError(
         fmt::format("{}:{}: metadata '{}' = '{}': expected {}", file, line, key, value, expected));
@@ -261,7 +243,7 @@ DisplacementCurves ReadDisplacementCurves(const std::string& path) {
           "circumferential loads on the arc",
           path, number, ToString(*load), ToString(*curve_path)));
     }
-    const auto d = ParseNumber(cols[col_distance]);
+    const auto d = ParseFiniteDouble(cols[col_distance]);
     if (!d) {
       throw InputError(fmt::format("{}:{}: column 'distance_mm' is '{}': expected a finite "
                                    "number in mm",
@@ -278,7 +260,7 @@ DisplacementCurves ReadDisplacementCurves(const std::string& path) {
                                    "at most half the circumference, pi R = {:.6g} mm",
                                    path, number, cols[col_distance], std::numbers::pi * *radius_mm));
     }
-    const auto w = ParseNumber(cols[col_w]);
+    const auto w = ParseFiniteDouble(cols[col_w]);
     if (!w) {
       throw InputError(fmt::format("{}:{}: column 'w_nm_per_N' is '{}': expected a finite "
                                    "number in nm/N",

@@ -1,7 +1,6 @@
 // CalculiX .frd reader. See frd_file.h for the format.
 #include "wear/calibration/frd_file.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -12,18 +11,13 @@
 #include <fmt/format.h>
 
 #include "core/numerics/input_error.h"
+#include "core/numerics/text.h"
 
 namespace railwear {
 namespace {
 
 constexpr size_t kValueWidth = 12;  // E12.5
 
-std::string Trim(std::string_view s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string_view::npos) return "";
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return std::string(s.substr(b, e - b + 1));
-}
 
 // Columns [begin, begin + width) of a line, empty past its end.
 std::string_view Columns(std::string_view line, size_t begin, size_t width) {
@@ -31,15 +25,6 @@ std::string_view Columns(std::string_view line, size_t begin, size_t width) {
   return line.substr(begin, width);
 }
 
-std::optional<double> ParseDouble(std::string_view field) {
-  const std::string t = Trim(field);
-  if (t.empty()) return std::nullopt;
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(t.c_str(), &end);
-  if (end != t.c_str() + t.size() || errno == ERANGE || !std::isfinite(v)) return std::nullopt;
-  return v;
-}
 
 std::optional<int> ParseInt(std::string_view field) {
   const std::string t = Trim(field);
@@ -99,7 +84,7 @@ class FrdParser {
     for (size_t c = 3 + id_width_; c < line.size(); c += kValueWidth) {
       const std::string_view field = Columns(line, c, kValueWidth);
       if (Trim(field).empty()) break;
-      const auto v = ParseDouble(field);
+      const auto v = ParseFiniteDouble(field);
       if (!v) Fail(fmt::format("'{}' is not a finite number (in '{}')", Trim(field), Trim(line)));
       values->push_back(*v);
     }
@@ -146,7 +131,7 @@ class FrdParser {
           block_ = FrdResultBlock{};
           block_.step = step_;
           block_.increment = increment_;
-          const auto time = ParseDouble(Columns(line, 12, kValueWidth));
+          const auto time = ParseFiniteDouble(Columns(line, 12, kValueWidth));
           if (!time) Fail(fmt::format("'{}': expected the step time in columns 13-24", Trim(line)));
           block_.time = *time;
           state_ = State::kResult;
