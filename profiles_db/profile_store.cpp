@@ -6,12 +6,14 @@
 #include <sqlite3.h>
 
 #include <bit>
-#include <cmath>
 #include <cctype>
+#include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iterator>
 #include <limits>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include <fmt/format.h>
@@ -21,6 +23,9 @@
 namespace railwear {
 namespace internal {
 namespace {
+
+// How long a connection waits for another one's lock [ms].
+constexpr int kBusyTimeoutMs = 5000;
 
 // ---------------------------------------------------------------------------------------------
 // Float64 BLOB codec: little-endian IEEE-754 doubles whatever the host byte order.
@@ -92,7 +97,7 @@ class Connection {
                                    path, msg));
     }
     sqlite3_extended_result_codes(db_, 1);
-    sqlite3_busy_timeout(db_, 5000);
+    sqlite3_busy_timeout(db_, kBusyTimeoutMs);
   }
   Connection(Connection&& o) noexcept : db_(std::exchange(o.db_, nullptr)), path_(std::move(o.path_)) {}
   Connection& operator=(Connection&& o) noexcept {
@@ -203,7 +208,10 @@ class Statement {
 // A write transaction (BEGIN IMMEDIATE) that rolls back on destruction unless committed.
 class Transaction {
  public:
-  explicit Transaction(const Connection& c) : c_(c) { c_.Exec("BEGIN IMMEDIATE"); }
+  // BEGIN IMMEDIATE (the write lock at once) by default; "BEGIN" for a read snapshot.
+  explicit Transaction(const Connection& c, const char* begin = "BEGIN IMMEDIATE") : c_(c) {
+    c_.Exec(begin);
+  }
   Transaction(const Transaction&) = delete;
   Transaction& operator=(const Transaction&) = delete;
   ~Transaction() {
@@ -218,6 +226,35 @@ class Transaction {
   const Connection& c_;
   bool committed_ = false;
 };
+
+// PRAGMA journal_mode = WAL. Switching needs an exclusive lock, for which SQLite does not call
+// the busy handler: while another connection (a run starting on the same new file) holds a
+// transaction it fails at once with "database is locked", so it is retried for as long as the
+// busy timeout would have waited.
+void SwitchToWal(const Connection& c) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(kBusyTimeoutMs);
+  while (true) {
+    sqlite3_stmt* raw = nullptr;
+    int rc = sqlite3_prepare_v2(c.get(), "PRAGMA journal_mode = WAL", -1, &raw, nullptr);
+    std::string mode;
+    if (rc == SQLITE_OK) {
+      rc = sqlite3_step(raw);
+      if (rc == SQLITE_ROW) {
+        mode = reinterpret_cast<const char*>(sqlite3_column_text(raw, 0));
+      }
+    }
+    sqlite3_finalize(raw);
+    if (rc == SQLITE_ROW && mode == "wal") return;
+    const int primary = rc & 0xff;
+    if ((primary == SQLITE_BUSY || primary == SQLITE_LOCKED) &&
+        std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      continue;
+    }
+    throw std::runtime_error(fmt::format("database '{}': cannot switch to WAL mode ({})",
+                                         c.path(), sqlite3_errmsg(c.get())));
+  }
+}
 
 int PragmaInt(const Connection& c, const char* pragma) {
   Statement s(c, fmt::format("PRAGMA {}", pragma));
@@ -498,18 +535,22 @@ ProfileStore ProfileStore::Open(const std::string& path) {
   }
   impl->db = Connection(path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
   const Connection& c = impl->db;
-  // Nothing is written before InspectDatabase has accepted the file.
-  int version = internal::InspectDatabase(c);
+  // Nothing is written before InspectDatabase has accepted the file. Its reads share one
+  // snapshot: another process may create the schema between two of them.
+  int version = 0;
+  {
+    Transaction snapshot(c, "BEGIN");
+    version = internal::InspectDatabase(c);
+  }  // rolled back: it only read
   c.Exec("PRAGMA foreign_keys = ON");
-  if (!impl->in_memory) {
-    Statement wal(c, "PRAGMA journal_mode = WAL");
-    if (!wal.Step() || wal.Text(0) != "wal") {
-      throw std::runtime_error(fmt::format("database '{}': cannot switch to WAL mode", path));
-    }
-  }
+  if (!impl->in_memory) internal::SwitchToWal(c);
   // All migrations in one transaction: a failure leaves the database at its old version.
   if (version < kSchemaVersion) {
     Transaction t(c);
+    // Another process may have created or migrated the file between the inspection and this
+    // write lock (a `wear` run and a `history` query started together on a new file): migrate
+    // from the version found under the lock, not the one inspected.
+    version = internal::PragmaInt(c, "user_version");
     for (int v = version; v < kSchemaVersion; ++v) internal::kMigrations[v](c);
     c.Exec(fmt::format("PRAGMA user_version = {}", kSchemaVersion));
     t.Commit();

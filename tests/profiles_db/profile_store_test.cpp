@@ -6,6 +6,7 @@
 #include <sqlite3.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -16,6 +17,8 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -590,6 +593,33 @@ TEST(ProfileStore, EmptyFilesBecomeNewDatabases) {
   ProfileStore b = ProfileStore::Open(":memory:");
   a.CreateRun(TestRun("r"));
   EXPECT_TRUE(b.Runs().empty());
+}
+
+// Several connections opening one new file at once (a `wear` run and a poller or a `history`
+// query started together): each inspects an empty file, then takes the write lock in turn;
+// only the first may create the schema, the others must find it there under the lock. Before
+// the version was read again under the lock, the later ones re-ran the migrations and failed
+// ("table ... already exists"). Threads stand in for processes: each has its own connection.
+TEST(ProfileStore, ConcurrentOpensOfANewFileAllSucceed) {
+  TempDir tmp;
+  for (int round = 0; round < 20; ++round) {
+    const std::string path = tmp.File("new" + std::to_string(round) + ".rwdb");
+    std::vector<std::thread> threads;
+    std::atomic<int> failures{0};
+    for (int k = 0; k < 4; ++k) {
+      threads.emplace_back([&] {
+        try {
+          ProfileStore db = ProfileStore::Open(path);
+          if (db.SchemaVersion() != ProfileStore::kSchemaVersion) ++failures;
+        } catch (const std::exception& e) {
+          ADD_FAILURE() << e.what();
+          ++failures;
+        }
+      });
+    }
+    for (auto& t : threads) t.join();
+    ASSERT_EQ(failures.load(), 0) << "round " << round;
+  }
 }
 
 TEST(ProfileStore, RefusesNonSqliteFileUntouched) {
