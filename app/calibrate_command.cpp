@@ -22,10 +22,10 @@
 #include "app/paths.h"
 #include "app/scene.h"
 #include "app/toml_fields.h"
+#include "calibration/displacement_curves.h"
+#include "calibration/influence_fit.h"
 #include "core/numerics/input_error.h"
 #include "profiles_db/profile_store.h"
-#include "wear/calibration/displacement_curves.h"
-#include "wear/calibration/influence_fit.h"
 
 namespace railwear::app {
 namespace fs = std::filesystem;

@@ -1,6 +1,6 @@
 // `railwear calibrate CONFIG.toml [--out FILE.toml] [--db FILE] [--json FILE|-] [--csv FILE]
 // [--verbose]`: fits the seed's eq. 4 constants to displacement curves and contact results
-// (wear/calibration/influence_fit.h) and writes the influence-constants TOML that scenes load
+// (calibration/influence_fit.h) and writes the influence-constants TOML that scenes load
 // with influence_constants = "FILE".
 //
 // Config (strict: unknown keys, wrong types and out-of-range values are errors naming

@@ -20,9 +20,9 @@
 #include "app/fem_contact_result.h"
 #include "app/paths.h"
 #include "app/toml_fields.h"
+#include "calibration/curve_comparison.h"
+#include "calibration/fem/ccx_deck.h"
 #include "core/numerics/input_error.h"
-#include "wear/calibration/ccx_deck.h"
-#include "wear/calibration/curve_comparison.h"
 
 namespace railwear::app {
 namespace {

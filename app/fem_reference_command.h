@@ -1,7 +1,7 @@
 // `railwear fem-reference CONFIG.toml [--out-dir DIR] [--keep-work] [--only NAME] [--jobs N]
 // [--report-only]`:
 // builds the seed paper's displacement experiment as a 3-D FEM model per [[experiment]] of the
-// config (gmsh mesh, CalculiX solves; wear/calibration/fem_displacement.h), writes the
+// config (gmsh mesh, CalculiX solves; calibration/fem/fem_displacement.h), writes the
 // displacement-curve CSVs that `calibrate` reads, and prints a summary per experiment, with the
 // comparison with the half-space (the validation for a flat body, the effect of curvature and
 // size for a curved one) and with another experiment when asked (compare_with).
@@ -30,7 +30,7 @@
 //   compare_with = "other"          an earlier experiment of this config (run before this one,
 //                                   or its output file when --only skipped it)
 //
-// A contact experiment (wear/calibration/fem_contact.h) runs its mesh levels one after the
+// A contact experiment (calibration/fem/fem_contact.h) runs its mesh levels one after the
 // other (--jobs does not apply) and takes from [fem] only material, threads_per_job and
 // timeout_s; its own keys (defaults per case, DefaultFemContactOptions):
 //   [[experiment]]
@@ -51,8 +51,8 @@
 #include <string>
 #include <vector>
 
-#include "wear/calibration/fem_contact.h"
-#include "wear/calibration/fem_displacement.h"
+#include "calibration/fem/fem_contact.h"
+#include "calibration/fem/fem_displacement.h"
 
 namespace CLI {
 class App;

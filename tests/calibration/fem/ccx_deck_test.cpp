@@ -2,16 +2,16 @@
 // ccx -> .frd on a patch test (a uniformly compressed cube, whose exact solution is linear and
 // which quadratic tetrahedra reproduce to the output's precision). The pressure is applied on
 // an element-face *SURFACE, so the test also checks the face numbering.
-#include "wear/calibration/ccx_deck.h"
+#include "calibration/fem/ccx_deck.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
+#include "calibration/fem/fem_programs.h"
+#include "calibration/fem/frd_file.h"
 #include "core/numerics/input_error.h"
-#include "tests/wear/calibration/fem_test_support.h"
-#include "wear/calibration/fem_programs.h"
-#include "wear/calibration/frd_file.h"
+#include "tests/calibration/fem/fem_test_support.h"
 
 namespace railwear {
 namespace {

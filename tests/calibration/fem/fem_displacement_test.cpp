@@ -2,7 +2,7 @@
 // then coarse real runs (gmsh + ccx, about a second each; skipped when they are not installed):
 // a flat block against Boussinesq and Cerruti with the support offset removed, the offset's
 // 1/size decay, the circumferential load's (anti)symmetry, and convex against concave.
-#include "wear/calibration/fem_displacement.h"
+#include "calibration/fem/fem_displacement.h"
 
 #include <cmath>
 #include <iostream>
@@ -10,9 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include "calibration/curve_comparison.h"
 #include "core/numerics/input_error.h"
-#include "tests/wear/calibration/fem_test_support.h"
-#include "wear/calibration/curve_comparison.h"
+#include "tests/calibration/fem/fem_test_support.h"
 
 namespace railwear {
 namespace {

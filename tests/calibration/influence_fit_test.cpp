@@ -1,11 +1,11 @@
-// Tests of the influence-constant fit (wear/calibration/influence_fit.h): recovery of known
+// Tests of the influence-constant fit (calibration/influence_fit.h): recovery of known
 // constants from synthetic curves (eq. 4 plus noise and offsets) within two standard errors, the
 // standard errors against the scatter of replicates, separate convex/concave sets, the per-curve
 // offset, the conditioning reports (undetermined constants, correlated pairs, rank-deficient
 // covariance), a contact target recovered through SolveContact, and bad input.
 //
 // Figures quoted in the README: ctest --test-dir build -R InfluenceFit --verbose | grep figure
-#include "wear/calibration/influence_fit.h"
+#include "calibration/influence_fit.h"
 
 #include <cmath>
 #include <cstdio>
@@ -16,7 +16,7 @@
 
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
-#include "tests/wear/calibration/synthetic_curves.h"
+#include "tests/calibration/synthetic_curves.h"
 
 namespace railwear {
 namespace {

@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "wear/calibration/external_program.h"
+#include "calibration/fem/external_program.h"
 
 namespace railwear {
 

@@ -1,12 +1,12 @@
 // The CalculiX .frd reader on hand-written files in ccx's fixed-column layout: nodes, result
 // blocks by name and step, stored and computed components, continuation rows, the short format,
 // and the messages for malformed files.
-#include "wear/calibration/frd_file.h"
+#include "calibration/fem/frd_file.h"
 
 #include <gtest/gtest.h>
 
 #include "core/numerics/input_error.h"
-#include "tests/wear/calibration/fem_test_support.h"
+#include "tests/calibration/fem/fem_test_support.h"
 
 namespace railwear {
 namespace {

@@ -43,9 +43,9 @@
 #include <string_view>
 #include <vector>
 
+#include "calibration/displacement_curves.h"
+#include "calibration/fem/fem_programs.h"
 #include "core/contact/contact_types.h"
-#include "wear/calibration/displacement_curves.h"
-#include "wear/calibration/fem_programs.h"
 
 namespace railwear {
 

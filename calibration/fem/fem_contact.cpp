@@ -1,6 +1,6 @@
 // Conformal contact reference cases as quarter FEM models: geometry, deck, solves per mesh
 // level, and the patch measures from the nodal contact pressure. See fem_contact.h.
-#include "wear/calibration/fem_contact.h"
+#include "calibration/fem/fem_contact.h"
 
 #include <algorithm>
 #include <chrono>
@@ -16,11 +16,11 @@
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
+#include "calibration/fem/ccx_deck.h"
+#include "calibration/fem/fem_mesh.h"
+#include "calibration/fem/frd_file.h"
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
-#include "wear/calibration/ccx_deck.h"
-#include "wear/calibration/fem_mesh.h"
-#include "wear/calibration/frd_file.h"
 
 namespace railwear {
 namespace {

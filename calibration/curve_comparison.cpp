@@ -1,6 +1,6 @@
 // Displacement curves against a reference, with the support offset fitted. See
 // curve_comparison.h.
-#include "wear/calibration/curve_comparison.h"
+#include "calibration/curve_comparison.h"
 
 #include <algorithm>
 #include <cmath>

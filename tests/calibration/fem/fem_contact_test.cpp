@@ -1,10 +1,10 @@
-// The FEM contact cases (wear/calibration/fem_contact.h) without running ccx: the patch measures
+// The FEM contact cases (calibration/fem/fem_contact.h) without running ccx: the patch measures
 // on synthetic Hertz pressure fields (flat and on a groove's arc) against their closed forms,
 // the slave surface read from a hand-written .frd CONTACT block, the deck's contact definition,
 // sets and loads, the .geo's groups, option checks; with gmsh installed, a coarse mesh of each
 // case whose contact faces lie on the intended circles and torus. The real ccx run is in
 // tests/app/fem_contact_cli_test.cpp.
-#include "wear/calibration/fem_contact.h"
+#include "calibration/fem/fem_contact.h"
 
 #include <cmath>
 #include <cstdio>
@@ -13,8 +13,8 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/wear/calibration/fem_test_support.h"
-#include "wear/calibration/ccx_deck.h"
+#include "calibration/fem/ccx_deck.h"
+#include "tests/calibration/fem/fem_test_support.h"
 
 namespace railwear {
 namespace {

@@ -1,6 +1,6 @@
 // Influence-constant fit: curves and contact targets as Ceres residual blocks, bounds, the
 // sensitivity check, covariance, conditioning and the reports. See influence_fit.h.
-#include "wear/calibration/influence_fit.h"
+#include "calibration/influence_fit.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,6 +1,6 @@
 // Comparing displacement curves with a reference: the fitted offset, the raw and offset-removed
 // errors, points near a zero crossing, and the log-distance interpolation of reference curves.
-#include "wear/calibration/curve_comparison.h"
+#include "calibration/curve_comparison.h"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
 // Displacement curves: CSV reading and writing, eq. 4's prediction. See displacement_curves.h.
-#include "wear/calibration/displacement_curves.h"
+#include "calibration/displacement_curves.h"
 
 #include <cmath>
 #include <filesystem>

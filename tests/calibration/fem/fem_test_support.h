@@ -4,9 +4,9 @@
 
 #include <string>
 
+#include "calibration/fem/external_program.h"
 #include "core/numerics/input_error.h"
 #include "tests/test_support.h"
-#include "wear/calibration/external_program.h"
 
 namespace railwear::test {
 

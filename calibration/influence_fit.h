@@ -71,9 +71,9 @@
 
 #include <Eigen/Core>
 
+#include "calibration/displacement_curves.h"
 #include "core/contact/contact_solver.h"
 #include "core/contact/contact_types.h"
-#include "wear/calibration/displacement_curves.h"
 
 namespace railwear {
 

@@ -1,13 +1,13 @@
 // The gmsh MSH 2.2 reader on hand-written files: node order conversion to ccx, groups, node
 // sets, element faces, and the messages for malformed files.
-#include "wear/calibration/fem_mesh.h"
+#include "calibration/fem/fem_mesh.h"
 
 #include <algorithm>
 
 #include <gtest/gtest.h>
 
 #include "core/numerics/input_error.h"
-#include "tests/wear/calibration/fem_test_support.h"
+#include "tests/calibration/fem/fem_test_support.h"
 
 namespace railwear {
 namespace {

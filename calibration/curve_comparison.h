@@ -13,7 +13,7 @@
 #include <optional>
 #include <vector>
 
-#include "wear/calibration/displacement_curves.h"
+#include "calibration/displacement_curves.h"
 
 namespace railwear {
 

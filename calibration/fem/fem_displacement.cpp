@@ -1,6 +1,6 @@
 // The displacement experiment as a quarter FEM model: geometry, mesh, one ccx solve per load,
 // curve extraction. See fem_displacement.h.
-#include "wear/calibration/fem_displacement.h"
+#include "calibration/fem/fem_displacement.h"
 
 #include <algorithm>
 #include <atomic>
@@ -15,10 +15,10 @@
 
 #include <fmt/format.h>
 
+#include "calibration/fem/ccx_deck.h"
+#include "calibration/fem/fem_mesh.h"
+#include "calibration/fem/frd_file.h"
 #include "core/numerics/input_error.h"
-#include "wear/calibration/ccx_deck.h"
-#include "wear/calibration/fem_mesh.h"
-#include "wear/calibration/frd_file.h"
 
 namespace railwear {
 namespace {

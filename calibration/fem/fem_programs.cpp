@@ -1,5 +1,5 @@
 // Running gmsh and ccx with their conventions. See fem_programs.h.
-#include "wear/calibration/fem_programs.h"
+#include "calibration/fem/fem_programs.h"
 
 #include <filesystem>
 #include <fstream>

@@ -1,5 +1,5 @@
 // gmsh MSH 2.2 reader and the mesh queries the ccx deck needs. See fem_mesh.h.
-#include "wear/calibration/fem_mesh.h"
+#include "calibration/fem/fem_mesh.h"
 
 #include <algorithm>
 #include <fstream>

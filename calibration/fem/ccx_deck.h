@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "wear/calibration/fem_mesh.h"
+#include "calibration/fem/fem_mesh.h"
 
 namespace railwear {
 

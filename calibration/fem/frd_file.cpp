@@ -1,5 +1,5 @@
 // CalculiX .frd reader. See frd_file.h for the format.
-#include "wear/calibration/frd_file.h"
+#include "calibration/fem/frd_file.h"
 
 #include <cmath>
 #include <cstdlib>

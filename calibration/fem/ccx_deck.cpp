@@ -1,5 +1,5 @@
 // CalculiX input decks. See ccx_deck.h.
-#include "wear/calibration/ccx_deck.h"
+#include "calibration/fem/ccx_deck.h"
 
 #include <cerrno>
 #include <cstring>

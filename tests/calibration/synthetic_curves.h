@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "wear/calibration/displacement_curves.h"
+#include "calibration/displacement_curves.h"
 
 namespace railwear::testing {
 

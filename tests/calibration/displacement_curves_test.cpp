@@ -1,4 +1,4 @@
-#include "wear/calibration/displacement_curves.h"
+#include "calibration/displacement_curves.h"
 
 #include <cmath>
 #include <filesystem>

@@ -1,6 +1,6 @@
 // Finding and running external programs: PATH lookup, environment overrides, the messages for
 // a missing program, exit codes, logs, environment, work directory and timeouts.
-#include "wear/calibration/external_program.h"
+#include "calibration/fem/external_program.h"
 
 #include <cstdlib>
 #include <stdexcept>
@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "core/numerics/input_error.h"
-#include "tests/wear/calibration/fem_test_support.h"
+#include "tests/calibration/fem/fem_test_support.h"
 
 namespace railwear {
 namespace {

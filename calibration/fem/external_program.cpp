@@ -1,5 +1,5 @@
 // Finding and running external programs (gmsh, ccx) by argv. See external_program.h.
-#include "wear/calibration/external_program.h"
+#include "calibration/fem/external_program.h"
 
 #include <fcntl.h>
 #include <signal.h>

@@ -57,10 +57,10 @@
 
 #include <Eigen/Core>
 
+#include "calibration/fem/fem_mesh.h"
+#include "calibration/fem/fem_programs.h"
+#include "calibration/fem/frd_file.h"
 #include "core/contact/contact_types.h"
-#include "wear/calibration/fem_mesh.h"
-#include "wear/calibration/fem_programs.h"
-#include "wear/calibration/frd_file.h"
 
 namespace railwear {
 
