@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "core/contact/seed_kernel.h"
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
 #include "core/numerics/text.h"
@@ -34,10 +35,6 @@ std::vector<std::string> SplitCommas(std::string_view s) {
   }
 }
 
-
-double KD(const Material& m) {
-  return 1.0 / (8.0 * std::numbers::pi * (1.0 - m.poisson_ratio) * m.ShearModulus());
-}
 
 bool Vanishes(CurveLoad load, CurvePath path) {
   return (load == CurveLoad::kAxial && path == CurvePath::kArc) ||
@@ -328,13 +325,13 @@ double SeedKernelDisplacement(const InfluenceConstants& c, CurveBody body, doubl
     dn2 = rho * rho * half_sin * half_sin;
     d_t = radius_m * std::sin(theta);
   }
-  const double k_d = KD(material);
+  const double k_d = SeedKernelKd(material);
   const InfluenceConstantSet set = c.ForBody(CurvatureSign(body));
   if (load == CurveLoad::kNormal) {
-    const double k_f = (3.0 - 4.0 * material.poisson_ratio) * k_d;
+    const double k_f = SeedKernelKf(material, k_d);
     return (set.c_f * k_f + set.c_z * k_d * dn2 / (rho * rho)) / rho;
   }
-  const double c_t = 1.0 + set.c_s * CurvatureSign(body);
+  const double c_t = SeedKernelCt(set, CurvatureSign(body));
   return c_t * k_d * d_t / (rho * rho);
 }
 

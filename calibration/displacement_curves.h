@@ -87,7 +87,8 @@ void WriteDisplacementCurves(const DisplacementCurves& curves, const std::string
 
 // The seed's eq. 4 for one point of the experiment [m/N], with constants `c` (the body's set,
 // c.ForBody(CurvatureSign(body)), when they are separate per curvature sign; a flat body has no
-// such set and must not be given separate constants) and the body's material (k_d = 1 / (8 pi (1 - nu) G), k_f = (3 - 4 nu) k_d):
+// such set and must not be given separate constants) and the body's material (k_d, k_f and c_t
+// as in core/contact/seed_kernel.h: k_d = 1 / (8 pi (1 - nu) G), k_f = (3 - 4 nu) k_d):
 //   normal load:      w = (1/rho) [c_f k_f + c_z k_d dn^2/rho^2]
 //   tangential load:  w = c_t k_d d_t / rho^2,  c_t = 1 + c_s CurvatureSign(body)
 // with rho the chord from the load point to the field point, dn its component along the
