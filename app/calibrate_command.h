@@ -1,33 +1,11 @@
 // `railwear calibrate CONFIG.toml [--out FILE.toml] [--db FILE] [--json FILE|-] [--csv FILE]
 // [--verbose]`: fits the seed's eq. 4 constants to displacement curves and contact results
-// (wear/calibration/influence_fit.h) and writes the influence-constants TOML that scenes load
+// (calibration/influence_fit.h) and writes the influence-constants TOML that scenes load
 // with influence_constants = "FILE".
 //
-// Config (strict: unknown keys, wrong types and out-of-range values are errors naming
-// FILE:LINE and the key; paths are relative to the config file):
-//
-//   [calibration]
-//   name = "paper experiment, R15/R80"   # default: the config file's name
-//   fit = ["c_f", "c_z", "c_s"]          # any non-empty subset; default all three
-//   separate_bodies = false              # true: a convex and a concave set
-//   start = { c_f = 0.75, c_z = 1.0, c_s = 0.25 }   # or { convex = {...}, concave = {...} }
-//   fit_offsets = true                   # one offset per curve (FE supports)
-//   out = "calibrated_constants.toml"    # default: CONFIG-STEM_constants.toml beside the config
-//   db = "calibration.sqlite"            # optional: store the calibration there
-//   contact_relative_step = 0.01         # central-difference step on contact results
-//   max_iterations = 100
-//
-//   [[displacement_curves]]              # any number, >= 1 in all with contact_results
-//   file = "r15_convex.csv"              # required (displacement_curves.h format)
-//   weight = 1.0                         # > 0
-//   min_distance_mm = 0.5                # leave out points nearer the load (FE near field)
-//   max_distance_mm = 20                 # ... and farther
-//
-//   [[contact_results]]
-//   scene = "groove_conformal.toml"      # required: a single-wheel scene, golubenko kernel
-//   area_mm2 = 60.2                      # required target contact area, > 0
-//   p_max_MPa = 1234                     # required target peak pressure, > 0
-//   weight = 1.0
+// The config, its keys and checks: app/calibrate_config.h. The command is an outline:
+// ReadCalibrateConfig -> FitInfluenceConstants -> the outputs of app/calibrate_output.h and the
+// constants file of app/influence_constants_file.h.
 //
 // Output: stdout the report (data, constants with standard errors, correlations, conditioning,
 // residuals per curve and per contact result before and after, Ceres's brief report; the full

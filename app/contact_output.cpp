@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "app/influence_constants_file.h"
+
 namespace railwear::app {
 namespace {
 
@@ -137,28 +139,6 @@ nlohmann::json PatchJson(const PatchResult& p) {
   if (p.rolling) AddRollingJson(*p.rolling, &j);
   return j;
 }
-
-}  // namespace
-
-nlohmann::json InfluenceConstantsJson(const InfluenceConstants& c) {
-  auto set = [](double c_f, double c_z, double c_s) {
-    return nlohmann::json{{"c_f", c_f}, {"c_z", c_z}, {"c_s", c_s}};
-  };
-  if (!c.separate) return set(c.c_f, c.c_z, c.c_s);
-  const auto& s = *c.separate;
-  return {{"convex", set(s.convex.c_f, s.convex.c_z, s.convex.c_s)},
-          {"concave", set(s.concave.c_f, s.concave.c_z, s.concave.c_s)}};
-}
-
-std::string InfluenceConstantsText(const InfluenceConstants& c) {
-  auto set = [](const InfluenceConstantSet& s) {
-    return fmt::format("c_f {} c_z {} c_s {}", s.c_f, s.c_z, s.c_s);
-  };
-  if (!c.separate) return set({c.c_f, c.c_z, c.c_s});
-  return fmt::format("convex {}, concave {}", set(c.separate->convex), set(c.separate->concave));
-}
-
-namespace {
 
 nlohmann::json ModelJson(const ModelOptions& m) {
   nlohmann::json j;

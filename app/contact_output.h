@@ -30,11 +30,6 @@ constexpr int kHertzSamples = 41;
 // vector does not match the grid.
 std::vector<PressureSample> PressureSamples(const PatchResult& patch, int patch_number);
 
-// The influence constants: {c_f, c_z, c_s}, or {convex: {...}, concave: {...}} for separate
-// sets; and as text, "c_f 0.75 c_z 1 c_s 0.25" or "convex c_f ... , concave c_f ...".
-nlohmann::json InfluenceConstantsJson(const InfluenceConstants& c);
-std::string InfluenceConstantsText(const InfluenceConstants& c);
-
 // Human summary: model, status, approach, iterations, time, totals and a table of patches.
 std::string FormatSummary(const Scene& scene, const ContactResult& result);
 

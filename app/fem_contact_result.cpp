@@ -49,6 +49,8 @@ std::string FemContactResultText(const std::string& name, const FemContactResult
   const FemContactOptions& o = r.options;
   RAILWEAR_CHECK(!r.levels.empty());
   const FemContactLevel& best = r.levels.back();
+  // The header names the model's old home (now calibration/fem/fem_contact.h): kept as the
+  // committed references in examples/fem/reference/ carry it, so the written files stay identical.
   std::string out = fmt::format(
       "# FEM contact reference (railwear fem-reference, CalculiX): {}.\n"
       "# [contact_result] is the finest mesh level; [[convergence]] lists every level.\n"

@@ -8,7 +8,7 @@
 //                                       this file's folder ("" when the config names none)
 //   status = "ok"                    "ok" | "no_contact" | "patch_at_zone_edge" | "fit_failed"
 //   load_N = 10000                   applied vertical load (whole wheel)
-//   area_mm2 = 38.63                 contact area (edge fit, see wear/calibration/fem_contact.h)
+//   area_mm2 = 38.63                 contact area (edge fit, see calibration/fem/fem_contact.h)
 //   p_max_MPa = 400.9                peak contact pressure
 //   half_length_x_mm = 2.82          patch half-length along x (rolling direction)
 //   half_width_s_mm = 4.34           patch half-width along the lateral arc
@@ -28,7 +28,7 @@
 #include <utility>
 #include <vector>
 
-#include "wear/calibration/fem_contact.h"
+#include "calibration/fem/fem_contact.h"
 
 namespace railwear::app {
 

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "app/influence_constants_file.h"
 #include "app/paths.h"
 #include "app/toml_fields.h"
 #include "core/numerics/input_error.h"
@@ -74,64 +75,10 @@ void ReadSceneTable(const Fields& top, Scene* scene) {
   }
 }
 
-constexpr const char* kConstantSetExpected = "a table { c_f, c_z, c_s }";
-constexpr const char* kConstantsExpected =
-    "{ c_f, c_z, c_s } (one set for both bodies) or { convex = { c_f, c_z, c_s }, concave = "
-    "{ c_f, c_z, c_s } } (a set for each curvature sign)";
-
-InfluenceConstantSet ReadConstantSet(const Fields& t) {
-  t.AllowOnly({"c_f", "c_z", "c_s"});
-  InfluenceConstantSet c;
-  c.c_f = t.Number("c_f", Positive()).value_or(c.c_f);
-  c.c_z = t.Number("c_z", Positive()).value_or(c.c_z);
-  c.c_s = t.Number("c_s", AnyFinite()).value_or(c.c_s);
-  return c;
-}
-
-}  // namespace
-
-InfluenceConstants ReadInfluenceConstantsTable(const Fields& t) {
-  t.AllowOnly({"c_f", "c_z", "c_s", "convex", "concave"});
-  InfluenceConstants c;
-  if (!t.Has("convex") && !t.Has("concave")) {
-    const InfluenceConstantSet one = ReadConstantSet(t);
-    c.c_f = one.c_f;
-    c.c_z = one.c_z;
-    c.c_s = one.c_s;
-    return c;
-  }
-  for (const std::string_view key : {"c_f", "c_z", "c_s"}) {
-    if (t.Has(key)) {
-      t.Fail(key, std::string("either one set or convex and concave sets, not both: ") +
-                      kConstantsExpected);
-    }
-  }
-  const auto convex = t.Table("convex", kConstantSetExpected);
-  const auto concave = t.Table("concave", kConstantSetExpected);
-  if (!convex) t.FailMissing("convex", "the convex set too: " + std::string(kConstantsExpected));
-  if (!concave) t.FailMissing("concave", "the concave set too: " + std::string(kConstantsExpected));
-  c.separate = SeparateInfluenceConstants{ReadConstantSet(*convex), ReadConstantSet(*concave)};
-  return c;
-}
-
-InfluenceConstants ReadInfluenceConstantsFile(const std::string& path) {
-  const std::string text = ReadTextFile(path, "influence constants file");
-  const toml::table root = ParseToml(text, path);
-  const Fields top(root, "", path);
-  const auto t = top.Table("influence_constants", std::string("a table ") + kConstantsExpected);
-  if (!t) {
-    top.FailMissing("influence_constants",
-                    std::string("an [influence_constants] table ") + kConstantsExpected);
-  }
-  return ReadInfluenceConstantsTable(*t);
-}
-
-namespace {
-
 void ReadInfluenceConstants(const Fields& model, const std::string& scene_path, Scene* scene) {
   const toml::node* node = model.Node("influence_constants");
   if (node == nullptr) return;
-  const std::string expected = std::string("an inline table ") + kConstantsExpected +
+  const std::string expected = std::string("an inline table ") + kInfluenceConstantsExpected +
                                " or the path of a TOML file with [influence_constants]";
   if (const auto file = node->value_exact<std::string>()) {
     const std::string path = ResolveRelativeTo(DirectoryOf(scene_path), *file);
@@ -209,30 +156,14 @@ void ReadModel(const Fields& top, Scene* scene) {
   ReadInfluenceConstants(*t, scene->path, scene);
 }
 
-Material ReadMaterial(const Fields& materials, std::string_view body, bool rail) {
-  const auto t = materials.Table(body, "an inline table { E_MPa, nu }");
-  if (!t) materials.FailMissing(body, "an inline table { E_MPa, nu }");
-  if (rail) {
-    t->AllowOnly({"E_MPa", "nu", "hardness_MPa", "shear_yield_MPa"});
-  } else {
-    t->AllowOnly({"E_MPa", "nu"});
-  }
-  Material m;
-  m.youngs_modulus_Pa = t->RequiredNumber("E_MPa", Positive()) * kMPa;
-  m.poisson_ratio = t->RequiredNumber("nu", InRange(0.0, 0.5));
-  if (const auto h = t->Number("hardness_MPa", Positive())) m.hardness_Pa = *h * kMPa;
-  if (const auto y = t->Number("shear_yield_MPa", Positive())) m.shear_yield_Pa = *y * kMPa;
-  return m;
-}
-
 void ReadMaterials(const Fields& top, Scene* scene) {
   scene->problem.wheel_material = DefaultSteel();
   scene->problem.rail_material = DefaultSteel();
   const auto t = top.Table("materials", "a table");
   if (!t) return;
   t->AllowOnly({"wheel", "rail"});
-  scene->problem.wheel_material = ReadMaterial(*t, "wheel", false);
-  scene->problem.rail_material = ReadMaterial(*t, "rail", true);
+  scene->problem.wheel_material = ReadMaterial(*t, "wheel", MaterialKeys::kElastic);
+  scene->problem.rail_material = ReadMaterial(*t, "rail", MaterialKeys::kWithDamage);
 }
 
 // Loads a profile spec; errors from the profile reader get the scene key in front.

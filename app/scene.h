@@ -68,18 +68,6 @@ Scene LoadScene(const std::string& path);
 // profile paths.
 Scene ParseScene(const std::string& text, const std::string& path);
 
-class Fields;  // app/toml_fields.h
-
-// An influence-constants table: one set { c_f, c_z, c_s } (each key optional, the seed's values
-// by default), or separate sets { convex = {...}, concave = {...} } (both required), never a
-// mixture. Throws InputError naming the file, line and key.
-InfluenceConstants ReadInfluenceConstantsTable(const Fields& table);
-
-// Reads a TOML file with an [influence_constants] table (what `railwear calibrate` writes and a
-// scene names with influence_constants = "FILE"): { c_f, c_z, c_s } or { convex = {...},
-// concave = {...} }. Throws InputError naming the file, line and key.
-InfluenceConstants ReadInfluenceConstantsFile(const std::string& path);
-
 // Steel, the default of both bodies when a scene has no [materials] table.
 Material DefaultSteel();
 

@@ -3,6 +3,7 @@
 #include "app/toml_fields.h"
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -27,6 +28,14 @@ NumberRule InRange(double lo, double hi) {
 NumberRule OpenClosed(double lo, double hi) {
   return {[lo, hi](double v) { return v > lo && v <= hi; },
           fmt::format("a number in ({}, {}]", lo, hi)};
+}
+NumberRule IntegerAtLeast(int lo) {
+  return {[lo](double x) { return x >= lo && x == std::floor(x) && x < 1e6; },
+          fmt::format("an integer >= {}", lo)};
+}
+NumberRule IntegerInRange(int lo, int hi) {
+  return {[lo, hi](double x) { return x >= lo && x <= hi && x == std::floor(x); },
+          fmt::format("an integer in [{}, {}]", lo, hi)};
 }
 
 int LineOf(const toml::node& node) {
@@ -106,6 +115,51 @@ toml::table ParseToml(const std::string& text, const std::string& file) {
   }
 }
 
+std::string ReadInputFile(const std::string& path, std::string_view what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot open {}", path, what));
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+void WriteOutputFile(const std::string& path, std::string_view text, std::string_view what) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.flush();
+  if (!out) throw InputError(fmt::format("{}: cannot write {}", path, what));
+}
+
+std::vector<Fields> ArrayOfTables(const Fields& top, std::string_view key,
+                                  std::string_view expected) {
+  std::vector<Fields> out;
+  const toml::node* node = top.Node(key);
+  if (node == nullptr) return out;
+  if (!node->is_array_of_tables()) top.Fail(key, expected);
+  int index = 0;
+  for (const toml::node& entry : *node->as_array()) {
+    out.emplace_back(*entry.as_table(), fmt::format("{}[{}]", key, index++), top.file());
+  }
+  return out;
+}
+
+Material ReadMaterial(const Fields& parent, std::string_view key, MaterialKeys keys) {
+  constexpr double kMPa = 1e6;  // MPa -> Pa
+  const auto t = parent.Table(key, "an inline table { E_MPa, nu }");
+  if (!t) parent.FailMissing(key, "an inline table { E_MPa, nu }");
+  if (keys == MaterialKeys::kWithDamage) {
+    t->AllowOnly({"E_MPa", "nu", "hardness_MPa", "shear_yield_MPa"});
+  } else {
+    t->AllowOnly({"E_MPa", "nu"});
+  }
+  Material m;
+  m.youngs_modulus_Pa = t->RequiredNumber("E_MPa", Positive()) * kMPa;
+  m.poisson_ratio = t->RequiredNumber("nu", InRange(0.0, 0.5));
+  if (const auto h = t->Number("hardness_MPa", Positive())) m.hardness_Pa = *h * kMPa;
+  if (const auto y = t->Number("shear_yield_MPa", Positive())) m.shear_yield_Pa = *y * kMPa;
+  return m;
+}
+
 Fields::Fields(const toml::table& table, std::string name, std::string file)
     : table_(table), name_(std::move(name)), file_(std::move(file)) {}
 
@@ -155,6 +209,36 @@ double Fields::RequiredNumber(std::string_view key, const NumberRule& rule) cons
   const auto v = Number(key, rule);
   if (!v) FailMissing(key, rule.expected);
   return *v;
+}
+
+std::optional<int> Fields::Integer(std::string_view key, const NumberRule& rule) const {
+  const auto v = Number(key, rule);
+  if (!v) return std::nullopt;
+  return static_cast<int>(*v);
+}
+
+std::optional<int> Fields::Integer(std::string_view key, const NumberRule& number,
+                                   const NumberRule& integer) const {
+  const auto v = Number(key, number);
+  if (!v) return std::nullopt;
+  if (!integer.ok(*v)) Fail(key, integer.expected);
+  return static_cast<int>(*v);
+}
+
+std::optional<std::array<double, 2>> Fields::NumberPair(std::string_view key,
+                                                        std::string_view expected) const {
+  const toml::node* node = table_.get(key);
+  if (node == nullptr) return std::nullopt;
+  const toml::array* a = node->as_array();
+  if (a == nullptr || a->size() != 2) Fail(key, expected);
+  std::array<double, 2> v{};
+  for (size_t i = 0; i < 2; ++i) {
+    const toml::node& n = *a->get(i);
+    const auto x = n.value<double>();  // integers convert
+    if (!n.is_number() || !x || !std::isfinite(*x)) Fail(key, expected);
+    v[i] = *x;
+  }
+  return v;
 }
 
 std::optional<std::string> Fields::String(std::string_view key) const {

@@ -1,7 +1,7 @@
-# Layering rule (DESIGN.md §2): app -> {wear, profiles_db} -> core, never back.
-# wear and profiles_db never include each other; core includes none of them.
-# SQLite only in profiles_db/*.cpp; CLI11 only in app/; Ceres, GSL and toml++ never in headers
-# outside app/. Run as: cmake -DSOURCE_DIR=<repo> -P tests/layering_test.cmake
+# Layering rule (DESIGN.md §2, §8): app -> {wear, calibration, profiles_db} -> core, never back.
+# wear, calibration and profiles_db never include each other; core includes none of them.
+# SQLite only in profiles_db/*.cpp; CLI11 only in app/; toml++ only in app/; Ceres and GSL never
+# in headers. Run as: cmake -DSOURCE_DIR=<repo> -P tests/layering_test.cmake
 set(violations "")
 function(check_dir dir pattern why)
   file(GLOB_RECURSE files "${SOURCE_DIR}/${dir}/*.h" "${SOURCE_DIR}/${dir}/*.cpp")
@@ -10,23 +10,31 @@ function(check_dir dir pattern why)
     foreach(line ${lines})
       if(line MATCHES "${pattern}")
         file(RELATIVE_PATH rel "${SOURCE_DIR}" "${f}")
-        set(violations "${violations}\n  ${rel}: ${line}   (${why})" PARENT_SCOPE)
+        set(violations "${violations}\n  ${rel}: ${line}   (${why})")
       endif()
     endforeach()
   endforeach()
+  # Hand the list back once: a PARENT_SCOPE set inside the loop would not update the local copy
+  # and this line would then overwrite it with the empty list (the rule never fired).
   set(violations "${violations}" PARENT_SCOPE)
 endfunction()
 
-check_dir(core "[\"<](app|wear|profiles_db)/" "core depends on nothing of ours")
+check_dir(core "[\"<](app|wear|calibration|profiles_db)/" "core depends on nothing of ours")
 check_dir(core "[\"<](sqlite3\\.h|CLI/|toml\\+\\+/)" "core uses no SQLite, CLI11 or toml++")
-check_dir(wear "[\"<](app|profiles_db)/" "wear never includes app or profiles_db")
+check_dir(wear "[\"<](app|calibration|profiles_db)/"
+          "wear never includes app, calibration or profiles_db")
 check_dir(wear "[\"<](sqlite3\\.h|CLI/|toml\\+\\+/)" "wear uses no SQLite, CLI11 or toml++")
-check_dir(profiles_db "[\"<](app|wear)/" "profiles_db never includes app or wear")
+check_dir(calibration "[\"<](app|wear|profiles_db)/"
+          "calibration never includes app, wear or profiles_db")
+check_dir(calibration "[\"<](sqlite3\\.h|CLI/|toml\\+\\+/)"
+          "calibration uses no SQLite, CLI11 or toml++")
+check_dir(profiles_db "[\"<](app|wear|calibration)/"
+          "profiles_db never includes app, wear or calibration")
 check_dir(profiles_db "[\"<](CLI/|toml\\+\\+/)" "profiles_db uses no CLI11 or toml++")
 
 # Ceres and GSL only inside .cpp files; SQLite only in profiles_db/*.cpp.
 file(GLOB_RECURSE headers "${SOURCE_DIR}/core/*.h" "${SOURCE_DIR}/wear/*.h"
-     "${SOURCE_DIR}/profiles_db/*.h" "${SOURCE_DIR}/app/*.h")
+     "${SOURCE_DIR}/calibration/*.h" "${SOURCE_DIR}/profiles_db/*.h" "${SOURCE_DIR}/app/*.h")
 foreach(f ${headers})
   file(STRINGS "${f}" lines REGEX "^[ \t]*#[ \t]*include")
   foreach(line ${lines})
@@ -37,7 +45,7 @@ foreach(f ${headers})
   endforeach()
 endforeach()
 file(GLOB_RECURSE all_sources "${SOURCE_DIR}/app/*.cpp" "${SOURCE_DIR}/core/*.cpp"
-     "${SOURCE_DIR}/wear/*.cpp")
+     "${SOURCE_DIR}/wear/*.cpp" "${SOURCE_DIR}/calibration/*.cpp")
 foreach(f ${all_sources})
   file(STRINGS "${f}" lines REGEX "^[ \t]*#[ \t]*include")
   foreach(line ${lines})
@@ -49,6 +57,7 @@ foreach(f ${all_sources})
 endforeach()
 
 if(violations)
-  message(FATAL_ERROR "Forbidden include edges (app -> {wear, profiles_db} -> core):${violations}")
+  message(FATAL_ERROR
+          "Forbidden include edges (app -> {wear, calibration, profiles_db} -> core):${violations}")
 endif()
 message(STATUS "layering: no forbidden include edge")

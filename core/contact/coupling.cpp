@@ -2,17 +2,15 @@
 #include "core/contact/coupling.h"
 
 #include <cmath>
-#include <numbers>
+
+#include "core/contact/seed_kernel.h"
 
 namespace railwear {
 
 double CouplingCoefficient(const InfluenceConstants& c, const Material& wheel, int wheel_sign,
                            const Material& rail, int rail_sign) {
-  auto kd = [](const Material& m) {
-    return 1.0 / (8.0 * std::numbers::pi * (1.0 - m.poisson_ratio) * m.ShearModulus());
-  };
-  return (1.0 + c.ForBody(wheel_sign).c_s * wheel_sign) * kd(wheel) -
-         (1.0 + c.ForBody(rail_sign).c_s * rail_sign) * kd(rail);
+  return SeedKernelCt(c.ForBody(wheel_sign), wheel_sign) * SeedKernelKd(wheel) -
+         SeedKernelCt(c.ForBody(rail_sign), rail_sign) * SeedKernelKd(rail);
 }
 
 Eigen::VectorXd CouplingDisplacement(const PatchGrid& g, const TangentialSolution& t,

@@ -6,7 +6,7 @@
 // the constant of b's set (InfluenceConstants::ForBody; one set for both bodies by default).
 // The sign is the physical one (Cerruti; Landau & Lifshitz §8: on a half-space a tangential
 // point load Q moves the surface into the body ahead of it, u_z = (1-2ν)/(4πG) Q x/ρ²; the same
-// convention as wear/calibration/displacement_curves.h, whose SeedKernelDisplacement a CalculiX
+// convention as calibration/displacement_curves.h, whose SeedKernelDisplacement a CalculiX
 // run confirmed). The wheel carries the traction q (the rail's on the wheel, tangential_types.h)
 // and the rail -q. At a cell i ahead of q (q . (P_i - P_j) > 0) the wheel's surface therefore
 // moves into the wheel, opening the gap by c_t(wheel) k_d(wheel), while i lies behind the rail's

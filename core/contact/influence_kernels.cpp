@@ -7,6 +7,7 @@
 #include <sstream>
 #include <utility>
 
+#include "core/contact/seed_kernel.h"
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
 
@@ -53,8 +54,8 @@ KernelCoefficients MakeKernelCoefficients(const InfluenceSettings& settings) {
       c.inv_r += (1.0 - nu) / (2.0 * std::numbers::pi * g);
     } else {
       const InfluenceConstantSet set = settings.constants.ForBody(sign);
-      const double k_d = 1.0 / (8.0 * std::numbers::pi * (1.0 - nu) * g);
-      const double k_f = (3.0 - 4.0 * nu) * k_d;
+      const double k_d = SeedKernelKd(*m);
+      const double k_f = SeedKernelKf(*m, k_d);
       c.inv_r += set.c_f * k_f;
       c.n2_r3 += set.c_z * k_d;
     }

@@ -12,9 +12,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "calibration/displacement_curves.h"
 #include "tests/app/calibration_example.h"
 #include "tests/app/cli_runner.h"
-#include "wear/calibration/displacement_curves.h"
 
 namespace railwear::test {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "tests/wear/calibration/synthetic_curves.h"
+#include "tests/calibration/synthetic_curves.h"
 
 namespace railwear::testing {
 

@@ -10,8 +10,8 @@
 
 #include "app/fem_contact_result.h"
 #include "app/fem_reference_command.h"
+#include "calibration/fem/external_program.h"
 #include "core/numerics/input_error.h"
-#include "wear/calibration/external_program.h"
 
 #include "tests/app/fem_reference_fixture.h"
 

@@ -7,7 +7,7 @@
 #include "app/fem_reference_command.h"
 #include "core/numerics/input_error.h"
 #include "tests/app/cli_runner.h"
-#include "tests/wear/calibration/fem_test_support.h"
+#include "tests/calibration/fem/fem_test_support.h"
 
 namespace railwear::test {
 

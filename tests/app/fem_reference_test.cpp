@@ -9,9 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "app/fem_reference_command.h"
+#include "calibration/displacement_curves.h"
+#include "calibration/fem/external_program.h"
 #include "core/numerics/input_error.h"
-#include "wear/calibration/displacement_curves.h"
-#include "wear/calibration/external_program.h"
 
 #include "tests/app/fem_reference_fixture.h"
 
