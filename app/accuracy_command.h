@@ -7,116 +7,21 @@
 // extrapolated where the levels allow, or a JSON file given with --reference. Prints a table;
 // with --out DIR writes DIR/accuracy.csv and the Pareto plot DIR/accuracy.png (error against
 // time, log-log, gnuplot).
+//
+// The command is split like `contact`: accuracy_config.h (options -> typed plan),
+// accuracy_study.h (the measurement), accuracy_output.h (table, CSV, plot); this file is the
+// outline (Setup/Run). It includes all three, so callers need only this header.
 #pragma once
 
-#include <functional>
-#include <iosfwd>
-#include <optional>
-#include <string>
-#include <vector>
-
-#include "app/scene.h"
-#include "core/contact/contact_solver.h"
+#include "app/accuracy_config.h"
+#include "app/accuracy_output.h"
+#include "app/accuracy_study.h"
 
 namespace CLI {
 class App;
 }
 
 namespace railwear::app {
-
-// The model names the command takes (--models, --reference-model).
-inline const std::vector<std::string> kAccuracyModels = {
-    "hertz", "halfspace", "conformal+boussinesq", "conformal+golubenko", "auto"};
-inline const std::vector<std::string> kAccuracyLevels = {"draft", "standard", "reference",
-                                                         "fine"};
-
-struct AccuracyOptions {
-  std::string scene_path;
-  // Models to compare, names of kAccuracyModels ("conformal" = "conformal+golubenko"); the
-  // reference model is run in any case.
-  std::vector<std::string> models = kAccuracyModels;
-  std::vector<std::string> levels = kAccuracyLevels;  // accuracy presets (Hertz has none)
-  int repeats = 3;                    // solves per run; the time is their median (>= 1)
-  std::optional<std::string> out_dir;    // --out DIR: accuracy.csv, accuracy.png
-  bool plot = true;                      // --no-plot: no accuracy.png (then no gnuplot needed)
-  std::optional<std::string> reference;  // --reference FILE: JSON as `contact --json` writes
-  std::string reference_model = "conformal+boussinesq";
-  // Wear scenes only (wear_accuracy.h): step limits [mm], a shorter total [MGT], threads.
-  // levels_given: --levels was on the command line (a wear study's default omits "fine").
-  bool levels_given = false;
-  bool contact_options_given = false;  // --models, --reference or --reference-model given
-  std::optional<std::vector<double>> step_limits_mm;
-  std::optional<double> total_mgt;
-  int threads = 0;
-};
-
-// The quantities compared, totals over all patches. Creep forces only with rolling contact.
-struct AccuracyQuantities {
-  double area_m2 = 0.0;
-  double p_max_Pa = 0.0;
-  double vertical_force_N = 0.0;
-  double lateral_force_N = 0.0;
-  std::optional<double> creep_x_N;  // sum of the patches' longitudinal creep forces
-  std::optional<double> creep_y_N;  // sum of their lateral creep forces (rail frame y)
-};
-
-// One model at one level.
-struct AccuracyRow {
-  std::string model;  // as in kAccuracyModels
-  std::string level;  // preset name, "analytic" for Hertz
-  double cells_per_semi_axis = 0.0;  // 0 for Hertz
-  SolverStatus status = SolverStatus::kNotConverged;
-  std::string message;
-  int repeats = 0;
-  double time_median_s = 0.0, time_min_s = 0.0, time_max_s = 0.0;
-  // Peak resident memory the solve added [bytes], median over the repeats; NaN where the
-  // platform cannot tell (it needs Linux's /proc/self/clear_refs).
-  double memory_bytes = 0.0;
-  int cells = 0, cells_in_contact = 0, patches = 0, iterations = 0;
-  AccuracyQuantities q;
-  std::string patch_models;  // the patches' models, ";"-joined (tells what auto chose)
-  // Relative errors against the reference; NaN where the reference lacks the quantity.
-  double err_area = 0.0, err_p_max = 0.0, err_force = 0.0, err_creep = 0.0;
-};
-
-struct AccuracyReference {
-  std::string source;  // "conformal+boussinesq, Richardson ..." or the file's path
-  AccuracyQuantities q;
-  bool has_area = false, has_p_max = false, has_force = false, has_creep = false;
-  // For each quantity, how it was obtained ("extrapolated, order 1.93", "fine level", "file").
-  std::vector<std::pair<std::string, std::string>> how;
-};
-
-struct AccuracyStudy {
-  std::string scene_name, scene_path;
-  bool rolling = false;
-  std::vector<AccuracyRow> rows;  // per model in the order asked, levels coarse to fine
-  AccuracyReference reference;
-  std::vector<std::string> notes;  // e.g. models left out and why
-};
-
-// Runs the study. `progress` (may be empty) receives one line per run. Throws InputError for
-// an unknown model or level, repeats < 1, a wheelset scene, or a bad reference file.
-AccuracyStudy RunAccuracyStudy(const Scene& scene, const AccuracyOptions& options,
-                               const std::function<void(const std::string&)>& progress = {});
-
-// Richardson extrapolation of f(h) = f0 + C h^p from three values at h1 > h2 > h3 > 0: the
-// order p in [1, 6] and f0 when the differences shrink monotonically (same sign, |f2 - f3| <
-// |f1 - f2|) and such an order exists; nullopt otherwise.
-struct Richardson {
-  double value = 0.0;
-  double order = 0.0;
-};
-std::optional<Richardson> ExtrapolateRichardson(double h1, double f1, double h2, double f2,
-                                                double h3, double f3);
-
-// The table for the terminal (mm2, MPa, ms, MiB, %).
-std::string FormatAccuracyTable(const AccuracyStudy& study);
-// One row per run, then one "reference" row; units in the column names.
-void WriteAccuracyCsv(const AccuracyStudy& study, std::ostream& out);
-// The Pareto plot: error [%] against time per solve [ms], log-log, one panel per quantity.
-// Throws std::runtime_error when gnuplot is missing or fails.
-void PlotAccuracy(const AccuracyStudy& study, const std::string& png_path);
 
 void SetupAccuracy(CLI::App& app);
 // Throws InputError for bad input (exit 2) and std::runtime_error when the reference could not

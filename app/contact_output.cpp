@@ -64,7 +64,7 @@ void AddRollingJson(const RollingPatch& r, nlohmann::json* j) {
   const TangentialSolution& t = r.tangential;
   (*j)["tangential_status"] = ToString(t.status);
   (*j)["creep_force_N"] = {{"x", t.force_x_N}, {"y", t.force_s_N}};
-  (*j)["creep_force_yz_N"] = {{"y", t.force_s_yz_N.x()}, {"z", t.force_s_yz_N.y()}};
+  (*j)[contact_json::kCreepForceYzN] = {{"y", t.force_s_yz_N.x()}, {"z", t.force_s_yz_N.y()}};
   (*j)["spin_moment_Nmm"] = t.spin_moment_Nm * 1e3;
   (*j)["creepage"] = {{"xi", r.creepage.xi},
                       {"eta", r.creepage.eta},
@@ -244,17 +244,17 @@ nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r) {
   j["time_ms"] = r.time_s * kToMs;
   j["stages"] = nlohmann::json::array();
   for (const auto& s : r.stages) j["stages"].push_back({{"name", s.name}, {"time_ms", s.seconds * kToMs}});
-  j["total"] = {{"area_mm2", r.area_m2 * kToMm2},
-                {"p_max_MPa", r.p_max_Pa * kToMPa},
-                {"vertical_force_N", r.vertical_force_N},
-                {"lateral_force_N", r.lateral_force_N}};
-  j["patches"] = nlohmann::json::array();
-  for (const auto& p : r.patches) j["patches"].push_back(PatchJson(p));
+  j[contact_json::kTotal] = {{contact_json::kAreaMm2, r.area_m2 * kToMm2},
+                             {contact_json::kPMaxMPa, r.p_max_Pa * kToMPa},
+                             {contact_json::kVerticalForceN, r.vertical_force_N},
+                             {contact_json::kLateralForceN, r.lateral_force_N}};
+  j[contact_json::kPatches] = nlohmann::json::array();
+  for (const auto& p : r.patches) j[contact_json::kPatches].push_back(PatchJson(p));
   if (!r.patches.empty() && r.patches[0].rolling) {
     j["pitch_velocity_rad_s"] = r.pitch_velocity_rad_s;
     double fx = 0.0;
     for (const auto& p : r.patches) fx += p.rolling->tangential.force_x_N;
-    j["total"]["creep_force_x_N"] = fx;
+    j[contact_json::kTotal][contact_json::kCreepForceXN] = fx;
   }
   if (r.coupling_iterations > 0) {
     j["coupling"] = {{"iterations", r.coupling_iterations},

@@ -54,7 +54,7 @@ std::string FemContactResultText(const std::string& name, const FemContactResult
   std::string out = fmt::format(
       "# FEM contact reference (railwear fem-reference, CalculiX): {}.\n"
       "# [contact_result] is the finest mesh level; [[convergence]] lists every level.\n"
-      "# Format: app/fem_contact_result.h; model: wear/calibration/fem_contact.h.\n\n"
+      "# Format: app/fem_contact_result.h; model: calibration/fem/fem_contact.h.\n\n"
       "[contact_result]\nname = {}\ncase = {}\nscene = {}\nstatus = {}\nload_N = {:g}\n",
       name, Quoted(name), Quoted(std::string(ToString(o.contact_case))), Quoted(scene),
       Quoted(std::string(ToString(best.patch.status))), o.load_N);

@@ -1,7 +1,7 @@
 # Patch extent from railwear's pressure CSV (`railwear contact SCENE --csv FILE`): the half-length
 # along x and the half-width along the arc s of the cells in contact (p > 0), to the outer edge
 # of the outermost cell (max |x| + dx/2, max |s| + ds/2; the true edge lies within +-half a
-# cell of it). Used by the README's "FEM contact cases" comparison table:
+# cell of it). Used by the comparison table of docs/fem_contact_cases.md:
 #   awk -F, -f examples/fem/patch_extent.awk pressure.csv
 # Columns: patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa (one patch expected).
 NR == 1 { next }
