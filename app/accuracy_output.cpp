@@ -13,12 +13,13 @@
 
 #include "app/gnuplot.h"
 #include "app/paths.h"
+#include "core/numerics/units.h"
 
 namespace railwear::app {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr double kToMm2 = 1e6, kToMPa = 1e-6, kToMs = 1e3, kToMiB = 1.0 / (1024.0 * 1024.0);
+constexpr double kToMiB = 1.0 / (1024.0 * 1024.0);
 constexpr double kToPercent = 100.0;
 // Errors below this are drawn at it on the plot's log axis [%].
 constexpr double kPlotErrorFloor_pct = 1e-3;

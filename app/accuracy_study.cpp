@@ -21,12 +21,12 @@
 #include "app/contact_output.h"
 #include "core/contact/grid_resolution.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/units.h"
 
 namespace railwear::app {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kToMm2 = 1e6, kToMPa = 1e-6;
 
 // ---------------------------------------------------------------------------------------------
 // Memory: the peak resident memory a call adds (Linux). malloc_trim returns the heap's free

@@ -12,14 +12,12 @@
 #include "app/toml_fields.h"
 #include "calibration/displacement_curves.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/units.h"
 
 namespace railwear::app {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr double kMm = 1e-3;
-constexpr double kToMm2 = 1e6;
-constexpr double kToMPa = 1e-6;
 
 // A file named by `key` in `t`, resolved against the config's folder; it must exist.
 std::string ExistingFile(const Fields& t, std::string_view key, const std::string& config,

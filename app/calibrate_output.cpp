@@ -13,15 +13,13 @@
 #include "app/influence_constants_file.h"
 #include "app/paths.h"
 #include "app/toml_fields.h"
+#include "core/numerics/units.h"
 
 namespace railwear::app {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr double kMm = 1e-3;
 constexpr double kToNm = 1e9;  // m/N -> nm/N
-constexpr double kToMm2 = 1e6;
-constexpr double kToMPa = 1e-6;
 
 // ---------------------------------------------------------------------------------------------
 // JSON (every number; NaN -> null).

@@ -11,11 +11,12 @@
 #include "app/toml_fields.h"
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/units.h"
+#include "core/numerics/text_file.h"
 
 namespace railwear::app {
 namespace {
 
-constexpr double kMm = 1e-3;
 constexpr double kMm2 = 1e-6;
 constexpr double kMPa = 1e6;
 
@@ -92,11 +93,9 @@ std::string FemContactResultText(const std::string& name, const FemContactResult
 }
 
 FemContactTarget ReadFemContactTarget(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot read the FEM contact result", path));
-  std::ostringstream os;
-  os << in.rdbuf();
-  const toml::table root = ParseToml(os.str(), path);
+  const std::optional<std::string> text = ReadTextFile(path);
+  if (!text) throw InputError(fmt::format("{}: cannot read the FEM contact result", path));
+  const toml::table root = ParseToml(*text, path);
   const Fields top(root, "", path);
   top.AllowOnly({"contact_result", "model", "metadata", "convergence"});
   const auto r = top.Table("contact_result", "a [contact_result] table");

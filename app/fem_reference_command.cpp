@@ -183,7 +183,7 @@ void RunFemReference(const FemReferenceOptions& options) {
               ? ""
               : fs::absolute(e.scene).lexically_normal().lexically_relative(folder).string();
       fs::create_directories(folder);
-      WriteTextFile(
+      WriteWorkFile(
           e.output,
           FemContactResultText(
               e.name, r, scene,

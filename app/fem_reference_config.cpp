@@ -12,13 +12,13 @@
 #include "app/paths.h"
 #include "app/toml_fields.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/units.h"
 
 namespace railwear::app {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kMm = 1e-3;
 constexpr double kMPa = 1e6;
 
 const std::vector<std::string_view> kCommonKeys = {

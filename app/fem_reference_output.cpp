@@ -1,6 +1,7 @@
 // The text `railwear fem-reference` prints: comparisons of curves, experiment summaries, the
 // lines of --report-only. See fem_reference_output.h.
 #include "app/fem_reference_output.h"
+#include "core/numerics/units.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +11,6 @@
 namespace railwear::app {
 namespace {
 
-constexpr double kMm = 1e-3;
 constexpr double kMPa = 1e6;
 constexpr double kNmPerN = 1e-9;
 // Distances [mm] whose nearest curve points the comparison tables show.

@@ -1,5 +1,6 @@
 // gnuplot runner: PATH lookup, quoting, `gnuplot script > log 2>&1` in a temporary directory.
 #include "app/gnuplot.h"
+#include "core/numerics/text_file.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -19,13 +20,6 @@ std::string ShellQuote(const std::string& s) {
   std::string out = "'";
   for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return out + "'";
-}
-
-std::string ReadAll(const fs::path& file) {
-  std::ifstream in(file);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
 }
 
 }  // namespace
@@ -73,11 +67,11 @@ void RunGnuplot(const std::string& script, const ScopedTempDir& dir,
   const int rc = std::system(command.c_str());
   if (rc != 0) {
     throw std::runtime_error(fmt::format("gnuplot failed (status {}) writing {}:\n{}", rc,
-                                         fmt::join(outputs, ", "), ReadAll(log)));
+                                         fmt::join(outputs, ", "), ReadTextFile(log.string()).value_or("")));
   }
   for (const auto& file : outputs) {
     if (!fs::exists(file)) {
-      throw std::runtime_error(fmt::format("gnuplot wrote no {}:\n{}", file, ReadAll(log)));
+      throw std::runtime_error(fmt::format("gnuplot wrote no {}:\n{}", file, ReadTextFile(log.string()).value_or("")));
     }
   }
 }

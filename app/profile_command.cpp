@@ -16,11 +16,11 @@
 #include "core/numerics/input_error.h"
 #include "core/profile/profile_io.h"
 #include "wear/profile_fit.h"
+#include "core/numerics/units.h"
 
 namespace railwear::app {
 namespace {
 
-constexpr double kToMm = 1e3;
 
 nlohmann::json ProfileJson(const std::string& path, const ProfileFile& file) {
   const Profile::Bounds b = file.profile.bounds();

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/numerics/input_error.h"
+#include "core/numerics/text_file.h"
 
 namespace railwear::app {
 
@@ -116,18 +117,13 @@ toml::table ParseToml(const std::string& text, const std::string& file) {
 }
 
 std::string ReadInputFile(const std::string& path, std::string_view what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open {}", path, what));
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
+  std::optional<std::string> text = ReadTextFile(path);
+  if (!text) throw InputError(fmt::format("{}: cannot open {}", path, what));
+  return std::move(*text);
 }
 
 void WriteOutputFile(const std::string& path, std::string_view text, std::string_view what) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  out.flush();
-  if (!out) throw InputError(fmt::format("{}: cannot write {}", path, what));
+  if (!WriteTextFile(path, text)) throw InputError(fmt::format("{}: cannot write {}", path, what));
 }
 
 std::vector<Fields> ArrayOfTables(const Fields& top, std::string_view key,

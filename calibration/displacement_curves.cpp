@@ -14,12 +14,12 @@
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
 #include "core/numerics/text.h"
+#include "core/numerics/units.h"
 
 namespace railwear {
 namespace {
 
 constexpr std::string_view kMarker = "railwear displacement curves v1";
-constexpr double kMm = 1e-3;
 constexpr double kNmPerN = 1e-9;  // nm/N -> m/N
 constexpr const char* kColumns = "load,path,distance_mm,w_nm_per_N";
 

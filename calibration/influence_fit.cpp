@@ -16,13 +16,13 @@
 
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/units.h"
 
 namespace railwear {
 namespace {
 
 constexpr double kMinPositiveConstant = 1e-3;  // c_f, c_z and c_t = 1 + c_s sign stay above
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kMm = 1e-3;
 
 // A fitted constant: which set (0 the one set, -1 convex, +1 concave) and which constant.
 struct Parameter {

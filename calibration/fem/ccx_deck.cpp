@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/numerics/check.h"
+#include "core/numerics/text_file.h"
 
 namespace railwear {
 namespace {
@@ -130,11 +131,8 @@ CcxDeck& CcxDeck::Raw(std::string_view lines) {
   return *this;
 }
 
-void WriteTextFile(const std::string& path, std::string_view text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  out.flush();
-  if (!out) {
+void WriteWorkFile(const std::string& path, std::string_view text) {
+  if (!WriteTextFile(path, text)) {
     throw std::runtime_error(fmt::format("cannot write {}: {}", path, std::strerror(errno)));
   }
 }

@@ -61,6 +61,6 @@ class CcxDeck {
 };
 
 // Writes text to a file; throws std::runtime_error when it cannot be written.
-void WriteTextFile(const std::string& path, std::string_view text);
+void WriteWorkFile(const std::string& path, std::string_view text);
 
 }  // namespace railwear

@@ -21,11 +21,11 @@
 #include "calibration/fem/frd_file.h"
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/units.h"
 
 namespace railwear {
 namespace {
 
-constexpr double kMm = 1e-3;  // mm -> m
 constexpr double kMPa = 1e6;  // MPa -> Pa
 // Half-angle of the circular profiles (railwear's built-in circles and grooves: 80 degrees).
 constexpr double kProfileHalfAngle_rad = 80.0 * std::numbers::pi / 180.0;
@@ -609,7 +609,7 @@ FemContactResult RunFemContact(const FemContactOptions& options, const FemProgra
     FemContactLevel L;
     L.mesh_size_m = o.mesh_sizes_m[level];
     const std::string name = fmt::format("level{}", level + 1);
-    WriteTextFile((dir / (name + ".geo")).string(), FemContactGeo(o, L.mesh_size_m));
+    WriteWorkFile((dir / (name + ".geo")).string(), FemContactGeo(o, L.mesh_size_m));
     progress(fmt::format("{}: meshing (gmsh, h = {:g} mm)", name, L.mesh_size_m / kMm));
     L.mesh_time_s = RunGmsh(programs.gmsh, o.work_dir, name + ".geo", name + ".msh", 1,
                             o.timeout_s)
@@ -635,8 +635,8 @@ FemContactResult RunFemContact(const FemContactOptions& options, const FemProgra
     int max_id = 0;
     for (const MeshElement& e : mesh.elements()) max_id = std::max(max_id, e.id);
     const std::vector<int> top = mesh.NodeSet(kWheelTop);
-    WriteTextFile((dir / (name + "_mesh.inp")).string(), CcxMeshText(mesh, sets));
-    WriteTextFile((dir / (name + ".inp")).string(),
+    WriteWorkFile((dir / (name + "_mesh.inp")).string(), CcxMeshText(mesh, sets));
+    WriteWorkFile((dir / (name + ".inp")).string(),
                   FemContactDeck(o, name + "_mesh.inp", top, max_id + 1));
     progress(fmt::format("{}: solving (ccx, {} nodes, {} slave faces)", name, L.nodes,
                          L.slave_faces));

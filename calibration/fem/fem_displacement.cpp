@@ -19,11 +19,11 @@
 #include "calibration/fem/fem_mesh.h"
 #include "calibration/fem/frd_file.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/units.h"
 
 namespace railwear {
 namespace {
 
-constexpr double kMm = 1e-3;          // mm -> m
 constexpr double kMPa = 1e6;          // MPa -> Pa
 // The full load [N] of every case. The model is linear; w is divided by it. The quarter model
 // carries a quarter of it.
@@ -398,7 +398,7 @@ FemDisplacementResult RunFemDisplacement(const FemDisplacementOptions& o,
 
   // 1. Geometry and mesh.
   const fs::path dir(o.work_dir);
-  WriteTextFile((dir / "body.geo").string(), FemDisplacementGeo(o, summary.body_size));
+  WriteWorkFile((dir / "body.geo").string(), FemDisplacementGeo(o, summary.body_size));
   progress("meshing (gmsh)");
   const ProgramResult meshed = RunGmsh(programs.gmsh, o.work_dir, "body.geo", "body.msh", 1,
                                        o.timeout_s);
@@ -413,7 +413,7 @@ FemDisplacementResult RunFemDisplacement(const FemDisplacementOptions& o,
   for (const char* name : {kLoad, kSymX, kSymY, kBottom, kEnd, kSide}) {
     sets.node_sets.push_back({name, mesh.NodeSet(name)});
   }
-  WriteTextFile((dir / "mesh.inp").string(), CcxMeshText(mesh, sets));
+  WriteWorkFile((dir / "mesh.inp").string(), CcxMeshText(mesh, sets));
 
   // 2. One deck and one ccx run per load, `jobs` at a time.
   std::vector<std::string> jobs;
@@ -428,7 +428,7 @@ FemDisplacementResult RunFemDisplacement(const FemDisplacementOptions& o,
     AddLoadCase(load, &deck);
     deck.NodeFile("U").EndStep();
     const std::string job(ToString(load));
-    WriteTextFile((dir / (job + ".inp")).string(), deck.Text());
+    WriteWorkFile((dir / (job + ".inp")).string(), deck.Text());
     jobs.push_back(job);
   }
   std::vector<double> solve_times(jobs.size(), 0.0);

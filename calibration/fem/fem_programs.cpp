@@ -1,5 +1,6 @@
 // Running gmsh and ccx with their conventions. See fem_programs.h.
 #include "calibration/fem/fem_programs.h"
+#include "core/numerics/text_file.h"
 
 #include <filesystem>
 #include <fstream>
@@ -10,11 +11,6 @@
 
 namespace railwear {
 namespace {
-
-std::string ReadAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 // The first match of `pattern`'s group 1 in the program's output, or "unknown".
 std::string VersionOf(const std::string& program, const std::vector<std::string>& args,
@@ -27,7 +23,7 @@ std::string VersionOf(const std::string& program, const std::vector<std::string>
   run.log_path = log;
   run.timeout_s = 60.0;
   const ProgramResult r = RunProgram(run);
-  const std::string text = ReadAll(r.log_path);
+  const std::string text = ReadTextFile(r.log_path).value_or("");
   std::error_code ec;
   std::filesystem::remove(r.log_path, ec);
   std::smatch m;
@@ -88,7 +84,7 @@ ProgramResult RunCcx(const std::string& ccx, const std::string& work_dir, const 
                      {"CCX_NPROC_RESULTS", n}};
   const ProgramResult r = RunProgram(run);
   if (!r.Succeeded()) FailWithLog("ccx (CalculiX)", r.Describe(), work_dir, r);
-  if (ReadAll(r.log_path).find("*ERROR") != std::string::npos) {
+  if (ReadTextFile(r.log_path).value_or("").find("*ERROR") != std::string::npos) {
     FailWithLog("ccx (CalculiX)", "its log reports *ERROR", work_dir, r);
   }
   const fs::path frd = fs::path(work_dir) / (job + ".frd");

@@ -27,13 +27,13 @@
 #include "wear/wear_measures.h"
 
 #include "tests/app/cli_runner.h"
+#include "core/numerics/units.h"
 
 namespace railwear {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kMm = 1e-3;
 // UIC60 R13 arc (reference README §5, mm) and its gauge point 14 mm below the crown.
 constexpr double kR13CentreY_mm = 23.016030, kR13CentreZ_mm = 14.949147, kR13_mm = 13.0;
 constexpr double kGaugePointY_mm = 35.981335;

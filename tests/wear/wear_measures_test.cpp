@@ -15,11 +15,11 @@
 #include "core/geometry/curve_locator.h"
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
+#include "core/numerics/units.h"
 
 namespace railwear {
 namespace {
 
-constexpr double kMm = 1e-3;
 // UIC60 head geometry, reference README §5 (mm): R13 arc centre on the field side (mirrored to
 // -y on the gauge side), the gauge point 14 mm below the crown.
 constexpr double kR13CentreY_mm = 23.016030, kR13CentreZ_mm = 14.949147, kR13_mm = 13.0;

@@ -101,7 +101,7 @@ TEST_F(CcxDeckTest, PatchTestThroughGmshAndCcx) {
   const std::vector<ElementFace> top = mesh.FaceSurface("Z1");
   EXPECT_EQ(top.size(), mesh.GroupElements("Z1").size());
   sets.surfaces.push_back({"TOPS", top});
-  WriteTextFile((dir_ / "mesh.inp").string(), CcxMeshText(mesh, sets));
+  WriteWorkFile((dir_ / "mesh.inp").string(), CcxMeshText(mesh, sets));
 
   constexpr double kE = 210000.0, kNu = 0.3, kP = 100.0;  // MPa
   CcxDeck deck;
@@ -115,7 +115,7 @@ TEST_F(CcxDeckTest, PatchTestThroughGmshAndCcx) {
       .Raw("*DSLOAD\nTOPS, P, 100")  // kP
       .NodeFile("U")
       .EndStep();
-  WriteTextFile((dir_ / "job.inp").string(), deck.Text());
+  WriteWorkFile((dir_ / "job.inp").string(), deck.Text());
   RunCcx(programs.ccx, work, "job", 1);
 
   const FrdFile frd = ReadFrd((dir_ / "job.frd").string());

@@ -15,6 +15,7 @@
 
 #include "calibration/fem/ccx_deck.h"
 #include "tests/calibration/fem/fem_test_support.h"
+#include "core/numerics/units.h"
 
 namespace railwear {
 namespace {
@@ -22,7 +23,6 @@ namespace {
 using test::Contains;
 using test::TempDirTest;
 
-constexpr double kMm = 1e-3;
 constexpr double kMPa = 1e6;
 
 // A Hertz field p0 sqrt(1 - x^2/a^2 - s^2/b^2) on a structured 6-node triangle grid covering
@@ -271,7 +271,7 @@ TEST_F(FemContactMeshTest, ContactFacesLieOnTheProfiles) {
   const FemPrograms programs = FindFemPrograms(dir_.string());
   for (FemContactCase c : {FemContactCase::kWheelInGroove, FemContactCase::kRailInWheelGroove}) {
     FemContactOptions o = ResolvedFemContactOptions(DefaultFemContactOptions(c));
-    WriteTextFile((dir_ / "m.geo").string(), FemContactGeo(o, 2e-3));
+    WriteWorkFile((dir_ / "m.geo").string(), FemContactGeo(o, 2e-3));
     RunGmsh(programs.gmsh, dir_.string(), "m.geo", "m.msh", 1, 120.0);
     const FemMesh mesh = ReadGmshMesh((dir_ / "m.msh").string());
     const bool a = c == FemContactCase::kWheelInGroove;

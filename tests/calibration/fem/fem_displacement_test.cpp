@@ -13,13 +13,13 @@
 #include "calibration/curve_comparison.h"
 #include "core/numerics/input_error.h"
 #include "tests/calibration/fem/fem_test_support.h"
+#include "core/numerics/units.h"
 
 namespace railwear {
 namespace {
 
 using test::TempDirTest;
 
-constexpr double kMm = 1e-3;
 constexpr double kNmPerN = 1e-9;
 
 // The range for the half-space comparison: about 1 to 10 mm from the load.
