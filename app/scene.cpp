@@ -72,6 +72,7 @@ void ReadSceneTable(const Fields& top, Scene* scene) {
           scene->effects.end()) {
     scene->effects.insert(scene->effects.begin() + 1, "tangential");  // implied
   }
+  scene->problem.damage = scene->damage;
 }
 
 constexpr const char* kConstantSetExpected = "a table { c_f, c_z, c_s }";
@@ -205,6 +206,7 @@ void ReadModel(const Fields& top, Scene* scene) {
   ReadCellSize(*t, &model);
   if (const auto tan = t->Choice("tangential", {"fastsim", "exact"})) {
     scene->tangential_method = *tan;
+    scene->problem.tangential = *TangentialMethodFromString(*tan);
   }
   ReadInfluenceConstants(*t, scene->path, scene);
 }
@@ -592,12 +594,7 @@ void ReadWearScene(const Fields& top, Scene* scene) {
   }
   WearStudy& study = *scene->wear;
   study.cant_ratio = scene->cant_ratio;
-  study.wheel_material = scene->problem.wheel_material;
-  study.rail_material = scene->problem.rail_material;
-  study.model = scene->problem.model;
-  study.solver = scene->problem.solver;
-  study.tangential = *TangentialMethodFromString(scene->tangential_method);
-  study.damage = scene->damage;
+  study.setup() = scene->problem.setup();
   if (study.options.law.kind != WearLawKind::kUsfd && !(study.rail_material.hardness_Pa > 0)) {
     throw InputError(fmt::format(
         "{}:{}: key 'materials.rail.hardness_MPa' is missing: expected the rail hardness in MPa "
@@ -662,11 +659,9 @@ Scene ParseScene(const std::string& text, const std::string& path) {
   if (scene.speed_m_s) scene.motion.speed_m_s = *scene.speed_m_s;
   if (scene.tangential) {
     RollingOptions rolling;
-    rolling.method = *TangentialMethodFromString(scene.tangential_method);
     rolling.motion = scene.motion;
     rolling.creepage = scene.creepage;
     rolling.friction = *scene.friction;
-    rolling.damage = scene.damage;
     rolling.longitudinal_force_N = scene.longitudinal_force_N;
     rolling.coupling = scene.coupling;
     scene.problem.rolling = rolling;

@@ -26,9 +26,6 @@ InfluenceConstantSet InfluenceConstants::ForBody(int sign) const {
 
 int BodyCurvatureSign(double curvature_per_m) { return curvature_per_m > 0 ? -1 : +1; }
 
-std::string_view ToString(GeometryModel v) {
-  return v == GeometryModel::kPlanar ? "planar" : "conformal";
-}
 std::string_view ToString(KernelModel v) {
   return v == KernelModel::kBoussinesq ? "boussinesq" : "golubenko";
 }
@@ -52,11 +49,6 @@ std::string_view ToString(AccuracyPreset v) {
   return "?";
 }
 
-std::optional<GeometryModel> GeometryModelFromString(std::string_view s) {
-  if (s == "planar") return GeometryModel::kPlanar;
-  if (s == "conformal") return GeometryModel::kConformal;
-  return std::nullopt;
-}
 std::optional<KernelModel> KernelModelFromString(std::string_view s) {
   if (s == "boussinesq") return KernelModel::kBoussinesq;
   if (s == "golubenko") return KernelModel::kGolubenko;

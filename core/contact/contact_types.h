@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "core/geometry/geometry_model.h"
+
 namespace railwear {
 
 // Linear elastic, isotropic material of one body.
@@ -25,11 +27,6 @@ struct Material {
 // 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2   [Pa]
 double ContactModulus(const Material& a, const Material& b);
 
-// Which surface the contact grid lives on.
-enum class GeometryModel {
-  kPlanar,     // tangent plane of the first contact point, gap along its normal (Model A)
-  kConformal,  // intermediate surface (seed eq. 1), gap by orthogonal projection (seed eq. 2)
-};
 // Which influence function couples pressure to normal displacement.
 enum class KernelModel {
   kBoussinesq,  // half-space, Love's closed form per cell
@@ -41,11 +38,9 @@ enum class KernelModel {
 // the surface turns across the patch.
 enum class ModelKind { kHertz, kHalfspace, kConformal, kCustom, kAuto };
 
-std::string_view ToString(GeometryModel v);
 std::string_view ToString(KernelModel v);
 std::string_view ToString(ModelKind v);
 // Return std::nullopt for an unknown name (the caller reports the error with file and key).
-std::optional<GeometryModel> GeometryModelFromString(std::string_view s);
 std::optional<KernelModel> KernelModelFromString(std::string_view s);
 std::optional<ModelKind> ModelKindFromString(std::string_view s);
 

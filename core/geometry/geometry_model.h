@@ -1,0 +1,21 @@
+// GeometryModel: which reference surface a contact patch's grid lives on (Model A's tangent
+// plane or the seed's intermediate surface). Geometry builds the grid on it; the contact model
+// (core/contact/contact_types.h ModelOptions) chooses it.
+#pragma once
+
+#include <optional>
+#include <string_view>
+
+namespace railwear {
+
+// Which surface the contact grid lives on.
+enum class GeometryModel {
+  kPlanar,     // tangent plane of the first contact point, gap along its normal (Model A)
+  kConformal,  // intermediate surface (seed eq. 1), gap by orthogonal projection (seed eq. 2)
+};
+
+std::string_view ToString(GeometryModel v);
+// Return std::nullopt for an unknown name (the caller reports the error with file and key).
+std::optional<GeometryModel> GeometryModelFromString(std::string_view s);
+
+}  // namespace railwear
