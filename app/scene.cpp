@@ -11,6 +11,7 @@
 
 #include "app/paths.h"
 #include "app/toml_fields.h"
+#include "core/numerics/enum_names.h"
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
 
@@ -155,8 +156,8 @@ ModelKind KindOf(GeometryModel geometry, KernelModel kernel) {
 }
 
 void ReadGeometryAndKernel(const Fields& t, ModelOptions* model) {
-  const auto geometry = t.Choice("geometry", {"planar", "conformal"});
-  const auto kernel = t.Choice("kernel", {"boussinesq", "golubenko"});
+  const auto geometry = t.Choice("geometry", EnumChoices(kGeometryModelNames));
+  const auto kernel = t.Choice("kernel", EnumChoices(kKernelModelNames));
   if (!geometry && !kernel) return;
   if (model->kind == ModelKind::kHertz) {
     t.Fail(geometry ? "geometry" : "kernel",
@@ -196,15 +197,15 @@ void ReadModel(const Fields& top, Scene* scene) {
   if (!t) return;
   t->AllowOnly({"kind", "geometry", "kernel", "influence_constants", "accuracy", "cell_mm",
                 "tangential"});
-  if (const auto kind = t->Choice("kind", {"hertz", "halfspace", "conformal", "auto"})) {
+  if (const auto kind = t->Choice("kind", EnumChoices(kModelKindNames))) {
     model = MakeModelOptions(*ModelKindFromString(*kind));
   }
   ReadGeometryAndKernel(*t, &model);
-  if (const auto a = t->Choice("accuracy", {"draft", "standard", "reference", "fine"})) {
+  if (const auto a = t->Choice("accuracy", EnumChoices(kAccuracyPresetNames))) {
     model.accuracy = *AccuracyPresetFromString(*a);
   }
   ReadCellSize(*t, &model);
-  if (const auto tan = t->Choice("tangential", {"fastsim", "exact"})) {
+  if (const auto tan = t->Choice("tangential", EnumChoices(kTangentialMethodNames))) {
     scene->tangential_method = *tan;
     scene->problem.tangential = *TangentialMethodFromString(*tan);
   }
@@ -439,7 +440,7 @@ constexpr double kGravity_m_s2 = 9.80665;
 
 WearLaw ReadWearLaw(const Fields& t) {
   WearLaw law;
-  if (const auto name = t.Choice("law", {"archard", "kth", "kth-continuous", "usfd"})) {
+  if (const auto name = t.Choice("law", EnumChoices(kWearLawKindNames))) {
     law.kind = *WearLawKindFromString(*name);
   }
   law.archard_k = t.Number("k", Positive()).value_or(law.archard_k);

@@ -2,12 +2,14 @@
 // constants, accuracy presets. Units are SI unless the name says otherwise.
 #pragma once
 
+#include <array>
 #include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
 
 #include "core/geometry/geometry_model.h"
+#include "core/numerics/enum_names.h"
 
 namespace railwear {
 
@@ -37,6 +39,21 @@ enum class KernelModel {
 // model_selection.h): Hertz or halfspace on non-conformal patches, the conformal geometry where
 // the surface turns across the patch.
 enum class ModelKind { kHertz, kHalfspace, kConformal, kCustom, kAuto };
+
+// The names of each enum, in enum order (core/numerics/enum_names.h): ToString, FromString, the
+// scene's choices and the command line's option values all come from these tables.
+inline constexpr std::array<EnumName<KernelModel>, 2> kKernelModelNames = {{
+    {KernelModel::kBoussinesq, "boussinesq"},
+    {KernelModel::kGolubenko, "golubenko"},
+}};
+// "custom" is printed only: a scene reaches it by an explicit geometry or kernel, not by name.
+inline constexpr std::array<EnumName<ModelKind>, 5> kModelKindNames = {{
+    {ModelKind::kHertz, "hertz"},
+    {ModelKind::kHalfspace, "halfspace"},
+    {ModelKind::kConformal, "conformal"},
+    {ModelKind::kCustom, "custom", /*selectable=*/false},
+    {ModelKind::kAuto, "auto"},
+}};
 
 std::string_view ToString(KernelModel v);
 std::string_view ToString(ModelKind v);
@@ -87,6 +104,12 @@ int BodyCurvatureSign(double curvature_per_m);
 // resolution.h for the definition and tests/core/contact for the errors they reach on Hertz
 // cases: about 5 %, 1 % and 0.2 % on area and peak pressure).
 enum class AccuracyPreset { kDraft, kStandard, kReference, kFine };
+inline constexpr std::array<EnumName<AccuracyPreset>, 4> kAccuracyPresetNames = {{
+    {AccuracyPreset::kDraft, "draft"},
+    {AccuracyPreset::kStandard, "standard"},
+    {AccuracyPreset::kReference, "reference"},
+    {AccuracyPreset::kFine, "fine"},
+}};
 std::string_view ToString(AccuracyPreset v);
 std::optional<AccuracyPreset> AccuracyPresetFromString(std::string_view s);
 

@@ -1,16 +1,12 @@
-// Names of GeometryModel (geometry_model.h).
+// Names of GeometryModel, from its table kGeometryModelNames (geometry_model.h).
 #include "core/geometry/geometry_model.h"
 
 namespace railwear {
 
-std::string_view ToString(GeometryModel v) {
-  return v == GeometryModel::kPlanar ? "planar" : "conformal";
-}
+std::string_view ToString(GeometryModel v) { return EnumToString(kGeometryModelNames, v); }
 
 std::optional<GeometryModel> GeometryModelFromString(std::string_view s) {
-  if (s == "planar") return GeometryModel::kPlanar;
-  if (s == "conformal") return GeometryModel::kConformal;
-  return std::nullopt;
+  return EnumFromString(kGeometryModelNames, s);
 }
 
 }  // namespace railwear

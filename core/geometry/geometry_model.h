@@ -3,8 +3,11 @@
 // (core/contact/contact_types.h ModelOptions) chooses it.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string_view>
+
+#include "core/numerics/enum_names.h"
 
 namespace railwear {
 
@@ -13,6 +16,10 @@ enum class GeometryModel {
   kPlanar,     // tangent plane of the first contact point, gap along its normal (Model A)
   kConformal,  // intermediate surface (seed eq. 1), gap by orthogonal projection (seed eq. 2)
 };
+inline constexpr std::array<EnumName<GeometryModel>, 2> kGeometryModelNames = {{
+    {GeometryModel::kPlanar, "planar"},
+    {GeometryModel::kConformal, "conformal"},
+}};
 
 std::string_view ToString(GeometryModel v);
 // Return std::nullopt for an unknown name (the caller reports the error with file and key).

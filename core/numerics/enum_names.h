@@ -68,4 +68,17 @@ std::vector<std::string> EnumChoiceStrings(const std::array<EnumName<E>, N>& tab
   return out;
 }
 
+// The selectable names joined by `separator` ("draft, standard, reference, fine").
+template <typename E, std::size_t N>
+std::string JoinEnumChoices(const std::array<EnumName<E>, N>& table,
+                            std::string_view separator = ", ") {
+  std::string out;
+  for (const auto& e : table) {
+    if (!e.selectable) continue;
+    if (!out.empty()) out += separator;
+    out += e.name;
+  }
+  return out;
+}
+
 }  // namespace railwear
