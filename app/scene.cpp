@@ -25,6 +25,11 @@ constexpr double kMaxRoll_rad = 0.5;  // a wheel rolls by milliradians; 0.5 rad 
 const std::vector<std::string_view> kKnownEffects = {"normal", "tangential", "coupling", "wear",
                                                      "damage"};
 
+// Whether the scene lists `effect` (scene.effects, as read by ReadSceneTable).
+bool HasEffect(const Scene& scene, std::string_view effect) {
+  return std::find(scene.effects.begin(), scene.effects.end(), effect) != scene.effects.end();
+}
+
 std::string ReadTextFile(const std::string& path, const std::string& what) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open {}", path, what));
@@ -62,13 +67,11 @@ void ReadSceneTable(const Fields& top, Scene* scene) {
       // damage, coupling and wear need the tractions and slip of the tangential stage
       scene->tangential = true;
       scene->damage = scene->damage || *name == "damage";
-      scene->coupling = scene->coupling || *name == "coupling";
-      scene->wear_effect = scene->wear_effect || *name == "wear";
       scene->effects.push_back(*name);
       continue;
     }
   }
-  if ((scene->damage || scene->coupling || scene->wear_effect) &&
+  if ((scene->damage || HasEffect(*scene, "coupling") || HasEffect(*scene, "wear")) &&
       std::find(scene->effects.begin(), scene->effects.end(), "tangential") ==
           scene->effects.end()) {
     scene->effects.insert(scene->effects.begin() + 1, "tangential");  // implied
@@ -286,7 +289,7 @@ void ReadRail(const Fields& top, Scene* scene) {
   scene->cant_ratio = ReadCant(t, scene);
   Profile p = LoadProfileFor(t, "profile", BodyRole::kRail, scene->rail_profile_spec, scene->path);
   if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
-  if (scene->wear_effect) {
+  if (HasEffect(*scene, "wear")) {
     // A wear run cants each worn profile itself (with the motion of the unworn one).
     scene->wear.emplace().rail_profile = p;
   }
@@ -609,7 +612,7 @@ void ReadWearScene(const Fields& top, Scene* scene) {
         "stress k in MPa for the damage effect",
         top.file(), top.Has("materials") ? LineOf(*top.Node("materials")) : 1));
   }
-  if (scene->coupling) {
+  if (HasEffect(*scene, "coupling")) {
     throw InputError(fmt::format(
         "{}: effect 'coupling' is not available in wear runs (each load case is solved "
         "uncoupled); remove it from scene.effects",
@@ -636,7 +639,7 @@ Scene ParseScene(const std::string& text, const std::string& path) {
   scene.path = path;
   scene.text = text;
   ReadSceneTable(top, &scene);
-  if (!scene.wear_effect) {
+  if (!HasEffect(scene, "wear")) {
     for (const std::string_view key : {"wear", "traffic"}) {
       if (top.Has(key)) {
         throw InputError(fmt::format(
@@ -648,7 +651,7 @@ Scene ParseScene(const std::string& text, const std::string& path) {
   }
   ReadModel(top, &scene);
   ReadMaterials(top, &scene);
-  if (scene.wear_effect) {
+  if (HasEffect(scene, "wear")) {
     ReadWearScene(top, &scene);
     return scene;
   }
@@ -664,7 +667,7 @@ Scene ParseScene(const std::string& text, const std::string& path) {
     rolling.creepage = scene.creepage;
     rolling.friction = *scene.friction;
     rolling.longitudinal_force_N = scene.longitudinal_force_N;
-    rolling.coupling = scene.coupling;
+    rolling.coupling = HasEffect(scene, "coupling");
     scene.problem.rolling = rolling;
   }
   return scene;
