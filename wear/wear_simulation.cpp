@@ -202,10 +202,7 @@ void ValidateWearStudy(const WearStudy& study) {
   RequirePositive("bin_mm", o.bin_m * 1e3);
   RequirePositive("profile_spacing_mm", o.profile_spacing_m * 1e3);
   RequirePositive("damage_layer_mm", o.damage_layer_m * 1e3);
-  if (o.quadrature_points < 1 || o.quadrature_points > 20) {
-    throw InputError(fmt::format("wear: quadrature_points = {}: expected 1 to 20",
-                                 o.quadrature_points));
-  }
+  ValidateQuadraturePoints(o.quadrature_points);
   if (o.threads < 0) {
     throw InputError(fmt::format("wear: threads = {}: expected >= 0 (0: all cores)", o.threads));
   }
