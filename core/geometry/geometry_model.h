@@ -1,6 +1,6 @@
 // GeometryModel: which reference surface a contact patch's grid lives on (Model A's tangent
-// plane or the seed's intermediate surface). Geometry builds the grid on it; the contact model
-// (core/contact/contact_types.h ModelOptions) chooses it.
+// plane or the seed's intermediate surface). Geometry builds the grid on it; the contact
+// model's options choose it.
 #pragma once
 
 #include <array>
