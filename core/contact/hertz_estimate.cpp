@@ -8,7 +8,6 @@
 
 namespace railwear::internal {
 
-
 // Hertz's relative curvatures at a candidate: A along x (the wheel's parallel circle, normal
 // curvature cos(gamma)/r by Meusnier, gamma the angle between the contact normal and the wheel's
 // radial direction, which the wheel's roll turns away from the vertical), B laterally (sum of the
@@ -53,7 +52,6 @@ double HertzApproachForLoad(const std::vector<ContactCandidate>& cands, double r
   return 0.5 * (lo + hi);
 }
 
-
 // The Hertz model's candidates and common approach: candidates within a generous threshold,
 // widened while the approach passes it; hs[k] is candidate k's ellipse (force 0: no contact).
 HertzSearch SearchHertz(const WheelRailGeometry& geom, const ContactProblem& problem,
@@ -86,7 +84,6 @@ ContactResult SolveHertzModel(const HertzSearch& search, ContactResult result,
   AddStage(&result.stages, "hertz", SecondsSince(t0));
   return result;
 }
-
 
 // Lateral semi-axis (arc length) of a candidate's patch at the vertical approach delta, for the
 // auto model's criterion: Hertz's b, and the lateral reach of the interpenetration at delta
