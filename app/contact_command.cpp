@@ -14,6 +14,7 @@
 #include "app/pressure_plot.h"
 #include "app/scene.h"
 #include "core/contact/wheelset_contact.h"
+#include "core/numerics/enum_names.h"
 #include "core/numerics/input_error.h"
 
 namespace railwear::app {
@@ -105,13 +106,13 @@ void SetupContact(CLI::App& app) {
   sub->add_option("scene", options->scene_path, "Scene file (TOML); see `railwear init`")
       ->required();
   sub->add_option("--model", options->model, "Replace the scene's model kind")
-      ->check(CLI::IsMember({"hertz", "halfspace", "conformal", "auto"}));
+      ->check(CLI::IsMember(EnumChoiceStrings(kModelKindNames)));
   sub->add_option("--accuracy", options->accuracy,
                   "Replace the scene's accuracy (and its cell_mm)")
-      ->check(CLI::IsMember({"draft", "standard", "reference", "fine"}));
+      ->check(CLI::IsMember(EnumChoiceStrings(kAccuracyPresetNames)));
   sub->add_option("--kernel", options->kernel,
                   "Replace the influence kernel (after --model), keeping the geometry")
-      ->check(CLI::IsMember({"boussinesq", "golubenko"}));
+      ->check(CLI::IsMember(EnumChoiceStrings(kKernelModelNames)));
   sub->add_option("--json", options->json, "Write the result as JSON to FILE ('-' = stdout)");
   sub->add_option("--csv", options->csv, "Write the pressure field as CSV to FILE ('-' = stdout)");
   sub->add_option("--plot", options->plot, "Draw the pressure map to PNG (needs gnuplot)");

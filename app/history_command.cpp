@@ -188,18 +188,11 @@ std::string Mm(double metres, int decimals = 4) {
 }  // namespace
 
 std::string ToString(HistoryProfileFormat format) {
-  switch (format) {
-    case HistoryProfileFormat::kCsv: return "csv";
-    case HistoryProfileFormat::kBan: return "ban";
-    case HistoryProfileFormat::kJson: return "json";
-  }
-  return "csv";
+  return std::string(EnumToString(kHistoryProfileFormatNames, format, "csv"));
 }
 
 HistoryProfileFormat HistoryProfileFormatFromString(const std::string& text) {
-  if (text == "csv") return HistoryProfileFormat::kCsv;
-  if (text == "ban") return HistoryProfileFormat::kBan;
-  if (text == "json") return HistoryProfileFormat::kJson;
+  if (const auto f = EnumFromString(kHistoryProfileFormatNames, text)) return *f;
   throw InputError(fmt::format("--format '{}': expected csv, ban or json", text));
 }
 

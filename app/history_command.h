@@ -10,8 +10,11 @@
 // write throw InputError (exit 2) naming the file, the run and the step.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
+
+#include "core/numerics/enum_names.h"
 
 namespace CLI {
 class App;
@@ -29,7 +32,12 @@ struct HistoryStepsOptions {
 };
 
 enum class HistoryProfileFormat { kCsv, kBan, kJson };
-std::string ToString(HistoryProfileFormat format);  // "csv", "ban", "json"
+inline constexpr std::array<EnumName<HistoryProfileFormat>, 3> kHistoryProfileFormatNames = {{
+    {HistoryProfileFormat::kCsv, "csv"},
+    {HistoryProfileFormat::kBan, "ban"},
+    {HistoryProfileFormat::kJson, "json"},
+}};
+std::string ToString(HistoryProfileFormat format);
 // Throws InputError naming the value and the choices.
 HistoryProfileFormat HistoryProfileFormatFromString(const std::string& text);
 

@@ -12,6 +12,7 @@
 #include "app/influence_constants_file.h"
 #include "app/paths.h"
 #include "app/toml_fields.h"
+#include "core/numerics/enum_names.h"
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
 
@@ -24,6 +25,11 @@ constexpr double kMaxRoll_rad = 0.5;  // a wheel rolls by milliradians; 0.5 rad 
 
 const std::vector<std::string_view> kKnownEffects = {"normal", "tangential", "coupling", "wear",
                                                      "damage"};
+
+// Whether the scene lists `effect` (scene.effects, as read by ReadSceneTable).
+bool HasEffect(const Scene& scene, std::string_view effect) {
+  return std::find(scene.effects.begin(), scene.effects.end(), effect) != scene.effects.end();
+}
 
 std::string ReadTextFile(const std::string& path, const std::string& what) {
   std::ifstream in(path, std::ios::binary);
@@ -62,17 +68,16 @@ void ReadSceneTable(const Fields& top, Scene* scene) {
       // damage, coupling and wear need the tractions and slip of the tangential stage
       scene->tangential = true;
       scene->damage = scene->damage || *name == "damage";
-      scene->coupling = scene->coupling || *name == "coupling";
-      scene->wear_effect = scene->wear_effect || *name == "wear";
       scene->effects.push_back(*name);
       continue;
     }
   }
-  if ((scene->damage || scene->coupling || scene->wear_effect) &&
+  if ((scene->damage || HasEffect(*scene, "coupling") || HasEffect(*scene, "wear")) &&
       std::find(scene->effects.begin(), scene->effects.end(), "tangential") ==
           scene->effects.end()) {
     scene->effects.insert(scene->effects.begin() + 1, "tangential");  // implied
   }
+  scene->problem.damage = scene->damage;
 }
 
 void ReadInfluenceConstants(const Fields& model, const std::string& scene_path, Scene* scene) {
@@ -101,8 +106,8 @@ ModelKind KindOf(GeometryModel geometry, KernelModel kernel) {
 }
 
 void ReadGeometryAndKernel(const Fields& t, ModelOptions* model) {
-  const auto geometry = t.Choice("geometry", {"planar", "conformal"});
-  const auto kernel = t.Choice("kernel", {"boussinesq", "golubenko"});
+  const auto geometry = t.Choice("geometry", EnumChoices(kGeometryModelNames));
+  const auto kernel = t.Choice("kernel", EnumChoices(kKernelModelNames));
   if (!geometry && !kernel) return;
   if (model->kind == ModelKind::kHertz) {
     t.Fail(geometry ? "geometry" : "kernel",
@@ -142,16 +147,17 @@ void ReadModel(const Fields& top, Scene* scene) {
   if (!t) return;
   t->AllowOnly({"kind", "geometry", "kernel", "influence_constants", "accuracy", "cell_mm",
                 "tangential"});
-  if (const auto kind = t->Choice("kind", {"hertz", "halfspace", "conformal", "auto"})) {
+  if (const auto kind = t->Choice("kind", EnumChoices(kModelKindNames))) {
     model = MakeModelOptions(*ModelKindFromString(*kind));
   }
   ReadGeometryAndKernel(*t, &model);
-  if (const auto a = t->Choice("accuracy", {"draft", "standard", "reference", "fine"})) {
+  if (const auto a = t->Choice("accuracy", EnumChoices(kAccuracyPresetNames))) {
     model.accuracy = *AccuracyPresetFromString(*a);
   }
   ReadCellSize(*t, &model);
-  if (const auto tan = t->Choice("tangential", {"fastsim", "exact"})) {
+  if (const auto tan = t->Choice("tangential", EnumChoices(kTangentialMethodNames))) {
     scene->tangential_method = *tan;
+    scene->problem.tangential = *TangentialMethodFromString(*tan);
   }
   ReadInfluenceConstants(*t, scene->path, scene);
 }
@@ -214,7 +220,7 @@ void ReadRail(const Fields& top, Scene* scene) {
   scene->cant_ratio = ReadCant(t, scene);
   Profile p = LoadProfileFor(t, "profile", BodyRole::kRail, scene->rail_profile_spec, scene->path);
   if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
-  if (scene->wear_effect) {
+  if (HasEffect(*scene, "wear")) {
     // A wear run cants each worn profile itself (with the motion of the unworn one).
     scene->wear.emplace().rail_profile = p;
   }
@@ -368,7 +374,7 @@ constexpr double kGravity_m_s2 = 9.80665;
 
 WearLaw ReadWearLaw(const Fields& t) {
   WearLaw law;
-  if (const auto name = t.Choice("law", {"archard", "kth", "kth-continuous", "usfd"})) {
+  if (const auto name = t.Choice("law", EnumChoices(kWearLawKindNames))) {
     law.kind = *WearLawKindFromString(*name);
   }
   law.archard_k = t.Number("k", Positive()).value_or(law.archard_k);
@@ -523,12 +529,7 @@ void ReadWearScene(const Fields& top, Scene* scene) {
   }
   WearStudy& study = *scene->wear;
   study.cant_ratio = scene->cant_ratio;
-  study.wheel_material = scene->problem.wheel_material;
-  study.rail_material = scene->problem.rail_material;
-  study.model = scene->problem.model;
-  study.solver = scene->problem.solver;
-  study.tangential = *TangentialMethodFromString(scene->tangential_method);
-  study.damage = scene->damage;
+  study.setup() = scene->problem.setup();
   if (study.options.law.kind != WearLawKind::kUsfd && !(study.rail_material.hardness_Pa > 0)) {
     throw InputError(fmt::format(
         "{}:{}: key 'materials.rail.hardness_MPa' is missing: expected the rail hardness in MPa "
@@ -542,7 +543,7 @@ void ReadWearScene(const Fields& top, Scene* scene) {
         "stress k in MPa for the damage effect",
         top.file(), top.Has("materials") ? LineOf(*top.Node("materials")) : 1));
   }
-  if (scene->coupling) {
+  if (HasEffect(*scene, "coupling")) {
     throw InputError(fmt::format(
         "{}: effect 'coupling' is not available in wear runs (each load case is solved "
         "uncoupled); remove it from scene.effects",
@@ -569,7 +570,7 @@ Scene ParseScene(const std::string& text, const std::string& path) {
   scene.path = path;
   scene.text = text;
   ReadSceneTable(top, &scene);
-  if (!scene.wear_effect) {
+  if (!HasEffect(scene, "wear")) {
     for (const std::string_view key : {"wear", "traffic"}) {
       if (top.Has(key)) {
         throw InputError(fmt::format(
@@ -581,7 +582,7 @@ Scene ParseScene(const std::string& text, const std::string& path) {
   }
   ReadModel(top, &scene);
   ReadMaterials(top, &scene);
-  if (scene.wear_effect) {
+  if (HasEffect(scene, "wear")) {
     ReadWearScene(top, &scene);
     return scene;
   }
@@ -593,13 +594,11 @@ Scene ParseScene(const std::string& text, const std::string& path) {
   if (scene.speed_m_s) scene.motion.speed_m_s = *scene.speed_m_s;
   if (scene.tangential) {
     RollingOptions rolling;
-    rolling.method = *TangentialMethodFromString(scene.tangential_method);
     rolling.motion = scene.motion;
     rolling.creepage = scene.creepage;
     rolling.friction = *scene.friction;
-    rolling.damage = scene.damage;
     rolling.longitudinal_force_N = scene.longitudinal_force_N;
-    rolling.coupling = scene.coupling;
+    rolling.coupling = HasEffect(scene, "coupling");
     scene.problem.rolling = rolling;
   }
   return scene;

@@ -27,18 +27,19 @@ struct Scene {
   std::string rail_profile_spec;   // [rail] profile, as written
   std::string cant = "0";          // [rail] cant, as written ("1:40")
   double cant_ratio = 0.0;         // 1:40 -> 0.025
-  std::string tangential_method = "fastsim";  // [model] tangential: "fastsim" | "exact"
+  // [model] tangential as written ("fastsim" | "exact"); the solver uses problem.tangential.
+  std::string tangential_method = "fastsim";
   // Where the influence constants came from: "default", "inline" or the resolved file path.
   std::string influence_constants_source = "default";
 
   std::optional<double> friction;   // [load] friction, in (0, 2]; used by rolling contact
   std::optional<double> speed_m_s;  // [load] or [wheelset] speed_m_s; used by rolling contact
 
-  // Effects beyond "normal" (DESIGN.md §3). "damage" and "coupling" imply "tangential".
+  // Effects beyond "normal" (DESIGN.md §3), as read: "damage", "coupling" and "wear" imply
+  // "tangential"; "wear" needs [wear] and [[traffic]]. The contact set-up (problem, wear) holds
+  // what the solvers use (problem.damage, problem.rolling->coupling, wear).
   bool tangential = false;
   bool damage = false;
-  bool coupling = false;  // "coupling" implies "tangential" too
-  bool wear_effect = false;  // "wear" implies "tangential"; needs [wear] and [[traffic]]
   // Rolling: the wheel's motion (speed, pitch velocity, yaw), or prescribed creepages instead.
   WheelMotion motion;
   std::optional<Creepage> creepage;

@@ -13,6 +13,7 @@
 
 #include "app/gnuplot.h"
 #include "app/paths.h"
+#include "core/numerics/enum_names.h"
 #include "core/numerics/input_error.h"
 #include "wear/wear_measures.h"
 #include "wear/wear_simulation.h"
@@ -81,8 +82,8 @@ WearAccuracyStudy RunWearAccuracyStudy(const Scene& scene, const WearAccuracyOpt
   for (const auto& name : o.levels) {
     const auto p = AccuracyPresetFromString(name);
     if (!p) {
-      throw InputError(fmt::format("--levels: level '{}': expected one of draft, standard, "
-                                   "reference, fine", name));
+      throw InputError(fmt::format("--levels: level '{}': expected one of {}", name,
+                                   JoinEnumChoices(kAccuracyPresetNames)));
     }
     if (std::find(presets.begin(), presets.end(), *p) == presets.end()) presets.push_back(*p);
   }

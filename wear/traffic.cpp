@@ -64,13 +64,17 @@ void ValidateTraffic(const std::vector<TrafficCase>& traffic) {
   }
 }
 
-std::vector<LoadCase> ExpandTraffic(const std::vector<TrafficCase>& traffic,
-                                    int quadrature_points) {
-  ValidateTraffic(traffic);
+void ValidateQuadraturePoints(int quadrature_points) {
   if (quadrature_points < 1 || quadrature_points > 20) {
     throw InputError(fmt::format("wear: quadrature_points = {}: expected 1 to 20",
                                  quadrature_points));
   }
+}
+
+std::vector<LoadCase> ExpandTraffic(const std::vector<TrafficCase>& traffic,
+                                    int quadrature_points) {
+  ValidateTraffic(traffic);
+  ValidateQuadraturePoints(quadrature_points);
   double total_share = 0.0;
   for (const TrafficCase& c : traffic) total_share += c.share;
   std::vector<double> nodes, weights;

@@ -48,8 +48,11 @@ void GaussHermiteProbabilists(int n, std::vector<double>* nodes, std::vector<dou
 // and throws InputError naming the entry and the value.
 void ValidateTraffic(const std::vector<TrafficCase>& traffic);
 
+// Throws InputError unless quadrature_points (Gauss-Hermite nodes per entry) is 1 to 20.
+void ValidateQuadraturePoints(int quadrature_points);
+
 // The load cases of the mix: each entry at `quadrature_points` Gauss-Hermite nodes (1 when its
-// std is 0), in entry order. Weights sum to 1.
+// std is 0), in entry order. Weights sum to 1. Validates the traffic and quadrature_points.
 std::vector<LoadCase> ExpandTraffic(const std::vector<TrafficCase>& traffic,
                                     int quadrature_points);
 

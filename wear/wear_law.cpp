@@ -10,22 +10,10 @@
 
 namespace railwear {
 
-std::string_view ToString(WearLawKind v) {
-  switch (v) {
-    case WearLawKind::kArchard: return "archard";
-    case WearLawKind::kKth: return "kth";
-    case WearLawKind::kKthContinuous: return "kth-continuous";
-    case WearLawKind::kUsfd: return "usfd";
-  }
-  return "?";
-}
+std::string_view ToString(WearLawKind v) { return EnumToString(kWearLawKindNames, v); }
 
 std::optional<WearLawKind> WearLawKindFromString(std::string_view s) {
-  for (WearLawKind k : {WearLawKind::kArchard, WearLawKind::kKth, WearLawKind::kKthContinuous,
-                        WearLawKind::kUsfd}) {
-    if (ToString(k) == s) return k;
-  }
-  return std::nullopt;
+  return EnumFromString(kWearLawKindNames, s);
 }
 
 namespace {

@@ -35,13 +35,22 @@
 // Units: SI throughout (Pa, m/s, m); the USFD law converts internally.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string_view>
+
+#include "core/numerics/enum_names.h"
 
 namespace railwear {
 
 enum class WearLawKind { kArchard, kKth, kKthContinuous, kUsfd };
-std::string_view ToString(WearLawKind v);  // "archard", "kth", "kth-continuous", "usfd"
+inline constexpr std::array<EnumName<WearLawKind>, 4> kWearLawKindNames = {{
+    {WearLawKind::kArchard, "archard"},
+    {WearLawKind::kKth, "kth"},
+    {WearLawKind::kKthContinuous, "kth-continuous"},
+    {WearLawKind::kUsfd, "usfd"},
+}};
+std::string_view ToString(WearLawKind v);
 std::optional<WearLawKind> WearLawKindFromString(std::string_view s);
 
 struct WearLaw {

@@ -36,23 +36,19 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const CurveLocator& rail, cons
                           const LoadCase& load_case) {
   const Profile& rail_track = rail.profile();
   const TrafficCase& traffic = study.traffic[load_case.traffic_index];
+  // The study's set-up; the load case fills in only placement, load and motion.
   ContactProblem problem;
+  problem.setup() = study.setup();
   problem.wheel_profile = traffic.wheel_profile;
   problem.rail_profile = rail_track;
-  problem.wheel_material = study.wheel_material;
-  problem.rail_material = study.rail_material;
   problem.placement.lateral_shift_m = load_case.lateral_shift_m;
   problem.placement.roll_rad = traffic.roll_rad;
   problem.placement.rolling_radius_m = traffic.rolling_radius_m;
   problem.load.vertical_force_N = traffic.vertical_force_N;
-  problem.model = study.model;
-  problem.solver = study.solver;
   RollingOptions rolling;
-  rolling.method = study.tangential;
   rolling.motion.speed_m_s = traffic.speed_m_s;
   rolling.motion.yaw_rad = traffic.yaw_rad;
   rolling.friction = traffic.friction;
-  rolling.damage = study.damage;
   problem.rolling = rolling;
 
   const ContactResult result = SolveContact(problem);
@@ -206,10 +202,7 @@ void ValidateWearStudy(const WearStudy& study) {
   RequirePositive("bin_mm", o.bin_m * 1e3);
   RequirePositive("profile_spacing_mm", o.profile_spacing_m * 1e3);
   RequirePositive("damage_layer_mm", o.damage_layer_m * 1e3);
-  if (o.quadrature_points < 1 || o.quadrature_points > 20) {
-    throw InputError(fmt::format("wear: quadrature_points = {}: expected 1 to 20",
-                                 o.quadrature_points));
-  }
+  ValidateQuadraturePoints(o.quadrature_points);
   if (o.threads < 0) {
     throw InputError(fmt::format("wear: threads = {}: expected >= 0 (0: all cores)", o.threads));
   }

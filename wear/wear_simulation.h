@@ -59,16 +59,12 @@ struct WearOptions {
   int threads = 0;
 };
 
-// Everything a wear run needs.
-struct WearStudy {
+// Everything a wear run needs: the contact set-up of every load case (base; rail_material needs
+// hardness_Pa for Archard and KTH, shear_yield_Pa for damage; model a grid model, not Hertz;
+// damage: RCF damage per position), the rail and the traffic mix.
+struct WearStudy : ContactSetup {
   Profile rail_profile;           // the unworn rail, its own frame (as in the scene)
   double cant_ratio = 0.0;        // 1:40 -> 0.025
-  Material wheel_material;
-  Material rail_material;         // hardness_Pa required (Archard, KTH); shear_yield_Pa for damage
-  ModelOptions model;             // a grid model (not Hertz)
-  NormalSolverOptions solver;
-  TangentialMethod tangential = TangentialMethod::kFastsim;
-  bool damage = false;            // the "damage" effect: RCF damage per position
   std::vector<TrafficCase> traffic;
   WearOptions options;
 };

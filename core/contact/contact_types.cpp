@@ -1,4 +1,4 @@
-// Enum names and small helpers of contact_types.h.
+// Enum names (from the tables in contact_types.h) and small helpers of contact_types.h.
 #include "core/contact/contact_types.h"
 
 #include <cmath>
@@ -26,55 +26,18 @@ InfluenceConstantSet InfluenceConstants::ForBody(int sign) const {
 
 int BodyCurvatureSign(double curvature_per_m) { return curvature_per_m > 0 ? -1 : +1; }
 
-std::string_view ToString(GeometryModel v) {
-  return v == GeometryModel::kPlanar ? "planar" : "conformal";
-}
-std::string_view ToString(KernelModel v) {
-  return v == KernelModel::kBoussinesq ? "boussinesq" : "golubenko";
-}
-std::string_view ToString(ModelKind v) {
-  switch (v) {
-    case ModelKind::kHertz: return "hertz";
-    case ModelKind::kHalfspace: return "halfspace";
-    case ModelKind::kConformal: return "conformal";
-    case ModelKind::kCustom: return "custom";
-    case ModelKind::kAuto: return "auto";
-  }
-  return "?";
-}
-std::string_view ToString(AccuracyPreset v) {
-  switch (v) {
-    case AccuracyPreset::kDraft: return "draft";
-    case AccuracyPreset::kStandard: return "standard";
-    case AccuracyPreset::kReference: return "reference";
-    case AccuracyPreset::kFine: return "fine";
-  }
-  return "?";
-}
+std::string_view ToString(KernelModel v) { return EnumToString(kKernelModelNames, v); }
+std::string_view ToString(ModelKind v) { return EnumToString(kModelKindNames, v); }
+std::string_view ToString(AccuracyPreset v) { return EnumToString(kAccuracyPresetNames, v); }
 
-std::optional<GeometryModel> GeometryModelFromString(std::string_view s) {
-  if (s == "planar") return GeometryModel::kPlanar;
-  if (s == "conformal") return GeometryModel::kConformal;
-  return std::nullopt;
-}
 std::optional<KernelModel> KernelModelFromString(std::string_view s) {
-  if (s == "boussinesq") return KernelModel::kBoussinesq;
-  if (s == "golubenko") return KernelModel::kGolubenko;
-  return std::nullopt;
+  return EnumFromString(kKernelModelNames, s);
 }
 std::optional<ModelKind> ModelKindFromString(std::string_view s) {
-  if (s == "hertz") return ModelKind::kHertz;
-  if (s == "halfspace") return ModelKind::kHalfspace;
-  if (s == "conformal") return ModelKind::kConformal;
-  if (s == "auto") return ModelKind::kAuto;
-  return std::nullopt;
+  return EnumFromString(kModelKindNames, s);
 }
 std::optional<AccuracyPreset> AccuracyPresetFromString(std::string_view s) {
-  if (s == "draft") return AccuracyPreset::kDraft;
-  if (s == "standard") return AccuracyPreset::kStandard;
-  if (s == "reference") return AccuracyPreset::kReference;
-  if (s == "fine") return AccuracyPreset::kFine;
-  return std::nullopt;
+  return EnumFromString(kAccuracyPresetNames, s);
 }
 
 ModelOptions MakeModelOptions(ModelKind kind) {

@@ -2,10 +2,14 @@
 // constants, accuracy presets. Units are SI unless the name says otherwise.
 #pragma once
 
+#include <array>
 #include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
+
+#include "core/geometry/geometry_model.h"
+#include "core/numerics/enum_names.h"
 
 namespace railwear {
 
@@ -25,11 +29,6 @@ struct Material {
 // 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2   [Pa]
 double ContactModulus(const Material& a, const Material& b);
 
-// Which surface the contact grid lives on.
-enum class GeometryModel {
-  kPlanar,     // tangent plane of the first contact point, gap along its normal (Model A)
-  kConformal,  // intermediate surface (seed eq. 1), gap by orthogonal projection (seed eq. 2)
-};
 // Which influence function couples pressure to normal displacement.
 enum class KernelModel {
   kBoussinesq,  // half-space, Love's closed form per cell
@@ -41,11 +40,24 @@ enum class KernelModel {
 // the surface turns across the patch.
 enum class ModelKind { kHertz, kHalfspace, kConformal, kCustom, kAuto };
 
-std::string_view ToString(GeometryModel v);
+// The names of each enum, in enum order (core/numerics/enum_names.h): ToString, FromString, the
+// scene's choices and the command line's option values all come from these tables.
+inline constexpr std::array<EnumName<KernelModel>, 2> kKernelModelNames = {{
+    {KernelModel::kBoussinesq, "boussinesq"},
+    {KernelModel::kGolubenko, "golubenko"},
+}};
+// "custom" is printed only: a scene reaches it by an explicit geometry or kernel, not by name.
+inline constexpr std::array<EnumName<ModelKind>, 5> kModelKindNames = {{
+    {ModelKind::kHertz, "hertz"},
+    {ModelKind::kHalfspace, "halfspace"},
+    {ModelKind::kConformal, "conformal"},
+    {ModelKind::kCustom, "custom", /*selectable=*/false},
+    {ModelKind::kAuto, "auto"},
+}};
+
 std::string_view ToString(KernelModel v);
 std::string_view ToString(ModelKind v);
 // Return std::nullopt for an unknown name (the caller reports the error with file and key).
-std::optional<GeometryModel> GeometryModelFromString(std::string_view s);
 std::optional<KernelModel> KernelModelFromString(std::string_view s);
 std::optional<ModelKind> ModelKindFromString(std::string_view s);
 
@@ -92,6 +104,12 @@ int BodyCurvatureSign(double curvature_per_m);
 // resolution.h for the definition and tests/core/contact for the errors they reach on Hertz
 // cases: about 5 %, 1 % and 0.2 % on area and peak pressure).
 enum class AccuracyPreset { kDraft, kStandard, kReference, kFine };
+inline constexpr std::array<EnumName<AccuracyPreset>, 4> kAccuracyPresetNames = {{
+    {AccuracyPreset::kDraft, "draft"},
+    {AccuracyPreset::kStandard, "standard"},
+    {AccuracyPreset::kReference, "reference"},
+    {AccuracyPreset::kFine, "fine"},
+}};
 std::string_view ToString(AccuracyPreset v);
 std::optional<AccuracyPreset> AccuracyPresetFromString(std::string_view s);
 

@@ -27,7 +27,7 @@
 #include <Eigen/Core>
 
 #include "core/contact/contact_types.h"
-#include "core/contact/patch_grid.h"
+#include "core/geometry/patch_grid.h"
 #include "core/contact/tangential_types.h"
 
 namespace railwear {

@@ -108,9 +108,10 @@ ContactEllipse EstimateContactEllipse(const PatchGrid& grid, const Eigen::Vector
   return e;
 }
 
-TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
-                                const RollingInput& in, const FastsimOptions& opt,
-                                FastsimPatch* patch_out) {
+namespace {
+
+void CheckFastsimInput(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                       const RollingInput& in, const FastsimOptions& opt) {
   const int n = grid.cells();
   Require(grid.nx > 0 && grid.ns > 0 && grid.dx_m > 0.0 && grid.ds_m > 0.0,
           "grid must have nx, ns >= 1 and dx, ds > 0");
@@ -130,20 +131,15 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
           "friction = " + std::to_string(in.friction) + ", expected > 0");
   std::string error;
   Require(opt.IsValid(&error), "options: " + error);
+}
 
-  TangentialSolution sol = EmptyTangentialSolution(n);
-  const double dA = grid.CellArea();
-
-  // 1. The contact region: cell count, extents (to the cell faces), centroid, normal force.
-  const ContactEllipse region = EstimateContactEllipse(grid, pressure_Pa);
-  if (region.cells == 0) {
-    sol.status = SolverStatus::kNoContact;
-    sol.message = "no cell carries pressure";
-    return sol;
-  }
+// Steps 1 and 2 of SolveFastsim on the contact region: the patch's normal force, centroid and
+// semi-axes (the options' or the region's), and its average creepages.
+void FitPatch(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa, const RollingInput& in,
+              const FastsimOptions& opt, const ContactEllipse& region, FastsimPatch* out) {
   const int count = region.cells;
   const double fn = region.normal_force_N;
-  FastsimPatch patch;
+  FastsimPatch& patch = *out;
   patch.normal_force_N = fn;
   patch.centroid_x_m = region.centroid_x_m;
   patch.centroid_s_m = region.centroid_s_m;
@@ -163,7 +159,6 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
       patch.semi_axis_s_m = region.semi_axis_s_m;
     }
   }
-  const double a = patch.semi_axis_x_m, b = patch.semi_axis_s_m, c = std::sqrt(a * b);
 
   // 2. Patch-average creepages: least squares of w_x = xi - phi s', w_s = eta + phi x' about
   // the centroid; the normal equations decouple because sum x' = sum s' = 0.
@@ -184,7 +179,22 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
     patch.eta = opt.eta.value_or(ws / count);
     patch.phi_per_m = opt.phi_per_m.value_or(den > 0.0 ? num / den : 0.0);
   }
+}
 
+// Traction rates -dq/dx of sticking material per cell [Pa/m], shape [grid.cells()], and the
+// flexibilities the slip magnitudes use [m/Pa].
+struct TractionRates {
+  Eigen::VectorXd rate_x, rate_s;
+  double lx_slip = 0.0, ls_slip = 0.0;
+};
+
+// Step 3 of SolveFastsim: the flexibilities (into *patch_io) and the traction rates.
+TractionRates CalcTractionRates(const PatchGrid& grid, const RollingInput& in,
+                                const FastsimOptions& opt, FastsimPatch* patch_io) {
+  FastsimPatch& patch = *patch_io;
+  const int n = grid.cells();
+  const double fn = patch.normal_force_N;
+  const double a = patch.semi_axis_x_m, b = patch.semi_axis_s_m, c = std::sqrt(a * b);
   // 3. Flexibilities.
   const double g_mod = opt.shear_modulus_Pa;
   const CreepCoefficients cc = KalkerCoefficients(a / b, opt.poisson_ratio);
@@ -252,7 +262,15 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
       }
     }
   }
+  return {std::move(rate_x), std::move(rate_s), lx_slip, ls_slip};
+}
 
+// Step 4 of SolveFastsim: the bound pressure [Pa] per cell, shape [grid.cells()].
+Eigen::VectorXd CalcBoundPressure(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                                  const FastsimOptions& opt, const FastsimPatch& patch) {
+  const double dA = grid.CellArea();
+  const double fn = patch.normal_force_N;
+  const double a = patch.semi_axis_x_m, b = patch.semi_axis_s_m;
   // 4. The bound pressure.
   Eigen::VectorXd bound_Pa = pressure_Pa.cwiseMax(0.0);
   if (opt.bound == TractionBound::kParabolic) {
@@ -270,7 +288,19 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
     }
     if (sum > 0.0) bound_Pa *= fn / sum;
   }
+  return bound_Pa;
+}
 
+// Step 5 of SolveFastsim: every strip marched from its leading edge; tractions, slip and the
+// stick flag into *sol_io; the numbers of sticking and slipping cells into the last two.
+void MarchStrips(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                 const Eigen::VectorXd& bound_Pa, const TractionRates& rates,
+                 const RollingInput& in, const FastsimOptions& opt, TangentialSolution* sol_io,
+                 double* stick_cells_out, double* slip_cells_out) {
+  TangentialSolution& sol = *sol_io;
+  const Eigen::VectorXd& rate_x = rates.rate_x;
+  const Eigen::VectorXd& rate_s = rates.rate_s;
+  const double lx_slip = rates.lx_slip, ls_slip = rates.ls_slip;
   // 5. March every strip from its leading edge (largest x) to its trailing edge.
   const double mu = in.friction, v = in.speed_m_s;
   const bool euler = opt.march == FastsimMarch::kContactEuler;
@@ -334,7 +364,14 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
       sol.traction_s_Pa[k] = qs;
     }
   }
+  *stick_cells_out = stick_cells;
+  *slip_cells_out = slip_cells;
+}
 
+// Step 6 of SolveFastsim: forces, spin moment and frictional power from the tractions.
+void AddTotals(const PatchGrid& grid, TangentialSolution* sol_io) {
+  TangentialSolution& sol = *sol_io;
+  const double dA = grid.CellArea();
   // 6. Totals.
   for (int j = 0; j < grid.ns; ++j) {
     double fs_strip = 0.0;
@@ -350,6 +387,40 @@ TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pr
     sol.force_s_N += fs_strip;
     sol.force_s_yz_N += fs_strip * grid.tangent_yz[j];
   }
+}
+
+}  // namespace
+
+
+TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                                const RollingInput& in, const FastsimOptions& opt,
+                                FastsimPatch* patch_out) {
+  const int n = grid.cells();
+  CheckFastsimInput(grid, pressure_Pa, in, opt);
+
+  TangentialSolution sol = EmptyTangentialSolution(n);
+  const double dA = grid.CellArea();
+
+  // 1. The contact region: cell count, extents (to the cell faces), centroid, normal force.
+  const ContactEllipse region = EstimateContactEllipse(grid, pressure_Pa);
+  if (region.cells == 0) {
+    sol.status = SolverStatus::kNoContact;
+    sol.message = "no cell carries pressure";
+    return sol;
+  }
+  const int count = region.cells;
+  // 2. Its semi-axes and patch-average creepages.
+  FastsimPatch patch;
+  FitPatch(grid, pressure_Pa, in, opt, region, &patch);
+  // 3. Flexibilities and traction rates.
+  const TractionRates rates = CalcTractionRates(grid, in, opt, &patch);
+  // 4. The bound pressure.
+  const Eigen::VectorXd bound_Pa = CalcBoundPressure(grid, pressure_Pa, opt, patch);
+  // 5. March every strip from its leading edge (largest x) to its trailing edge.
+  double stick_cells = 0, slip_cells = 0;
+  MarchStrips(grid, pressure_Pa, bound_Pa, rates, in, opt, &sol, &stick_cells, &slip_cells);
+  // 6. Totals.
+  AddTotals(grid, &sol);
   sol.stick_area_m2 = stick_cells * dA;
   sol.slip_area_m2 = slip_cells * dA;
   RAILWEAR_CHECK(stick_cells + slip_cells == count);

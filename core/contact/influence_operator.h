@@ -45,7 +45,7 @@
 #include <Eigen/Core>
 
 #include "core/contact/contact_types.h"
-#include "core/contact/patch_grid.h"
+#include "core/geometry/patch_grid.h"
 
 namespace railwear {
 

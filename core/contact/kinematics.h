@@ -18,7 +18,7 @@
 
 #include <Eigen/Core>
 
-#include "core/contact/patch_grid.h"
+#include "core/geometry/patch_grid.h"
 #include "core/contact/tangential_types.h"
 #include "core/geometry/wheel_rail_geometry.h"
 

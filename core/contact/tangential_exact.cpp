@@ -407,35 +407,37 @@ void CheckInputs(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
   RAILWEAR_CHECK(static_cast<int>(grid.tangent_yz.size()) == grid.ns);
 }
 
-}  // namespace
 
-TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
-                                        const RollingInput& in, const Material& wheel,
-                                        const Material& rail, const ExactTangentialOptions& opt) {
-  CheckInputs(grid, pressure_Pa, in, opt);
-  const internal::CerrutiCoefficients coefficients =
-      internal::MakeCerrutiCoefficients(wheel, rail);
+// Step 1 of SolveTangentialExact, the tables of the sweeps: the displacement kernel A / dx on
+// offsets d in [-nx, nx], e in (-ns, ns) (a_*: row length tx, d fastest; c_*: transposed, the s
+// offset fastest, for the refreshes along s), each cell's chain end and each x-column's loaded
+// span.
+struct SweepTables {
+  int nx = 0, ns = 0;
+  int tx = 0;  // table row length (d = -nx .. nx)
+  int col_table = 0;  // c_* entries per x offset
+  std::vector<double> a_xx, a_xs, a_ss;
+  std::vector<double> c_xx, c_xs, c_ss;
+  // Downstream end of each cell's chain: the smallest ix' <= ix with all of ix' .. ix loaded.
+  std::vector<int> chain_end;
+  // Loaded span of each x-column [first, last] in s.
+  std::vector<int> first_loaded_col, last_loaded_col;
+
+  double Table(const std::vector<double>& t, int d, int e) const {
+    return t[static_cast<size_t>(e + ns - 1) * tx + (d + nx)];
+  }
+  // The local diagonal of a chain update at ix with chain end e: (A(0) - A(ix - e + 1)) / dx.
+  void LocalDiagonal(const PatchGrid& grid, int ix, int js, double* dxx, double* dss) const {
+    const int v = chain_end[grid.Index(ix, js)] - 1;
+    *dxx = Table(a_xx, 0, 0) - Table(a_xx, ix - v, 0);
+    *dss = Table(a_ss, 0, 0) - Table(a_ss, ix - v, 0);
+  }
+};
+
+SweepTables MakeSweepTables(const PatchGrid& grid,
+                            const internal::CerrutiCoefficients& coefficients,
+                            const Eigen::VectorXd& pressure_Pa) {
   const int n = grid.cells();
-  const double mu = in.friction;
-
-  TangentialSolution sol = EmptyTangentialSolution(n);
-  const double p_max = pressure_Pa.maxCoeff();
-  if (!(p_max > 0.0)) {
-    sol.status = SolverStatus::kNoContact;
-    sol.message = "no cell carries pressure";
-    return sol;
-  }
-
-  // 1. The rolling operator (for the exact slip of each outer iteration) and the table of the
-  //    displacement kernel A / dx on offsets d in [-nx, nx], e in (-ns, ns) (for the sweeps).
-  const RollingKernel kernel(grid, coefficients);
-  const bool dense = opt.method == ExactTangentialOptions::Method::kDense;
-  std::unique_ptr<RollingOperator> op;
-  if (dense) {
-    op = std::make_unique<DenseRollingOperator>(grid, kernel);
-  } else {
-    op = std::make_unique<FftRollingOperator>(grid, kernel);
-  }
   const int tx = 2 * grid.nx + 1;  // table row length (d = -nx .. nx)
   const int ts = 2 * grid.ns - 1;
   std::vector<double> a_xx(static_cast<size_t>(tx) * ts), a_xs(a_xx.size()), a_ss(a_xx.size());
@@ -487,7 +489,28 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
       c_ss[kc] = table(a_ss, d, e);
     }
   }
-  Eigen::VectorXd sx_col(n), ss_col(n);
+  SweepTables out;
+  out.nx = grid.nx;
+  out.ns = grid.ns;
+  out.tx = tx;
+  out.col_table = col_table;
+  out.a_xx = std::move(a_xx);
+  out.a_xs = std::move(a_xs);
+  out.a_ss = std::move(a_ss);
+  out.c_xx = std::move(c_xx);
+  out.c_xs = std::move(c_xs);
+  out.c_ss = std::move(c_ss);
+  out.chain_end = std::move(chain_end);
+  out.first_loaded_col = std::move(first_loaded_col);
+  out.last_loaded_col = std::move(last_loaded_col);
+  return out;
+}
+
+// The x-columns per block of a sweep.
+int ChooseBlockColumns(const PatchGrid& grid, const SweepTables& tables, bool dense,
+                       const ExactTangentialOptions& opt) {
+  const std::vector<int>& first_loaded_col = tables.first_loaded_col;
+  const std::vector<int>& last_loaded_col = tables.last_loaded_col;
   // Blocks of the sweep: with the dense operator a product costs as much as a sweep of direct
   // refreshes, so one block spans the grid (the plain sweep).
   int block_columns = grid.nx;
@@ -503,12 +526,177 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
     block_columns = FftBlockColumns(grid.nx, grid.ns, cells_loaded,
                                     static_cast<double>(cells_loaded) / columns_loaded);
   }
-  // The local diagonal of a chain update at ix with chain end e: (A(0) - A(ix - e + 1)) / dx.
+  return block_columns;
+}
+
+// The local solution at cell (ix, js) from the current slip sx, ss and traction qx, qs.
+LocalResult LocalSolveAt(const PatchGrid& grid, const SweepTables& tables,
+                         const Eigen::VectorXd& pressure_Pa, double mu, const Eigen::VectorXd& sx,
+                         const Eigen::VectorXd& ss, const Eigen::VectorXd& qx,
+                         const Eigen::VectorXd& qs, int ix, int js) {
+  const int k = grid.Index(ix, js);
+  double dxx = 0.0, dss = 0.0;
+  tables.LocalDiagonal(grid, ix, js, &dxx, &dss);
+  return SolveLocal(sx[k] - dxx * qx[k], ss[k] - dss * qs[k], dxx, dss, mu * pressure_Pa[k]);
+}
+
+// One block (columns block_lo .. block_hi) of a Gauss-Seidel sweep from the leading edge with
+// relaxation w: tractions *qx_io, *qs_io updated chain by chain, the block's slip (from sx, ss)
+// refreshed in the column-major copies *sx_col_io, *ss_col_io.
+void SweepBlock(const PatchGrid& grid, const SweepTables& tables,
+                const Eigen::VectorXd& pressure_Pa, double mu, double w, int block_lo,
+                int block_hi, const Eigen::VectorXd& sx, const Eigen::VectorXd& ss,
+                Eigen::VectorXd* qx_io, Eigen::VectorXd* qs_io, Eigen::VectorXd* sx_col_io,
+                Eigen::VectorXd* ss_col_io) {
+  Eigen::VectorXd& qx = *qx_io;
+  Eigen::VectorXd& qs = *qs_io;
+  Eigen::VectorXd& sx_col = *sx_col_io;
+  Eigen::VectorXd& ss_col = *ss_col_io;
+  const std::vector<int>& chain_end = tables.chain_end;
+  const std::vector<int>& first_loaded_col = tables.first_loaded_col;
+  const std::vector<int>& last_loaded_col = tables.last_loaded_col;
+  const std::vector<double>& c_xx = tables.c_xx;
+  const std::vector<double>& c_xs = tables.c_xs;
+  const std::vector<double>& c_ss = tables.c_ss;
+  const int col_table = tables.col_table;
   auto local_diagonal = [&](int ix, int js, double* dxx, double* dss) {
-    const int v = chain_end[grid.Index(ix, js)] - 1;
-    *dxx = table(a_xx, 0, 0) - table(a_xx, ix - v, 0);
-    *dss = table(a_ss, 0, 0) - table(a_ss, ix - v, 0);
+    tables.LocalDiagonal(grid, ix, js, dxx, dss);
   };
+  // Column-major copy of the block's slip (the refreshes run along s, contiguous).
+  for (int im = block_lo; im <= block_hi; ++im) {
+    for (int jm = 0; jm < grid.ns; ++jm) {
+      const size_t t = static_cast<size_t>(im) * grid.ns + jm;
+      sx_col[t] = sx[grid.Index(im, jm)];
+      ss_col[t] = ss[grid.Index(im, jm)];
+    }
+  }
+  for (int ix = block_hi; ix >= block_lo; --ix) {
+    for (int js = 0; js < grid.ns; ++js) {
+      const int k = grid.Index(ix, js);
+      if (!(pressure_Pa[k] > 0.0)) continue;
+      const size_t t = static_cast<size_t>(ix) * grid.ns + js;
+      double dxx = 0.0, dss = 0.0;
+      local_diagonal(ix, js, &dxx, &dss);
+      const LocalResult loc = SolveLocal(sx_col[t] - dxx * qx[k], ss_col[t] - dss * qs[k],
+                                         dxx, dss, mu * pressure_Pa[k]);
+      const double dqx = w * (loc.qx - qx[k]);
+      const double dqs = w * (loc.qs - qs[k]);
+      if (dqx == 0.0 && dqs == 0.0) continue;
+      // The change moves the whole chain ix .. chain end (the cell and everything downstream
+      // of it up to the contact edge), whose slip is the telescoped sum
+      // (A(m - k) - A(m - v)) / dx, v the virtual cell just beyond the chain end. Refreshed
+      // here: the loaded cells of the block not yet visited (columns block_lo .. ix).
+      const int v = chain_end[k] - 1;
+      for (int i = v + 1; i <= ix; ++i) {
+        qx[grid.Index(i, js)] += dqx;
+        qs[grid.Index(i, js)] += dqs;
+      }
+      for (int im = block_lo; im <= ix; ++im) {
+        // In column ix only the cells after js are still to be visited.
+        const int jm_lo = im == ix ? std::max(js + 1, first_loaded_col[im])
+                                   : first_loaded_col[im];
+        const int len = last_loaded_col[im] - jm_lo + 1;
+        if (len <= 0) continue;
+        // Table entries (d, e = jm - js) for d = im - ix (the cell) and im - v (the virtual
+        // cell), jm = jm_lo ...
+        const size_t e0 = static_cast<size_t>(grid.ns - 1 - js + jm_lo);
+        const size_t r1 = static_cast<size_t>(im - ix + grid.nx) * col_table + e0;
+        const size_t r2 = static_cast<size_t>(im - v + grid.nx) * col_table + e0;
+        const double* __restrict xx1 = c_xx.data() + r1;
+        const double* __restrict xx2 = c_xx.data() + r2;
+        const double* __restrict xs1 = c_xs.data() + r1;
+        const double* __restrict xs2 = c_xs.data() + r2;
+        const double* __restrict ss1 = c_ss.data() + r1;
+        const double* __restrict ss2 = c_ss.data() + r2;
+        const size_t at = static_cast<size_t>(im) * grid.ns + jm_lo;
+        double* __restrict ox = sx_col.data() + at;
+        double* __restrict os = ss_col.data() + at;
+#pragma GCC ivdep
+        for (int j = 0; j < len; ++j) {
+          const double bxs = xs1[j] - xs2[j];
+          ox[j] += (xx1[j] - xx2[j]) * dqx + bxs * dqs;
+          os[j] += bxs * dqx + (ss1[j] - ss2[j]) * dqs;
+        }
+      }
+    }
+  }
+}
+
+// Step 3 of SolveTangentialExact: the returned tractions (the final local solutions), stick
+// flags, slip velocities, forces and frictional power from the last exact slip sx, ss.
+void CollectExactResults(const PatchGrid& grid, const SweepTables& tables,
+                         const Eigen::VectorXd& pressure_Pa, const RollingInput& in,
+                         const Eigen::VectorXd& sx, const Eigen::VectorXd& ss,
+                         TangentialSolution* sol_io) {
+  TangentialSolution& sol = *sol_io;
+  Eigen::VectorXd& qx = sol.traction_x_Pa;
+  Eigen::VectorXd& qs = sol.traction_s_Pa;
+  const double mu = in.friction;
+  auto local_solve = [&](int ix, int js) {
+    return LocalSolveAt(grid, tables, pressure_Pa, mu, sx, ss, qx, qs, ix, js);
+  };
+  const double area = grid.CellArea();
+  const double v = in.speed_m_s;
+  for (int js = 0; js < grid.ns; ++js) {
+    for (int ix = 0; ix < grid.nx; ++ix) {
+      const int k = grid.Index(ix, js);
+      if (!(pressure_Pa[k] > 0.0)) continue;
+      const LocalResult loc = local_solve(ix, js);
+      // The returned traction is the final local solution (it differs from the iterate by at
+      // most the residual): it satisfies the bound exactly, which chain updates of the last
+      // sweep need not.
+      qx[k] = loc.qx;
+      qs[k] = loc.qs;
+      sol.stick[k] = loc.stick ? 1 : 0;
+      if (loc.stick) {
+        sol.stick_area_m2 += area;
+      } else {
+        sol.slip_area_m2 += area;
+        sol.slip_x_m_s[k] = v * sx[k];
+        sol.slip_s_m_s[k] = v * ss[k];
+      }
+      sol.force_x_N += qx[k] * area;
+      sol.force_s_N += qs[k] * area;
+      sol.force_s_yz_N += qs[k] * area * grid.tangent_yz[js];
+      sol.spin_moment_Nm += (grid.X(ix) * qs[k] - grid.S(js) * qx[k]) * area;
+      sol.frictional_power_W +=
+          std::abs(qx[k] * sol.slip_x_m_s[k] + qs[k] * sol.slip_s_m_s[k]) * area;
+    }
+  }
+}
+
+}  // namespace
+
+TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                                        const RollingInput& in, const Material& wheel,
+                                        const Material& rail, const ExactTangentialOptions& opt) {
+  CheckInputs(grid, pressure_Pa, in, opt);
+  const internal::CerrutiCoefficients coefficients =
+      internal::MakeCerrutiCoefficients(wheel, rail);
+  const int n = grid.cells();
+  const double mu = in.friction;
+
+  TangentialSolution sol = EmptyTangentialSolution(n);
+  const double p_max = pressure_Pa.maxCoeff();
+  if (!(p_max > 0.0)) {
+    sol.status = SolverStatus::kNoContact;
+    sol.message = "no cell carries pressure";
+    return sol;
+  }
+
+  // 1. The rolling operator (for the exact slip of each outer iteration) and the table of the
+  //    displacement kernel A / dx on offsets d in [-nx, nx], e in (-ns, ns) (for the sweeps).
+  const RollingKernel kernel(grid, coefficients);
+  const bool dense = opt.method == ExactTangentialOptions::Method::kDense;
+  std::unique_ptr<RollingOperator> op;
+  if (dense) {
+    op = std::make_unique<DenseRollingOperator>(grid, kernel);
+  } else {
+    op = std::make_unique<FftRollingOperator>(grid, kernel);
+  }
+  const SweepTables tables = MakeSweepTables(grid, coefficients, pressure_Pa);
+  Eigen::VectorXd sx_col(n), ss_col(n);
+  const int block_columns = ChooseBlockColumns(grid, tables, dense, opt);
 
   // 2. Iterate: exact slip, convergence check, one Gauss-Seidel sweep from the leading edge.
   Eigen::VectorXd& qx = sol.traction_x_Pa;
@@ -535,10 +723,7 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
     }
   };
   auto local_solve = [&](int ix, int js) {
-    const int k = grid.Index(ix, js);
-    double dxx = 0.0, dss = 0.0;
-    local_diagonal(ix, js, &dxx, &dss);
-    return SolveLocal(sx[k] - dxx * qx[k], ss[k] - dss * qs[k], dxx, dss, mu * pressure_Pa[k]);
+    return LocalSolveAt(grid, tables, pressure_Pa, mu, sx, ss, qx, qs, ix, js);
   };
   for (;;) {
     op->Apply(qx, qs, &sx, &ss);
@@ -571,64 +756,8 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
     gather(&x_start);
     for (int block_hi = grid.nx - 1; block_hi >= 0; block_hi -= block_columns) {
       const int block_lo = std::max(0, block_hi - block_columns + 1);
-      // Column-major copy of the block's slip (the refreshes run along s, contiguous).
-      for (int im = block_lo; im <= block_hi; ++im) {
-        for (int jm = 0; jm < grid.ns; ++jm) {
-          const size_t t = static_cast<size_t>(im) * grid.ns + jm;
-          sx_col[t] = sx[grid.Index(im, jm)];
-          ss_col[t] = ss[grid.Index(im, jm)];
-        }
-      }
-      for (int ix = block_hi; ix >= block_lo; --ix) {
-        for (int js = 0; js < grid.ns; ++js) {
-          const int k = grid.Index(ix, js);
-          if (!(pressure_Pa[k] > 0.0)) continue;
-          const size_t t = static_cast<size_t>(ix) * grid.ns + js;
-          double dxx = 0.0, dss = 0.0;
-          local_diagonal(ix, js, &dxx, &dss);
-          const LocalResult loc = SolveLocal(sx_col[t] - dxx * qx[k], ss_col[t] - dss * qs[k],
-                                             dxx, dss, mu * pressure_Pa[k]);
-          const double dqx = w * (loc.qx - qx[k]);
-          const double dqs = w * (loc.qs - qs[k]);
-          if (dqx == 0.0 && dqs == 0.0) continue;
-          // The change moves the whole chain ix .. chain end (the cell and everything downstream
-          // of it up to the contact edge), whose slip is the telescoped sum
-          // (A(m - k) - A(m - v)) / dx, v the virtual cell just beyond the chain end. Refreshed
-          // here: the loaded cells of the block not yet visited (columns block_lo .. ix).
-          const int v = chain_end[k] - 1;
-          for (int i = v + 1; i <= ix; ++i) {
-            qx[grid.Index(i, js)] += dqx;
-            qs[grid.Index(i, js)] += dqs;
-          }
-          for (int im = block_lo; im <= ix; ++im) {
-            // In column ix only the cells after js are still to be visited.
-            const int jm_lo = im == ix ? std::max(js + 1, first_loaded_col[im])
-                                       : first_loaded_col[im];
-            const int len = last_loaded_col[im] - jm_lo + 1;
-            if (len <= 0) continue;
-            // Table entries (d, e = jm - js) for d = im - ix (the cell) and im - v (the virtual
-            // cell), jm = jm_lo ...
-            const size_t e0 = static_cast<size_t>(grid.ns - 1 - js + jm_lo);
-            const size_t r1 = static_cast<size_t>(im - ix + grid.nx) * col_table + e0;
-            const size_t r2 = static_cast<size_t>(im - v + grid.nx) * col_table + e0;
-            const double* __restrict xx1 = c_xx.data() + r1;
-            const double* __restrict xx2 = c_xx.data() + r2;
-            const double* __restrict xs1 = c_xs.data() + r1;
-            const double* __restrict xs2 = c_xs.data() + r2;
-            const double* __restrict ss1 = c_ss.data() + r1;
-            const double* __restrict ss2 = c_ss.data() + r2;
-            const size_t at = static_cast<size_t>(im) * grid.ns + jm_lo;
-            double* __restrict ox = sx_col.data() + at;
-            double* __restrict os = ss_col.data() + at;
-#pragma GCC ivdep
-            for (int j = 0; j < len; ++j) {
-              const double bxs = xs1[j] - xs2[j];
-              ox[j] += (xx1[j] - xx2[j]) * dqx + bxs * dqs;
-              os[j] += bxs * dqx + (ss1[j] - ss2[j]) * dqs;
-            }
-          }
-        }
-      }
+      SweepBlock(grid, tables, pressure_Pa, mu, w, block_lo, block_hi, sx, ss, &qx, &qs,
+                 &sx_col, &ss_col);
       // The exact slip of the rest (one operator product); the last block needs none, the next
       // iteration starts with one.
       if (block_lo > 0) {
@@ -656,34 +785,7 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
         << threshold << " Pa)";
     sol.message = msg.str();
   }
-  const double area = grid.CellArea();
-  const double v = in.speed_m_s;
-  for (int js = 0; js < grid.ns; ++js) {
-    for (int ix = 0; ix < grid.nx; ++ix) {
-      const int k = grid.Index(ix, js);
-      if (!(pressure_Pa[k] > 0.0)) continue;
-      const LocalResult loc = local_solve(ix, js);
-      // The returned traction is the final local solution (it differs from the iterate by at
-      // most the residual): it satisfies the bound exactly, which chain updates of the last
-      // sweep need not.
-      qx[k] = loc.qx;
-      qs[k] = loc.qs;
-      sol.stick[k] = loc.stick ? 1 : 0;
-      if (loc.stick) {
-        sol.stick_area_m2 += area;
-      } else {
-        sol.slip_area_m2 += area;
-        sol.slip_x_m_s[k] = v * sx[k];
-        sol.slip_s_m_s[k] = v * ss[k];
-      }
-      sol.force_x_N += qx[k] * area;
-      sol.force_s_N += qs[k] * area;
-      sol.force_s_yz_N += qs[k] * area * grid.tangent_yz[js];
-      sol.spin_moment_Nm += (grid.X(ix) * qs[k] - grid.S(js) * qx[k]) * area;
-      sol.frictional_power_W +=
-          std::abs(qx[k] * sol.slip_x_m_s[k] + qs[k] * sol.slip_s_m_s[k]) * area;
-    }
-  }
+  CollectExactResults(grid, tables, pressure_Pa, in, sx, ss, &sol);
   return sol;
 }
 

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 
-#include "core/contact/influence_operator.h"
 #include "core/numerics/check.h"
 
 namespace railwear {
@@ -204,7 +203,7 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
   grid.nx = 2 * half_cells + 1;
   grid.x0_m = -half_cells * o.cell_dx_m;
 
-  if (EstimateOperatorBytes(grid.nx, grid.ns, planar) > o.max_operator_bytes) {
+  if (o.size_accepted && !o.size_accepted(grid)) {
     build.too_large = true;
     return build;
   }

@@ -14,10 +14,11 @@
 // longitudinal range where the wheel's lift x^2 / (2 r) stays below the threshold.
 #pragma once
 
+#include <functional>
 #include <limits>
 
-#include "core/contact/contact_types.h"
-#include "core/contact/patch_grid.h"
+#include "core/geometry/geometry_model.h"
+#include "core/geometry/patch_grid.h"
 #include "core/geometry/wheel_rail_geometry.h"
 
 namespace railwear {
@@ -39,9 +40,11 @@ struct PatchGridOptions {
   // threshold alone can leave a barely touching patch a potential area thousands of times its
   // contact (the threshold is shared by all patches and grows with the largest).
   double trim_approach_m = std::numeric_limits<double>::infinity();
-  // A grid whose influence operator would take more memory than this (EstimateOperatorBytes)
-  // is not built: the result has too_large set and the grid's nx, ns, but no gaps.
-  double max_operator_bytes = std::numeric_limits<double>::infinity();
+  // When set: asked once the grid is sized (nx, ns, dx_m, ds_m, planar set; no points or gaps
+  // yet) whether a grid of that size may be built. The caller decides (the contact stage checks
+  // the memory of the grid's influence operator); false: the grid is not built, the result has
+  // too_large set and the grid's nx, ns, but no gaps. Unset: every size is accepted.
+  std::function<bool(const PatchGrid& sized)> size_accepted;
 };
 
 // Cells kept around the closable cells when trimming (so the contact's edge lies inside).
@@ -52,7 +55,7 @@ struct PatchBuild {
   bool valid = false;           // false when the candidate gives no usable cross-section
   bool lateral_limited = false; // the lateral range stopped at a profile end or a steep normal
   bool trimmed = false;         // trim_approach_m cropped the grid
-  bool too_large = false;       // over max_operator_bytes: not built (valid is false)
+  bool too_large = false;       // size_accepted refused it: not built (valid is false)
 };
 
 PatchBuild BuildPatchGrid(const WheelRailGeometry& geometry, const ContactCandidate& candidate,

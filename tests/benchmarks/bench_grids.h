@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "core/contact/patch_grid.h"
+#include "core/geometry/patch_grid.h"
 
 namespace railwear::bench {
 

@@ -178,7 +178,7 @@ ContactProblem GrooveRollingProblem() {
   ro.friction = kMu;
   ro.motion.speed_m_s = kV;
   ro.creepage = Creepage{-0.01, 0.005, 0.5};  // xi, eta, spin [1/m]
-  ro.damage = true;
+  p.damage = true;
   p.rolling = ro;
   return p;
 }
@@ -203,7 +203,7 @@ ContactProblem GaugeCornerProblem(std::optional<Creepage> creepage = std::nullop
   ro.motion.speed_m_s = kV;
   ro.motion.yaw_rad = 5e-3;
   ro.creepage = creepage;
-  ro.damage = true;
+  p.damage = true;
   p.rolling = ro;
   return p;
 }

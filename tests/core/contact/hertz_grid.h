@@ -3,7 +3,7 @@
 // benchmarks put a Hertz pressure and creepages on.
 #pragma once
 
-#include "core/contact/patch_grid.h"
+#include "core/geometry/patch_grid.h"
 #include "core/contact/tangential_types.h"
 
 namespace railwear::testing {

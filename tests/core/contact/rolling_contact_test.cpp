@@ -102,7 +102,7 @@ TEST(RollingContact, VaryingCreepageChangesFxMarkedly) {
 TEST(RollingContact, DamageOnlyWhenAskedAndNeedsShearYield) {
   ContactProblem p = ConformalExample();
   EXPECT_FALSE(SolveContact(p).patches[0].rolling->damage.has_value());
-  p.rolling->damage = true;
+  p.damage = true;
   EXPECT_THROW(SolveContact(p), InputError);  // no shear yield given
   p.rail_material.shear_yield_Pa = 350e6;
   const ContactResult r = SolveContact(p);

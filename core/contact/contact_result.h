@@ -1,0 +1,79 @@
+// What SolveContact returns: per patch the pressure on its grid (or the Hertz ellipse), the
+// forces and, with rolling contact, the tangential solution and damage; totals and stage times.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/contact/contact_types.h"
+#include "core/contact/damage.h"
+#include "core/contact/hertz.h"
+#include "core/contact/kinematics.h"
+#include "core/contact/normal_solver.h"
+#include "core/contact/tangential_types.h"
+#include "core/geometry/patch_grid.h"
+
+namespace railwear {
+
+// Rolling-contact results of one patch.
+struct RollingPatch {
+  Creepage creepage;  // pressure-weighted patch average of the rigid creepage (kinematics.h)
+  TangentialSolution tangential;
+  double semi_axis_x_m = 0.0, semi_axis_s_m = 0.0;  // of the contact, as the solver used them
+  std::optional<PatchDamage> damage;                // when the damage effect was asked for
+};
+
+struct PatchResult {
+  double area_m2 = 0.0;
+  double p_max_Pa = 0.0;
+  double normal_force_N = 0.0;    // magnitude of the resultant of p over the patch
+  double vertical_force_N = 0.0;  // on the rail, positive downward (+z)
+  double lateral_force_N = 0.0;   // on the rail, positive toward +y (field side)
+  // Pressure centre mapped onto the rail profile, rail profile coordinates [m].
+  Eigen::Vector2d contact_point_yz_m = Eigen::Vector2d::Zero();
+  // Angle of the resultant force on the rail against the vertical [rad]: atan2(lateral,
+  // vertical). Flange-root and gauge-corner contact push the rail toward the field side (+y) and
+  // have large positive angles (40-70 degrees); tread contact a few degrees.
+  double contact_angle_rad = 0.0;
+  int cells = 0;
+  int cells_in_contact = 0;
+  PatchGrid grid;               // empty for the Hertz model
+  Eigen::VectorXd pressure_Pa;  // per grid cell
+  std::optional<HertzSolution> hertz;  // the Hertz model's ellipse
+  std::optional<RollingPatch> rolling;  // when the problem asked for rolling contact
+  // The model this patch was solved with ("hertz", "halfspace", "conformal+boussinesq", ...;
+  // model_selection.h PatchModelLabel), and with kind = auto why it was chosen (empty otherwise).
+  std::string model;
+  std::string model_reason;
+};
+
+struct StageTime {
+  std::string name;
+  double seconds = 0.0;
+};
+
+struct ContactResult {
+  SolverStatus status = SolverStatus::kNotConverged;
+  std::string message;
+  ModelOptions model;
+  double approach_m = 0.0;
+  int iterations = 0;
+  double time_s = 0.0;
+  double area_m2 = 0.0;
+  double p_max_Pa = 0.0;
+  double vertical_force_N = 0.0;
+  double lateral_force_N = 0.0;
+  std::vector<PatchResult> patches;
+  std::vector<StageTime> stages;
+  double pitch_velocity_rad_s = 0.0;  // of the rolling stage (0 without one)
+  // The coupling effect: normal-tangential iterations, and the relative change coupling made to
+  // the total area and the peak pressure against the uncoupled solution (0 without coupling).
+  int coupling_iterations = 0;
+  double coupling_area_change = 0.0;
+  double coupling_p_max_change = 0.0;
+};
+
+}  // namespace railwear

@@ -1,0 +1,31 @@
+// The normal-solve stage of SolveContact: the normal problem over all patch grids solved, and
+// the solution's patches (those with cells in contact) turned into PatchResults. Internal to
+// SolveContact.
+#pragma once
+
+#include <vector>
+
+#include "core/contact/contact_result.h"
+#include "core/contact/normal_solver.h"
+#include "core/contact/potential_area.h"
+#include "core/geometry/wheel_rail_geometry.h"
+
+namespace railwear::internal {
+
+// SolveNormal, timed as the stage "solve".
+NormalSolution SolveNormalStage(const NormalProblem& np, const NormalSolverOptions& options,
+                                std::vector<StageTime>* stages);
+
+// Which grid of the attempt each patch of the result came from, and where its cells start in
+// the NormalProblem's vectors.
+struct KeptPatches {
+  std::vector<int> build;
+  std::vector<int> offset;
+};
+
+// Appends to result->patches one PatchResult per grid with cells in contact (its grid moved out
+// of *builds), labelled with its model (and, with auto_model, the reason).
+KeptPatches CollectPatches(const WheelRailGeometry& geom, PatchBuilds* builds,
+                           const NormalSolution& sol, bool auto_model, ContactResult* result);
+
+}  // namespace railwear::internal

@@ -1,0 +1,26 @@
+// The operator stage of SolveContact: one influence operator per patch grid (the patch's model
+// and the bodies' curvature signs) and the NormalProblem over all patches. Internal to
+// SolveContact.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/contact/contact_problem.h"
+#include "core/contact/influence_operator.h"
+#include "core/contact/normal_solver.h"
+#include "core/contact/potential_area.h"
+
+namespace railwear::internal {
+
+// The operators and the problem that points at them (np.blocks[k] == ops[k].get()).
+struct NormalAssembly {
+  std::vector<std::unique_ptr<InfluenceOperator>> ops;
+  NormalProblem np;
+};
+
+// The grids' operators and the normal problem: per cell the gap, the approach weight (the
+// normal's vertical component) and the cell area, patch after patch; problem's load.
+NormalAssembly AssembleNormalProblem(const PatchBuilds& builds, const ContactProblem& problem);
+
+}  // namespace railwear::internal

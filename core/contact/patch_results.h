@@ -1,0 +1,42 @@
+// The patch-results stage of SolveContact: a solved grid's pressure or a Hertz ellipse turned
+// into a PatchResult (area, peak, forces, pressure centre on the rail), and the measured extent
+// of the contact that the potential-area stage checks its grid against. Internal to SolveContact.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/contact/contact_result.h"
+#include "core/contact/hertz.h"
+#include "core/geometry/patch_grid.h"
+#include "core/geometry/wheel_rail_geometry.h"
+
+namespace railwear::internal {
+
+// Measured extent of the contact on a grid: half-lengths along x and s of the cells with p > 0.
+struct Extent {
+  double half_x = 0.0, half_s = 0.0;
+  double s_lo = 0.0, s_hi = 0.0;  // s range of the cells in contact, cell edges included
+  bool touches_x_edge = false, touches_s_edge = false;
+  int cells = 0;
+};
+// p: pressure per cell [Pa], shape [g.cells()].
+Extent MeasureExtent(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>& p);
+
+// Contact area [m^2] with the edge located inside the boundary cells (a level-set estimate of
+// the zero of p^2; see the .cpp). p: pressure per cell [Pa], shape [g.cells()].
+double SubCellArea(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>& p);
+
+// A grid patch's result from its pressure p [Pa] (shape [grid.cells()]): forces, peak, the
+// sub-cell area and the pressure centre projected onto the rail profile of `geom`.
+PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
+                           const Eigen::Ref<const Eigen::VectorXd>& p);
+
+// The Hertz model's patch at candidate c with ellipse h.
+PatchResult HertzPatch(const ContactCandidate& c, const HertzSolution& h);
+
+// The result with its totals over its patches (area, peak, forces) and its run time time_s [s].
+ContactResult FinishResult(ContactResult r, double time_s);
+
+}  // namespace railwear::internal

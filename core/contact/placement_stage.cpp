@@ -1,0 +1,57 @@
+// The placement stage of SolveContact (placement_stage.h).
+#include "core/contact/placement_stage.h"
+
+#include <fmt/format.h>
+
+#include "core/numerics/input_error.h"
+
+namespace railwear::internal {
+
+void CheckContactProblem(const ContactProblem& problem) {
+  if (problem.load.vertical_force_N.has_value() == problem.load.approach_m.has_value()) {
+    throw InputError("contact load: give exactly one of the vertical force and the approach");
+  }
+  if (!(problem.placement.rolling_radius_m > 0)) {
+    throw InputError(fmt::format("wheel rolling radius = {} mm: expected a positive radius",
+                                 problem.placement.rolling_radius_m * 1e3));
+  }
+  const std::string invalid = problem.solver.Validate();
+  if (!invalid.empty()) throw InputError("normal solver options: " + invalid);
+}
+
+void CheckRollingProblem(const ContactProblem& problem) {
+  if (problem.rolling && problem.model.kind == ModelKind::kHertz) {
+    throw InputError(
+        "rolling contact needs a patch grid: use the halfspace or conformal model, not hertz");
+  }
+  if (problem.rolling && problem.damage && !(problem.rail_material.shear_yield_Pa > 0)) {
+    throw InputError(
+        "materials.rail.shear_yield_MPa is missing: expected the rail's shear yield stress k for "
+        "the damage effect (FI_surf and the shakedown map need it)");
+  }
+  if (problem.rolling && !(problem.rolling->motion.speed_m_s > 0 && problem.rolling->friction > 0)) {
+    throw InputError(fmt::format(
+        "rolling contact: speed = {} m/s and friction = {}: expected both > 0",
+        problem.rolling->motion.speed_m_s, problem.rolling->friction));
+  }
+}
+
+WheelRailGeometry PlaceWheel(const ContactProblem& problem) {
+  const WheelPose pose{problem.placement.lateral_shift_m, problem.placement.roll_rad,
+                       problem.placement.rolling_radius_m};
+  return WheelRailGeometry(problem.wheel_profile, problem.rail_profile, pose);
+}
+
+std::optional<std::string> NoContactBeforeGrid(const ContactProblem& problem,
+                                               const WheelRailGeometry& geom) {
+  if (!geom.has_overlap()) return "the wheel and rail profiles do not overlap laterally";
+  const bool load_given = problem.load.vertical_force_N.has_value();
+  if ((load_given && !(*problem.load.vertical_force_N > 0)) ||
+      (!load_given && !(*problem.load.approach_m > 0))) {
+    return load_given ? std::string("no load: the wheel only touches the rail")
+                      : std::string("no contact: the approach leaves the profiles apart");
+  }
+  return std::nullopt;
+}
+
+}  // namespace railwear::internal

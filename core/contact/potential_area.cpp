@@ -1,0 +1,170 @@
+// The potential-area stage of SolveContact (potential_area.h).
+#include "core/contact/potential_area.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/contact/influence_operator.h"
+#include "core/contact/patch_results.h"
+#include "core/contact/stage_timer.h"
+
+namespace railwear::internal {
+
+namespace {
+
+// Floors keep a degenerate estimate (no Hertz solution, a zero approach) from producing an
+// empty grid; the re-gridding below corrects the cell size from the first solution.
+constexpr double kMinSemiAxis_m = 1e-5, kMinThreshold_m = 1e-8;
+// Initial overlap a cell may show from the first-contact search's tolerance and the gap
+// projections' rounding (both ~1e-10 m) before it counts as a failed gap computation.
+constexpr double kMaxInitialOverlap_m = 1e-7;
+// Re-gridding never makes a patch finer than this many cells across its potential area (the
+// fine preset's patches need about 250).
+constexpr double kMaxCellsAlong = 300.0;
+// Patches carrying at least this share of the load get the preset's cells per semi-axis.
+constexpr double kFullShare = 0.1;
+// ... and at most kMaxCellsAlong scaled alike, but never fewer than this many across.
+constexpr double kMinCellsAlong = 40.0;
+// The crop follows the solved approach with this margin.
+constexpr double kTrimFactor = 1.2;
+
+}  // namespace
+
+PotentialArea::PotentialArea(const ContactProblem& problem, const FirstContactEstimate& first,
+                             double stiffness_ratio_K)
+    : problem_(problem),
+      stiffness_ratio_K_(stiffness_ratio_K),
+      cell_(ChooseCellSize(problem.model, std::max(first.semi_axis_x_m, kMinSemiAxis_m),
+                           std::max(first.semi_axis_s_m, kMinSemiAxis_m))),
+      threshold_(std::max(2.0 * first.delta, kMinThreshold_m)),
+      n_per_axis_(CellsPerSemiAxis(problem.model.accuracy)),
+      cell_fixed_(problem.model.cell_dx_m.has_value() || problem.model.cell_ds_m.has_value()) {}
+
+bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* models,
+                          double approach_now, PatchBuilds* out, ContactResult* result) const {
+  const auto t0 = Clock::now();
+  const std::vector<ContactCandidate> cands = geom.FindCandidates(threshold_);
+  for (const auto& c : cands) {
+    CellSize cc = cell_;
+    for (const auto& m : cell_memory_) {
+      if (c.y_m >= m.y_lo_m && c.y_m <= m.y_hi_m) cc = m.cell;
+    }
+    PatchModelChoice choice = models->ChooseFor(c, approach_now);
+    PatchGridOptions o;
+    o.geometry = choice.geometry;
+    o.cell_dx_m = cc.dx_m;
+    o.cell_ds_m = cc.ds_m;
+    o.threshold_m = threshold_;
+    o.stiffness_ratio_K = stiffness_ratio_K_;
+    o.trim_approach_m = trim_approach_;
+    o.size_accepted = [](const PatchGrid& sized) {
+      return !(EstimateOperatorBytes(sized.nx, sized.ns, sized.planar) > kMaxOperatorBytes);
+    };
+    PatchBuild b = BuildPatchGrid(geom, c, o);
+    if (b.too_large) {
+      // A status, not std::bad_alloc, when a grid outgrows memory (the cell rules of the
+      // re-gridding below keep within it; an explicit cell_mm may not).
+      result->status = SolverStatus::kNotConverged;
+      result->message = fmt::format(
+          "the potential contact area needs a {} x {} grid, whose influence operator would "
+          "take {:.1f} GB (at most {:.0f} GB): choose a coarser accuracy or larger cell_mm",
+          b.grid.nx, b.grid.ns, EstimateOperatorBytes(b.grid.nx, b.grid.ns, b.grid.planar) / 1e9,
+          kMaxOperatorBytes / 1e9);
+      return false;
+    }
+    if (b.valid) {
+      out->builds.push_back(std::move(b));
+      out->cells.push_back({c.y_lo_m, c.y_hi_m, cc});
+      out->cands.push_back(c);
+      out->choices.push_back(std::move(choice));
+    }
+  }
+  AddStage(&result->stages, "grid", SecondsSince(t0));
+  if (out->builds.empty()) {
+    result->status = SolverStatus::kNoContact;
+    result->message = "no usable contact patch (surfaces too steep for a vertical approach)";
+    return false;
+  }
+  for (const PatchBuild& b : out->builds) {
+    // The wheel was lowered to first contact, so no cell may start inside the rail: a
+    // negative initial separation is a geometry failure (a projection that found the wrong
+    // branch), and a solve on it "converges" to nonsense (a lifted wheel on a few cells).
+    if (const double g = b.grid.gap_m.minCoeff(); g < -kMaxInitialOverlap_m) {
+      result->status = SolverStatus::kNotConverged;
+      result->message = fmt::format(
+          "the initial separation is negative ({:.4g} um) in a cell of the potential contact "
+          "area: the gap computation failed there; try the other geometry model",
+          g * 1e6);
+      return false;
+    }
+  }
+  return true;
+}
+
+AreaReview PotentialArea::Review(PatchBuilds* builds, const NormalSolution& sol,
+                                 const Eigen::VectorXd& cell_area_m2, PatchModelMemory* models) {
+  // Decide whether the grid fits the solution (and, for auto, whether a planar patch still
+  // qualifies for the planar grid on its solved extent).
+  AreaReview review;
+  std::vector<CellMemory> next_memory;
+  const double total_load = sol.pressure_Pa.dot(cell_area_m2);
+  int offset = 0;
+  for (size_t k = 0; k < builds->builds.size(); ++k) {
+    const PatchBuild& b = builds->builds[k];
+    CellMemory mem = builds->cells[k];
+    const auto p_k = sol.pressure_Pa.segment(offset, b.grid.cells());
+    const Extent e = MeasureExtent(b.grid, p_k);
+    const double share =
+        total_load > 0.0 ? p_k.sum() * b.grid.CellArea() / total_load : 1.0;
+    offset += b.grid.cells();
+    if (e.cells == 0) continue;
+    if (models->is_auto() && builds->choices[k].model != PatchModel::kConformal &&
+        sol.status == SolverStatus::kConverged) {
+      const bool switched = models->Recheck(builds->cands[k], e, &builds->choices[k]);
+      review.switched = review.switched || switched;
+    }
+    if (e.touches_x_edge || (e.touches_s_edge && !b.lateral_limited)) review.grow = true;
+    if (!cell_fixed_ && regrids_ < 3) {
+      // The preset's cells per semi-axis for every patch that carries at least
+      // kFullShare of the load. A patch that barely touches (a third candidate on a worn
+      // rail: 0.03 mm2 beside 126 mm2) would otherwise be re-gridded into millions of tiny
+      // cells over its potential area, and the curved operator's nx ns^2 memory with them;
+      // its force error is its share times its relative error, so it keeps
+      // n sqrt(share / kFullShare) cells per semi-axis (at least the draft preset's), and
+      // never more than kMaxCellsAlong (scaled alike, at least kMinCellsAlong) across its
+      // potential area.
+      const double weight = std::sqrt(std::min(1.0, share / kFullShare));
+      const double n_patch =
+          std::max(CellsPerSemiAxis(AccuracyPreset::kDraft), n_per_axis_ * weight);
+      const double along = std::max(kMinCellsAlong, kMaxCellsAlong * weight);
+      const CellSize target{std::max(e.half_x / n_patch, b.grid.nx * b.grid.dx_m / along),
+                            std::max(e.half_s / n_patch, b.grid.ns * b.grid.ds_m / along)};
+      if (std::abs(target.dx_m / mem.cell.dx_m - 1.0) > 0.3 ||
+          std::abs(target.ds_m / mem.cell.ds_m - 1.0) > 0.3) {
+        review.regrid = true;
+        mem.cell = target;
+      }
+    }
+    next_memory.push_back(mem);
+  }
+  cell_memory_ = std::move(next_memory);
+  const bool converged = sol.status == SolverStatus::kConverged;
+  review.more_candidates = converged && sol.approach_m > 0.7 * threshold_;
+  // The crop is exact only while the approach stays below the one it was made for.
+  review.outgrew_trim = converged && sol.approach_m > trim_approach_;
+  if (converged) trim_approach_ = kTrimFactor * sol.approach_m;
+  return review;
+}
+
+void PotentialArea::Widen(const AreaReview& review, const NormalSolution& sol) {
+  if (review.grow) threshold_ *= 1.8;
+  if (review.more_candidates) threshold_ = std::max(threshold_, 2.0 * sol.approach_m);
+  if (review.regrid) {
+    ++regrids_;
+    threshold_ = std::max(threshold_, 2.0 * sol.approach_m);
+  }
+}
+
+}  // namespace railwear::internal

@@ -1,0 +1,92 @@
+// The potential-area stage of SolveContact: the grids of the patches, and whether they fit the
+// solution. The potential contact area is not known before the solve. It starts from a Hertz
+// estimate of the approach at the first contact point and is corrected from the solution: the
+// grid grows when pressure reaches its edge, takes in further candidates (two-point contact)
+// when the approach passes their gap, and is re-gridded when the patch turns out larger or
+// smaller than estimated, so that every accuracy preset keeps its number of cells per
+// semi-axis. Internal to SolveContact.
+#pragma once
+
+#include <limits>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/contact/contact_problem.h"
+#include "core/contact/contact_result.h"
+#include "core/contact/grid_resolution.h"
+#include "core/contact/hertz_estimate.h"
+#include "core/contact/model_selection.h"
+#include "core/contact/normal_solver.h"
+#include "core/contact/patch_model_memory.h"
+#include "core/geometry/patch_builder.h"
+#include "core/geometry/wheel_rail_geometry.h"
+
+namespace railwear::internal {
+
+// The cell size of a patch, found again by position (the candidate's interval [y_lo, y_hi]).
+struct CellMemory {
+  double y_lo_m, y_hi_m;
+  CellSize cell;
+};
+
+// The grids of one attempt, one entry per usable candidate.
+struct PatchBuilds {
+  std::vector<PatchBuild> builds;
+  std::vector<CellMemory> cells;
+  std::vector<ContactCandidate> cands;
+  std::vector<PatchModelChoice> choices;
+};
+
+// How the grids of an attempt fit its solution.
+struct AreaReview {
+  bool grow = false;             // pressure reaches the edge of a grid
+  bool regrid = false;           // a patch needs another cell size
+  bool switched = false;         // auto: a planar patch turned conformal on its solved extent
+  bool more_candidates = false;  // the approach passes the threshold: more candidates may touch
+  bool outgrew_trim = false;     // the approach passed the one the grids were cropped for
+  bool Again() const { return grow || regrid || more_candidates || switched || outgrew_trim; }
+};
+
+class PotentialArea {
+ public:
+  // Memory one patch's influence operator may take (the curved one holds about 2 nx ns^2
+  // doubles with its preconditioner, the planar one a few FFT buffers of the padded grid).
+  static constexpr double kMaxOperatorBytes = 4e9;
+
+  // From the first estimate of the approach and patch size; stiffness_ratio_K of seed eq. 1.
+  PotentialArea(const ContactProblem& problem, const FirstContactEstimate& first,
+                double stiffness_ratio_K);
+
+  // The grids at the current threshold, each candidate with its remembered cell size and its
+  // model from *models. false (status and message in *result) when a grid outgrows memory,
+  // no candidate gives a usable grid, or a cell starts inside the rail.
+  bool Build(const WheelRailGeometry& geom, PatchModelMemory* models, double approach_now,
+             PatchBuilds* out, ContactResult* result) const;
+
+  // Checks the grids against the solution sol (cell_area_m2 per cell of all grids, as in the
+  // NormalProblem), remembers each patch's cell size, rechecks auto's planar patches and moves
+  // the crop to the solved approach.
+  AreaReview Review(PatchBuilds* builds, const NormalSolution& sol,
+                    const Eigen::VectorXd& cell_area_m2, PatchModelMemory* models);
+
+  // Widens the threshold for the next attempt after a review that asks for one.
+  void Widen(const AreaReview& review, const NormalSolution& sol);
+
+ private:
+  const ContactProblem& problem_;
+  double stiffness_ratio_K_;
+  CellSize cell_;            // the first estimate's cell size
+  double threshold_;         // vertical-gap threshold bounding the potential area [m]
+  double n_per_axis_;        // the preset's cells per semi-axis
+  bool cell_fixed_;          // an explicit cell size: never re-gridded
+  // Each patch keeps its own cell size once it has been measured (two-point contact: a small
+  // flange patch must not shrink the cells of a large tread patch), found again by position.
+  std::vector<CellMemory> cell_memory_;
+  int regrids_ = 0;
+  // Grids are cropped to the cells an approach of trim_approach could close (patch_builder.h):
+  // unbounded until a solve has measured the approach, then kTrimFactor times the last one.
+  double trim_approach_ = std::numeric_limits<double>::infinity();
+};
+
+}  // namespace railwear::internal
