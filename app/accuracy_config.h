@@ -8,14 +8,15 @@
 #include <vector>
 
 #include "core/contact/contact_solver.h"
+#include "core/numerics/enum_names.h"
 
 namespace railwear::app {
 
 // The model names the command takes (--models, --reference-model).
 inline const std::vector<std::string> kAccuracyModels = {
     "hertz", "halfspace", "conformal+boussinesq", "conformal+golubenko", "auto"};
-inline const std::vector<std::string> kAccuracyLevels = {"draft", "standard", "reference",
-                                                         "fine"};
+// The accuracy presets, coarse to fine, from their name table (core/contact/contact_types.h).
+inline const std::vector<std::string> kAccuracyLevels = EnumChoiceStrings(kAccuracyPresetNames);
 
 struct AccuracyOptions {
   std::string scene_path;

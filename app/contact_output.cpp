@@ -8,14 +8,11 @@
 #include <fmt/format.h>
 
 #include "app/influence_constants_file.h"
+#include "core/numerics/units.h"
 
 namespace railwear::app {
 namespace {
 
-constexpr double kToMm = 1e3;
-constexpr double kToMm2 = 1e6;
-constexpr double kToMPa = 1e-6;
-constexpr double kToMs = 1e3;
 constexpr double kToDeg = 180.0 / std::numbers::pi;
 
 std::vector<PressureSample> GridSamples(const PatchResult& patch, int patch_number) {

@@ -21,13 +21,13 @@
 #include "core/profile/profile_io.h"
 #include "profiles_db/profile_store.h"
 #include "wear/wear_measures.h"
+#include "core/numerics/units.h"
+#include "core/numerics/text_file.h"
 
 namespace railwear::app {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr double kToMm = 1e3;
-constexpr double kToMm2 = 1e6;
 
 // ---------------------------------------------------------------------------------------------
 // Opening the database and finding runs and steps; every failure names the file.
@@ -169,13 +169,6 @@ nlohmann::json ProfileJson(const ProfileStore& db, const RunInfo& run, const Ste
           {"passes", step.passes}, {"mgt", step.mgt},     {"points", profile.size()},
           {"frame", "rail frame: y toward the field side, z downward, mm"},
           {"y_mm", std::move(y)},  {"z_mm", std::move(z)}};
-}
-
-std::string ReadAll(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -344,7 +337,7 @@ void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) 
     const fs::path file = tmp.path() / fmt::format("{}_step{}.{}", run.name, step_number,
                                                    ToString(format));
     WriteProfileFile(profile, file.string());
-    std::cout << ReadAll(file);
+    std::cout << ReadTextFile(file.string()).value_or("");
   }
   std::cerr << fmt::format("railwear: run '{}' step {} ({:.4f} MGT), {} points{}\n", run.name,
                            step_number, step.mgt, profile.size(),

@@ -13,12 +13,12 @@
 
 #include "app/gnuplot.h"
 #include "wear/wear_measures.h"
+#include "core/numerics/units.h"
 
 namespace railwear::app {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr double kToMm = 1e3;
 constexpr const char* kWearDepthKind = "wear_depth_mm";
 // The gauge-corner zoom around the 45-degree point P45 of the unworn profile [mm]: on UIC60 it
 // spans y -40..-10 mm and z -2..20 mm, the corner, the gauge face down to 20 mm and the shoulder.

@@ -15,11 +15,11 @@
 #include "core/numerics/enum_names.h"
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
+#include "core/numerics/units.h"
 
 namespace railwear::app {
 namespace {
 
-constexpr double kMm = 1e-3;   // millimetres -> metres
 constexpr double kMPa = 1e6;   // MPa -> Pa
 constexpr double kMaxRoll_rad = 0.5;  // a wheel rolls by milliradians; 0.5 rad catches typos
 
@@ -29,14 +29,6 @@ const std::vector<std::string_view> kKnownEffects = {"normal", "tangential", "co
 // Whether the scene lists `effect` (scene.effects, as read by ReadSceneTable).
 bool HasEffect(const Scene& scene, std::string_view effect) {
   return std::find(scene.effects.begin(), scene.effects.end(), effect) != scene.effects.end();
-}
-
-std::string ReadTextFile(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open {}", path, what));
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
 }
 
 Fields RequiredTable(const Fields& top, std::string_view key, std::string_view expected) {
@@ -605,7 +597,7 @@ Scene ParseScene(const std::string& text, const std::string& path) {
 }
 
 Scene LoadScene(const std::string& path) {
-  return ParseScene(ReadTextFile(path, "scene file"), path);
+  return ParseScene(ReadInputFile(path, "scene file"), path);
 }
 
 }  // namespace railwear::app

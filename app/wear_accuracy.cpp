@@ -17,13 +17,14 @@
 #include "core/numerics/input_error.h"
 #include "wear/wear_measures.h"
 #include "wear/wear_simulation.h"
+#include "core/numerics/units.h"
 
 namespace railwear::app {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kToMm = 1e3, kToMm2 = 1e6, kToPercent = 100.0;
+constexpr double kToPercent = 100.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Profile errors below this are drawn at it on the log axis [mm] (0.1 um: far below any
 // measurement of a rail profile).

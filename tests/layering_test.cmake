@@ -1,5 +1,6 @@
 # Layering rule (DESIGN.md §2, §8): app -> {wear, calibration, profiles_db} -> core, never back.
 # wear, calibration and profiles_db never include each other; core includes none of them.
+# Inside core: vehicle -> contact -> geometry -> profile -> numerics, never back.
 # SQLite only in profiles_db/*.cpp; CLI11 only in app/; toml++ only in app/; Ceres and GSL never
 # in headers. Run as: cmake -DSOURCE_DIR=<repo> -P tests/layering_test.cmake
 set(violations "")
@@ -21,6 +22,14 @@ endfunction()
 
 check_dir(core "[\"<](app|wear|calibration|profiles_db)/" "core depends on nothing of ours")
 check_dir(core "[\"<](sqlite3\\.h|CLI/|toml\\+\\+/)" "core uses no SQLite, CLI11 or toml++")
+# Inside core, each folder includes only the folders below it.
+check_dir(core/contact "[\"<]core/vehicle/" "core/contact never includes core/vehicle")
+check_dir(core/geometry "[\"<]core/(vehicle|contact)/"
+          "core/geometry never includes core/contact or core/vehicle")
+check_dir(core/profile "[\"<]core/(vehicle|contact|geometry)/"
+          "core/profile includes only core/numerics")
+check_dir(core/numerics "[\"<]core/(vehicle|contact|geometry|profile)/"
+          "core/numerics includes nothing else of core")
 check_dir(wear "[\"<](app|calibration|profiles_db)/"
           "wear never includes app, calibration or profiles_db")
 check_dir(wear "[\"<](sqlite3\\.h|CLI/|toml\\+\\+/)" "wear uses no SQLite, CLI11 or toml++")
