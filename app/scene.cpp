@@ -340,9 +340,8 @@ void CheckRolling(const Fields& top, const Scene& scene) {
   }
   if (scene.damage && !(scene.problem.rail_material.shear_yield_Pa > 0)) {
     throw InputError(fmt::format(
-        "{}:{}: key 'materials.rail.shear_yield_MPa' is missing: expected the rail's shear yield "
-        "stress k in MPa for the damage effect (FI_surf and the shakedown map need it)",
-        top.file(), top.Has("materials") ? LineOf(*top.Node("materials")) : 1));
+        "{}:{}: key 'materials.rail.shear_yield_MPa' is missing: expected {}", top.file(),
+        top.Has("materials") ? LineOf(*top.Node("materials")) : 1, kShearYieldExpected));
   }
   const std::string_view where = scene.wheelset ? "wheelset" : "load";
   if (!scene.friction) {
@@ -531,9 +530,8 @@ void ReadWearScene(const Fields& top, Scene* scene) {
   }
   if (scene->damage && !(study.rail_material.shear_yield_Pa > 0)) {
     throw InputError(fmt::format(
-        "{}:{}: key 'materials.rail.shear_yield_MPa' is missing: expected the rail's shear yield "
-        "stress k in MPa for the damage effect",
-        top.file(), top.Has("materials") ? LineOf(*top.Node("materials")) : 1));
+        "{}:{}: key 'materials.rail.shear_yield_MPa' is missing: expected {}", top.file(),
+        top.Has("materials") ? LineOf(*top.Node("materials")) : 1, kShearYieldExpected));
   }
   if (HasEffect(*scene, "coupling")) {
     throw InputError(fmt::format(

@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "core/contact/damage.h"
 #include "core/geometry/curve_locator.h"
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
@@ -190,8 +191,8 @@ void ValidateWearStudy(const WearStudy& study) {
                                  " hardness for the {} law", ToString(o.law.kind)));
   }
   if (study.damage && !(study.rail_material.shear_yield_Pa > 0.0)) {
-    throw InputError("wear: materials.rail.shear_yield_MPa is missing: expected the rail's shear"
-                     " yield stress for the damage effect");
+    throw InputError(fmt::format("wear: materials.rail.shear_yield_MPa is missing: expected {}",
+                                 kShearYieldExpected));
   }
   if (o.total_passes.has_value() == o.total_mgt.has_value()) {
     throw InputError("wear: expected exactly one of total_passes and total_MGT");

@@ -39,7 +39,13 @@ double SurfaceFatigueIndex(double traction_coefficient, double semi_axis_x_m,
 
 // Regions of Johnson's shakedown map (point contact), by increasing load factor p0/k.
 enum class ShakedownRegime { kElastic, kElasticShakedown, kPlasticShakedown, kRatchetting };
-std::string_view ToString(ShakedownRegime v);  // "elastic", "elastic shakedown", ...
+std::string_view ToString(ShakedownRegime v);
+
+// What the damage effect needs and a scene lacks without materials.rail.shear_yield_MPa: the one
+// wording of that message for scenes, contact problems and wear studies.
+inline constexpr std::string_view kShearYieldExpected =
+    "the rail's shear yield stress k in MPa for the damage effect (FI_surf and the shakedown map "
+    "need it)";  // "elastic", "elastic shakedown", ...
 
 // Limit curves used (Johnson, Contact Mechanics 1985, ch. 9; Ponter, Hearle & Johnson 1985 for
 // point contact), a simplified, documented envelope:

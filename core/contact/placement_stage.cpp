@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include "core/contact/damage.h"
+
 #include "core/numerics/input_error.h"
 
 namespace railwear::internal {
@@ -26,8 +28,7 @@ void CheckRollingProblem(const ContactProblem& problem) {
   }
   if (problem.rolling && problem.damage && !(problem.rail_material.shear_yield_Pa > 0)) {
     throw InputError(
-        "materials.rail.shear_yield_MPa is missing: expected the rail's shear yield stress k for "
-        "the damage effect (FI_surf and the shakedown map need it)");
+        fmt::format("materials.rail.shear_yield_MPa is missing: expected {}", kShearYieldExpected));
   }
   if (problem.rolling && !(problem.rolling->motion.speed_m_s > 0 && problem.rolling->friction > 0)) {
     throw InputError(fmt::format(
