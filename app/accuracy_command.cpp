@@ -7,8 +7,8 @@
 #include <iostream>
 #include <memory>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "app/gnuplot.h"
 #include "app/wear_accuracy.h"
@@ -20,30 +20,35 @@ namespace fs = std::filesystem;
 void SetupAccuracy(CLI::App& app) {
   auto options = std::make_shared<AccuracyOptions>();
   auto no_plot = std::make_shared<bool>(false);
-  CLI::App* sub = app.add_subcommand(
-      "accuracy", "What accuracy costs in time: each model at each accuracy level, time, "
-                  "memory and errors against a reference (table, CSV, Pareto plot)");
+  CLI::App* sub =
+      app.add_subcommand("accuracy",
+                         "What accuracy costs in time: each model at each accuracy level, time, "
+                         "memory and errors against a reference (table, CSV, Pareto plot)");
   sub->add_option("scene", options->scene_path, "Scene file (TOML), one wheel on one rail")
       ->required();
-  CLI::Option* models = sub->add_option("--models", options->models,
-                  "Models, comma-separated: hertz, halfspace, conformal+boussinesq, "
-                  "conformal+golubenko (or conformal), auto (default: all)")
-      ->delimiter(',');
-  CLI::Option* levels = sub->add_option("--levels", options->levels,
-                  "Accuracy levels, comma-separated: draft, standard, reference, fine "
-                  "(default: all; a wear scene: draft, standard, reference)")
-      ->delimiter(',');
+  CLI::Option* models =
+      sub->add_option("--models", options->models,
+                      "Models, comma-separated: hertz, halfspace, conformal+boussinesq, "
+                      "conformal+golubenko (or conformal), auto (default: all)")
+          ->delimiter(',');
+  CLI::Option* levels =
+      sub->add_option("--levels", options->levels,
+                      "Accuracy levels, comma-separated: draft, standard, reference, fine "
+                      "(default: all; a wear scene: draft, standard, reference)")
+          ->delimiter(',');
   sub->add_option("--repeats", options->repeats, "Solves per run; the time is their median")
       ->check(CLI::PositiveNumber);
   sub->add_option("--out", options->out_dir,
                   "Write DIR/accuracy.csv and the Pareto plot DIR/accuracy.png");
   sub->add_flag("--no-plot", *no_plot, "With --out: no plot (gnuplot not needed)");
-  CLI::Option* reference = sub->add_option("--reference", options->reference,
-                  "Compare against this JSON (as `railwear contact --json` writes it; any of "
-                  "total.area_mm2, p_max_MPa, vertical_force_N + lateral_force_N)");
-  CLI::Option* reference_model = sub->add_option("--reference-model", options->reference_model,
-                  "Model whose finest (extrapolated) solution is the reference "
-                  "(default conformal+boussinesq)");
+  CLI::Option* reference =
+      sub->add_option("--reference", options->reference,
+                      "Compare against this JSON (as `railwear contact --json` writes it; any of "
+                      "total.area_mm2, p_max_MPa, vertical_force_N + lateral_force_N)");
+  CLI::Option* reference_model =
+      sub->add_option("--reference-model", options->reference_model,
+                      "Model whose finest (extrapolated) solution is the reference "
+                      "(default conformal+boussinesq)");
   sub->add_option("--step-limits", options->step_limits_mm,
                   "Wear scenes: step limits (max_depth_per_step) in mm, comma-separated "
                   "(default 0.2,0.1,0.05)")
@@ -75,17 +80,19 @@ fs::path CreateOutDir(const std::string& dir) {
 
 void RunWearAccuracy(const Scene& scene, const AccuracyOptions& o) {
   if (o.contact_options_given) {
-    throw InputError(fmt::format("{}: a wear scene runs with its own [model]; --models, "
-                                 "--reference and --reference-model are for contact scenes",
-                                 o.scene_path));
+    throw InputError(
+        fmt::format("{}: a wear scene runs with its own [model]; --models, "
+                    "--reference and --reference-model are for contact scenes",
+                    o.scene_path));
   }
   WearAccuracyOptions w;
   if (o.levels_given) w.levels = o.levels;
   if (o.step_limits_mm) w.step_limits_mm = *o.step_limits_mm;
   w.total_mgt = o.total_mgt;
   w.threads = o.threads;
-  const WearAccuracyStudy study = RunWearAccuracyStudy(
-      scene, w, [](const std::string& line) { std::cerr << "railwear accuracy: " << line << "\n"; });
+  const WearAccuracyStudy study = RunWearAccuracyStudy(scene, w, [](const std::string& line) {
+    std::cerr << "railwear accuracy: " << line << "\n";
+  });
   std::cout << FormatWearAccuracyTable(study) << std::flush;
   if (!o.out_dir) return;
   const fs::path csv = CreateOutDir(*o.out_dir) / "wear_accuracy.csv";
@@ -113,11 +120,14 @@ void RunAccuracy(const AccuracyOptions& o) {
     return;
   }
   if (o.step_limits_mm || o.total_mgt || o.threads > 0) {
-    throw InputError(fmt::format("{}: --step-limits, --mgt and --threads are for wear scenes; "
-                                 "this scene has no wear study", o.scene_path));
+    throw InputError(
+        fmt::format("{}: --step-limits, --mgt and --threads are for wear scenes; "
+                    "this scene has no wear study",
+                    o.scene_path));
   }
-  const AccuracyStudy study = RunAccuracyStudy(
-      scene, o, [](const std::string& line) { std::cerr << "railwear accuracy: " << line << "\n"; });
+  const AccuracyStudy study = RunAccuracyStudy(scene, o, [](const std::string& line) {
+    std::cerr << "railwear accuracy: " << line << "\n";
+  });
   std::cout << FormatAccuracyTable(study) << std::flush;
   if (!o.out_dir) return;
   const fs::path csv = CreateOutDir(*o.out_dir) / "accuracy.csv";

@@ -18,8 +18,8 @@ std::string CanonicalModel(const std::string& name) {
 void CheckName(const std::string& name, const std::vector<std::string>& valid,
                const std::string& what) {
   if (std::find(valid.begin(), valid.end(), name) == valid.end()) {
-    throw InputError(fmt::format("{} '{}': expected one of {}", what, name,
-                                 fmt::join(valid, ", ")));
+    throw InputError(
+        fmt::format("{} '{}': expected one of {}", what, name, fmt::join(valid, ", ")));
   }
 }
 

@@ -24,7 +24,7 @@ struct AccuracyOptions {
   // reference model is run in any case.
   std::vector<std::string> models = kAccuracyModels;
   std::vector<std::string> levels = kAccuracyLevels;  // accuracy presets (Hertz has none)
-  int repeats = 3;                    // solves per run; the time is their median (>= 1)
+  int repeats = 3;                       // solves per run; the time is their median (>= 1)
   std::optional<std::string> out_dir;    // --out DIR: accuracy.csv, accuracy.png
   bool plot = true;                      // --no-plot: no accuracy.png (then no gnuplot needed)
   std::optional<std::string> reference;  // --reference FILE: JSON as `contact --json` writes

@@ -52,8 +52,8 @@ std::string FormatAccuracyTable(const AccuracyStudy& s) {
   if (s.reference.has_area) values += fmt::format("area {:.2f} mm2  ", r.area_m2 * kToMm2);
   if (s.reference.has_p_max) values += fmt::format("p_max {:.1f} MPa  ", r.p_max_Pa * kToMPa);
   if (s.reference.has_force) {
-    values += fmt::format("vertical {:.1f} N  lateral {:.1f} N  ", r.vertical_force_N,
-                          r.lateral_force_N);
+    values +=
+        fmt::format("vertical {:.1f} N  lateral {:.1f} N  ", r.vertical_force_N, r.lateral_force_N);
   }
   if (s.reference.has_creep) {
     values += fmt::format("creep x {:.1f} N  creep y {:.1f} N", *r.creep_x_N, *r.creep_y_N);
@@ -67,16 +67,18 @@ std::string FormatAccuracyTable(const AccuracyStudy& s) {
   out += s.rolling ? fmt::format(" {:>8}", "e_creep%") : std::string();
   out += "  patches\n";
   for (const auto& row : s.rows) {
-    const std::string n = row.cells_per_semi_axis > 0 ? fmt::format("{:.0f}", row.cells_per_semi_axis) : "-";
+    const std::string n =
+        row.cells_per_semi_axis > 0 ? fmt::format("{:.0f}", row.cells_per_semi_axis) : "-";
     const std::string mem =
         std::isnan(row.memory_bytes) ? "-" : fmt::format("{:.1f}", row.memory_bytes * kToMiB);
     const std::string cells =
         row.cells > 0 ? fmt::format("{}({})", row.cells, row.cells_in_contact) : "analytic";
-    out += fmt::format("{:<21} {:<9} {:>4} {:>9.2f} {:>8} {:>15} {:>9.2f} {:>9.1f} {:>9.1f} {:>8} "
-                       "{:>8} {:>8}",
-                       row.model, row.level, n, row.time_median_s * kToMs, mem, cells,
-                       row.q.area_m2 * kToMm2, row.q.p_max_Pa * kToMPa, row.q.lateral_force_N,
-                       Pct(row.err_area), Pct(row.err_p_max), Pct(row.err_force));
+    out += fmt::format(
+        "{:<21} {:<9} {:>4} {:>9.2f} {:>8} {:>15} {:>9.2f} {:>9.1f} {:>9.1f} {:>8} "
+        "{:>8} {:>8}",
+        row.model, row.level, n, row.time_median_s * kToMs, mem, cells, row.q.area_m2 * kToMm2,
+        row.q.p_max_Pa * kToMPa, row.q.lateral_force_N, Pct(row.err_area), Pct(row.err_p_max),
+        Pct(row.err_force));
     if (s.rolling) out += fmt::format(" {:>8}", Pct(row.err_creep));
     out += fmt::format("  {}", row.patch_models);
     if (row.status != SolverStatus::kConverged) {
@@ -94,28 +96,26 @@ void WriteAccuracyCsv(const AccuracyStudy& s, std::ostream& out) {
          "patch_models\n";
   auto opt = [](const std::optional<double>& v) { return v ? CsvNumber(*v) : std::string(); };
   for (const auto& r : s.rows) {
-    out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
-                       CsvField(r.model), CsvField(r.level), CsvNumber(r.cells_per_semi_axis),
-                       ToString(r.status), r.repeats, CsvNumber(r.time_median_s * kToMs),
-                       CsvNumber(r.time_min_s * kToMs), CsvNumber(r.time_max_s * kToMs),
-                       CsvNumber(r.memory_bytes * kToMiB), r.patches, r.cells,
-                       r.cells_in_contact, r.iterations, CsvNumber(r.q.area_m2 * kToMm2, "{:.9g}"),
-                       CsvNumber(r.q.p_max_Pa * kToMPa, "{:.9g}"),
-                       CsvNumber(r.q.vertical_force_N, "{:.9g}"),
-                       CsvNumber(r.q.lateral_force_N, "{:.9g}"), opt(r.q.creep_x_N),
-                       opt(r.q.creep_y_N), CsvNumber(r.err_area * kToPercent),
-                       CsvNumber(r.err_p_max * kToPercent), CsvNumber(r.err_force * kToPercent),
-                       CsvNumber(r.err_creep * kToPercent), CsvField(r.patch_models));
+    out << fmt::format(
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+        CsvField(r.model), CsvField(r.level), CsvNumber(r.cells_per_semi_axis), ToString(r.status),
+        r.repeats, CsvNumber(r.time_median_s * kToMs), CsvNumber(r.time_min_s * kToMs),
+        CsvNumber(r.time_max_s * kToMs), CsvNumber(r.memory_bytes * kToMiB), r.patches, r.cells,
+        r.cells_in_contact, r.iterations, CsvNumber(r.q.area_m2 * kToMm2, "{:.9g}"),
+        CsvNumber(r.q.p_max_Pa * kToMPa, "{:.9g}"), CsvNumber(r.q.vertical_force_N, "{:.9g}"),
+        CsvNumber(r.q.lateral_force_N, "{:.9g}"), opt(r.q.creep_x_N), opt(r.q.creep_y_N),
+        CsvNumber(r.err_area * kToPercent), CsvNumber(r.err_p_max * kToPercent),
+        CsvNumber(r.err_force * kToPercent), CsvNumber(r.err_creep * kToPercent),
+        CsvField(r.patch_models));
   }
   const AccuracyReference& ref = s.reference;
   auto if_has = [](bool has, double v) { return has ? CsvNumber(v, "{:.9g}") : std::string(); };
-  out << fmt::format("reference,{},,,,,,,,,,,,{},{},{},{},{},{},,,,,\n", CsvField(ref.source),
-                     if_has(ref.has_area, ref.q.area_m2 * kToMm2),
-                     if_has(ref.has_p_max, ref.q.p_max_Pa * kToMPa),
-                     if_has(ref.has_force, ref.q.vertical_force_N),
-                     if_has(ref.has_force, ref.q.lateral_force_N),
-                     ref.has_creep ? opt(ref.q.creep_x_N) : std::string(),
-                     ref.has_creep ? opt(ref.q.creep_y_N) : std::string());
+  out << fmt::format(
+      "reference,{},,,,,,,,,,,,{},{},{},{},{},{},,,,,\n", CsvField(ref.source),
+      if_has(ref.has_area, ref.q.area_m2 * kToMm2), if_has(ref.has_p_max, ref.q.p_max_Pa * kToMPa),
+      if_has(ref.has_force, ref.q.vertical_force_N), if_has(ref.has_force, ref.q.lateral_force_N),
+      ref.has_creep ? opt(ref.q.creep_x_N) : std::string(),
+      ref.has_creep ? opt(ref.q.creep_y_N) : std::string());
 }
 
 void PlotAccuracy(const AccuracyStudy& s, const std::string& png_path) {
@@ -135,9 +135,9 @@ void PlotAccuracy(const AccuracyStudy& s, const std::string& png_path) {
     std::string data;
     for (const auto& r : s.rows) {
       if (r.model != models[m] || r.status != SolverStatus::kConverged) continue;
-      data += fmt::format("{:.6g} {} {} {} {} {}\n", r.time_median_s * kToMs, floored(r.err_area),
-                          floored(r.err_p_max), floored(r.err_force), floored(r.err_creep),
-                          r.level);
+      data +=
+          fmt::format("{:.6g} {} {} {} {} {}\n", r.time_median_s * kToMs, floored(r.err_area),
+                      floored(r.err_p_max), floored(r.err_force), floored(r.err_creep), r.level);
     }
     const fs::path file = dir.path() / fmt::format("model{}.dat", m);
     std::ofstream(file) << data;
@@ -147,8 +147,8 @@ void PlotAccuracy(const AccuracyStudy& s, const std::string& png_path) {
     int column;
     const char* label;
   };
-  std::vector<Panel> panels = {{2, "area error [%]"}, {3, "peak pressure error [%]"},
-                               {4, "total force error [%]"}};
+  std::vector<Panel> panels = {
+      {2, "area error [%]"}, {3, "peak pressure error [%]"}, {4, "total force error [%]"}};
   if (s.rolling && s.reference.has_creep) panels.push_back({5, "creep force error [%]"});
   std::ostringstream g;
   g << GnuplotPngTerminal(520 * static_cast<int>(panels.size()), 560);
@@ -164,8 +164,8 @@ void PlotAccuracy(const AccuracyStudy& s, const std::string& png_path) {
     g << "set ylabel " << GnuplotQuote(panel.label) << "\nplot ";
     for (size_t m = 0; m < models.size(); ++m) {
       const std::string f = GnuplotQuote(files[m]);
-      g << (m ? ", " : "") << f << fmt::format(" using 1:{} with linespoints pt 7 lw 2 lc {} title ",
-                                               panel.column, m + 1)
+      g << (m ? ", " : "") << f
+        << fmt::format(" using 1:{} with linespoints pt 7 lw 2 lc {} title ", panel.column, m + 1)
         << GnuplotQuote(models[m]) << ", " << f
         << fmt::format(" using 1:{}:6 with labels offset 0,0.8 font ',8' tc lt {} notitle",
                        panel.column, m + 1);

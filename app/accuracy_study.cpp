@@ -75,7 +75,6 @@ double Median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-
 AccuracyQuantities QuantitiesOf(const ContactResult& r) {
   AccuracyQuantities q;
   q.area_m2 = r.area_m2;
@@ -120,9 +119,10 @@ AccuracyRow RunOne(const ContactProblem& base, const std::string& model, const s
   row.time_median_s = Median(times);
   row.time_min_s = *std::min_element(times.begin(), times.end());
   row.time_max_s = *std::max_element(times.begin(), times.end());
-  row.memory_bytes = std::any_of(memory.begin(), memory.end(), [](double m) { return std::isnan(m); })
-                         ? kNaN
-                         : Median(memory);
+  row.memory_bytes =
+      std::any_of(memory.begin(), memory.end(), [](double m) { return std::isnan(m); })
+          ? kNaN
+          : Median(memory);
   row.status = r.status;
   row.message = r.message;
   row.iterations = r.iterations;
@@ -140,15 +140,15 @@ AccuracyRow RunOne(const ContactProblem& base, const std::string& model, const s
 
 // ---------------------------------------------------------------------------------------------
 // The reference from the reference model's runs.
-AccuracyReference ReferenceFromRuns(const std::vector<AccuracyRow>& rows,
-                                    const std::string& model, bool rolling) {
+AccuracyReference ReferenceFromRuns(const std::vector<AccuracyRow>& rows, const std::string& model,
+                                    bool rolling) {
   std::vector<const AccuracyRow*> runs;
   for (const auto& r : rows) {
     if (r.model == model && r.status == SolverStatus::kConverged) runs.push_back(&r);
   }
   if (runs.empty()) {
-    throw std::runtime_error(fmt::format(
-        "the reference model {} converged at no level; no errors can be given", model));
+    throw std::runtime_error(
+        fmt::format("the reference model {} converged at no level; no errors can be given", model));
   }
   std::sort(runs.begin(), runs.end(), [](const AccuracyRow* a, const AccuracyRow* b) {
     return a->cells_per_semi_axis < b->cells_per_semi_axis;
@@ -164,16 +164,16 @@ AccuracyReference ReferenceFromRuns(const std::vector<AccuracyRow>& rows,
     const double finest = get(*runs[n - 1]);
     if (n >= 3 && model != "hertz") {
       const AccuracyRow &a = *runs[n - 3], &b = *runs[n - 2], &c = *runs[n - 1];
-      const auto e = ExtrapolateRichardson(1.0 / a.cells_per_semi_axis, get(a),
-                                           1.0 / b.cells_per_semi_axis, get(b),
-                                           1.0 / c.cells_per_semi_axis, get(c));
+      const auto e =
+          ExtrapolateRichardson(1.0 / a.cells_per_semi_axis, get(a), 1.0 / b.cells_per_semi_axis,
+                                get(b), 1.0 / c.cells_per_semi_axis, get(c));
       if (e) {
         ref.how.emplace_back(name, fmt::format("extrapolated, order {:.2f}", e->order));
         return e->value;
       }
       const double scale = std::max({std::abs(get(a)), std::abs(get(b)), std::abs(get(c))});
-      const bool settled = std::abs(get(a) - get(b)) <= 1e-9 * scale &&
-                           std::abs(get(b) - get(c)) <= 1e-9 * scale;
+      const bool settled =
+          std::abs(get(a) - get(b)) <= 1e-9 * scale && std::abs(get(b) - get(c)) <= 1e-9 * scale;
       ref.how.emplace_back(
           name, fmt::format("{} level ({})", runs[n - 1]->level,
                             settled ? "the same at every level"
@@ -206,20 +206,23 @@ AccuracyReference ReferenceFromFile(const std::string& path, bool rolling) {
   try {
     j = nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(fmt::format("{}: not JSON ({}); expected the JSON of `railwear contact "
-                                 "--json`", path, e.what()));
+    throw InputError(
+        fmt::format("{}: not JSON ({}); expected the JSON of `railwear contact "
+                    "--json`",
+                    path, e.what()));
   }
   if (!j.is_object() || !j.contains(contact_json::kTotal) || !j[contact_json::kTotal].is_object()) {
-    throw InputError(fmt::format(
-        "{}: no object 'total'; expected the JSON of `railwear contact --json` with "
-        "total.area_mm2, total.p_max_MPa, ...", path));
+    throw InputError(
+        fmt::format("{}: no object 'total'; expected the JSON of `railwear contact --json` with "
+                    "total.area_mm2, total.p_max_MPa, ...",
+                    path));
   }
   const nlohmann::json& t = j[contact_json::kTotal];
   auto number = [&](const char* key) -> std::optional<double> {
     if (!t.contains(key)) return std::nullopt;
     if (!t[key].is_number() || !std::isfinite(t[key].get<double>())) {
-      throw InputError(fmt::format("{}: key 'total.{}' = {}: expected a finite number", path,
-                                   key, t[key].dump()));
+      throw InputError(fmt::format("{}: key 'total.{}' = {}: expected a finite number", path, key,
+                                   t[key].dump()));
     }
     return t[key].get<double>();
   };
@@ -227,16 +230,16 @@ AccuracyReference ReferenceFromFile(const std::string& path, bool rolling) {
   ref.source = path;
   if (const auto a = number(contact_json::kAreaMm2)) {
     if (!(*a > 0)) {
-      throw InputError(fmt::format("{}: key 'total.area_mm2' = {}: expected a positive area",
-                                   path, *a));
+      throw InputError(
+          fmt::format("{}: key 'total.area_mm2' = {}: expected a positive area", path, *a));
     }
     ref.q.area_m2 = *a / kToMm2;
     ref.has_area = true;
   }
   if (const auto p = number(contact_json::kPMaxMPa)) {
     if (!(*p > 0)) {
-      throw InputError(fmt::format(
-          "{}: key 'total.p_max_MPa' = {}: expected a positive pressure", path, *p));
+      throw InputError(
+          fmt::format("{}: key 'total.p_max_MPa' = {}: expected a positive pressure", path, *p));
     }
     ref.q.p_max_Pa = *p / kToMPa;
     ref.has_p_max = true;
@@ -268,7 +271,8 @@ AccuracyReference ReferenceFromFile(const std::string& path, bool rolling) {
   if (!ref.has_area && !ref.has_p_max && !ref.has_force) {
     throw InputError(fmt::format(
         "{}: 'total' holds none of area_mm2, p_max_MPa, vertical_force_N + lateral_force_N; "
-        "expected at least one to compare with", path));
+        "expected at least one to compare with",
+        path));
   }
   for (const char* k : {"area", "p_max", "force", "creep"}) ref.how.emplace_back(k, "file");
   return ref;
@@ -280,19 +284,18 @@ void SetErrors(const AccuracyReference& ref, AccuracyRow* row) {
   const bool ok = row->status == SolverStatus::kConverged;
   row->err_area = ok && ref.has_area ? RelErr(row->q.area_m2, ref.q.area_m2) : kNaN;
   row->err_p_max = ok && ref.has_p_max ? RelErr(row->q.p_max_Pa, ref.q.p_max_Pa) : kNaN;
-  row->err_force =
-      ok && ref.has_force
-          ? std::hypot(row->q.lateral_force_N - ref.q.lateral_force_N,
-                       row->q.vertical_force_N - ref.q.vertical_force_N) /
-                std::hypot(ref.q.lateral_force_N, ref.q.vertical_force_N)
-          : kNaN;
+  row->err_force = ok && ref.has_force
+                       ? std::hypot(row->q.lateral_force_N - ref.q.lateral_force_N,
+                                    row->q.vertical_force_N - ref.q.vertical_force_N) /
+                             std::hypot(ref.q.lateral_force_N, ref.q.vertical_force_N)
+                       : kNaN;
   row->err_creep = kNaN;
   if (ok && ref.has_creep && row->q.creep_x_N) {
     const double norm = std::hypot(*ref.q.creep_x_N, *ref.q.creep_y_N);
     if (norm > 0) {
-      row->err_creep = std::hypot(*row->q.creep_x_N - *ref.q.creep_x_N,
-                                  *row->q.creep_y_N - *ref.q.creep_y_N) /
-                       norm;
+      row->err_creep =
+          std::hypot(*row->q.creep_x_N - *ref.q.creep_x_N, *row->q.creep_y_N - *ref.q.creep_y_N) /
+          norm;
     }
   }
 }
@@ -327,7 +330,8 @@ AccuracyStudy RunAccuracyStudy(const Scene& scene, const AccuracyOptions& o,
   if (scene.wheelset) {
     throw InputError(fmt::format(
         "{}: the scene places a wheelset ([track], [wheelset]); expected one wheel on one rail "
-        "([load]): `railwear accuracy` compares the models on one contact", scene.path));
+        "([load]): `railwear accuracy` compares the models on one contact",
+        scene.path));
   }
   const AccuracyPlan plan = MakeAccuracyPlan(o);
   const std::vector<std::string>& levels = plan.levels;
@@ -352,15 +356,17 @@ AccuracyStudy RunAccuracyStudy(const Scene& scene, const AccuracyOptions& o,
   }
   for (const auto& model : runs) {
     if (model == "hertz" && study.rolling) {
-      study.notes.push_back("hertz left out: the scene rolls and Hertz has no grid for the "
-                            "tangential stage");
+      study.notes.push_back(
+          "hertz left out: the scene rolls and Hertz has no grid for the "
+          "tangential stage");
       continue;
     }
     const std::vector<std::string> model_levels =
         model == "hertz" ? std::vector<std::string>{"analytic"} : levels;
     for (const auto& level : model_levels) {
-      if (progress) progress(fmt::format("{} {} ({} solve{})", model, level, o.repeats,
-                                         o.repeats == 1 ? "" : "s"));
+      if (progress)
+        progress(
+            fmt::format("{} {} ({} solve{})", model, level, o.repeats, o.repeats == 1 ? "" : "s"));
       study.rows.push_back(RunOne(scene.problem, model, level, o.repeats));
     }
   }

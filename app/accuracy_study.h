@@ -30,8 +30,8 @@ struct AccuracyQuantities {
 
 // One model at one level.
 struct AccuracyRow {
-  std::string model;  // as in kAccuracyModels
-  std::string level;  // preset name, "analytic" for Hertz
+  std::string model;                 // as in kAccuracyModels
+  std::string level;                 // preset name, "analytic" for Hertz
   double cells_per_semi_axis = 0.0;  // 0 for Hertz
   SolverStatus status = SolverStatus::kNotConverged;
   std::string message;

@@ -6,8 +6,8 @@
 #include <memory>
 #include <stdexcept>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "app/calibrate_config.h"
 #include "app/calibrate_output.h"
@@ -25,13 +25,16 @@ void SetupCalibrate(CLI::App& app) {
       "calibrate",
       "Fit the influence constants c_f, c_z, c_s (seed eq. 4) to displacement curves and contact "
       "results; write an influence-constants TOML for scenes");
-  cmd->add_option("config", o->config, "Calibration config (TOML; see `railwear calibrate "
-                                       "--help` and the README)")
+  cmd->add_option("config", o->config,
+                  "Calibration config (TOML; see `railwear calibrate "
+                  "--help` and the README)")
       ->required();
-  cmd->add_option("--out", o->out, "Constants file to write (default: [calibration] out, else "
-                                   "CONFIG-STEM_constants.toml beside the config)");
-  cmd->add_option("--db", o->db, "Store the calibration and its inputs in this study database "
-                                 "(default: [calibration] db, if any)");
+  cmd->add_option("--out", o->out,
+                  "Constants file to write (default: [calibration] out, else "
+                  "CONFIG-STEM_constants.toml beside the config)");
+  cmd->add_option("--db", o->db,
+                  "Store the calibration and its inputs in this study database "
+                  "(default: [calibration] db, if any)");
   cmd->add_option("--json", o->json, "Write everything as JSON to FILE, or '-' for stdout");
   cmd->add_option("--csv", o->csv, "Write every point's residual before and after to FILE");
   cmd->add_flag("--verbose", o->verbose, "Print Ceres's full report");
@@ -49,10 +52,11 @@ void RunCalibrate(const CalibrateOptions& o) {
   InfluenceFitData data;
   for (const CalibrateCurveEntry& e : config.curves) data.curves.push_back(e.data);
   for (const CalibrateContactEntry& e : config.contacts) data.contacts.push_back(e.target);
-  std::cerr << fmt::format("railwear: fitting {} constant(s) to {} curve file(s) and {} contact "
-                           "result(s)...\n",
-                           config.fit.fit.size() * (config.fit.separate_bodies ? 2 : 1),
-                           config.curves.size(), config.contacts.size());
+  std::cerr << fmt::format(
+      "railwear: fitting {} constant(s) to {} curve file(s) and {} contact "
+      "result(s)...\n",
+      config.fit.fit.size() * (config.fit.separate_bodies ? 2 : 1), config.curves.size(),
+      config.contacts.size());
   const InfluenceFitSummary s = FitInfluenceConstants(data, config.fit);
 
   const bool json_stdout = o.json && *o.json == "-";

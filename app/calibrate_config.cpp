@@ -18,7 +18,6 @@ namespace railwear::app {
 namespace fs = std::filesystem;
 namespace {
 
-
 // A file named by `key` in `t`, resolved against the config's folder; it must exist.
 std::string ExistingFile(const Fields& t, std::string_view key, const std::string& config,
                          std::string_view what) {
@@ -45,8 +44,9 @@ void ReadCalibrationTable(const Fields& top, CalibrateConfig* c) {
         "a non-empty array of distinct names of 'c_f', 'c_z', 'c_s'");
   }
   c->fit.separate_bodies = t->Bool("separate_bodies").value_or(false);
-  if (const auto start = t->Table("start", "an inline table { c_f, c_z, c_s } or "
-                                           "{ convex = {...}, concave = {...} }")) {
+  if (const auto start = t->Table("start",
+                                  "an inline table { c_f, c_z, c_s } or "
+                                  "{ convex = {...}, concave = {...} }")) {
     c->fit.start = ReadInfluenceConstantsTable(*start);
     if (c->fit.start.IsSeparate() && !c->fit.separate_bodies) {
       t->Fail("start", "one set { c_f, c_z, c_s } (separate_bodies = false)");
@@ -104,17 +104,18 @@ void ReadContactEntries(const Fields& top, CalibrateConfig* c) {
       // A fem-reference result file: its scene and its finest level's area and peak pressure.
       for (const char* key : {"scene", "area_mm2", "p_max_MPa"}) {
         if (t.Has(key)) {
-          t.Fail(key, "no scene, area_mm2 or p_max_MPa with fem_result (the result file holds "
-                      "them)");
+          t.Fail(key,
+                 "no scene, area_mm2 or p_max_MPa with fem_result (the result file holds "
+                 "them)");
         }
       }
       e.fem_result = ExistingFile(t, "fem_result", c->path, "a fem-reference contact result");
       const FemContactTarget fem = ReadFemContactTarget(e.fem_result);  // FILE:LINE messages
       prefix = FieldPrefix(t.file(), *t.Node("fem_result"), t.KeyName("fem_result"));
       if (fem.status != "ok" || fem.scene.empty()) {
-        throw InputError(fmt::format(
-            "{}: the result has status '{}'{}; expected status 'ok' and a scene", prefix,
-            fem.status, fem.scene.empty() ? " and no scene" : ""));
+        throw InputError(
+            fmt::format("{}: the result has status '{}'{}; expected status 'ok' and a scene",
+                        prefix, fem.status, fem.scene.empty() ? " and no scene" : ""));
       }
       e.scene = fem.scene;
       e.target.area_m2 = fem.area_mm2 / kToMm2;
@@ -133,9 +134,10 @@ void ReadContactEntries(const Fields& top, CalibrateConfig* c) {
     }
     const ModelOptions& m = e.loaded.problem.model;
     if (m.kind == ModelKind::kHertz || m.kernel != KernelModel::kGolubenko) {
-      throw InputError(fmt::format("{}: its model ({}, kernel {}) does not use the influence "
-                                   "constants; expected kind = \"conformal\" (golubenko kernel)",
-                                   prefix, ToString(m.kind), ToString(m.kernel)));
+      throw InputError(
+          fmt::format("{}: its model ({}, kernel {}) does not use the influence "
+                      "constants; expected kind = \"conformal\" (golubenko kernel)",
+                      prefix, ToString(m.kind), ToString(m.kernel)));
     }
     e.target.name = e.scene;
     e.target.problem = e.loaded.problem;
@@ -160,9 +162,10 @@ CalibrateConfig ReadCalibrateConfig(const std::string& path) {
   ReadCurveEntries(top, &c);
   ReadContactEntries(top, &c);
   if (c.curves.empty() && c.contacts.empty()) {
-    throw InputError(fmt::format("{}:1: no data: expected at least one [[displacement_curves]] "
-                                 "or [[contact_results]] table",
-                                 path));
+    throw InputError(
+        fmt::format("{}:1: no data: expected at least one [[displacement_curves]] "
+                    "or [[contact_results]] table",
+                    path));
   }
   return c;
 }

@@ -53,23 +53,23 @@ nlohmann::json CorrelationJson(const InfluenceFitSummary& s) {
 }
 
 nlohmann::json CurveJson(const CurveFitReport& c, bool points) {
-  nlohmann::json j = {{"file", c.file},
-                      {"body", ToString(c.body)},
-                      {"radius_mm", c.radius_m / kMm},
-                      {"load", ToString(c.load)},
-                      {"path", ToString(c.path)},
-                      {"weight", c.weight},
-                      {"points", c.points.size()},
-                      {"points_left_out", c.points_left_out},
-                      {"scale_nm_per_N", c.scale_m_per_N * kToNm},
-                      {"offset_before_nm_per_N", c.offset_before_m_per_N * kToNm},
-                      {"offset_after_nm_per_N", c.offset_after_m_per_N * kToNm},
-                      {"offset_standard_error_nm_per_N",
-                       Num(c.offset_standard_error_m_per_N * kToNm)},
-                      {"rms_before", c.rms_before},
-                      {"max_before", c.max_before},
-                      {"rms_after", c.rms_after},
-                      {"max_after", c.max_after}};
+  nlohmann::json j = {
+      {"file", c.file},
+      {"body", ToString(c.body)},
+      {"radius_mm", c.radius_m / kMm},
+      {"load", ToString(c.load)},
+      {"path", ToString(c.path)},
+      {"weight", c.weight},
+      {"points", c.points.size()},
+      {"points_left_out", c.points_left_out},
+      {"scale_nm_per_N", c.scale_m_per_N * kToNm},
+      {"offset_before_nm_per_N", c.offset_before_m_per_N * kToNm},
+      {"offset_after_nm_per_N", c.offset_after_m_per_N * kToNm},
+      {"offset_standard_error_nm_per_N", Num(c.offset_standard_error_m_per_N * kToNm)},
+      {"rms_before", c.rms_before},
+      {"max_before", c.max_before},
+      {"rms_after", c.rms_after},
+      {"max_after", c.max_after}};
   if (!points) return j;
   nlohmann::json list = nlohmann::json::array();
   for (const CurvePointResidual& p : c.points) {
@@ -153,13 +153,12 @@ std::vector<CalibrationInput> Inputs(const CalibrateConfig& c) {
   std::vector<CalibrationInput> in;
   in.push_back({"config", c.path, c.text});
   for (const CalibrateCurveEntry& e : c.curves) {
-    in.push_back(
-        {"displacement_curves", e.file, ReadInputFile(e.file, "the displacement curves")});
+    in.push_back({"displacement_curves", e.file, ReadInputFile(e.file, "the displacement curves")});
   }
   for (const CalibrateContactEntry& e : c.contacts) {
     if (!e.fem_result.empty()) {
-      in.push_back({"fem_result", e.fem_result,
-                    ReadInputFile(e.fem_result, "the fem-reference result")});
+      in.push_back(
+          {"fem_result", e.fem_result, ReadInputFile(e.fem_result, "the fem-reference result")});
     }
     in.push_back({"scene", e.scene, e.loaded.text});
     for (const std::string& spec : {e.loaded.wheel_profile_spec, e.loaded.rail_profile_spec}) {
@@ -201,9 +200,10 @@ std::string CalibrateReportText(const CalibrateConfig& c, const InfluenceFitSumm
     points += static_cast<int>(r.points.size());
     left_out += r.points_left_out;
   }
-  o += fmt::format("data         {} displacement-curve file(s), {} curve(s), {} point(s) ({} "
-                   "outside the windows); {} contact result(s)\n",
-                   c.curves.size(), s.curves.size(), points, left_out, c.contacts.size());
+  o += fmt::format(
+      "data         {} displacement-curve file(s), {} curve(s), {} point(s) ({} "
+      "outside the windows); {} contact result(s)\n",
+      c.curves.size(), s.curves.size(), points, left_out, c.contacts.size());
   for (const CalibrateCurveEntry& e : c.curves) {
     const DisplacementCurves& d = e.data.curves;
     const std::string body = d.body == CurveBody::kFlat
@@ -214,8 +214,8 @@ std::string CalibrateReportText(const CalibrateConfig& c, const InfluenceFitSumm
             ? fmt::format("{:g}-{:g} mm", e.data.min_distance_m / kMm, e.data.max_distance_m / kMm)
             : fmt::format(">= {:g} mm", e.data.min_distance_m / kMm);
     o += fmt::format("  {}: {}, E {:g} MPa, nu {:g}, weight {:g}, window {}\n", e.file, body,
-                     d.material.youngs_modulus_Pa * kToMPa, d.material.poisson_ratio,
-                     e.data.weight, window);
+                     d.material.youngs_modulus_Pa * kToMPa, d.material.poisson_ratio, e.data.weight,
+                     window);
   }
   for (const CalibrateContactEntry& e : c.contacts) {
     o += fmt::format("  {}: target area {:.2f} mm2, p_max {:.1f} MPa, weight {:g} ({} accuracy)\n",
@@ -258,12 +258,13 @@ std::string CalibrateReportText(const CalibrateConfig& c, const InfluenceFitSumm
   }
   std::string sv;
   for (double v : s.singular_values) sv += fmt::format("{}{:.3g}", sv.empty() ? "" : " ", v);
-  o += fmt::format("\nconditioning {}: condition number {:.3g} of the column-scaled Jacobian "
-                   "(singular values {}); residual s = {:.4g} (relative to each curve's RMS); "
-                   "{} residuals, {} free parameters\n",
-                   s.well_conditioned ? "well conditioned" : "BADLY CONDITIONED",
-                   s.condition_number, sv.empty() ? "-" : sv, std::sqrt(s.residual_variance),
-                   s.num_residuals, s.num_free_parameters);
+  o += fmt::format(
+      "\nconditioning {}: condition number {:.3g} of the column-scaled Jacobian "
+      "(singular values {}); residual s = {:.4g} (relative to each curve's RMS); "
+      "{} residuals, {} free parameters\n",
+      s.well_conditioned ? "well conditioned" : "BADLY CONDITIONED", s.condition_number,
+      sv.empty() ? "-" : sv, std::sqrt(s.residual_variance), s.num_residuals,
+      s.num_free_parameters);
   for (const auto& w : s.warnings) o += "  warning: " + w + "\n";
 
   if (!s.curves.empty()) {
@@ -277,8 +278,8 @@ std::string CalibrateReportText(const CalibrateConfig& c, const InfluenceFitSumm
     }
   }
   if (!s.contacts.empty()) {
-    o += fmt::format("\n{:<40} {:>25} {:>25}\n", "contact result",
-                     "area mm2 target/bef/aft", "p_max MPa target/bef/aft");
+    o += fmt::format("\n{:<40} {:>25} {:>25}\n", "contact result", "area mm2 target/bef/aft",
+                     "p_max MPa target/bef/aft");
     for (const auto& r : s.contacts) {
       o += fmt::format("{:<40} {:>25} {:>25}\n", fs::path(r.name).filename().string(),
                        fmt::format("{:.2f} {:.2f} {:.2f}", r.target_area_m2 * kToMm2,
@@ -311,32 +312,31 @@ std::string CalibrateConstantsHeader(const CalibrateConfig& c, const InfluenceFi
   };
   std::string t;
   t += "# Influence constants of the seed's eq. 4, fitted by `railwear calibrate`.\n";
-  t += fmt::format("# Use in a scene:  [model] influence_constants = \"{}\" (relative to the scene)\n",
-                   fs::path(out).filename().string());
+  t += fmt::format(
+      "# Use in a scene:  [model] influence_constants = \"{}\" (relative to the scene)\n",
+      fs::path(out).filename().string());
   t += fmt::format("# calibration: {}\n", c.name);
   t += fmt::format("# config:      {}\n", where(c.path));
   t += fmt::format("# created:     {} by railwear {}\n", created, RAILWEAR_VERSION);
   for (const CalibrateCurveEntry& e : c.curves) {
-    t += fmt::format("# data:        {} (weight {:g}, {:g} to {:g} mm)\n",
-                     where(e.file), e.data.weight,
-                     e.data.min_distance_m / kMm, e.data.max_distance_m / kMm);
+    t += fmt::format("# data:        {} (weight {:g}, {:g} to {:g} mm)\n", where(e.file),
+                     e.data.weight, e.data.min_distance_m / kMm, e.data.max_distance_m / kMm);
   }
   for (const CalibrateContactEntry& e : c.contacts) {
     t += fmt::format("# data:        {} (area {:g} mm2, p_max {:g} MPa, weight {:g})\n",
-                     where(e.scene),
-                     e.target.area_m2 * kToMm2, e.target.p_max_Pa * kToMPa, e.target.weight);
+                     where(e.scene), e.target.area_m2 * kToMm2, e.target.p_max_Pa * kToMPa,
+                     e.target.weight);
   }
-  t += fmt::format("# status:      {}, {} (condition number {:.3g}), residual s = {:.4g}\n",
-                   ToString(s.status),
-                   s.well_conditioned ? "well conditioned" : "badly conditioned",
-                   s.condition_number, std::sqrt(s.residual_variance));
+  t +=
+      fmt::format("# status:      {}, {} (condition number {:.3g}), residual s = {:.4g}\n",
+                  ToString(s.status), s.well_conditioned ? "well conditioned" : "badly conditioned",
+                  s.condition_number, std::sqrt(s.residual_variance));
   t += "# fitted:      start -> value +- standard error\n";
   for (const FittedConstant& k : s.constants) {
     t += fmt::format("#   {:<12} {:.6g} -> {:.6g}{}\n", k.name, k.start, k.value,
-                     !k.determined ? " (not determined by the data: start kept)"
-                     : std::isfinite(k.standard_error)
-                         ? fmt::format(" +- {:.3g}", k.standard_error)
-                         : std::string(" (no standard error)"));
+                     !k.determined                     ? " (not determined by the data: start kept)"
+                     : std::isfinite(k.standard_error) ? fmt::format(" +- {:.3g}", k.standard_error)
+                                                       : std::string(" (no standard error)"));
   }
   for (const auto& w : s.warnings) t += "# warning:     " + w + "\n";
   return t;

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "app/contact_output.h"
 #include "app/pressure_plot.h"
@@ -82,7 +82,8 @@ void RunWheelset(const ContactOptions& o, const Scene& scene) {
     WritePressureCsv(result.left, csv, "left", /*header=*/false);
     WriteOutput(*o.csv, csv.str(), "CSV");
   }
-  if (o.json != "-" && o.csv != "-") std::cout << FormatWheelsetSummary(scene, result) << std::flush;
+  if (o.json != "-" && o.csv != "-")
+    std::cout << FormatWheelsetSummary(scene, result) << std::flush;
   if (o.plot) {
     ContactResult both = result.right;  // right patches first, then the left ones
     for (const auto& p : result.left.patches) both.patches.push_back(p);
@@ -90,9 +91,9 @@ void RunWheelset(const ContactOptions& o, const Scene& scene) {
   }
   for (const ContactResult* r : {&result.right, &result.left}) {
     if (r->status != SolverStatus::kConverged) {
-      throw std::runtime_error(fmt::format("contact solve of the {} wheel ended with status '{}': {}",
-                                           r == &result.right ? "right" : "left",
-                                           ToString(r->status), r->message));
+      throw std::runtime_error(
+          fmt::format("contact solve of the {} wheel ended with status '{}': {}",
+                      r == &result.right ? "right" : "left", ToString(r->status), r->message));
     }
   }
 }
@@ -102,13 +103,13 @@ void RunWheelset(const ContactOptions& o, const Scene& scene) {
 void SetupContact(CLI::App& app) {
   auto options = std::make_shared<ContactOptions>();
   CLI::App* sub = app.add_subcommand(
-      "contact", "Contact of a wheel on its rail (or a wheelset on a track): normal, rolling, damage");
+      "contact",
+      "Contact of a wheel on its rail (or a wheelset on a track): normal, rolling, damage");
   sub->add_option("scene", options->scene_path, "Scene file (TOML); see `railwear init`")
       ->required();
   sub->add_option("--model", options->model, "Replace the scene's model kind")
       ->check(CLI::IsMember(EnumChoiceStrings(kModelKindNames)));
-  sub->add_option("--accuracy", options->accuracy,
-                  "Replace the scene's accuracy (and its cell_mm)")
+  sub->add_option("--accuracy", options->accuracy, "Replace the scene's accuracy (and its cell_mm)")
       ->check(CLI::IsMember(EnumChoiceStrings(kAccuracyPresetNames)));
   sub->add_option("--kernel", options->kernel,
                   "Replace the influence kernel (after --model), keeping the geometry")

@@ -17,9 +17,9 @@ struct ContactOptions {
   // --kernel boussinesq|golubenko: replaces the influence kernel (after --model), keeping the
   // geometry; e.g. conformal geometry + boussinesq, the half-space kernel on the curved grid.
   std::optional<std::string> kernel;
-  std::optional<std::string> json;      // --json FILE, "-" = stdout (then nothing else there)
-  std::optional<std::string> csv;       // --csv FILE, "-" = stdout: pressure field per cell
-  std::optional<std::string> plot;      // --plot PNG (needs gnuplot)
+  std::optional<std::string> json;  // --json FILE, "-" = stdout (then nothing else there)
+  std::optional<std::string> csv;   // --csv FILE, "-" = stdout: pressure field per cell
+  std::optional<std::string> plot;  // --plot PNG (needs gnuplot)
 };
 
 void SetupContact(CLI::App& app);

@@ -18,9 +18,9 @@ constexpr double kToDeg = 180.0 / std::numbers::pi;
 std::vector<PressureSample> GridSamples(const PatchResult& patch, int patch_number) {
   const PatchGrid& g = patch.grid;
   if (patch.pressure_Pa.size() != g.cells() || static_cast<int>(g.point_yz_m.size()) != g.ns) {
-    throw std::runtime_error(fmt::format(
-        "patch {}: pressure field has {} values for a grid of {} x {} cells", patch_number,
-        patch.pressure_Pa.size(), g.nx, g.ns));
+    throw std::runtime_error(
+        fmt::format("patch {}: pressure field has {} values for a grid of {} x {} cells",
+                    patch_number, patch.pressure_Pa.size(), g.nx, g.ns));
   }
   std::vector<PressureSample> out;
   out.reserve(g.cells());
@@ -48,8 +48,8 @@ std::vector<PressureSample> HertzSamples(const PatchResult& patch, int patch_num
       const double x = -a + 2.0 * a * i / (kHertzSamples - 1);
       const double r2 = (a > 0 && b > 0) ? (x / a) * (x / a) + (s / b) * (s / b) : 1.0;
       const double p = r2 < 1.0 ? h.p0_Pa * std::sqrt(1.0 - r2) : 0.0;
-      out.push_back({patch_number, i, j, x * kToMm, s * kToMm, yz.x() * kToMm, yz.y() * kToMm,
-                     p * kToMPa});
+      out.push_back(
+          {patch_number, i, j, x * kToMm, s * kToMm, yz.x() * kToMm, yz.y() * kToMm, p * kToMPa});
     }
   }
   return out;
@@ -71,39 +71,40 @@ void AddRollingJson(const RollingPatch& r, nlohmann::json* j) {
   (*j)["frictional_power_W"] = t.frictional_power_W;
   if (r.damage) {
     const PatchDamage& d = *r.damage;
-    (*j)["damage"] = {
-        {"t_gamma_J_per_m", d.t_gamma_N},
-        {"wlrm_rcf_damage_per_axle", d.wlrm_damage},
-        {"traction_coefficient", d.traction_coefficient},
-        {"fi_surf", d.fi_surf},
-        {"shakedown",
-         {{"load_factor_p0_over_k", d.shakedown.load_factor},
-          {"elastic_limit", d.shakedown.elastic_limit},
-          {"shakedown_limit", d.shakedown.shakedown_limit},
-          {"margin", d.shakedown.margin},
-          {"regime", ToString(d.shakedown.regime)}}}};
+    (*j)["damage"] = {{"t_gamma_J_per_m", d.t_gamma_N},
+                      {"wlrm_rcf_damage_per_axle", d.wlrm_damage},
+                      {"traction_coefficient", d.traction_coefficient},
+                      {"fi_surf", d.fi_surf},
+                      {"shakedown",
+                       {{"load_factor_p0_over_k", d.shakedown.load_factor},
+                        {"elastic_limit", d.shakedown.elastic_limit},
+                        {"shakedown_limit", d.shakedown.shakedown_limit},
+                        {"margin", d.shakedown.margin},
+                        {"regime", ToString(d.shakedown.regime)}}}};
   }
 }
 
 std::string RollingTable(const ContactResult& r) {
-  std::string out = fmt::format("{:>5} {:>10} {:>10} {:>11} {:>10} {:>10} {:>12} {:>9} {:>9} {:>9}\n",
-                                "patch", "Fx_N", "Fy_N", "Mspin_Nmm", "xi", "eta", "phi_per_mm",
-                                "stick_mm2", "slip_mm2", "power_W");
+  std::string out = fmt::format(
+      "{:>5} {:>10} {:>10} {:>11} {:>10} {:>10} {:>12} {:>9} {:>9} {:>9}\n", "patch", "Fx_N",
+      "Fy_N", "Mspin_Nmm", "xi", "eta", "phi_per_mm", "stick_mm2", "slip_mm2", "power_W");
   for (size_t k = 0; k < r.patches.size(); ++k) {
     if (!r.patches[k].rolling) continue;
     const RollingPatch& rp = *r.patches[k].rolling;
     const TangentialSolution& t = rp.tangential;
-    out += fmt::format("{:>5} {:>10.1f} {:>10.1f} {:>11.1f} {:>10.6f} {:>10.6f} {:>12.7f} "
-                       "{:>9.2f} {:>9.2f} {:>9.1f}\n",
-                       k + 1, t.force_x_N, t.force_s_N, t.spin_moment_Nm * 1e3, rp.creepage.xi,
-                       rp.creepage.eta, rp.creepage.spin_per_m * 1e-3, t.stick_area_m2 * kToMm2,
-                       t.slip_area_m2 * kToMm2, t.frictional_power_W);
+    out += fmt::format(
+        "{:>5} {:>10.1f} {:>10.1f} {:>11.1f} {:>10.6f} {:>10.6f} {:>12.7f} "
+        "{:>9.2f} {:>9.2f} {:>9.1f}\n",
+        k + 1, t.force_x_N, t.force_s_N, t.spin_moment_Nm * 1e3, rp.creepage.xi, rp.creepage.eta,
+        rp.creepage.spin_per_m * 1e-3, t.stick_area_m2 * kToMm2, t.slip_area_m2 * kToMm2,
+        t.frictional_power_W);
     if (rp.damage) {
       const PatchDamage& d = *rp.damage;
-      out += fmt::format("      damage: T-gamma {:.1f} J/m, WLRM RCF {:.3g} per axle, FI_surf "
-                         "{:.3f}, p0/k {:.2f} at mu_eff {:.3f} ({}, margin {:.2f})\n",
-                         d.t_gamma_N, d.wlrm_damage, d.fi_surf, d.shakedown.load_factor,
-                         d.traction_coefficient, ToString(d.shakedown.regime), d.shakedown.margin);
+      out += fmt::format(
+          "      damage: T-gamma {:.1f} J/m, WLRM RCF {:.3g} per axle, FI_surf "
+          "{:.3f}, p0/k {:.2f} at mu_eff {:.3f} ({}, margin {:.2f})\n",
+          d.t_gamma_N, d.wlrm_damage, d.fi_surf, d.shakedown.load_factor, d.traction_coefficient,
+          ToString(d.shakedown.regime), d.shakedown.margin);
     }
   }
   return out;
@@ -173,9 +174,9 @@ std::string StagesLine(const ContactResult& r) {
 }
 
 std::string PatchTable(const ContactResult& r) {
-  std::string out = fmt::format("{:>5} {:>10} {:>10} {:>11} {:>9} {:>9} {:>9} {:>15}\n", "patch",
-                                "area_mm2", "p_max_MPa", "normal_N", "y_mm", "z_mm", "angle_deg",
-                                "cells_contact");
+  std::string out =
+      fmt::format("{:>5} {:>10} {:>10} {:>11} {:>9} {:>9} {:>9} {:>15}\n", "patch", "area_mm2",
+                  "p_max_MPa", "normal_N", "y_mm", "z_mm", "angle_deg", "cells_contact");
   for (size_t k = 0; k < r.patches.size(); ++k) {
     const PatchResult& p = r.patches[k];
     const std::string cells =
@@ -204,14 +205,14 @@ std::string FormatSummary(const Scene& scene, const ContactResult& r) {
   out += fmt::format("approach    {:.5f} mm\n", r.approach_m * kToMm);
   out += fmt::format("iterations  {}\n", r.iterations);
   out += fmt::format("time        {:.1f} ms{}\n", r.time_s * kToMs, StagesLine(r));
-  out += fmt::format("total       area {:.2f} mm2, p_max {:.1f} MPa, vertical {:.1f} N, "
-                     "lateral {:.1f} N\n",
-                     r.area_m2 * kToMm2, r.p_max_Pa * kToMPa, r.vertical_force_N,
-                     r.lateral_force_N);
+  out += fmt::format(
+      "total       area {:.2f} mm2, p_max {:.1f} MPa, vertical {:.1f} N, "
+      "lateral {:.1f} N\n",
+      r.area_m2 * kToMm2, r.p_max_Pa * kToMPa, r.vertical_force_N, r.lateral_force_N);
   if (r.coupling_iterations > 0) {
-    out += fmt::format("coupling    {} normal-tangential iterations: area {:+.3f} %, p_max {:+.3f} %\n",
-                       r.coupling_iterations, 100.0 * r.coupling_area_change,
-                       100.0 * r.coupling_p_max_change);
+    out += fmt::format(
+        "coupling    {} normal-tangential iterations: area {:+.3f} %, p_max {:+.3f} %\n",
+        r.coupling_iterations, 100.0 * r.coupling_area_change, 100.0 * r.coupling_p_max_change);
   }
   out += fmt::format("patches     {}\n", r.patches.size());
   if (!r.patches.empty()) out += fmt::format("\n{}", PatchTable(r));
@@ -222,9 +223,10 @@ std::string FormatSummary(const Scene& scene, const ContactResult& r) {
     }
   }
   if (!r.patches.empty() && r.patches[0].rolling) {
-    out += fmt::format("\nrolling (creep forces of the rail on the wheel; pitch velocity {:.4f} "
-                       "rad/s)\n{}",
-                       r.pitch_velocity_rad_s, RollingTable(r));
+    out += fmt::format(
+        "\nrolling (creep forces of the rail on the wheel; pitch velocity {:.4f} "
+        "rad/s)\n{}",
+        r.pitch_velocity_rad_s, RollingTable(r));
   }
   return out;
 }
@@ -240,7 +242,8 @@ nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r) {
   j["iterations"] = r.iterations;
   j["time_ms"] = r.time_s * kToMs;
   j["stages"] = nlohmann::json::array();
-  for (const auto& s : r.stages) j["stages"].push_back({{"name", s.name}, {"time_ms", s.seconds * kToMs}});
+  for (const auto& s : r.stages)
+    j["stages"].push_back({{"name", s.name}, {"time_ms", s.seconds * kToMs}});
   j[contact_json::kTotal] = {{contact_json::kAreaMm2, r.area_m2 * kToMm2},
                              {contact_json::kPMaxMPa, r.p_max_Pa * kToMPa},
                              {contact_json::kVerticalForceN, r.vertical_force_N},
@@ -275,9 +278,10 @@ void WritePressureCsv(const ContactResult& r, std::ostream& out, const std::stri
   auto finite = [](std::initializer_list<double> values, int patch, int ix, int js) {
     for (double v : values) {
       if (!std::isfinite(v)) {
-        throw std::runtime_error(fmt::format("the pressure CSV has a non-finite value ({}) at "
-                                             "patch {} cell ({}, {}); nothing written",
-                                             v, patch, ix, js));
+        throw std::runtime_error(
+            fmt::format("the pressure CSV has a non-finite value ({}) at "
+                        "patch {} cell ({}, {}); nothing written",
+                        v, patch, ix, js));
       }
     }
   };
@@ -285,17 +289,17 @@ void WritePressureCsv(const ContactResult& r, std::ostream& out, const std::stri
     const PatchResult& patch = r.patches[k];
     for (const auto& s : PressureSamples(patch, static_cast<int>(k) + 1)) {
       finite({s.x_mm, s.s_mm, s.y_mm, s.z_mm, s.p_MPa}, s.patch, s.ix, s.js);
-      text += lead + fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}", s.patch, s.ix,
-                                 s.js, s.x_mm, s.s_mm, s.y_mm, s.z_mm, s.p_MPa);
+      text += lead + fmt::format("{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}", s.patch, s.ix, s.js,
+                                 s.x_mm, s.s_mm, s.y_mm, s.z_mm, s.p_MPa);
       if (rolling && patch.rolling) {
         // Traction, slip velocity and stick (1) / slip (0) / outside (-1) per cell.
         const TangentialSolution& t = patch.rolling->tangential;
         const int c = patch.grid.Index(s.ix, s.js);
-        finite({t.traction_x_Pa[c], t.traction_s_Pa[c], t.slip_x_m_s[c], t.slip_s_m_s[c]},
-               s.patch, s.ix, s.js);
-        text += fmt::format(",{:.6f},{:.6f},{:.6g},{:.6g},{}", t.traction_x_Pa[c] * kToMPa,
-                            t.traction_s_Pa[c] * kToMPa, t.slip_x_m_s[c], t.slip_s_m_s[c],
-                            t.stick[c]);
+        finite({t.traction_x_Pa[c], t.traction_s_Pa[c], t.slip_x_m_s[c], t.slip_s_m_s[c]}, s.patch,
+               s.ix, s.js);
+        text +=
+            fmt::format(",{:.6f},{:.6f},{:.6g},{:.6g},{}", t.traction_x_Pa[c] * kToMPa,
+                        t.traction_s_Pa[c] * kToMPa, t.slip_x_m_s[c], t.slip_s_m_s[c], t.stick[c]);
       }
       text += "\n";
     }
@@ -305,11 +309,11 @@ void WritePressureCsv(const ContactResult& r, std::ostream& out, const std::stri
 
 nlohmann::json MakeWheelsetJson(const Scene& scene, const WheelsetResult& r) {
   nlohmann::json j;
-  const bool ok = r.right.status == SolverStatus::kConverged &&
-                  r.left.status == SolverStatus::kConverged;
-  j["status"] = ok ? "converged" : (r.right.status != SolverStatus::kConverged
-                                        ? ToString(r.right.status)
-                                        : ToString(r.left.status));
+  const bool ok =
+      r.right.status == SolverStatus::kConverged && r.left.status == SolverStatus::kConverged;
+  j["status"] = ok ? "converged"
+                   : (r.right.status != SolverStatus::kConverged ? ToString(r.right.status)
+                                                                 : ToString(r.left.status));
   j["scene"] = scene.name;
   j["scene_file"] = scene.path;
   j["placement"] = {{"right_lateral_shift_mm", r.placement.right.lateral_shift_m * kToMm},

@@ -17,14 +17,14 @@ namespace railwear::app {
 // Keys of the contact JSON (MakeContactJson) that `railwear accuracy --reference` reads back
 // (accuracy_study.cpp): the writer and the reader share this one spelling.
 namespace contact_json {
-inline constexpr char kTotal[] = "total";                     // totals over all patches
-inline constexpr char kAreaMm2[] = "area_mm2";                // total.area_mm2 [mm2]
-inline constexpr char kPMaxMPa[] = "p_max_MPa";               // total.p_max_MPa [MPa]
-inline constexpr char kVerticalForceN[] = "vertical_force_N"; // total.vertical_force_N [N]
-inline constexpr char kLateralForceN[] = "lateral_force_N";   // total.lateral_force_N [N]
-inline constexpr char kCreepForceXN[] = "creep_force_x_N";    // total, rolling only [N]
-inline constexpr char kPatches[] = "patches";                 // one object per patch
-inline constexpr char kCreepForceYzN[] = "creep_force_yz_N";  // per rolling patch: {y, z} [N]
+inline constexpr char kTotal[] = "total";                      // totals over all patches
+inline constexpr char kAreaMm2[] = "area_mm2";                 // total.area_mm2 [mm2]
+inline constexpr char kPMaxMPa[] = "p_max_MPa";                // total.p_max_MPa [MPa]
+inline constexpr char kVerticalForceN[] = "vertical_force_N";  // total.vertical_force_N [N]
+inline constexpr char kLateralForceN[] = "lateral_force_N";    // total.lateral_force_N [N]
+inline constexpr char kCreepForceXN[] = "creep_force_x_N";     // total, rolling only [N]
+inline constexpr char kPatches[] = "patches";                  // one object per patch
+inline constexpr char kCreepForceYzN[] = "creep_force_yz_N";   // per rolling patch: {y, z} [N]
 }  // namespace contact_json
 
 // One sample of a patch's pressure field. For grid models: one per cell, (x, s) its centre on

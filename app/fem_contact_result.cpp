@@ -11,8 +11,8 @@
 #include "app/toml_fields.h"
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
-#include "core/numerics/units.h"
 #include "core/numerics/text_file.h"
+#include "core/numerics/units.h"
 
 namespace railwear::app {
 namespace {

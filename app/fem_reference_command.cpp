@@ -13,8 +13,8 @@
 #include <memory>
 #include <stdexcept>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "app/fem_contact_result.h"
 #include "app/fem_reference_output.h"
@@ -90,9 +90,10 @@ DisplacementCurves ReadOutput(const FemReferenceConfig& config, const FemExperim
                               const std::string& why) {
   std::error_code ec;
   if (!fs::exists(e.output, ec)) {
-    throw InputError(fmt::format("{}:{}: experiment '{}': {} its output {}, which does not exist; "
-                                 "run that experiment first",
-                                 config.path, e.line, e.name, why, e.output));
+    throw InputError(
+        fmt::format("{}:{}: experiment '{}': {} its output {}, which does not exist; "
+                    "run that experiment first",
+                    config.path, e.line, e.name, why, e.output));
   }
   return ReadDisplacementCurves(e.output);
 }
@@ -103,13 +104,14 @@ DisplacementCurves ReadOutput(const FemReferenceConfig& config, const FemExperim
 std::string ComparisonsText(const FemReferenceConfig& config, const FemExperiment& e,
                             const DisplacementCurves& curves,
                             std::map<std::string, DisplacementCurves>* done) {
-  std::string text = FemComparisonText(e, curves, HalfSpaceReference(e.options.material),
-                                    "half-space (Boussinesq normal, Cerruti tangential)",
-                                    "halfspace");
+  std::string text =
+      FemComparisonText(e, curves, HalfSpaceReference(e.options.material),
+                        "half-space (Boussinesq normal, Cerruti tangential)", "halfspace");
   if (e.compare_with.empty()) return text;
   if (done->count(e.compare_with) == 0) {
-    const auto other = std::find_if(config.experiments.begin(), config.experiments.end(),
-                                    [&](const FemExperiment& x) { return x.name == e.compare_with; });
+    const auto other =
+        std::find_if(config.experiments.begin(), config.experiments.end(),
+                     [&](const FemExperiment& x) { return x.name == e.compare_with; });
     (*done)[e.compare_with] = ReadOutput(config, *other, "compare_with reads");
   }
   return text + FemComparisonText(e, curves, CurvesReference(done->at(e.compare_with)),
@@ -158,9 +160,8 @@ void RunFemReference(const FemReferenceOptions& options) {
     ScopedTempDir probe("railwear-fem-probe");
     programs = FindFemPrograms(probe.path().string());
   }
-  std::cerr << fmt::format("fem-reference: gmsh {} ({}), CalculiX {} ({})\n",
-                           programs.gmsh_version, programs.gmsh, programs.ccx_version,
-                           programs.ccx);
+  std::cerr << fmt::format("fem-reference: gmsh {} ({}), CalculiX {} ({})\n", programs.gmsh_version,
+                           programs.gmsh, programs.ccx_version, programs.ccx);
   const std::string out_dir =
       options.out_dir.empty() ? DirectoryOf(options.config) : options.out_dir;
   int run = 0;
@@ -183,14 +184,13 @@ void RunFemReference(const FemReferenceOptions& options) {
               ? ""
               : fs::absolute(e.scene).lexically_normal().lexically_relative(folder).string();
       fs::create_directories(folder);
-      WriteWorkFile(
-          e.output,
-          FemContactResultText(
-              e.name, r, scene,
-              {{"generated_by", fmt::format("railwear {} fem-reference {}, experiment {}",
-                                            RAILWEAR_VERSION, options.config, e.name)},
-               {"gmsh_version", programs.gmsh_version},
-               {"ccx_version", programs.ccx_version}}));
+      WriteWorkFile(e.output,
+                    FemContactResultText(
+                        e.name, r, scene,
+                        {{"generated_by", fmt::format("railwear {} fem-reference {}, experiment {}",
+                                                      RAILWEAR_VERSION, options.config, e.name)},
+                         {"gmsh_version", programs.gmsh_version},
+                         {"ccx_version", programs.ccx_version}}));
       std::cout << FemContactSummaryText(e, r) << std::flush;
       ++run;
       continue;
@@ -209,9 +209,9 @@ void RunFemReference(const FemReferenceOptions& options) {
     done[e.name] = r.curves;
     ++run;
   }
-  std::cout << fmt::format("fem-reference: {} experiment(s) in {:.1f} s\n", run,
-                           std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-                               .count());
+  std::cout << fmt::format(
+      "fem-reference: {} experiment(s) in {:.1f} s\n", run,
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace railwear::app

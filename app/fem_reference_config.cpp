@@ -34,7 +34,6 @@ std::string ReadConfigText(const std::string& path) {
   return ReadInputFile(path, "the fem-reference config");
 }
 
-
 void ReadCompareRange(const Fields& t, FemExperiment* e) {
   const std::string expected = "two distances [from, to] in mm with 0 < from < to";
   const std::array<double, 2> v = *t.NumberPair("compare_range_mm", expected);
@@ -64,13 +63,29 @@ void ReadCommonKeys(const Fields& t, FemExperiment* e) {
 }
 
 // The keys of a contact experiment (kind = "contact").
-const std::vector<std::string_view> kContactKeys = {
-    "name",          "kind",           "case",               "scene",
-    "convex_radius_mm", "groove_radius_mm", "rolling_radius_mm", "load_N",
-    "material",      "length_mm",      "width_mm",           "depth_mm",
-    "zone_x_mm",     "zone_s_mm",      "zone_depth_mm",      "mesh_sizes_mm",
-    "mesh_growth",   "max_element_mm", "penalty_MPa_per_mm", "initial_overlap_mm",
-    "spring_N_per_mm", "sectors",      "output"};
+const std::vector<std::string_view> kContactKeys = {"name",
+                                                    "kind",
+                                                    "case",
+                                                    "scene",
+                                                    "convex_radius_mm",
+                                                    "groove_radius_mm",
+                                                    "rolling_radius_mm",
+                                                    "load_N",
+                                                    "material",
+                                                    "length_mm",
+                                                    "width_mm",
+                                                    "depth_mm",
+                                                    "zone_x_mm",
+                                                    "zone_s_mm",
+                                                    "zone_depth_mm",
+                                                    "mesh_sizes_mm",
+                                                    "mesh_growth",
+                                                    "max_element_mm",
+                                                    "penalty_MPa_per_mm",
+                                                    "initial_overlap_mm",
+                                                    "spring_N_per_mm",
+                                                    "sectors",
+                                                    "output"};
 
 std::vector<double> ReadMeshSizes(const Fields& t) {
   const std::string expected = "a non-empty array of element sizes in mm, each > 0";
@@ -79,7 +94,8 @@ std::vector<double> ReadMeshSizes(const Fields& t) {
   std::vector<double> sizes;
   for (const toml::node& n : *a) {
     const auto x = n.value<double>();
-    if (!n.is_number() || !x || !std::isfinite(*x) || !(*x > 0.0)) t.Fail("mesh_sizes_mm", expected);
+    if (!n.is_number() || !x || !std::isfinite(*x) || !(*x > 0.0))
+      t.Fail("mesh_sizes_mm", expected);
     sizes.push_back(*x * kMm);
   }
   return sizes;
@@ -145,8 +161,7 @@ FemReferenceConfig ReadFemReferenceConfig(const std::string& path, const std::st
     allowed.insert(allowed.end(), {"jobs", "threads_per_job", "timeout_s"});
     fem->AllowOnly(allowed);
     ReadCommonKeys(*fem, &defaults);
-    defaults.options.jobs =
-        fem->Integer("jobs", IntegerAtLeast(1)).value_or(defaults.options.jobs);
+    defaults.options.jobs = fem->Integer("jobs", IntegerAtLeast(1)).value_or(defaults.options.jobs);
     defaults.options.threads_per_job = fem->Integer("threads_per_job", IntegerAtLeast(1))
                                            .value_or(defaults.options.threads_per_job);
     defaults.options.timeout_s = fem->Number("timeout_s", AtLeast(0.0)).value_or(3600.0);
@@ -164,7 +179,8 @@ FemReferenceConfig ReadFemReferenceConfig(const std::string& path, const std::st
   // Each output file is written by one experiment.
   auto claim_output = [&outputs](const Fields& t, const FemExperiment& e) {
     if (const auto it = outputs.find(e.output); it != outputs.end()) {
-      t.Fail("output", fmt::format("a file no other experiment writes ('{}' writes it)", it->second));
+      t.Fail("output",
+             fmt::format("a file no other experiment writes ('{}' writes it)", it->second));
     }
     outputs[e.output] = e.name;
   };

@@ -56,7 +56,7 @@ enum class FemExperimentKind { kDisplacement, kContact };
 
 struct FemExperiment {
   std::string name;
-  int line = 0;                    // of its [[experiment]] table
+  int line = 0;  // of its [[experiment]] table
   FemExperimentKind kind = FemExperimentKind::kDisplacement;
   FemDisplacementOptions options;  // kDisplacement; work_dir and progress are set when it runs
   FemContactOptions contact;       // kContact; likewise

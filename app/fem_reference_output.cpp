@@ -42,22 +42,22 @@ std::string FemComparisonText(const FemExperiment& e, const DisplacementCurves& 
   const double from = e.compare_from_m, to = e.compare_to_m;
   const auto in_range = CompareCurves(curves, reference, from, to);
   const auto all = CompareCurves(curves, reference, 0.0, 1e9);
-  std::string out = fmt::format("  {} from {:g} to {:g} mm; offset = mean({} - {}) there:\n",
-                                title, from / kMm, to / kMm, "w", ref_name);
+  std::string out = fmt::format("  {} from {:g} to {:g} mm; offset = mean({} - {}) there:\n", title,
+                                from / kMm, to / kMm, "w", ref_name);
   out += fmt::format("    {:<16} {:<5} {:>6} {:>16} {:>14} {:>22}\n", "load", "path", "points",
                      "offset_nm_per_N", "max_error_%", "max_error_no_offset_%");
   size_t skipped = 0;
   for (const CurveComparison& c : in_range) {
-    out += fmt::format("    {:<16} {:<5} {:>6} {:>16.5f} {:>14.2f} {:>22.2f}\n",
-                       ToString(c.load), ToString(c.path), c.points.size(),
-                       c.offset_m_per_N / kNmPerN, 100.0 * c.max_raw_error,
-                       100.0 * c.max_corrected_error);
+    out += fmt::format("    {:<16} {:<5} {:>6} {:>16.5f} {:>14.2f} {:>22.2f}\n", ToString(c.load),
+                       ToString(c.path), c.points.size(), c.offset_m_per_N / kNmPerN,
+                       100.0 * c.max_raw_error, 100.0 * c.max_corrected_error);
     skipped += c.num_skipped;
   }
   if (skipped > 0) {
-    out += fmt::format("    ({} point(s) near a zero crossing, where |{}| < {:g} % of its largest, "
-                       "are left out of the errors)\n",
-                       skipped, ref_name, 100.0 * kSmallReferenceFraction);
+    out += fmt::format(
+        "    ({} point(s) near a zero crossing, where |{}| < {:g} % of its largest, "
+        "are left out of the errors)\n",
+        skipped, ref_name, 100.0 * kSmallReferenceFraction);
   }
   for (const CurveComparison& c : in_range) {
     const auto full = std::find_if(all.begin(), all.end(), [&](const CurveComparison& a) {
@@ -78,7 +78,7 @@ std::string FemComparisonText(const FemExperiment& e, const DisplacementCurves& 
 }
 
 std::string FemDisplacementSummaryText(const FemExperiment& e, const FemDisplacementResult& r,
-                                      int jobs) {
+                                       int jobs) {
   const FemDisplacementOptions& o = e.options;
   const FemDisplacementSummary& s = r.summary;
   std::string out = fmt::format("{}: {} body", e.name, ToString(o.body));
@@ -88,10 +88,11 @@ std::string FemDisplacementSummaryText(const FemExperiment& e, const FemDisplace
   out += fmt::format("  body      {:g} x {:g} x {:g} mm (length x width x depth), supports {}\n",
                      s.body_size.length_m / kMm, s.body_size.width_m / kMm,
                      s.body_size.depth_m / kMm, ToString(o.supports));
-  out += fmt::format("  mesh      {} nodes, {} C3D10 elements (quarter model; h0 {:g} mm, growth "
-                     "{:g}, max {:g} mm), gmsh {:.1f} s\n",
-                     s.nodes, s.elements, o.mesh_size_at_load_m / kMm, o.mesh_growth,
-                     o.max_element_m / kMm, s.mesh_time_s);
+  out += fmt::format(
+      "  mesh      {} nodes, {} C3D10 elements (quarter model; h0 {:g} mm, growth "
+      "{:g}, max {:g} mm), gmsh {:.1f} s\n",
+      s.nodes, s.elements, o.mesh_size_at_load_m / kMm, o.mesh_growth, o.max_element_m / kMm,
+      s.mesh_time_s);
   std::string solves;
   for (const auto& [load, t] : s.solve_time_s) {
     solves += fmt::format("{}{} {:.1f} s", solves.empty() ? "" : ", ", ToString(load), t);
@@ -115,19 +116,19 @@ std::string FemContactSummaryText(const FemExperiment& e, const FemContactResult
       "{:g} x {:g} mm; penalty {:g} MPa/mm; C3D10, growth {:g}\n",
       o.length_m / kMm, o.width_m / kMm, o.depth_m / kMm, o.zone_x_m / kMm, o.zone_s_m / kMm,
       o.zone_depth_m / kMm, o.penalty_Pa_per_m / kMPa * kMm, o.mesh_growth);
-  out += fmt::format("  {:>6} {:>7} {:>6} {:>7} {:>8} {:>5} {:>9} {:>10} {:>8} {:>8} {:>9} {:>8} "
-                     "{:>10}  {}\n",
-                     "h_mm", "nodes", "faces", "mesh_s", "solve_s", "iter", "area_mm2",
-                     "p_max_MPa", "a_x_mm", "b_s_mm", "force_N", "force_%", "area_nd_mm2",
-                     "status");
+  out += fmt::format(
+      "  {:>6} {:>7} {:>6} {:>7} {:>8} {:>5} {:>9} {:>10} {:>8} {:>8} {:>9} {:>8} "
+      "{:>10}  {}\n",
+      "h_mm", "nodes", "faces", "mesh_s", "solve_s", "iter", "area_mm2", "p_max_MPa", "a_x_mm",
+      "b_s_mm", "force_N", "force_%", "area_nd_mm2", "status");
   for (const FemContactLevel& L : r.levels) {
     const FemContactPatch& p = L.patch;
     out += fmt::format(
         "  {:>6.3f} {:>7} {:>6} {:>7.1f} {:>8.1f} {:>5} {:>9.3f} {:>10.2f} {:>8.3f} {:>8.3f} "
         "{:>9.1f} {:>8.2f} {:>10.3f}  {}\n",
         L.mesh_size_m / kMm, L.nodes, L.slave_faces, L.mesh_time_s, L.solve_time_s, L.iterations,
-        p.area_m2 / (kMm * kMm), p.p_max_Pa / kMPa, p.half_length_x_m / kMm,
-        p.half_width_s_m / kMm, p.vertical_force_N, 100.0 * (p.vertical_force_N / o.load_N - 1.0),
+        p.area_m2 / (kMm * kMm), p.p_max_Pa / kMPa, p.half_length_x_m / kMm, p.half_width_s_m / kMm,
+        p.vertical_force_N, 100.0 * (p.vertical_force_N / o.load_N - 1.0),
         p.area_nodes_m2 / (kMm * kMm), ToString(p.status));
     if (!p.message.empty()) out += "         " + p.message + "\n";
   }

@@ -35,7 +35,8 @@ void RequireGnuplotFor(const std::string& needed_by, const std::string& alternat
   }
   throw std::runtime_error(fmt::format(
       "{} needs the program 'gnuplot', which is not on PATH; install gnuplot (e.g. apt-get "
-      "install gnuplot-nox) or {}", needed_by, alternative));
+      "install gnuplot-nox) or {}",
+      needed_by, alternative));
 }
 
 std::string GnuplotQuote(const std::string& s) {
@@ -67,11 +68,13 @@ void RunGnuplot(const std::string& script, const ScopedTempDir& dir,
   const int rc = std::system(command.c_str());
   if (rc != 0) {
     throw std::runtime_error(fmt::format("gnuplot failed (status {}) writing {}:\n{}", rc,
-                                         fmt::join(outputs, ", "), ReadTextFile(log.string()).value_or("")));
+                                         fmt::join(outputs, ", "),
+                                         ReadTextFile(log.string()).value_or("")));
   }
   for (const auto& file : outputs) {
     if (!fs::exists(file)) {
-      throw std::runtime_error(fmt::format("gnuplot wrote no {}:\n{}", file, ReadTextFile(log.string()).value_or("")));
+      throw std::runtime_error(
+          fmt::format("gnuplot wrote no {}:\n{}", file, ReadTextFile(log.string()).value_or("")));
     }
   }
 }

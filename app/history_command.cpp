@@ -10,24 +10,23 @@
 #include <memory>
 #include <sstream>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "app/gnuplot.h"
 #include "app/history_plot.h"
 #include "app/paths.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/text_file.h"
+#include "core/numerics/units.h"
 #include "core/profile/profile_io.h"
 #include "profiles_db/profile_store.h"
 #include "wear/wear_measures.h"
-#include "core/numerics/units.h"
-#include "core/numerics/text_file.h"
 
 namespace railwear::app {
 namespace fs = std::filesystem;
 namespace {
-
 
 // ---------------------------------------------------------------------------------------------
 // Opening the database and finding runs and steps; every failure names the file.
@@ -37,11 +36,14 @@ ProfileStore OpenExisting(const std::string& path) {
   if (!fs::exists(path, ec)) {
     throw InputError(fmt::format(
         "database '{}': no such file; expected an existing railwear profile-history database "
-        "(--db FILE; `railwear wear` creates one, `history` never does)", path));
+        "(--db FILE; `railwear wear` creates one, `history` never does)",
+        path));
   }
   if (fs::is_regular_file(path, ec) && fs::file_size(path, ec) == 0) {
-    throw InputError(fmt::format("database '{}': empty file; expected a railwear "
-                                 "profile-history database", path));
+    throw InputError(
+        fmt::format("database '{}': empty file; expected a railwear "
+                    "profile-history database",
+                    path));
   }
   return ProfileStore::Open(path);
 }
@@ -50,9 +52,9 @@ RunInfo FindRunOrThrow(const ProfileStore& db, const std::string& name) {
   if (auto run = db.FindRun(name)) return *run;
   std::string known;
   for (const auto& r : db.Runs()) known += (known.empty() ? "" : ", ") + ("'" + r.name + "'");
-  throw InputError(fmt::format("database '{}': no run named '{}'; expected {}", db.path(), name,
-                               known.empty() ? "a run name, but the database has no runs"
-                                             : "one of " + known));
+  throw InputError(
+      fmt::format("database '{}': no run named '{}'; expected {}", db.path(), name,
+                  known.empty() ? "a run name, but the database has no runs" : "one of " + known));
 }
 
 // The run's step summaries; InputError when it has none.
@@ -67,9 +69,10 @@ std::vector<StepRecord> StepsOrThrow(const ProfileStore& db, const RunInfo& run)
 void CheckStep(const ProfileStore& db, const RunInfo& run, const std::vector<StepRecord>& steps,
                int step, const std::string& what) {
   if (step < steps.front().step || step > steps.back().step) {
-    throw InputError(fmt::format("database '{}': run '{}': {} {} is out of range; expected a step "
-                                 "from {} to {}", db.path(), run.name, what, step,
-                                 steps.front().step, steps.back().step));
+    throw InputError(
+        fmt::format("database '{}': run '{}': {} {} is out of range; expected a step "
+                    "from {} to {}",
+                    db.path(), run.name, what, step, steps.front().step, steps.back().step));
   }
 }
 
@@ -144,9 +147,10 @@ HistoryProfileFormat ChooseFormat(const HistoryProfileOptions& o) {
     const HistoryProfileFormat f = HistoryProfileFormatFromString(o.format);
     // The CSV and BAN writers choose by extension (core/profile/profile_io.h).
     if (!o.out.empty() && f != HistoryProfileFormat::kJson && ext != "." + ToString(f)) {
-      throw InputError(fmt::format("--out '{}': extension '{}' does not match --format {}; "
-                                   "expected a file name ending in .{}", o.out, ext, o.format,
-                                   ToString(f)));
+      throw InputError(
+          fmt::format("--out '{}': extension '{}' does not match --format {}; "
+                      "expected a file name ending in .{}",
+                      o.out, ext, o.format, ToString(f)));
     }
     return f;
   }
@@ -154,8 +158,10 @@ HistoryProfileFormat ChooseFormat(const HistoryProfileOptions& o) {
   if (ext == ".csv" || ext == ".ban" || ext == ".json") {
     return HistoryProfileFormatFromString(ext.substr(1));
   }
-  throw InputError(fmt::format("--out '{}': cannot tell the format from extension '{}'; expected "
-                               ".csv, .ban or .json, or give --format", o.out, ext));
+  throw InputError(
+      fmt::format("--out '{}': cannot tell the format from extension '{}'; expected "
+                  ".csv, .ban or .json, or give --format",
+                  o.out, ext));
 }
 
 nlohmann::json ProfileJson(const ProfileStore& db, const RunInfo& run, const StepRecord& step,
@@ -165,10 +171,15 @@ nlohmann::json ProfileJson(const ProfileStore& db, const RunInfo& run, const Ste
     y.push_back(p.x() * kToMm);
     z.push_back(p.y() * kToMm);
   }
-  return {{"database", db.path()}, {"run", run.name},     {"step", step.step},
-          {"passes", step.passes}, {"mgt", step.mgt},     {"points", profile.size()},
+  return {{"database", db.path()},
+          {"run", run.name},
+          {"step", step.step},
+          {"passes", step.passes},
+          {"mgt", step.mgt},
+          {"points", profile.size()},
           {"frame", "rail frame: y toward the field side, z downward, mm"},
-          {"y_mm", std::move(y)},  {"z_mm", std::move(z)}};
+          {"y_mm", std::move(y)},
+          {"z_mm", std::move(z)}};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -198,12 +209,16 @@ void SetupHistory(CLI::App& app) {
   history->add_option("--db", common->db, "Profile-history database (SQLite)")
       ->capture_default_str();
 
-  history->add_subcommand("runs", "Table of the runs: name, state, created, steps, last MGT, "
-                                  "program version")
+  history
+      ->add_subcommand("runs",
+                       "Table of the runs: name, state, created, steps, last MGT, "
+                       "program version")
       ->callback([common]() { RunHistoryRuns(*common); });
 
-  history->add_subcommand("calibrations", "Table of the influence-constant calibrations: id, "
-                                          "name, created, status, conditioning, fitted constants")
+  history
+      ->add_subcommand("calibrations",
+                       "Table of the influence-constant calibrations: id, "
+                       "name, created, status, conditioning, fitted constants")
       ->callback([common]() { RunHistoryCalibrations(*common); });
 
   auto steps = std::make_shared<HistoryStepsOptions>();
@@ -241,8 +256,8 @@ void SetupHistory(CLI::App& app) {
   plot_cmd->callback([common, plot]() { RunHistoryPlot(*common, *plot); });
 
   auto sql = std::make_shared<HistorySqlOptions>();
-  CLI::App* sql_cmd = history->add_subcommand(
-      "sql", "One read-only SQL statement (schema: profiles_db/SCHEMA.md)");
+  CLI::App* sql_cmd =
+      history->add_subcommand("sql", "One read-only SQL statement (schema: profiles_db/SCHEMA.md)");
   sql_cmd->add_option("query", sql->sql, "e.g. \"SELECT step, mgt FROM steps\"")->required();
   sql_cmd->add_flag("--tsv", sql->tsv, "Tab-separated output instead of aligned columns");
   sql_cmd->callback([common, sql]() { RunHistorySql(*common, *sql); });
@@ -253,13 +268,12 @@ void RunHistoryRuns(const HistoryOptions& o) {
   std::vector<std::vector<std::string>> rows;
   for (const auto& run : db.Runs()) {
     const std::vector<StepRecord> steps = db.Steps(run.id);
-    rows.push_back({run.name, ToString(run.state), run.created_utc,
-                    std::to_string(steps.size()),
+    rows.push_back({run.name, ToString(run.state), run.created_utc, std::to_string(steps.size()),
                     steps.empty() ? std::string("NULL") : fmt::format("{:.4f}", steps.back().mgt),
                     run.program_version});
   }
-  std::cout << AlignedTable({"name", "state", "created_utc", "steps", "last_MGT",
-                             "program_version"}, rows);
+  std::cout << AlignedTable(
+      {"name", "state", "created_utc", "steps", "last_MGT", "program_version"}, rows);
   std::cerr << fmt::format("railwear: {} run(s) in {}\n", rows.size(), db.path());
 }
 
@@ -284,9 +298,9 @@ void RunHistoryCalibrations(const HistoryOptions& o) {
                     c.well_conditioned ? "yes" : "no", fitted.empty() ? "NULL" : fitted,
                     c.program_version});
   }
-  std::cout << AlignedTable({"id", "name", "created_utc", "status", "well_conditioned",
-                             "fitted", "program_version"},
-                            rows);
+  std::cout << AlignedTable(
+      {"id", "name", "created_utc", "status", "well_conditioned", "fitted", "program_version"},
+      rows);
   std::cerr << fmt::format("railwear: {} calibration(s) in {}\n", rows.size(), db.path());
 }
 
@@ -298,9 +312,8 @@ void RunHistorySteps(const HistoryOptions& o, const HistoryStepsOptions& s) {
     rows.push_back({std::to_string(st.step), fmt::format("{:.6g}", st.passes),
                     fmt::format("{:.4f}", st.mgt), fmt::format("{:.4f}", st.worn_area_mm2),
                     fmt::format("{:.4f}", st.max_depth_mm),
-                    fmt::format("{:.3f}", st.max_depth_y_mm),
-                    fmt::format("{:.4f}", st.w1_mm), fmt::format("{:.4f}", st.w2_mm),
-                    fmt::format("{:.4f}", st.w3_mm),
+                    fmt::format("{:.3f}", st.max_depth_y_mm), fmt::format("{:.4f}", st.w1_mm),
+                    fmt::format("{:.4f}", st.w2_mm), fmt::format("{:.4f}", st.w3_mm),
                     fmt::format("{:.3e}", st.smoothing_area_error)});
   }
   std::cout << AlignedTable({"step", "passes", "MGT", "worn_area_mm2", "max_depth_mm", "at_y_mm",
@@ -334,8 +347,8 @@ void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) 
   } else {
     // To stdout through the file writer, so stdout and --out hold the same bytes.
     const ScopedTempDir tmp("railwear-profile");
-    const fs::path file = tmp.path() / fmt::format("{}_step{}.{}", run.name, step_number,
-                                                   ToString(format));
+    const fs::path file =
+        tmp.path() / fmt::format("{}_step{}.{}", run.name, step_number, ToString(format));
     WriteProfileFile(profile, file.string());
     std::cout << ReadTextFile(file.string()).value_or("");
   }
@@ -361,20 +374,19 @@ void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
 
   if (d.json) {
     // NaN (a line that misses a profile) is written as null.
-    const nlohmann::json j = {
-        {"database", db.path()},
-        {"run", run.name},
-        {"from", {{"step", a.step}, {"passes", a.passes}, {"mgt", a.mgt}}},
-        {"to", {{"step", b.step}, {"passes", b.passes}, {"mgt", b.mgt}}},
-        {"worn_area_mm2", m.worn_area_m2 * kToMm2},
-        {"max_depth_mm", m.max_depth_m * kToMm},
-        {"max_depth_s_mm", m.max_depth_s_m * kToMm},
-        {"max_depth_y_mm", m.max_depth_y_m * kToMm},
-        {"max_depth_z_mm", m.max_depth_z_m * kToMm},
-        {"w1_mm", m.vertical_wear_m * kToMm},
-        {"w2_mm", m.side_wear_m * kToMm},
-        {"w3_mm", m.wear_45_m * kToMm},
-        {"unmatched_samples", m.unmatched_samples}};
+    const nlohmann::json j = {{"database", db.path()},
+                              {"run", run.name},
+                              {"from", {{"step", a.step}, {"passes", a.passes}, {"mgt", a.mgt}}},
+                              {"to", {{"step", b.step}, {"passes", b.passes}, {"mgt", b.mgt}}},
+                              {"worn_area_mm2", m.worn_area_m2 * kToMm2},
+                              {"max_depth_mm", m.max_depth_m * kToMm},
+                              {"max_depth_s_mm", m.max_depth_s_m * kToMm},
+                              {"max_depth_y_mm", m.max_depth_y_m * kToMm},
+                              {"max_depth_z_mm", m.max_depth_z_m * kToMm},
+                              {"w1_mm", m.vertical_wear_m * kToMm},
+                              {"w2_mm", m.side_wear_m * kToMm},
+                              {"w3_mm", m.wear_45_m * kToMm},
+                              {"unmatched_samples", m.unmatched_samples}};
     std::cout << j.dump(2) << "\n";
   } else {
     std::string out;
@@ -391,10 +403,10 @@ void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
     std::cout << out;
   }
   if (m.unmatched_samples > 0) {
-    std::cerr << fmt::format("railwear: {} of {} depth samples found no worn surface within {} mm "
-                             "of step {} (left out of area and max depth)\n",
-                             m.unmatched_samples, m.s_m.size(),
-                             options.max_normal_distance_m * kToMm, a.step);
+    std::cerr << fmt::format(
+        "railwear: {} of {} depth samples found no worn surface within {} mm "
+        "of step {} (left out of area and max depth)\n",
+        m.unmatched_samples, m.s_m.size(), options.max_normal_distance_m * kToMm, a.step);
   }
 }
 

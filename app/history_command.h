@@ -43,9 +43,9 @@ HistoryProfileFormat HistoryProfileFormatFromString(const std::string& text);
 
 struct HistoryProfileOptions {
   std::string run;
-  std::optional<int> step;     // default: the run's last step
-  std::string format;          // "csv", "ban" or "json"; default: by --out's extension, else csv
-  std::string out;             // file to write; empty: stdout
+  std::optional<int> step;  // default: the run's last step
+  std::string format;       // "csv", "ban" or "json"; default: by --out's extension, else csv
+  std::string out;          // file to write; empty: stdout
 };
 
 struct HistoryDiffOptions {

@@ -12,8 +12,8 @@
 #include <fmt/format.h>
 
 #include "app/gnuplot.h"
-#include "wear/wear_measures.h"
 #include "core/numerics/units.h"
+#include "wear/wear_measures.h"
 
 namespace railwear::app {
 namespace fs = std::filesystem;
@@ -63,8 +63,11 @@ std::string ProfilesScript(const std::string& run, const std::vector<StepRecord>
 
   std::ostringstream g;
   g << GnuplotPngTerminal(900, 800) << "set output " << GnuplotQuote(png) << "\n";
-  g << "set title " << GnuplotQuote(fmt::format("run {}: rail profile after each step "
-                                                "(gauge corner)", run)) << "\n";
+  g << "set title "
+    << GnuplotQuote(fmt::format("run {}: rail profile after each step "
+                                "(gauge corner)",
+                                run))
+    << "\n";
   g << "set xlabel 'y [mm] (gauge side left)'\nset ylabel 'z [mm] (down)'\n";
   g << "set cblabel 'MGT'\nset palette rgb 33,13,10\nset size ratio -1\nset grid\n";
   g << CbRange(steps);
@@ -101,7 +104,8 @@ std::string DepthScript(const std::string& run, const std::vector<StepRecord>& s
           ? "stored wear_depth_mm"
           : (stored == 0 ? "normal depth against step 0"
                          : fmt::format("stored for {} of {} steps, else normal depth against "
-                                       "step 0", stored, curves.size()));
+                                       "step 0",
+                                       stored, curves.size()));
   std::ostringstream g;
   g << GnuplotPngTerminal(1000, 600) << "set output " << GnuplotQuote(png) << "\n";
   g << "set title " << GnuplotQuote(fmt::format("run {}: wear depth ({})", run, source)) << "\n";

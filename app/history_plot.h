@@ -15,8 +15,8 @@ namespace railwear::app {
 
 // Where a step's wear-depth curve came from.
 enum class DepthSource {
-  kStoredWithS,    // the step's "wear_depth_mm" distribution, which carries s
-  kFromProfiles,   // CompareProfiles(step 0, step) — the distribution is missing or has no s
+  kStoredWithS,   // the step's "wear_depth_mm" distribution, which carries s
+  kFromProfiles,  // CompareProfiles(step 0, step) — the distribution is missing or has no s
 };
 
 // One step's wear depth against the arc length along the step-0 profile.

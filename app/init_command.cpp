@@ -6,8 +6,8 @@
 #include <iostream>
 #include <memory>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "app/scene_template.h"
 #include "core/numerics/input_error.h"
@@ -27,9 +27,10 @@ void RunInit(const InitOptions& o) {
     return;
   }
   if (std::filesystem::exists(*o.path)) {
-    throw InputError(fmt::format("{}: file exists; railwear init never overwrites a file "
-                                 "(remove it or choose another name)",
-                                 *o.path));
+    throw InputError(
+        fmt::format("{}: file exists; railwear init never overwrites a file "
+                    "(remove it or choose another name)",
+                    *o.path));
   }
   std::ofstream out(*o.path);
   out << SceneTemplate();

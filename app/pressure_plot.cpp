@@ -30,7 +30,8 @@ std::string WritePatchData(const PatchResult& patch, int number, const fs::path&
     if (patch.rolling) {
       const TangentialSolution& t = patch.rolling->tangential;
       const int c = patch.grid.Index(s.ix, s.js);
-      out << fmt::format(" {:.6f} {:.6g}", std::hypot(t.traction_x_Pa[c], t.traction_s_Pa[c]) * 1e-6,
+      out << fmt::format(" {:.6f} {:.6g}",
+                         std::hypot(t.traction_x_Pa[c], t.traction_s_Pa[c]) * 1e-6,
                          std::hypot(t.slip_x_m_s[c], t.slip_s_m_s[c]) * 1e3);
     }
     out << "\n";
@@ -68,7 +69,8 @@ std::string Script(const Scene& scene, const ContactResult& r, const fs::path& d
     s << "set title " << GnuplotQuote(PatchTitle(r.patches[k], k + 1)) << "\n";
     s << "plot " << GnuplotQuote(data) << " using 1:2:3 with image notitle\n";
     if (rolling) {
-      s << "set cblabel '|q| [MPa]'\nset title " << GnuplotQuote(fmt::format("patch {}: traction", k + 1)) << "\n";
+      s << "set cblabel '|q| [MPa]'\nset title "
+        << GnuplotQuote(fmt::format("patch {}: traction", k + 1)) << "\n";
       s << "plot " << GnuplotQuote(data) << " using 1:2:4 with image notitle\n";
       s << "set cblabel '|v_slip| [mm/s]'\nset title "
         << GnuplotQuote(fmt::format("patch {}: slip velocity (0 = stick)", k + 1)) << "\n";

@@ -9,18 +9,17 @@
 #include <memory>
 #include <stdexcept>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/numerics/input_error.h"
+#include "core/numerics/units.h"
 #include "core/profile/profile_io.h"
 #include "wear/profile_fit.h"
-#include "core/numerics/units.h"
 
 namespace railwear::app {
 namespace {
-
 
 nlohmann::json ProfileJson(const std::string& path, const ProfileFile& file) {
   const Profile::Bounds b = file.profile.bounds();
@@ -54,9 +53,10 @@ std::string FitText(const std::string& path, const ProfileFile& file, const Prof
   const SmoothingSplineSummary& s = fit.summary;
   std::string out;
   out += fmt::format("file            {}\n", path);
-  out += fmt::format("points          {} ({} rejected as gross outliers, {} down-weighted by the "
-                     "{} loss)\n",
-                     raw.size(), fit.num_rejected, fit.num_downweighted, ToString(s.loss));
+  out += fmt::format(
+      "points          {} ({} rejected as gross outliers, {} down-weighted by the "
+      "{} loss)\n",
+      raw.size(), fit.num_rejected, fit.num_downweighted, ToString(s.loss));
   if (!fit.rejected_points.empty()) {
     std::string list;
     for (std::size_t k = 0; k < fit.rejected_points.size(); ++k) {
@@ -71,25 +71,29 @@ std::string FitText(const std::string& path, const ProfileFile& file, const Prof
   out += fmt::format("smoothing       length {:.4f} mm, lambda {:.4g} m^4 ({})\n",
                      fit.smoothing_length_m * kToMm, fit.lambda_m4,
                      s.lambda_from_gcv ? "GCV" : "given");
-  out += fmt::format("RMS residual    {:.5f} mm normal distance ({:.5f} mm without rejected "
-                     "points)\n",
-                     fit.rms_distance_m * kToMm, fit.rms_inlier_distance_m * kToMm);
+  out += fmt::format(
+      "RMS residual    {:.5f} mm normal distance ({:.5f} mm without rejected "
+      "points)\n",
+      fit.rms_distance_m * kToMm, fit.rms_inlier_distance_m * kToMm);
   const Eigen::Vector2d& worst = raw.points()[fit.max_distance_index];
   out += fmt::format("max residual    {:.5f} mm at point {} (y = {:.3f}, z = {:.3f} mm)\n",
                      fit.max_distance_m * kToMm, fit.max_distance_index + 1, worst.x() * kToMm,
                      worst.y() * kToMm);
-  out += fmt::format("noise           {:.5f} mm estimated from the points, {:.5f} mm implied by "
-                     "the fit\n",
-                     fit.noise_estimate_m * kToMm, fit.fit_noise_m * kToMm);
-  out += fmt::format("curvature       {:.4f} 1/mm at (y, z) = ({:.3f}, {:.3f}) mm .. {:.4f} 1/mm "
-                     "at ({:.3f}, {:.3f}) mm\n",
-                     fit.curvature_min_per_m / kToMm, fit.curvature_min_at_m.x() * kToMm,
-                     fit.curvature_min_at_m.y() * kToMm, fit.curvature_max_per_m / kToMm,
-                     fit.curvature_max_at_m.x() * kToMm, fit.curvature_max_at_m.y() * kToMm);
-  out += fmt::format("fit             {}, {} B-spline coefficients (knots every {:.3f} mm), "
-                     "{:.1f} degrees of freedom, {:.1f} ms\n",
-                     ToString(s.status), s.num_coefficients, s.knot_spacing * kToMm,
-                     s.effective_dof, s.time_s * 1e3);
+  out += fmt::format(
+      "noise           {:.5f} mm estimated from the points, {:.5f} mm implied by "
+      "the fit\n",
+      fit.noise_estimate_m * kToMm, fit.fit_noise_m * kToMm);
+  out += fmt::format(
+      "curvature       {:.4f} 1/mm at (y, z) = ({:.3f}, {:.3f}) mm .. {:.4f} 1/mm "
+      "at ({:.3f}, {:.3f}) mm\n",
+      fit.curvature_min_per_m / kToMm, fit.curvature_min_at_m.x() * kToMm,
+      fit.curvature_min_at_m.y() * kToMm, fit.curvature_max_per_m / kToMm,
+      fit.curvature_max_at_m.x() * kToMm, fit.curvature_max_at_m.y() * kToMm);
+  out += fmt::format(
+      "fit             {}, {} B-spline coefficients (knots every {:.3f} mm), "
+      "{:.1f} degrees of freedom, {:.1f} ms\n",
+      ToString(s.status), s.num_coefficients, s.knot_spacing * kToMm, s.effective_dof,
+      s.time_s * 1e3);
   return out;
 }
 
@@ -107,9 +111,10 @@ std::optional<double> ParseSmoothingLength(const std::string& text) {
     used = 0;
   }
   if (used == 0 || used != text.size() || !std::isfinite(mm) || !(mm > 0.0)) {
-    throw InputError(fmt::format("--smoothing '{}': expected AUTO or a smoothing length in mm "
-                                 "greater than 0 (e.g. 0.5)",
-                                 text));
+    throw InputError(
+        fmt::format("--smoothing '{}': expected AUTO or a smoothing length in mm "
+                    "greater than 0 (e.g. 0.5)",
+                    text));
   }
   return mm / kToMm;
 }
@@ -134,11 +139,11 @@ void SetupProfile(CLI::App& app) {
   auto fit = std::make_shared<ProfileFitCommandOptions>();
   CLI::App* fit_cmd = profile->add_subcommand(
       "fit", "Fit a smoothing spline to a (measured) profile: residuals, outliers, curvature");
-  fit_cmd->add_option("file", fit->path, "Profile file (.csv, .ban, .whl, .prr, .prw)")
-      ->required();
-  fit_cmd->add_option("--smoothing", fit->smoothing,
-                      "AUTO (generalised cross-validation) or a smoothing length in mm: "
-                      "wavelengths below 2 pi times it are damped (lambda = length^4)")
+  fit_cmd->add_option("file", fit->path, "Profile file (.csv, .ban, .whl, .prr, .prw)")->required();
+  fit_cmd
+      ->add_option("--smoothing", fit->smoothing,
+                   "AUTO (generalised cross-validation) or a smoothing length in mm: "
+                   "wavelengths below 2 pi times it are damped (lambda = length^4)")
       ->default_val("auto");
   fit_cmd->add_option("--out", fit->output,
                       "Write the fitted profile, resampled every 0.1 mm (.csv or .ban)");
@@ -170,21 +175,22 @@ void RunProfileFit(const ProfileFitCommandOptions& o) {
     std::string extension = std::filesystem::path(o.output).extension().string();
     for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (extension != ".csv" && extension != ".ban") {
-      throw InputError(fmt::format("--out '{}': expected a file name ending in .csv or .ban",
-                                   o.output));
+      throw InputError(
+          fmt::format("--out '{}': expected a file name ending in .csv or .ban", o.output));
     }
   }
   const ProfileFile file = ReadProfileFile(o.path);
   const ProfileFit fit = FitProfile(file.profile, options);
   if (fit.summary.status == SmoothingSplineStatus::kFailure) {
-    throw std::runtime_error(fmt::format("profile fit of {} failed: {}", o.path,
-                                         fit.summary.message));
+    throw std::runtime_error(
+        fmt::format("profile fit of {} failed: {}", o.path, fit.summary.message));
   }
   std::cout << FitText(o.path, file, fit);
   if (fit.summary.status == SmoothingSplineStatus::kNoConvergence) {
-    std::cerr << fmt::format("railwear: warning: the fit did not converge ({}); figures are for "
-                             "the last iterate\n",
-                             fit.summary.message);
+    std::cerr << fmt::format(
+        "railwear: warning: the fit did not converge ({}); figures are for "
+        "the last iterate\n",
+        fit.summary.message);
   }
   if (!o.output.empty()) {
     WriteProfileFile(fit.profile, o.output);

@@ -14,13 +14,13 @@
 #include "app/toml_fields.h"
 #include "core/numerics/enum_names.h"
 #include "core/numerics/input_error.h"
-#include "core/profile/builtin_profiles.h"
 #include "core/numerics/units.h"
+#include "core/profile/builtin_profiles.h"
 
 namespace railwear::app {
 namespace {
 
-constexpr double kMPa = 1e6;   // MPa -> Pa
+constexpr double kMPa = 1e6;          // MPa -> Pa
 constexpr double kMaxRoll_rad = 0.5;  // a wheel rolls by milliradians; 0.5 rad catches typos
 
 const std::vector<std::string_view> kKnownEffects = {"normal", "tangential", "coupling", "wear",
@@ -55,7 +55,8 @@ void ReadSceneTable(const Fields& top, Scene* scene) {
     if (*name == "normal") continue;
     bool known = false;
     for (const auto& k : kKnownEffects) known = known || *name == k;
-    if (!known) throw InputError(FieldError(t->file(), e, key, "one of " + JoinQuoted(kKnownEffects)));
+    if (!known)
+      throw InputError(FieldError(t->file(), e, key, "one of " + JoinQuoted(kKnownEffects)));
     if (*name == "tangential" || *name == "damage" || *name == "coupling" || *name == "wear") {
       // damage, coupling and wear need the tractions and slip of the tangential stage
       scene->tangential = true;
@@ -137,8 +138,8 @@ void ReadModel(const Fields& top, Scene* scene) {
   model = MakeModelOptions(ModelKind::kConformal);
   const auto t = top.Table("model", "a table");
   if (!t) return;
-  t->AllowOnly({"kind", "geometry", "kernel", "influence_constants", "accuracy", "cell_mm",
-                "tangential"});
+  t->AllowOnly(
+      {"kind", "geometry", "kernel", "influence_constants", "accuracy", "cell_mm", "tangential"});
   if (const auto kind = t->Choice("kind", EnumChoices(kModelKindNames))) {
     model = MakeModelOptions(*ModelKindFromString(*kind));
   }
@@ -185,7 +186,8 @@ void ReadWheel(const Fields& top, Scene* scene) {
   scene->wheel_profile_spec = t.RequiredString("profile", kProfileExpected);
   scene->problem.placement.rolling_radius_m =
       t.RequiredNumber("rolling_radius_mm", Positive()) * kMm;
-  Profile p = LoadProfileFor(t, "profile", BodyRole::kWheel, scene->wheel_profile_spec, scene->path);
+  Profile p =
+      LoadProfileFor(t, "profile", BodyRole::kWheel, scene->wheel_profile_spec, scene->path);
   if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
   scene->problem.wheel_profile = std::move(p);
 }
@@ -258,9 +260,8 @@ void ReadLoad(const Fields& top, Scene* scene) {
     return;
   }
   const Fields t = RequiredTable(top, "load", "a [load] table with vertical_N or approach_mm");
-  t.AllowOnly({"vertical_N", "approach_mm", "lateral_shift_mm", "roll_rad", "friction",
-               "speed_m_s", "yaw_mrad", "pitch_velocity_rad_s", "longitudinal_force_N",
-               "creepage"});
+  t.AllowOnly({"vertical_N", "approach_mm", "lateral_shift_mm", "roll_rad", "friction", "speed_m_s",
+               "yaw_mrad", "pitch_velocity_rad_s", "longitudinal_force_N", "creepage"});
   ContactLoad& load = scene->problem.load;
   load.vertical_force_N = t.Number("vertical_N", Positive());
   if (const auto a = t.Number("approach_mm", Positive())) load.approach_m = *a * kMm;
@@ -317,13 +318,14 @@ void ReadWheelset(const Fields& top, Scene* scene) {
   w.yaw_rad = scene->motion.yaw_rad;
   if (scene->creepage &&
       (ws->Has("yaw_mrad") || ws->Has("pitch_velocity_rad_s") || ws->Has("longitudinal_force_N"))) {
-    ws->Fail(ws->Has("yaw_mrad")             ? "yaw_mrad"
+    ws->Fail(ws->Has("yaw_mrad")               ? "yaw_mrad"
              : ws->Has("pitch_velocity_rad_s") ? "pitch_velocity_rad_s"
                                                : "longitudinal_force_N",
              "no wheelset motion next to prescribed creepages in [load]");
   }
   scene->problem.load = {};
-  scene->problem.load.vertical_force_N = ws->RequiredNumber("vertical_load_per_wheel_N", Positive());
+  scene->problem.load.vertical_force_N =
+      ws->RequiredNumber("vertical_load_per_wheel_N", Positive());
   scene->track = tr;
   scene->wheelset = w;
 }
@@ -358,7 +360,6 @@ void CheckRolling(const Fields& top, const Scene& scene) {
   }
 }
 
-
 // ---- wear scenes: [wear] and [[traffic]] ----
 
 constexpr double kGravity_m_s2 = 9.80665;
@@ -374,9 +375,12 @@ WearLaw ReadWearLaw(const Fields& t) {
   }
   const bool kth = law.kind == WearLawKind::kKth || law.kind == WearLawKind::kKthContinuous;
   const std::vector<std::pair<std::string_view, double*>> kth_keys = {
-      {"kth_k_seizure", &law.kth_k_seizure},     {"kth_k_mild_low", &law.kth_k_mild_low},
-      {"kth_k_severe", &law.kth_k_severe},       {"kth_k_mild_high", &law.kth_k_mild_high},
-      {"kth_v1_m_s", &law.kth_v1_m_s},           {"kth_v2_m_s", &law.kth_v2_m_s},
+      {"kth_k_seizure", &law.kth_k_seizure},
+      {"kth_k_mild_low", &law.kth_k_mild_low},
+      {"kth_k_severe", &law.kth_k_severe},
+      {"kth_k_mild_high", &law.kth_k_mild_high},
+      {"kth_v1_m_s", &law.kth_v1_m_s},
+      {"kth_v2_m_s", &law.kth_v2_m_s},
       {"kth_pressure_ratio", &law.kth_pressure_ratio},
       {"kth_velocity_band", &law.kth_velocity_band},
       {"kth_pressure_band", &law.kth_pressure_band}};
@@ -397,16 +401,33 @@ WearLaw ReadWearLaw(const Fields& t) {
 
 void ReadWearTable(const Fields& top, Scene* scene) {
   const Fields t = RequiredTable(top, "wear", "a [wear] table (law, total_passes or total_MGT)");
-  t.AllowOnly({"law", "k", "kth_k_seizure", "kth_k_mild_low", "kth_k_severe", "kth_k_mild_high",
-               "kth_v1_m_s", "kth_v2_m_s", "kth_pressure_ratio", "kth_velocity_band",
-               "kth_pressure_band", "density_kg_m3", "max_depth_per_step_mm", "total_passes",
-               "total_MGT", "quadrature_points", "bin_mm", "profile_spacing_mm", "smoothing_mm",
-               "damage_layer_mm", "threads", "db"});
+  t.AllowOnly({"law",
+               "k",
+               "kth_k_seizure",
+               "kth_k_mild_low",
+               "kth_k_severe",
+               "kth_k_mild_high",
+               "kth_v1_m_s",
+               "kth_v2_m_s",
+               "kth_pressure_ratio",
+               "kth_velocity_band",
+               "kth_pressure_band",
+               "density_kg_m3",
+               "max_depth_per_step_mm",
+               "total_passes",
+               "total_MGT",
+               "quadrature_points",
+               "bin_mm",
+               "profile_spacing_mm",
+               "smoothing_mm",
+               "damage_layer_mm",
+               "threads",
+               "db"});
   WearOptions& o = scene->wear->options;
   o.law = ReadWearLaw(t);
-  o.max_depth_per_step_m =
-      t.Number("max_depth_per_step_mm", OpenClosed(0.0, 1.0)).value_or(o.max_depth_per_step_m / kMm) *
-      kMm;
+  o.max_depth_per_step_m = t.Number("max_depth_per_step_mm", OpenClosed(0.0, 1.0))
+                               .value_or(o.max_depth_per_step_m / kMm) *
+                           kMm;
   o.total_passes = t.Number("total_passes", Positive());
   o.total_mgt = t.Number("total_MGT", Positive());
   if (o.total_passes && o.total_mgt) {
@@ -425,12 +446,12 @@ void ReadWearTable(const Fields& top, Scene* scene) {
   o.threads = whole("threads", 0, 256, o.threads);
   o.bin_m = t.Number("bin_mm", OpenClosed(0.0, 1.0)).value_or(o.bin_m / kMm) * kMm;
   o.profile_spacing_m =
-      t.Number("profile_spacing_mm", OpenClosed(0.0, 2.0)).value_or(o.profile_spacing_m / kMm) * kMm;
-  o.smoothing.smoothing_length_m =
-      t.Number("smoothing_mm", OpenClosed(0.0, 20.0)).value_or(o.smoothing.smoothing_length_m / kMm) *
+      t.Number("profile_spacing_mm", OpenClosed(0.0, 2.0)).value_or(o.profile_spacing_m / kMm) *
       kMm;
-  o.damage_layer_m =
-      t.Number("damage_layer_mm", Positive()).value_or(o.damage_layer_m / kMm) * kMm;
+  o.smoothing.smoothing_length_m = t.Number("smoothing_mm", OpenClosed(0.0, 20.0))
+                                       .value_or(o.smoothing.smoothing_length_m / kMm) *
+                                   kMm;
+  o.damage_layer_m = t.Number("damage_layer_mm", Positive()).value_or(o.damage_layer_m / kMm) * kMm;
   if (const auto db = t.String("db")) {
     scene->wear_db = ResolveRelativeTo(DirectoryOf(scene->path), *db);
   }
@@ -465,8 +486,8 @@ void ReadTraffic(const Fields& top, Scene* scene) {
   for (const toml::node& entry : entries) {
     const Fields t(*entry.as_table(), fmt::format("traffic[{}]", index), top.file());
     t.AllowOnly({"name", "wheel_profile", "mirror_y", "rolling_radius_mm", "vertical_N",
-                 "axle_load_t", "lateral_shift_mm", "roll_rad", "yaw_mrad", "friction",
-                 "speed_m_s", "share"});
+                 "axle_load_t", "lateral_shift_mm", "roll_rad", "yaw_mrad", "friction", "speed_m_s",
+                 "share"});
     TrafficCase c;
     c.name = t.String("name").value_or(fmt::format("traffic[{}]", index));
     if (const auto spec = t.String("wheel_profile")) {
@@ -483,7 +504,8 @@ void ReadTraffic(const Fields& top, Scene* scene) {
     } else if (has_wheel) {
       c.rolling_radius_m = scene->problem.placement.rolling_radius_m;
     } else {
-      t.FailMissing("rolling_radius_mm", "the wheel radius at the profile's z = 0 in mm (or a [wheel] table)");
+      t.FailMissing("rolling_radius_mm",
+                    "the wheel radius at the profile's z = 0 in mm (or a [wheel] table)");
     }
     c.vertical_force_N = t.RequiredNumber("vertical_N", Positive());
     c.axle_load_t = t.Number("axle_load_t", Positive())
@@ -515,8 +537,9 @@ void ReadWearScene(const Fields& top, Scene* scene) {
   ReadTraffic(top, scene);
   if (scene->problem.model.kind == ModelKind::kHertz) {
     const auto model = top.Table("model", "a table");
-    model->Fail("kind", "\"halfspace\" or \"conformal\" for a wear run (wear needs the "
-                        "pressure and slip of every cell of the patch grid)");
+    model->Fail("kind",
+                "\"halfspace\" or \"conformal\" for a wear run (wear needs the "
+                "pressure and slip of every cell of the patch grid)");
   }
   WearStudy& study = *scene->wear;
   study.cant_ratio = scene->cant_ratio;
@@ -534,10 +557,10 @@ void ReadWearScene(const Fields& top, Scene* scene) {
         top.Has("materials") ? LineOf(*top.Node("materials")) : 1, kShearYieldExpected));
   }
   if (HasEffect(*scene, "coupling")) {
-    throw InputError(fmt::format(
-        "{}: effect 'coupling' is not available in wear runs (each load case is solved "
-        "uncoupled); remove it from scene.effects",
-        top.file()));
+    throw InputError(
+        fmt::format("{}: effect 'coupling' is not available in wear runs (each load case is solved "
+                    "uncoupled); remove it from scene.effects",
+                    top.file()));
   }
   ValidateWearStudy(study);
 }

@@ -18,8 +18,8 @@
 namespace railwear::app {
 
 struct Scene {
-  std::string path;  // as given ("<text>" for ParseScene without a file)
-  std::string name;  // [scene] name; defaults to the file's stem
+  std::string path;                  // as given ("<text>" for ParseScene without a file)
+  std::string name;                  // [scene] name; defaults to the file's stem
   std::vector<std::string> effects;  // always contains "normal"; as listed, in order
   std::string text;  // the original TOML text, stored with results so a run can be repeated
 

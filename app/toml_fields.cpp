@@ -111,8 +111,8 @@ toml::table ParseToml(const std::string& text, const std::string& file) {
     return toml::parse(text, file);
   } catch (const toml::parse_error& e) {
     const auto& begin = e.source().begin;
-    throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", file, begin.line,
-                                 begin.column, e.description()));
+    throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", file, begin.line, begin.column,
+                                 e.description()));
   }
 }
 

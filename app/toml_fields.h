@@ -26,7 +26,7 @@ struct NumberRule {
 NumberRule AnyFinite();
 NumberRule Positive();
 NumberRule AtLeast(double lo);
-NumberRule InRange(double lo_inclusive, double hi_exclusive);    // [lo, hi)
+NumberRule InRange(double lo_inclusive, double hi_exclusive);     // [lo, hi)
 NumberRule OpenClosed(double lo_exclusive, double hi_inclusive);  // (lo, hi]
 NumberRule IntegerAtLeast(int lo);  // "an integer >= lo" (and below 1e6)
 NumberRule IntegerInRange(int lo_inclusive, int hi_inclusive);  // "an integer in [lo, hi]"
@@ -120,8 +120,8 @@ std::vector<Enum> EnumArray(const Fields& t, std::string_view key, FromString fr
 
 // Which keys a material table accepts.
 enum class MaterialKeys {
-  kElastic,      // { E_MPa, nu }
-  kWithDamage,   // { E_MPa, nu, hardness_MPa, shear_yield_MPa } (the rail of a scene)
+  kElastic,     // { E_MPa, nu }
+  kWithDamage,  // { E_MPa, nu, hardness_MPa, shear_yield_MPa } (the rail of a scene)
 };
 // The material table at `key` of `parent` (inline or not; required): E_MPa > 0 and nu in
 // [0, 0.5) required, hardness_MPa and shear_yield_MPa (> 0, optional) when `keys` allows them.

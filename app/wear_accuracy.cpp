@@ -15,9 +15,9 @@
 #include "app/paths.h"
 #include "core/numerics/enum_names.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/units.h"
 #include "wear/wear_measures.h"
 #include "wear/wear_simulation.h"
-#include "core/numerics/units.h"
 
 namespace railwear::app {
 namespace {
@@ -76,8 +76,10 @@ std::string Num(double v, const char* format) {
 WearAccuracyStudy RunWearAccuracyStudy(const Scene& scene, const WearAccuracyOptions& o,
                                        const std::function<void(const std::string&)>& progress) {
   if (!scene.wear) {
-    throw InputError(fmt::format("{}: not a wear scene (no effect \"wear\" with [wear] and "
-                                 "[[traffic]]); the wear-step study needs one", scene.path));
+    throw InputError(
+        fmt::format("{}: not a wear scene (no effect \"wear\" with [wear] and "
+                    "[[traffic]]); the wear-step study needs one",
+                    scene.path));
   }
   std::vector<AccuracyPreset> presets;
   for (const auto& name : o.levels) {
@@ -140,14 +142,16 @@ WearAccuracyStudy RunWearAccuracyStudy(const Scene& scene, const WearAccuracyOpt
     const WearAccuracyRow& coarser_step = s.rows[s.reference_row - 1];
     s.notes.push_back(fmt::format(
         "step limit {} -> {} mm at {} changes the final profile by {} mm (an estimate of the "
-        "reference's step error)", coarser_step.step_limit_mm, ref.step_limit_mm, ref.level,
+        "reference's step error)",
+        coarser_step.step_limit_mm, ref.step_limit_mm, ref.level,
         Num(coarser_step.err_profile_mm, "{:.4f}")));
   }
   if (presets.size() > 1) {
     const WearAccuracyRow& coarser_level = s.rows[s.reference_row - n_limits];
     s.notes.push_back(fmt::format(
         "level {} -> {} at {} mm changes the final profile by {} mm (an estimate of the "
-        "reference's grid error)", coarser_level.level, ref.level, ref.step_limit_mm,
+        "reference's grid error)",
+        coarser_level.level, ref.level, ref.step_limit_mm,
         Num(coarser_level.err_profile_mm, "{:.4f}")));
   }
   return s;
@@ -156,23 +160,24 @@ WearAccuracyStudy RunWearAccuracyStudy(const Scene& scene, const WearAccuracyOpt
 std::string FormatWearAccuracyTable(const WearAccuracyStudy& s) {
   const WearAccuracyRow& ref = s.rows.at(s.reference_row);
   std::string out;
-  out += fmt::format("scene       {} ({}), wear study to {:.3g} MGT\n", s.scene_name,
-                     s.scene_path, s.total_mgt);
-  out += fmt::format("reference   {} level, step limit {} mm: max depth {:.4f} mm, worn area "
-                     "{:.4f} mm2\n", ref.level, ref.step_limit_mm, ref.max_depth_mm,
-                     ref.worn_area_mm2);
+  out += fmt::format("scene       {} ({}), wear study to {:.3g} MGT\n", s.scene_name, s.scene_path,
+                     s.total_mgt);
+  out += fmt::format(
+      "reference   {} level, step limit {} mm: max depth {:.4f} mm, worn area "
+      "{:.4f} mm2\n",
+      ref.level, ref.step_limit_mm, ref.max_depth_mm, ref.worn_area_mm2);
   for (const auto& n : s.notes) out += fmt::format("note        {}\n", n);
   out += "\n";
-  out += fmt::format("{:<10} {:>9} {:>6} {:>9} {:>13} {:>12} {:>9} {:>14} {:>10} {:>8}\n",
-                     "level", "limit_mm", "steps", "time_s", "max_depth_mm", "worn_area_mm2",
-                     "W3_mm", "e_profile_mm", "e_depth%", "e_area%");
+  out += fmt::format("{:<10} {:>9} {:>6} {:>9} {:>13} {:>12} {:>9} {:>14} {:>10} {:>8}\n", "level",
+                     "limit_mm", "steps", "time_s", "max_depth_mm", "worn_area_mm2", "W3_mm",
+                     "e_profile_mm", "e_depth%", "e_area%");
   for (const auto& r : s.rows) {
-    out += fmt::format("{:<10} {:>9.3f} {:>6} {:>9.1f} {:>13.4f} {:>12.4f} {:>9} {:>14} {:>10} "
-                       "{:>8}\n",
-                       r.level, r.step_limit_mm, r.steps, r.time_s, r.max_depth_mm,
-                       r.worn_area_mm2, Num(r.wear_45_mm, "{:.4f}"),
-                       Num(r.err_profile_mm, "{:.4f}"), Num(r.err_max_depth * kToPercent, "{:.3f}"),
-                       Num(r.err_area * kToPercent, "{:.3f}"));
+    out += fmt::format(
+        "{:<10} {:>9.3f} {:>6} {:>9.1f} {:>13.4f} {:>12.4f} {:>9} {:>14} {:>10} "
+        "{:>8}\n",
+        r.level, r.step_limit_mm, r.steps, r.time_s, r.max_depth_mm, r.worn_area_mm2,
+        Num(r.wear_45_mm, "{:.4f}"), Num(r.err_profile_mm, "{:.4f}"),
+        Num(r.err_max_depth * kToPercent, "{:.3f}"), Num(r.err_area * kToPercent, "{:.3f}"));
   }
   return out;
 }
@@ -214,15 +219,18 @@ void PlotWearAccuracy(const WearAccuracyStudy& s, const std::string& png_path) {
     titles.push_back(levels[l]);
   }
   if (files.empty()) {
-    throw InputError("the wear accuracy plot needs runs besides the reference: give more than "
-                     "one level or step limit, or pass --no-plot");
+    throw InputError(
+        "the wear accuracy plot needs runs besides the reference: give more than "
+        "one level or step limit, or pass --no-plot");
   }
   std::ostringstream g;
   g << GnuplotPngTerminal(900, 600);
   g << "set output " << GnuplotQuote(png_path) << "\n";
-  g << "set title " << GnuplotQuote(fmt::format(
-      "{}: error of the final worn profile against run time (reference: {} level, {} mm steps)",
-      s.scene_name, s.rows.at(s.reference_row).level, s.rows.at(s.reference_row).step_limit_mm))
+  g << "set title "
+    << GnuplotQuote(fmt::format("{}: error of the final worn profile against run time (reference: "
+                                "{} level, {} mm steps)",
+                                s.scene_name, s.rows.at(s.reference_row).level,
+                                s.rows.at(s.reference_row).step_limit_mm))
     << "\n";
   g << "set logscale xy\nset grid\nset key below\nset format y '%g'\nset format x '%g'\n";
   g << "set xlabel 'run time [s]'\nset ylabel 'max |d - d_ref| over the profile [mm]'\nplot ";

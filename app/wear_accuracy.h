@@ -56,8 +56,9 @@ struct WearAccuracyStudy {
 // Runs the study. `progress` (may be empty) receives one line per finished run. Throws
 // InputError for a scene without a wear study, an unknown level, a non-positive step limit or
 // total.
-WearAccuracyStudy RunWearAccuracyStudy(const Scene& scene, const WearAccuracyOptions& options,
-                                       const std::function<void(const std::string&)>& progress = {});
+WearAccuracyStudy RunWearAccuracyStudy(
+    const Scene& scene, const WearAccuracyOptions& options,
+    const std::function<void(const std::string&)>& progress = {});
 
 std::string FormatWearAccuracyTable(const WearAccuracyStudy& study);
 void WriteWearAccuracyCsv(const WearAccuracyStudy& study, std::ostream& out);

@@ -8,12 +8,12 @@
 #include <cstdio>
 #include <iostream>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "app/gnuplot.h"
 #include "app/contact_output.h"
+#include "app/gnuplot.h"
 #include "app/history_plot.h"
 #include "app/scene.h"
 #include "core/numerics/input_error.h"
@@ -30,7 +30,9 @@ json WearLawJson(const WearStudy& study) {
   json j;
   j["law"] = std::string(ToString(law.kind));
   switch (law.kind) {
-    case WearLawKind::kArchard: j["k"] = law.archard_k; break;
+    case WearLawKind::kArchard:
+      j["k"] = law.archard_k;
+      break;
     case WearLawKind::kKth:
     case WearLawKind::kKthContinuous:
       j["kth_k_seizure"] = law.kth_k_seizure;
@@ -45,7 +47,9 @@ json WearLawJson(const WearStudy& study) {
         j["kth_pressure_band"] = law.kth_pressure_band;
       }
       break;
-    case WearLawKind::kUsfd: j["density_kg_m3"] = law.density_kg_m3; break;
+    case WearLawKind::kUsfd:
+      j["density_kg_m3"] = law.density_kg_m3;
+      break;
   }
   j["hardness_MPa"] = study.rail_material.hardness_Pa * 1e-6;
   j["max_depth_per_step_mm"] = study.options.max_depth_per_step_m * 1e3;
@@ -92,9 +96,9 @@ Distribution BinDistribution(const std::string& kind, const Profile& profile, co
 // No NaN or infinity reaches the database: a measure that cannot be taken is a failure.
 void RequireFinite(const StepResult& step) {
   const WearMeasures& m = step.measures;
-  for (const double v : {m.worn_area_m2, m.max_depth_m, m.max_depth_y_m, m.vertical_wear_m,
-                         m.side_wear_m, m.wear_45_m, step.state.passes, step.state.mgt,
-                         step.smoothing_area_error}) {
+  for (const double v :
+       {m.worn_area_m2, m.max_depth_m, m.max_depth_y_m, m.vertical_wear_m, m.side_wear_m,
+        m.wear_45_m, step.state.passes, step.state.mgt, step.smoothing_area_error}) {
     if (!std::isfinite(v)) {
       throw std::runtime_error(fmt::format(
           "wear step {}: a wear measure is not finite (a measuring line missed the worn "
@@ -139,8 +143,7 @@ StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const 
   for (double& v : step_mm) v *= 1e3;
   for (double& v : per_pass_nm) v *= 1e9;
   r.distributions.push_back(BinDistribution("step_depth_mm", previous, step.grid, step_mm));
-  r.distributions.push_back(
-      BinDistribution("depth_per_pass_nm", previous, step.grid, per_pass_nm));
+  r.distributions.push_back(BinDistribution("depth_per_pass_nm", previous, step.grid, per_pass_nm));
   if (study.damage) {
     // Stored as computed (no unit change): --resume reads it back bit for bit.
     const WearGrid grid = WearGrid::ForProfile(step.state.rail, study.options.bin_m);
@@ -181,7 +184,9 @@ std::string Duration(double seconds) {
 class Progress {
  public:
   Progress(double total_passes, double start_passes)
-      : total_(total_passes), start_passes_(start_passes), tty_(isatty(fileno(stderr)) != 0),
+      : total_(total_passes),
+        start_passes_(start_passes),
+        tty_(isatty(fileno(stderr)) != 0),
         start_(std::chrono::steady_clock::now()) {}
 
   void Step(const StepResult& step) {
@@ -232,10 +237,11 @@ void PrintSummary(const ProfileStore& store, int64_t run, const std::string& nam
   for (int i = 0; i < n; ++i) {
     if (i % every != 0 && i != n - 1) continue;
     const StepRecord& s = steps[i];
-    std::cout << fmt::format("{:>5} {:>12.5g} {:>9.4g} {:>12.4f} {:>10.4f} {:>9.2f} {:>7.3f} "
-                             "{:>7.3f} {:>7.3f}\n",
-                             s.step, s.passes, s.mgt, s.worn_area_mm2, s.max_depth_mm,
-                             s.max_depth_y_mm, s.w1_mm, s.w2_mm, s.w3_mm);
+    std::cout << fmt::format(
+        "{:>5} {:>12.5g} {:>9.4g} {:>12.4f} {:>10.4f} {:>9.2f} {:>7.3f} "
+        "{:>7.3f} {:>7.3f}\n",
+        s.step, s.passes, s.mgt, s.worn_area_mm2, s.max_depth_mm, s.max_depth_y_mm, s.w1_mm,
+        s.w2_mm, s.w3_mm);
   }
 }
 
@@ -244,17 +250,18 @@ void PrintSummary(const ProfileStore& store, int64_t run, const std::string& nam
 void SetupWear(CLI::App& app) {
   auto options = std::make_shared<WearCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "wear", "Worn-profile evolution: wear the rail by the scene's traffic mix, step by step, "
-              "storing every step in the profile history database");
-  cmd->add_option("scene", options->scene_path, "Scene file (TOML) with effect \"wear\", [wear] "
-                                                "and [[traffic]]")
+      "wear",
+      "Worn-profile evolution: wear the rail by the scene's traffic mix, step by step, "
+      "storing every step in the profile history database");
+  cmd->add_option("scene", options->scene_path,
+                  "Scene file (TOML) with effect \"wear\", [wear] "
+                  "and [[traffic]]")
       ->required();
-  cmd->add_option("--db", options->db,
-                  fmt::format("Database file (default: the scene's [wear] db, else {})",
-                              kDefaultDatabase));
+  cmd->add_option(
+      "--db", options->db,
+      fmt::format("Database file (default: the scene's [wear] db, else {})", kDefaultDatabase));
   cmd->add_option("--run", options->run, "Run name (default: the scene's name)");
-  cmd->add_flag("--resume", options->resume,
-                "Continue the named run from its last complete step");
+  cmd->add_flag("--resume", options->resume, "Continue the named run from its last complete step");
   cmd->add_option("--steps", options->steps, "Stop after N new steps (continue with --resume)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)")
@@ -276,7 +283,7 @@ void RunWearCommand(const WearCommandOptions& options) {
   if (options.plot) RequireGnuplotFor("wear --plot", "leave out --plot");
   WearStudy study = *scene.wear;
   if (options.threads) study.options.threads = *options.threads;
-  const std::string db = options.db ? *options.db
+  const std::string db = options.db               ? *options.db
                          : !scene.wear_db.empty() ? scene.wear_db
                                                   : std::string(kDefaultDatabase);
   const std::string name = options.run.value_or(scene.name);
@@ -288,9 +295,10 @@ void RunWearCommand(const WearCommandOptions& options) {
   const std::optional<RunInfo> existing = store.FindRun(name);
   if (options.resume) {
     if (!existing) {
-      throw InputError(fmt::format("{}: no run '{}' to resume: expected one of the runs listed "
-                                   "by `railwear history --db {} runs`",
-                                   db, name, db));
+      throw InputError(
+          fmt::format("{}: no run '{}' to resume: expected one of the runs listed "
+                      "by `railwear history --db {} runs`",
+                      db, name, db));
     }
     if (existing->scene_text != scene.text) {
       throw InputError(fmt::format(

@@ -20,8 +20,8 @@ namespace railwear::app {
 
 struct WearCommandOptions {
   std::string scene_path;
-  std::optional<std::string> db;    // default: [wear] db, else "wear.sqlite"
-  std::optional<std::string> run;   // default: the scene's name
+  std::optional<std::string> db;   // default: [wear] db, else "wear.sqlite"
+  std::optional<std::string> run;  // default: the scene's name
   bool resume = false;
   int steps = 0;                    // > 0: stop after this many new steps (resume later)
   std::optional<int> threads;       // overrides [wear] threads

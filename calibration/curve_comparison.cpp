@@ -24,9 +24,10 @@ CurveReference CurvesReference(const DisplacementCurves& reference) {
     }
     if (below == nullptr || above == nullptr) return std::nullopt;
     if (below->distance_m == above->distance_m) return below->w_m_per_N;
-    const double t = std::log(d / below->distance_m) / std::log(above->distance_m / below->distance_m);
-    const double wd = (1.0 - t) * below->w_m_per_N * below->distance_m +
-                      t * above->w_m_per_N * above->distance_m;
+    const double t =
+        std::log(d / below->distance_m) / std::log(above->distance_m / below->distance_m);
+    const double wd =
+        (1.0 - t) * below->w_m_per_N * below->distance_m + t * above->w_m_per_N * above->distance_m;
     return wd / d;
   };
 }
@@ -57,7 +58,8 @@ std::vector<CurveComparison> CompareCurves(const DisplacementCurves& curves,
     for (const ComparedPoint& p : c.points) sum += p.w_m_per_N - p.reference_m_per_N;
     c.offset_m_per_N = sum / static_cast<double>(c.points.size());
     double largest = 0.0;
-    for (const ComparedPoint& p : c.points) largest = std::max(largest, std::abs(p.reference_m_per_N));
+    for (const ComparedPoint& p : c.points)
+      largest = std::max(largest, std::abs(p.reference_m_per_N));
     for (const ComparedPoint& p : c.points) {
       if (std::abs(p.reference_m_per_N) < kSmallReferenceFraction * largest) {
         ++c.num_skipped;

@@ -23,7 +23,6 @@ constexpr std::string_view kMarker = "railwear displacement curves v1";
 constexpr double kNmPerN = 1e-9;  // nm/N -> m/N
 constexpr const char* kColumns = "load,path,distance_mm,w_nm_per_N";
 
-
 std::vector<std::string> SplitCommas(std::string_view s) {
   std::vector<std::string> out;
   size_t i = 0;
@@ -34,7 +33,6 @@ std::vector<std::string> SplitCommas(std::string_view s) {
     i = j + 1;
   }
 }
-
 
 bool Vanishes(CurveLoad load, CurvePath path) {
   return (load == CurveLoad::kAxial && path == CurvePath::kArc) ||
@@ -56,24 +54,32 @@ double MetadataNumber(const std::string& file, int line, const std::string& key,
 
 std::string_view ToString(CurveBody v) {
   switch (v) {
-    case CurveBody::kFlat: return "flat";
-    case CurveBody::kConvex: return "convex";
-    case CurveBody::kConcave: return "concave";
+    case CurveBody::kFlat:
+      return "flat";
+    case CurveBody::kConvex:
+      return "convex";
+    case CurveBody::kConcave:
+      return "concave";
   }
   return "?";
 }
 std::string_view ToString(CurveLoad v) {
   switch (v) {
-    case CurveLoad::kNormal: return "normal";
-    case CurveLoad::kAxial: return "axial";
-    case CurveLoad::kCircumferential: return "circumferential";
+    case CurveLoad::kNormal:
+      return "normal";
+    case CurveLoad::kAxial:
+      return "axial";
+    case CurveLoad::kCircumferential:
+      return "circumferential";
   }
   return "?";
 }
 std::string_view ToString(CurvePath v) {
   switch (v) {
-    case CurvePath::kArc: return "arc";
-    case CurvePath::kAxis: return "axis";
+    case CurvePath::kArc:
+      return "arc";
+    case CurvePath::kAxis:
+      return "axis";
   }
   return "?";
 }
@@ -98,9 +104,12 @@ std::optional<CurvePath> CurvePathFromString(std::string_view s) {
 
 int CurvatureSign(CurveBody body) {
   switch (body) {
-    case CurveBody::kConcave: return +1;
-    case CurveBody::kConvex: return -1;
-    case CurveBody::kFlat: return 0;
+    case CurveBody::kConcave:
+      return +1;
+    case CurveBody::kConvex:
+      return -1;
+    case CurveBody::kFlat:
+      return 0;
   }
   return 0;
 }
@@ -136,8 +145,8 @@ DisplacementCurves ReadDisplacementCurves(const std::string& path) {
       const std::string body_text = Trim(std::string_view(t).substr(1));
       if (!marker) {
         if (body_text != kMarker) {
-          throw InputError(fmt::format("{}:{}: first line is '{}'; expected '# {}'", path, number,
-                                       t, kMarker));
+          throw InputError(
+              fmt::format("{}:{}: first line is '{}'; expected '# {}'", path, number, t, kMarker));
         }
         marker = true;
         continue;
@@ -149,26 +158,28 @@ DisplacementCurves ReadDisplacementCurves(const std::string& path) {
       const std::string value = Trim(std::string_view(body_text).substr(eq + 1));
       last_meta_line = number;
       if (!keys.insert(key).second) {
-        throw InputError(fmt::format("{}:{}: metadata '{}' given twice; expected it once", path,
-                                     number, key));
+        throw InputError(
+            fmt::format("{}:{}: metadata '{}' given twice; expected it once", path, number, key));
       }
       if (key == "body") {
         body = CurveBodyFromString(value);
         if (!body) {
-          throw InputError(fmt::format("{}:{}: metadata 'body' = '{}': expected flat, convex or "
-                                       "concave",
-                                       path, number, value));
+          throw InputError(
+              fmt::format("{}:{}: metadata 'body' = '{}': expected flat, convex or "
+                          "concave",
+                          path, number, value));
         }
       } else if (key == "radius_mm") {
-        radius_mm = MetadataNumber(path, number, key, value, [](double v) { return v > 0.0; },
-                                   "a radius > 0 in mm");
+        radius_mm = MetadataNumber(
+            path, number, key, value, [](double v) { return v > 0.0; }, "a radius > 0 in mm");
       } else if (key == "E_MPa") {
-        e_mpa = MetadataNumber(path, number, key, value, [](double v) { return v > 0.0; },
-                               "Young's modulus > 0 in MPa");
+        e_mpa = MetadataNumber(
+            path, number, key, value, [](double v) { return v > 0.0; },
+            "Young's modulus > 0 in MPa");
       } else if (key == "nu") {
-        nu = MetadataNumber(path, number, key, value,
-                            [](double v) { return v >= 0.0 && v < 0.5; },
-                            "Poisson's ratio in [0, 0.5)");
+        nu = MetadataNumber(
+            path, number, key, value, [](double v) { return v >= 0.0 && v < 0.5; },
+            "Poisson's ratio in [0, 0.5)");
       } else {
         out.metadata.emplace_back(key, value);
       }
@@ -191,28 +202,32 @@ DisplacementCurves ReadDisplacementCurves(const std::string& path) {
                                       {"distance_mm", col_distance},
                                       {"w_nm_per_N", col_w}}) {
         if (col < 0) {
-          throw InputError(fmt::format("{}:{}: header '{}' has no column '{}'; expected the "
-                                       "columns {} (any order, extra columns allowed)",
-                                       path, number, t, name, kColumns));
+          throw InputError(
+              fmt::format("{}:{}: header '{}' has no column '{}'; expected the "
+                          "columns {} (any order, extra columns allowed)",
+                          path, number, t, name, kColumns));
         }
       }
       num_columns = cols.size();
       header = true;
       // The metadata is complete once the header is reached.
       if (!body) {
-        throw InputError(fmt::format("{}:{}: metadata 'body' is missing: expected a line "
-                                     "'# body = flat|convex|concave' before the header",
-                                     path, number));
+        throw InputError(
+            fmt::format("{}:{}: metadata 'body' is missing: expected a line "
+                        "'# body = flat|convex|concave' before the header",
+                        path, number));
       }
       if (*body != CurveBody::kFlat && !radius_mm) {
-        throw InputError(fmt::format("{}:{}: metadata 'radius_mm' is missing: expected "
-                                     "'# radius_mm = R' for a {} body",
-                                     path, number, ToString(*body)));
+        throw InputError(
+            fmt::format("{}:{}: metadata 'radius_mm' is missing: expected "
+                        "'# radius_mm = R' for a {} body",
+                        path, number, ToString(*body)));
       }
       if (!e_mpa || !nu) {
-        throw InputError(fmt::format("{}:{}: metadata '{}' is missing: expected '# E_MPa = ...' "
-                                     "and '# nu = ...' before the header",
-                                     path, number, !e_mpa ? "E_MPa" : "nu"));
+        throw InputError(
+            fmt::format("{}:{}: metadata '{}' is missing: expected '# E_MPa = ...' "
+                        "and '# nu = ...' before the header",
+                        path, number, !e_mpa ? "E_MPa" : "nu"));
       }
       continue;
     }
@@ -224,9 +239,10 @@ DisplacementCurves ReadDisplacementCurves(const std::string& path) {
     p.line = number;
     const auto load = CurveLoadFromString(cols[col_load]);
     if (!load) {
-      throw InputError(fmt::format("{}:{}: column 'load' is '{}': expected normal, axial or "
-                                   "circumferential",
-                                   path, number, cols[col_load]));
+      throw InputError(
+          fmt::format("{}:{}: column 'load' is '{}': expected normal, axial or "
+                      "circumferential",
+                      path, number, cols[col_load]));
     }
     const auto curve_path = CurvePathFromString(cols[col_path]);
     if (!curve_path) {
@@ -242,26 +258,30 @@ DisplacementCurves ReadDisplacementCurves(const std::string& path) {
     }
     const auto d = ParseFiniteDouble(cols[col_distance]);
     if (!d) {
-      throw InputError(fmt::format("{}:{}: column 'distance_mm' is '{}': expected a finite "
-                                   "number in mm",
-                                   path, number, cols[col_distance]));
+      throw InputError(
+          fmt::format("{}:{}: column 'distance_mm' is '{}': expected a finite "
+                      "number in mm",
+                      path, number, cols[col_distance]));
     }
     if (!(*d > 0.0)) {
-      throw InputError(fmt::format("{}:{}: column 'distance_mm' is {}: expected a positive "
-                                   "distance from the load point",
-                                   path, number, cols[col_distance]));
+      throw InputError(
+          fmt::format("{}:{}: column 'distance_mm' is {}: expected a positive "
+                      "distance from the load point",
+                      path, number, cols[col_distance]));
     }
     if (*curve_path == CurvePath::kArc && *body != CurveBody::kFlat &&
         *d > std::numbers::pi * *radius_mm) {
-      throw InputError(fmt::format("{}:{}: column 'distance_mm' is {}: expected an arc length of "
-                                   "at most half the circumference, pi R = {:.6g} mm",
-                                   path, number, cols[col_distance], std::numbers::pi * *radius_mm));
+      throw InputError(
+          fmt::format("{}:{}: column 'distance_mm' is {}: expected an arc length of "
+                      "at most half the circumference, pi R = {:.6g} mm",
+                      path, number, cols[col_distance], std::numbers::pi * *radius_mm));
     }
     const auto w = ParseFiniteDouble(cols[col_w]);
     if (!w) {
-      throw InputError(fmt::format("{}:{}: column 'w_nm_per_N' is '{}': expected a finite "
-                                   "number in nm/N",
-                                   path, number, cols[col_w]));
+      throw InputError(
+          fmt::format("{}:{}: column 'w_nm_per_N' is '{}': expected a finite "
+                      "number in nm/N",
+                      path, number, cols[col_w]));
     }
     p.load = *load;
     p.path = *curve_path;
@@ -274,14 +294,16 @@ DisplacementCurves ReadDisplacementCurves(const std::string& path) {
     throw InputError(fmt::format("{}:1: the file is empty; expected '# {}'", path, kMarker));
   }
   if (!header) {
-    throw InputError(fmt::format("{}:{}: no header line; expected the columns {} after the "
-                                 "metadata",
-                                 path, last_meta_line, kColumns));
+    throw InputError(
+        fmt::format("{}:{}: no header line; expected the columns {} after the "
+                    "metadata",
+                    path, last_meta_line, kColumns));
   }
   if (out.points.empty()) {
-    throw InputError(fmt::format("{}:{}: no data rows after the header; expected at least one "
-                                 "'{}' row",
-                                 path, number, kColumns));
+    throw InputError(
+        fmt::format("{}:{}: no data rows after the header; expected at least one "
+                    "'{}' row",
+                    path, number, kColumns));
   }
   out.body = *body;
   out.radius_m = out.body == CurveBody::kFlat ? 0.0 : *radius_mm * kMm;

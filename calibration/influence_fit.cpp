@@ -11,8 +11,8 @@
 #include <utility>
 
 #include <ceres/ceres.h>
-#include <Eigen/SVD>
 #include <fmt/format.h>
+#include <Eigen/SVD>
 
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
@@ -37,9 +37,12 @@ double& Slot(InfluenceConstants* c, int set, InfluenceConstantName name) {
   InfluenceConstantSet* s = nullptr;
   if (set != 0) s = set < 0 ? &c->separate->convex : &c->separate->concave;
   switch (name) {
-    case InfluenceConstantName::kCf: return s ? s->c_f : c->c_f;
-    case InfluenceConstantName::kCz: return s ? s->c_z : c->c_z;
-    case InfluenceConstantName::kCs: return s ? s->c_s : c->c_s;
+    case InfluenceConstantName::kCf:
+      return s ? s->c_f : c->c_f;
+    case InfluenceConstantName::kCz:
+      return s ? s->c_z : c->c_z;
+    case InfluenceConstantName::kCs:
+      return s ? s->c_s : c->c_s;
   }
   return c->c_f;
 }
@@ -48,8 +51,8 @@ std::vector<Parameter> MakeParameters(const InfluenceFitOptions& o) {
   std::vector<Parameter> out;
   const std::vector<int> sets = o.separate_bodies ? std::vector<int>{-1, +1} : std::vector<int>{0};
   for (int set : sets) {
-    for (InfluenceConstantName name : {InfluenceConstantName::kCf, InfluenceConstantName::kCz,
-                                       InfluenceConstantName::kCs}) {
+    for (InfluenceConstantName name :
+         {InfluenceConstantName::kCf, InfluenceConstantName::kCz, InfluenceConstantName::kCs}) {
       if (std::find(o.fit.begin(), o.fit.end(), name) == o.fit.end()) continue;
       Parameter p;
       p.set = set;
@@ -262,8 +265,8 @@ void CheckData(const InfluenceFitData& data, const InfluenceFitOptions& o) {
       throw InputError(fmt::format("{}: weight {}: expected a finite weight > 0", file, d.weight));
     }
     if (!(d.min_distance_m >= 0.0) || !(d.max_distance_m > d.min_distance_m)) {
-      throw InputError(fmt::format("{}: distance window [{}, {}] mm: expected 0 <= min < max",
-                                   file, d.min_distance_m / kMm, d.max_distance_m / kMm));
+      throw InputError(fmt::format("{}: distance window [{}, {}] mm: expected 0 <= min < max", file,
+                                   d.min_distance_m / kMm, d.max_distance_m / kMm));
     }
     if (o.separate_bodies && d.curves.body == CurveBody::kFlat) {
       throw InputError(fmt::format(
@@ -282,9 +285,10 @@ void CheckData(const InfluenceFitData& data, const InfluenceFitOptions& o) {
     }
     if (!(t.area_m2 > 0.0) || !(t.p_max_Pa > 0.0) || !std::isfinite(t.area_m2) ||
         !std::isfinite(t.p_max_Pa)) {
-      throw InputError(fmt::format("contact result '{}': targets area {} mm2, p_max {} MPa: "
-                                   "expected both > 0",
-                                   t.name, t.area_m2 * 1e6, t.p_max_Pa * 1e-6));
+      throw InputError(
+          fmt::format("contact result '{}': targets area {} mm2, p_max {} MPa: "
+                      "expected both > 0",
+                      t.name, t.area_m2 * 1e6, t.p_max_Pa * 1e-6));
     }
     if (!(t.weight > 0.0) || !std::isfinite(t.weight)) {
       throw InputError(fmt::format("contact result '{}': weight {}: expected a finite weight > 0",
@@ -317,9 +321,9 @@ std::vector<Curve> MakeCurves(const InfluenceFitData& data) {
       ++kept;
     }
     if (kept == 0) {
-      throw InputError(fmt::format(
-          "{}: no point within the distance window [{}, {}] mm; expected at least one",
-          d.curves.path, d.min_distance_m / kMm, d.max_distance_m / kMm));
+      throw InputError(
+          fmt::format("{}: no point within the distance window [{}, {}] mm; expected at least one",
+                      d.curves.path, d.min_distance_m / kMm, d.max_distance_m / kMm));
     }
   }
   // Curves with no point in the window carry nothing.
@@ -329,9 +333,10 @@ std::vector<Curve> MakeCurves(const InfluenceFitData& data) {
     for (const DisplacementPoint* p : c.points) sum += p->w_m_per_N * p->w_m_per_N;
     c.scale = std::sqrt(sum / static_cast<double>(c.points.size()));
     if (!(c.scale > 0.0)) {
-      throw InputError(fmt::format("{}: the {} load on the {} path has only zero displacements "
-                                   "in the window; expected data to fit",
-                                   c.data->curves.path, ToString(c.load), ToString(c.path)));
+      throw InputError(
+          fmt::format("{}: the {} load on the {} path has only zero displacements "
+                      "in the window; expected data to fit",
+                      c.data->curves.path, ToString(c.load), ToString(c.path)));
     }
   }
   return curves;
@@ -365,16 +370,15 @@ std::string WhyNotDetermined(const Parameter& p, const std::vector<Curve>& curve
       return fmt::format("no normal-load curve{}{}", bodies, contacts);
     case InfluenceConstantName::kCz:
       if (normal && !normal_arc_curved) {
-        return fmt::format("no normal-load curve with out-of-plane offsets (the arc path of a "
-                           "curved body){}: axis-only or flat-body data have dn = 0{}",
-                           bodies, contacts);
+        return fmt::format(
+            "no normal-load curve with out-of-plane offsets (the arc path of a "
+            "curved body){}: axis-only or flat-body data have dn = 0{}",
+            bodies, contacts);
       }
-      return fmt::format("no normal-load curve on the arc of a curved body{}{}", bodies,
-                         contacts);
+      return fmt::format("no normal-load curve on the arc of a curved body{}{}", bodies, contacts);
     case InfluenceConstantName::kCs:
       if (tangential && !tangential_curved) {
-        return fmt::format("tangential-load curves only on flat bodies, where c_t = 1{}",
-                           contacts);
+        return fmt::format("tangential-load curves only on flat bodies, where c_t = 1{}", contacts);
       }
       return fmt::format("no tangential-load curve{}{}", bodies,
                          data.contacts.empty() || coupling
@@ -438,16 +442,19 @@ double MaxAbs(const std::vector<double>& v) {
 
 std::string_view ToString(InfluenceConstantName v) {
   switch (v) {
-    case InfluenceConstantName::kCf: return "c_f";
-    case InfluenceConstantName::kCz: return "c_z";
-    case InfluenceConstantName::kCs: return "c_s";
+    case InfluenceConstantName::kCf:
+      return "c_f";
+    case InfluenceConstantName::kCz:
+      return "c_z";
+    case InfluenceConstantName::kCs:
+      return "c_s";
   }
   return "?";
 }
 
 std::optional<InfluenceConstantName> InfluenceConstantNameFromString(std::string_view s) {
-  for (auto v : {InfluenceConstantName::kCf, InfluenceConstantName::kCz,
-                 InfluenceConstantName::kCs}) {
+  for (auto v :
+       {InfluenceConstantName::kCf, InfluenceConstantName::kCz, InfluenceConstantName::kCs}) {
     if (ToString(v) == s) return v;
   }
   return std::nullopt;
@@ -455,9 +462,12 @@ std::optional<InfluenceConstantName> InfluenceConstantNameFromString(std::string
 
 std::string_view ToString(InfluenceFitStatus v) {
   switch (v) {
-    case InfluenceFitStatus::kConverged: return "converged";
-    case InfluenceFitStatus::kNoConvergence: return "no-convergence";
-    case InfluenceFitStatus::kFailure: return "failure";
+    case InfluenceFitStatus::kConverged:
+      return "converged";
+    case InfluenceFitStatus::kNoConvergence:
+      return "no-convergence";
+    case InfluenceFitStatus::kFailure:
+      return "failure";
   }
   return "?";
 }
@@ -471,22 +481,23 @@ bool InfluenceFitOptions::IsValid(std::string* error) const {
   for (size_t i = 0; i < fit.size(); ++i) {
     for (size_t j = 0; j < i; ++j) {
       if (fit[i] == fit[j]) {
-        return fail(fmt::format("fit names {} twice; expected each constant once",
-                                ToString(fit[i])));
+        return fail(
+            fmt::format("fit names {} twice; expected each constant once", ToString(fit[i])));
       }
     }
   }
   if (!separate_bodies && start.IsSeparate()) {
-    return fail("start has separate convex and concave sets but separate_bodies is false; "
-                "expected one set");
+    return fail(
+        "start has separate convex and concave sets but separate_bodies is false; "
+        "expected one set");
   }
   const InfluenceConstants s = StartConstants(*this);
   for (const Parameter& p : MakeParameters(*this)) {
     InfluenceConstants copy = s;
     const double v = Slot(&copy, p.set, p.name);
     if (!std::isfinite(v) || v < p.lower || v > p.upper) {
-      return fail(fmt::format("start {} = {}: expected a value in [{}, {}]", p.label, v, p.lower,
-                              p.upper));
+      return fail(
+          fmt::format("start {} = {}: expected a value in [{}, {}]", p.label, v, p.lower, p.upper));
     }
   }
   if (!(contact_relative_step > 0.0 && contact_relative_step <= 0.5)) {
@@ -509,8 +520,8 @@ bool InfluenceFitOptions::IsValid(std::string* error) const {
     return fail(fmt::format("condition_warning = {}: expected a number > 1", condition_warning));
   }
   if (!(correlation_warning > 0.0 && correlation_warning <= 1.0)) {
-    return fail(fmt::format("correlation_warning = {}: expected a number in (0, 1]",
-                            correlation_warning));
+    return fail(
+        fmt::format("correlation_warning = {}: expected a number in (0, 1]", correlation_warning));
   }
   return true;
 }
@@ -527,11 +538,11 @@ std::string InfluenceFitSummary::BriefReport() const {
     if (std::isfinite(c.standard_error)) values += fmt::format(" +- {:.2g}", c.standard_error);
     if (!c.determined) values += " (not determined)";
   }
-  return fmt::format("{}: {}; cost {:.4g} -> {:.4g} ({} residuals, {} free parameters), "
-                     "condition number {:.3g}, {}",
-                     ToString(status), values, cost_before, cost_after, num_residuals,
-                     num_free_parameters, condition_number,
-                     well_conditioned ? "well conditioned" : "badly conditioned");
+  return fmt::format(
+      "{}: {}; cost {:.4g} -> {:.4g} ({} residuals, {} free parameters), "
+      "condition number {:.3g}, {}",
+      ToString(status), values, cost_before, cost_after, num_residuals, num_free_parameters,
+      condition_number, well_conditioned ? "well conditioned" : "badly conditioned");
 }
 
 InfluenceFitSummary FitInfluenceConstants(const InfluenceFitData& data,
@@ -660,9 +671,10 @@ InfluenceFitSummary FitInfluenceConstants(const InfluenceFitData& data,
     const auto v = models[t]->Solve(base);
     if (!v) {
       out.status = InfluenceFitStatus::kFailure;
-      out.message = fmt::format("contact result '{}': the solve with the starting constants did "
-                                "not converge: {}",
-                                r.name, models[t]->last_failure());
+      out.message = fmt::format(
+          "contact result '{}': the solve with the starting constants did "
+          "not converge: {}",
+          r.name, models[t]->last_failure());
       out.contact_solves = solves;
       return out;
     }
@@ -699,9 +711,10 @@ InfluenceFitSummary FitInfluenceConstants(const InfluenceFitData& data,
   }
   for (int c = 0; c < num_curves; ++c) {
     if (options.fit_offsets && curves[c].points.size() < 2) {
-      out.warnings.push_back(fmt::format("{}: one point in the window, which its offset fits "
-                                         "exactly: the curve carries no information",
-                                         out.curves[c].Name()));
+      out.warnings.push_back(
+          fmt::format("{}: one point in the window, which its offset fits "
+                      "exactly: the curve carries no information",
+                      out.curves[c].Name()));
     }
   }
   std::vector<double*> free_blocks;
@@ -803,10 +816,9 @@ InfluenceFitSummary FitInfluenceConstants(const InfluenceFitData& data,
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(j);
   const Eigen::VectorXd sigma = svd.singularValues();
   for (int k = 0; k < sigma.size(); ++k) out.singular_values.push_back(sigma[k]);
-  out.condition_number = sigma.size() == 0 ? 0.0
-                         : sigma[sigma.size() - 1] > 0.0
-                             ? sigma[0] / sigma[sigma.size() - 1]
-                             : std::numeric_limits<double>::infinity();
+  out.condition_number = sigma.size() == 0               ? 0.0
+                         : sigma[sigma.size() - 1] > 0.0 ? sigma[0] / sigma[sigma.size() - 1]
+                                                         : std::numeric_limits<double>::infinity();
   if (!(out.condition_number <= options.condition_warning)) {
     out.well_conditioned = false;
     out.warnings.push_back(fmt::format(
@@ -863,8 +875,8 @@ InfluenceFitSummary FitInfluenceConstants(const InfluenceFitData& data,
     }
     if (options.fit_offsets) {
       for (int c = 0; c < num_curves; ++c) {
-        out.curves[c].offset_standard_error_m_per_N = std::sqrt(std::max(0.0, cov(f + c, f + c))) *
-                                                      curves[c].scale;
+        out.curves[c].offset_standard_error_m_per_N =
+            std::sqrt(std::max(0.0, cov(f + c, f + c))) * curves[c].scale;
       }
     }
     auto corr = [&](int a, int b) {

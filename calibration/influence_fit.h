@@ -107,8 +107,7 @@ struct InfluenceFitData {
 struct InfluenceFitOptions {
   // The constants to fit: any non-empty subset, each at most once. With separate_bodies each is
   // fitted in both the convex and the concave set.
-  std::vector<InfluenceConstantName> fit = {InfluenceConstantName::kCf,
-                                            InfluenceConstantName::kCz,
+  std::vector<InfluenceConstantName> fit = {InfluenceConstantName::kCf, InfluenceConstantName::kCz,
                                             InfluenceConstantName::kCs};
   // One set for both bodies (false) or a convex and a concave set (true; flat-body curves are
   // then refused: a flat body belongs to neither set).
@@ -154,9 +153,9 @@ struct FittedConstant {
   double value = 0.0;
   // Standard error (scaled by s^2); NaN when not determined or the covariance is unavailable.
   double standard_error = std::numeric_limits<double>::quiet_NaN();
-  bool determined = true;   // false: no sensitivity in these data; held at `start`
+  bool determined = true;          // false: no sensitivity in these data; held at `start`
   std::string why_not_determined;  // the reason, when not determined
-  bool at_bound = false;    // the fit ended on a bound
+  bool at_bound = false;           // the fit ended on a bound
 };
 
 // One point of a displacement curve, before (starting constants) and after the fit. The model
@@ -203,8 +202,8 @@ struct InfluenceFitSummary {
   InfluenceFitStatus status = InfluenceFitStatus::kFailure;
   std::string message;  // Ceres's termination message, or why the fit failed
 
-  InfluenceConstants start;   // as used (separate when separate_bodies)
-  InfluenceConstants fitted;  // start with the fitted constants in place
+  InfluenceConstants start;               // as used (separate when separate_bodies)
+  InfluenceConstants fitted;              // start with the fitted constants in place
   std::vector<FittedConstant> constants;  // the fitted constants, in parameter order
   // Correlations among `constants` [constants x constants]; NaN in the rows and columns of
   // constants without a covariance; empty when the covariance is unavailable.

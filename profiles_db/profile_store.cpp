@@ -48,8 +48,10 @@ double ReadDouble(const unsigned char* p) {
 // back when one fails.
 void RequireFiniteToStore(double v, const std::string& what) {
   if (!std::isfinite(v)) {
-    throw std::runtime_error(fmt::format("refusing to store a non-finite value ({}) {}; nothing "
-                                         "of this write was stored", v, what));
+    throw std::runtime_error(
+        fmt::format("refusing to store a non-finite value ({}) {}; nothing "
+                    "of this write was stored",
+                    v, what));
   }
 }
 
@@ -92,14 +94,16 @@ class Connection {
       const std::string msg = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
       sqlite3_close_v2(db_);
       db_ = nullptr;
-      throw InputError(fmt::format("database '{}': cannot open it ({}); expected a railwear "
-                                   "profile-history database or a new file in an existing folder",
-                                   path, msg));
+      throw InputError(
+          fmt::format("database '{}': cannot open it ({}); expected a railwear "
+                      "profile-history database or a new file in an existing folder",
+                      path, msg));
     }
     sqlite3_extended_result_codes(db_, 1);
     sqlite3_busy_timeout(db_, kBusyTimeoutMs);
   }
-  Connection(Connection&& o) noexcept : db_(std::exchange(o.db_, nullptr)), path_(std::move(o.path_)) {}
+  Connection(Connection&& o) noexcept
+      : db_(std::exchange(o.db_, nullptr)), path_(std::move(o.path_)) {}
   Connection& operator=(Connection&& o) noexcept {
     if (this != &o) {
       Close();
@@ -121,8 +125,8 @@ class Connection {
     if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &err) != SQLITE_OK) {
       const std::string msg = err ? err : sqlite3_errmsg(db_);
       sqlite3_free(err);
-      throw std::runtime_error(fmt::format("database '{}': '{}' failed: {}", path_,
-                                           sql.substr(0, 60), msg));
+      throw std::runtime_error(
+          fmt::format("database '{}': '{}' failed: {}", path_, sql.substr(0, 60), msg));
     }
   }
 
@@ -150,8 +154,8 @@ class Statement {
   Statement& Bind(int i, int64_t v) { return Check(sqlite3_bind_int64(stmt_, i, v)); }
   Statement& Bind(int i, int v) { return Check(sqlite3_bind_int(stmt_, i, v)); }
   Statement& Bind(int i, double v) {
-    internal::RequireFiniteToStore(
-        v, fmt::format("in database '{}' as parameter {} of '{}'", c_->path(), i, sql_.substr(0, 60)));
+    internal::RequireFiniteToStore(v, fmt::format("in database '{}' as parameter {} of '{}'",
+                                                  c_->path(), i, sql_.substr(0, 60)));
     return Check(sqlite3_bind_double(stmt_, i, v));
   }
   Statement& Bind(int i, const std::string& v) {
@@ -232,7 +236,8 @@ class Transaction {
 // transaction it fails at once with "database is locked", so it is retried for as long as the
 // busy timeout would have waited.
 void SwitchToWal(const Connection& c) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(kBusyTimeoutMs);
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::milliseconds(kBusyTimeoutMs);
   while (true) {
     sqlite3_stmt* raw = nullptr;
     int rc = sqlite3_prepare_v2(c.get(), "PRAGMA journal_mode = WAL", -1, &raw, nullptr);
@@ -251,8 +256,8 @@ void SwitchToWal(const Connection& c) {
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
       continue;
     }
-    throw std::runtime_error(fmt::format("database '{}': cannot switch to WAL mode ({})",
-                                         c.path(), sqlite3_errmsg(c.get())));
+    throw std::runtime_error(fmt::format("database '{}': cannot switch to WAL mode ({})", c.path(),
+                                         sqlite3_errmsg(c.get())));
   }
 }
 
@@ -325,8 +330,9 @@ CREATE TABLE distributions(
 // Version 2: wear distributions are functions of the arc length along the unworn profile.
 // Rows written by version 1 keep s NULL; the CHECK holds for them.
 void MigrateTo2(const Connection& c) {
-  c.Exec("ALTER TABLE distributions ADD COLUMN s BLOB "
-         "CHECK (s IS NULL OR length(s) = length(value))");
+  c.Exec(
+      "ALTER TABLE distributions ADD COLUMN s BLOB "
+      "CHECK (s IS NULL OR length(s) = length(value))");
 }
 
 // Version 3: influence-constant calibrations (`railwear calibrate`) with the text of every input
@@ -374,8 +380,8 @@ bool TableExists(const Connection& c, const std::string& name) {
 int InspectDatabase(const Connection& c) {
   const std::string& path = c.path();
   sqlite3_stmt* raw = nullptr;
-  const int rc = sqlite3_prepare_v2(c.get(), "SELECT count(*) FROM sqlite_schema", -1, &raw,
-                                    nullptr);
+  const int rc =
+      sqlite3_prepare_v2(c.get(), "SELECT count(*) FROM sqlite_schema", -1, &raw, nullptr);
   int objects = 0;
   int step_rc = rc;
   if (rc == SQLITE_OK) {
@@ -501,9 +507,12 @@ using internal::Transaction;
 
 std::string ToString(RunState state) {
   switch (state) {
-    case RunState::kRunning: return "running";
-    case RunState::kComplete: return "complete";
-    case RunState::kAborted: return "aborted";
+    case RunState::kRunning:
+      return "running";
+    case RunState::kComplete:
+      return "complete";
+    case RunState::kAborted:
+      return "aborted";
   }
   return "running";
 }
@@ -530,8 +539,10 @@ ProfileStore ProfileStore::Open(const std::string& path) {
   impl->in_memory = path == ":memory:" || path.empty();
   std::error_code ec;
   if (!impl->in_memory && std::filesystem::is_directory(path, ec)) {
-    throw InputError(fmt::format("database '{}': is a directory; expected a railwear "
-                                 "profile-history database file", path));
+    throw InputError(
+        fmt::format("database '{}': is a directory; expected a railwear "
+                    "profile-history database file",
+                    path));
   }
   impl->db = Connection(path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
   const Connection& c = impl->db;
@@ -577,8 +588,10 @@ int64_t ProfileStore::CreateRun(const RunInfo& run) {
   int constraint = 0;
   s.Step(&constraint);
   if (constraint != 0) {
-    throw InputError(fmt::format("database '{}': a run named '{}' already exists; expected a new "
-                                 "run name (or resume that run)", path(), run.name));
+    throw InputError(
+        fmt::format("database '{}': a run named '{}' already exists; expected a new "
+                    "run name (or resume that run)",
+                    path(), run.name));
   }
   return sqlite3_last_insert_rowid(c.get());
 }
@@ -609,8 +622,10 @@ void ProfileStore::SetRunState(int64_t run, RunState state) {
 void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
   const Connection& c = impl_->db;
   if (step.profile.size() == 0) {
-    throw InputError(fmt::format("database '{}': run {} step {}: the profile is empty; expected "
-                                 "the rail profile after the step", path(), run, step.step));
+    throw InputError(
+        fmt::format("database '{}': run {} step {}: the profile is empty; expected "
+                    "the rail profile after the step",
+                    path(), run, step.step));
   }
   for (const auto& d : step.distributions) {
     if (d.kind.empty() || d.y_m.size() != d.value.size()) {
@@ -622,8 +637,8 @@ void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
     if (!d.s_m.empty() && d.s_m.size() != d.value.size()) {
       throw InputError(fmt::format(
           "database '{}': run {} step {}: distribution '{}' ({} arc lengths s, {} values); "
-          "expected no s or one s per value", path(), run, step.step, d.kind, d.s_m.size(),
-          d.value.size()));
+          "expected no s or one s per value",
+          path(), run, step.step, d.kind, d.s_m.size(), d.value.size()));
     }
   }
   Transaction t(c);
@@ -635,12 +650,15 @@ void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
   const std::optional<int> last = LastStep(run);
   const int expected = last ? *last + 1 : 0;
   if (step.step != expected) {
-    throw InputError(fmt::format("database '{}': run {} step {}: steps are appended in order; "
-                                 "expected step {}", path(), run, step.step, expected));
+    throw InputError(
+        fmt::format("database '{}': run {} step {}: steps are appended in order; "
+                    "expected step {}",
+                    path(), run, step.step, expected));
   }
   {
     Statement s(c, fmt::format("INSERT INTO steps(run_id, {}) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, "
-                               "?8, ?9, ?10, ?11, {})", internal::kStepColumns, internal::kNowUtc));
+                               "?8, ?9, ?10, ?11, {})",
+                               internal::kStepColumns, internal::kNowUtc));
     s.Bind(1, run).Bind(2, step.step).Bind(3, step.passes).Bind(4, step.mgt);
     s.Bind(5, step.worn_area_mm2).Bind(6, step.max_depth_mm).Bind(7, step.max_depth_y_mm);
     s.Bind(8, step.w1_mm).Bind(9, step.w2_mm).Bind(10, step.w3_mm);
@@ -654,16 +672,21 @@ void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
     s.Run();
   }
   {
-    Statement s(c, "INSERT INTO load_cases(run_id, step, case_index, json) VALUES (?1, ?2, ?3, ?4)");
+    Statement s(c,
+                "INSERT INTO load_cases(run_id, step, case_index, json) VALUES (?1, ?2, ?3, ?4)");
     for (size_t i = 0; i < step.load_cases_json.size(); ++i) {
       sqlite3_reset(s.get());
-      s.Bind(1, run).Bind(2, step.step).Bind(3, static_cast<int>(i)).Bind(4, step.load_cases_json[i]);
+      s.Bind(1, run)
+          .Bind(2, step.step)
+          .Bind(3, static_cast<int>(i))
+          .Bind(4, step.load_cases_json[i]);
       s.Run();
     }
   }
   {
-    Statement s(c, "INSERT INTO distributions(run_id, step, kind, y, value, s) "
-                   "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
+    Statement s(c,
+                "INSERT INTO distributions(run_id, step, kind, y, value, s) "
+                "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
     for (const auto& d : step.distributions) {
       sqlite3_reset(s.get());
       sqlite3_clear_bindings(s.get());  // ?6 stays NULL for a distribution without s
@@ -673,9 +696,10 @@ void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
       int constraint = 0;
       s.Step(&constraint);
       if (constraint != 0) {  // the transaction rolls back the rows already written
-        throw InputError(fmt::format("database '{}': run {} step {}: distribution kind '{}' "
-                                     "given twice; expected each kind once", path(), run,
-                                     step.step, d.kind));
+        throw InputError(
+            fmt::format("database '{}': run {} step {}: distribution kind '{}' "
+                        "given twice; expected each kind once",
+                        path(), run, step.step, d.kind));
       }
     }
   }
@@ -699,9 +723,10 @@ Profile ProfileStore::LoadProfile(int64_t run, int step) const {
   }
   const std::vector<double> yz = s.Doubles(1);
   if (yz.size() != 2 * static_cast<size_t>(s.Int64(0))) {
-    throw InputError(fmt::format("database '{}': run {} step {}: profile BLOB of {} values for {} "
-                                 "points; expected 2 per point", path(), run, step, yz.size(),
-                                 s.Int64(0)));
+    throw InputError(
+        fmt::format("database '{}': run {} step {}: profile BLOB of {} values for {} "
+                    "points; expected 2 per point",
+                    path(), run, step, yz.size(), s.Int64(0)));
   }
   std::vector<Eigen::Vector2d> points(yz.size() / 2);
   for (size_t i = 0; i < points.size(); ++i) points[i] = {yz[2 * i], yz[2 * i + 1]};
@@ -722,14 +747,16 @@ StepRecord ProfileStore::LoadStep(int64_t run, int step) const {
   }
   r.profile = LoadProfile(run, step);
   {
-    Statement s(c, "SELECT json FROM load_cases WHERE run_id = ?1 AND step = ?2 "
-                   "ORDER BY case_index");
+    Statement s(c,
+                "SELECT json FROM load_cases WHERE run_id = ?1 AND step = ?2 "
+                "ORDER BY case_index");
     s.Bind(1, run).Bind(2, step);
     while (s.Step()) r.load_cases_json.push_back(s.Text(0));
   }
   {
-    Statement s(c, "SELECT kind, y, value, s FROM distributions WHERE run_id = ?1 AND step = ?2 "
-                   "ORDER BY kind");
+    Statement s(c,
+                "SELECT kind, y, value, s FROM distributions WHERE run_id = ?1 AND step = ?2 "
+                "ORDER BY kind");
     s.Bind(1, run).Bind(2, step);
     while (s.Step()) {
       r.distributions.push_back({s.Text(0), s.Doubles(1), s.Doubles(2), s.Doubles(3)});
@@ -748,14 +775,15 @@ std::optional<int> ProfileStore::LastStep(int64_t run) const {
 int64_t ProfileStore::AddCalibration(const CalibrationRecord& calibration) {
   const Connection& c = impl_->db;
   if (calibration.name.empty()) {
-    throw InputError(fmt::format("database '{}': calibration name is empty; expected a name",
-                                 path()));
+    throw InputError(
+        fmt::format("database '{}': calibration name is empty; expected a name", path()));
   }
   for (const auto& input : calibration.inputs) {
     if (input.kind.empty() || input.path.empty()) {
-      throw InputError(fmt::format("database '{}': calibration '{}': an input without kind or "
-                                   "path; expected both",
-                                   path(), calibration.name));
+      throw InputError(
+          fmt::format("database '{}': calibration '{}': an input without kind or "
+                      "path; expected both",
+                      path(), calibration.name));
     }
   }
   Transaction t(c);
@@ -778,8 +806,9 @@ int64_t ProfileStore::AddCalibration(const CalibrationRecord& calibration) {
     id = sqlite3_last_insert_rowid(c.get());
   }
   {
-    Statement s(c, "INSERT INTO calibration_inputs(calibration_id, input_index, kind, path, text) "
-                   "VALUES (?1, ?2, ?3, ?4, ?5)");
+    Statement s(c,
+                "INSERT INTO calibration_inputs(calibration_id, input_index, kind, path, text) "
+                "VALUES (?1, ?2, ?3, ?4, ?5)");
     for (size_t i = 0; i < calibration.inputs.size(); ++i) {
       const CalibrationInput& input = calibration.inputs[i];
       sqlite3_reset(s.get());
@@ -811,8 +840,9 @@ CalibrationRecord ProfileStore::LoadCalibration(int64_t id) const {
     }
     r = internal::ReadCalibration(s);
   }
-  Statement s(impl_->db, "SELECT kind, path, text FROM calibration_inputs WHERE "
-                         "calibration_id = ?1 ORDER BY input_index");
+  Statement s(impl_->db,
+              "SELECT kind, path, text FROM calibration_inputs WHERE "
+              "calibration_id = ?1 ORDER BY input_index");
   s.Bind(1, id);
   while (s.Step()) r.inputs.push_back({s.Text(0), s.Text(1), s.Text(2)});
   return r;
@@ -842,20 +872,24 @@ QueryResult ProfileStore::Query(const std::string& sql) const {
       SQLITE_OK) {
     const std::string msg = sqlite3_errmsg(c.get());
     sqlite3_finalize(raw);
-    throw InputError(fmt::format("query on '{}': {}; expected one read-only SQL statement "
-                                 "(see profiles_db/SCHEMA.md)", path(), msg));
+    throw InputError(
+        fmt::format("query on '{}': {}; expected one read-only SQL statement "
+                    "(see profiles_db/SCHEMA.md)",
+                    path(), msg));
   }
   std::unique_ptr<sqlite3_stmt, int (*)(sqlite3_stmt*)> stmt(raw, &sqlite3_finalize);
   if (!stmt) throw InputError(fmt::format("query on '{}': empty; expected a SELECT", path()));
   for (const char* p = tail; p && *p; ++p) {
     if (!std::isspace(static_cast<unsigned char>(*p)) && *p != ';') {
-      throw InputError(fmt::format("query on '{}': more than one statement ('{}'); expected one",
-                                   path(), p));
+      throw InputError(
+          fmt::format("query on '{}': more than one statement ('{}'); expected one", path(), p));
     }
   }
   if (!sqlite3_stmt_readonly(stmt.get())) {
-    throw InputError(fmt::format("query on '{}': '{}' would modify the database; expected a "
-                                 "read-only statement such as SELECT", path(), sql));
+    throw InputError(
+        fmt::format("query on '{}': '{}' would modify the database; expected a "
+                    "read-only statement such as SELECT",
+                    path(), sql));
   }
   QueryResult result;
   const int n = sqlite3_column_count(stmt.get());
@@ -866,7 +900,9 @@ QueryResult ProfileStore::Query(const std::string& sql) const {
     row.reserve(n);
     for (int i = 0; i < n; ++i) {
       switch (sqlite3_column_type(stmt.get(), i)) {
-        case SQLITE_NULL: row.emplace_back("NULL"); break;
+        case SQLITE_NULL:
+          row.emplace_back("NULL");
+          break;
         case SQLITE_BLOB:
           row.push_back(fmt::format("<blob {} bytes>", sqlite3_column_bytes(stmt.get(), i)));
           break;
@@ -881,8 +917,8 @@ QueryResult ProfileStore::Query(const std::string& sql) const {
     const int code = rc & 0xff;
     const std::string msg = sqlite3_errmsg(c.get());
     if (code == SQLITE_READONLY || code == SQLITE_ERROR || code == SQLITE_CONSTRAINT) {
-      throw InputError(fmt::format("query on '{}': {}; expected one read-only SQL statement",
-                                   path(), msg));
+      throw InputError(
+          fmt::format("query on '{}': {}; expected one read-only SQL statement", path(), msg));
     }
     throw std::runtime_error(fmt::format("query on '{}' failed: {}", path(), msg));
   }

@@ -72,9 +72,9 @@ struct RunInfo {
 // Wear is naturally a function of the arc length s along the unworn profile (y is not single-
 // valued on the gauge face), so a distribution may carry s next to y.
 struct Distribution {
-  std::string kind;          // unique within a step, not empty
-  std::vector<double> y_m;   // lateral positions on the rail profile [m], shape [n]
-  std::vector<double> value; // the quantity at each y (units in `kind`), shape [n]
+  std::string kind;           // unique within a step, not empty
+  std::vector<double> y_m;    // lateral positions on the rail profile [m], shape [n]
+  std::vector<double> value;  // the quantity at each y (units in `kind`), shape [n]
   // Arc length of each sample along the run's step-0 (unworn) profile, measured from its first
   // point [m], shape [n]; empty when the distribution has none (always so for schema-1 rows).
   // (The "= {}" keeps three-member brace initialisation free of -Wmissing-field-initializers.)
@@ -84,17 +84,17 @@ struct Distribution {
 // One wear step. Step 0 is conventionally the unworn profile (passes = 0).
 struct StepRecord {
   int step = 0;
-  double passes = 0.0;            // cumulative wheel passes up to the end of this step
-  double mgt = 0.0;               // cumulative traffic [million gross tonnes]
-  double worn_area_mm2 = 0.0;     // cumulative worn cross-section area [mm^2]
-  double max_depth_mm = 0.0;      // largest cumulative wear depth [mm]
-  double max_depth_y_mm = 0.0;    // lateral position of that depth [mm]
-  double w1_mm = 0.0;             // W1/W2/W3 wear measures [mm] (wear/wear_measures.h)
+  double passes = 0.0;          // cumulative wheel passes up to the end of this step
+  double mgt = 0.0;             // cumulative traffic [million gross tonnes]
+  double worn_area_mm2 = 0.0;   // cumulative worn cross-section area [mm^2]
+  double max_depth_mm = 0.0;    // largest cumulative wear depth [mm]
+  double max_depth_y_mm = 0.0;  // lateral position of that depth [mm]
+  double w1_mm = 0.0;           // W1/W2/W3 wear measures [mm] (wear/wear_measures.h)
   double w2_mm = 0.0;
   double w3_mm = 0.0;
   double smoothing_area_error = 0.0;  // relative area change caused by profile smoothing [-]
-  std::string created_utc;        // set by AppendStep; filled in by Steps()
-  Profile profile;                // the rail profile after this step (not filled by Steps())
+  std::string created_utc;            // set by AppendStep; filled in by Steps()
+  Profile profile;                    // the rail profile after this step (not filled by Steps())
   std::vector<std::string> load_cases_json;  // per load case (index = case_index): JSON text
   std::vector<Distribution> distributions;   // wear and damage per rail-profile position
 };
@@ -110,19 +110,19 @@ struct CalibrationInput {
 // An influence-constant calibration (`railwear calibrate`): what it was made from and what it
 // found. The JSON texts are as the calibrate command writes them (SCHEMA.md).
 struct CalibrationRecord {
-  int64_t id = 0;               // assigned by AddCalibration; ignored on input
-  std::string name;             // not empty (need not be unique: the id identifies)
-  std::string created_utc;      // set by AddCalibration if empty
+  int64_t id = 0;           // assigned by AddCalibration; ignored on input
+  std::string name;         // not empty (need not be unique: the id identifies)
+  std::string created_utc;  // set by AddCalibration if empty
   std::string program_version;
-  std::string config_path;      // the calibration config as given
-  std::string config_text;      // its full text
-  std::string status;           // "converged", "no-convergence", "failure"
+  std::string config_path;  // the calibration config as given
+  std::string config_text;  // its full text
+  std::string status;       // "converged", "no-convergence", "failure"
   bool well_conditioned = true;
-  std::string constants_json;   // fitted constants: start, value, standard error, flags
-  std::string correlation_json; // correlation matrix of the fitted constants
-  std::string residuals_json;   // per curve and per contact result, before and after
-  std::string ceres_report;     // Ceres's full report
-  std::string constants_toml;   // the [influence_constants] file written for scenes
+  std::string constants_json;            // fitted constants: start, value, standard error, flags
+  std::string correlation_json;          // correlation matrix of the fitted constants
+  std::string residuals_json;            // per curve and per contact result, before and after
+  std::string ceres_report;              // Ceres's full report
+  std::string constants_toml;            // the [influence_constants] file written for scenes
   std::vector<CalibrationInput> inputs;  // filled by LoadCalibration, not by Calibrations()
 };
 
@@ -174,7 +174,8 @@ class ProfileStore {
   // The steps of a run in order, summary columns only (profile, load cases and distributions
   // are left empty; see LoadProfile / LoadStep).
   std::vector<StepRecord> Steps(int64_t run) const;
-  // One step in full: summary, profile, load cases and distributions. Throws InputError when absent.
+  // One step in full: summary, profile, load cases and distributions. Throws InputError when
+  // absent.
   StepRecord LoadStep(int64_t run, int step) const;
   // The profile stored for a step, points bit-for-bit as appended. Throws InputError when absent.
   Profile LoadProfile(int64_t run, int step) const;

@@ -21,9 +21,12 @@ bool PositiveFinite(double x) { return std::isfinite(x) && x > 0.0; }
 
 int Severity(SmoothingSplineStatus s) {
   switch (s) {
-    case SmoothingSplineStatus::kConverged: return 0;
-    case SmoothingSplineStatus::kNoConvergence: return 1;
-    case SmoothingSplineStatus::kFailure: return 2;
+    case SmoothingSplineStatus::kConverged:
+      return 0;
+    case SmoothingSplineStatus::kNoConvergence:
+      return 1;
+    case SmoothingSplineStatus::kFailure:
+      return 2;
   }
   return 2;
 }
@@ -40,8 +43,8 @@ bool DepthSmoothingOptions::IsValid(std::string* error) const {
                                    knots_per_smoothing_length));
   }
   if (!PositiveFinite(margin_lengths)) {
-    return Fail(error, fmt::format("margin_lengths = {}: expected a finite number > 0",
-                                   margin_lengths));
+    return Fail(error,
+                fmt::format("margin_lengths = {}: expected a finite number > 0", margin_lengths));
   }
   if (!(support_threshold >= 0.0 && support_threshold < 1.0)) {
     return Fail(error, fmt::format("support_threshold = {}: expected a number in [0, 1)",
@@ -62,18 +65,20 @@ DepthSmoothing SmoothDepthField(const std::vector<double>& depth_m, double h_m,
   std::string error;
   if (!o.IsValid(&error)) throw InputError(error);
   if (!PositiveFinite(h_m)) {
-    throw InputError(fmt::format("depth smoothing: bin width h_m = {}: expected a finite number "
-                                 "> 0",
-                                 h_m));
+    throw InputError(
+        fmt::format("depth smoothing: bin width h_m = {}: expected a finite number "
+                    "> 0",
+                    h_m));
   }
   const int n = static_cast<int>(depth_m.size());
   double max_depth = 0.0;
   double area_before = 0.0;
   for (int i = 0; i < n; ++i) {
     if (!(std::isfinite(depth_m[i]) && depth_m[i] >= 0.0)) {
-      throw InputError(fmt::format("depth smoothing: depth_m[{}] = {}: expected a finite depth "
-                                   ">= 0",
-                                   i, depth_m[i]));
+      throw InputError(
+          fmt::format("depth smoothing: depth_m[{}] = {}: expected a finite depth "
+                      ">= 0",
+                      i, depth_m[i]));
     }
     max_depth = std::max(max_depth, depth_m[i]);
     area_before += depth_m[i] * h_m;
@@ -94,7 +99,7 @@ DepthSmoothing SmoothDepthField(const std::vector<double>& depth_m, double h_m,
   const double threshold = o.support_threshold * max_depth;
   const int margin = std::max(1, static_cast<int>(std::ceil(o.margin_lengths * l / h_m)));
   struct Band {
-    int first, last;            // bins of the band
+    int first, last;  // bins of the band
     int window_first, window_last;
   };
   std::vector<Band> bands;

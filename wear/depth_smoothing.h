@@ -63,9 +63,9 @@ struct DepthSmoothing {
   std::vector<double> depth_m;  // smoothed depth [m], shape [n], >= 0
   // (area after - area before) / area before, before the final rescale (0 for an all-zero field).
   double area_error = 0.0;
-  double lambda = 0.0;  // l^4 [m^4]
-  int num_windows = 0;          // windows fitted
-  int num_fitted_bins = 0;      // bins inside windows
+  double lambda = 0.0;           // l^4 [m^4]
+  int num_windows = 0;           // windows fitted
+  int num_fitted_bins = 0;       // bins inside windows
   int num_ceres_iterations = 0;  // summed over windows
   // The worst status over the windows (kConverged when nothing was fitted) and its message.
   SmoothingSplineStatus status = SmoothingSplineStatus::kConverged;

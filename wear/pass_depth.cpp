@@ -39,8 +39,7 @@ void RequireGridAndRolling(const PatchResult& patch, const char* what, const cha
 
 void RequirePositive(const char* what, const char* name, double value) {
   if (!(value > 0.0) || !std::isfinite(value)) {
-    throw InputError(
-        fmt::format("{}: {} = {}: expected a finite number > 0", what, name, value));
+    throw InputError(fmt::format("{}: {} = {}: expected a finite number > 0", what, name, value));
   }
 }
 
@@ -90,9 +89,7 @@ std::vector<double> MapColumns(const PatchGrid& grid, const std::vector<double>&
   return bins;
 }
 
-void RequireWearGrid(const WearGrid& g) {
-  RAILWEAR_CHECK(g.n > 0 && g.h_m > 0.0);
-}
+void RequireWearGrid(const WearGrid& g) { RAILWEAR_CHECK(g.n > 0 && g.h_m > 0.0); }
 
 }  // namespace
 

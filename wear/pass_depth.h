@@ -11,18 +11,18 @@
 //
 // 2. Mapping onto the rail. The rail is prismatic, so the orthogonal projection of a grid point
 //    onto the rail (seed eq. 2) is a 1-D search along the rail profile (CurveLocator::Project),
-//    giving a rail arc length (the closest point over the whole profile). Column j covers the reference-surface arc between its edge
-//    points: the midpoints between neighbouring column centres, and at the two end columns the
-//    centre minus/plus half the step to its neighbour (a one-column grid uses its tangent and
-//    ds / 2). The projections of those ns + 1 edge points bound the rail arc interval
-//    [s_a, s_b] of column j. Column j's worn area dz_j ds is spread uniformly over that interval
-//    and accumulated onto fixed bins of rail arc length (WearGrid). Every column deposits exactly
-//    its own area, so the worn area is conserved to rounding:  sum_b depth_b h = sum_j dz_j ds.
-//    Where the reference surface is longer or shorter than the rail arc it projects onto (the
-//    intermediate surface of a conformal patch lies inside the overlap; a planar patch leaves
-//    the curved rail), the depth on the rail is the column depth times ds / (s_b - s_a): area,
-//    not the column depth, is what carries over. A column whose interval has zero width (its
-//    edges project onto one point) puts its area into the bin of that point.
+//    giving a rail arc length (the closest point over the whole profile). Column j covers the
+//    reference-surface arc between its edge points: the midpoints between neighbouring column
+//    centres, and at the two end columns the centre minus/plus half the step to its neighbour (a
+//    one-column grid uses its tangent and ds / 2). The projections of those ns + 1 edge points
+//    bound the rail arc interval [s_a, s_b] of column j. Column j's worn area dz_j ds is spread
+//    uniformly over that interval and accumulated onto fixed bins of rail arc length (WearGrid).
+//    Every column deposits exactly its own area, so the worn area is conserved to rounding:  sum_b
+//    depth_b h = sum_j dz_j ds. Where the reference surface is longer or shorter than the rail arc
+//    it projects onto (the intermediate surface of a conformal patch lies inside the overlap; a
+//    planar patch leaves the curved rail), the depth on the rail is the column depth times ds /
+//    (s_b - s_a): area, not the column depth, is what carries over. A column whose interval has
+//    zero width (its edges project onto one point) puts its area into the bin of that point.
 //
 // 3. Damage per position. The Whole Life Rail Model damage per axle of the patch
 //    (PatchDamage::wlrm_damage) is intensive: every rail position the loaded columns (any cell

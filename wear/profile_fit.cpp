@@ -15,17 +15,19 @@ bool ProfileFitOptions::IsValid(std::string* error) const {
   if (!spline.IsValid(error)) return false;
   if (!(std::isfinite(output_spacing_m) && output_spacing_m > 0.0)) {
     if (error != nullptr) {
-      *error = fmt::format("profile fit options: output_spacing_m = {}: expected a finite number "
-                           "> 0",
-                           output_spacing_m);
+      *error = fmt::format(
+          "profile fit options: output_spacing_m = {}: expected a finite number "
+          "> 0",
+          output_spacing_m);
     }
     return false;
   }
   if (!(std::isfinite(parameter_smoothing_length_m) && parameter_smoothing_length_m > 0.0)) {
     if (error != nullptr) {
-      *error = fmt::format("profile fit options: parameter_smoothing_length_m = {}: expected a "
-                           "finite number > 0",
-                           parameter_smoothing_length_m);
+      *error = fmt::format(
+          "profile fit options: parameter_smoothing_length_m = {}: expected a "
+          "finite number > 0",
+          parameter_smoothing_length_m);
     }
     return false;
   }

@@ -56,8 +56,8 @@ struct ProfileFit {
   int max_distance_index = -1;  // its raw point (0-based)
   // Raw points left out as gross outliers (scan glitches), 0-based, ascending.
   std::vector<int> rejected_points;
-  int num_rejected = 0;         // rejected_points.size()
-  int num_downweighted = 0;     // other raw points the robust loss down-weighted
+  int num_rejected = 0;                // rejected_points.size()
+  int num_downweighted = 0;            // other raw points the robust loss down-weighted
   double rms_inlier_distance_m = 0.0;  // RMS distance of the points not rejected
   // Noise implied by the fit: sqrt(sum_inliers distance^2 / (n_inliers - tr A)) (Wahba's
   // residual variance estimate) [m]; compare with noise_estimate_m.

@@ -20,9 +20,12 @@ namespace railwear {
 
 std::string_view ToString(RobustLoss v) {
   switch (v) {
-    case RobustLoss::kNone: return "none";
-    case RobustLoss::kHuber: return "huber";
-    case RobustLoss::kCauchy: return "cauchy";
+    case RobustLoss::kNone:
+      return "none";
+    case RobustLoss::kHuber:
+      return "huber";
+    case RobustLoss::kCauchy:
+      return "cauchy";
   }
   return "?";
 }
@@ -36,17 +39,20 @@ std::optional<RobustLoss> RobustLossFromString(std::string_view s) {
 
 std::string_view ToString(SmoothingSplineStatus v) {
   switch (v) {
-    case SmoothingSplineStatus::kConverged: return "converged";
-    case SmoothingSplineStatus::kNoConvergence: return "no-convergence";
-    case SmoothingSplineStatus::kFailure: return "failure";
+    case SmoothingSplineStatus::kConverged:
+      return "converged";
+    case SmoothingSplineStatus::kNoConvergence:
+      return "no-convergence";
+    case SmoothingSplineStatus::kFailure:
+      return "failure";
   }
   return "?";
 }
 
 std::optional<SmoothingSplineStatus> SmoothingSplineStatusFromString(std::string_view s) {
-  for (SmoothingSplineStatus v : {SmoothingSplineStatus::kConverged,
-                                  SmoothingSplineStatus::kNoConvergence,
-                                  SmoothingSplineStatus::kFailure}) {
+  for (SmoothingSplineStatus v :
+       {SmoothingSplineStatus::kConverged, SmoothingSplineStatus::kNoConvergence,
+        SmoothingSplineStatus::kFailure}) {
     if (ToString(v) == s) return v;
   }
   return std::nullopt;
@@ -65,8 +71,8 @@ bool PositiveFinite(double x) { return std::isfinite(x) && x > 0.0; }
 
 bool SmoothingSplineOptions::IsValid(std::string* error) const {
   if (!PositiveFinite(knot_spacing)) {
-    return Fail(error, fmt::format("knot_spacing = {}: expected a finite number > 0",
-                                   knot_spacing));
+    return Fail(error,
+                fmt::format("knot_spacing = {}: expected a finite number > 0", knot_spacing));
   }
   if (lambda && !(std::isfinite(*lambda) && *lambda >= 0.0)) {
     return Fail(error, fmt::format("lambda = {}: expected a finite number >= 0", *lambda));
@@ -81,8 +87,8 @@ bool SmoothingSplineOptions::IsValid(std::string* error) const {
     return Fail(error, fmt::format("gcv_grid_points = {}: expected >= 3", gcv_grid_points));
   }
   if (!(std::isfinite(gcv_dof_factor) && gcv_dof_factor >= 1.0)) {
-    return Fail(error, fmt::format("gcv_dof_factor = {}: expected a finite number >= 1",
-                                   gcv_dof_factor));
+    return Fail(error,
+                fmt::format("gcv_dof_factor = {}: expected a finite number >= 1", gcv_dof_factor));
   }
   if (!(std::isfinite(reject_threshold) && reject_threshold >= 0.0)) {
     return Fail(error, fmt::format("reject_threshold = {}: expected a finite number >= 0",
@@ -93,8 +99,8 @@ bool SmoothingSplineOptions::IsValid(std::string* error) const {
                                    robust_threshold));
   }
   if (robust_scale && !PositiveFinite(*robust_scale)) {
-    return Fail(error, fmt::format("robust_scale = {}: expected a finite number > 0",
-                                   *robust_scale));
+    return Fail(error,
+                fmt::format("robust_scale = {}: expected a finite number > 0", *robust_scale));
   }
   if (!(std::isfinite(min_robust_scale) && min_robust_scale >= 0.0)) {
     return Fail(error, fmt::format("min_robust_scale = {}: expected a finite number >= 0",
@@ -317,13 +323,13 @@ struct Setup {
   int free_begin = 0, free_end = 0;  // coefficients [free_begin, free_end) are unknowns
   double t_begin = 0.0, h = 0.0;
   double value_scale = 1.0, weight_scale = 1.0;
-  std::vector<int> interval;       // [n]
-  std::vector<Weights4> basis;     // [n]
-  Eigen::MatrixXd v;               // [n][dim], normalised
-  Eigen::VectorXd w;               // [n], normalised (mean 1)
-  BandSpd penalty{0};              // integral of g''^2 as a quadratic form on the free unknowns
-  std::vector<double> sum_row;     // [num_coefficients]: d(sum_i w_i g(t_i)) / d c_j
-  Eigen::VectorXd sum_target;      // [dim]: sum_i w_i v_i
+  std::vector<int> interval;    // [n]
+  std::vector<Weights4> basis;  // [n]
+  Eigen::MatrixXd v;            // [n][dim], normalised
+  Eigen::VectorXd w;            // [n], normalised (mean 1)
+  BandSpd penalty{0};           // integral of g''^2 as a quadratic form on the free unknowns
+  std::vector<double> sum_row;  // [num_coefficients]: d(sum_i w_i g(t_i)) / d c_j
+  Eigen::VectorXd sum_target;   // [dim]: sum_i w_i v_i
 
   int num_free() const { return free_end - free_begin; }
   bool IsFree(int j) const { return j >= free_begin && j < free_end; }
@@ -681,8 +687,8 @@ CeresOutcome SolveWithCeres(const Setup& s, const SmoothingSplineOptions& o, dou
       blocks.push_back(block(j));
     }
     const double scale = std::sqrt(o.sum_constraint_weight / s.w.sum());
-    problem.AddResidualBlock(new SumResidual(s.dim, std::move(beta), scale, s.sum_target),
-                             nullptr, blocks);
+    problem.AddResidualBlock(new SumResidual(s.dim, std::move(beta), scale, s.sum_target), nullptr,
+                             blocks);
   }
   const double lb = o.lower_bound ? *o.lower_bound / s.value_scale : 0.0;
   for (int j = 0; j < m; ++j) {
@@ -787,9 +793,12 @@ CeresOutcome SolveWithCeres(const Setup& s, const SmoothingSplineOptions& o, dou
 // IRLS weight rho'(r^2) of the loss at residual norm r (normalised units).
 double RobustWeight(RobustLoss loss, double r, double a) {
   switch (loss) {
-    case RobustLoss::kNone: return 1.0;
-    case RobustLoss::kHuber: return r <= a ? 1.0 : a / r;
-    case RobustLoss::kCauchy: return 1.0 / (1.0 + (r / a) * (r / a));
+    case RobustLoss::kNone:
+      return 1.0;
+    case RobustLoss::kHuber:
+      return r <= a ? 1.0 : a / r;
+    case RobustLoss::kCauchy:
+      return 1.0 / (1.0 + (r / a) * (r / a));
   }
   return 1.0;
 }
@@ -818,41 +827,46 @@ void ValidateData(const Eigen::VectorXd& t, const Eigen::MatrixXd& values,
   const Eigen::Index n = t.size();
   if (n < 2) throw InputError(fmt::format("smoothing spline: {} points: expected >= 2", n));
   if (values.rows() != n) {
-    throw InputError(fmt::format("smoothing spline: {} values for {} parameters: expected equal "
-                                 "counts",
-                                 values.rows(), n));
+    throw InputError(
+        fmt::format("smoothing spline: {} values for {} parameters: expected equal "
+                    "counts",
+                    values.rows(), n));
   }
   if (values.cols() < 1 || values.cols() > 3) {
-    throw InputError(fmt::format("smoothing spline: value dimension {}: expected 1, 2 or 3",
-                                 values.cols()));
+    throw InputError(
+        fmt::format("smoothing spline: value dimension {}: expected 1, 2 or 3", values.cols()));
   }
   if (weights.size() != 0 && weights.size() != n) {
-    throw InputError(fmt::format("smoothing spline: {} weights for {} points: expected {} or "
-                                 "none",
-                                 weights.size(), n, n));
+    throw InputError(
+        fmt::format("smoothing spline: {} weights for {} points: expected {} or "
+                    "none",
+                    weights.size(), n, n));
   }
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!std::isfinite(t[i])) {
-      throw InputError(fmt::format("smoothing spline: t[{}] = {}: expected a finite number", i,
-                                   t[i]));
+      throw InputError(
+          fmt::format("smoothing spline: t[{}] = {}: expected a finite number", i, t[i]));
     }
     for (Eigen::Index d = 0; d < values.cols(); ++d) {
       if (!std::isfinite(values(i, d))) {
-        throw InputError(fmt::format("smoothing spline: value[{}][{}] = {}: expected a finite "
-                                     "number",
-                                     i, d, values(i, d)));
+        throw InputError(
+            fmt::format("smoothing spline: value[{}][{}] = {}: expected a finite "
+                        "number",
+                        i, d, values(i, d)));
       }
     }
     if (weights.size() != 0 && !PositiveFinite(weights[i])) {
-      throw InputError(fmt::format("smoothing spline: weight[{}] = {}: expected a finite number "
-                                   "> 0",
-                                   i, weights[i]));
+      throw InputError(
+          fmt::format("smoothing spline: weight[{}] = {}: expected a finite number "
+                      "> 0",
+                      i, weights[i]));
     }
   }
   if (!(t.maxCoeff() > t.minCoeff())) {
-    throw InputError(fmt::format("smoothing spline: parameter range [{}, {}]: expected t_max > "
-                                 "t_min",
-                                 t.minCoeff(), t.maxCoeff()));
+    throw InputError(
+        fmt::format("smoothing spline: parameter range [{}, {}]: expected t_max > "
+                    "t_min",
+                    t.minCoeff(), t.maxCoeff()));
   }
 }
 
@@ -879,20 +893,22 @@ SmoothingSplineFit FitSmoothingSpline(const Eigen::VectorXd& t, const Eigen::Mat
   s.free_begin = o.clamp_start ? 3 : 0;
   s.free_end = o.clamp_end ? s.num_coefficients - 3 : s.num_coefficients;
   if (o.lower_bound && s.dim != 1) {
-    throw InputError(fmt::format("smoothing spline: lower_bound = {} with value dimension {}: "
-                                 "expected dimension 1 (a bound on each coefficient of a scalar "
-                                 "field)",
-                                 *o.lower_bound, s.dim));
+    throw InputError(
+        fmt::format("smoothing spline: lower_bound = {} with value dimension {}: "
+                    "expected dimension 1 (a bound on each coefficient of a scalar "
+                    "field)",
+                    *o.lower_bound, s.dim));
   }
   if (s.num_free() < 1) {
-    throw InputError(fmt::format("smoothing spline: {} knot intervals cannot be clamped at both "
-                                 "ends: expected a knot_spacing below {} (a quarter of the range)",
-                                 s.num_intervals, range / 4.0));
+    throw InputError(
+        fmt::format("smoothing spline: {} knot intervals cannot be clamped at both "
+                    "ends: expected a knot_spacing below {} (a quarter of the range)",
+                    s.num_intervals, range / 4.0));
   }
   s.value_scale = std::max(values.cwiseAbs().maxCoeff(), std::numeric_limits<double>::min());
   s.v = values / s.value_scale;
-  Eigen::VectorXd w = weights.size() == 0 ? Eigen::VectorXd::Constant(s.n, range / (s.n - 1))
-                                          : weights;
+  Eigen::VectorXd w =
+      weights.size() == 0 ? Eigen::VectorXd::Constant(s.n, range / (s.n - 1)) : weights;
   s.weight_scale = w.mean();
   s.w = w / s.weight_scale;
   s.interval.resize(s.n);
@@ -945,10 +961,11 @@ SmoothingSplineFit FitSmoothingSpline(const Eigen::VectorXd& t, const Eigen::Mat
     ClosedForm f = SolveClosedForm(s, DataMatrix(s, w), DataRhs(s, w), lambda, sum_w, extras, w);
     if (!f.ok) {
       // Only lambda = 0 with knot intervals the data leave undetermined gets here.
-      throw InputError(fmt::format("smoothing spline: lambda = {} leaves the spline undetermined "
-                                   "by {} points on {} knot intervals: expected lambda > 0 or a "
-                                   "larger knot_spacing",
-                                   lambda * s.weight_scale, s.n, s.num_intervals));
+      throw InputError(
+          fmt::format("smoothing spline: lambda = {} leaves the spline undetermined "
+                      "by {} points on {} knot intervals: expected lambda > 0 or a "
+                      "larger knot_spacing",
+                      lambda * s.weight_scale, s.n, s.num_intervals));
     }
     return f;
   };

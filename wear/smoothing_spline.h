@@ -164,10 +164,10 @@ struct SmoothingSplineSummary {
   int num_coefficients = 0;  // K + 3 (per component)
   double knot_spacing = 0.0;
 
-  double lambda = 0.0;            // penalty weight used [t^4]
-  bool lambda_from_gcv = false;   // true when chosen by GCV
-  double gcv_score = 0.0;         // V(lambda) at the choice (0 when lambda was given)
-  double effective_dof = 0.0;     // tr A at lambda with the final weights (per component)
+  double lambda = 0.0;           // penalty weight used [t^4]
+  bool lambda_from_gcv = false;  // true when chosen by GCV
+  double gcv_score = 0.0;        // V(lambda) at the choice (0 when lambda was given)
+  double effective_dof = 0.0;    // tr A at lambda with the final weights (per component)
 
   // Residuals r_i = |g(t_i) - v_i| of the final fit (unweighted) [value units].
   double rms_residual = 0.0;
@@ -175,10 +175,10 @@ struct SmoothingSplineSummary {
   int max_residual_index = -1;
 
   RobustLoss loss = RobustLoss::kNone;
-  double robust_sigma = 0.0;  // sigma [value units] (0 without a loss)
-  double loss_scale = 0.0;    // a = robust_threshold * sigma
-  int num_rejected = 0;       // gross outliers left out of the fit
-  int num_downweighted = 0;   // other points with r_i > a (the loss reduced their weight)
+  double robust_sigma = 0.0;         // sigma [value units] (0 without a loss)
+  double loss_scale = 0.0;           // a = robust_threshold * sigma
+  int num_rejected = 0;              // gross outliers left out of the fit
+  int num_downweighted = 0;          // other points with r_i > a (the loss reduced their weight)
   double rms_inlier_residual = 0.0;  // RMS residual of the points not rejected
 
   // (sum w g - sum w v) / |sum w v| of the component with the largest magnitude, before any
@@ -187,8 +187,8 @@ struct SmoothingSplineSummary {
 
   // Levenberg-Marquardt iterations of the final Ceres solve (summed over its active-set rounds)
   int num_ceres_iterations = 0;
-  int num_ceres_solves = 0;      // Ceres solves (1, or 2 with a robust loss and GCV)
-  double time_s = 0.0;           // wall time of the whole fit
+  int num_ceres_solves = 0;  // Ceres solves (1, or 2 with a robust loss and GCV)
+  double time_s = 0.0;       // wall time of the whole fit
 
   // One line: status, points, knots, lambda and how chosen, RMS and max residual, outliers.
   std::string BriefReport() const;

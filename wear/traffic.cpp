@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
+#include <Eigen/Eigenvalues>
 
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
@@ -66,8 +66,8 @@ void ValidateTraffic(const std::vector<TrafficCase>& traffic) {
 
 void ValidateQuadraturePoints(int quadrature_points) {
   if (quadrature_points < 1 || quadrature_points > 20) {
-    throw InputError(fmt::format("wear: quadrature_points = {}: expected 1 to 20",
-                                 quadrature_points));
+    throw InputError(
+        fmt::format("wear: quadrature_points = {}: expected 1 to 20", quadrature_points));
   }
 }
 
@@ -88,8 +88,8 @@ std::vector<LoadCase> ExpandTraffic(const std::vector<TrafficCase>& traffic,
       continue;
     }
     for (int k = 0; k < quadrature_points; ++k) {
-      cases.push_back({t, k, c.lateral_shift_mean_m + c.lateral_shift_std_m * nodes[k],
-                       share * weights[k]});
+      cases.push_back(
+          {t, k, c.lateral_shift_mean_m + c.lateral_shift_std_m * nodes[k], share * weights[k]});
     }
   }
   return cases;

@@ -75,18 +75,19 @@ void ValidateWearLaw(const WearLaw& law) {
 double WearCoefficient(const WearLaw& law, double pressure_Pa, double slip_speed_m_s,
                        double hardness_Pa) {
   switch (law.kind) {
-    case WearLawKind::kArchard: return law.archard_k;
-    case WearLawKind::kKth: return KthPublished(law, pressure_Pa / hardness_Pa, slip_speed_m_s);
+    case WearLawKind::kArchard:
+      return law.archard_k;
+    case WearLawKind::kKth:
+      return KthPublished(law, pressure_Pa / hardness_Pa, slip_speed_m_s);
     case WearLawKind::kKthContinuous:
       return KthContinuous(law, pressure_Pa / hardness_Pa, slip_speed_m_s);
-    case WearLawKind::kUsfd: break;
+    case WearLawKind::kUsfd:
+      break;
   }
   throw std::logic_error("WearCoefficient: the USFD law has no Archard coefficient");
 }
 
-double UsfdWearRate(double x) {
-  return std::max(std::min(5.3 * x, 55.0), 61.9 * x - 4778.7);
-}
+double UsfdWearRate(double x) { return std::max(std::min(5.3 * x, 55.0), 61.9 * x - 4778.7); }
 
 double WearDepthPerRolledMetre(const WearLaw& law, const WearCellState& cell, double hardness_Pa,
                                double speed_m_s) {

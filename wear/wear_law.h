@@ -77,8 +77,8 @@ void ValidateWearLaw(const WearLaw& law);
 
 // The contact state of one cell, as the laws need it.
 struct WearCellState {
-  double pressure_Pa = 0.0;            // p >= 0
-  double slip_speed_m_s = 0.0;         // |v_slip| >= 0, local slip velocity magnitude
+  double pressure_Pa = 0.0;              // p >= 0
+  double slip_speed_m_s = 0.0;           // |v_slip| >= 0, local slip velocity magnitude
   double frictional_power_Pa_m_s = 0.0;  // |q . v_slip| >= 0, power per unit area [W/m^2]
 };
 

@@ -61,8 +61,10 @@ bool WearMeasureOptions::IsValid(std::string* error) const {
                             side_wear_depth_m));
   }
   if (!(max_normal_distance_m > 0.0 && std::isfinite(max_normal_distance_m))) {
-    return fail(fmt::format("wear measures: max_normal_distance_m = {}; expected a finite "
-                            "distance > 0 m", max_normal_distance_m));
+    return fail(
+        fmt::format("wear measures: max_normal_distance_m = {}; expected a finite "
+                    "distance > 0 m",
+                    max_normal_distance_m));
   }
   return true;
 }
@@ -79,8 +81,8 @@ WearGauge MakeWearGauge(const Profile& unworn, double side_wear_depth_m) {
 
   // W1: the top of rail on the centre line, seen from above.
   const Eigen::Vector2d down(0.0, 1.0);
-  const auto top = locator.IntersectLine({0.0, b.z_min - kLineMargin_m}, down, 0.0,
-                                         locator.length());
+  const auto top =
+      locator.IntersectLine({0.0, b.z_min - kLineMargin_m}, down, 0.0, locator.length());
   if (!top) NotARailHead(unworn, "no surface on the centre line y = 0");
   g.vertical.point_m = unworn.Position(top->s);
   g.vertical.direction = down;
@@ -88,8 +90,8 @@ WearGauge MakeWearGauge(const Profile& unworn, double side_wear_depth_m) {
   // W2: the gauge face at side_wear_depth_m below the top, seen from the gauge side.
   const Eigen::Vector2d toward_field(1.0, 0.0);
   const double z_side = g.vertical.point_m.y() + side_wear_depth_m;
-  const auto face = locator.IntersectLine({b.y_min - kLineMargin_m, z_side}, toward_field, 0.0,
-                                          locator.length());
+  const auto face =
+      locator.IntersectLine({b.y_min - kLineMargin_m, z_side}, toward_field, 0.0, locator.length());
   if (!face || unworn.Position(face->s).x() >= g.vertical.point_m.x()) {
     NotARailHead(unworn, fmt::format("no gauge face {:g} mm below the top of rail (z = {:g} mm)",
                                      side_wear_depth_m * 1e3, z_side * 1e3));

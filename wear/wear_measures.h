@@ -51,7 +51,7 @@ namespace railwear {
 // A straight measuring line: a point on the unworn rail surface and the unit direction into the
 // rail material along which wear is measured.
 struct MeasuringLine {
-  Eigen::Vector2d point_m = Eigen::Vector2d::Zero();    // (y, z) [m], rail frame
+  Eigen::Vector2d point_m = Eigen::Vector2d::Zero();     // (y, z) [m], rail frame
   Eigen::Vector2d direction = Eigen::Vector2d::UnitY();  // unit (dy, dz), into the material
 };
 
@@ -87,14 +87,14 @@ struct WearMeasureOptions {
 };
 
 struct WearMeasures {
-  double worn_area_m2 = 0.0;    // signed area between original and worn, removed positive [m^2]
-  double max_depth_m = 0.0;     // largest normal depth d(s) over the samples [m]
-  double max_depth_s_m = 0.0;   // arc length on the original where it occurs [m]
-  double max_depth_y_m = 0.0;   // position on the original profile where it occurs [m]
+  double worn_area_m2 = 0.0;   // signed area between original and worn, removed positive [m^2]
+  double max_depth_m = 0.0;    // largest normal depth d(s) over the samples [m]
+  double max_depth_s_m = 0.0;  // arc length on the original where it occurs [m]
+  double max_depth_y_m = 0.0;  // position on the original profile where it occurs [m]
   double max_depth_z_m = 0.0;
-  double vertical_wear_m = 0.0; // W1 [m]
-  double side_wear_m = 0.0;     // W2 [m]
-  double wear_45_m = 0.0;       // W3 [m]
+  double vertical_wear_m = 0.0;  // W1 [m]
+  double side_wear_m = 0.0;      // W2 [m]
+  double wear_45_m = 0.0;        // W3 [m]
   // Normal depth d along the original profile: s_m[i] is the arc length from the original's
   // first point, depth_m[i] the depth there [m], shape [n] each. NaN where the normal misses the
   // worn profile within max_normal_distance_m (then counted in unmatched_samples and left out of

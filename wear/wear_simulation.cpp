@@ -74,8 +74,7 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const CurveLocator& rail, cons
   double largest = -1.0;
   for (const PatchResult& patch : result.patches) {
     const std::vector<double> depth = CalcPatchPassDepth(
-        patch, rail, study.options.law, study.rail_material.hardness_Pa, traffic.speed_m_s,
-        grid);
+        patch, rail, study.options.law, study.rail_material.hardness_Pa, traffic.speed_m_s, grid);
     for (int b = 0; b < grid.n; ++b) out.depth_per_pass_m[b] += depth[b];
     if (patch.rolling) {
       s.creep_force_x_N += patch.rolling->tangential.force_x_N;
@@ -183,12 +182,15 @@ void ValidateWearStudy(const WearStudy& study) {
   ValidateWearLaw(o.law);
   ValidateTraffic(study.traffic);
   if (study.model.kind == ModelKind::kHertz) {
-    throw InputError("wear: model.kind = \"hertz\": expected a grid model (halfspace or conformal):"
-                     " wear needs the pressure and slip of every cell");
+    throw InputError(
+        "wear: model.kind = \"hertz\": expected a grid model (halfspace or conformal):"
+        " wear needs the pressure and slip of every cell");
   }
   if (o.law.kind != WearLawKind::kUsfd && !(study.rail_material.hardness_Pa > 0.0)) {
-    throw InputError(fmt::format("wear: materials.rail.hardness_MPa is missing: expected the rail"
-                                 " hardness for the {} law", ToString(o.law.kind)));
+    throw InputError(
+        fmt::format("wear: materials.rail.hardness_MPa is missing: expected the rail"
+                    " hardness for the {} law",
+                    ToString(o.law.kind)));
   }
   if (study.damage && !(study.rail_material.shear_yield_Pa > 0.0)) {
     throw InputError(fmt::format("wear: materials.rail.shear_yield_MPa is missing: expected {}",
@@ -243,16 +245,15 @@ StepResult RunWearStep(const WearStudy& study, const Profile& unworn, const Wear
   const int n = step.grid.n;
   const std::vector<LoadCase> cases = ExpandTraffic(study.traffic, o.quadrature_points);
   const CurveLocator rail_locator(rail_track, /*material_toward_plus_z=*/true);
-  const std::vector<CaseOutcome> outcomes =
-      SolveLoadCases(study, rail_locator, step.grid, cases);
+  const std::vector<CaseOutcome> outcomes = SolveLoadCases(study, rail_locator, step.grid, cases);
   step.depth_per_pass_m = WeightedSum(outcomes, cases, n, &CaseOutcome::depth_per_pass_m);
   for (const CaseOutcome& c : outcomes) step.cases.push_back(c.summary);
 
   // The per-pass field is smoothed first (scaled to a unit maximum: the smoothing is
   // homogeneous in the field), then the step control makes the deepest smoothed wear of the
   // step equal max_depth_per_step, or takes the passes left when they are fewer.
-  const double deepest = *std::max_element(step.depth_per_pass_m.begin(),
-                                           step.depth_per_pass_m.end());
+  const double deepest =
+      *std::max_element(step.depth_per_pass_m.begin(), step.depth_per_pass_m.end());
   WearState& next = step.state;
   next.step = state.step + 1;
   if (deepest > 0.0) {
@@ -289,8 +290,7 @@ StepResult RunWearStep(const WearStudy& study, const Profile& unworn, const Wear
     }
   }
   step.measures = CompareProfiles(unworn, next.rail);
-  step.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  step.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return step;
 }
 

@@ -30,8 +30,8 @@
 
 #include "core/contact/contact_solver.h"
 #include "core/profile/profile.h"
-#include "wear/pass_depth.h"
 #include "wear/depth_smoothing.h"
+#include "wear/pass_depth.h"
 #include "wear/traffic.h"
 #include "wear/wear_law.h"
 #include "wear/wear_measures.h"
@@ -63,8 +63,8 @@ struct WearOptions {
 // hardness_Pa for Archard and KTH, shear_yield_Pa for damage; model a grid model, not Hertz;
 // damage: RCF damage per position), the rail and the traffic mix.
 struct WearStudy : ContactSetup {
-  Profile rail_profile;           // the unworn rail, its own frame (as in the scene)
-  double cant_ratio = 0.0;        // 1:40 -> 0.025
+  Profile rail_profile;     // the unworn rail, its own frame (as in the scene)
+  double cant_ratio = 0.0;  // 1:40 -> 0.025
   std::vector<TrafficCase> traffic;
   WearOptions options;
 };
@@ -78,10 +78,10 @@ double TotalPasses(const WearStudy& study);
 
 // The state between steps: all a run needs to continue.
 struct WearState {
-  int step = 0;                 // steps done (0: the unworn profile)
-  double passes = 0.0;          // cumulative wheel passes
-  double mgt = 0.0;             // cumulative million gross tonnes
-  Profile rail;                 // current rail profile, rail's own frame
+  int step = 0;         // steps done (0: the unworn profile)
+  double passes = 0.0;  // cumulative wheel passes
+  double mgt = 0.0;     // cumulative million gross tonnes
+  Profile rail;         // current rail profile, rail's own frame
   // Accumulated RCF damage per arc-length bin of `rail` (WearGrid::ForProfile(rail, bin_m)).
   // Empty means zero everywhere (no damage effect, or nothing accumulated yet).
   std::vector<double> damage;
@@ -98,33 +98,33 @@ struct LoadCaseSummary {
   int patches = 0;
   double vertical_force_N = 0.0, lateral_force_N = 0.0;  // on the rail
   double area_m2 = 0.0, p_max_Pa = 0.0;
-  double creep_force_x_N = 0.0, creep_force_s_N = 0.0;   // sum over patches, on the wheel
-  double t_gamma_N = 0.0;                                 // sum over patches
-  double rcf_damage_per_pass = 0.0;                       // largest over patches
-  double worn_area_per_pass_m2 = 0.0;                     // sum_b depth_b h
-  double contact_angle_rad = 0.0;                         // of the most loaded patch
-  double contact_y_m = 0.0;                               // its pressure centre on the rail (track frame)
+  double creep_force_x_N = 0.0, creep_force_s_N = 0.0;  // sum over patches, on the wheel
+  double t_gamma_N = 0.0;                               // sum over patches
+  double rcf_damage_per_pass = 0.0;                     // largest over patches
+  double worn_area_per_pass_m2 = 0.0;                   // sum_b depth_b h
+  double contact_angle_rad = 0.0;                       // of the most loaded patch
+  double contact_y_m = 0.0;  // its pressure centre on the rail (track frame)
 };
 
 struct StepResult {
-  WearState state;                  // after this step
-  double step_passes = 0.0;         // passes of this step
-  WearGrid grid;                    // the bins of the profile the step started from
+  WearState state;                       // after this step
+  double step_passes = 0.0;              // passes of this step
+  WearGrid grid;                         // the bins of the profile the step started from
   std::vector<double> depth_per_pass_m;  // weighted mean depth per wheel pass, shape [grid.n]
   std::vector<double> step_depth_m;      // smoothed depth removed in this step, shape [grid.n]
   double smoothing_area_error = 0.0;     // relative, before the area correction
-  WearMeasures measures;            // against step 0 (cumulative)
+  WearMeasures measures;                 // against step 0 (cumulative)
   std::vector<LoadCaseSummary> cases;
-  double seconds = 0.0;             // wall time of the step
+  double seconds = 0.0;  // wall time of the step
 };
 
 // Called after each finished step; return false to stop the run after it.
 using WearStepCallback = std::function<bool(const StepResult&)>;
 
 struct WearRunSummary {
-  int steps_done = 0;       // steps completed in this call
-  bool finished = false;    // the total (passes or MGT) is reached
-  WearState state;          // the last state
+  int steps_done = 0;     // steps completed in this call
+  bool finished = false;  // the total (passes or MGT) is reached
+  WearState state;        // the last state
 };
 
 // Runs steps from `start` until the total is reached, `max_steps` steps were done in this call

@@ -23,7 +23,8 @@ std::string Num(double v) { return fmt::format("{:.12g}", v); }
 
 void AppendIdList(const std::vector<int>& ids, std::string* out) {
   for (size_t i = 0; i < ids.size(); ++i) {
-    *out += fmt::format("{}{}", ids[i], (i + 1) % kIdsPerLine == 0 || i + 1 == ids.size() ? ",\n" : ", ");
+    *out += fmt::format("{}{}", ids[i],
+                        (i + 1) % kIdsPerLine == 0 || i + 1 == ids.size() ? ",\n" : ", ");
   }
 }
 
@@ -101,8 +102,7 @@ CcxDeck& CcxDeck::Boundary(std::string_view nodes, int first_dof, int last_dof, 
   return *this;
 }
 
-CcxDeck& CcxDeck::BeginStaticStep(std::string_view step_parameters,
-                                  std::string_view static_data) {
+CcxDeck& CcxDeck::BeginStaticStep(std::string_view step_parameters, std::string_view static_data) {
   text_ += step_parameters.empty() ? "*STEP\n" : fmt::format("*STEP, {}\n", step_parameters);
   text_ += "*STATIC\n";
   if (!static_data.empty()) text_ += fmt::format("{}\n", static_data);

@@ -50,9 +50,9 @@ class CcxDeck {
   CcxDeck& BeginStaticStep(std::string_view step_parameters = "",
                            std::string_view static_data = "");
   CcxDeck& Cload(std::string_view nodes, int dof, double force);  // *CLOAD
-  CcxDeck& NodeFile(std::string_view outputs = "U");  // *NODE FILE: results to the .frd
-  CcxDeck& EndStep();                                 // *END STEP
-  CcxDeck& Raw(std::string_view lines);               // appended as given (newline added)
+  CcxDeck& NodeFile(std::string_view outputs = "U");              // *NODE FILE: results to the .frd
+  CcxDeck& EndStep();                                             // *END STEP
+  CcxDeck& Raw(std::string_view lines);  // appended as given (newline added)
 
   const std::string& Text() const { return text_; }
 

@@ -75,7 +75,8 @@ ProgramSpec CcxProgram() {
 }
 
 ProgramSpec GmshProgram() {
-  return {"gmsh", "RAILWEAR_GMSH", "gmsh", "install the Debian package gmsh (bash .ci/install-deps.sh)"};
+  return {"gmsh", "RAILWEAR_GMSH", "gmsh",
+          "install the Debian package gmsh (bash .ci/install-deps.sh)"};
 }
 
 std::string FindOnPath(const std::string& name) {
@@ -100,20 +101,21 @@ std::string FindProgram(const ProgramSpec& spec) {
   if (override_value != nullptr && *override_value != '\0') {
     const std::string found = FindOnPath(override_value);
     if (found.empty()) {
-      throw InputError(fmt::format("{} not found: environment variable {} = '{}' is not an "
-                                   "executable file; expected the path of the {} executable "
-                                   "(or unset {} to look for '{}' on PATH)",
-                                   spec.description, spec.env_override, override_value,
-                                   spec.name, spec.env_override, spec.name));
+      throw InputError(
+          fmt::format("{} not found: environment variable {} = '{}' is not an "
+                      "executable file; expected the path of the {} executable "
+                      "(or unset {} to look for '{}' on PATH)",
+                      spec.description, spec.env_override, override_value, spec.name,
+                      spec.env_override, spec.name));
     }
     return found;
   }
   const std::string found = FindOnPath(spec.name);
   if (found.empty()) {
-    throw InputError(fmt::format("{} is not installed or not on PATH: {}, or set {} to the path "
-                                 "of the '{}' executable",
-                                 spec.description, spec.install_hint, spec.env_override,
-                                 spec.name));
+    throw InputError(
+        fmt::format("{} is not installed or not on PATH: {}, or set {} to the path "
+                    "of the '{}' executable",
+                    spec.description, spec.install_hint, spec.env_override, spec.name));
   }
   return found;
 }
@@ -123,8 +125,10 @@ std::string ProgramResult::Describe() const {
     case Status::kExited:
       return exit_code == kExitCannotExecute ? "exit code 127 (could not be executed)"
                                              : fmt::format("exit code {}", exit_code);
-    case Status::kSignaled: return fmt::format("killed by signal {}", signal);
-    case Status::kTimedOut: return fmt::format("timed out after {:.1f} s", wall_time_s);
+    case Status::kSignaled:
+      return fmt::format("killed by signal {}", signal);
+    case Status::kTimedOut:
+      return fmt::format("timed out after {:.1f} s", wall_time_s);
   }
   return "?";
 }
@@ -145,18 +149,19 @@ ProgramResult RunProgram(const ProgramRun& run) {
   std::vector<char*> envp = CPointers(env_strings);
   const std::string work_dir = run.work_dir;
 
-  const int log_fd = ::open(result.log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  const int log_fd =
+      ::open(result.log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (log_fd < 0) {
-    throw std::runtime_error(fmt::format("cannot create the log file {}: {}", result.log_path,
-                                         std::strerror(errno)));
+    throw std::runtime_error(
+        fmt::format("cannot create the log file {}: {}", result.log_path, std::strerror(errno)));
   }
   const auto start = std::chrono::steady_clock::now();
   const pid_t pid = ::fork();
   if (pid < 0) {
     const int err = errno;
     ::close(log_fd);
-    throw std::runtime_error(fmt::format("cannot start {}: fork failed: {}", run.argv[0],
-                                         std::strerror(err)));
+    throw std::runtime_error(
+        fmt::format("cannot start {}: fork failed: {}", run.argv[0], std::strerror(err)));
   }
   if (pid == 0) {  // child
     const int null_fd = ::open("/dev/null", O_RDONLY);
@@ -180,8 +185,8 @@ ProgramResult RunProgram(const ProgramRun& run) {
     const pid_t done = ::waitpid(pid, &status, run.timeout_s > 0.0 ? WNOHANG : 0);
     if (done == pid) break;
     if (done < 0 && errno != EINTR) {
-      throw std::runtime_error(fmt::format("waiting for {} failed: {}", run.argv[0],
-                                           std::strerror(errno)));
+      throw std::runtime_error(
+          fmt::format("waiting for {} failed: {}", run.argv[0], std::strerror(errno)));
     }
     if (done == 0) {  // still running (only with a timeout)
       const double elapsed =

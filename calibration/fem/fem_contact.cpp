@@ -13,8 +13,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <Eigen/Geometry>
 #include <fmt/format.h>
+#include <Eigen/Geometry>
 
 #include "calibration/fem/ccx_deck.h"
 #include "calibration/fem/fem_mesh.h"
@@ -124,10 +124,14 @@ constexpr TriPoint kTriRule[] = {
 // corners as TetFaceCorners, then the mid-side nodes of edges 0-1, 1-2, 2-0 of the face.
 std::array<int, 6> TetFaceNodes(int face) {
   switch (face) {
-    case 1: return {0, 1, 2, 4, 5, 6};
-    case 2: return {0, 3, 1, 7, 8, 4};
-    case 3: return {1, 3, 2, 8, 9, 5};
-    case 4: return {2, 3, 0, 9, 7, 6};
+    case 1:
+      return {0, 1, 2, 4, 5, 6};
+    case 2:
+      return {0, 3, 1, 7, 8, 4};
+    case 3:
+      return {1, 3, 2, 8, 9, 5};
+    case 4:
+      return {2, 3, 0, 9, 7, 6};
   }
   throw std::logic_error("tetrahedron faces are 1..4");
 }
@@ -155,10 +159,14 @@ std::optional<FemContactCase> FemContactCaseFromString(std::string_view s) {
 
 std::string_view ToString(FemContactStatus v) {
   switch (v) {
-    case FemContactStatus::kOk: return "ok";
-    case FemContactStatus::kNoContact: return "no_contact";
-    case FemContactStatus::kPatchAtZoneEdge: return "patch_at_zone_edge";
-    case FemContactStatus::kFitFailed: return "fit_failed";
+    case FemContactStatus::kOk:
+      return "ok";
+    case FemContactStatus::kNoContact:
+      return "no_contact";
+    case FemContactStatus::kPatchAtZoneEdge:
+      return "patch_at_zone_edge";
+    case FemContactStatus::kFitFailed:
+      return "fit_failed";
   }
   return "?";
 }
@@ -238,8 +246,8 @@ bool FemContactOptions::IsValid(std::string* error) const {
   const double zx = zone_x_m > 0 ? zone_x_m : DefaultFemContactOptions(contact_case).zone_x_m;
   const double zs = zone_s_m > 0 ? zone_s_m : DefaultFemContactOptions(contact_case).zone_s_m;
   if (!(length_m > 4.0 * zx)) {
-    return fail(fmt::format("length {:g} mm: expected > 4 x zone_x ({:g} mm)", mm(length_m),
-                            mm(4.0 * zx)));
+    return fail(
+        fmt::format("length {:g} mm: expected > 4 x zone_x ({:g} mm)", mm(length_m), mm(4.0 * zx)));
   }
   if (!(zs < 0.9 * kProfileHalfAngle_rad * convex_radius_m)) {
     return fail(fmt::format("zone_s {:g} mm: expected < {:g} mm (inside the profile arcs)", mm(zs),
@@ -312,7 +320,8 @@ FemContactPatch CalcFemContactPatch(const FemContactSurface& surface, const FemC
     for (const auto& sub : kSub) {
       const Eigen::Vector3d& a = surface.positions_m[t[sub[0]]];
       const double area =
-          0.5 * (surface.positions_m[t[sub[1]]] - a).cross(surface.positions_m[t[sub[2]]] - a).norm();
+          0.5 *
+          (surface.positions_m[t[sub[1]]] - a).cross(surface.positions_m[t[sub[2]]] - a).norm();
       for (int k : sub) lumped[t[k]] += area / 3.0;
     }
   }
@@ -391,8 +400,8 @@ std::string FemContactGeo(const FemContactOptions& o, double mesh_size_m) {
   };
   Section wheel, rail;
   if (a) {
-    wheel.points = {{0, 0}, {rc * sa, rc * (1 - ca)}, {rc * sa, 1.2 * rc}, {w2, 1.2 * rc},
-                    {w2, d}, {0, d}};
+    wheel.points = {{0, 0}, {rc * sa, rc * (1 - ca)}, {rc * sa, 1.2 * rc}, {w2, 1.2 * rc}, {w2, d},
+                    {0, d}};
     wheel.centre = {0, rc};
     rail.points = {{0, 0}, {rg * sa, rg * (1 - ca)}, {w2, rg * (1 - ca)}, {w2, -d}, {0, -d}};
     rail.centre = {0, rg};
@@ -526,7 +535,8 @@ FemMesh ShiftWheel(const FemMesh& mesh, double shift_mm) {
 }
 
 // The faces of a contact surface group with a corner node inside the contact zone.
-std::vector<ElementFace> ZoneFaces(const FemMesh& mesh, const char* group, const FemContactOptions& o) {
+std::vector<ElementFace> ZoneFaces(const FemMesh& mesh, const char* group,
+                                   const FemContactOptions& o) {
   const Circle2 g = GrooveCircle(o);
   const FemContactFrame frame{g.zc_mm, g.r_mm};
   std::map<int, const MeshElement*> by_id;
@@ -548,7 +558,7 @@ std::vector<ElementFace> ZoneFaces(const FemMesh& mesh, const char* group, const
 }  // namespace
 
 FemContactSurface FemContactSlaveSurface(const FemMesh& mesh, const std::vector<ElementFace>& faces,
-                               const FrdFile& frd) {
+                                         const FrdFile& frd) {
   const FrdResultBlock* contact = frd.Find("CONTACT");
   if (contact == nullptr) {
     throw std::runtime_error(frd.path + ": no CONTACT block (ccx wrote no contact results)");
@@ -611,8 +621,7 @@ FemContactResult RunFemContact(const FemContactOptions& options, const FemProgra
     const std::string name = fmt::format("level{}", level + 1);
     WriteWorkFile((dir / (name + ".geo")).string(), FemContactGeo(o, L.mesh_size_m));
     progress(fmt::format("{}: meshing (gmsh, h = {:g} mm)", name, L.mesh_size_m / kMm));
-    L.mesh_time_s = RunGmsh(programs.gmsh, o.work_dir, name + ".geo", name + ".msh", 1,
-                            o.timeout_s)
+    L.mesh_time_s = RunGmsh(programs.gmsh, o.work_dir, name + ".geo", name + ".msh", 1, o.timeout_s)
                         .wall_time_s;
     const FemMesh mesh =
         ShiftWheel(ReadGmshMesh((dir / (name + ".msh")).string()), o.initial_overlap_m / kMm);
@@ -638,10 +647,10 @@ FemContactResult RunFemContact(const FemContactOptions& options, const FemProgra
     WriteWorkFile((dir / (name + "_mesh.inp")).string(), CcxMeshText(mesh, sets));
     WriteWorkFile((dir / (name + ".inp")).string(),
                   FemContactDeck(o, name + "_mesh.inp", top, max_id + 1));
-    progress(fmt::format("{}: solving (ccx, {} nodes, {} slave faces)", name, L.nodes,
-                         L.slave_faces));
-    const ProgramResult solved = RunCcx(programs.ccx, o.work_dir, name, o.threads_per_job,
-                                        o.timeout_s);
+    progress(
+        fmt::format("{}: solving (ccx, {} nodes, {} slave faces)", name, L.nodes, L.slave_faces));
+    const ProgramResult solved =
+        RunCcx(programs.ccx, o.work_dir, name, o.threads_per_job, o.timeout_s);
     L.solve_time_s = solved.wall_time_s;
     L.iterations = CountIterations(solved.log_path);
     const FrdFile frd = ReadFrd((dir / (name + ".frd")).string());
@@ -651,7 +660,8 @@ FemContactResult RunFemContact(const FemContactOptions& options, const FemProgra
       for (int id : top) sum_uz += FrdDisplacement(*disp, id).z();
       L.spring_force_N = 4.0 * o.spring_N_per_m * kMm / static_cast<double>(top.size()) * sum_uz;
     }
-    L.patch = CalcFemContactPatch(FemContactSlaveSurface(mesh, slave, frd), SlaveFrame(o), o.sectors);
+    L.patch =
+        CalcFemContactPatch(FemContactSlaveSurface(mesh, slave, frd), SlaveFrame(o), o.sectors);
     if (L.patch.status == FemContactStatus::kOk &&
         (L.patch.half_length_x_m > o.zone_x_m || L.patch.half_width_s_m > o.zone_s_m)) {
       L.patch.status = FemContactStatus::kPatchAtZoneEdge;
@@ -661,9 +671,9 @@ FemContactResult RunFemContact(const FemContactOptions& options, const FemProgra
           L.patch.half_length_x_m / kMm, L.patch.half_width_s_m / kMm, o.zone_x_m / kMm,
           o.zone_s_m / kMm);
     }
-    progress(fmt::format("{}: solved in {:.1f} s ({} iterations): area {:.2f} mm2, p_max {:.1f} MPa",
-                         name, L.solve_time_s, L.iterations, L.patch.area_m2 / (kMm * kMm),
-                         L.patch.p_max_Pa / kMPa));
+    progress(fmt::format(
+        "{}: solved in {:.1f} s ({} iterations): area {:.2f} mm2, p_max {:.1f} MPa", name,
+        L.solve_time_s, L.iterations, L.patch.area_m2 / (kMm * kMm), L.patch.p_max_Pa / kMPa));
     result.levels.push_back(std::move(L));
   }
   result.wall_time_s = Seconds(start);

@@ -70,11 +70,11 @@ std::optional<FemContactCase> FemContactCaseFromString(std::string_view s);
 
 struct FemContactOptions {
   FemContactCase contact_case = FemContactCase::kWheelInGroove;
-  double convex_radius_m = 10e-3;   // Rc, profile radius of the convex body, > 0
-  double groove_radius_m = 10.1e-3; // Rg, > Rc
-  double rolling_radius_m = 0.46;   // r0 of the wheel at the contact, > 2 D
-  double load_N = 10e3;             // vertical load on the whole wheel, > 0
-  Material material;                // both bodies; E > 0, nu in [0, 0.5)
+  double convex_radius_m = 10e-3;    // Rc, profile radius of the convex body, > 0
+  double groove_radius_m = 10.1e-3;  // Rg, > Rc
+  double rolling_radius_m = 0.46;    // r0 of the wheel at the contact, > 2 D
+  double load_N = 10e3;              // vertical load on the whole wheel, > 0
+  Material material;                 // both bodies; E > 0, nu in [0, 0.5)
   // Body size [m]: whole length along x, whole width along y (> 2 Rg), depth of each body.
   double length_m = 80e-3;
   double width_m = 60e-3;
@@ -88,15 +88,15 @@ struct FemContactOptions {
   // Element sizes in the zone [m], one model per level, coarse to fine; the last one is the
   // result. Not empty; each > 0.
   std::vector<double> mesh_sizes_m;
-  double mesh_growth = 0.4;          // element size growth outside the zone [m/m], (0, 2]
-  double max_element_m = 8e-3;       // largest element [m]
-  double penalty_Pa_per_m = 5e15;    // contact slope K (5e6 MPa/mm), > 0
+  double mesh_growth = 0.4;            // element size growth outside the zone [m/m], (0, 2]
+  double max_element_m = 8e-3;         // largest element [m]
+  double penalty_Pa_per_m = 5e15;      // contact slope K (5e6 MPa/mm), > 0
   double initial_overlap_m = 0.01e-3;  // >= 0
-  double spring_N_per_m = 1e4;       // total stiffness of the far-face springs (10 N/mm), > 0
-  int sectors = 9;                   // angular sectors of the area fit, >= 2
-  int threads_per_job = 1;           // ccx threads, >= 1
-  double timeout_s = 3600.0;         // per gmsh or ccx run; 0: none
-  std::string work_dir;              // existing folder for .geo, .msh, .inp, .frd and logs
+  double spring_N_per_m = 1e4;         // total stiffness of the far-face springs (10 N/mm), > 0
+  int sectors = 9;                     // angular sectors of the area fit, >= 2
+  int threads_per_job = 1;             // ccx threads, >= 1
+  double timeout_s = 3600.0;           // per gmsh or ccx run; 0: none
+  std::string work_dir;                // existing folder for .geo, .msh, .inp, .frd and logs
   // Progress messages; may be empty.
   std::function<void(std::string_view)> progress;
 
@@ -139,7 +139,7 @@ struct FemContactPatch {
   double half_width_s_m = 0.0;
   double vertical_force_N = 0.0;
   double normal_force_N = 0.0;
-  size_t contact_nodes = 0;   // slave nodes with p > 0 (quarter)
+  size_t contact_nodes = 0;          // slave nodes with p > 0 (quarter)
   std::vector<double> sector_edges;  // fitted edge radius per sector in units of (a, b)
 };
 
@@ -159,8 +159,8 @@ FemContactSurface FemContactSlaveSurface(const FemMesh& mesh, const std::vector<
 // One mesh level: the model and its result.
 struct FemContactLevel {
   double mesh_size_m = 0.0;
-  size_t nodes = 0;           // of the quarter model
-  size_t elements = 0;        // C3D10
+  size_t nodes = 0;     // of the quarter model
+  size_t elements = 0;  // C3D10
   size_t slave_faces = 0;
   size_t master_faces = 0;
   double mesh_time_s = 0.0;   // gmsh wall time
@@ -173,7 +173,7 @@ struct FemContactLevel {
 };
 
 struct FemContactResult {
-  FemContactOptions options;  // as used (defaults filled in; progress cleared)
+  FemContactOptions options;            // as used (defaults filled in; progress cleared)
   std::vector<FemContactLevel> levels;  // in mesh_sizes order; the last is the result
   double wall_time_s = 0.0;
 };

@@ -24,7 +24,7 @@
 namespace railwear {
 namespace {
 
-constexpr double kMPa = 1e6;          // MPa -> Pa
+constexpr double kMPa = 1e6;  // MPa -> Pa
 // The full load [N] of every case. The model is linear; w is divided by it. The quarter model
 // carries a quarter of it.
 constexpr double kFullLoad_N = 1000.0;
@@ -89,9 +89,12 @@ double CentreZ(const Quarter& q) { return q.body == CurveBody::kConvex ? -q.r : 
 // Distance from O along the arc path [mm] of a node in the plane x = 0 on the top surface.
 double ArcDistance(const Quarter& q, const Eigen::Vector3d& p) {
   switch (q.body) {
-    case CurveBody::kFlat: return p.y();
-    case CurveBody::kConvex: return q.r * std::atan2(p.y(), p.z() + q.r);
-    case CurveBody::kConcave: return q.r * std::atan2(p.y(), q.r - p.z());
+    case CurveBody::kFlat:
+      return p.y();
+    case CurveBody::kConvex:
+      return q.r * std::atan2(p.y(), p.z() + q.r);
+    case CurveBody::kConcave:
+      return q.r * std::atan2(p.y(), q.r - p.z());
   }
   return 0.0;
 }
@@ -122,9 +125,10 @@ void CheckGroups(const FemMesh& mesh, const Quarter& q) {
     for (int id : ids) {
       const Eigen::Vector3d& p = mesh.Position_mm(id);
       if (!on(p)) {
-        throw std::runtime_error(fmt::format("mesh group {}: node {} at ({}, {}, {}) mm is off "
-                                             "its face",
-                                             name, id, p.x(), p.y(), p.z()));
+        throw std::runtime_error(
+            fmt::format("mesh group {}: node {} at ({}, {}, {}) mm is off "
+                        "its face",
+                        name, id, p.x(), p.y(), p.z()));
       }
     }
   };
@@ -170,25 +174,28 @@ std::string SupportsText(const FemDisplacementOptions& o, const Quarter& q) {
   const std::string bottom = fmt::format("bottom face z = -{:g} mm clamped (u = 0)", q.d);
   if (o.supports == FemSupports::kBottom) return bottom + "; every other face free";
   const double side_y = q.body == CurveBody::kConvex ? q.r : q.w2;
-  return fmt::format("{}, ends x = +-{:g} mm and sides y = +-{:g} mm clamped; the top free",
-                     bottom, q.l2, side_y);
+  return fmt::format("{}, ends x = +-{:g} mm and sides y = +-{:g} mm clamped; the top free", bottom,
+                     q.l2, side_y);
 }
 
 std::string GeometryText(const Quarter& q) {
   switch (q.body) {
     case CurveBody::kFlat:
-      return fmt::format("flat block {:g} x {:g} mm (x by y), {:g} mm deep; load at the top "
-                         "centre",
-                         2 * q.l2, 2 * q.w2, q.d);
+      return fmt::format(
+          "flat block {:g} x {:g} mm (x by y), {:g} mm deep; load at the top "
+          "centre",
+          2 * q.l2, 2 * q.w2, q.d);
     case CurveBody::kConvex:
-      return fmt::format("convex: half-cylinder R = {:g} mm (axis x) on a block {:g} mm wide, "
-                         "{:g} mm long, bottom {:g} mm below the load point at the top",
-                         q.r, 2 * q.r, 2 * q.l2, q.d);
+      return fmt::format(
+          "convex: half-cylinder R = {:g} mm (axis x) on a block {:g} mm wide, "
+          "{:g} mm long, bottom {:g} mm below the load point at the top",
+          q.r, 2 * q.r, 2 * q.l2, q.d);
     case CurveBody::kConcave:
-      return fmt::format("concave: block {:g} x {:g} mm (x by y) with a semicircular groove "
-                         "R = {:g} mm (axis x) in its top face; load at the groove bottom, "
-                         "bottom face {:g} mm below it",
-                         2 * q.l2, 2 * q.w2, q.r, q.d);
+      return fmt::format(
+          "concave: block {:g} x {:g} mm (x by y) with a semicircular groove "
+          "R = {:g} mm (axis x) in its top face; load at the groove bottom, "
+          "bottom face {:g} mm below it",
+          2 * q.l2, 2 * q.w2, q.r, q.d);
   }
   return "";
 }
@@ -197,8 +204,10 @@ std::string GeometryText(const Quarter& q) {
 
 std::string_view ToString(FemSupports v) {
   switch (v) {
-    case FemSupports::kBottom: return "bottom";
-    case FemSupports::kFarFaces: return "far_faces";
+    case FemSupports::kBottom:
+      return "bottom";
+    case FemSupports::kFarFaces:
+      return "far_faces";
   }
   return "?";
 }
@@ -242,8 +251,8 @@ bool FemDisplacementOptions::IsValid(std::string* error) const {
     return false;
   };
   if (body != CurveBody::kFlat && !(radius_m > 0.0 && std::isfinite(radius_m))) {
-    return fail(fmt::format("radius {} mm: expected a radius > 0 for a {} body",
-                            radius_m / kMm, ToString(body)));
+    return fail(fmt::format("radius {} mm: expected a radius > 0 for a {} body", radius_m / kMm,
+                            ToString(body)));
   }
   if (!(material.youngs_modulus_Pa > 0.0 && std::isfinite(material.youngs_modulus_Pa))) {
     return fail(fmt::format("E {} MPa: expected > 0", material.youngs_modulus_Pa / kMPa));
@@ -255,29 +264,32 @@ bool FemDisplacementOptions::IsValid(std::string* error) const {
   for (size_t i = 0; i < loads.size(); ++i) {
     for (size_t j = 0; j < i; ++j) {
       if (loads[i] == loads[j]) {
-        return fail(fmt::format("loads: '{}' given twice; expected each load once",
-                                ToString(loads[i])));
+        return fail(
+            fmt::format("loads: '{}' given twice; expected each load once", ToString(loads[i])));
       }
     }
   }
   for (double v : {length_m, width_m, depth_m}) {
     if (!(v >= 0.0 && std::isfinite(v))) {
-      return fail(fmt::format("body size {} mm: expected a length > 0 (or 0 for the default)",
-                              v / kMm));
+      return fail(
+          fmt::format("body size {} mm: expected a length > 0 (or 0 for the default)", v / kMm));
     }
   }
   if (!(mesh_size_at_load_m > 0.0 && std::isfinite(mesh_size_at_load_m))) {
-    return fail(fmt::format("mesh size at the load {} mm: expected > 0", mesh_size_at_load_m / kMm));
+    return fail(
+        fmt::format("mesh size at the load {} mm: expected > 0", mesh_size_at_load_m / kMm));
   }
   if (!(mesh_growth > 0.0 && mesh_growth <= 2.0)) {
-    return fail(fmt::format("mesh growth {}: expected a number in (0, 2] (element size grows by "
-                            "that many mm per mm from the load)",
-                            mesh_growth));
+    return fail(
+        fmt::format("mesh growth {}: expected a number in (0, 2] (element size grows by "
+                    "that many mm per mm from the load)",
+                    mesh_growth));
   }
   if (!(max_element_m >= mesh_size_at_load_m && std::isfinite(max_element_m))) {
-    return fail(fmt::format("largest element {} mm: expected at least the mesh size at the load "
-                            "({} mm)",
-                            max_element_m / kMm, mesh_size_at_load_m / kMm));
+    return fail(
+        fmt::format("largest element {} mm: expected at least the mesh size at the load "
+                    "({} mm)",
+                    max_element_m / kMm, mesh_size_at_load_m / kMm));
   }
   if (!(min_distance_m > 0.0 && max_distance_m > min_distance_m && std::isfinite(max_distance_m))) {
     return fail(fmt::format("distances {} to {} mm: expected 0 < min_distance < max_distance",
@@ -285,23 +297,26 @@ bool FemDisplacementOptions::IsValid(std::string* error) const {
   }
   const FemBodySize s = SizeUsed(*this);
   if (s.length_m < 4.0 * max_distance_m) {
-    return fail(fmt::format("body length {} mm: expected at least 4 max_distance = {} mm, so the "
-                            "axis path stays well inside the body",
-                            s.length_m / kMm, 4.0 * max_distance_m / kMm));
+    return fail(
+        fmt::format("body length {} mm: expected at least 4 max_distance = {} mm, so the "
+                    "axis path stays well inside the body",
+                    s.length_m / kMm, 4.0 * max_distance_m / kMm));
   }
   if (body == CurveBody::kFlat && s.width_m < 4.0 * max_distance_m) {
-    return fail(fmt::format("body width {} mm: expected at least 4 max_distance = {} mm, so the "
-                            "arc path stays well inside the body",
-                            s.width_m / kMm, 4.0 * max_distance_m / kMm));
+    return fail(
+        fmt::format("body width {} mm: expected at least 4 max_distance = {} mm, so the "
+                    "arc path stays well inside the body",
+                    s.width_m / kMm, 4.0 * max_distance_m / kMm));
   }
   if (body == CurveBody::kConcave && !(s.width_m > 2.0 * radius_m)) {
     return fail(fmt::format("body width {} mm: expected more than the groove's width 2R = {} mm",
                             s.width_m / kMm, 2.0 * radius_m / kMm));
   }
   if (body == CurveBody::kConvex && !(s.depth_m > radius_m)) {
-    return fail(fmt::format("body depth {} mm: expected more than R = {} mm (the half-cylinder "
-                            "stands on a block)",
-                            s.depth_m / kMm, radius_m / kMm));
+    return fail(
+        fmt::format("body depth {} mm: expected more than R = {} mm (the half-cylinder "
+                    "stands on a block)",
+                    s.depth_m / kMm, radius_m / kMm));
   }
   if (jobs < 1 || threads_per_job < 1) {
     return fail(fmt::format("jobs {}, threads per job {}: expected at least 1 each", jobs,
@@ -400,11 +415,10 @@ FemDisplacementResult RunFemDisplacement(const FemDisplacementOptions& o,
   const fs::path dir(o.work_dir);
   WriteWorkFile((dir / "body.geo").string(), FemDisplacementGeo(o, summary.body_size));
   progress("meshing (gmsh)");
-  const ProgramResult meshed = RunGmsh(programs.gmsh, o.work_dir, "body.geo", "body.msh", 1,
-                                       o.timeout_s);
+  const ProgramResult meshed =
+      RunGmsh(programs.gmsh, o.work_dir, "body.geo", "body.msh", 1, o.timeout_s);
   summary.mesh_time_s = meshed.wall_time_s;
-  const FemMesh mesh =
-      ReadProgramOutput([&] { return ReadGmshMesh((dir / "body.msh").string()); });
+  const FemMesh mesh = ReadProgramOutput([&] { return ReadGmshMesh((dir / "body.msh").string()); });
   CheckGroups(mesh, q);
   summary.nodes = mesh.NumNodes();
   summary.elements = mesh.SolidElements().size();
@@ -471,8 +485,8 @@ FemDisplacementResult RunFemDisplacement(const FemDisplacementOptions& o,
         ReadProgramOutput([&] { return ReadFrd((dir / (jobs[i] + ".frd")).string()); });
     const FrdResultBlock* disp = frd.Find("DISP", 1);
     if (disp == nullptr) {
-      throw std::runtime_error(fmt::format("{}: ccx wrote no DISP block",
-                                           (dir / (jobs[i] + ".frd")).string()));
+      throw std::runtime_error(
+          fmt::format("{}: ccx wrote no DISP block", (dir / (jobs[i] + ".frd")).string()));
     }
     summary.solve_time_s.emplace_back(load, solve_times[i]);
     for (CurvePath path : {CurvePath::kArc, CurvePath::kAxis}) {
@@ -507,9 +521,8 @@ FemDisplacementResult RunFemDisplacement(const FemDisplacementOptions& o,
             "mesh too coarse for the range?)",
             ToString(load), ToString(path), points.size(), min_mm, max_mm));
       }
-      std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) {
-        return a.distance_m < b.distance_m;
-      });
+      std::sort(points.begin(), points.end(),
+                [](const auto& a, const auto& b) { return a.distance_m < b.distance_m; });
       curves.points.insert(curves.points.end(), points.begin(), points.end());
     }
   }
@@ -529,11 +542,13 @@ FemDisplacementResult RunFemDisplacement(const FemDisplacementOptions& o,
       {"body_width_mm", fmt::format("{:g}", o.body == CurveBody::kConvex ? 2 * q.r : 2 * q.w2)},
       {"body_depth_mm", fmt::format("{:g}", q.d)},
       {"supports", SupportsText(o, q)},
-      {"model", "quarter model x >= 0, y >= 0; symmetry planes x = 0 and y = 0 through the load "
-                "point (normal load symmetric about both; axial antisymmetric about x = 0; "
-                "circumferential antisymmetric about y = 0)"},
-      {"load", "nodal force at the load point, a quarter of the full load on the quarter model; "
-               "w per newton of the full load"},
+      {"model",
+       "quarter model x >= 0, y >= 0; symmetry planes x = 0 and y = 0 through the load "
+       "point (normal load symmetric about both; axial antisymmetric about x = 0; "
+       "circumferential antisymmetric about y = 0)"},
+      {"load",
+       "nodal force at the load point, a quarter of the full load on the quarter model; "
+       "w per newton of the full load"},
       {"element", "C3D10 (10-node tetrahedron), mid-side nodes on the curved surfaces"},
       {"mesh_size_at_load_mm", fmt::format("{:g}", o.mesh_size_at_load_m / kMm)},
       {"mesh_growth", fmt::format("{:g}", o.mesh_growth)},

@@ -96,13 +96,13 @@ struct FemDisplacementOptions {
 };
 
 struct FemDisplacementSummary {
-  FemBodySize body_size;        // as used (defaults filled in)
-  size_t nodes = 0;             // of the quarter model
-  size_t elements = 0;          // solid elements of the quarter model
-  double mesh_time_s = 0.0;     // gmsh wall time
+  FemBodySize body_size;                                   // as used (defaults filled in)
+  size_t nodes = 0;                                        // of the quarter model
+  size_t elements = 0;                                     // solid elements of the quarter model
+  double mesh_time_s = 0.0;                                // gmsh wall time
   std::vector<std::pair<CurveLoad, double>> solve_time_s;  // ccx wall time per load
-  double wall_time_s = 0.0;     // the whole experiment
-  size_t points = 0;            // rows of the curves
+  double wall_time_s = 0.0;                                // the whole experiment
+  size_t points = 0;                                       // rows of the curves
 };
 
 struct FemDisplacementResult {

@@ -19,9 +19,9 @@ struct GmshType {
   MeshElementType type;
 };
 constexpr GmshType kGmshTypes[] = {
-    {15, MeshElementType::kPoint},     {1, MeshElementType::kLine2},
-    {8, MeshElementType::kLine3},      {2, MeshElementType::kTriangle3},
-    {9, MeshElementType::kTriangle6},  {4, MeshElementType::kTet4},
+    {15, MeshElementType::kPoint},    {1, MeshElementType::kLine2},
+    {8, MeshElementType::kLine3},     {2, MeshElementType::kTriangle3},
+    {9, MeshElementType::kTriangle6}, {4, MeshElementType::kTet4},
     {11, MeshElementType::kTet10},
 };
 
@@ -73,49 +73,71 @@ void ExpectEnd(LineReader& r, std::string_view section) {
 
 std::string_view ToString(MeshElementType type) {
   switch (type) {
-    case MeshElementType::kPoint: return "point";
-    case MeshElementType::kLine2: return "line2";
-    case MeshElementType::kLine3: return "line3";
-    case MeshElementType::kTriangle3: return "triangle3";
-    case MeshElementType::kTriangle6: return "triangle6";
-    case MeshElementType::kTet4: return "C3D4";
-    case MeshElementType::kTet10: return "C3D10";
+    case MeshElementType::kPoint:
+      return "point";
+    case MeshElementType::kLine2:
+      return "line2";
+    case MeshElementType::kLine3:
+      return "line3";
+    case MeshElementType::kTriangle3:
+      return "triangle3";
+    case MeshElementType::kTriangle6:
+      return "triangle6";
+    case MeshElementType::kTet4:
+      return "C3D4";
+    case MeshElementType::kTet10:
+      return "C3D10";
   }
   return "?";
 }
 
 int Dimension(MeshElementType type) {
   switch (type) {
-    case MeshElementType::kPoint: return 0;
+    case MeshElementType::kPoint:
+      return 0;
     case MeshElementType::kLine2:
-    case MeshElementType::kLine3: return 1;
+    case MeshElementType::kLine3:
+      return 1;
     case MeshElementType::kTriangle3:
-    case MeshElementType::kTriangle6: return 2;
+    case MeshElementType::kTriangle6:
+      return 2;
     case MeshElementType::kTet4:
-    case MeshElementType::kTet10: return 3;
+    case MeshElementType::kTet10:
+      return 3;
   }
   return -1;
 }
 
 int NodeCount(MeshElementType type) {
   switch (type) {
-    case MeshElementType::kPoint: return 1;
-    case MeshElementType::kLine2: return 2;
-    case MeshElementType::kLine3: return 3;
-    case MeshElementType::kTriangle3: return 3;
-    case MeshElementType::kTriangle6: return 6;
-    case MeshElementType::kTet4: return 4;
-    case MeshElementType::kTet10: return 10;
+    case MeshElementType::kPoint:
+      return 1;
+    case MeshElementType::kLine2:
+      return 2;
+    case MeshElementType::kLine3:
+      return 3;
+    case MeshElementType::kTriangle3:
+      return 3;
+    case MeshElementType::kTriangle6:
+      return 6;
+    case MeshElementType::kTet4:
+      return 4;
+    case MeshElementType::kTet10:
+      return 10;
   }
   return 0;
 }
 
 std::array<int, 3> TetFaceCorners(int face) {
   switch (face) {
-    case 1: return {0, 1, 2};
-    case 2: return {0, 3, 1};
-    case 3: return {1, 3, 2};
-    case 4: return {2, 3, 0};
+    case 1:
+      return {0, 1, 2};
+    case 2:
+      return {0, 3, 1};
+    case 3:
+      return {1, 3, 2};
+    case 4:
+      return {2, 3, 0};
   }
   RAILWEAR_CHECK(false && "tetrahedron faces are 1..4");
   return {0, 0, 0};
@@ -162,7 +184,8 @@ std::vector<const MeshElement*> FemMesh::GroupElements(std::string_view name) co
 
 std::vector<int> FemMesh::NodeSet(std::string_view name) const {
   std::vector<int> ids;
-  for (const MeshElement* e : GroupElements(name)) ids.insert(ids.end(), e->nodes.begin(), e->nodes.end());
+  for (const MeshElement* e : GroupElements(name))
+    ids.insert(ids.end(), e->nodes.begin(), e->nodes.end());
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   return ids;
@@ -186,16 +209,18 @@ std::vector<ElementFace> FemMesh::FaceSurface(std::string_view surface_group) co
   for (const MeshElement* e : SolidElements()) {
     for (int f = 1; f <= 4; ++f) {
       const auto c = TetFaceCorners(f);
-      faces.emplace(sorted({e->nodes[c[0]], e->nodes[c[1]], e->nodes[c[2]]}), ElementFace{e->id, f});
+      faces.emplace(sorted({e->nodes[c[0]], e->nodes[c[1]], e->nodes[c[2]]}),
+                    ElementFace{e->id, f});
     }
   }
   std::vector<ElementFace> out;
   for (const MeshElement* t : GroupElements(surface_group)) {
     const auto it = faces.find(sorted({t->nodes[0], t->nodes[1], t->nodes[2]}));
     if (it == faces.end()) {
-      throw std::runtime_error(fmt::format("surface group '{}': triangle {} is no face of a solid "
-                                           "element",
-                                           surface_group, t->id));
+      throw std::runtime_error(
+          fmt::format("surface group '{}': triangle {} is no face of a solid "
+                      "element",
+                      surface_group, t->id));
     }
     out.push_back(it->second);
   }
@@ -218,9 +243,10 @@ FemMesh ReadGmshMesh(const std::string& path) {
       std::string version;
       int file_type = -1;
       if (!(is >> version >> file_type) || version.rfind("2.", 0) != 0 || file_type != 0) {
-        r.Fail(fmt::format("mesh format '{}': expected MSH version 2.2 ASCII ('2.2 0 8'; gmsh "
-                           "-format msh22)",
-                           f));
+        r.Fail(
+            fmt::format("mesh format '{}': expected MSH version 2.2 ASCII ('2.2 0 8'; gmsh "
+                        "-format msh22)",
+                        f));
       }
       ExpectEnd(r, section);
       format_seen = true;
@@ -235,7 +261,8 @@ FemMesh ReadGmshMesh(const std::string& path) {
           r.Fail(fmt::format("'{}': expected 'dim tag \"name\"'", g));
         }
         const size_t a = rest.find('"'), b = rest.rfind('"');
-        if (a == std::string::npos || b == a) r.Fail(fmt::format("'{}': expected a quoted name", g));
+        if (a == std::string::npos || b == a)
+          r.Fail(fmt::format("'{}': expected a quoted name", g));
         group.name = rest.substr(a + 1, b - a - 1);
         mesh.AddGroup(std::move(group));
       }
@@ -276,9 +303,10 @@ FemMesh ReadGmshMesh(const std::string& path) {
           }
         }
         if (!known) {
-          r.Fail(fmt::format("element {} has gmsh type {}; expected 15 (point), 1/8 (line), 2/9 "
-                             "(triangle) or 4/11 (tetrahedron)",
-                             id, gmsh_type));
+          r.Fail(
+              fmt::format("element {} has gmsh type {}; expected 15 (point), 1/8 (line), 2/9 "
+                          "(triangle) or 4/11 (tetrahedron)",
+                          id, gmsh_type));
         }
         std::vector<int> tags(static_cast<size_t>(num_tags));
         for (int& tag : tags) {
@@ -306,8 +334,9 @@ FemMesh ReadGmshMesh(const std::string& path) {
     }
   }
   if (!format_seen || !nodes_seen || !elements_seen) {
-    r.Fail(fmt::format("the file lacks {}; expected an MSH 2.2 mesh",
-                       !format_seen ? "$MeshFormat" : !nodes_seen ? "$Nodes" : "$Elements"));
+    r.Fail(fmt::format("the file lacks {}; expected an MSH 2.2 mesh", !format_seen  ? "$MeshFormat"
+                                                                      : !nodes_seen ? "$Nodes"
+                                                                                    : "$Elements"));
   }
   return mesh;
 }

@@ -54,8 +54,8 @@ ProgramResult RunGmsh(const std::string& gmsh, const std::string& work_dir,
                       double timeout_s) {
   namespace fs = std::filesystem;
   ProgramRun run;
-  run.argv = {gmsh, "-3", "-format", "msh22", "-nt", std::to_string(threads), "-o", msh_file,
-              geo_file};
+  run.argv = {gmsh, "-3",     "-format", "msh22", "-nt", std::to_string(threads),
+              "-o", msh_file, geo_file};
   run.work_dir = work_dir;
   run.log_path = msh_file + ".log";
   run.timeout_s = timeout_s;

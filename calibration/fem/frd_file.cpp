@@ -18,13 +18,11 @@ namespace {
 
 constexpr size_t kValueWidth = 12;  // E12.5
 
-
 // Columns [begin, begin + width) of a line, empty past its end.
 std::string_view Columns(std::string_view line, size_t begin, size_t width) {
   if (begin >= line.size()) return {};
   return line.substr(begin, width);
 }
-
 
 std::optional<int> ParseInt(std::string_view field) {
   const std::string t = Trim(field);
@@ -72,9 +70,10 @@ class FrdParser {
     const auto tokens = Tokens(line);
     const auto f = tokens.empty() ? std::nullopt : ParseInt(tokens.back());
     if (!f || (*f != 0 && *f != 1)) {
-      Fail(fmt::format("block header '{}': expected the ASCII format flag 0 or 1 at its end "
-                       "(binary .frd files are not supported)",
-                       Trim(line)));
+      Fail(
+          fmt::format("block header '{}': expected the ASCII format flag 0 or 1 at its end "
+                      "(binary .frd files are not supported)",
+                      Trim(line)));
     }
     id_width_ = *f == 0 ? 5 : 10;
   }
@@ -92,7 +91,8 @@ class FrdParser {
 
   int ReadId(std::string_view line) {
     const auto id = ParseInt(Columns(line, 3, id_width_));
-    if (!id) Fail(fmt::format("'{}': expected a node id in columns 4-{}", Trim(line), 3 + id_width_));
+    if (!id)
+      Fail(fmt::format("'{}': expected a node id in columns 4-{}", Trim(line), 3 + id_width_));
     return *id;
   }
 
@@ -100,9 +100,10 @@ class FrdParser {
     if (block_.node_ids.empty()) return;
     const size_t expected = block_.node_ids.size() * block_.components.size();
     if (block_.values.size() != expected) {
-      Fail(fmt::format("node {} of block {} has {} value(s); expected {}", block_.node_ids.back(),
-                       block_.name, block_.values.size() - (block_.node_ids.size() - 1) * block_.components.size(),
-                       block_.components.size()));
+      Fail(fmt::format(
+          "node {} of block {} has {} value(s); expected {}", block_.node_ids.back(), block_.name,
+          block_.values.size() - (block_.node_ids.size() - 1) * block_.components.size(),
+          block_.components.size()));
     }
   }
 
@@ -120,10 +121,12 @@ class FrdParser {
           state_ = State::kElements;
         } else if (line.rfind("    1PSTEP", 0) == 0) {
           const auto tokens = Tokens(line);
-          if (tokens.size() < 4) Fail(fmt::format("'{}': expected '1PSTEP set increment step'", Trim(line)));
+          if (tokens.size() < 4)
+            Fail(fmt::format("'{}': expected '1PSTEP set increment step'", Trim(line)));
           const auto inc = ParseInt(tokens[2]);
           const auto step = ParseInt(tokens[3]);
-          if (!inc || !step) Fail(fmt::format("'{}': expected '1PSTEP set increment step'", Trim(line)));
+          if (!inc || !step)
+            Fail(fmt::format("'{}': expected '1PSTEP set increment step'", Trim(line)));
           increment_ = *inc;
           step_ = *step;
         } else if (head.rfind("100C", 0) == 0) {
@@ -146,7 +149,8 @@ class FrdParser {
           const int id = ReadId(line);
           std::vector<double> xyz;
           ReadValues(line, &xyz);
-          if (xyz.size() != 3) Fail(fmt::format("node {} has {} coordinate(s); expected 3", id, xyz.size()));
+          if (xyz.size() != 3)
+            Fail(fmt::format("node {} has {} coordinate(s); expected 3", id, xyz.size()));
           file_.node_ids.push_back(id);
           file_.positions.emplace_back(xyz[0], xyz[1], xyz[2]);
         } else {
@@ -166,7 +170,8 @@ class FrdParser {
           if (!exists || *exists != 1) block_.components.push_back(Trim(Columns(line, 5, 8)));
         } else if (key == " -1") {
           FinishRow();
-          if (block_.components.empty()) Fail("a data row before the block's ' -5' component lines");
+          if (block_.components.empty())
+            Fail("a data row before the block's ' -5' component lines");
           const int id = ReadId(line);
           if (!block_.row_of_node.emplace(id, static_cast<int>(block_.node_ids.size())).second) {
             Fail(fmt::format("node {} given twice in block {}", id, block_.name));
@@ -183,9 +188,10 @@ class FrdParser {
           block_ = FrdResultBlock{};
           state_ = State::kTop;
         } else {
-          Fail(fmt::format("'{}' in result block {}; expected ' -4', ' -5', ' -1', ' -2' or ' -3' "
-                           "lines",
-                           Trim(line), block_.name));
+          Fail(
+              fmt::format("'{}' in result block {}; expected ' -4', ' -5', ' -1', ' -2' or ' -3' "
+                          "lines",
+                          Trim(line), block_.name));
         }
         return true;
       }

@@ -28,13 +28,13 @@ namespace railwear {
 
 // One nodal result block of one step.
 struct FrdResultBlock {
-  std::string name;                     // "DISP", "STRESS", "CONTACT", "ERROR", ...
-  int step = 0;                         // ccx step number (1-based, from the PSTEP line)
-  int increment = 0;                    // increment within the step
-  double time = 0.0;                    // the step time ccx writes with the block
-  std::vector<std::string> components;  // stored components in row order ("D1", "D2", "D3")
-  std::vector<int> node_ids;            // rows in file order
-  std::vector<double> values;           // node_ids.size() x components.size(), row-major
+  std::string name;                          // "DISP", "STRESS", "CONTACT", "ERROR", ...
+  int step = 0;                              // ccx step number (1-based, from the PSTEP line)
+  int increment = 0;                         // increment within the step
+  double time = 0.0;                         // the step time ccx writes with the block
+  std::vector<std::string> components;       // stored components in row order ("D1", "D2", "D3")
+  std::vector<int> node_ids;                 // rows in file order
+  std::vector<double> values;                // node_ids.size() x components.size(), row-major
   std::unordered_map<int, int> row_of_node;  // node id -> row
 
   size_t NumComponents() const { return components.size(); }
@@ -49,9 +49,9 @@ struct FrdResultBlock {
 
 struct FrdFile {
   std::string path;
-  std::vector<int> node_ids;                // in file order
-  std::vector<Eigen::Vector3d> positions;   // the node coordinates as ccx wrote them
-  std::vector<FrdResultBlock> blocks;       // in file order
+  std::vector<int> node_ids;               // in file order
+  std::vector<Eigen::Vector3d> positions;  // the node coordinates as ccx wrote them
+  std::vector<FrdResultBlock> blocks;      // in file order
 
   // The block of that name in that step (its last increment), or nullptr. step = -1: the last
   // step that has one.

@@ -15,9 +15,9 @@ namespace railwear {
 
 // Where the wheel stands on the rail (single wheel; wheelsets come with rolling contact).
 struct WheelPlacement {
-  double lateral_shift_m = 0.0;   // y of the wheel profile origin in the rail frame [m]
-  double roll_rad = 0.0;          // rotation about x; positive turns +y toward +z (field side down)
-  double rolling_radius_m = 0.46; // wheel radius at the wheel profile's z = 0 [m]
+  double lateral_shift_m = 0.0;  // y of the wheel profile origin in the rail frame [m]
+  double roll_rad = 0.0;         // rotation about x; positive turns +y toward +z (field side down)
+  double rolling_radius_m = 0.46;  // wheel radius at the wheel profile's z = 0 [m]
 };
 
 // Prescribe exactly one of the two.
@@ -47,9 +47,9 @@ struct ContactSetup {
 
 // The rolling stage (the "tangential" effect): only run when a problem carries these options.
 struct RollingOptions {
-  WheelMotion motion;                 // the wheel's motion, giving the rigid slip per cell ...
-  std::optional<Creepage> creepage;   // ... or prescribed creepages about each patch's origin
-  double friction = 0.3;              // mu > 0
+  WheelMotion motion;                // the wheel's motion, giving the rigid slip per cell ...
+  std::optional<Creepage> creepage;  // ... or prescribed creepages about each patch's origin
+  double friction = 0.3;             // mu > 0
   // Prescribed total longitudinal creep force on the wheel [N] (> 0 traction: the rail pushes
   // the wheel forward; < 0 braking) instead of a prescribed pitch velocity: the pitch velocity
   // is found so that the patches' F_x add up to it. Not with prescribed creepages.

@@ -40,9 +40,9 @@ struct PatchResult {
   double contact_angle_rad = 0.0;
   int cells = 0;
   int cells_in_contact = 0;
-  PatchGrid grid;               // empty for the Hertz model
-  Eigen::VectorXd pressure_Pa;  // per grid cell
-  std::optional<HertzSolution> hertz;  // the Hertz model's ellipse
+  PatchGrid grid;                       // empty for the Hertz model
+  Eigen::VectorXd pressure_Pa;          // per grid cell
+  std::optional<HertzSolution> hertz;   // the Hertz model's ellipse
   std::optional<RollingPatch> rolling;  // when the problem asked for rolling contact
   // The model this patch was solved with ("hertz", "halfspace", "conformal+boussinesq", ...;
   // model_selection.h PatchModelLabel), and with kind = auto why it was chosen (empty otherwise).

@@ -17,10 +17,10 @@ Eigen::VectorXd CouplingDisplacement(const PatchGrid& g, const TangentialSolutio
                                      double kappa) {
   Eigen::VectorXd u = Eigen::VectorXd::Zero(g.cells());
   if (kappa == 0.0) return u;
-  static constexpr double kGx[4] = {-0.8611363115940526, -0.3399810435848563,
-                                    0.3399810435848563, 0.8611363115940526};
-  static constexpr double kGw[4] = {0.3478548451374538, 0.6521451548625461,
-                                    0.6521451548625461, 0.3478548451374538};
+  static constexpr double kGx[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
+                                    0.8611363115940526};
+  static constexpr double kGw[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
+                                    0.3478548451374538};
   const double area = g.CellArea();
   for (int jb = 0; jb < g.ns; ++jb) {
     const Eigen::Vector3d tj(0.0, g.tangent_yz[jb].x(), g.tangent_yz[jb].y());

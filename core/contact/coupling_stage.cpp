@@ -14,8 +14,8 @@ namespace railwear::internal {
 
 void SolveCoupled(const ContactProblem& problem, const WheelRailGeometry& geom,
                   const std::vector<ContactCandidate>& cands, const std::vector<int>& kept_build,
-                  const std::vector<int>& kept_offset, NormalProblem* np,
-                  Eigen::VectorXd pressure, ContactResult* result) {
+                  const std::vector<int>& kept_offset, NormalProblem* np, Eigen::VectorXd pressure,
+                  ContactResult* result) {
   const RollingOptions& o = *problem.rolling;
   auto totals = [](const ContactResult& r) {
     double area = 0.0, p_max = 0.0;
@@ -31,8 +31,8 @@ void SolveCoupled(const ContactProblem& problem, const WheelRailGeometry& geom,
   for (int b : kept_build) {
     const int wheel_sign = BodyCurvatureSign(cands[b].wheel_lateral_curvature);
     const int rail_sign = BodyCurvatureSign(cands[b].rail_lateral_curvature);
-    kappa.push_back(CouplingCoefficient(problem.model.constants, problem.wheel_material,
-                                        wheel_sign, problem.rail_material, rail_sign));
+    kappa.push_back(CouplingCoefficient(problem.model.constants, problem.wheel_material, wheel_sign,
+                                        problem.rail_material, rail_sign));
   }
   for (int it = 1; it <= o.coupling_max_iterations; ++it) {
     result->coupling_iterations = it;

@@ -20,7 +20,7 @@ namespace railwear::internal {
 // changes, or kNotConverged go into *result.
 void SolveCoupled(const ContactProblem& problem, const WheelRailGeometry& geom,
                   const std::vector<ContactCandidate>& cands, const std::vector<int>& kept_build,
-                  const std::vector<int>& kept_offset, NormalProblem* np,
-                  Eigen::VectorXd pressure, ContactResult* result);
+                  const std::vector<int>& kept_offset, NormalProblem* np, Eigen::VectorXd pressure,
+                  ContactResult* result);
 
 }  // namespace railwear::internal

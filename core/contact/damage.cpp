@@ -36,8 +36,8 @@ double WlrmRcfDamage(double t_gamma_N) {
   return kWlrmPeakDamage * (kWlrmWearOnly_N - t_gamma_N) / (kWlrmWearOnly_N - kWlrmPeak_N);
 }
 
-double SurfaceFatigueIndex(double traction_coefficient, double semi_axis_x_m,
-                           double semi_axis_y_m, double normal_force_N, double shear_yield_Pa) {
+double SurfaceFatigueIndex(double traction_coefficient, double semi_axis_x_m, double semi_axis_y_m,
+                           double normal_force_N, double shear_yield_Pa) {
   RequirePositive(semi_axis_x_m, "SurfaceFatigueIndex: semi_axis_x_m");
   RequirePositive(semi_axis_y_m, "SurfaceFatigueIndex: semi_axis_y_m");
   RequirePositive(normal_force_N, "SurfaceFatigueIndex: normal_force_N");
@@ -48,10 +48,14 @@ double SurfaceFatigueIndex(double traction_coefficient, double semi_axis_x_m,
 
 std::string_view ToString(ShakedownRegime v) {
   switch (v) {
-    case ShakedownRegime::kElastic: return "elastic";
-    case ShakedownRegime::kElasticShakedown: return "elastic shakedown";
-    case ShakedownRegime::kPlasticShakedown: return "plastic shakedown";
-    case ShakedownRegime::kRatchetting: return "ratchetting";
+    case ShakedownRegime::kElastic:
+      return "elastic";
+    case ShakedownRegime::kElasticShakedown:
+      return "elastic shakedown";
+    case ShakedownRegime::kPlasticShakedown:
+      return "plastic shakedown";
+    case ShakedownRegime::kRatchetting:
+      return "ratchetting";
   }
   return "unknown";
 }
@@ -67,8 +71,8 @@ ShakedownPoint CalcShakedownPoint(double p0_Pa, double shear_yield_Pa,
   ShakedownPoint s;
   s.load_factor = p0_Pa / shear_yield_Pa;
   s.traction_coefficient = traction_coefficient;
-  const double surface =
-      traction_coefficient > 0.0 ? 1.0 / traction_coefficient : std::numeric_limits<double>::infinity();
+  const double surface = traction_coefficient > 0.0 ? 1.0 / traction_coefficient
+                                                    : std::numeric_limits<double>::infinity();
   s.elastic_limit = std::min(kElasticLimitPointContact, surface);
   s.shakedown_limit = std::min(kShakedownLimitPointContact, surface);
   s.margin = s.shakedown_limit - s.load_factor;

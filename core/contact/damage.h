@@ -34,8 +34,8 @@ double WlrmRcfDamage(double t_gamma_N);
 // with p0 = 3 F_n/(2 pi a b) the Hertz peak pressure. FI_surf > 0 predicts surface-initiated RCF
 // (the load lies beyond the surface shakedown limit p0/k = 1/mu_eff). a, b semi-axes [m] > 0,
 // F_n > 0 [N], k > 0 [Pa]. Throws std::invalid_argument otherwise.
-double SurfaceFatigueIndex(double traction_coefficient, double semi_axis_x_m,
-                           double semi_axis_y_m, double normal_force_N, double shear_yield_Pa);
+double SurfaceFatigueIndex(double traction_coefficient, double semi_axis_x_m, double semi_axis_y_m,
+                           double normal_force_N, double shear_yield_Pa);
 
 // Regions of Johnson's shakedown map (point contact), by increasing load factor p0/k.
 enum class ShakedownRegime { kElastic, kElasticShakedown, kPlasticShakedown, kRatchetting };
@@ -72,16 +72,15 @@ struct ShakedownPoint {
 };
 // p0 > 0 [Pa] peak pressure, k > 0 [Pa] shear yield, mu_eff >= 0. Throws std::invalid_argument
 // otherwise.
-ShakedownPoint CalcShakedownPoint(double p0_Pa, double shear_yield_Pa,
-                                  double traction_coefficient);
+ShakedownPoint CalcShakedownPoint(double p0_Pa, double shear_yield_Pa, double traction_coefficient);
 
 // All indices of one patch from its totals.
 struct PatchDamageInput {
-  double force_x_N = 0.0, force_y_N = 0.0;  // creep forces [N]
-  double normal_force_N = 0.0;              // F_n > 0 [N]
-  double xi = 0.0, eta = 0.0;               // patch creepages [-]
+  double force_x_N = 0.0, force_y_N = 0.0;          // creep forces [N]
+  double normal_force_N = 0.0;                      // F_n > 0 [N]
+  double xi = 0.0, eta = 0.0;                       // patch creepages [-]
   double semi_axis_x_m = 0.0, semi_axis_y_m = 0.0;  // a, b [m]
-  double shear_yield_Pa = 0.0;              // k [Pa]
+  double shear_yield_Pa = 0.0;                      // k [Pa]
 };
 struct PatchDamage {
   double t_gamma_N = 0.0;             // [N = J/m]

@@ -14,25 +14,32 @@ namespace railwear {
 
 std::string_view ToString(TractionBound v) {
   switch (v) {
-    case TractionBound::kActualPressure: return "actual_pressure";
-    case TractionBound::kParabolic: return "parabolic";
+    case TractionBound::kActualPressure:
+      return "actual_pressure";
+    case TractionBound::kParabolic:
+      return "parabolic";
   }
   return "unknown";
 }
 
 std::string_view ToString(FlexibilityModel v) {
   switch (v) {
-    case FlexibilityModel::kWeighted: return "weighted";
-    case FlexibilityModel::kSeparate: return "separate";
-    case FlexibilityModel::kThree: return "three";
+    case FlexibilityModel::kWeighted:
+      return "weighted";
+    case FlexibilityModel::kSeparate:
+      return "separate";
+    case FlexibilityModel::kThree:
+      return "three";
   }
   return "unknown";
 }
 
 std::string_view ToString(FastsimMarch v) {
   switch (v) {
-    case FastsimMarch::kTrapezoidal: return "trapezoidal";
-    case FastsimMarch::kContactEuler: return "contact_euler";
+    case FastsimMarch::kTrapezoidal:
+      return "trapezoidal";
+    case FastsimMarch::kContactEuler:
+      return "contact_euler";
   }
   return "unknown";
 }
@@ -116,8 +123,8 @@ void CheckFastsimInput(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa
   Require(grid.nx > 0 && grid.ns > 0 && grid.dx_m > 0.0 && grid.ds_m > 0.0,
           "grid must have nx, ns >= 1 and dx, ds > 0");
   Require(static_cast<int>(grid.tangent_yz.size()) == grid.ns,
-          "grid.tangent_yz has " + std::to_string(grid.tangent_yz.size()) + " entries, expected ns = " +
-              std::to_string(grid.ns));
+          "grid.tangent_yz has " + std::to_string(grid.tangent_yz.size()) +
+              " entries, expected ns = " + std::to_string(grid.ns));
   Require(pressure_Pa.size() == n, "pressure has " + std::to_string(pressure_Pa.size()) +
                                        " cells, expected " + std::to_string(n));
   Require(in.creep_x.size() == n && in.creep_s.size() == n,
@@ -381,8 +388,7 @@ void AddTotals(const PatchGrid& grid, TangentialSolution* sol_io) {
       sol.force_x_N += qx * dA;
       fs_strip += qs * dA;
       sol.spin_moment_Nm += (grid.X(i) * qs - grid.S(j) * qx) * dA;
-      sol.frictional_power_W +=
-          std::abs(qx * sol.slip_x_m_s[k] + qs * sol.slip_s_m_s[k]) * dA;
+      sol.frictional_power_W += std::abs(qx * sol.slip_x_m_s[k] + qs * sol.slip_s_m_s[k]) * dA;
     }
     sol.force_s_N += fs_strip;
     sol.force_s_yz_N += fs_strip * grid.tangent_yz[j];
@@ -390,7 +396,6 @@ void AddTotals(const PatchGrid& grid, TangentialSolution* sol_io) {
 }
 
 }  // namespace
-
 
 TangentialSolution SolveFastsim(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                                 const RollingInput& in, const FastsimOptions& opt,

@@ -71,8 +71,8 @@
 #include <Eigen/Core>
 
 #include "core/contact/contact_types.h"
-#include "core/geometry/patch_grid.h"
 #include "core/contact/tangential_types.h"
+#include "core/geometry/patch_grid.h"
 
 namespace railwear {
 
@@ -128,11 +128,11 @@ struct FastsimPatch {
   double semi_axis_x_m = 0.0, semi_axis_s_m = 0.0;
   double centroid_x_m = 0.0, centroid_s_m = 0.0;  // area centroid of the contact cells
   double xi = 0.0, eta = 0.0, phi_per_m = 0.0;    // patch-average creepages used for L
-  double flexibility_x_m_Pa = 0.0;  // L used for the x component (L1 for kThree) [m/Pa]
-  double flexibility_s_m_Pa = 0.0;  // L used for the s component (L2 for kThree) [m/Pa]
+  double flexibility_x_m_Pa = 0.0;     // L used for the x component (L1 for kThree) [m/Pa]
+  double flexibility_s_m_Pa = 0.0;     // L used for the s component (L2 for kThree) [m/Pa]
   double flexibility_spin_m_Pa = 0.0;  // L3 for kThree, else 0 [m/Pa]
-  double blend_weight = 0.0;        // w of blend_flexibilities (0 when not blending)
-  double normal_force_N = 0.0;      // sum p dA over the grid
+  double blend_weight = 0.0;           // w of blend_flexibilities (0 when not blending)
+  double normal_force_N = 0.0;         // sum p dA over the grid
 };
 
 // The contact region of a patch (cells with p > 0) as an equivalent ellipse: a/b from the

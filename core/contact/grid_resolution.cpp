@@ -5,16 +5,19 @@ namespace railwear {
 
 double CellsPerSemiAxis(AccuracyPreset preset) {
   switch (preset) {
-    case AccuracyPreset::kDraft: return 4.0;      // H1-H4: area and p0 within about 0.7 %
-    case AccuracyPreset::kStandard: return 10.0;  // within about 0.3 %
-    case AccuracyPreset::kReference: return 24.0;  // within about 0.2 %
-    case AccuracyPreset::kFine: return 40.0;       // p0 within 0.01 %, area 0.2 % (estimator)
+    case AccuracyPreset::kDraft:
+      return 4.0;  // H1-H4: area and p0 within about 0.7 %
+    case AccuracyPreset::kStandard:
+      return 10.0;  // within about 0.3 %
+    case AccuracyPreset::kReference:
+      return 24.0;  // within about 0.2 %
+    case AccuracyPreset::kFine:
+      return 40.0;  // p0 within 0.01 %, area 0.2 % (estimator)
   }
   return 10.0;
 }
 
-CellSize ChooseCellSize(const ModelOptions& options, double semi_axis_x_m,
-                        double semi_axis_s_m) {
+CellSize ChooseCellSize(const ModelOptions& options, double semi_axis_x_m, double semi_axis_s_m) {
   const double n = CellsPerSemiAxis(options.accuracy);
   CellSize c{semi_axis_x_m / n, semi_axis_s_m / n};
   if (options.cell_dx_m) c.dx_m = *options.cell_dx_m;

@@ -55,8 +55,8 @@ void CheckPositiveFinite(double v, const char* name) {
 
 void CheckNonNegativeFinite(double v, const char* name) {
   if (!(std::isfinite(v) && v >= 0.0)) {
-    throw std::invalid_argument(std::string("Hertz: ") + name +
-                                " must be >= 0 and finite, got " + std::to_string(v));
+    throw std::invalid_argument(std::string("Hertz: ") + name + " must be >= 0 and finite, got " +
+                                std::to_string(v));
   }
 }
 
@@ -156,8 +156,8 @@ HertzSolution SolveHertz(double A_per_m, double B_per_m, double contact_modulus_
   const double k = internal::CompleteEllipticK(m);
   const double e = internal::CompleteEllipticE(m);
   const double pi = std::numbers::pi;
-  const double c3 = 3.0 * force_N * e / (2.0 * pi * contact_modulus_Pa * (A_per_m + B_per_m) *
-                                         std::sqrt(g));
+  const double c3 =
+      3.0 * force_N * e / (2.0 * pi * contact_modulus_Pa * (A_per_m + B_per_m) * std::sqrt(g));
   const double c = std::cbrt(c3);
   const double a = c / std::sqrt(g);  // major semi-axis, along the smaller curvature
   const double b = c * std::sqrt(g);

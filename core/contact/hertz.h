@@ -21,8 +21,7 @@ struct HertzSolution {
 // std::invalid_argument on A or B <= 0 (or E* <= 0, P < 0, non-finite input), and
 // std::runtime_error if the axis ratio cannot be found (curvature ratio beyond ~1e12).
 // Any ratio B/A is accepted: the major axis lies along the smaller curvature.
-HertzSolution SolveHertz(double A_per_m, double B_per_m, double contact_modulus_Pa,
-                         double force_N);
+HertzSolution SolveHertz(double A_per_m, double B_per_m, double contact_modulus_Pa, double force_N);
 // The same for a prescribed approach delta >= 0.
 HertzSolution SolveHertzForApproach(double A_per_m, double B_per_m, double contact_modulus_Pa,
                                     double approach_m);

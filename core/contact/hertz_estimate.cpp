@@ -26,8 +26,8 @@ Curvatures CandidateCurvatures(const ContactCandidate& c, double roll_rad) {
 
 // Vertical approach for which Hertz contacts at all candidates carry the vertical load F
 // (bisection on the common approach), or their loads for a given approach.
-double HertzVerticalLoad(const std::vector<ContactCandidate>& cands, double roll_rad,
-                         double estar, double delta, std::vector<HertzSolution>* out) {
+double HertzVerticalLoad(const std::vector<ContactCandidate>& cands, double roll_rad, double estar,
+                         double delta, std::vector<HertzSolution>* out) {
   double total = 0.0;
   if (out) out->clear();
   for (const auto& c : cands) {
@@ -126,10 +126,9 @@ FirstContactEstimate EstimateFirstContact(const WheelRailGeometry& geom,
   // (Widen the search when no gap sample lies within 1 um of first contact, e.g. at a corner.)
   std::vector<ContactCandidate> first = geom.FindCandidates(1e-6);
   for (double t = 1e-5; first.empty() && t < 1e-2; t *= 10) first = geom.FindCandidates(t);
-  double delta_est = load_given
-                         ? HertzApproachForLoad(first, problem.placement.roll_rad, estar,
-                                                *problem.load.vertical_force_N)
-                         : *problem.load.approach_m;
+  double delta_est = load_given ? HertzApproachForLoad(first, problem.placement.roll_rad, estar,
+                                                       *problem.load.vertical_force_N)
+                                : *problem.load.approach_m;
   std::vector<HertzSolution> hs;
   HertzVerticalLoad(first, problem.placement.roll_rad, estar, delta_est, &hs);
   double ax = 0.0, bs = 0.0;

@@ -23,8 +23,8 @@ Curvatures CandidateCurvatures(const ContactCandidate& c, double roll_rad);
 
 // Total vertical load [N] of Hertz contacts at all candidates for the common vertical approach
 // delta [m] (estar: the contact modulus E* [Pa]); each candidate's ellipse into *out when given.
-double HertzVerticalLoad(const std::vector<ContactCandidate>& cands, double roll_rad,
-                         double estar, double delta, std::vector<HertzSolution>* out);
+double HertzVerticalLoad(const std::vector<ContactCandidate>& cands, double roll_rad, double estar,
+                         double delta, std::vector<HertzSolution>* out);
 
 // The vertical approach [m] for which the Hertz contacts at all candidates carry `force` [N]
 // (bisection).
@@ -38,8 +38,7 @@ struct HertzSearch {
   std::vector<HertzSolution> hs;
   double delta = 0.0;
 };
-HertzSearch SearchHertz(const WheelRailGeometry& geom, const ContactProblem& problem,
-                        double estar);
+HertzSearch SearchHertz(const WheelRailGeometry& geom, const ContactProblem& problem, double estar);
 
 // The Hertz model's result from a search: one patch per loaded candidate (stage "hertz", timed
 // from t0).
@@ -59,10 +58,10 @@ SemiAxisEstimate EstimateSemiAxisS(const WheelRailGeometry& geom, const ContactC
 // Hertz estimate of the approach and of the patch size at the first contact point, which seeds
 // the grid models' potential area.
 struct FirstContactEstimate {
-  std::vector<ContactCandidate> first;   // candidates at first contact
-  std::vector<HertzSolution> hs;         // their Hertz ellipses at delta
-  double delta = 0.0;                    // estimated vertical approach [m]
-  double semi_axis_x_m = 0.0;            // largest Hertz semi-axis along x
+  std::vector<ContactCandidate> first;  // candidates at first contact
+  std::vector<HertzSolution> hs;        // their Hertz ellipses at delta
+  double delta = 0.0;                   // estimated vertical approach [m]
+  double semi_axis_x_m = 0.0;           // largest Hertz semi-axis along x
   // Largest Hertz lateral semi-axis, bounded by the lateral reach of the interpenetration at
   // delta (in nearly conformal contact Hertz's is far too large) [m].
   double semi_axis_s_m = 0.0;

@@ -63,8 +63,8 @@ KernelCoefficients MakeKernelCoefficients(const InfluenceSettings& settings) {
   return c;
 }
 
-void RectangleIntegralsClosedForm(double x, double s, double n, double hx, double hs,
-                                  double* inv_r, double* n2_r3) {
+void RectangleIntegralsClosedForm(double x, double s, double n, double hx, double hs, double* inv_r,
+                                  double* n2_r3) {
   // Mixed antiderivatives in the offsets (xi, eta) from the field point to a corner:
   //   F = xi asinh(eta / sqrt(xi^2 + n^2)) + eta asinh(xi / sqrt(eta^2 + n^2)) - n A,
   //   G = n A,  A = atan(xi eta / (n R)),

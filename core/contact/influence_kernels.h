@@ -32,8 +32,8 @@ inline constexpr double kFarFieldDiagonals = 8.5;
 void RectangleIntegrals(double x, double s, double n, double hx, double hs, double* inv_r,
                         double* n2_r3);
 // The closed forms alone, at any distance (for tests of the far-field rule).
-void RectangleIntegralsClosedForm(double x, double s, double n, double hx, double hs,
-                                  double* inv_r, double* n2_r3);
+void RectangleIntegralsClosedForm(double x, double s, double n, double hx, double hs, double* inv_r,
+                                  double* n2_r3);
 // The corrected midpoint rule alone, at any distance (for tests of the far-field rule).
 void RectangleIntegralsFarField(double x, double s, double n, double hx, double hs, double* inv_r,
                                 double* n2_r3);

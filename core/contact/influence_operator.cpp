@@ -57,8 +57,7 @@ constexpr double kSpectrumFloor = 0.1;
 
 void CheckPlanarGrid(const PatchGrid& grid) {
   for (int j = 0; j < grid.ns; ++j) {
-    const Eigen::Vector2d expected =
-        grid.point_yz_m[0] + (j * grid.ds_m) * grid.tangent_yz[0];
+    const Eigen::Vector2d expected = grid.point_yz_m[0] + (j * grid.ds_m) * grid.tangent_yz[0];
     RAILWEAR_CHECK((grid.point_yz_m[j] - expected).norm() <= kPlanarGridTolerance * grid.ds_m);
     RAILWEAR_CHECK((grid.tangent_yz[j] - grid.tangent_yz[0]).norm() <= kPlanarGridTolerance);
     RAILWEAR_CHECK((grid.normal_yz[j] - grid.normal_yz[0]).norm() <= kPlanarGridTolerance);
@@ -160,8 +159,7 @@ class PlanarFftOperator final : public InfluenceOperator {
     if (out->size() != size()) out->resize(size());
     for (int j = 0; j < ns_; ++j) {
       fft_.inv(x_out_.data(), cropped_.data() + static_cast<size_t>(j) * hx_, lx_);
-      std::copy(x_out_.begin(), x_out_.begin() + nx_,
-                out->data() + static_cast<size_t>(j) * nx_);
+      std::copy(x_out_.begin(), x_out_.begin() + nx_, out->data() + static_cast<size_t>(j) * nx_);
     }
   }
 
@@ -179,19 +177,19 @@ class PlanarFftOperator final : public InfluenceOperator {
 
   int nx_, ns_, lx_, hx_, ls_;
   double diagonal_ = 0.0;
-  std::vector<double> spectrum_;  // [hx_ * ls_], bin-major, scaled by 1/(lx_ ls_)
+  std::vector<double> spectrum_;          // [hx_ * ls_], bin-major, scaled by 1/(lx_ ls_)
   std::vector<double> inverse_spectrum_;  // [hx_ * ls_], 1 / max(spectrum, floor), scaled
 
   // Scratch reused by every Apply (hence mutable): the operator is not safe for concurrent
   // Apply calls from several threads; give each thread its own operator.
   mutable Eigen::FFT<double> fft_;
-  mutable std::vector<double> x_real_;     // [lx_], entries >= row length stay zero
-  mutable std::vector<double> x_out_;      // [lx_]
-  mutable std::vector<Complex> x_half_;    // [hx_]
-  mutable std::vector<Complex> rows_;      // [hx_ * ls_]
-  mutable std::vector<Complex> s_line_;    // [ls_]
-  mutable std::vector<Complex> s_out_;     // [ls_]
-  mutable std::vector<Complex> cropped_;   // [ns_ * hx_], s-major for the inverse x FFTs
+  mutable std::vector<double> x_real_;    // [lx_], entries >= row length stay zero
+  mutable std::vector<double> x_out_;     // [lx_]
+  mutable std::vector<Complex> x_half_;   // [hx_]
+  mutable std::vector<Complex> rows_;     // [hx_ * ls_]
+  mutable std::vector<Complex> s_line_;   // [ls_]
+  mutable std::vector<Complex> s_out_;    // [ls_]
+  mutable std::vector<Complex> cropped_;  // [ns_ * hx_], s-major for the inverse x FFTs
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -258,9 +256,9 @@ class CurvedFftOperator final : public InfluenceOperator {
   // factor_ column k = the Cholesky factor L_k of sym K_k = (K_k + K_k^T) / 2 [m/Pa] (lower
   // triangle of an ns x ns column-major block). Factors rather than inverses: a third of the
   // flops to build (ns^3 / 3 per frequency), which matters on laterally long patches (ns of a
-  // few hundred), for about 1.5 times the cost to apply (measured at ns = 45 and 90). A block whose symmetric part is not positive
-  // definite (Cholesky fails) is rebuilt from its eigenvalues, those below
-  // kSpectrumFloor * min_j C_jj raised to it, and factored again.
+  // few hundred), for about 1.5 times the cost to apply (measured at ns = 45 and 90). A block whose
+  // symmetric part is not positive definite (Cholesky fails) is rebuilt from its eigenvalues, those
+  // below kSpectrumFloor * min_j C_jj raised to it, and factored again.
   void MakeInverseBlocks() {
     factor_.resize(kernel_.rows(), kernel_.cols());
     const double floor = kSpectrumFloor * diagonal_.minCoeff();

@@ -30,11 +30,12 @@
 // operator divides by the circulant embedding's spectrum (2-D FFT, the cost of one Apply), the
 // curved one solves with each frequency's ns x ns block (its symmetric part, Cholesky-factored
 // once in the constructor: another (L/2 + 1) ns^2 doubles and (L/2 + 1) ns^3 / 3 flops; each
-// application costs about 1.5 Apply, the triangular solves being slower than Apply's products). Spectrum values and block eigenvalues below a floor are
-// raised to it, so M stays positive definite. M inverts the circulant embedding, not C itself:
-// C M r - r is small for displacement fields r that are smooth and vanish toward the grid's
-// edges (below 0.15 relative at every grid size, influence_operator_test.cpp), which is what
-// makes it a good preconditioner (Vollebregt, J. Comput. Phys. 2014).
+// application costs about 1.5 Apply, the triangular solves being slower than Apply's products).
+// Spectrum values and block eigenvalues below a floor are raised to it, so M stays positive
+// definite. M inverts the circulant embedding, not C itself: C M r - r is small for displacement
+// fields r that are smooth and vanish toward the grid's edges (below 0.15 relative at every grid
+// size, influence_operator_test.cpp), which is what makes it a good preconditioner (Vollebregt, J.
+// Comput. Phys. 2014).
 //
 // Threads: the FFT operators keep scratch buffers for Apply (no allocation per call), so one
 // operator must not be applied from several threads at once; build one per thread.

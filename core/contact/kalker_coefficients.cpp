@@ -10,7 +10,7 @@
 namespace railwear {
 namespace {
 
-constexpr int kRows = 19;   // a/b = 0.1 ... 1.0, then b/a = 0.9 ... 0.1
+constexpr int kRows = 19;      // a/b = 0.1 ... 1.0, then b/a = 0.9 ... 0.1
 constexpr double kStep = 0.1;  // spacing of the rows in the abscissa u
 constexpr double kUMin = -0.9;
 
@@ -31,13 +31,11 @@ constexpr std::array<Row, kRows> kC22 = {{
     {5.57, 6.40, 7.51}, {6.96, 8.14, 9.79}, {10.7, 12.8, 16.0},
 }};
 constexpr std::array<Row, kRows> kC23 = {{
-    {0.334, 0.473, 0.731}, {0.483, 0.603, 0.809}, {0.607, 0.715, 0.889},
-    {0.720, 0.823, 0.977}, {0.827, 0.929, 1.07},  {0.930, 1.03, 1.18},
-    {1.03, 1.14, 1.29},    {1.13, 1.25, 1.40},    {1.23, 1.36, 1.51},
-    {1.33, 1.47, 1.63},    {1.44, 1.59, 1.77},    {1.58, 1.75, 1.94},
-    {1.76, 1.95, 2.18},    {2.01, 2.23, 2.50},    {2.35, 2.62, 2.96},
-    {2.88, 3.24, 3.70},    {3.79, 4.32, 5.01},    {5.72, 6.63, 7.89},
-    {12.2, 14.6, 18.0},
+    {0.334, 0.473, 0.731}, {0.483, 0.603, 0.809}, {0.607, 0.715, 0.889}, {0.720, 0.823, 0.977},
+    {0.827, 0.929, 1.07},  {0.930, 1.03, 1.18},   {1.03, 1.14, 1.29},    {1.13, 1.25, 1.40},
+    {1.23, 1.36, 1.51},    {1.33, 1.47, 1.63},    {1.44, 1.59, 1.77},    {1.58, 1.75, 1.94},
+    {1.76, 1.95, 2.18},    {2.01, 2.23, 2.50},    {2.35, 2.62, 2.96},    {2.88, 3.24, 3.70},
+    {3.79, 4.32, 5.01},    {5.72, 6.63, 7.89},    {12.2, 14.6, 18.0},
 }};
 
 // Fritsch-Carlson slopes of equally spaced data y (spacing h), then the cubic Hermite value
@@ -92,8 +90,8 @@ CreepCoefficients KalkerCoefficients(double a_over_b_along_x, double nu) {
           Interpolate(kC23, row, t, nu)};
 }
 
-LinearCreepForces CalcLinearCreepForces(double a_m, double b_m, double shear_modulus_Pa,
-                                        double nu, double xi, double eta, double phi_per_m) {
+LinearCreepForces CalcLinearCreepForces(double a_m, double b_m, double shear_modulus_Pa, double nu,
+                                        double xi, double eta, double phi_per_m) {
   if (!(a_m > 0.0) || !(b_m > 0.0) || !std::isfinite(a_m) || !std::isfinite(b_m)) {
     throw std::invalid_argument("CalcLinearCreepForces: semi-axes a = " + std::to_string(a_m) +
                                 " m, b = " + std::to_string(b_m) + " m, expected finite > 0");

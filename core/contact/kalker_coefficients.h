@@ -38,7 +38,7 @@ struct LinearCreepForces {
 // modulus [Pa]; nu in [0, 0.5]; xi, eta creepages [-]; phi spin creepage [1/m]. Throws
 // std::invalid_argument on a bad a, b, G or nu. (The spin moment needs C32, C33, which the
 // reference table does not carry; it is left out.)
-LinearCreepForces CalcLinearCreepForces(double a_m, double b_m, double shear_modulus_Pa,
-                                        double nu, double xi, double eta, double phi_per_m);
+LinearCreepForces CalcLinearCreepForces(double a_m, double b_m, double shear_modulus_Pa, double nu,
+                                        double xi, double eta, double phi_per_m);
 
 }  // namespace railwear

@@ -18,8 +18,8 @@
 
 #include <Eigen/Core>
 
-#include "core/geometry/patch_grid.h"
 #include "core/contact/tangential_types.h"
+#include "core/geometry/patch_grid.h"
 #include "core/geometry/wheel_rail_geometry.h"
 
 namespace railwear {

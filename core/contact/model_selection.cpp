@@ -39,8 +39,8 @@ PatchConformity MeasureConformity(const WheelRailGeometry& geometry,
   // The wheel point opposite a rail point lies within a few semi-axes of the contact point's.
   const double window = 3.0 * std::max(-t_lo_m, t_hi_m) + 1e-3;
   struct Sample {
-    Eigen::Vector2d normal;  // intermediate surface normal (unit, out of the rail)
-    double gap = 0.0;        // distance of the rail point to the wheel [m]
+    Eigen::Vector2d normal;              // intermediate surface normal (unit, out of the rail)
+    double gap = 0.0;                    // distance of the rail point to the wheel [m]
     double k_rail = 0.0, k_wheel = 0.0;  // convex-positive lateral curvatures [1/m]
   };
   // t runs along the rail toward +y, as s does on the patch grids.
@@ -86,19 +86,26 @@ PatchConformity MeasureConformity(const WheelRailGeometry& geometry,
 
 std::string_view ToString(PatchModel v) {
   switch (v) {
-    case PatchModel::kHertz: return "hertz";
-    case PatchModel::kHalfspace: return "halfspace";
-    case PatchModel::kConformal: return "conformal";
+    case PatchModel::kHertz:
+      return "hertz";
+    case PatchModel::kHalfspace:
+      return "halfspace";
+    case PatchModel::kConformal:
+      return "conformal";
   }
   return "?";
 }
 
 double PresetTolerance(AccuracyPreset preset) {
   switch (preset) {
-    case AccuracyPreset::kDraft: return 0.05;
-    case AccuracyPreset::kStandard: return 0.01;
-    case AccuracyPreset::kReference: return 0.003;
-    case AccuracyPreset::kFine: return 0.003;
+    case AccuracyPreset::kDraft:
+      return 0.05;
+    case AccuracyPreset::kStandard:
+      return 0.01;
+    case AccuracyPreset::kReference:
+      return 0.003;
+    case AccuracyPreset::kFine:
+      return 0.003;
   }
   return 0.01;
 }
@@ -127,20 +134,28 @@ double PresetTolerance(AccuracyPreset preset) {
 // reference 12 / 30 / 70, 0.28 % and 0.14 % (0.3 %).
 double MaxPlanarNormalTurn(AccuracyPreset preset) {
   switch (preset) {
-    case AccuracyPreset::kDraft: return 12.0 * kDeg;
-    case AccuracyPreset::kStandard: return 8.0 * kDeg;
-    case AccuracyPreset::kReference: return 5.0 * kDeg;
-    case AccuracyPreset::kFine: return 5.0 * kDeg;
+    case AccuracyPreset::kDraft:
+      return 12.0 * kDeg;
+    case AccuracyPreset::kStandard:
+      return 8.0 * kDeg;
+    case AccuracyPreset::kReference:
+      return 5.0 * kDeg;
+    case AccuracyPreset::kFine:
+      return 5.0 * kDeg;
   }
   return 8.0 * kDeg;
 }
 
 double MaxPlanarApproachWeightChange(AccuracyPreset preset) {
   switch (preset) {
-    case AccuracyPreset::kDraft: return 0.10;
-    case AccuracyPreset::kStandard: return 0.03;
-    case AccuracyPreset::kReference: return 0.01;
-    case AccuracyPreset::kFine: return 0.01;
+    case AccuracyPreset::kDraft:
+      return 0.10;
+    case AccuracyPreset::kStandard:
+      return 0.03;
+    case AccuracyPreset::kReference:
+      return 0.01;
+    case AccuracyPreset::kFine:
+      return 0.01;
   }
   return 0.03;
 }
@@ -168,20 +183,21 @@ PatchModelChoice ChoosePatchModel(const PatchConformity& conformity, const Model
       "over the {} patch (s {:.2f} to {:.2f} mm, lateral radius {:.1f} mm) the surface normal "
       "turns by {:.2f} deg (planar limit {:.1f}) and cos(theta) changes by {:.2f} % (limit {:.1f} "
       "%) at {}",
-      c.measured ? "solved" : "estimated", c.t_lo_m * 1e3, c.t_hi_m * 1e3,
-      c.lateral_radius_m * 1e3, c.normal_turn_rad / kDeg, turn_limit / kDeg,
-      100.0 * c.approach_weight_change, 100.0 * weight_limit, level);
+      c.measured ? "solved" : "estimated", c.t_lo_m * 1e3, c.t_hi_m * 1e3, c.lateral_radius_m * 1e3,
+      c.normal_turn_rad / kDeg, turn_limit / kDeg, 100.0 * c.approach_weight_change,
+      100.0 * weight_limit, level);
   const bool steep = c.normal_angle_rad > kMaxPlanarContactAngle_rad;
   if (steep || c.normal_turn_rad > turn_limit || c.approach_weight_change > weight_limit) {
     choice.model = PatchModel::kConformal;
     choice.geometry = GeometryModel::kConformal;
     choice.kernel = options.kernel;
     choice.label = fmt::format("conformal+{}", ToString(options.kernel));
-    choice.reason =
-        steep ? fmt::format("conformal: the contact normal stands at {:.1f} deg to the vertical, "
-                            "steeper than the {:.0f} deg a planar grid is trusted with; {}",
-                            c.normal_angle_rad / kDeg, kMaxPlanarContactAngle_rad / kDeg, where)
-              : fmt::format("conformal: {}", where);
+    choice.reason = steep
+                        ? fmt::format(
+                              "conformal: the contact normal stands at {:.1f} deg to the vertical, "
+                              "steeper than the {:.0f} deg a planar grid is trusted with; {}",
+                              c.normal_angle_rad / kDeg, kMaxPlanarContactAngle_rad / kDeg, where)
+                        : fmt::format("conformal: {}", where);
     return choice;
   }
   // Planar: always the half-space kernel (the seed's kernel does not tend to Hertz on flat
@@ -201,16 +217,17 @@ PatchModelChoice ChoosePatchModel(const PatchConformity& conformity, const Model
   }
   choice.model = PatchModel::kHalfspace;
   choice.label = "halfspace";
-  choice.reason =
-      fmt::format("halfspace: {}; not Hertz: {}", where,
-                  no_hertz_reason.empty() ? gap : std::string(no_hertz_reason));
+  choice.reason = fmt::format("halfspace: {}; not Hertz: {}", where,
+                              no_hertz_reason.empty() ? gap : std::string(no_hertz_reason));
   return choice;
 }
 
 std::string PatchModelLabel(const ModelOptions& options) {
   switch (options.kind) {
-    case ModelKind::kHertz: return "hertz";
-    case ModelKind::kHalfspace: return "halfspace";
+    case ModelKind::kHertz:
+      return "hertz";
+    case ModelKind::kHalfspace:
+      return "halfspace";
     default:
       break;
   }

@@ -410,8 +410,8 @@ class PkSolver {
     } else {
       out.status = SolverStatus::kNotConverged;
       msg << (failure.empty() ? "no convergence" : failure) << " after " << it
-          << " iterations: complementarity residual " << residual << " m > tolerance "
-          << tol << " x gap scale " << scale << " m";
+          << " iterations: complementarity residual " << residual << " m > tolerance " << tol
+          << " x gap scale " << scale << " m";
     }
     out.message = msg.str();
     return out;
@@ -470,18 +470,24 @@ NormalSolution NoContact(const NormalProblem& problem, double approach_m, std::s
 
 std::string_view ToString(SolverStatus s) {
   switch (s) {
-    case SolverStatus::kConverged: return "converged";
-    case SolverStatus::kNotConverged: return "not converged";
-    case SolverStatus::kNoContact: return "no contact";
+    case SolverStatus::kConverged:
+      return "converged";
+    case SolverStatus::kNotConverged:
+      return "not converged";
+    case SolverStatus::kNoContact:
+      return "no contact";
   }
   return "unknown";
 }
 
 std::string_view ToString(CgPreconditioner p) {
   switch (p) {
-    case CgPreconditioner::kAuto: return "auto";
-    case CgPreconditioner::kNone: return "none";
-    case CgPreconditioner::kInverseOperator: return "inverse-operator";
+    case CgPreconditioner::kAuto:
+      return "auto";
+    case CgPreconditioner::kNone:
+      return "none";
+    case CgPreconditioner::kInverseOperator:
+      return "inverse-operator";
   }
   return "unknown";
 }

@@ -59,9 +59,9 @@ struct NormalProblem {
   // One operator per patch; cells of patch b occupy the consecutive range [offset_b,
   // offset_b + blocks[b]->size()) of the vectors below. Patches do not interact elastically.
   std::vector<const InfluenceOperator*> blocks;
-  Eigen::VectorXd gap_m;          // d, initial separation per cell [m]
-  Eigen::VectorXd approach_weight;  // w, per cell, in (0, 1]
-  Eigen::VectorXd cell_area_m2;   // A, per cell [m^2]
+  Eigen::VectorXd gap_m;             // d, initial separation per cell [m]
+  Eigen::VectorXd approach_weight;   // w, per cell, in (0, 1]
+  Eigen::VectorXd cell_area_m2;      // A, per cell [m^2]
   std::optional<double> force_N;     // prescribed load F [N] (F <= 0 gives kNoContact) ...
   std::optional<double> approach_m;  // ... or prescribed approach delta [m]; exactly one is set
 };
@@ -74,7 +74,7 @@ struct NormalProblem {
 struct NormalSolution {
   SolverStatus status = SolverStatus::kNotConverged;
   std::string message;
-  Eigen::VectorXd pressure_Pa;  // per cell
+  Eigen::VectorXd pressure_Pa;     // per cell
   Eigen::VectorXd deformed_gap_m;  // g per cell
   // delta [m]: the prescribed one, or the load multiplier (weighted least-squares fit of d + Cp
   // against w over the contact set). With no contact under a prescribed load: min_k d_k / w_k,

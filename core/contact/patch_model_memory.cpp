@@ -94,8 +94,8 @@ PatchModelChoice PatchModelMemory::ChooseFor(const ContactCandidate& c, double a
     at_approach_delta_ = approach_now;
   }
   const double b = EstimateSemiAxisS(geom_, c, estar_, approach_now, at_approach_).lo;
-  PatchModelChoice choice = ChoosePatchModel(
-      MeasureConformity(geom_, c, -b, b, stiffness_ratio_K_), problem_.model, NoHertzReason(c));
+  PatchModelChoice choice = ChoosePatchModel(MeasureConformity(geom_, c, -b, b, stiffness_ratio_K_),
+                                             problem_.model, NoHertzReason(c));
   choice_memory_.push_back({c.y_lo_m, c.y_hi_m, choice});
   return choice;
 }

@@ -62,8 +62,8 @@ class PatchModelMemory {
   double stiffness_ratio_K_;
   bool auto_model_;
   const FirstContactEstimate& first_;
-  PatchModelChoice fixed_choice_;              // the scene's model when it is not auto
-  std::vector<ChoiceMemory> hertz_verdicts_;   // of the Hertz check, per Hertz patch
+  PatchModelChoice fixed_choice_;             // the scene's model when it is not auto
+  std::vector<ChoiceMemory> hertz_verdicts_;  // of the Hertz check, per Hertz patch
   std::vector<ChoiceMemory> choice_memory_;
   std::vector<ContactCandidate> at_approach_;  // FindCandidates(at_approach_delta_)
   double at_approach_delta_;

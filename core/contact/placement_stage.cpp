@@ -30,10 +30,11 @@ void CheckRollingProblem(const ContactProblem& problem) {
     throw InputError(
         fmt::format("materials.rail.shear_yield_MPa is missing: expected {}", kShearYieldExpected));
   }
-  if (problem.rolling && !(problem.rolling->motion.speed_m_s > 0 && problem.rolling->friction > 0)) {
-    throw InputError(fmt::format(
-        "rolling contact: speed = {} m/s and friction = {}: expected both > 0",
-        problem.rolling->motion.speed_m_s, problem.rolling->friction));
+  if (problem.rolling &&
+      !(problem.rolling->motion.speed_m_s > 0 && problem.rolling->friction > 0)) {
+    throw InputError(
+        fmt::format("rolling contact: speed = {} m/s and friction = {}: expected both > 0",
+                    problem.rolling->motion.speed_m_s, problem.rolling->friction));
   }
 }
 

@@ -116,8 +116,7 @@ AreaReview PotentialArea::Review(PatchBuilds* builds, const NormalSolution& sol,
     CellMemory mem = builds->cells[k];
     const auto p_k = sol.pressure_Pa.segment(offset, b.grid.cells());
     const Extent e = MeasureExtent(b.grid, p_k);
-    const double share =
-        total_load > 0.0 ? p_k.sum() * b.grid.CellArea() / total_load : 1.0;
+    const double share = total_load > 0.0 ? p_k.sum() * b.grid.CellArea() / total_load : 1.0;
     offset += b.grid.cells();
     if (e.cells == 0) continue;
     if (models->is_auto() && builds->choices[k].model != PatchModel::kConformal &&

@@ -76,10 +76,10 @@ class PotentialArea {
  private:
   const ContactProblem& problem_;
   double stiffness_ratio_K_;
-  CellSize cell_;            // the first estimate's cell size
-  double threshold_;         // vertical-gap threshold bounding the potential area [m]
-  double n_per_axis_;        // the preset's cells per semi-axis
-  bool cell_fixed_;          // an explicit cell size: never re-gridded
+  CellSize cell_;      // the first estimate's cell size
+  double threshold_;   // vertical-gap threshold bounding the potential area [m]
+  double n_per_axis_;  // the preset's cells per semi-axis
+  bool cell_fixed_;    // an explicit cell size: never re-gridded
   // Each patch keeps its own cell size once it has been measured (two-point contact: a small
   // flange patch must not shrink the cells of a large tread patch), found again by position.
   std::vector<CellMemory> cell_memory_;

@@ -22,13 +22,13 @@ namespace {
 void SolveRolling(const ContactProblem& problem, const WheelRailGeometry& geom,
                   ContactResult* result) {
   const RollingOptions& o = *problem.rolling;
-  result->pitch_velocity_rad_s =
-      o.motion.pitch_velocity_rad_s.value_or(-o.motion.speed_m_s / problem.placement.rolling_radius_m);
+  result->pitch_velocity_rad_s = o.motion.pitch_velocity_rad_s.value_or(
+      -o.motion.speed_m_s / problem.placement.rolling_radius_m);
   for (PatchResult& patch : result->patches) {
-    const RollingInput in =
-        o.creepage ? RigidSlipFromCreepage(patch.grid, patch.pressure_Pa, *o.creepage,
-                                           o.motion.speed_m_s, o.friction)
-                   : RigidSlipFromMotion(geom, patch.grid, o.motion, o.friction);
+    const RollingInput in = o.creepage
+                                ? RigidSlipFromCreepage(patch.grid, patch.pressure_Pa, *o.creepage,
+                                                        o.motion.speed_m_s, o.friction)
+                                : RigidSlipFromMotion(geom, patch.grid, o.motion, o.friction);
     RollingPatch rolling;
     rolling.creepage = AverageCreepage(patch.grid, patch.pressure_Pa, in);
     rolling.tangential = SolveTangential(problem.tangential, patch.grid, patch.pressure_Pa, in,

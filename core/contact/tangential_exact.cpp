@@ -16,8 +16,8 @@
 
 #include "core/contact/influence_operator.h"
 #include "core/numerics/check.h"
-#include "core/numerics/input_error.h"
 #include "core/numerics/fft_size.h"
+#include "core/numerics/input_error.h"
 
 namespace railwear {
 namespace internal {
@@ -121,8 +121,7 @@ class RollingKernel {
       : c_(c), dx_(grid.dx_m), ds_(grid.ds_m) {}
   TangentialBlock operator()(int d, int e) const {
     const TangentialBlock a = internal::CerrutiCellInfluence(c_, d * dx_, e * ds_, dx_, ds_);
-    const TangentialBlock b =
-        internal::CerrutiCellInfluence(c_, (d + 1) * dx_, e * ds_, dx_, ds_);
+    const TangentialBlock b = internal::CerrutiCellInfluence(c_, (d + 1) * dx_, e * ds_, dx_, ds_);
     return {(a.xx - b.xx) / dx_, (a.xs - b.xs) / dx_, (a.ss - b.ss) / dx_};
   }
 
@@ -246,8 +245,7 @@ class FftRollingOperator final : public RollingOperator {
   }
 
  private:
-  std::vector<Complex> Forward(const double* data, int n_rows, int row_length,
-                               double scale) const {
+  std::vector<Complex> Forward(const double* data, int n_rows, int row_length, double scale) const {
     std::vector<Complex> out(static_cast<size_t>(hx_) * ls_);
     ForwardInto(data, n_rows, row_length, &out);
     for (Complex& c : out) c *= scale;
@@ -283,8 +281,7 @@ class FftRollingOperator final : public RollingOperator {
     for (int j = 0; j < ns_; ++j) {
       for (int kx = 0; kx < hx_; ++kx) x_half_[kx] = out_hat_[static_cast<size_t>(kx) * ls_ + j];
       fft_.inv(x_real_.data(), x_half_.data(), lx_);
-      std::copy(x_real_.begin(), x_real_.begin() + nx_,
-                out->data() + static_cast<size_t>(j) * nx_);
+      std::copy(x_real_.begin(), x_real_.begin() + nx_, out->data() + static_cast<size_t>(j) * nx_);
     }
   }
 
@@ -378,14 +375,14 @@ LocalResult SolveLocal(double rx, double rs, double dxx, double dss, double g) {
   return {-g * rx / (sigma + ax), -g * rs / (sigma + as), false};
 }
 
-void CheckInputs(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
-                 const RollingInput& in, const ExactTangentialOptions& opt) {
+void CheckInputs(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa, const RollingInput& in,
+                 const ExactTangentialOptions& opt) {
   std::ostringstream msg;
   const std::string opt_error = opt.Validate();
   if (!opt_error.empty()) msg << "options: " << opt_error;
   if (grid.nx < 1 || grid.ns < 1 || !(grid.dx_m > 0.0) || !(grid.ds_m > 0.0)) {
-    msg << "grid " << grid.nx << " x " << grid.ns << " cells of " << grid.dx_m << " x "
-        << grid.ds_m << " m, expected at least one cell of positive size; ";
+    msg << "grid " << grid.nx << " x " << grid.ns << " cells of " << grid.dx_m << " x " << grid.ds_m
+        << " m, expected at least one cell of positive size; ";
   }
   const long n = static_cast<long>(grid.nx) * grid.ns;
   if (pressure_Pa.size() != n || in.creep_x.size() != n || in.creep_s.size() != n) {
@@ -407,14 +404,13 @@ void CheckInputs(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
   RAILWEAR_CHECK(static_cast<int>(grid.tangent_yz.size()) == grid.ns);
 }
 
-
 // Step 1 of SolveTangentialExact, the tables of the sweeps: the displacement kernel A / dx on
 // offsets d in [-nx, nx], e in (-ns, ns) (a_*: row length tx, d fastest; c_*: transposed, the s
 // offset fastest, for the refreshes along s), each cell's chain end and each x-column's loaded
 // span.
 struct SweepTables {
   int nx = 0, ns = 0;
-  int tx = 0;  // table row length (d = -nx .. nx)
+  int tx = 0;         // table row length (d = -nx .. nx)
   int col_table = 0;  // c_* entries per x offset
   std::vector<double> a_xx, a_xs, a_ss;
   std::vector<double> c_xx, c_xs, c_ss;
@@ -443,9 +439,8 @@ SweepTables MakeSweepTables(const PatchGrid& grid,
   std::vector<double> a_xx(static_cast<size_t>(tx) * ts), a_xs(a_xx.size()), a_ss(a_xx.size());
   for (int e = -(grid.ns - 1); e <= grid.ns - 1; ++e) {
     for (int d = -grid.nx; d <= grid.nx; ++d) {
-      const TangentialBlock b =
-          internal::CerrutiCellInfluence(coefficients, d * grid.dx_m, e * grid.ds_m, grid.dx_m,
-                                         grid.ds_m);
+      const TangentialBlock b = internal::CerrutiCellInfluence(coefficients, d * grid.dx_m,
+                                                               e * grid.ds_m, grid.dx_m, grid.ds_m);
       const size_t k = static_cast<size_t>(e + grid.ns - 1) * tx + (d + grid.nx);
       a_xx[k] = b.xx / grid.dx_m;
       a_xs[k] = b.xs / grid.dx_m;
@@ -544,10 +539,9 @@ LocalResult LocalSolveAt(const PatchGrid& grid, const SweepTables& tables,
 // relaxation w: tractions *qx_io, *qs_io updated chain by chain, the block's slip (from sx, ss)
 // refreshed in the column-major copies *sx_col_io, *ss_col_io.
 void SweepBlock(const PatchGrid& grid, const SweepTables& tables,
-                const Eigen::VectorXd& pressure_Pa, double mu, double w, int block_lo,
-                int block_hi, const Eigen::VectorXd& sx, const Eigen::VectorXd& ss,
-                Eigen::VectorXd* qx_io, Eigen::VectorXd* qs_io, Eigen::VectorXd* sx_col_io,
-                Eigen::VectorXd* ss_col_io) {
+                const Eigen::VectorXd& pressure_Pa, double mu, double w, int block_lo, int block_hi,
+                const Eigen::VectorXd& sx, const Eigen::VectorXd& ss, Eigen::VectorXd* qx_io,
+                Eigen::VectorXd* qs_io, Eigen::VectorXd* sx_col_io, Eigen::VectorXd* ss_col_io) {
   Eigen::VectorXd& qx = *qx_io;
   Eigen::VectorXd& qs = *qs_io;
   Eigen::VectorXd& sx_col = *sx_col_io;
@@ -577,8 +571,8 @@ void SweepBlock(const PatchGrid& grid, const SweepTables& tables,
       const size_t t = static_cast<size_t>(ix) * grid.ns + js;
       double dxx = 0.0, dss = 0.0;
       local_diagonal(ix, js, &dxx, &dss);
-      const LocalResult loc = SolveLocal(sx_col[t] - dxx * qx[k], ss_col[t] - dss * qs[k],
-                                         dxx, dss, mu * pressure_Pa[k]);
+      const LocalResult loc = SolveLocal(sx_col[t] - dxx * qx[k], ss_col[t] - dss * qs[k], dxx, dss,
+                                         mu * pressure_Pa[k]);
       const double dqx = w * (loc.qx - qx[k]);
       const double dqs = w * (loc.qs - qs[k]);
       if (dqx == 0.0 && dqs == 0.0) continue;
@@ -593,8 +587,7 @@ void SweepBlock(const PatchGrid& grid, const SweepTables& tables,
       }
       for (int im = block_lo; im <= ix; ++im) {
         // In column ix only the cells after js are still to be visited.
-        const int jm_lo = im == ix ? std::max(js + 1, first_loaded_col[im])
-                                   : first_loaded_col[im];
+        const int jm_lo = im == ix ? std::max(js + 1, first_loaded_col[im]) : first_loaded_col[im];
         const int len = last_loaded_col[im] - jm_lo + 1;
         if (len <= 0) continue;
         // Table entries (d, e = jm - js) for d = im - ix (the cell) and im - v (the virtual
@@ -671,8 +664,7 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
                                         const RollingInput& in, const Material& wheel,
                                         const Material& rail, const ExactTangentialOptions& opt) {
   CheckInputs(grid, pressure_Pa, in, opt);
-  const internal::CerrutiCoefficients coefficients =
-      internal::MakeCerrutiCoefficients(wheel, rail);
+  const internal::CerrutiCoefficients coefficients = internal::MakeCerrutiCoefficients(wheel, rail);
   const int n = grid.cells();
   const double mu = in.friction;
 
@@ -756,8 +748,8 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
     gather(&x_start);
     for (int block_hi = grid.nx - 1; block_hi >= 0; block_hi -= block_columns) {
       const int block_lo = std::max(0, block_hi - block_columns + 1);
-      SweepBlock(grid, tables, pressure_Pa, mu, w, block_lo, block_hi, sx, ss, &qx, &qs,
-                 &sx_col, &ss_col);
+      SweepBlock(grid, tables, pressure_Pa, mu, w, block_lo, block_hi, sx, ss, &qx, &qs, &sx_col,
+                 &ss_col);
       // The exact slip of the rest (one operator product); the last block needs none, the next
       // iteration starts with one.
       if (block_lo > 0) {

@@ -82,8 +82,8 @@
 #include <Eigen/Core>
 
 #include "core/contact/contact_types.h"
-#include "core/geometry/patch_grid.h"
 #include "core/contact/tangential_types.h"
+#include "core/geometry/patch_grid.h"
 
 namespace railwear {
 

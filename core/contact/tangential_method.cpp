@@ -43,9 +43,7 @@ constexpr std::array<TangentialEntry, 2> kTangentialSolvers = {{
 
 }  // namespace
 
-std::string_view ToString(TangentialMethod v) {
-  return EnumToString(kTangentialMethodNames, v);
-}
+std::string_view ToString(TangentialMethod v) { return EnumToString(kTangentialMethodNames, v); }
 
 std::optional<TangentialMethod> TangentialMethodFromString(std::string_view s) {
   return EnumFromString(kTangentialMethodNames, s);

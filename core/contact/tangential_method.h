@@ -1,6 +1,7 @@
 // TangentialMethod: which tangential solver a rolling contact uses, and the one seam that
 // dispatches to it. A new method is one enum value, one name in kTangentialMethodNames and one
-// entry in the solver table of tangential_method.cpp; the rolling stage (rolling_stage.h) only calls SolveTangential.
+// entry in the solver table of tangential_method.cpp; the rolling stage (rolling_stage.h) only
+// calls SolveTangential.
 #pragma once
 
 #include <array>

@@ -35,8 +35,8 @@ struct TangentialSolution {
   Eigen::VectorXd traction_x_Pa, traction_s_Pa;  // per cell, on the wheel
   Eigen::VectorXd slip_x_m_s, slip_s_m_s;        // local slip velocity per cell (0 in stick)
   Eigen::VectorXi stick;                         // 1 stick, 0 slip, -1 outside the contact
-  double force_x_N = 0.0;   // sum of q_x dA
-  double force_s_N = 0.0;   // sum of q_s dA (along each cell's s tangent)
+  double force_x_N = 0.0;                        // sum of q_x dA
+  double force_s_N = 0.0;                        // sum of q_s dA (along each cell's s tangent)
   // The tangential force as a vector in the rail frame's (y, z) plane: sum of q_s dA t_j; on a
   // planar patch it is force_s_N along the one tangent.
   Eigen::Vector2d force_s_yz_N = Eigen::Vector2d::Zero();

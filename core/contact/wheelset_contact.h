@@ -3,9 +3,10 @@
 // The right-hand wheel and rail profiles of `wheel_rail` serve both sides: in the track the left
 // wheel and rail are their mirror images, which in the left rail's own frame (y toward its field
 // side, core/notation.md) are the same profiles; so results of the left wheel (positions,
-// lateral forces, lateral creepage, spin) are in the left rail profile's own coordinates. Both wheels carry the same vertical load and share the axle's pitch velocity;
-// the left wheel sees the mirrored yaw and roll. Prescribed creepages (RollingOptions::creepage)
-// apply to each wheel in its own frame.
+// lateral forces, lateral creepage, spin) are in the left rail profile's own coordinates. Both
+// wheels carry the same vertical load and share the axle's pitch velocity; the left wheel sees the
+// mirrored yaw and roll. Prescribed creepages (RollingOptions::creepage) apply to each wheel in its
+// own frame.
 #pragma once
 
 #include "core/contact/contact_solver.h"

@@ -54,7 +54,10 @@ double CurveLocator::RefineClosest(const Eigen::Vector2d& q, double s0, double l
     // Converged when the Newton step is below tolerance — tested before the bracket, because a
     // step below one ulp leaves s on the bracket end just set and would fall back to bisection.
     if (gp > 0 && std::abs(g / gp) < kParameterTolerance_m) break;
-    if (g > 0) hi = s; else lo = s;
+    if (g > 0)
+      hi = s;
+    else
+      lo = s;
     double next = (gp > 0) ? s - g / gp : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     const double step = std::abs(next - s);
@@ -92,8 +95,7 @@ CurveLocator::Projection CurveLocator::Project(const Eigen::Vector2d& q, double 
 
 std::optional<CurveLocator::Crossing> CurveLocator::IntersectLine(const Eigen::Vector2d& b,
                                                                   const Eigen::Vector2d& n,
-                                                                  double s_lo,
-                                                                  double s_hi) const {
+                                                                  double s_lo, double s_hi) const {
   // Points of the line satisfy (C - b) . t = 0 with t perpendicular to n.
   const Eigen::Vector2d t(n.y(), -n.x());
   s_lo = std::max(0.0, s_lo);

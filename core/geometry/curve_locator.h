@@ -27,9 +27,9 @@ class CurveLocator {
   const Profile& profile() const { return *profile_; }
 
   struct Projection {
-    double s = 0.0;                              // arc length of the closest point [m]
+    double s = 0.0;  // arc length of the closest point [m]
     Eigen::Vector2d point = Eigen::Vector2d::Zero();
-    double signed_distance = 0.0;                // > 0 outside the body, < 0 inside [m]
+    double signed_distance = 0.0;  // > 0 outside the body, < 0 inside [m]
   };
   // Closest point to q among profile parameters in [s_lo, s_hi] (clipped to the profile).
   Projection Project(const Eigen::Vector2d& q, double s_lo, double s_hi) const;

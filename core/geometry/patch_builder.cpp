@@ -24,8 +24,8 @@ struct Section {
 
 // Rail and wheel crossings of the line P_c + tau t0 + lambda n0, near the previous crossing.
 bool CrossSection(const WheelRailGeometry& g, const Eigen::Vector2d& pc, const Eigen::Vector2d& t0,
-                  const Eigen::Vector2d& n0, double tau, double rail_s_guess,
-                  double wheel_s_guess, double window, Section* out) {
+                  const Eigen::Vector2d& n0, double tau, double rail_s_guess, double wheel_s_guess,
+                  double window, Section* out) {
   const Eigen::Vector2d b = pc + tau * t0;
   auto r = g.rail().IntersectLine(b, n0, rail_s_guess - window, rail_s_guess + window);
   if (!r) r = g.rail().IntersectLine(b, n0, 0.0, kInf);
@@ -143,10 +143,10 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
   const int extra = static_cast<int>(std::ceil(o.cell_ds_m / step)) + 2;
   const double y_stop_lo = c.split_lo ? c.y_lo_m : -kInf;
   const double y_stop_hi = c.split_hi ? c.y_hi_m : kInf;
-  std::vector<Section> lo = Walk(g, pc, t0, n0, centre, step, threshold_n, -1.0, y_stop_lo,
-                                 extra, &lim_lo, &within_lo);
-  std::vector<Section> hi = Walk(g, pc, t0, n0, centre, step, threshold_n, +1.0, y_stop_hi,
-                                 extra, &lim_hi, &within_hi);
+  std::vector<Section> lo =
+      Walk(g, pc, t0, n0, centre, step, threshold_n, -1.0, y_stop_lo, extra, &lim_lo, &within_lo);
+  std::vector<Section> hi =
+      Walk(g, pc, t0, n0, centre, step, threshold_n, +1.0, y_stop_hi, extra, &lim_hi, &within_hi);
   std::vector<Section> sections(lo.rbegin(), lo.rend());
   sections.push_back(centre);
   sections.insert(sections.end(), hi.begin(), hi.end());
@@ -175,10 +175,18 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
   // Sections inside the threshold (plus the first one past it) bound the cells.
   int k_lo = centre_index - within_lo, k_hi = centre_index + within_hi;
   for (int k = centre_index; k >= k_lo; --k) {
-    if (tangent_at(k).x() < o.min_approach_weight) { k_lo = k + 1; lim_lo = true; break; }
+    if (tangent_at(k).x() < o.min_approach_weight) {
+      k_lo = k + 1;
+      lim_lo = true;
+      break;
+    }
   }
   for (int k = centre_index; k <= k_hi; ++k) {
-    if (tangent_at(k).x() < o.min_approach_weight) { k_hi = k - 1; lim_hi = true; break; }
+    if (tangent_at(k).x() < o.min_approach_weight) {
+      k_hi = k - 1;
+      lim_hi = true;
+      break;
+    }
   }
   if (k_hi <= k_lo) return build;
   build.lateral_limited = lim_lo || lim_hi;
@@ -194,8 +202,8 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
   grid.s0_m = j_lo * o.cell_ds_m;
   double r_max = c.wheel_radius_m;
   for (int k = k_lo; k <= k_hi; ++k) {
-    const double r = g.pose().rolling_radius_m +
-                     g.wheel().profile().Position(sections[k].wheel_s).y();
+    const double r =
+        g.pose().rolling_radius_m + g.wheel().profile().Position(sections[k].wheel_s).y();
     r_max = std::max(r_max, r);
   }
   const double x_half = std::sqrt(2.0 * r_max * o.threshold_m);
@@ -262,7 +270,8 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
       const double lr = rail_cross ? rail_cross->lambda : lambda_r[j];
       const double s_centre =
           g.ProjectOnWheel({0.0, (b + lambda_w[j] * n0).x(), (b + lambda_w[j] * n0).y()},
-                           wheel_s[j] - window, wheel_s[j] + window).s;
+                           wheel_s[j] - window, wheel_s[j] + window)
+              .s;
       // March outward from the x = 0 column, each column starting from its neighbour's root and
       // closest wheel point: the closest point moves along the flange as the wheel lifts with
       // |x|, by far more than one search window over the whole grid on a steep flange (a window
@@ -278,8 +287,8 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
           double s_found = sg;
           auto dist = [&](double lambda) {
             const Eigen::Vector2d yz = b + lambda * n0;
-            const auto pw = g.ProjectOnWheel({x, yz.x(), yz.y()}, sg - warm_window,
-                                             sg + warm_window);
+            const auto pw =
+                g.ProjectOnWheel({x, yz.x(), yz.y()}, sg - warm_window, sg + warm_window);
             s_found = pw.s;
             return pw.signed_distance;
           };
@@ -289,7 +298,10 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
           for (int it = 0; it < 30 && std::abs(f1) > 1e-13; ++it) {
             const double slope = (f1 - f0) / (l1 - l0);
             const double l2 = (slope != 0) ? l1 - f1 / slope : l1 + f1;
-            l0 = l1; f0 = f1; l1 = l2; f1 = dist(l1);
+            l0 = l1;
+            f0 = f1;
+            l1 = l2;
+            f1 = dist(l1);
             if (std::abs(l1 - l0) < 1e-13) break;
           }
           root = l1;

@@ -25,9 +25,9 @@ namespace railwear {
 
 struct PatchGridOptions {
   GeometryModel geometry = GeometryModel::kConformal;
-  double cell_dx_m = 0.0;    // > 0
-  double cell_ds_m = 0.0;    // > 0
-  double threshold_m = 0.0;  // vertical-gap threshold bounding the potential area (> 0)
+  double cell_dx_m = 0.0;          // > 0
+  double cell_ds_m = 0.0;          // > 0
+  double threshold_m = 0.0;        // vertical-gap threshold bounding the potential area (> 0)
   double stiffness_ratio_K = 0.5;  // K = k_rail / (k_wheel + k_rail) of seed eq. 1
   // Cells whose surface normal is steeper than this against the vertical are left out (a
   // vertical approach cannot close them). cos of 85 degrees.
@@ -52,10 +52,10 @@ inline constexpr int kTrimMarginCells = 2;
 
 struct PatchBuild {
   PatchGrid grid;
-  bool valid = false;           // false when the candidate gives no usable cross-section
-  bool lateral_limited = false; // the lateral range stopped at a profile end or a steep normal
-  bool trimmed = false;         // trim_approach_m cropped the grid
-  bool too_large = false;       // size_accepted refused it: not built (valid is false)
+  bool valid = false;            // false when the candidate gives no usable cross-section
+  bool lateral_limited = false;  // the lateral range stopped at a profile end or a steep normal
+  bool trimmed = false;          // trim_approach_m cropped the grid
+  bool too_large = false;        // size_accepted refused it: not built (valid is false)
 };
 
 PatchBuild BuildPatchGrid(const WheelRailGeometry& geometry, const ContactCandidate& candidate,

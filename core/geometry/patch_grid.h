@@ -14,12 +14,12 @@
 namespace railwear {
 
 struct PatchGrid {
-  int nx = 0;         // cells along x (rolling direction)
-  int ns = 0;         // cells along s (lateral arc of the cross-section)
-  double dx_m = 0.0;  // cell length along x [m]
-  double ds_m = 0.0;  // cell length along s [m]
-  double x0_m = 0.0;  // x of the centres of cells (0, j) [m]
-  double s0_m = 0.0;  // s of the centres of cells (i, 0) [m]
+  int nx = 0;           // cells along x (rolling direction)
+  int ns = 0;           // cells along s (lateral arc of the cross-section)
+  double dx_m = 0.0;    // cell length along x [m]
+  double ds_m = 0.0;    // cell length along s [m]
+  double x0_m = 0.0;    // x of the centres of cells (0, j) [m]
+  double s0_m = 0.0;    // s of the centres of cells (i, 0) [m]
   bool planar = false;  // the cross-section is a straight line (all normals equal)
 
   // Per s index j (size ns), in the rail frame (y lateral toward the field side, z downward):
@@ -37,9 +37,7 @@ struct PatchGrid {
   double X(int i) const { return x0_m + i * dx_m; }
   double S(int j) const { return s0_m + j * ds_m; }
   // Cell-centre point in 3-D (x, y, z) [m].
-  Eigen::Vector3d Point(int i, int j) const {
-    return {X(i), point_yz_m[j].x(), point_yz_m[j].y()};
-  }
+  Eigen::Vector3d Point(int i, int j) const { return {X(i), point_yz_m[j].x(), point_yz_m[j].y()}; }
 };
 
 }  // namespace railwear

@@ -22,9 +22,17 @@ double GoldenMinimise(F&& f, double a, double b, double tol) {
   double fc = f(c), fd = f(d);
   while (b - a > tol) {
     if (fc < fd) {
-      b = d; d = c; fd = fc; c = b - r * (b - a); fc = f(c);
+      b = d;
+      d = c;
+      fd = fc;
+      c = b - r * (b - a);
+      fc = f(c);
     } else {
-      a = c; c = d; fc = fd; d = a + r * (b - a); fd = f(d);
+      a = c;
+      c = d;
+      fc = fd;
+      d = a + r * (b - a);
+      fd = f(d);
     }
   }
   return 0.5 * (a + b);
@@ -81,8 +89,14 @@ WheelRailGeometry::WheelRailGeometry(const Profile& wheel, const Profile& rail,
   std::vector<Eigen::Vector2d> wheel_pts = sample(wheel, vertical_step_m);
   for (auto& p : wheel_pts) p = WheelToRail(p);  // dz_ is still 0
   double ry0 = kInf, ry1 = -kInf, wy0 = kInf, wy1 = -kInf;
-  for (const auto& p : rail_pts) { ry0 = std::min(ry0, p.x()); ry1 = std::max(ry1, p.x()); }
-  for (const auto& p : wheel_pts) { wy0 = std::min(wy0, p.x()); wy1 = std::max(wy1, p.x()); }
+  for (const auto& p : rail_pts) {
+    ry0 = std::min(ry0, p.x());
+    ry1 = std::max(ry1, p.x());
+  }
+  for (const auto& p : wheel_pts) {
+    wy0 = std::min(wy0, p.x());
+    wy1 = std::max(wy1, p.x());
+  }
   const double y0 = std::max(ry0, wy0), y1 = std::min(ry1, wy1);
   if (!(y1 > y0)) return;
   const int n = static_cast<int>(std::floor((y1 - y0) / vertical_step_m)) + 1;
@@ -153,8 +167,8 @@ CurveLocator::Projection WheelRailGeometry::ProjectOnWheel(const Eigen::Vector3d
   return wheel_locator_.Project(Meridian(p), s_lo, s_hi);
 }
 
-CurveLocator::Projection WheelRailGeometry::ProjectOnRail(const Eigen::Vector2d& yz,
-                                                          double s_lo, double s_hi) const {
+CurveLocator::Projection WheelRailGeometry::ProjectOnRail(const Eigen::Vector2d& yz, double s_lo,
+                                                          double s_hi) const {
   return rail_locator_.Project(yz, s_lo, s_hi);
 }
 

@@ -29,15 +29,15 @@ struct ContactCandidate {
   // True where the interval ends at a saddle shared with a neighbouring candidate (two-point
   // contact) rather than where the gap reaches the threshold.
   bool split_lo = false, split_hi = false;
-  double y_m = 0.0;                   // lateral position of the smallest gap in the interval
-  double gap_m = 0.0;                 // that smallest vertical gap (0 at first contact)
-  double rail_s_m = 0.0;              // rail profile parameter of the contact point
-  double wheel_s_m = 0.0;             // wheel profile parameter of the contact point
+  double y_m = 0.0;        // lateral position of the smallest gap in the interval
+  double gap_m = 0.0;      // that smallest vertical gap (0 at first contact)
+  double rail_s_m = 0.0;   // rail profile parameter of the contact point
+  double wheel_s_m = 0.0;  // wheel profile parameter of the contact point
   Eigen::Vector2d rail_point_m = Eigen::Vector2d::Zero();  // on the rail, R
   Eigen::Vector2d normal = Eigen::Vector2d::Zero();        // rail outward normal there, R
-  double rail_lateral_curvature = 0.0;   // 1/m, convex positive
-  double wheel_lateral_curvature = 0.0;  // 1/m, convex positive
-  double wheel_radius_m = 0.0;           // rolling radius at the contact point
+  double rail_lateral_curvature = 0.0;                     // 1/m, convex positive
+  double wheel_lateral_curvature = 0.0;                    // 1/m, convex positive
+  double wheel_radius_m = 0.0;                             // rolling radius at the contact point
 };
 
 class WheelRailGeometry {

@@ -41,8 +41,8 @@ Eigen::Vector2d RailGaugePoint(const Profile& rail, double gauge_height_m) {
         rail.source().empty() ? "rail profile" : rail.source(), gauge_height_m * 1e3));
   }
   // Refine on the spline: the level crossing near best_s.
-  const auto c = loc.IntersectLine({*y_best - 1e-3, level}, {1.0, 0.0}, best_s - 1e-3,
-                                   best_s + 1e-3);
+  const auto c =
+      loc.IntersectLine({*y_best - 1e-3, level}, {1.0, 0.0}, best_s - 1e-3, best_s + 1e-3);
   return {c ? *y_best - 1e-3 + c->lambda : *y_best, level};
 }
 
@@ -61,8 +61,8 @@ WheelsetPlacement PlaceWheelset(const Profile& rail, const TrackSpec& track,
   out.right.rolling_radius_m = ws.rolling_radius_m;
   // Left: the mirror image, seen in its own (mirrored) frame: displacement and roll change sign.
   out.left = out.right;
-  out.left.lateral_shift_m = wheel_origin_Y - 2.0 * ws.lateral_displacement_m -
-                             out.right_rail_origin_Y_m;
+  out.left.lateral_shift_m =
+      wheel_origin_Y - 2.0 * ws.lateral_displacement_m - out.right_rail_origin_Y_m;
   out.left.roll_rad = -ws.roll_rad;
   return out;
 }

@@ -4,8 +4,9 @@
 // at the track centre line. The right rail's profile frame has y = Y - Y_right (toward its field
 // side); the left rail is the mirror image: its profile frame has y = -(Y - Y_left), so both
 // rails, and both wheels, are described with the same (right-hand) profiles: in the track the
-// left ones are mirror images, in their own frames they are the same curves. Gauge is measured between the gauge faces at `gauge_height` below the top of rail;
-// the flange backs of the wheels are `flange_back_distance` apart when the wheelset is centred.
+// left ones are mirror images, in their own frames they are the same curves. Gauge is measured
+// between the gauge faces at `gauge_height` below the top of rail; the flange backs of the wheels
+// are `flange_back_distance` apart when the wheelset is centred.
 #pragma once
 
 #include "core/geometry/wheel_rail_geometry.h"
@@ -24,8 +25,8 @@ struct WheelsetSpec {
   // from the flange back).
   double flange_back_position_m = -0.070;
   double lateral_displacement_m = 0.0;  // of the wheelset toward +Y (flange contact on the right)
-  double yaw_rad = 0.0;   // about +z (down): positive turns the nose toward +Y
-  double roll_rad = 0.0;  // about +x: positive lowers the right wheel
+  double yaw_rad = 0.0;                 // about +z (down): positive turns the nose toward +Y
+  double roll_rad = 0.0;                // about +x: positive lowers the right wheel
   double rolling_radius_m = 0.46;
 };
 

@@ -5,11 +5,11 @@
 #include <cstdio>
 #include <cstdlib>
 
-#define RAILWEAR_CHECK(cond)                                                              \
-  do {                                                                                    \
-    if (!(cond)) {                                                                        \
-      std::fprintf(stderr, "railwear: internal check failed: %s (%s:%d)\n", #cond,        \
-                   __FILE__, __LINE__);                                                   \
-      std::abort();                                                                       \
-    }                                                                                     \
+#define RAILWEAR_CHECK(cond)                                                                 \
+  do {                                                                                       \
+    if (!(cond)) {                                                                           \
+      std::fprintf(stderr, "railwear: internal check failed: %s (%s:%d)\n", #cond, __FILE__, \
+                   __LINE__);                                                                \
+      std::abort();                                                                          \
+    }                                                                                        \
   } while (false)

@@ -40,7 +40,8 @@ void CubicSpline::Evaluate(double t, double* value, double* d1, double* d2) cons
   const double b = (t - t_[i]) / h;
   const double m0 = m_[i], m1 = m_[i + 1];
   if (value) {
-    *value = a * v_[i] + b * v_[i + 1] + ((a * a * a - a) * m0 + (b * b * b - b) * m1) * h * h / 6.0;
+    *value =
+        a * v_[i] + b * v_[i + 1] + ((a * a * a - a) * m0 + (b * b * b - b) * m1) * h * h / 6.0;
   }
   if (d1) {
     *d1 = (v_[i + 1] - v_[i]) / h - (3.0 * a * a - 1.0) * h * m0 / 6.0 +

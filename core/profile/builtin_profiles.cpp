@@ -64,8 +64,8 @@ std::vector<Eigen::Vector2d> MirrorHalf(const std::vector<Eigen::Vector2d>& half
 
 void CheckStep(double step_m, const char* what) {
   if (!(step_m > 0.0) || !std::isfinite(step_m)) {
-    throw InputError(fmt::format("{}: step = {} m; expected a finite positive point spacing", what,
-                                 step_m));
+    throw InputError(
+        fmt::format("{}: step = {} m; expected a finite positive point spacing", what, step_m));
   }
 }
 
@@ -73,8 +73,8 @@ void CheckStep(double step_m, const char* what) {
 // as a symmetric profile in mm: z = sign * (R - sqrt(R^2 - y^2)).
 Profile MakeArc(double radius_m, double sign, const std::string& source) {
   if (!(radius_m > 0.0) || !std::isfinite(radius_m)) {
-    throw InputError(fmt::format("{}: radius = {} m; expected a finite positive radius", source,
-                                 radius_m));
+    throw InputError(
+        fmt::format("{}: radius = {} m; expected a finite positive radius", source, radius_m));
   }
   const double r_mm = radius_m * 1e3;
   // Extent: half-angle 80 degrees for R <= 50 mm, otherwise half-width 50 mm.
@@ -92,7 +92,6 @@ Profile MakeArc(double radius_m, double sign, const std::string& source) {
   }
   return Profile(std::move(pts), source);
 }
-
 
 std::string Lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -117,9 +116,15 @@ double S1002RadiusIncrease_mm(double S) {
     return 1.364323640 - 0.066666667 * S;
   }
   if (S >= kS1002BC_mm) {  // B
-    constexpr double c[9] = {0.0,           -3.358537058e-02, 1.565681624e-03,
-                             -2.810427944e-05, 5.844240864e-08, -1.562379023e-08,
-                             5.309217349e-15,  -5.957839843e-12, 2.646656573e-13};
+    constexpr double c[9] = {0.0,
+                             -3.358537058e-02,
+                             1.565681624e-03,
+                             -2.810427944e-05,
+                             5.844240864e-08,
+                             -1.562379023e-08,
+                             5.309217349e-15,
+                             -5.957839843e-12,
+                             2.646656573e-13};
     double f = 0.0;
     for (int k = 8; k >= 0; --k) f = f * S + c[k];
     return f;
@@ -166,8 +171,8 @@ Profile MakeS1002(double step_m) {
   }
   // Sections G..A: march in S with an S-step that keeps the arc-length step near step_mm
   // (|dF/dS| <= 2.75 there), landing exactly on every breakpoint.
-  const double breaks[] = {kS1002GH_mm, kS1002FG_mm, kS1002EF_mm, kS1002DE_mm, kS1002CD_mm,
-                           kS1002BC_mm, kS1002AB_mm, kS1002End_mm};
+  const double breaks[] = {kS1002GH_mm, kS1002FG_mm, kS1002EF_mm, kS1002DE_mm,
+                           kS1002CD_mm, kS1002BC_mm, kS1002AB_mm, kS1002End_mm};
   for (size_t b = 0; b + 1 < std::size(breaks); ++b) {
     const double s0 = breaks[b], s1 = breaks[b + 1];
     double s = s0;
@@ -237,8 +242,8 @@ Profile MakeGroove(double radius_m, BodyRole role) {
 
 CantTransform CalcCantTransform(const Profile& rail, double ratio) {
   if (!std::isfinite(ratio)) {
-    throw InputError(fmt::format("{}: cant ratio = {}; expected a finite number", rail.source(),
-                                 ratio));
+    throw InputError(
+        fmt::format("{}: cant ratio = {}; expected a finite number", rail.source(), ratio));
   }
   // Transformed() turns +y toward +z for a positive angle; the gauge side (-y) must go down
   // (+z), so the angle is negative.
@@ -326,8 +331,9 @@ Profile LoadProfileSpec(const std::string& spec, BodyRole role, const std::strin
     return p;
   }
   if (t.empty()) {
-    throw InputError("profile spec is empty; expected builtin:S1002, builtin:UIC60, circle:R, "
-                     "groove:R or a profile file path");
+    throw InputError(
+        "profile spec is empty; expected builtin:S1002, builtin:UIC60, circle:R, "
+        "groove:R or a profile file path");
   }
   std::filesystem::path path(t);
   if (path.is_relative() && !base_dir.empty()) path = std::filesystem::path(base_dir) / path;

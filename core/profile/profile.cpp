@@ -87,8 +87,8 @@ void Profile::Build() {
     if (i > 0) neighbour = std::min(neighbour, seg[i - 1]);
     if (i + 2 < n) neighbour = std::min(neighbour, seg[i + 1]);
     if (seg[i] > kMaxSegmentRatio * neighbour) {
-      const int pieces = std::min(kMaxSubdivision,
-                                  static_cast<int>(std::ceil(seg[i] / (2.0 * neighbour))));
+      const int pieces =
+          std::min(kMaxSubdivision, static_cast<int>(std::ceil(seg[i] / (2.0 * neighbour))));
       for (int k = 1; k < pieces; ++k) {
         knots.push_back(points_[i] + (points_[i + 1] - points_[i]) * (double(k) / pieces));
       }
@@ -125,9 +125,7 @@ void Profile::Evaluate(double s, Eigen::Vector2d* position, Eigen::Vector2d* d1,
   if (d2) *d2 = {ydd, zdd};
 }
 
-Eigen::Vector2d Profile::Position(double s) const {
-  return {y_of_s_.Value(s), z_of_s_.Value(s)};
-}
+Eigen::Vector2d Profile::Position(double s) const { return {y_of_s_.Value(s), z_of_s_.Value(s)}; }
 
 Eigen::Vector2d Profile::Derivative(double s) const {
   return {y_of_s_.Derivative(s), z_of_s_.Derivative(s)};

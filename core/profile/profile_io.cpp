@@ -46,7 +46,6 @@ struct Line {
   std::string text;
 };
 
-
 std::string Lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
@@ -93,8 +92,7 @@ std::vector<Line> ReadLines(const std::string& path) {
   }
   std::ifstream in(path);
   if (!in) {
-    throw InputError(
-        fmt::format("{}: cannot read profile file: {}", path, std::strerror(errno)));
+    throw InputError(fmt::format("{}: cannot read profile file: {}", path, std::strerror(errno)));
   }
   std::vector<Line> lines;
   std::string text;
@@ -126,8 +124,8 @@ RawPoint ParsePointTokens(const std::vector<std::string>& tokens, const std::str
                                    line.number, k + 1, Trim(tokens[k]), expected));
     }
     if (!std::isfinite(*v)) {
-      throw InputError(fmt::format("{}:{}: column {} is '{}'; expected a finite number ({})",
-                                   path, line.number, k + 1, Trim(tokens[k]), expected));
+      throw InputError(fmt::format("{}:{}: column {} is '{}'; expected a finite number ({})", path,
+                                   line.number, k + 1, Trim(tokens[k]), expected));
     }
     (k == 0 ? p.y : p.z) = *v;
   }
@@ -137,9 +135,9 @@ RawPoint ParsePointTokens(const std::vector<std::string>& tokens, const std::str
 // The checks of the Profile constructor, on millimetre points, naming file lines.
 void ValidatePoints(const std::vector<RawPoint>& pts, const std::string& path, int last_line) {
   if (pts.size() < 4) {
-    throw InputError(fmt::format(
-        "{}:{}: {} profile point(s) read by the end of the file; expected at least 4", path,
-        last_line, pts.size()));
+    throw InputError(
+        fmt::format("{}:{}: {} profile point(s) read by the end of the file; expected at least 4",
+                    path, last_line, pts.size()));
   }
   const double dup_mm = Profile::kDuplicateDistance_m * 1e3;
   for (size_t i = 1; i < pts.size(); ++i) {
@@ -190,7 +188,8 @@ void DropScanGlitches(std::vector<RawPoint>* pts, const std::string& path, int l
       const double by = p.y - kept[k - 1].y, bz = p.z - kept[k - 1].z;
       if (ay * by + az * bz < cos_max_turn * std::hypot(ay, az) * std::hypot(by, bz)) {
         glitch = true;
-        dropped.push_back(fmt::format("line {} (steps back {:.3f} mm)", p.line, std::hypot(by, bz)));
+        dropped.push_back(
+            fmt::format("line {} (steps back {:.3f} mm)", p.line, std::hypot(by, bz)));
       }
     }
     if (!glitch) kept.push_back(p);
@@ -217,9 +216,7 @@ Profile Finish(std::vector<RawPoint> pts, const std::string& path, int last_line
   return Profile(std::move(m), path);
 }
 
-int LastLine(const std::vector<Line>& lines) {
-  return lines.empty() ? 1 : lines.back().number;
-}
+int LastLine(const std::vector<Line>& lines) { return lines.empty() ? 1 : lines.back().number; }
 
 // ------------------------------------------------------------------------------------ CSV
 
@@ -261,8 +258,8 @@ ProfileFile ReadCsv(const std::string& path) {
     pts.push_back(ParsePointTokens(cols, path, line, kExpected));
   }
   if (!header_seen) {
-    throw InputError(fmt::format(
-        "{}:{}: no CSV header found; expected a first line 'y_mm,z_mm'", path, LastLine(lines)));
+    throw InputError(fmt::format("{}:{}: no CSV header found; expected a first line 'y_mm,z_mm'",
+                                 path, LastLine(lines)));
   }
   out.profile = Finish(std::move(pts), path, LastLine(lines), &out.notes);
   return out;
@@ -365,53 +362,66 @@ ProfileFile ReadSimpack(const std::string& path, bool wheel) {
         const double type = number();
         header_type_seen = true;
         if (type != 0.0 && type != 1.0) {
-          throw InputError(fmt::format(
-              "{}:{}: type = {}; expected 0 (rail profile) or 1 (wheel profile)", path,
-              line.number, value));
+          throw InputError(
+              fmt::format("{}:{}: type = {}; expected 0 (rail profile) or 1 (wheel profile)", path,
+                          line.number, value));
         }
         if ((type == 1.0) != wheel) {
           throw InputError(fmt::format(
               "{}:{}: type = {} ({} profile) but the extension says {} profile; expected type "
               "= {}",
-              path, line.number, value, type == 1.0 ? "wheel" : "rail", wheel ? "a wheel" : "a rail",
-              wheel ? 1 : 0));
+              path, line.number, value, type == 1.0 ? "wheel" : "rail",
+              wheel ? "a wheel" : "a rail", wheel ? 1 : 0));
         }
       }
       continue;
     }
     if (block != Block::kSpline) continue;  // keys outside blocks are ignored
-    if (key == "shift.y") shift_y = number();
-    else if (key == "shift.z") shift_z = number();
-    else if (key == "rotate") rotate = number();
-    else if (key == "bound.y.min") bound_y_min = number();
-    else if (key == "bound.y.max") bound_y_max = number();
-    else if (key == "bound.z.min") bound_z_min = number();
-    else if (key == "bound.z.max") bound_z_max = number();
-    else if (key == "mirror.y") mirror_y = number();
-    else if (key == "mirror.z") mirror_z = number();
-    else if (key == "inversion") inversion = number();
-    else if (key == "point.dist.min") point_dist_min = number();
-    else if (key == "units.ang.f") units_ang = number();
+    if (key == "shift.y")
+      shift_y = number();
+    else if (key == "shift.z")
+      shift_z = number();
+    else if (key == "rotate")
+      rotate = number();
+    else if (key == "bound.y.min")
+      bound_y_min = number();
+    else if (key == "bound.y.max")
+      bound_y_max = number();
+    else if (key == "bound.z.min")
+      bound_z_min = number();
+    else if (key == "bound.z.max")
+      bound_z_max = number();
+    else if (key == "mirror.y")
+      mirror_y = number();
+    else if (key == "mirror.z")
+      mirror_z = number();
+    else if (key == "inversion")
+      inversion = number();
+    else if (key == "point.dist.min")
+      point_dist_min = number();
+    else if (key == "units.ang.f")
+      units_ang = number();
     else if (key == "units.len.f") {
       units_len = number();
       units_len_seen = true;
       if (!(units_len > 0.0)) {
-        throw InputError(fmt::format("{}:{}: units.len.f = '{}'; expected a positive factor "
-                                     "(user length per metre, 1000 for mm)",
-                                     path, line.number, value));
+        throw InputError(
+            fmt::format("{}:{}: units.len.f = '{}'; expected a positive factor "
+                        "(user length per metre, 1000 for mm)",
+                        path, line.number, value));
       }
     }
   }
   if (!spline_seen || !points_seen) {
-    throw InputError(fmt::format(
-        "{}:{}: no {} found; expected a SIMPACK profile (spline.begin, point.begin ... "
-        "point.end, spline.end)",
-        path, LastLine(lines), spline_seen ? "'point.begin'" : "'spline.begin'"));
+    throw InputError(
+        fmt::format("{}:{}: no {} found; expected a SIMPACK profile (spline.begin, point.begin ... "
+                    "point.end, spline.end)",
+                    path, LastLine(lines), spline_seen ? "'point.begin'" : "'spline.begin'"));
   }
   if (block == Block::kPoints) {
     throw InputError(fmt::format(
-        "{}:{}: the point block opened on line {} has no 'point.end'; expected 'point.end'",
-        path, LastLine(lines), point_begin_line));
+        "{}:{}: the point block opened on line {} has no 'point.end'; expected 'point.end'", path,
+        LastLine(lines), point_begin_line));
   }
   auto& notes = out.notes;
   if (!header_type_seen) {
@@ -445,8 +455,8 @@ ProfileFile ReadSimpack(const std::string& path, bool wheel) {
       p.y = y;
       p.z = z;
     }
-    notes.push_back(fmt::format("rotate = {} (units.ang.f = {}) applied about x", rotate,
-                                units_ang));
+    notes.push_back(
+        fmt::format("rotate = {} (units.ang.f = {}) applied about x", rotate, units_ang));
   }
   const size_t before_bounds = pts.size();
   if (bound_y_min <= bound_y_max) {
@@ -522,9 +532,9 @@ std::optional<RawPoint> ParseMiniProfData(const std::string& t, const std::strin
     numeric.push_back(tok);
   }
   if (numeric.size() < 2) {
-    throw InputError(fmt::format(
-        "{}:{}: '{}' has column 2 = '{}'; expected two numbers X Y (mm)", path, line.number,
-        Trim(t), tokens.size() > 1 ? tokens[1] : std::string("(missing)")));
+    throw InputError(fmt::format("{}:{}: '{}' has column 2 = '{}'; expected two numbers X Y (mm)",
+                                 path, line.number, Trim(t),
+                                 tokens.size() > 1 ? tokens[1] : std::string("(missing)")));
   }
   return ParsePointTokens(numeric, path, line, "two numbers X Y (mm)");
 }
@@ -547,9 +557,9 @@ MiniProfData ReadKeyValueLayout(const std::vector<Line>& lines, const std::strin
       if (Lower(key) == "columndef") {
         const auto cols = Split(value, ", \t");
         if (cols.size() < 2 || Lower(cols[0]) != "x" || Lower(cols[1]) != "y") {
-          throw InputError(fmt::format(
-              "{}:{}: ColumnDef={}; expected the first two columns to be X,Y", path, line.number,
-              value));
+          throw InputError(
+              fmt::format("{}:{}: ColumnDef={}; expected the first two columns to be X,Y", path,
+                          line.number, value));
         }
       }
       continue;
@@ -647,8 +657,8 @@ ProfileFile ReadWhl(const std::string& path) {
     const std::string t = Lower(Trim(line.text));
     if (t == "point.begin" || t == "header.begin") {
       throw InputError(fmt::format(
-          "{}:{}: '{}' belongs to a SIMPACK profile; expected a MiniProf .whl wheel profile",
-          path, line.number, Trim(line.text)));
+          "{}:{}: '{}' belongs to a SIMPACK profile; expected a MiniProf .whl wheel profile", path,
+          line.number, Trim(line.text)));
     }
   }
   // Layout: the older MINIPROF header ("MINIPROF ..." or "#MINIWHEELPROF" first) or Key=Value.
@@ -718,8 +728,8 @@ ProfileFile ReadWhl(const std::string& path) {
     p.y -= kMiniProfTapingLineX_mm;
     if (negate) p.z = -p.z;
   }
-  notes.push_back(fmt::format("y = X - {} (taping line 70 mm from the flange back)",
-                              kMiniProfTapingLineX_mm));
+  notes.push_back(
+      fmt::format("y = X - {} (taping line 70 mm from the flange back)", kMiniProfTapingLineX_mm));
   notes.push_back(negate ? "flange pointed to negative Y: z = -Y"
                          : "flange toward positive Y: z = Y");
   notes.push_back(fmt::format("z at the taping line: {:.3f} mm", negate ? -*y70 : *y70));
@@ -734,8 +744,7 @@ std::string Extension(const std::string& path) {
 std::ofstream OpenForWriting(const std::string& path) {
   std::ofstream out(path);
   if (!out) {
-    throw InputError(
-        fmt::format("{}: cannot write profile file: {}", path, std::strerror(errno)));
+    throw InputError(fmt::format("{}: cannot write profile file: {}", path, std::strerror(errno)));
   }
   return out;
 }
@@ -749,12 +758,18 @@ void CloseAfterWriting(std::ofstream& out, const std::string& path) {
 
 std::string_view ToString(ProfileFormat f) {
   switch (f) {
-    case ProfileFormat::kCsv: return "csv";
-    case ProfileFormat::kMiniProfBan: return "miniprof-ban";
-    case ProfileFormat::kMiniProfWhl: return "miniprof-whl";
-    case ProfileFormat::kSimpackPrr: return "simpack-prr";
-    case ProfileFormat::kSimpackPrw: return "simpack-prw";
-    case ProfileFormat::kBuiltin: return "builtin";
+    case ProfileFormat::kCsv:
+      return "csv";
+    case ProfileFormat::kMiniProfBan:
+      return "miniprof-ban";
+    case ProfileFormat::kMiniProfWhl:
+      return "miniprof-whl";
+    case ProfileFormat::kSimpackPrr:
+      return "simpack-prr";
+    case ProfileFormat::kSimpackPrw:
+      return "simpack-prw";
+    case ProfileFormat::kBuiltin:
+      return "builtin";
   }
   return "unknown";
 }

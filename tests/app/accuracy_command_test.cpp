@@ -168,12 +168,12 @@ TEST(AccuracyCommand, BadInputNamesWhatIsWrong) {
                        "--levels: level 'ultra': expected one of draft, standard"));
   o = Quick();
   o.repeats = 0;
-  EXPECT_TRUE(Contains(ErrorOf([&] { RunAccuracyStudy(scene, o); }),
-                       "--repeats 0: expected at least 1"));
+  EXPECT_TRUE(
+      Contains(ErrorOf([&] { RunAccuracyStudy(scene, o); }), "--repeats 0: expected at least 1"));
   o = Quick();
   o.reference_model = "kelvin";
-  EXPECT_TRUE(Contains(ErrorOf([&] { RunAccuracyStudy(scene, o); }),
-                       "--reference-model: model 'kelvin'"));
+  EXPECT_TRUE(
+      Contains(ErrorOf([&] { RunAccuracyStudy(scene, o); }), "--reference-model: model 'kelvin'"));
   o = Quick();
   o.reference = "/nonexistent/ref.json";
   EXPECT_TRUE(Contains(ErrorOf([&] { RunAccuracyStudy(scene, o); }),
@@ -191,9 +191,9 @@ TEST(AccuracyCommand, BadInputNamesWhatIsWrong) {
     EXPECT_TRUE(Contains(ErrorOf([&] { RunAccuracyStudy(scene, o); }), expected)) << text;
   }
   fs::remove(file);
-  EXPECT_TRUE(Contains(ErrorOf([&] { RunAccuracyStudy(LoadScene(kExamples + "wheelset.toml"),
-                                                      Quick()); }),
-                       "wheelset.toml: the scene places a wheelset"));
+  EXPECT_TRUE(
+      Contains(ErrorOf([&] { RunAccuracyStudy(LoadScene(kExamples + "wheelset.toml"), Quick()); }),
+               "wheelset.toml: the scene places a wheelset"));
 }
 
 // The binary end to end, in a temporary directory.
@@ -212,8 +212,9 @@ class AccuracyCliTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
   Outcome Run(const std::string& args, const std::string& env = "") const {
-    const std::string command = "cd '" + dir_.string() + "' && " + env + " '" RAILWEAR_BINARY
-                                "' accuracy " + args + " > stdout.txt 2> stderr.txt";
+    const std::string command = "cd '" + dir_.string() + "' && " + env +
+                                " '" RAILWEAR_BINARY "' accuracy " + args +
+                                " > stdout.txt 2> stderr.txt";
     const int status = std::system(command.c_str());
     Outcome o;
     o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -229,7 +230,8 @@ class AccuracyCliTest : public ::testing::Test {
 };
 
 TEST_F(AccuracyCliTest, CiFormWritesTheTableAndCsv) {
-  const Outcome o = Run("'" + kExamples + "gauge_corner.toml' --levels draft,standard --repeats 1 "
+  const Outcome o = Run("'" + kExamples +
+                        "gauge_corner.toml' --levels draft,standard --repeats 1 "
                         "--out results --no-plot");
   ASSERT_EQ(o.exit_code, 0) << o.err;
   EXPECT_TRUE(Contains(o.out, "reference   conformal+boussinesq at draft, standard"));
@@ -254,14 +256,16 @@ TEST_F(AccuracyCliTest, PlotWritesAPng) {
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
     GTEST_SKIP() << "gnuplot is not installed; the Pareto plot cannot be drawn here";
   }
-  const Outcome o = Run("'" + kExamples + "tread.toml' --levels draft --models halfspace,auto "
+  const Outcome o = Run("'" + kExamples +
+                        "tread.toml' --levels draft --models halfspace,auto "
                         "--repeats 1 --out .");
   ASSERT_EQ(o.exit_code, 0) << o.err;
   EXPECT_GT(fs::file_size(dir_ / "accuracy.png"), 1000u);
 }
 
 TEST_F(AccuracyCliTest, PlotWithoutGnuplotExitsOneBeforeSolving) {
-  const Outcome o = Run("'" + kExamples + "tread.toml' --levels draft --out .", "PATH=/nonexistent");
+  const Outcome o =
+      Run("'" + kExamples + "tread.toml' --levels draft --out .", "PATH=/nonexistent");
   EXPECT_EQ(o.exit_code, 1);
   EXPECT_TRUE(Contains(o.err, "needs the program 'gnuplot'"));
   EXPECT_TRUE(Contains(o.err, "--no-plot"));

@@ -43,14 +43,15 @@ TEST(AutoModel, SceneAcceptsAutoAndAKernelButNoGeometry) {
     FAIL() << "geometry with kind = auto was accepted";
   } catch (const InputError& e) {
     EXPECT_TRUE(Contains(e.what(), "tread.toml:"));
-    EXPECT_TRUE(Contains(e.what(), "key 'model.geometry' = \"planar\": expected no geometry "
-                                   "with kind = 'auto' (it picks one per patch)"));
+    EXPECT_TRUE(Contains(e.what(),
+                         "key 'model.geometry' = \"planar\": expected no geometry "
+                         "with kind = 'auto' (it picks one per patch)"));
   }
 }
 
 TEST(AutoModel, JsonAndSummaryReportEachPatchsModelAndWhy) {
-  Scene s = ParseScene(TreadScene("[model]\nkind = \"auto\"\naccuracy = \"draft\"\n"),
-                       "tread.toml");
+  Scene s =
+      ParseScene(TreadScene("[model]\nkind = \"auto\"\naccuracy = \"draft\"\n"), "tread.toml");
   const ContactResult r = SolveContact(s.problem);
   ASSERT_EQ(r.status, SolverStatus::kConverged) << r.message;
   const nlohmann::json j = MakeContactJson(s, r);
@@ -63,8 +64,9 @@ TEST(AutoModel, JsonAndSummaryReportEachPatchsModelAndWhy) {
     EXPECT_TRUE(Contains(p["model_reason"].get<std::string>(), "halfspace: over the solved patch"));
   }
   const std::string summary = FormatSummary(s, r);
-  EXPECT_TRUE(Contains(summary, "model       auto (per patch: hertz, halfspace or "
-                                "conformal+boussinesq), accuracy draft"));
+  EXPECT_TRUE(Contains(summary,
+                       "model       auto (per patch: hertz, halfspace or "
+                       "conformal+boussinesq), accuracy draft"));
   EXPECT_TRUE(Contains(summary, "patch 1 model: halfspace: over the solved patch"));
 
   // A fixed model labels its patches too, without a reason.

@@ -106,11 +106,12 @@ TEST_F(CalibrateCli, CalibratedConstantsMatchTheFemContactCases) {
     const nlohmann::json seed = ContactTotals("seed.toml");
     const nlohmann::json cal = ContactTotals("calibrated.toml");
     const double a_cal = cal["area_mm2"].get<double>(), p_cal = cal["p_max_MPa"].get<double>();
-    std::printf("[ figure ] %s: FEM %.2f mm2 %.1f MPa; calibrated %+.2f %% %+.2f %%; seed's "
-                "constants %+.2f %% %+.2f %%\n",
-                name.c_str(), area, p_max, 100 * (a_cal / area - 1), 100 * (p_cal / p_max - 1),
-                100 * (seed["area_mm2"].get<double>() / area - 1),
-                100 * (seed["p_max_MPa"].get<double>() / p_max - 1));
+    std::printf(
+        "[ figure ] %s: FEM %.2f mm2 %.1f MPa; calibrated %+.2f %% %+.2f %%; seed's "
+        "constants %+.2f %% %+.2f %%\n",
+        name.c_str(), area, p_max, 100 * (a_cal / area - 1), 100 * (p_cal / p_max - 1),
+        100 * (seed["area_mm2"].get<double>() / area - 1),
+        100 * (seed["p_max_MPa"].get<double>() / p_max - 1));
     EXPECT_NEAR(a_cal / area, 1.0, kTarget) << name;
     EXPECT_NEAR(p_cal / p_max, 1.0, kTarget) << name;
     EXPECT_GT(a_cal, seed["area_mm2"].get<double>()) << name;
@@ -241,8 +242,9 @@ TEST_F(CalibrateCli, BadlyConditionedFitExitsZeroWithWarnings) {
   const Outcome o = Run("calibrate axis.toml");
   EXPECT_EQ(o.exit_code, 0) << o.err;
   EXPECT_TRUE(Contains(o.err, "warning: c_z is not determined by these data"));
-  EXPECT_TRUE(Contains(o.err, "warning: c_s is not determined by these data: no tangential-load "
-                              "curve"));
+  EXPECT_TRUE(Contains(o.err,
+                       "warning: c_s is not determined by these data: no tangential-load "
+                       "curve"));
   EXPECT_TRUE(Contains(o.out, "BADLY CONDITIONED"));
   EXPECT_TRUE(Contains(o.out, "not determined: held at start"));
   EXPECT_TRUE(fs::exists(dir_ / "axis_constants.toml"));  // default name beside the config
@@ -272,8 +274,7 @@ TEST_F(CalibrateCli, BadConfigsExitTwoWithMessages) {
       {curves + "min_distance_mm = 5\nmax_distance_mm = 2\n",
        "key 'displacement_curves[0].max_distance_mm' = 2: expected a distance larger than "
        "min_distance_mm"},
-      {curves + "weight = -1\n",
-       "key 'displacement_curves[0].weight' = -1: expected a number > 0"},
+      {curves + "weight = -1\n", "key 'displacement_curves[0].weight' = -1: expected a number > 0"},
       {"[[contact_results]]\nscene = \"planar.toml\"\narea_mm2 = 20\np_max_MPa = 600\n",
        "does not use the influence constants; expected kind = \"conformal\""},
       {"[[contact_results]]\nscene = \"broken.toml\"\narea_mm2 = 20\np_max_MPa = 600\n",
@@ -288,9 +289,10 @@ TEST_F(CalibrateCli, BadConfigsExitTwoWithMessages) {
       {"[[contact_results]]\nfem_result = \"default.toml\"\n", "default.toml"},
   };
   Write("fem.toml", "[contact_result]\n");
-  Write("planar.toml", "[model]\nkind = \"halfspace\"\n[wheel]\nprofile = \"circle:10\"\n"
-                       "rolling_radius_mm = 460\n[rail]\nprofile = \"groove:10.25\"\n"
-                       "[load]\nvertical_N = 10000\n");
+  Write("planar.toml",
+        "[model]\nkind = \"halfspace\"\n[wheel]\nprofile = \"circle:10\"\n"
+        "rolling_radius_mm = 460\n[rail]\nprofile = \"groove:10.25\"\n"
+        "[load]\nvertical_N = 10000\n");
   Write("broken.toml", "wheels = 1\n");
   WriteGroove("default.toml");
   for (const Case& c : cases) {

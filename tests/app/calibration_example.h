@@ -34,9 +34,10 @@ inline std::vector<CalibrationExampleFile> CalibrationExampleFiles() {
     spec.noise = 0.01;
     spec.offset = 0.05;
     DisplacementCurves c = MakeSyntheticCurves(kCalibrationExampleTruth, spec, b.seed);
-    c.metadata = {{"source", "synthetic: eq. 4 with c_f = 1.05, c_z = 0.6, c_s = 0.3, 1 % "
-                             "Gaussian noise and a +5 % offset per curve (of its RMS), seed " +
-                                 std::to_string(b.seed)},
+    c.metadata = {{"source",
+                   "synthetic: eq. 4 with c_f = 1.05, c_z = 0.6, c_s = 0.3, 1 % "
+                   "Gaussian noise and a +5 % offset per curve (of its RMS), seed " +
+                       std::to_string(b.seed)},
                   {"generator", "tests/app/calibration_example.h"}};
     out.push_back({b.name, std::move(c)});
   }

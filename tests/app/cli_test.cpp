@@ -5,9 +5,9 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -75,8 +75,9 @@ TEST_F(CliTest, BadSceneExitsTwoWithFileLineAndKey) {
   Write("bad.toml", text);
   const Outcome o = Run("contact bad.toml");
   EXPECT_EQ(o.exit_code, 2);
-  EXPECT_TRUE(Contains(o.err, "railwear: error: bad.toml:8: key 'load.vertical_N' = \"heavy\": "
-                              "expected a number > 0"));
+  EXPECT_TRUE(Contains(o.err,
+                       "railwear: error: bad.toml:8: key 'load.vertical_N' = \"heavy\": "
+                       "expected a number > 0"));
   EXPECT_EQ(o.out, "");
 }
 
@@ -276,13 +277,15 @@ yaw_mrad = 5
   std::ifstream in(dir_ / "cells.csv");
   std::string header;
   std::getline(in, header);
-  EXPECT_EQ(header, "patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa,qx_MPa,qs_MPa,slip_x_m_s,slip_s_m_s,stick");
+  EXPECT_EQ(header,
+            "patch,ix,js,x_mm,s_mm,y_mm,z_mm,p_MPa,qx_MPa,qs_MPa,slip_x_m_s,slip_s_m_s,stick");
   // --plot draws the traction and slip maps under the pressure map.
   const Outcome plot = Run("contact rolling.toml --plot maps.png");
   ASSERT_EQ(plot.exit_code, 0) << plot.err;
   EXPECT_GT(std::filesystem::file_size(dir_ / "maps.png"), 1000u);
   // The exact steady-rolling solver gives the same kind of result, within the Coulomb bound.
-  Write("exact.toml", std::string(scene).replace(scene.find("accuracy"), 0, "tangential = \"exact\"\n"));
+  Write("exact.toml",
+        std::string(scene).replace(scene.find("accuracy"), 0, "tangential = \"exact\"\n"));
   const Outcome exact = Run("contact exact.toml --json -");
   ASSERT_EQ(exact.exit_code, 0) << exact.err;
   const auto pe = nlohmann::json::parse(exact.out)["patches"][0];

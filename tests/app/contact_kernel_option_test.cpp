@@ -40,7 +40,8 @@ TEST_F(ContactKernelOptionTest, KernelOptionMatchesTheSceneKeys) {
   const Outcome paper = Run("contact '" + scene + "' --accuracy draft");
   EXPECT_NE(TotalLine(paper.out), TotalLine(option.out));
   // --model halfspace --kernel golubenko: planar geometry, the paper's kernel.
-  const Outcome planar = Run("contact '" + scene + "' --accuracy draft --model halfspace --kernel golubenko");
+  const Outcome planar =
+      Run("contact '" + scene + "' --accuracy draft --model halfspace --kernel golubenko");
   ASSERT_EQ(planar.exit_code, 0) << planar.err;
   EXPECT_TRUE(Contains(planar.out, "custom (geometry planar, kernel golubenko)"));
   // --kernel golubenko on the conformal scene is the conformal shorthand again.
@@ -52,7 +53,8 @@ TEST_F(ContactKernelOptionTest, RefusedWithHertzAndUnknownKernels) {
   const std::string scene = std::string(RAILWEAR_SOURCE_DIR) + "/examples/fem/wheel_in_groove.toml";
   const Outcome hertz = Run("contact '" + scene + "' --model hertz --kernel boussinesq");
   EXPECT_EQ(hertz.exit_code, 2);
-  EXPECT_TRUE(Contains(hertz.err, "--kernel boussinesq: expected a model with an influence kernel"));
+  EXPECT_TRUE(
+      Contains(hertz.err, "--kernel boussinesq: expected a model with an influence kernel"));
   const Outcome unknown = Run("contact '" + scene + "' --kernel love");
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_TRUE(Contains(unknown.err, "--kernel"));

@@ -55,8 +55,8 @@ TEST(Effects, NormalOnlySceneComputesNoTractionSlipOrDamageAndDoesLessWork) {
   EXPECT_FALSE(jn["total"].contains("creep_force_x_N"));
   EXPECT_FALSE(jn.contains("pitch_velocity_rad_s"));
   for (const auto& p : jn["patches"]) {
-    for (const char* key : {"creep_force_N", "stick_area_mm2", "slip_area_mm2", "damage",
-                            "frictional_power_W"}) {
+    for (const char* key :
+         {"creep_force_N", "stick_area_mm2", "slip_area_mm2", "damage", "frictional_power_W"}) {
       EXPECT_FALSE(p.contains(key)) << key;
     }
   }
@@ -85,8 +85,8 @@ TEST(Effects, NormalOnlySceneComputesNoTractionSlipOrDamageAndDoesLessWork) {
 TEST(Effects, EveryResultReportsItsStagesAndTheirTimes) {
   const Scene rolling = ParseScene(RollingSceneText(), "rolling_gauge_corner.toml");
   const ContactResult r = SolveContact(rolling.problem);
-  const std::set<std::string> known = {"placement", "model selection", "hertz", "grid",
-                                       "influence", "solve", "tangential", "coupling"};
+  const std::set<std::string> known = {"placement", "model selection", "hertz",      "grid",
+                                       "influence", "solve",           "tangential", "coupling"};
   double sum = 0.0;
   for (const auto& s : r.stages) {
     EXPECT_EQ(known.count(s.name), 1u) << s.name;
@@ -95,8 +95,8 @@ TEST(Effects, EveryResultReportsItsStagesAndTheirTimes) {
   }
   // The stages are timed inside the whole solve's time.
   EXPECT_LE(sum, r.time_s * (1.0 + 1e-9));
-  EXPECT_EQ(StageNames(r), (std::set<std::string>{"placement", "grid", "influence", "solve",
-                                                  "tangential"}));
+  EXPECT_EQ(StageNames(r),
+            (std::set<std::string>{"placement", "grid", "influence", "solve", "tangential"}));
   const nlohmann::json j = MakeContactJson(rolling, r);
   ASSERT_EQ(j["stages"].size(), r.stages.size());
   for (size_t k = 0; k < r.stages.size(); ++k) {

@@ -92,9 +92,10 @@ TEST_F(FemContactCliTest, BadContactKeysNameFileLineKeyAndExpectation) {
   EXPECT_TRUE(Contains(ConfigError(std::string(kHead) + "case = \"wheel_in_groove\"\n"
                                                         "sectors = 1\n"),
                        "key 'experiment[0].sectors' = 1: expected an integer >= 2"));
-  EXPECT_TRUE(Contains(ConfigError("[[experiment]]\nname = \"c\"\nkind = \"contakt\"\nbody = \"flat\"\n"),
-                       "key 'experiment[0].kind' = \"contakt\": expected one of 'displacement', "
-                       "'contact'"));
+  EXPECT_TRUE(
+      Contains(ConfigError("[[experiment]]\nname = \"c\"\nkind = \"contakt\"\nbody = \"flat\"\n"),
+               "key 'experiment[0].kind' = \"contakt\": expected one of 'displacement', "
+               "'contact'"));
 }
 
 TEST_F(FemContactCliTest, ResultFileRoundTrip) {
@@ -112,8 +113,8 @@ TEST_F(FemContactCliTest, ResultFileRoundTrip) {
     L.patch.vertical_force_N = 50314.0;
     r.levels.push_back(L);
   }
-  Write("out.toml", railwear::app::FemContactResultText("b", r, "../scene.toml",
-                                                         {{"ccx_version", "2.20"}}));
+  Write("out.toml",
+        railwear::app::FemContactResultText("b", r, "../scene.toml", {{"ccx_version", "2.20"}}));
   const auto t = railwear::app::ReadFemContactTarget((dir_ / "out.toml").string());
   EXPECT_EQ(t.name, "b");
   EXPECT_EQ(t.contact_case, "rail_in_wheel_groove");
@@ -126,14 +127,16 @@ TEST_F(FemContactCliTest, ResultFileRoundTrip) {
   EXPECT_NEAR(t.half_width_s_mm, 10.06, 1e-4);
   EXPECT_NEAR(t.total_force_N, 50314.0, 0.01);
   EXPECT_EQ(t.levels, 2);
-  Write("bad.toml", "[contact_result]\nname = \"x\"\ncase = \"wheel_in_groove\"\nstatus = \"ok\"\n"
-                    "load_N = 1\narea_mm2 = 0\n");
+  Write("bad.toml",
+        "[contact_result]\nname = \"x\"\ncase = \"wheel_in_groove\"\nstatus = \"ok\"\n"
+        "load_N = 1\narea_mm2 = 0\n");
   try {
     railwear::app::ReadFemContactTarget((dir_ / "bad.toml").string());
     ADD_FAILURE() << "a zero area was accepted";
   } catch (const InputError& e) {
-    EXPECT_TRUE(Contains(e.what(), "bad.toml:6: key 'contact_result.area_mm2' = 0: expected a "
-                                   "number > 0"));
+    EXPECT_TRUE(Contains(e.what(),
+                         "bad.toml:6: key 'contact_result.area_mm2' = 0: expected a "
+                         "number > 0"));
   }
 }
 
@@ -146,8 +149,8 @@ TEST_F(FemContactCliTest, ExampleConfigAndCommittedResults) {
   ASSERT_EQ(config.experiments.size(), 2u);
   for (const auto& e : config.experiments) {
     EXPECT_EQ(e.kind, FemExperimentKind::kContact);
-    const auto t = railwear::app::ReadFemContactTarget(
-        (examples / "reference" / (e.name + ".toml")).string());
+    const auto t =
+        railwear::app::ReadFemContactTarget((examples / "reference" / (e.name + ".toml")).string());
     EXPECT_EQ(t.name, e.name);
     EXPECT_EQ(t.status, "ok");
     EXPECT_TRUE(fs::is_regular_file(t.scene)) << t.scene;

@@ -127,10 +127,10 @@ TEST_F(FemReferenceTest, BadConfigsNameFileLineKeyAndExpectation) {
                        "key 'experiment[0].radius_mm' = 15: expected no radius for a flat body"));
   EXPECT_TRUE(Contains(ConfigError("[[experiment]]\nname = \"a\"\nbody = \"convex\"\n"),
                        "key 'experiment[0].radius_mm' is missing: expected a number > 0"));
-  EXPECT_TRUE(Contains(
-      ConfigError("[[experiment]]\nname = \"a\"\nbody = \"convex\"\nradius_mm = 15\n"
-                  "width_mm = 50\n"),
-      "key 'experiment[0].width_mm' = 50: expected no width for a convex body"));
+  EXPECT_TRUE(
+      Contains(ConfigError("[[experiment]]\nname = \"a\"\nbody = \"convex\"\nradius_mm = 15\n"
+                           "width_mm = 50\n"),
+               "key 'experiment[0].width_mm' = 50: expected no width for a convex body"));
   EXPECT_TRUE(Contains(ConfigError(head + "length_mm = 50\n"),
                        "bad.toml:1: experiment 'a': body length 50 mm: expected at least 4 "
                        "max_distance = 100 mm"));
@@ -159,17 +159,19 @@ TEST_F(FemReferenceTest, MissingCcxExitsWith2) {
   Write("c.toml", kTinyConfig);
   const Outcome o = Run("fem-reference c.toml", "RAILWEAR_CCX=/nonexistent/ccx");
   EXPECT_EQ(o.exit_code, 2);
-  EXPECT_TRUE(Contains(o.err, "ccx (CalculiX) not found: environment variable RAILWEAR_CCX = "
-                              "'/nonexistent/ccx' is not an executable file"));
+  EXPECT_TRUE(Contains(o.err,
+                       "ccx (CalculiX) not found: environment variable RAILWEAR_CCX = "
+                       "'/nonexistent/ccx' is not an executable file"));
   // Not on PATH (gmsh given by its path, so ccx is the one missing).
   const std::string gmsh = railwear::FindOnPath("gmsh");
   const Outcome no_path =
       Run("fem-reference c.toml", "PATH=/nonexistent RAILWEAR_GMSH='" +
                                       (gmsh.empty() ? std::string("/usr/bin/gmsh") : gmsh) + "'");
   EXPECT_EQ(no_path.exit_code, 2);
-  EXPECT_TRUE(Contains(no_path.err, "ccx (CalculiX) is not installed or not on PATH: install the "
-                                    "Debian package calculix-ccx (bash .ci/install-deps.sh), or "
-                                    "set RAILWEAR_CCX"));
+  EXPECT_TRUE(Contains(no_path.err,
+                       "ccx (CalculiX) is not installed or not on PATH: install the "
+                       "Debian package calculix-ccx (bash .ci/install-deps.sh), or "
+                       "set RAILWEAR_CCX"));
   EXPECT_FALSE(fs::exists(dir_ / "out" / "tiny.csv"));
 }
 
@@ -189,24 +191,27 @@ TEST_F(FemReferenceTest, TinyRunWritesCurvesCalibrationReads) {
   ASSERT_EQ(o.exit_code, 0) << o.err;
   EXPECT_TRUE(Contains(o.out, "tiny: flat body, E = 210000 MPa, nu = 0.28"));
   EXPECT_TRUE(Contains(o.out, "written to out/tiny.csv"));
-  EXPECT_TRUE(Contains(o.out, "half-space (Boussinesq normal, Cerruti tangential) from 1 to 10 mm"));
+  EXPECT_TRUE(
+      Contains(o.out, "half-space (Boussinesq normal, Cerruti tangential) from 1 to 10 mm"));
   EXPECT_TRUE(Contains(o.err, "fem-reference: tiny: solving normal load"));
-  const railwear::DisplacementCurves c = railwear::ReadDisplacementCurves((dir_ / "out/tiny.csv").string());
+  const railwear::DisplacementCurves c =
+      railwear::ReadDisplacementCurves((dir_ / "out/tiny.csv").string());
   EXPECT_EQ(c.body, CurveBody::kFlat);
   EXPECT_GT(c.points.size(), 10u);
   for (const auto& p : c.points) {
     EXPECT_EQ(p.load, CurveLoad::kNormal);
     EXPECT_GT(p.w_m_per_N, 0.0);  // pressed into the body everywhere within 10 mm
   }
-  EXPECT_TRUE(Contains(ReadFile(dir_ / "out/tiny.csv"), "# supports = bottom face z = -100 mm "
-                                                         "clamped (u = 0); every other face free"));
+  EXPECT_TRUE(Contains(ReadFile(dir_ / "out/tiny.csv"),
+                       "# supports = bottom face z = -100 mm "
+                       "clamped (u = 0); every other face free"));
   EXPECT_TRUE(fs::exists(dir_ / "tiny.work" / "normal.frd"));  // --keep-work: next to the config
 
   // --report-only prints the comparison again from the CSV, running nothing.
   const Outcome report = Run("fem-reference c.toml --report-only", "RAILWEAR_CCX=/nonexistent");
   ASSERT_EQ(report.exit_code, 0) << report.err;
-  EXPECT_TRUE(Contains(report.out, "tiny: " + std::to_string(c.points.size()) +
-                                       " points read from out/tiny.csv"));
+  EXPECT_TRUE(Contains(
+      report.out, "tiny: " + std::to_string(c.points.size()) + " points read from out/tiny.csv"));
   EXPECT_TRUE(Contains(report.out, "normal load, axis path:"));
 }
 
@@ -214,8 +219,9 @@ TEST_F(FemReferenceTest, ReportOnlyNeedsTheOutputs) {
   Write("c.toml", kTinyConfig);
   const Outcome o = Run("fem-reference c.toml --report-only");
   EXPECT_EQ(o.exit_code, 2);
-  EXPECT_TRUE(Contains(o.err, "c.toml:8: experiment 'tiny': --report-only reads its output "
-                              "out/tiny.csv, which does not exist; run that experiment first"));
+  EXPECT_TRUE(Contains(o.err,
+                       "c.toml:8: experiment 'tiny': --report-only reads its output "
+                       "out/tiny.csv, which does not exist; run that experiment first"));
 }
 
 // The example configs are valid (running them takes minutes: README), and the committed
@@ -238,7 +244,8 @@ TEST_F(FemReferenceTest, ExampleConfigsAndCommittedReferenceData) {
     EXPECT_DOUBLE_EQ(c.material.poisson_ratio, 0.28);
     std::map<std::string, int> curves;
     for (const auto& p : c.points) {
-      ++curves[std::string(railwear::ToString(p.load)) + "/" + std::string(railwear::ToString(p.path))];
+      ++curves[std::string(railwear::ToString(p.load)) + "/" +
+               std::string(railwear::ToString(p.path))];
     }
     for (const char* curve : {"normal/arc", "normal/axis", "axial/axis", "circumferential/arc"}) {
       EXPECT_GE(curves[curve], 20) << curve;

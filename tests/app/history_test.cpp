@@ -1,10 +1,10 @@
 // `railwear history` end to end: a study database built with ProfileStore (a run of three steps
 // of progressively worn UIC60 — a gauge-corner wear bump 0.5 mm then 1 mm deep — with
-// distributions and load-case JSON, and a run without steps), then the built binary (RAILWEAR_BINARY) runs
-// each subcommand: tables, the profile round trip through CSV/BAN/JSON, the wear between steps
-// against hand calculations, plots, read-only SQL, and the exit code 2 cases (unknown run, step
-// out of range, write statements, a missing database that must not be created, foreign files
-// left untouched).
+// distributions and load-case JSON, and a run without steps), then the built binary
+// (RAILWEAR_BINARY) runs each subcommand: tables, the profile round trip through CSV/BAN/JSON, the
+// wear between steps against hand calculations, plots, read-only SQL, and the exit code 2 cases
+// (unknown run, step out of range, write statements, a missing database that must not be created,
+// foreign files left untouched).
 #include <sys/wait.h>
 
 #include <cmath>
@@ -26,8 +26,8 @@
 #include "profiles_db/profile_store.h"
 #include "wear/wear_measures.h"
 
-#include "tests/app/cli_runner.h"
 #include "core/numerics/units.h"
+#include "tests/app/cli_runner.h"
 
 namespace railwear {
 namespace {
@@ -134,8 +134,8 @@ class HistoryTest : public railwear::test::CliFixture {
           if (k == 2) depth.s_m.push_back(m.s_m[i]);
         }
         step.distributions.push_back(depth);
-        step.distributions.push_back({"damage", depth.y_m, std::vector<double>(depth.y_m.size(),
-                                                                                1e-6 * k)});
+        step.distributions.push_back(
+            {"damage", depth.y_m, std::vector<double>(depth.y_m.size(), 1e-6 * k)});
       }
       db.AppendStep(run, step);
       stored_.push_back(step);
@@ -146,8 +146,8 @@ class HistoryTest : public railwear::test::CliFixture {
     db.CreateRun(empty);
   }
   static std::string LoadCaseJson(int step, int index) {
-    return "{\"case\":" + std::to_string(index) + ",\"T_gamma_J_per_m\":" +
-           std::to_string(10 * step + index) + "}";
+    return "{\"case\":" + std::to_string(index) +
+           ",\"T_gamma_J_per_m\":" + std::to_string(10 * step + index) + "}";
   }
 
   // Data rows of an aligned table (after the header and the rule), split on blanks.
@@ -236,8 +236,9 @@ TEST_F(HistoryTest, ProfileRoundTripsThroughCsvBanAndJson) {
   for (const char* name : {"p1.csv", "p1.ban"}) {
     SCOPED_TRACE(name);
     if (std::string(name) == "p1.ban") {
-      const Outcome ban = Run("history --db study.rwdb profile baseline --step 1 --format ban "
-                              "--out p1.ban");
+      const Outcome ban =
+          Run("history --db study.rwdb profile baseline --step 1 --format ban "
+              "--out p1.ban");
       ASSERT_EQ(ban.exit_code, 0) << ban.err;
     }
     const Profile back = ReadProfileFile((dir_ / name).string()).profile;
@@ -270,8 +271,9 @@ TEST_F(HistoryTest, ProfileRoundTripsThroughCsvBanAndJson) {
 TEST_F(HistoryTest, ProfileBadStepAndFormatExitTwo) {
   const Outcome step = Run("history --db study.rwdb profile baseline --step 7");
   EXPECT_EQ(step.exit_code, 2);
-  EXPECT_TRUE(Contains(step.err, "railwear: error: database 'study.rwdb': run 'baseline': "
-                                 "--step 7 is out of range; expected a step from 0 to 2"));
+  EXPECT_TRUE(Contains(step.err,
+                       "railwear: error: database 'study.rwdb': run 'baseline': "
+                       "--step 7 is out of range; expected a step from 0 to 2"));
   EXPECT_EQ(step.out, "");
   const Outcome format = Run("history --db study.rwdb profile baseline --format xml");
   EXPECT_EQ(format.exit_code, 2);
@@ -362,8 +364,9 @@ TEST_F(HistoryTest, PlotWithoutGnuplotExitsOneNamingIt) {
 }
 
 TEST_F(HistoryTest, SqlIsReadOnly) {
-  const Outcome o = Run("history --db study.rwdb sql \"SELECT step, mgt, length(yz) AS bytes "
-                        "FROM profiles JOIN steps USING (run_id, step) ORDER BY step\"");
+  const Outcome o =
+      Run("history --db study.rwdb sql \"SELECT step, mgt, length(yz) AS bytes "
+          "FROM profiles JOIN steps USING (run_id, step) ORDER BY step\"");
   ASSERT_EQ(o.exit_code, 0) << o.err;
   const auto rows = TableRows(o.out);
   ASSERT_EQ(rows.size(), 3u);
@@ -372,8 +375,9 @@ TEST_F(HistoryTest, SqlIsReadOnly) {
   EXPECT_EQ(rows[2][2], std::to_string(16 * stored_[2].profile.size()));
   EXPECT_EQ(o.out.substr(0, o.out.find('\n')).find("step"), 0u);
 
-  const Outcome tsv = Run("history --db study.rwdb sql --tsv \"SELECT name, state FROM runs "
-                          "ORDER BY id\"");
+  const Outcome tsv =
+      Run("history --db study.rwdb sql --tsv \"SELECT name, state FROM runs "
+          "ORDER BY id\"");
   ASSERT_EQ(tsv.exit_code, 0) << tsv.err;
   EXPECT_EQ(tsv.out, "name\tstate\nbaseline\tcomplete\nempty\trunning\n");
 
@@ -391,8 +395,9 @@ TEST_F(HistoryTest, UnknownRunExitsTwoNamingIt) {
   for (const char* cmd : {"steps nope", "profile nope", "diff nope 0 1", "plot nope"}) {
     const Outcome o = Run(std::string("history --db study.rwdb ") + cmd);
     EXPECT_EQ(o.exit_code, 2) << cmd;
-    EXPECT_TRUE(Contains(o.err, "railwear: error: database 'study.rwdb': no run named 'nope'; "
-                                "expected one of 'baseline', 'empty'"))
+    EXPECT_TRUE(Contains(o.err,
+                         "railwear: error: database 'study.rwdb': no run named 'nope'; "
+                         "expected one of 'baseline', 'empty'"))
         << cmd;
     EXPECT_EQ(o.out, "");
   }

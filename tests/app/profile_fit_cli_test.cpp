@@ -50,7 +50,6 @@ class ProfileFitCliTest : public railwear::test::CliFixture {
     }
     std::ofstream(dir_ / "arc.csv") << csv;
   }
-
 };
 
 TEST_F(ProfileFitCliTest, ReportsResidualsOutliersLambdaAndCurvatureAndWritesBan) {
@@ -61,7 +60,7 @@ TEST_F(ProfileFitCliTest, ReportsResidualsOutliersLambdaAndCurvatureAndWritesBan
   EXPECT_TRUE(Contains(o.out, "(GCV)"));
   EXPECT_TRUE(Contains(o.out, "lambda"));
   EXPECT_TRUE(Contains(o.out, "mm normal distance (0.000"));  // 1 um noise without the glitch
-  EXPECT_TRUE(Contains(o.out, "max residual    0.49"));        // the 0.5 mm glitch
+  EXPECT_TRUE(Contains(o.out, "max residual    0.49"));       // the 0.5 mm glitch
   EXPECT_TRUE(Contains(o.out, "at point 151"));
   EXPECT_TRUE(Contains(o.out, "noise           0.00"));
   EXPECT_TRUE(Contains(o.out, "curvature       0.0"));  // around 1/50 mm = 0.02 1/mm

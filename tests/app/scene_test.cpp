@@ -168,31 +168,36 @@ TEST(SceneTest, ExplicitGeometryAndKernelOverrideKind) {
 TEST(SceneTest, GeometryWithHertzIsAnError) {
   const std::string msg =
       ErrorOf(std::string(kMinimal) + "[model]\nkind = \"hertz\"\ngeometry = \"planar\"\n");
-  EXPECT_TRUE(Contains(msg, "scene.toml:13: key 'model.geometry' = \"planar\": expected no "
-                             "geometry or kernel with kind = 'hertz'"));
+  EXPECT_TRUE(Contains(msg,
+                       "scene.toml:13: key 'model.geometry' = \"planar\": expected no "
+                       "geometry or kernel with kind = 'hertz'"));
 }
 
 TEST(SceneTest, UnknownKeyListsAllowedKeys) {
   const std::string msg = ErrorOf(std::string(kMinimal) + "lateral_shfit_mm = 3\n");
-  EXPECT_TRUE(Contains(msg, "scene.toml:11: key 'load.lateral_shfit_mm' = 3: expected one of "
-                             "the keys allowed in [load]:"));
-  EXPECT_TRUE(Contains(msg, "'vertical_N', 'approach_mm', 'lateral_shift_mm', 'roll_rad', "
-                             "'friction', 'speed_m_s'"));
+  EXPECT_TRUE(Contains(msg,
+                       "scene.toml:11: key 'load.lateral_shfit_mm' = 3: expected one of "
+                       "the keys allowed in [load]:"));
+  EXPECT_TRUE(Contains(msg,
+                       "'vertical_N', 'approach_mm', 'lateral_shift_mm', 'roll_rad', "
+                       "'friction', 'speed_m_s'"));
 }
 
 TEST(SceneTest, UnknownKeyInInlineTable) {
   const std::string msg = ErrorOf(std::string(kMinimal) +
                                   "[materials]\nwheel = { E_MPa = 1, nu = 0.3, G_MPa = 3 }\n"
                                   "rail = { E_MPa = 1, nu = 0.3 }\n");
-  EXPECT_TRUE(Contains(msg, "scene.toml:12: key 'materials.wheel.G_MPa' = 3: expected one of "
-                             "the keys allowed in [materials.wheel]: 'E_MPa', 'nu'"));
+  EXPECT_TRUE(Contains(msg,
+                       "scene.toml:12: key 'materials.wheel.G_MPa' = 3: expected one of "
+                       "the keys allowed in [materials.wheel]: 'E_MPa', 'nu'"));
 }
 
 TEST(SceneTest, UnknownTableListsAllowedTables) {
   const std::string msg = ErrorOf(std::string(kMinimal) + "\n[loads]\nx = 1\n");
-  EXPECT_TRUE(Contains(msg, "scene.toml:12: key 'loads' = (table): expected one of the keys "
-                             "allowed at the top level: 'scene', 'model', 'materials', 'wheel', "
-                             "'rail', 'load'"));
+  EXPECT_TRUE(Contains(msg,
+                       "scene.toml:12: key 'loads' = (table): expected one of the keys "
+                       "allowed at the top level: 'scene', 'model', 'materials', 'wheel', "
+                       "'rail', 'load'"));
 }
 
 TEST(SceneTest, MissingKeyNamesItsTableLine) {
@@ -203,73 +208,76 @@ profile = "builtin:UIC60"
 [load]
 vertical_N = 1000
 )";
-  EXPECT_TRUE(Contains(ErrorOf(text), "scene.toml:1: key 'wheel.rolling_radius_mm' is missing: "
-                                       "expected a number > 0"));
+  EXPECT_TRUE(Contains(ErrorOf(text),
+                       "scene.toml:1: key 'wheel.rolling_radius_mm' is missing: "
+                       "expected a number > 0"));
 }
 
 TEST(SceneTest, MissingTableUsesLineOne) {
-  const std::string text = "[wheel]\nprofile = \"builtin:S1002\"\nrolling_radius_mm = 460\n"
-                           "[rail]\nprofile = \"builtin:UIC60\"\n";
-  EXPECT_TRUE(Contains(ErrorOf(text), "scene.toml:1: key 'load' is missing: expected a [load] "
-                                       "table with vertical_N or approach_mm"));
+  const std::string text =
+      "[wheel]\nprofile = \"builtin:S1002\"\nrolling_radius_mm = 460\n"
+      "[rail]\nprofile = \"builtin:UIC60\"\n";
+  EXPECT_TRUE(Contains(ErrorOf(text),
+                       "scene.toml:1: key 'load' is missing: expected a [load] "
+                       "table with vertical_N or approach_mm"));
 }
 
 TEST(SceneTest, WrongTypeNamesValueAndExpectation) {
   std::string text = kMinimal;
   text.replace(text.find("100000"), 6, "\"100000\"");
   EXPECT_TRUE(Contains(ErrorOf(text),
-              "scene.toml:10: key 'load.vertical_N' = \"100000\": expected a number > 0"));
+                       "scene.toml:10: key 'load.vertical_N' = \"100000\": expected a number > 0"));
 }
 
 TEST(SceneTest, WrongTypeForTable) {
   EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "[model]\ncell_mm = 0.2\n"),
-              "scene.toml:12: key 'model.cell_mm' = 0.2: expected two positive numbers "
-                        "[dx, ds] in mm"));
+                       "scene.toml:12: key 'model.cell_mm' = 0.2: expected two positive numbers "
+                       "[dx, ds] in mm"));
   EXPECT_TRUE(Contains(ErrorOf(std::string("scene = 3\n") + kMinimal),
-              "scene.toml:1: key 'scene' = 3: expected a table"));
+                       "scene.toml:1: key 'scene' = 3: expected a table"));
   EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "[wheel.x]\n"), "key 'wheel.x'"));
   EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "[scene]\neffects = \"normal\"\n"),
-              "scene.toml:12: key 'scene.effects' = \"normal\": expected an array"));
+                       "scene.toml:12: key 'scene.effects' = \"normal\": expected an array"));
 }
 
 TEST(SceneTest, OutOfRangeValues) {
   const std::string m = kMinimal;
   const std::string materials = "[materials]\nrail = { E_MPa = 210000, nu = 0.28 }\n";
   EXPECT_TRUE(Contains(ErrorOf(m + materials + "wheel = { E_MPa = 210000, nu = 0.5 }\n"),
-              "scene.toml:13: key 'materials.wheel.nu' = 0.5: expected a number in "
-                        "[0, 0.5)"));
+                       "scene.toml:13: key 'materials.wheel.nu' = 0.5: expected a number in "
+                       "[0, 0.5)"));
   EXPECT_TRUE(Contains(ErrorOf(m + materials + "wheel = { E_MPa = -1, nu = 0.3 }\n"),
-              "scene.toml:13: key 'materials.wheel.E_MPa' = -1: expected a number > 0"));
+                       "scene.toml:13: key 'materials.wheel.E_MPa' = -1: expected a number > 0"));
   EXPECT_TRUE(Contains(ErrorOf(m + "friction = 0\n"),
-              "scene.toml:11: key 'load.friction' = 0: expected a number in (0, 2]"));
+                       "scene.toml:11: key 'load.friction' = 0: expected a number in (0, 2]"));
   EXPECT_TRUE(Contains(ErrorOf(m + "friction = 2.5\n"),
-              "key 'load.friction' = 2.5: expected a number in (0, 2]"));
+                       "key 'load.friction' = 2.5: expected a number in (0, 2]"));
   EXPECT_TRUE(Contains(ErrorOf(m + "friction = nan\n"), "key 'load.friction' = nan"));
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\ncell_mm = [0.2, -1]\n"),
-              "scene.toml:12: key 'model.cell_mm' = [0.2, -1]: expected two positive "
-                        "numbers"));
+                       "scene.toml:12: key 'model.cell_mm' = [0.2, -1]: expected two positive "
+                       "numbers"));
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\ncell_mm = [0.2]\n"), "key 'model.cell_mm'"));
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\naccuracy = \"ultra\"\n"),
-              "scene.toml:12: key 'model.accuracy' = \"ultra\": expected one of "
-                        "'draft', 'standard', 'reference', 'fine'"));
+                       "scene.toml:12: key 'model.accuracy' = \"ultra\": expected one of "
+                       "'draft', 'standard', 'reference', 'fine'"));
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\nkind = \"fem\"\n"),
-              "key 'model.kind' = \"fem\": expected one of 'hertz', 'halfspace', "
-                        "'conformal', 'auto'"));
+                       "key 'model.kind' = \"fem\": expected one of 'hertz', 'halfspace', "
+                       "'conformal', 'auto'"));
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\ngeometry = \"curved\"\n"),
-              "expected one of 'planar', 'conformal'"));
+                       "expected one of 'planar', 'conformal'"));
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\nkernel = \"kelvin\"\n"),
-              "expected one of 'boussinesq', 'golubenko'"));
+                       "expected one of 'boussinesq', 'golubenko'"));
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\ntangential = \"kalker\"\n"),
-              "expected one of 'fastsim', 'exact'"));
+                       "expected one of 'fastsim', 'exact'"));
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\ninfluence_constants = { c_f = 0 }\n"),
-              "key 'model.influence_constants.c_f' = 0: expected a number > 0"));
+                       "key 'model.influence_constants.c_f' = 0: expected a number > 0"));
 }
 
 TEST(SceneTest, RollingRadiusAndLoadMustBePositive) {
   std::string text = kMinimal;
   text.replace(text.find("460"), 3, "0");
   EXPECT_TRUE(Contains(ErrorOf(text),
-              "scene.toml:4: key 'wheel.rolling_radius_mm' = 0: expected a number > 0"));
+                       "scene.toml:4: key 'wheel.rolling_radius_mm' = 0: expected a number > 0"));
   text = kMinimal;
   text.replace(text.find("100000"), 6, "-5");
   EXPECT_TRUE(Contains(ErrorOf(text), "key 'load.vertical_N' = -5: expected a number > 0"));
@@ -282,13 +290,14 @@ TEST(SceneTest, IntegersAreAcceptedWhereFloatsAreExpected) {
 
 TEST(SceneTest, LoadNeedsExactlyOneOfForceAndApproach) {
   EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "approach_mm = 0.1\n"),
-              "scene.toml:11: key 'load.approach_mm' = 0.1: expected exactly one of "
-                        "'load.vertical_N' and 'load.approach_mm' (both given)"));
+                       "scene.toml:11: key 'load.approach_mm' = 0.1: expected exactly one of "
+                       "'load.vertical_N' and 'load.approach_mm' (both given)"));
   std::string text = kMinimal;
   text.replace(text.find("vertical_N = 100000"), 19, "friction = 0.3");
-  EXPECT_TRUE(Contains(ErrorOf(text), "scene.toml:9: key 'load.vertical_N' is missing: expected "
-                                       "exactly one of 'load.vertical_N' and "
-                                       "'load.approach_mm'"));
+  EXPECT_TRUE(Contains(ErrorOf(text),
+                       "scene.toml:9: key 'load.vertical_N' is missing: expected "
+                       "exactly one of 'load.vertical_N' and "
+                       "'load.approach_mm'"));
 }
 
 TEST(SceneTest, SyntaxErrorGivesLineAndColumn) {
@@ -308,8 +317,9 @@ TEST(SceneTest, EffectsAreCheckedAndWearNeedsItsTables) {
                        "'tangential', 'coupling', 'wear', 'damage'"));
   // damage implies tangential; both need friction and speed.
   const std::string rolling =
-      std::string("[scene]\neffects = [\"damage\"]\n[materials]\nwheel = { E_MPa = 210000, "
-                  "nu = 0.28 }\nrail = { E_MPa = 210000, nu = 0.28, shear_yield_MPa = 350 }\n") +
+      std::string(
+          "[scene]\neffects = [\"damage\"]\n[materials]\nwheel = { E_MPa = 210000, "
+          "nu = 0.28 }\nrail = { E_MPa = 210000, nu = 0.28, shear_yield_MPa = 350 }\n") +
       kMinimal + "friction = 0.3\nspeed_m_s = 20\n";
   const Scene s = ParseScene(rolling, "scene.toml");
   EXPECT_TRUE(s.tangential);
@@ -356,9 +366,8 @@ TEST(SceneTest, LongitudinalForceInsteadOfPitchVelocity) {
   EXPECT_TRUE(Contains(ErrorOf(base + "longitudinal_force_N = 1\npitch_velocity_rad_s = -43\n"),
                        "key 'load.longitudinal_force_N' = 1: expected either "
                        "longitudinal_force_N or pitch_velocity_rad_s"));
-  EXPECT_TRUE(Contains(
-      ErrorOf(base + "longitudinal_force_N = 1\ncreepage = { xi = 0.001 }\n"),
-      "expected either prescribed creepages or the wheel's motion"));
+  EXPECT_TRUE(Contains(ErrorOf(base + "longitudinal_force_N = 1\ncreepage = { xi = 0.001 }\n"),
+                       "expected either prescribed creepages or the wheel's motion"));
 }
 
 TEST(SceneTest, WheelsetOnTrackReplacesThePlacementOfLoad) {
@@ -417,8 +426,9 @@ TEST(SceneTest, CantMustBeARatio) {
     t.replace(t.find("profile = \"builtin:UIC60\""), 25, "profile = \"builtin:UIC60\"\ncant = 7");
     return t;
   }();
-  EXPECT_TRUE(Contains(ErrorOf(with_cant), "scene.toml:8: key 'rail.cant' = 7: expected a cant "
-                                            "ratio \"1:N\" (e.g. \"1:40\") or 0"));
+  EXPECT_TRUE(Contains(ErrorOf(with_cant),
+                       "scene.toml:8: key 'rail.cant' = 7: expected a cant "
+                       "ratio \"1:N\" (e.g. \"1:40\") or 0"));
 }
 
 TEST(SceneTest, ProfileErrorsNameTheSceneKey) {
@@ -444,7 +454,7 @@ TEST(SceneTest, MirrorYMustBeBoolean) {
   std::string text = kMinimal;
   text.replace(text.find("rolling_radius_mm"), 0, "mirror_y = \"yes\"\n");
   EXPECT_TRUE(Contains(ErrorOf(text),
-              "scene.toml:4: key 'wheel.mirror_y' = \"yes\": expected true or false"));
+                       "scene.toml:4: key 'wheel.mirror_y' = \"yes\": expected true or false"));
 }
 
 TEST(SceneTest, InfluenceConstantsFromFile) {
@@ -468,7 +478,7 @@ TEST(SceneTest, InfluenceConstantsFileErrorsNameThatFile) {
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     EXPECT_TRUE(Contains(e.what(), fit + ":2: key 'influence_constants.c_f' = -1: expected a "
-                                          "number > 0"));
+                                         "number > 0"));
   }
   dir.Write("fit.toml", "[constants]\nc_f = 1\n");
   try {
@@ -480,10 +490,11 @@ TEST(SceneTest, InfluenceConstantsFileErrorsNameThatFile) {
 }
 
 TEST(SceneTest, SeparateInfluenceConstantsInlineAndFromFile) {
-  const Scene inline_scene = ParseScene(
-      std::string(kMinimal) + "[model]\ninfluence_constants = { convex = { c_f = 0.9, c_s = 0.1 }, "
-                              "concave = { c_f = 0.8, c_z = 1.2 } }\n",
-      "scene.toml");
+  const Scene inline_scene =
+      ParseScene(std::string(kMinimal) +
+                     "[model]\ninfluence_constants = { convex = { c_f = 0.9, c_s = 0.1 }, "
+                     "concave = { c_f = 0.8, c_z = 1.2 } }\n",
+                 "scene.toml");
   const InfluenceConstants& c = inline_scene.problem.model.constants;
   ASSERT_TRUE(c.IsSeparate());
   EXPECT_DOUBLE_EQ(c.separate->convex.c_f, 0.9);
@@ -496,8 +507,9 @@ TEST(SceneTest, SeparateInfluenceConstantsInlineAndFromFile) {
   EXPECT_EQ(c.ForBody(+1).c_f, 0.8);
 
   const TempDir dir("constants_separate");
-  dir.Write("fit.toml", "[influence_constants.convex]\nc_f = 1.1\nc_z = 0.7\nc_s = 0.2\n"
-                        "[influence_constants.concave]\nc_f = 0.95\nc_z = 0.5\nc_s = 0.4\n");
+  dir.Write("fit.toml",
+            "[influence_constants.convex]\nc_f = 1.1\nc_z = 0.7\nc_s = 0.2\n"
+            "[influence_constants.concave]\nc_f = 0.95\nc_z = 0.5\nc_s = 0.4\n");
   const Scene from_file = LoadScene(dir.Write(
       "scene.toml", std::string(kMinimal) + "[model]\ninfluence_constants = \"fit.toml\"\n"));
   const InfluenceConstants& f = from_file.problem.model.constants;
@@ -531,9 +543,10 @@ TEST(SceneTest, SeparateInfluenceConstantsErrors) {
 }
 
 TEST(SceneTest, MaterialsTableNeedsBothBodies) {
-  EXPECT_TRUE(Contains(ErrorOf(std::string(kMinimal) + "[materials]\nwheel = { E_MPa = 1, nu = 0.3 }\n"),
-              "scene.toml:11: key 'materials.rail' is missing: expected an inline table "
-                        "{ E_MPa, nu }"));
+  EXPECT_TRUE(
+      Contains(ErrorOf(std::string(kMinimal) + "[materials]\nwheel = { E_MPa = 1, nu = 0.3 }\n"),
+               "scene.toml:11: key 'materials.rail' is missing: expected an inline table "
+               "{ E_MPa, nu }"));
 }
 
 TEST(SceneTest, MissingFileIsAnInputError) {
@@ -651,14 +664,14 @@ TEST(SceneTest, WearSceneErrorsNameTheKey) {
                        "key 'traffic[1].lateral_shift_mm.sd'"));
   EXPECT_TRUE(Contains(with("share = 0.4", "share = -0.4"),
                        "key 'traffic[0].share' = -0.4: expected a number > 0"));
-  EXPECT_TRUE(Contains(with("friction = 0.3\n", ""),
-                       "key 'traffic[1].friction' is missing"));
+  EXPECT_TRUE(Contains(with("friction = 0.3\n", ""), "key 'traffic[1].friction' is missing"));
   EXPECT_TRUE(Contains(with("hardness_MPa = 2600, ", ""),
                        "key 'materials.rail.hardness_MPa' is missing: expected the rail hardness "
                        "in MPa for the kth wear law"));
-  EXPECT_TRUE(Contains(with("geometry = \"conformal\"\nkernel = \"boussinesq\"", "kind = \"hertz\""),
-                       "key 'model.kind' = \"hertz\": expected \"halfspace\" or \"conformal\" for a "
-                       "wear run"));
+  EXPECT_TRUE(
+      Contains(with("geometry = \"conformal\"\nkernel = \"boussinesq\"", "kind = \"hertz\""),
+               "key 'model.kind' = \"hertz\": expected \"halfspace\" or \"conformal\" for a "
+               "wear run"));
   EXPECT_TRUE(Contains(with("effects = [\"wear\", \"damage\"]", "effects = [\"damage\"]"),
                        "expected [wear] only in a wear scene: add \"wear\" to scene.effects"));
   EXPECT_TRUE(Contains(with("[[traffic]]\nname", "[traffic_]\nname"), "traffic_"));

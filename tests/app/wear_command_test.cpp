@@ -78,8 +78,8 @@ TEST_F(WearCommandTest, KilledRunResumesToTheSameProfile) {
     if (pid == 0) pid = std::atoi(ReadFile(pid_file).c_str());
     if (pid == 0 || !fs::exists(dir_ / "killed.sqlite")) continue;
     try {
-      const QueryResult q = ProfileStore::Open((dir_ / "killed.sqlite").string())
-                                .Query("SELECT COUNT(*) FROM steps");
+      const QueryResult q =
+          ProfileStore::Open((dir_ / "killed.sqlite").string()).Query("SELECT COUNT(*) FROM steps");
       stored = std::stoi(q.rows.at(0).at(0));
     } catch (const std::exception&) {
       continue;  // the database is still being created
@@ -124,8 +124,9 @@ TEST_F(WearCommandTest, BadInvocationsExitTwo) {
   EXPECT_EQ(resume.exit_code, 2);
   EXPECT_TRUE(Contains(resume.err, "no run 'small study' to resume"));
   // A contact scene is not a wear scene, and the other way round.
-  Write("contact.toml", "[wheel]\nprofile = \"builtin:S1002\"\nrolling_radius_mm = 460\n"
-                        "[rail]\nprofile = \"builtin:UIC60\"\n[load]\nvertical_N = 1e5\n");
+  Write("contact.toml",
+        "[wheel]\nprofile = \"builtin:S1002\"\nrolling_radius_mm = 460\n"
+        "[rail]\nprofile = \"builtin:UIC60\"\n[load]\nvertical_N = 1e5\n");
   const Outcome contact = Run("wear contact.toml --db c.sqlite");
   EXPECT_EQ(contact.exit_code, 2);
   EXPECT_TRUE(Contains(contact.err, "scene.effects has no \"wear\""));
@@ -150,7 +151,8 @@ namespace {
 
 TEST_F(WearCommandTest, DefaultStudyExampleRunsTwoSteps) {
   // The README's main job, cut to two steps (the full run is the README command).
-  const Outcome o = Run("wear '" RAILWEAR_SOURCE_DIR "/examples/wear_high_rail.toml' --db demo.sqlite --steps 2");
+  const Outcome o =
+      Run("wear '" RAILWEAR_SOURCE_DIR "/examples/wear_high_rail.toml' --db demo.sqlite --steps 2");
   ASSERT_EQ(o.exit_code, 0) << o.err;
   EXPECT_TRUE(Contains(o.out, "run 'UIC60 high rail' in demo.sqlite: 2 steps"));
   ProfileStore store = ProfileStore::Open((dir_ / "demo.sqlite").string());

@@ -83,8 +83,9 @@ int Main(int argc, char** argv) {
   }
   const Material steel{210e9, 0.28};
   Summary s;
-  std::printf("case,auto,area_cb_mm2,hs_area_pct,hs_pmax_pct,hertz_area_pct,hertz_pmax_pct,"
-              "t_cb_ms,t_hs_ms,t_auto_ms\n");
+  std::printf(
+      "case,auto,area_cb_mm2,hs_area_pct,hs_pmax_pct,hertz_area_pct,hertz_pmax_pct,"
+      "t_cb_ms,t_hs_ms,t_auto_ms\n");
   {
     ContactProblem p;
     p.wheel_profile = MakeS1002();

@@ -17,9 +17,9 @@
 // Scaling exponents of time against cell count (log-log fit per benchmark family and series):
 //      ... --benchmark_format=json | python3 tests/benchmarks/scaling_exponent.py
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <utility>
-#include <numbers>
 
 #include <benchmark/benchmark.h>
 
@@ -50,8 +50,8 @@ void Solve(benchmark::State& state, bool planar, KernelModel kernel, double Rx, 
   // Hertz load for contact semi-axes at 0.834 of the grid's half-sizes (~55 % of the cells).
   const double a = 0.834 * 0.5 * nx * kCell_m, b = 0.834 * 0.5 * ns * kCell_m;
   const double estar = ContactModulus(kSteel, kSteel);
-  const HertzSolution h = SolveHertzForApproach(1 / (2 * Rx), 1 / (2 * Rs), estar,
-                                                std::max(a * a / Rx, b * b / Rs));
+  const HertzSolution h =
+      SolveHertzForApproach(1 / (2 * Rx), 1 / (2 * Rs), estar, std::max(a * a / Rx, b * b / Rs));
   InfluenceSettings settings{kernel, {}, kSteel, kSteel};
   NormalProblem np;
   np.gap_m = g.gap_m;
@@ -128,7 +128,8 @@ void BM_GaugeCorner(benchmark::State& state) {
                              : model == 1 ? ModelKind::kHalfspace
                              : model == 4 ? ModelKind::kAuto
                                           : ModelKind::kConformal);
-  if (model == 2) p.model.kernel = KernelModel::kBoussinesq;  // conformal geometry, half-space kernel
+  if (model == 2)
+    p.model.kernel = KernelModel::kBoussinesq;  // conformal geometry, half-space kernel
   p.model.accuracy = static_cast<AccuracyPreset>(state.range(1));
   ContactResult r;
   for (auto _ : state) {

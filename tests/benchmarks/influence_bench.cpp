@@ -44,8 +44,8 @@ void BM_PlanarBoussinesqConstruct(benchmark::State& state) {
 }
 
 void BM_PlanarBoussinesqApply(benchmark::State& state) {
-  const PatchGrid grid = MakeGrid(static_cast<int>(state.range(0)),
-                                  static_cast<int>(state.range(1)), true);
+  const PatchGrid grid =
+      MakeGrid(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)), true);
   const auto op = MakeInfluenceOperator(grid, MakeSettings(KernelModel::kBoussinesq));
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> pressure(0.0, 1e9);
@@ -98,14 +98,35 @@ void BM_CurvedGolubenkoDenseApply(benchmark::State& state) {
 }
 
 BENCHMARK(BM_PlanarBoussinesqConstruct)
-    ->Arg(32)->Arg(64)->Arg(128)->Arg(256)->Arg(512)->Unit(benchmark::kMillisecond);
+    ->Arg(32)
+    ->Arg(64)
+    ->Arg(128)
+    ->Arg(256)
+    ->Arg(512)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanarBoussinesqApply)
-    ->Args({32, 32})->Args({64, 64})->Args({71, 81})->Args({128, 128})->Args({256, 256})
-    ->Args({512, 512})->Args({575, 647})->Unit(benchmark::kMillisecond);
+    ->Args({32, 32})
+    ->Args({64, 64})
+    ->Args({71, 81})
+    ->Args({128, 128})
+    ->Args({256, 256})
+    ->Args({512, 512})
+    ->Args({575, 647})
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CurvedGolubenkoConstruct)
-    ->Arg(20)->Arg(45)->Arg(60)->Arg(80)->Arg(100)->Unit(benchmark::kMillisecond);
+    ->Arg(20)
+    ->Arg(45)
+    ->Arg(60)
+    ->Arg(80)
+    ->Arg(100)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CurvedGolubenkoApply)
-    ->Arg(20)->Arg(45)->Arg(60)->Arg(80)->Arg(100)->Unit(benchmark::kMillisecond);
+    ->Arg(20)
+    ->Arg(45)
+    ->Arg(60)
+    ->Arg(80)
+    ->Arg(100)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CurvedGolubenkoDenseApply)->Arg(20)->Arg(45)->Unit(benchmark::kMillisecond);
 
 }  // namespace

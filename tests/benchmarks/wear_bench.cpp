@@ -5,7 +5,8 @@
 //   BM_WearRun1e5Passes   a whole run of 10^5 passes of the default study's traffic
 //                         (examples/wear_high_rail.toml at standard accuracy), reporting the
 //                         number of profile updates (target: under 10 minutes in at most 50).
-// Run: build/tests/benchmarks/wear_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+// Run: build/tests/benchmarks/wear_bench --benchmark_repetitions=3
+// --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include "core/profile/builtin_profiles.h"
@@ -49,8 +50,8 @@ WearStudy MakeStudy() {
 void BM_WearStep100Cases(benchmark::State& state) {
   WearStudy study = MakeStudy();
   for (int k = 0; k < 20; ++k) {  // a spread of loads, positions and angles of attack
-    study.traffic.push_back(MakeTraffic("case", 60e3 + 3e3 * k, 12.0 + 0.6 * k,
-                                        -5.5 + 0.1 * k, 1.0 + 0.25 * k, 20.0 + k, 1.0));
+    study.traffic.push_back(MakeTraffic("case", 60e3 + 3e3 * k, 12.0 + 0.6 * k, -5.5 + 0.1 * k,
+                                        1.0 + 0.25 * k, 20.0 + k, 1.0));
   }
   study.options.total_passes = 1e9;
   const WearState start = MakeInitialState(study);

@@ -71,7 +71,7 @@ TEST(CurveComparisonTest, CurvesReferenceInterpolatesInLogDistance) {
   const auto f = CurvesReference(ref);
   EXPECT_NEAR(*f(CurveLoad::kNormal, CurvePath::kArc, 3.3), a / 3.3, 1e-12);
   EXPECT_NEAR(*f(CurveLoad::kNormal, CurvePath::kArc, 2.0), a / 2.0, 1e-12);
-  EXPECT_FALSE(f(CurveLoad::kNormal, CurvePath::kArc, 0.5).has_value());   // outside
+  EXPECT_FALSE(f(CurveLoad::kNormal, CurvePath::kArc, 0.5).has_value());  // outside
   EXPECT_FALSE(f(CurveLoad::kNormal, CurvePath::kArc, 6.0).has_value());
   EXPECT_FALSE(f(CurveLoad::kNormal, CurvePath::kAxis, 2.0).has_value());  // no such curve
   // Comparing a curve with itself: no offset, no error.

@@ -5,8 +5,8 @@
 #include <fstream>
 #include <numbers>
 
-#include <Eigen/Core>
 #include <gtest/gtest.h>
+#include <Eigen/Core>
 
 #include "core/numerics/input_error.h"
 #include "tests/test_support.h"
@@ -126,7 +126,8 @@ TEST_F(DisplacementCurvesTest, BadFilesNameLineValueAndExpectation) {
   for (const Case& c : cases) {
     const std::string message = ErrorOf(c.text);
     EXPECT_NE(message.find(c.expected_fragment), std::string::npos)
-        << "text:\n" << c.text << "message: " << message;
+        << "text:\n"
+        << c.text << "message: " << message;
     EXPECT_NE(message.find("bad.csv"), std::string::npos) << message;
   }
   // A flat body needs no radius.
@@ -152,8 +153,8 @@ TEST(SeedKernelDisplacement, FlatBodyWithEquivalentConstantsIsHalfSpace) {
     c.c_s = 0.7;  // no effect on a flat body: c_t = 1 there
     for (double d : {0.5e-3, 3e-3, 20e-3}) {
       for (CurvePath path : {CurvePath::kArc, CurvePath::kAxis}) {
-        const double w = SeedKernelDisplacement(c, CurveBody::kFlat, 0.0, m, CurveLoad::kNormal,
-                                                path, d);
+        const double w =
+            SeedKernelDisplacement(c, CurveBody::kFlat, 0.0, m, CurveLoad::kNormal, path, d);
         const double b = HalfSpaceDisplacement(m, CurveLoad::kNormal, d);
         EXPECT_NEAR(w / b, 1.0, kExact);
       }
@@ -182,23 +183,25 @@ TEST(SeedKernelDisplacement, ArcGeometryMatchesTheVectorDefinition) {
       const double sign = body == CurveBody::kConvex ? 1.0 : -1.0;  // concave: centre above
       const Eigen::Vector2d o(0.0, 0.0);
       const Eigen::Vector2d centre(0.0, -sign * r);
-      const Eigen::Vector2d p = centre + r * Eigen::Vector2d(std::sin(theta), sign * std::cos(theta));
-      const Eigen::Vector2d n_o(0.0, 1.0);   // normal at O (either sense: dn is squared)
-      const Eigen::Vector2d t_o(1.0, 0.0);   // tangent at O toward the field points
+      const Eigen::Vector2d p =
+          centre + r * Eigen::Vector2d(std::sin(theta), sign * std::cos(theta));
+      const Eigen::Vector2d n_o(0.0, 1.0);  // normal at O (either sense: dn is squared)
+      const Eigen::Vector2d t_o(1.0, 0.0);  // tangent at O toward the field points
       const Eigen::Vector2d d = p - o;
       const double rho = d.norm(), dn = d.dot(n_o), dt = d.dot(t_o);
-      const double k_d = 1.0 / (8.0 * std::numbers::pi * (1.0 - m.poisson_ratio) * m.ShearModulus());
+      const double k_d =
+          1.0 / (8.0 * std::numbers::pi * (1.0 - m.poisson_ratio) * m.ShearModulus());
       const double k_f = (3.0 - 4.0 * m.poisson_ratio) * k_d;
       const double normal = (c.c_f * k_f + c.c_z * k_d * dn * dn / (rho * rho)) / rho;
       const double c_t = 1.0 + c.c_s * (body == CurveBody::kConcave ? 1.0 : -1.0);
       const double tangential = c_t * k_d * dt / (rho * rho);
-      EXPECT_NEAR(SeedKernelDisplacement(c, body, r, m, CurveLoad::kNormal, CurvePath::kArc, s) /
-                      normal,
-                  1.0, kExact);
-      EXPECT_NEAR(SeedKernelDisplacement(c, body, r, m, CurveLoad::kCircumferential,
-                                         CurvePath::kArc, s) /
-                      tangential,
-                  1.0, kExact);
+      EXPECT_NEAR(
+          SeedKernelDisplacement(c, body, r, m, CurveLoad::kNormal, CurvePath::kArc, s) / normal,
+          1.0, kExact);
+      EXPECT_NEAR(
+          SeedKernelDisplacement(c, body, r, m, CurveLoad::kCircumferential, CurvePath::kArc, s) /
+              tangential,
+          1.0, kExact);
     }
   }
 }
@@ -215,8 +218,8 @@ TEST(SeedKernelDisplacement, AxisIsFlatAndSmallArcsTendToIt) {
                 1.0, kExact);
     // On the arc the curvature enters at order (d/R)^2: 1/rho grows by (d/R)^2/24 and the dn
     // term adds c_z k_d (d/2R)^2 / (c_f k_f).
-    const double arc = SeedKernelDisplacement(c, CurveBody::kConvex, r, m, CurveLoad::kNormal,
-                                              CurvePath::kArc, d);
+    const double arc =
+        SeedKernelDisplacement(c, CurveBody::kConvex, r, m, CurveLoad::kNormal, CurvePath::kArc, d);
     EXPECT_NEAR(arc / axis - 1.0, 0.0, 2.0 * (d / r) * (d / r));
   }
 }

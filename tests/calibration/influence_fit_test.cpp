@@ -78,9 +78,10 @@ TEST(InfluenceFit, RecoversKnownConstantsWithinTwoStandardErrors) {
     ASSERT_TRUE(std::isfinite(c.standard_error) && c.standard_error > 0) << c.name;
     EXPECT_LT(std::abs(c.value - truth[k]), 2.0 * c.standard_error)
         << c.name << " " << c.value << " +- " << c.standard_error << " truth " << truth[k];
-    std::printf("[ figure ] recovery (1 %% noise, 5 %% offsets, 320 points): %s = %.4f +- %.4f "
-                "(truth %.2f)\n",
-                c.name.c_str(), c.value, c.standard_error, truth[k]);
+    std::printf(
+        "[ figure ] recovery (1 %% noise, 5 %% offsets, 320 points): %s = %.4f +- %.4f "
+        "(truth %.2f)\n",
+        c.name.c_str(), c.value, c.standard_error, truth[k]);
   }
   // The correlation matrix: symmetric, unit diagonal, entries in [-1, 1].
   ASSERT_EQ(s.correlation.rows(), 3);
@@ -91,9 +92,10 @@ TEST(InfluenceFit, RecoversKnownConstantsWithinTwoStandardErrors) {
       EXPECT_LE(std::abs(s.correlation(a, b)), 1.0 + 1e-12);
     }
   }
-  std::printf("[ figure ] recovery correlations: c_f,c_z %.3f  c_f,c_s %.3f  c_z,c_s %.3f; "
-              "condition number %.3g\n",
-              s.correlation(0, 1), s.correlation(0, 2), s.correlation(1, 2), s.condition_number);
+  std::printf(
+      "[ figure ] recovery correlations: c_f,c_z %.3f  c_f,c_s %.3f  c_z,c_s %.3f; "
+      "condition number %.3g\n",
+      s.correlation(0, 1), s.correlation(0, 2), s.correlation(1, 2), s.condition_number);
   // s^2 estimates the noise: residuals are relative to each curve's RMS, noise 1 % of it.
   EXPECT_NEAR(std::sqrt(s.residual_variance), 0.01, 0.0015);
   // Every point is reported, before and after; the fit removed the starting misfit.
@@ -128,10 +130,11 @@ TEST(InfluenceFit, StandardErrorsMatchTheScatterOfReplicates) {
   }
   for (int k = 0; k < 3; ++k) {
     const double rms_z = std::sqrt(sum_z2[k] / kReplicates);
-    std::printf("[ figure ] %d replicates (2 %% noise): %s RMS of (fit - truth)/SE %.2f, "
-                "within 2 SE %d/%d\n",
-                kReplicates, std::string(ToString(static_cast<InfluenceConstantName>(k))).c_str(),
-                rms_z, within[k], kReplicates);
+    std::printf(
+        "[ figure ] %d replicates (2 %% noise): %s RMS of (fit - truth)/SE %.2f, "
+        "within 2 SE %d/%d\n",
+        kReplicates, std::string(ToString(static_cast<InfluenceConstantName>(k))).c_str(), rms_z,
+        within[k], kReplicates);
     // 40 samples: the RMS of z has a standard deviation of ~0.11 around 1.
     EXPECT_GT(rms_z, 0.7);
     EXPECT_LT(rms_z, 1.35);
@@ -140,8 +143,7 @@ TEST(InfluenceFit, StandardErrorsMatchTheScatterOfReplicates) {
 }
 
 TEST(InfluenceFit, StandardErrorsShrinkWithLessNoiseAndMoreData) {
-  const InfluenceFitSummary base =
-      FitInfluenceConstants(PaperExperiment(kTruth, 0.02, 0.0, 7), {});
+  const InfluenceFitSummary base = FitInfluenceConstants(PaperExperiment(kTruth, 0.02, 0.0, 7), {});
   const InfluenceFitSummary quiet =
       FitInfluenceConstants(PaperExperiment(kTruth, 0.01, 0.0, 7), {});
   const InfluenceFitSummary dense =
@@ -155,10 +157,11 @@ TEST(InfluenceFit, StandardErrorsShrinkWithLessNoiseAndMoreData) {
     const double ratio = dense.constants[k].standard_error / se;
     EXPECT_GT(ratio, 0.4) << base.constants[k].name;
     EXPECT_LT(ratio, 0.6) << base.constants[k].name;
-    std::printf("[ figure ] SE of %s: %.4f (2 %% noise, 320 points), %.4f (1 %%), %.4f (1256 "
-                "points)\n",
-                base.constants[k].name.c_str(), se, quiet.constants[k].standard_error,
-                dense.constants[k].standard_error);
+    std::printf(
+        "[ figure ] SE of %s: %.4f (2 %% noise, 320 points), %.4f (1 %%), %.4f (1256 "
+        "points)\n",
+        base.constants[k].name.c_str(), se, quiet.constants[k].standard_error,
+        dense.constants[k].standard_error);
   }
 }
 
@@ -174,7 +177,7 @@ TEST(InfluenceFit, SeparateSetsRecoveredFromConvexAndConcaveCurves) {
   EXPECT_TRUE(s.well_conditioned) << Joined(s.warnings);
   ASSERT_EQ(s.constants.size(), 6u);
   const double want[6] = {1.1, 0.7, 0.2, 0.95, 0.5, 0.4};
-  const char* names[6] = {"convex.c_f", "convex.c_z", "convex.c_s",
+  const char* names[6] = {"convex.c_f",  "convex.c_z",  "convex.c_s",
                           "concave.c_f", "concave.c_z", "concave.c_s"};
   for (int k = 0; k < 6; ++k) {
     const FittedConstant& c = Named(s, names[k]);
@@ -201,8 +204,8 @@ TEST(InfluenceFit, OffsetIsFittedExactlyWhenOnAndBiasesTheConstantsWhenOff) {
   ASSERT_EQ(on.curves.size(), 8u);
   for (int c = 0; c < 8; ++c) {
     const auto& points = clean.curves[c / 4].curves.points;
-    const double added = data.curves[c / 4].curves.points[(c % 4) * 40].w_m_per_N -
-                         points[(c % 4) * 40].w_m_per_N;
+    const double added =
+        data.curves[c / 4].curves.points[(c % 4) * 40].w_m_per_N - points[(c % 4) * 40].w_m_per_N;
     EXPECT_NEAR(on.curves[c].offset_after_m_per_N, added, 1e-7 * std::abs(added))
         << on.curves[c].Name();
     EXPECT_LT(on.curves[c].max_after, 1e-7) << on.curves[c].Name();
@@ -212,9 +215,10 @@ TEST(InfluenceFit, OffsetIsFittedExactlyWhenOnAndBiasesTheConstantsWhenOff) {
   const InfluenceFitSummary biased = FitInfluenceConstants(data, off);
   ASSERT_EQ(biased.status, InfluenceFitStatus::kConverged) << biased.message;
   const double bias = biased.fitted.c_f / kTruth.c_f - 1.0;
-  std::printf("[ figure ] offsets of 30 %% of each curve's RMS: c_f %.6f with offsets, %.4f "
-              "(%+.1f %%) without\n",
-              on.fitted.c_f, biased.fitted.c_f, 100 * bias);
+  std::printf(
+      "[ figure ] offsets of 30 %% of each curve's RMS: c_f %.6f with offsets, %.4f "
+      "(%+.1f %%) without\n",
+      on.fitted.c_f, biased.fitted.c_f, 100 * bias);
   EXPECT_GT(std::abs(bias), 0.05);
   for (const auto& c : biased.curves) EXPECT_EQ(c.offset_after_m_per_N, 0.0);
 }
@@ -247,8 +251,9 @@ TEST(InfluenceFit, CzWithAxisOnlyDataIsReportedNotDetermined) {
   data.curves.push_back({MakeSyntheticCurves(kTruth, spec, 1, "axis_only.csv")});
   const InfluenceFitSummary s = FitInfluenceConstants(data, {});
   ASSERT_EQ(s.status, InfluenceFitStatus::kConverged) << s.message;
-  EXPECT_TRUE(Contains(s.warnings, "c_z is not determined by these data: no normal-load curve "
-                                   "with out-of-plane offsets"))
+  EXPECT_TRUE(Contains(s.warnings,
+                       "c_z is not determined by these data: no normal-load curve "
+                       "with out-of-plane offsets"))
       << Joined(s.warnings);
   EXPECT_TRUE(Contains(s.warnings, "axis-only"));
   EXPECT_FALSE(Named(s, "c_z").determined);
@@ -274,10 +279,11 @@ TEST(InfluenceFit, StronglyCorrelatedPairIsReported) {
   EXPECT_FALSE(s.well_conditioned);
   EXPECT_TRUE(Contains(s.warnings, "strongly correlated")) << Joined(s.warnings);
   EXPECT_GT(s.condition_number, 100.0);
-  std::printf("[ figure ] R80 arc, 10-20 mm, offset fitted: condition number %.3g, c_z = %.3f "
-              "+- %.3f; %s\n",
-              s.condition_number, Named(s, "c_z").value, Named(s, "c_z").standard_error,
-              Joined(s.warnings).c_str());
+  std::printf(
+      "[ figure ] R80 arc, 10-20 mm, offset fitted: condition number %.3g, c_z = %.3f "
+      "+- %.3f; %s\n",
+      s.condition_number, Named(s, "c_z").value, Named(s, "c_z").standard_error,
+      Joined(s.warnings).c_str());
 }
 
 // The groove example at draft accuracy: targets computed with c_f = 0.95 are recovered from
@@ -304,16 +310,17 @@ TEST(InfluenceFit, ContactTargetRecoveredThroughSolveContact) {
   o.fit = {InfluenceConstantName::kCf};
   const InfluenceFitSummary s = FitInfluenceConstants(data, o);
   ASSERT_EQ(s.status, InfluenceFitStatus::kConverged) << s.message;
-  std::printf("[ figure ] groove (draft): c_f %.4f recovered as %.4f in %d iterations, %d "
-              "solves, %.2f s\n",
-              0.95, s.fitted.c_f, s.iterations, s.contact_solves, s.time_s);
+  std::printf(
+      "[ figure ] groove (draft): c_f %.4f recovered as %.4f in %d iterations, %d "
+      "solves, %.2f s\n",
+      0.95, s.fitted.c_f, s.iterations, s.contact_solves, s.time_s);
   // The area is piecewise constant on a scale of ~1e-3 in c_f (influence_fit.h); p_max is
   // smooth, so the minimum is pinned by p_max to well within that.
   EXPECT_NEAR(s.fitted.c_f, 0.95, 2e-3);
   ASSERT_EQ(s.contacts.size(), 1u);
   const ContactFitReport& r = s.contacts[0];
   EXPECT_GT(r.area_before_m2 / r.target_area_m2 - 1.0, -0.5);
-  EXPECT_LT(r.area_before_m2, r.target_area_m2);  // the stiffer start: smaller area ...
+  EXPECT_LT(r.area_before_m2, r.target_area_m2);    // the stiffer start: smaller area ...
   EXPECT_GT(r.p_max_before_Pa, r.target_p_max_Pa);  // ... and a higher peak
   EXPECT_NEAR(r.p_max_after_Pa / r.target_p_max_Pa, 1.0, 2e-3);
   EXPECT_NEAR(r.area_after_m2 / r.target_area_m2, 1.0, 5e-3);
@@ -342,8 +349,9 @@ TEST(InfluenceFit, RankDeficientCovarianceIsReportedAndTheFitReturned) {
   ASSERT_NE(s.status, InfluenceFitStatus::kFailure) << s.message;
   EXPECT_FALSE(s.well_conditioned);
   EXPECT_FALSE(s.covariance_available);
-  EXPECT_TRUE(Contains(s.warnings, "ceres::Covariance could not be computed: the Jacobian of the "
-                                   "free parameters is rank deficient"))
+  EXPECT_TRUE(Contains(s.warnings,
+                       "ceres::Covariance could not be computed: the Jacobian of the "
+                       "free parameters is rank deficient"))
       << Joined(s.warnings);
   EXPECT_TRUE(std::isnan(Named(s, "c_f").standard_error));
   EXPECT_EQ(s.correlation.size(), 0);
@@ -353,8 +361,8 @@ TEST(InfluenceFit, RankDeficientCovarianceIsReportedAndTheFitReturned) {
 // bodies sees only their sum. Reported as badly conditioned; the sum is matched.
 TEST(InfluenceFit, SeparateSetsFromAContactResultAloneAreReportedBadlyConditioned) {
   ContactProblem truth_problem = Groove();
-  truth_problem.model.constants.separate = SeparateInfluenceConstants{{0.9, 1.0, 0.25},
-                                                                      {0.9, 1.0, 0.25}};
+  truth_problem.model.constants.separate =
+      SeparateInfluenceConstants{{0.9, 1.0, 0.25}, {0.9, 1.0, 0.25}};
   const ContactResult truth = SolveContact(truth_problem);
   ASSERT_EQ(truth.status, SolverStatus::kConverged);
   InfluenceFitData data;
@@ -368,10 +376,10 @@ TEST(InfluenceFit, SeparateSetsFromAContactResultAloneAreReportedBadlyConditione
   EXPECT_GT(s.condition_number, 100.0);
   EXPECT_TRUE(Contains(s.warnings, "condition number")) << Joined(s.warnings);
   EXPECT_NEAR(s.fitted.separate->convex.c_f + s.fitted.separate->concave.c_f, 1.8, 0.01);
-  std::printf("[ figure ] convex and concave c_f from one contact result: condition number "
-              "%.3g, sum %.4f (truth 1.8)\n",
-              s.condition_number,
-              s.fitted.separate->convex.c_f + s.fitted.separate->concave.c_f);
+  std::printf(
+      "[ figure ] convex and concave c_f from one contact result: condition number "
+      "%.3g, sum %.4f (truth 1.8)\n",
+      s.condition_number, s.fitted.separate->convex.c_f + s.fitted.separate->concave.c_f);
 }
 
 // Contact results alone say nothing of c_s without the coupling effect.
@@ -383,8 +391,9 @@ TEST(InfluenceFit, ContactResultsWithoutCouplingLeaveCsUndetermined) {
   o.fit = {InfluenceConstantName::kCf, InfluenceConstantName::kCs};
   o.max_num_iterations = 5;  // the direction is all this test needs
   const InfluenceFitSummary s = FitInfluenceConstants(data, o);
-  EXPECT_TRUE(Contains(s.warnings, "c_s is not determined by these data: no tangential-load "
-                                   "curve and no contact result with the coupling effect"))
+  EXPECT_TRUE(Contains(s.warnings,
+                       "c_s is not determined by these data: no tangential-load "
+                       "curve and no contact result with the coupling effect"))
       << Joined(s.warnings);
   EXPECT_GT(s.fitted.c_f, 0.75);  // a larger area and a lower peak want a softer kernel
 }
@@ -424,8 +433,9 @@ TEST(InfluenceFit, BadInputIsRefusedWithAMessage) {
             std::string::npos);
   o = {};
   o.start.c_s = 1.5;
-  EXPECT_NE(InputErrorOf([&] { FitInfluenceConstants(good, o); })
-                .find("start c_s = 1.5: expected a value in [-0.999, 0.999]"),
+  EXPECT_NE(InputErrorOf([&] {
+              FitInfluenceConstants(good, o);
+            }).find("start c_s = 1.5: expected a value in [-0.999, 0.999]"),
             std::string::npos);
   EXPECT_NE(InputErrorOf([&] { FitInfluenceConstants({}, {}); }).find("no data"),
             std::string::npos);
@@ -437,23 +447,26 @@ TEST(InfluenceFit, BadInputIsRefusedWithAMessage) {
   flat.curves.push_back({MakeSyntheticCurves(kTruth, spec, 1, "flat.csv")});
   InfluenceFitOptions separate;
   separate.separate_bodies = true;
-  EXPECT_NE(InputErrorOf([&] { FitInfluenceConstants(flat, separate); })
-                .find("flat.csv: a flat body with separate convex and concave sets"),
+  EXPECT_NE(InputErrorOf([&] {
+              FitInfluenceConstants(flat, separate);
+            }).find("flat.csv: a flat body with separate convex and concave sets"),
             std::string::npos);
 
   InfluenceFitData window = good;
   window.curves[1].min_distance_m = 30e-3;
   window.curves[1].max_distance_m = 40e-3;
-  EXPECT_NE(InputErrorOf([&] { FitInfluenceConstants(window, {}); })
-                .find("r15_5_concave.csv: no point within the distance window [30, 40] mm"),
+  EXPECT_NE(InputErrorOf([&] {
+              FitInfluenceConstants(window, {});
+            }).find("r15_5_concave.csv: no point within the distance window [30, 40] mm"),
             std::string::npos);
 
   InfluenceFitData zero = good;
   for (auto& p : zero.curves[0].curves.points) {
     if (p.load == CurveLoad::kAxial) p.w_m_per_N = 0.0;
   }
-  EXPECT_NE(InputErrorOf([&] { FitInfluenceConstants(zero, {}); })
-                .find("r15_convex.csv: the axial load on the axis path has only zero"),
+  EXPECT_NE(InputErrorOf([&] {
+              FitInfluenceConstants(zero, {});
+            }).find("r15_convex.csv: the axial load on the axis path has only zero"),
             std::string::npos);
 
   InfluenceFitData halfspace;

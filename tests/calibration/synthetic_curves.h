@@ -1,6 +1,6 @@
 // Test helper: displacement curves generated from eq. 4 with known constants
-// (SeedKernelDisplacement), plus Gaussian noise and a constant offset per curve, both relative to the curve's RMS: the data
-// of the calibration's recovery tests (wear and CLI).
+// (SeedKernelDisplacement), plus Gaussian noise and a constant offset per curve, both relative to
+// the curve's RMS: the data of the calibration's recovery tests (wear and CLI).
 #pragma once
 
 #include <cmath>
@@ -69,8 +69,9 @@ inline DisplacementCurves MakeSyntheticCurves(const InfluenceConstants& truth,
   for (const auto& [load, curve_path] : spec.curves) {
     std::vector<DisplacementPoint> points;
     double sum = 0.0;
-    const int n = static_cast<int>(
-        std::floor((spec.distance_max_mm - spec.distance_min_mm) / spec.distance_step_mm + 1e-9)) +
+    const int n =
+        static_cast<int>(std::floor(
+            (spec.distance_max_mm - spec.distance_min_mm) / spec.distance_step_mm + 1e-9)) +
         1;
     for (int i = 0; i < n; ++i) {
       DisplacementPoint p;

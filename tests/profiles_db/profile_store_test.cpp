@@ -91,8 +91,8 @@ std::string BlobLiteral(const std::vector<double>& values) {
 // The schema of railwear's version 1, verbatim (what MigrateTo1 created), with one run, one step,
 // its profile, a load case and a distribution: a database as version 1 left it.
 std::string Version1Database() {
-  const std::vector<double> yz = {-0.02, 0.0016, -0.01, 0.0004, 0.0, 0.0,
-                                  0.01,  0.0004, 0.02,  0.0016};
+  const std::vector<double> yz = {-0.02, 0.0016, -0.01,  0.0004, 0.0,
+                                  0.0,   0.01,   0.0004, 0.02,   0.0016};
   return std::string(R"sql(
 PRAGMA application_id = 1381450818;
 CREATE TABLE meta(
@@ -147,8 +147,8 @@ INSERT INTO meta(key, value) VALUES ('format', 'railwear-profile-history'),
 INSERT INTO runs VALUES (1, 'old', '2024-05-01T12:00:00.000Z', '0.0.9', 'scene', '{}', 'complete');
 INSERT INTO steps VALUES (1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, '2024-05-01T12:00:01.000Z');
 INSERT INTO load_cases VALUES (1, 0, 0, '{"case":0}');
-)sql") + "INSERT INTO profiles VALUES (1, 0, 5, " + BlobLiteral(yz) + ");\n" +
-         "INSERT INTO distributions VALUES (1, 0, 'wear_depth_mm', " +
+)sql") + "INSERT INTO profiles VALUES (1, 0, 5, " +
+         BlobLiteral(yz) + ");\n" + "INSERT INTO distributions VALUES (1, 0, 'wear_depth_mm', " +
          BlobLiteral({-0.01, 0.0, 0.01}) + ", " + BlobLiteral({0.0, 0.25, 0.5}) + ");\n" +
          "PRAGMA user_version = 1;\n";
 }
@@ -163,10 +163,10 @@ std::string Version2Database() {
               "INSERT INTO steps VALUES (1, 1, 100, 0.002, 0.5, 0.01, -0.03, 0, 0.1, 0.2, 1e-6, "
               "'2024-05-02T12:00:00.000Z');\n"
               "INSERT INTO profiles VALUES (1, 1, 4, " +
-              BlobLiteral({-0.02, 0.0016, -0.01, 0.0004, 0.0, 0.0, 0.01, 0.0004}) + ");\n" +
-              "INSERT INTO distributions VALUES (1, 1, 'wear_depth_mm', " + BlobLiteral({0.0}) +
-              ", " + BlobLiteral({0.125}) + ", " + BlobLiteral({0.5}) + ");\n" +
-              "PRAGMA user_version = 2;");
+                  BlobLiteral({-0.02, 0.0016, -0.01, 0.0004, 0.0, 0.0, 0.01, 0.0004}) + ");\n" +
+                  "INSERT INTO distributions VALUES (1, 1, 'wear_depth_mm', " + BlobLiteral({0.0}) +
+                  ", " + BlobLiteral({0.125}) + ", " + BlobLiteral({0.5}) + ");\n" +
+                  "PRAGMA user_version = 2;");
   return sql;
 }
 
@@ -257,8 +257,9 @@ TEST(ProfileStore, CreatesSchemaInMemory) {
 
 TEST(ProfileStore, DistributionsHaveANullableArcLengthColumn) {
   ProfileStore db = ProfileStore::Open(":memory:");
-  const QueryResult cols = db.Query("SELECT name, type, \"notnull\" FROM pragma_table_info("
-                                    "'distributions') WHERE name = 's'");
+  const QueryResult cols = db.Query(
+      "SELECT name, type, \"notnull\" FROM pragma_table_info("
+      "'distributions') WHERE name = 's'");
   ASSERT_EQ(cols.rows.size(), 1u);
   EXPECT_EQ(cols.rows[0], (std::vector<std::string>{"s", "BLOB", "0"}));
 }
@@ -435,8 +436,7 @@ TEST(ProfileStore, StepsAppendInOrder) {
   ProfileStore db = ProfileStore::Open(":memory:");
   const int64_t run = db.CreateRun(TestRun("r"));
   EXPECT_FALSE(db.LastStep(run).has_value());
-  ExpectInputError([&] { db.AppendStep(run, TestStep(1)); },
-                   {"run 1 step 1", "expected step 0"});
+  ExpectInputError([&] { db.AppendStep(run, TestStep(1)); }, {"run 1 step 1", "expected step 0"});
   db.AppendStep(run, TestStep(0));
   db.AppendStep(run, TestStep(1));
   ExpectInputError([&] { db.AppendStep(run, TestStep(1)); }, {"expected step 2"});
@@ -501,8 +501,7 @@ TEST(ProfileStore, FailedStepLeavesNothing) {
   ExpectInputError([&] { db.AppendStep(run, bad); }, {"'wear_depth_mm' given twice"});
   EXPECT_EQ(db.LastStep(run), 0);
   for (const char* table : {"steps", "profiles", "load_cases", "distributions"}) {
-    EXPECT_EQ(db.Query(std::string("SELECT count(*) FROM ") + table + " WHERE step = 1")
-                  .rows[0][0],
+    EXPECT_EQ(db.Query(std::string("SELECT count(*) FROM ") + table + " WHERE step = 1").rows[0][0],
               "0")
         << table;
   }
@@ -539,7 +538,8 @@ TEST(ProfileStore, NonFiniteValuesAreNeverStored) {
       ADD_FAILURE() << "a non-finite value was stored";
     } catch (const std::runtime_error& e) {
       EXPECT_NE(std::string(e.what()).find("refusing to store a non-finite value"),
-                std::string::npos) << e.what();
+                std::string::npos)
+          << e.what();
     }
     EXPECT_EQ(db.LastStep(run), 0);
     EXPECT_EQ(db.Query("SELECT count(*) FROM steps WHERE step = 1").rows[0][0], "0");
@@ -638,8 +638,9 @@ TEST(ProfileStore, RefusesNonSqliteFileUntouched) {
 TEST(ProfileStore, RefusesForeignSqliteDatabaseUntouched) {
   TempDir tmp;
   const std::string path = tmp.File("other.db");
-  RawExec(path, "CREATE TABLE accounts(id INTEGER PRIMARY KEY, owner TEXT);"
-                "INSERT INTO accounts(owner) VALUES ('x');");
+  RawExec(path,
+          "CREATE TABLE accounts(id INTEGER PRIMARY KEY, owner TEXT);"
+          "INSERT INTO accounts(owner) VALUES ('x');");
   const std::string before = ReadBytes(path);
   ExpectInputError([&] { ProfileStore::Open(path); },
                    {path, "another application", "application_id 0x00000000",
@@ -662,10 +663,10 @@ TEST(ProfileStore, RefusesNewerSchemaUntouched) {
   }
   RawExec(path, "PRAGMA user_version = " + std::to_string(ProfileStore::kSchemaVersion + 1));
   const std::string before = ReadBytes(path);
-  ExpectInputError([&] { ProfileStore::Open(path); },
-                   {path, "newer railwear",
-                    "schema version " + std::to_string(ProfileStore::kSchemaVersion + 1),
-                    "up to " + std::to_string(ProfileStore::kSchemaVersion)});
+  ExpectInputError(
+      [&] { ProfileStore::Open(path); },
+      {path, "newer railwear", "schema version " + std::to_string(ProfileStore::kSchemaVersion + 1),
+       "up to " + std::to_string(ProfileStore::kSchemaVersion)});
   EXPECT_EQ(ReadBytes(path), before);
 }
 
@@ -693,9 +694,8 @@ TEST(ProfileStore, QueryIsReadOnly) {
 
     for (const char* sql :
          {"DELETE FROM steps", "UPDATE runs SET name = 'x'", "DROP TABLE runs",
-          "INSERT INTO meta VALUES ('a', 'b')", "PRAGMA user_version = 7",
-          "CREATE TABLE t(x)", "BEGIN", "SAVEPOINT a", "ATTACH 'other.db' AS other",
-          "DETACH main"}) {
+          "INSERT INTO meta VALUES ('a', 'b')", "PRAGMA user_version = 7", "CREATE TABLE t(x)",
+          "BEGIN", "SAVEPOINT a", "ATTACH 'other.db' AS other", "DETACH main"}) {
       ExpectInputError([&] { db.Query(sql); }, {"query on", "read-only"});
     }
     ExpectInputError([&] { db.Query("SELECT 1; DELETE FROM steps"); }, {"more than one"});

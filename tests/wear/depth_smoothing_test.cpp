@@ -129,11 +129,11 @@ TEST(DepthSmoothingTest, ZerosFarFromTheSupportStayZeroAndPatchesStaySeparate) {
   const DepthSmoothingOptions options;
   const DepthSmoothing out = SmoothDepthField(raw, kBin_m, options);
   EXPECT_EQ(out.num_windows, 2);
-  const int margin = static_cast<int>(std::ceil(options.margin_lengths *
-                                                options.smoothing_length_m / kBin_m));
+  const int margin =
+      static_cast<int>(std::ceil(options.margin_lengths * options.smoothing_length_m / kBin_m));
   for (int i = 0; i < kBins; ++i) {
-    const bool near = (i >= 300 - margin && i < 400 + margin) ||
-                      (i >= 1000 - margin && i < 1100 + margin);
+    const bool near =
+        (i >= 300 - margin && i < 400 + margin) || (i >= 1000 - margin && i < 1100 + margin);
     if (!near) {
       ASSERT_EQ(out.depth_m[i], 0.0) << i;
     }
@@ -270,8 +270,7 @@ TEST(DepthSmoothingTest, TrivialFieldsPassThrough) {
   EXPECT_TRUE(SmoothDepthField({}, kBin_m, {}).depth_m.empty());
 }
 
-std::string ThrownMessage(const std::vector<double>& d, double h,
-                          const DepthSmoothingOptions& o) {
+std::string ThrownMessage(const std::vector<double>& d, double h, const DepthSmoothingOptions& o) {
   try {
     SmoothDepthField(d, h, o);
   } catch (const InputError& e) {

@@ -20,9 +20,9 @@
 namespace railwear {
 namespace {
 
-constexpr double kH = 2.6e9;      // rail hardness [Pa] (R260, DESIGN.md scene example)
-constexpr double kV = 20.0;       // rolling speed [m/s]
-constexpr double kMu = 0.3;       // friction coefficient
+constexpr double kH = 2.6e9;  // rail hardness [Pa] (R260, DESIGN.md scene example)
+constexpr double kV = 20.0;   // rolling speed [m/s]
+constexpr double kMu = 0.3;   // friction coefficient
 // The mapping only regroups the same column areas: sums agree to rounding (a few hundred terms
 // of 1e-16 relative each).
 constexpr double kConservationTolerance = 1e-12;
@@ -157,9 +157,10 @@ TEST(PassDepth, FullSlipHertzDepthMatchesTheClosedForm) {
       EXPECT_EQ(depth[bb], 0.0) << "bin " << bb;
     }
   }
-  std::printf("[ measured ] full-slip Hertz depth: peak %.4e m per pass, max error %.2e of the "
-              "peak on |y| <= 0.87 b (tolerance %.2e)\n",
-              peak, max_err, kQuadratureTolerance);
+  std::printf(
+      "[ measured ] full-slip Hertz depth: peak %.4e m per pass, max error %.2e of the "
+      "peak on |y| <= 0.87 b (tolerance %.2e)\n",
+      peak, max_err, kQuadratureTolerance);
 }
 
 // A 10 mm wheel in a 10.25 mm rail groove, conformal model, rolling with prescribed creepage.
@@ -239,8 +240,8 @@ TEST(PassDepth, WornAreaIsConservedOnACurvedGrooveGrid) {
   ASSERT_FALSE(patch.grid.planar);
   const CurveLocator rail(problem.rail_profile, true);
   const WearGrid wg = WearGrid::ForProfile(problem.rail_profile, 0.07e-3);
-  for (WearLawKind kind : {WearLawKind::kArchard, WearLawKind::kKthContinuous,
-                           WearLawKind::kUsfd}) {
+  for (WearLawKind kind :
+       {WearLawKind::kArchard, WearLawKind::kKthContinuous, WearLawKind::kUsfd}) {
     WearLaw law;
     law.kind = kind;
     const std::vector<double> dz = CalcColumnPassDepth(patch, law, kH, kV);
@@ -255,9 +256,10 @@ TEST(PassDepth, WornAreaIsConservedOnACurvedGrooveGrid) {
   const std::vector<double> edges = CalcColumnEdgesOnRail(patch.grid, rail);
   const double rail_arc = std::abs(edges.back() - edges.front());
   const double grid_arc = patch.grid.ns * patch.grid.ds_m;
-  std::printf("[ measured ] groove patch: %d columns of %.4f mm span %.6f mm of rail arc "
-              "(%.6f mm on the reference surface)\n",
-              patch.grid.ns, patch.grid.ds_m * 1e3, rail_arc * 1e3, grid_arc * 1e3);
+  std::printf(
+      "[ measured ] groove patch: %d columns of %.4f mm span %.6f mm of rail arc "
+      "(%.6f mm on the reference surface)\n",
+      patch.grid.ns, patch.grid.ds_m * 1e3, rail_arc * 1e3, grid_arc * 1e3);
   EXPECT_GT(std::abs(rail_arc / grid_arc - 1.0), 1e-4);
   // Frictional energy per position conserves the patch's frictional power / V.
   const std::vector<double> e = CalcPatchPassEnergy(patch, rail, kV, wg);
@@ -293,10 +295,10 @@ TEST(PassDepth, GaugeCornerDepthIsConservedAndLandsUnderThePatch) {
   // At the gauge corner: the worn bins sit on the gauge side of the canted head (y < -15 mm).
   const int peak = static_cast<int>(std::max_element(depth.begin(), depth.end()) - depth.begin());
   const Eigen::Vector2d at_peak = problem.rail_profile.Position(wg.Centre(peak));
-  std::printf("[ measured ] gauge corner (kinematic): worn area %.4e m^2 per pass, peak depth "
-              "%.3e m at rail (y, z) = (%.2f, %.2f) mm; patch on rail arc [%.2f, %.2f] mm\n",
-              WornArea(depth, wg), depth[peak], at_peak.x() * 1e3, at_peak.y() * 1e3, lo * 1e3,
-              hi * 1e3);
+  std::printf(
+      "[ measured ] gauge corner (kinematic): worn area %.4e m^2 per pass, peak depth "
+      "%.3e m at rail (y, z) = (%.2f, %.2f) mm; patch on rail arc [%.2f, %.2f] mm\n",
+      WornArea(depth, wg), depth[peak], at_peak.x() * 1e3, at_peak.y() * 1e3, lo * 1e3, hi * 1e3);
   EXPECT_LT(at_peak.x(), -15e-3);
 }
 
@@ -360,11 +362,12 @@ TEST(PassDepth, UniformSlipDepthSitsOnThePressureCentre) {
   const int peak = static_cast<int>(std::max_element(depth.begin(), depth.end()) - depth.begin());
   EXPECT_GE(wg.Centre(peak), std::min(edges[j_max], edges[j_max + 1]) - wg.h_m);
   EXPECT_LE(wg.Centre(peak), std::max(edges[j_max], edges[j_max + 1]) + wg.h_m);
-  std::printf("[ measured ] gauge corner (uniform slip): depth centroid at rail s = %.4f mm, "
-              "pressure centre %.4f mm; peak at %.3f mm (most loaded column [%.3f, %.3f] mm); "
-              "patch [%.3f, %.3f] mm\n",
-              s_depth * 1e3, s_centre * 1e3, wg.Centre(peak) * 1e3, edges[j_max] * 1e3,
-              edges[j_max + 1] * 1e3, lo * 1e3, hi * 1e3);
+  std::printf(
+      "[ measured ] gauge corner (uniform slip): depth centroid at rail s = %.4f mm, "
+      "pressure centre %.4f mm; peak at %.3f mm (most loaded column [%.3f, %.3f] mm); "
+      "patch [%.3f, %.3f] mm\n",
+      s_depth * 1e3, s_centre * 1e3, wg.Centre(peak) * 1e3, edges[j_max] * 1e3,
+      edges[j_max + 1] * 1e3, lo * 1e3, hi * 1e3);
   for (int b = 0; b < wg.n; ++b) {
     if (depth[b] != 0.0) {
       EXPECT_GT((b + 1) * wg.h_m, lo);
@@ -390,7 +393,6 @@ TEST(PassDepth, DamageCoversTheLoadedPositions) {
     const double expected = d.wlrm_damage * overlap / wg.h_m;
     EXPECT_NEAR(damage[b], expected, kConservationTolerance * d.wlrm_damage) << "bin " << b;
     if (overlap >= (1.0 - kConservationTolerance) * wg.h_m) ++full;  // intensive: all of it
-
   }
   EXPECT_GT(full, 20);
 }

@@ -29,8 +29,8 @@ double DistanceToProfile(const Profile& p, const Eigen::Vector2d& q, double s) {
     Eigen::Vector2d pos, d1, d2;
     p.Evaluate(s, &pos, &d1, &d2);
     const Eigen::Vector2d diff = pos - q;
-    const double next = std::clamp(s - d1.dot(diff) / (d1.squaredNorm() + d2.dot(diff)), 0.0,
-                                   p.Length());
+    const double next =
+        std::clamp(s - d1.dot(diff) / (d1.squaredNorm() + d2.dot(diff)), 0.0, p.Length());
     if (std::abs(next - s) < 1e-14) break;
     s = next;
   }
@@ -113,8 +113,8 @@ TEST(ProfileFitTest, MeasuredProfilesFitAtTheirNoiseLevel) {
         c.file, n, fit.rms_distance_m * kMm, fit.rms_inlier_distance_m * kMm, fit.num_rejected,
         fit.max_distance_m * kMm, fit.max_distance_index, fit.noise_estimate_m * kMm,
         fit.fit_noise_m * kMm, fit.fit_noise_m / fit.noise_estimate_m, fit.num_downweighted,
-        fit.smoothing_length_m * kMm, fit.curvature_min_per_m / kMm,
-        fit.curvature_max_per_m / kMm, fit.summary.time_s * 1e3);
+        fit.smoothing_length_m * kMm, fit.curvature_min_per_m / kMm, fit.curvature_max_per_m / kMm,
+        fit.summary.time_s * 1e3);
     EXPECT_GT(fit.noise_estimate_m, 0.0) << c.file;
     EXPECT_LT(fit.fit_noise_m, kNoiseRatioTolerance * fit.noise_estimate_m) << c.file;
     EXPECT_GT(fit.fit_noise_m, fit.noise_estimate_m / kNoiseRatioTolerance) << c.file;
@@ -160,8 +160,8 @@ double CornerArc(const ProfileFit& fit, bool rail) {
 // than one standard deviation on average: an overshooting (or corner-cutting) spline would put
 // a run of points on one side by more than the noise.
 constexpr double kCornerHalfWidth_m = 5e-3;
-constexpr double kBand = 4.0;        // 4 sigma: ~1 in 16000 for Gaussian noise
-constexpr double kRunBias = 1.0;     // mean of 5 points: its own spread is 0.45 sigma
+constexpr double kBand = 4.0;     // 4 sigma: ~1 in 16000 for Gaussian noise
+constexpr double kRunBias = 1.0;  // mean of 5 points: its own spread is 0.45 sigma
 constexpr int kRun = 5;
 
 TEST(ProfileFitTest, NoOvershootAtTheGaugeCornerOrFlangeRoot) {

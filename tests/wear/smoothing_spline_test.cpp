@@ -8,8 +8,8 @@
 #include <random>
 #include <vector>
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include "core/numerics/input_error.h"
 
@@ -280,9 +280,9 @@ TEST(SmoothingSplineTest, NamesRoundTrip) {
   for (RobustLoss v : {RobustLoss::kNone, RobustLoss::kHuber, RobustLoss::kCauchy}) {
     EXPECT_EQ(RobustLossFromString(ToString(v)), v);
   }
-  for (SmoothingSplineStatus v : {SmoothingSplineStatus::kConverged,
-                                  SmoothingSplineStatus::kNoConvergence,
-                                  SmoothingSplineStatus::kFailure}) {
+  for (SmoothingSplineStatus v :
+       {SmoothingSplineStatus::kConverged, SmoothingSplineStatus::kNoConvergence,
+        SmoothingSplineStatus::kFailure}) {
     EXPECT_EQ(SmoothingSplineStatusFromString(ToString(v)), v);
   }
   EXPECT_FALSE(RobustLossFromString("tukey").has_value());

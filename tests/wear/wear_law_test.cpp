@@ -70,9 +70,9 @@ TEST(WearLawTest, KthContinuousMatchesMapAwayFromBoundariesAndIsContinuous) {
 }
 
 TEST(WearLawTest, UsfdContinuousFormAndKnees) {
-  EXPECT_DOUBLE_EQ(UsfdWearRate(5.0), 26.5);          // 5.3 x
-  EXPECT_DOUBLE_EQ(UsfdWearRate(40.0), 55.0);         // plateau
-  EXPECT_NEAR(UsfdWearRate(100.0), 1411.3, 1e-9);     // 61.9 x - 4778.7
+  EXPECT_DOUBLE_EQ(UsfdWearRate(5.0), 26.5);       // 5.3 x
+  EXPECT_DOUBLE_EQ(UsfdWearRate(40.0), 55.0);      // plateau
+  EXPECT_NEAR(UsfdWearRate(100.0), 1411.3, 1e-9);  // 61.9 x - 4778.7
   // Knees of the continuous form: 55/5.3 and (55 + 4778.7)/61.9, within 1 % of the published.
   const double knee1 = 55.0 / 5.3, knee2 = (55.0 + 4778.7) / 61.9;
   EXPECT_NEAR(knee1, 10.4, 0.01 * 10.4);

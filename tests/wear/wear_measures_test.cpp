@@ -14,8 +14,8 @@
 
 #include "core/geometry/curve_locator.h"
 #include "core/numerics/input_error.h"
-#include "core/profile/builtin_profiles.h"
 #include "core/numerics/units.h"
+#include "core/profile/builtin_profiles.h"
 
 namespace railwear {
 namespace {
@@ -129,8 +129,8 @@ TEST(WearMeasures, UniformInwardOffsetOfUIC60) {
   EXPECT_NEAR(m.vertical_wear_m, d, kSplineTol_m);  // W1: the crown moved down by d
   EXPECT_NEAR(m.wear_45_m, d, kSplineTol_m);        // W3: along a normal, as the offset
   // W2: the gauge face at z = 14 mm is now the R(13 - 0.5) arc about the same centre.
-  EXPECT_NEAR(m.side_wear_m,
-              (ConcentricGaugeY_mm(kR13_mm - 0.5, 14.0) + kGaugePointY_mm) * kMm, kSplineTol_m);
+  EXPECT_NEAR(m.side_wear_m, (ConcentricGaugeY_mm(kR13_mm - 0.5, 14.0) + kGaugePointY_mm) * kMm,
+              kSplineTol_m);
   // Area of the band between a curve and its inward offset: d L - d^2/2 * (turning angle).
   // Against d L alone the difference is at most d^2/2 * pi (0.39 mm^2 of 67 mm^2).
   const double theta = std::abs(TurningAngle(rail));
@@ -218,8 +218,7 @@ TEST(WearMeasures, AdditiveOverStepsWithTheStepZeroGauge) {
   const WearMeasures to_b = CompareProfiles(rail, b, options);
   const WearMeasures a_to_b = CompareProfiles(a, b, options);
   // Same lines, differences of crossings on the same curves: rounding only.
-  EXPECT_NEAR(a_to_b.vertical_wear_m, to_b.vertical_wear_m - to_a.vertical_wear_m,
-              kSameCurveTol_m);
+  EXPECT_NEAR(a_to_b.vertical_wear_m, to_b.vertical_wear_m - to_a.vertical_wear_m, kSameCurveTol_m);
   EXPECT_NEAR(a_to_b.side_wear_m, to_b.side_wear_m - to_a.side_wear_m, kSameCurveTol_m);
   EXPECT_NEAR(a_to_b.wear_45_m, to_b.wear_45_m - to_a.wear_45_m, kSameCurveTol_m);
   EXPECT_NEAR(a_to_b.wear_45_m, 1.0e-3, 2 * kSplineTol_m);

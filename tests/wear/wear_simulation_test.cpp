@@ -51,12 +51,13 @@ struct RunOutcome {
 RunOutcome RunAll(const WearStudy& study, int max_steps = 0) {
   RunOutcome run;
   const WearState start = MakeInitialState(study);
-  run.summary = RunWear(study, start.rail, start,
-                        [&](const StepResult& s) {
-                          run.steps.push_back(s);
-                          return true;
-                        },
-                        max_steps);
+  run.summary = RunWear(
+      study, start.rail, start,
+      [&](const StepResult& s) {
+        run.steps.push_back(s);
+        return true;
+      },
+      max_steps);
   return run;
 }
 
@@ -108,9 +109,10 @@ TEST(WearSimulationTest, HalvingTheStepLimitChangesTheFinalDepthByLessThanTwoPer
   EXPECT_GT(b.steps.size(), a.steps.size());
   EXPECT_GT(da, 0.3e-3);  // several steps of wear, so the comparison means something
   EXPECT_LT(std::abs(da - db), 0.02 * db) << "coarse " << da << " fine " << db;
-  std::printf("[figure] final max depth: step limit 0.1 mm %.4f mm (%zu steps), 0.05 mm %.4f mm "
-              "(%zu steps): %.2f %%\n",
-              da * 1e3, a.steps.size(), db * 1e3, b.steps.size(), 100 * (da - db) / db);
+  std::printf(
+      "[figure] final max depth: step limit 0.1 mm %.4f mm (%zu steps), 0.05 mm %.4f mm "
+      "(%zu steps): %.2f %%\n",
+      da * 1e3, a.steps.size(), db * 1e3, b.steps.size(), 100 * (da - db) / db);
 }
 
 TEST(WearSimulationTest, SplittingAndPermutingTrafficChangeNothing) {
@@ -183,32 +185,34 @@ TEST(WearSimulationTest, TwoHundredStepsKeepASmoothProfile) {
   std::vector<double> curvature;  // over the worn band, after steps 50, 100, 150, 200
   double s0 = 0.0, s1 = 0.0;
   const WearState start = MakeInitialState(study);
-  const WearRunSummary run = RunWear(study, start.rail, start,
-                                     [&](const StepResult& step) {
-                                       if (step.state.step == 1) {  // the band the wheel wears
-                                         int first = -1, last = -1;
-                                         for (int b = 0; b < step.grid.n; ++b) {
-                                           if (step.step_depth_m[b] > 1e-3 * 1e-5) {
-                                             if (first < 0) first = b;
-                                             last = b;
-                                           }
-                                         }
-                                         s0 = step.grid.Centre(first);
-                                         s1 = step.grid.Centre(last);
-                                       }
-                                       if (step.state.step % 50 == 0) {
-                                         curvature.push_back(MaxCurvature(step.state.rail, s0, s1));
-                                       }
-                                       return true;
-                                     },
-                                     200);
+  const WearRunSummary run = RunWear(
+      study, start.rail, start,
+      [&](const StepResult& step) {
+        if (step.state.step == 1) {  // the band the wheel wears
+          int first = -1, last = -1;
+          for (int b = 0; b < step.grid.n; ++b) {
+            if (step.step_depth_m[b] > 1e-3 * 1e-5) {
+              if (first < 0) first = b;
+              last = b;
+            }
+          }
+          s0 = step.grid.Centre(first);
+          s1 = step.grid.Centre(last);
+        }
+        if (step.state.step % 50 == 0) {
+          curvature.push_back(MaxCurvature(step.state.rail, s0, s1));
+        }
+        return true;
+      },
+      200);
   ASSERT_EQ(run.steps_done, 200);
   ASSERT_EQ(curvature.size(), 4u);
   const double unworn = MaxCurvature(start.rail, s0, s1);
-  std::printf("[figure] 200 steps, %.2f mm deep: max |curvature| over the worn band %.1f 1/m "
-              "(unworn %.1f) after 50/100/150/200 steps: %.1f %.1f %.1f %.1f\n",
-              CompareProfiles(start.rail, run.state.rail).max_depth_m * 1e3,
-              unworn, unworn, curvature[0], curvature[1], curvature[2], curvature[3]);
+  std::printf(
+      "[figure] 200 steps, %.2f mm deep: max |curvature| over the worn band %.1f 1/m "
+      "(unworn %.1f) after 50/100/150/200 steps: %.1f %.1f %.1f %.1f\n",
+      CompareProfiles(start.rail, run.state.rail).max_depth_m * 1e3, unworn, unworn, curvature[0],
+      curvature[1], curvature[2], curvature[3]);
   // Bounded: the worn gauge corner may sharpen (its radius shrinks as the flange root imprints
   // itself), but no sawtooth: the curvature stays within 3x the unworn maximum (radius 13 mm ->
   // no radius below ~4 mm) and does not keep growing over the second hundred steps.

@@ -59,9 +59,9 @@ TEST_F(ExternalProgramTest, FindsProgramsOnPath) {
   ASSERT_FALSE(sh.empty());
   EXPECT_EQ(sh.back(), 'h');
   EXPECT_EQ(FindOnPath("railwear-no-such-program"), "");
-  EXPECT_EQ(FindOnPath(sh), sh);                   // a path is taken as it is
+  EXPECT_EQ(FindOnPath(sh), sh);  // a path is taken as it is
   EXPECT_EQ(FindOnPath("/nonexistent/sh"), "");
-  EXPECT_EQ(FindOnPath((dir_).string()), "");      // a directory is no program
+  EXPECT_EQ(FindOnPath((dir_).string()), "");  // a directory is no program
 }
 
 TEST_F(ExternalProgramTest, MissingProgramIsBadInputWithInstallHint) {
@@ -70,10 +70,11 @@ TEST_F(ExternalProgramTest, MissingProgramIsBadInputWithInstallHint) {
   EXPECT_TRUE(test::Contains(message, "install it from nowhere"));
   EXPECT_TRUE(test::Contains(message, "RAILWEAR_TEST_NO_SUCH"));
 
-  const std::string ccx = ErrorOf({"railwear-no-such-ccx", "RAILWEAR_TEST_NO_SUCH", CcxProgram().description,
-                                   CcxProgram().install_hint});
-  EXPECT_TRUE(test::Contains(ccx, "ccx (CalculiX) is not installed or not on PATH: install the "
-                                  "Debian package calculix-ccx (bash .ci/install-deps.sh)"));
+  const std::string ccx = ErrorOf({"railwear-no-such-ccx", "RAILWEAR_TEST_NO_SUCH",
+                                   CcxProgram().description, CcxProgram().install_hint});
+  EXPECT_TRUE(test::Contains(ccx,
+                             "ccx (CalculiX) is not installed or not on PATH: install the "
+                             "Debian package calculix-ccx (bash .ci/install-deps.sh)"));
 }
 
 TEST_F(ExternalProgramTest, EnvironmentOverrideWinsAndIsChecked) {
@@ -85,8 +86,9 @@ TEST_F(ExternalProgramTest, EnvironmentOverrideWinsAndIsChecked) {
   {
     ScopedEnv env("RAILWEAR_TEST_NO_SUCH", "/nonexistent/ccx");
     const std::string message = ErrorOf(spec);
-    EXPECT_TRUE(test::Contains(message, "RAILWEAR_TEST_NO_SUCH = '/nonexistent/ccx' is not an "
-                                        "executable file"));
+    EXPECT_TRUE(test::Contains(message,
+                               "RAILWEAR_TEST_NO_SUCH = '/nonexistent/ccx' is not an "
+                               "executable file"));
   }
   {
     ScopedEnv env("RAILWEAR_TEST_NO_SUCH", "");  // empty: as if unset
@@ -150,8 +152,9 @@ TEST_F(ExternalProgramTest, MissingExecutableExitsWith127AndSaysWhy) {
 
 TEST_F(ExternalProgramTest, FailureMessageQuotesTheLogTail) {
   ProgramRun run;
-  run.argv = {"sh", "-c", "for i in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do echo "
-                          "line$i; done; echo '*ERROR in job'; exit 201"};
+  run.argv = {"sh", "-c",
+              "for i in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do echo "
+              "line$i; done; echo '*ERROR in job'; exit 201"};
   run.work_dir = dir_.string();
   try {
     RunProgramOrThrow(run, "ccx (CalculiX)");

@@ -14,8 +14,8 @@
 #include <gtest/gtest.h>
 
 #include "calibration/fem/ccx_deck.h"
-#include "tests/calibration/fem/fem_test_support.h"
 #include "core/numerics/units.h"
+#include "tests/calibration/fem/fem_test_support.h"
 
 namespace railwear {
 namespace {
@@ -37,7 +37,8 @@ FemContactSurface HertzSurface(double a, double b, double p0, int cells, double 
     for (int j = 0; j < n; ++j) {
       const double x = 2.0 * a * i / (n - 1), arc = 2.0 * b * j / (n - 1);
       Eigen::Vector3d p(x, arc, 0.0);
-      if (radius > 0.0) p = {x, radius * std::sin(arc / radius), radius * (1 - std::cos(arc / radius))};
+      if (radius > 0.0)
+        p = {x, radius * std::sin(arc / radius), radius * (1 - std::cos(arc / radius))};
       s.positions_m.push_back(p);
       const double q = 1.0 - x * x / (a * a) - arc * arc / (b * b);
       s.pressure_Pa.push_back(q > 0.0 ? p0 * std::sqrt(q) : 0.0);
@@ -101,8 +102,7 @@ TEST(FemContactPatchTest, HertzFieldOnAGrooveArc) {
       if (q > 0) vertical += 4.0 * p0 * std::sqrt(q) * std::cos(s / r) * (a / m) * (b / m);
     }
   }
-  EXPECT_NEAR(p.normal_force_N / (2.0 / 3.0 * p0 * std::numbers::pi * a * b), 1.0,
-              kForceTolerance);
+  EXPECT_NEAR(p.normal_force_N / (2.0 / 3.0 * p0 * std::numbers::pi * a * b), 1.0, kForceTolerance);
   EXPECT_NEAR(p.vertical_force_N / vertical, 1.0, kForceTolerance);
   EXPECT_LT(p.vertical_force_N, 0.99 * p.normal_force_N);
 }
@@ -136,8 +136,9 @@ class FemContactFilesTest : public TempDirTest {};
 // lacks node 3.
 TEST_F(FemContactFilesTest, SlaveSurfaceFromAContactBlock) {
   FemMesh mesh;
-  const double c[10][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, -1}, {0.5, 0, 0},
-                           {0.5, 0.5, 0}, {0, 0.5, 0}, {0, 0, -0.5}, {0.5, 0, -0.5}, {0, 0.5, -0.5}};
+  const double c[10][3] = {{0, 0, 0},      {1, 0, 0},     {0, 1, 0},   {0, 0, -1},
+                           {0.5, 0, 0},    {0.5, 0.5, 0}, {0, 0.5, 0}, {0, 0, -0.5},
+                           {0.5, 0, -0.5}, {0, 0.5, -0.5}};
   for (int i = 0; i < 10; ++i) mesh.AddNode(i + 1, {c[i][0], c[i][1], c[i][2]});
   MeshElement e;
   e.id = 7;
@@ -151,7 +152,8 @@ TEST_F(FemContactFilesTest, SlaveSurfaceFromAContactBlock) {
       "    2C                            10                                     1\n";
   char line[128];
   for (int i = 0; i < 10; ++i) {
-    std::snprintf(line, sizeof line, " -1%10d%12.5E%12.5E%12.5E\n", i + 1, c[i][0], c[i][1], c[i][2]);
+    std::snprintf(line, sizeof line, " -1%10d%12.5E%12.5E%12.5E\n", i + 1, c[i][0], c[i][1],
+                  c[i][2]);
     frd += line;
   }
   frd +=
@@ -183,23 +185,30 @@ TEST_F(FemContactFilesTest, SlaveSurfaceFromAContactBlock) {
   EXPECT_DOUBLE_EQ(s.pressure_Pa[static_cast<size_t>(t[2])], 0.0);
   EXPECT_DOUBLE_EQ(s.pressure_Pa[static_cast<size_t>(t[3])], 50.0 * kMPa);
   EXPECT_TRUE(s.positions_m[static_cast<size_t>(t[3])].isApprox(Eigen::Vector3d(0.5e-3, 0, 0)));
-  EXPECT_TRUE(s.positions_m[static_cast<size_t>(t[4])].isApprox(Eigen::Vector3d(0.5e-3, 0.5e-3, 0)));
+  EXPECT_TRUE(
+      s.positions_m[static_cast<size_t>(t[4])].isApprox(Eigen::Vector3d(0.5e-3, 0.5e-3, 0)));
   // A file without a CONTACT block is a failure of the run.
-  const FrdFile empty = ReadFrd(Write("none.frd", "    1C\n    2C                             1                                     1\n -1         1 0.00000E+00 0.00000E+00 0.00000E+00\n -3\n 9999\n"));
+  const FrdFile empty =
+      ReadFrd(Write("none.frd",
+                    "    1C\n    2C                             1                                  "
+                    "   1\n -1         1 0.00000E+00 0.00000E+00 0.00000E+00\n -3\n 9999\n"));
   EXPECT_THROW(FemContactSlaveSurface(mesh, {{7, 1}}, empty), std::runtime_error);
 }
 
 TEST_F(FemContactFilesTest, DeckHasContactSetsAndLoad) {
-  FemContactOptions o = ResolvedFemContactOptions(DefaultFemContactOptions(FemContactCase::kWheelInGroove));
+  FemContactOptions o =
+      ResolvedFemContactOptions(DefaultFemContactOptions(FemContactCase::kWheelInGroove));
   const std::string deck = FemContactDeck(o, "mesh.inp", {11, 12, 13, 14}, 1001);
   EXPECT_TRUE(Contains(deck, "*INCLUDE, INPUT=mesh.inp"));
   EXPECT_TRUE(Contains(deck, "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n5000000\n"));
   EXPECT_TRUE(Contains(deck, "*CONTACT PAIR, INTERACTION=SI, TYPE=SURFACE TO SURFACE\nSR, SW\n"));
-  for (const char* bc : {"WSYMX, 1, 1", "RSYMX, 1, 1", "WSYMY, 2, 2", "RSYMY, 2, 2", "RBOT, 1, 3"}) {
+  for (const char* bc :
+       {"WSYMX, 1, 1", "RSYMX, 1, 1", "WSYMY, 2, 2", "RSYMY, 2, 2", "RBOT, 1, 3"}) {
     EXPECT_TRUE(Contains(deck, bc));
   }
   // Four springs of 10/4 N/mm, element ids from 1001.
-  EXPECT_TRUE(Contains(deck, "*ELEMENT, TYPE=SPRING1, ELSET=ESPRING\n1001, 11\n1002, 12\n1003, 13\n1004, 14\n"));
+  EXPECT_TRUE(Contains(
+      deck, "*ELEMENT, TYPE=SPRING1, ELSET=ESPRING\n1001, 11\n1002, 12\n1003, 13\n1004, 14\n"));
   EXPECT_TRUE(Contains(deck, "*SPRING, ELSET=ESPRING\n3\n2.5\n"));
   // The far face: a cylinder of radius 460 - 40 mm over +-40/460 rad and 30 mm (quarter);
   // its pressure's vertical resultant is 10 kN / 4.
@@ -221,7 +230,8 @@ TEST(FemContactGeoTest, NamesEveryGroupAndRevolvesTheWheel) {
     }
     // Revolved about the axle through z = 460 mm by -40/460 rad (toward +x).
     char revolve[96];
-    std::snprintf(revolve, sizeof revolve, "Extrude { {0, 1, 0}, {0, 0, 460}, %.12g }", -40.0 / 460.0);
+    std::snprintf(revolve, sizeof revolve, "Extrude { {0, 1, 0}, {0, 0, 460}, %.12g }",
+                  -40.0 / 460.0);
     EXPECT_TRUE(Contains(geo, revolve)) << ToString(c);
     EXPECT_TRUE(Contains(geo, "rr[] = Extrude { 40, 0, 0 }")) << ToString(c);
     EXPECT_TRUE(Contains(geo, "Mesh.ElementOrder = 2;"));
@@ -243,7 +253,9 @@ TEST(FemContactOptionsTest, ChecksWithMessages) {
   EXPECT_TRUE(Contains(message([](auto& b) { b.groove_radius_m = 10e-3; }),
                        "groove radius 10 mm: expected > the convex radius 10 mm"));
   EXPECT_TRUE(Contains(message([](auto& b) { b.depth_m = 10e-3; }), "depth 10 mm: expected >"));
-  EXPECT_TRUE(Contains(message([](auto& b) { b.mesh_sizes_m = {0.5e-3, -1e-3}; }),
+  EXPECT_TRUE(Contains(message([](auto& b) {
+                         b.mesh_sizes_m = {0.5e-3, -1e-3};
+                       }),
                        "mesh size -1 mm: expected > 0"));
   EXPECT_TRUE(Contains(message([](auto& b) { b.zone_s_m = 14e-3; }), "zone_s 14 mm: expected <"));
   EXPECT_TRUE(Contains(message([](auto& b) { b.load_N = 0; }), "load 0 N: expected > 0"));

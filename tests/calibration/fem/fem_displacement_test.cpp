@@ -12,8 +12,8 @@
 
 #include "calibration/curve_comparison.h"
 #include "core/numerics/input_error.h"
-#include "tests/calibration/fem/fem_test_support.h"
 #include "core/numerics/units.h"
+#include "tests/calibration/fem/fem_test_support.h"
 
 namespace railwear {
 namespace {
@@ -74,8 +74,9 @@ TEST_F(FemDisplacementTest, OptionsAreChecked) {
   EXPECT_TRUE(test::Contains(ErrorOf(bad), "nu 0.5: expected a number in [0, 0.5)"));
   bad = o;
   bad.max_element_m = 0.1e-3;
-  EXPECT_TRUE(test::Contains(ErrorOf(bad), "largest element 0.1 mm: expected at least the mesh "
-                                           "size at the load (0.2 mm)"));
+  EXPECT_TRUE(test::Contains(ErrorOf(bad),
+                             "largest element 0.1 mm: expected at least the mesh "
+                             "size at the load (0.2 mm)"));
   bad = o;
   bad.min_distance_m = 20e-3;
   EXPECT_TRUE(test::Contains(ErrorOf(bad), "expected 0 < min_distance < max_distance"));
@@ -84,8 +85,9 @@ TEST_F(FemDisplacementTest, OptionsAreChecked) {
   EXPECT_TRUE(test::Contains(ErrorOf(bad), "body length 40 mm: expected at least 4 max_distance"));
   bad = Coarse(CurveBody::kConcave, 15.1);
   bad.width_m = 30e-3;
-  EXPECT_TRUE(test::Contains(ErrorOf(bad), "body width 30 mm: expected more than the groove's "
-                                           "width 2R = 30.2 mm"));
+  EXPECT_TRUE(test::Contains(ErrorOf(bad),
+                             "body width 30 mm: expected more than the groove's "
+                             "width 2R = 30.2 mm"));
   bad = Coarse(CurveBody::kConvex, 15);
   bad.depth_m = 15e-3;
   EXPECT_TRUE(test::Contains(ErrorOf(bad), "body depth 15 mm: expected more than R = 15 mm"));
@@ -115,8 +117,8 @@ TEST_F(FemDisplacementTest, DefaultBodySizes) {
 TEST_F(FemDisplacementTest, GeoNamesEveryGroup) {
   const FemDisplacementOptions o = Coarse(CurveBody::kConcave, 15.1);
   const std::string geo = FemDisplacementGeo(o, DefaultFemBodySize(o.body, o.radius_m));
-  for (const char* group : {"\"BODY\"", "\"LOAD\"", "\"SYMX\"", "\"END\"", "\"TOP\"",
-                            "\"TOPFLAT\"", "\"SIDE\"", "\"BOTTOM\"", "\"SYMY\""}) {
+  for (const char* group : {"\"BODY\"", "\"LOAD\"", "\"SYMX\"", "\"END\"", "\"TOP\"", "\"TOPFLAT\"",
+                            "\"SIDE\"", "\"BOTTOM\"", "\"SYMY\""}) {
     EXPECT_TRUE(test::Contains(geo, group));
   }
   EXPECT_TRUE(test::Contains(geo, "R = 15.1; W2 = 100; D = 100; L2 = 100;"));
@@ -200,9 +202,9 @@ TEST_F(FemDisplacementTest, LargeBlockRawCurveAndOffsetDecay) {
     const CurveComparison* s = Find(small, CurveLoad::kNormal, path);
     const CurveComparison* l = Find(large, CurveLoad::kNormal, path);
     ASSERT_TRUE(s != nullptr && l != nullptr);
-    std::cout << "[ measured ] coarse flat block, normal load, " << ToString(path)
-              << ": offset " << s->offset_m_per_N / kNmPerN << " nm/N (200 mm) and "
-              << l->offset_m_per_N / kNmPerN << " nm/N (800 mm); raw error 1-10 mm on the "
+    std::cout << "[ measured ] coarse flat block, normal load, " << ToString(path) << ": offset "
+              << s->offset_m_per_N / kNmPerN << " nm/N (200 mm) and " << l->offset_m_per_N / kNmPerN
+              << " nm/N (800 mm); raw error 1-10 mm on the "
               << "800 mm block " << 100 * l->max_raw_error << " %\n";
     EXPECT_LT(l->max_raw_error, kRawTolerance) << ToString(path);
     const double ratio = l->offset_m_per_N / s->offset_m_per_N;

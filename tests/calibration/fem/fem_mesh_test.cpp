@@ -114,8 +114,8 @@ TEST_F(FemMeshTest, MalformedFilesNameTheLine) {
   EXPECT_TRUE(test::Contains(ErrorOf("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 0 0 0\n"
                                      "$EndNodes\n$Elements\n1\n1 2 2 1 1 1 1 7\n$EndElements\n"),
                              "element 1 expects 3 existing node ids"));
-  EXPECT_TRUE(test::Contains(ErrorOf("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"),
-                             "the file lacks $Nodes"));
+  EXPECT_TRUE(
+      test::Contains(ErrorOf("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"), "the file lacks $Nodes"));
   EXPECT_TRUE(test::Contains(ErrorOf("garbage\n"), "bad.msh:1: 'garbage': expected a section"));
   try {
     ReadGmshMesh((dir_ / "missing.msh").string());

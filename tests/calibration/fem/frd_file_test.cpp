@@ -102,7 +102,7 @@ TEST_F(FrdFileTest, ReadsNodesAndBlocksByNameAndStep) {
   EXPECT_EQ(s->Row(99), -1);
   EXPECT_EQ(frd.Find("STRESS", 2), nullptr);
   EXPECT_EQ(frd.Find("CONTACT"), nullptr);
-  EXPECT_THROW(FrdDisplacement(*s, 17), std::runtime_error);  // no D1..D3
+  EXPECT_THROW(FrdDisplacement(*s, 17), std::runtime_error);   // no D1..D3
   EXPECT_THROW(FrdDisplacement(*d1, 99), std::runtime_error);  // no such node
 }
 
@@ -143,8 +143,9 @@ TEST_F(FrdFileTest, MalformedFilesNameTheLine) {
       " -4  DISP        4    1\n"
       " -5  D1          1    2    1    0\n -5  D2          1    2    2    0\n"
       " -5  D3          1    2    3    0\n";
-  EXPECT_TRUE(test::Contains(ErrorOf(head + " -1         1         nan 0.00000E+00 0.00000E+00\n -3\n"),
-                             "bad.frd:9: 'nan' is not a finite number"));
+  EXPECT_TRUE(
+      test::Contains(ErrorOf(head + " -1         1         nan 0.00000E+00 0.00000E+00\n -3\n"),
+                     "bad.frd:9: 'nan' is not a finite number"));
   EXPECT_TRUE(test::Contains(ErrorOf(head + " -1         1 1.00000E+00 0.00000E+00\n -3\n"),
                              "bad.frd:10: node 1 of block DISP has 2 value(s); expected 3"));
   EXPECT_TRUE(test::Contains(ErrorOf(head + " -1         1 1.00000E+00 0.00000E+00 0.00000E+00\n"),

@@ -4,15 +4,15 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iterator>
 #include <string>
-#include <filesystem>
 
 #include <gtest/gtest.h>
 
+#include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
 #include "core/profile/profile_io.h"
-#include "core/numerics/input_error.h"
 #include "tests/core/geometry/geometry_test_util.h"
 
 namespace railwear {
@@ -72,15 +72,17 @@ TEST(SolveContact, AccuracyPresetsReachTheirErrorsOnHertzCases) {
       worst_p0 = std::max(worst_p0, ep);
       time_ms += r.time_s * 1e3 / std::size(kHertzCases);
     }
-    std::printf("[ measured ] halfspace %-9s worst over H1-H4: area %.3f %%, p0 %.3f %%, "
-                "mean time %.0f ms\n",
-                std::string(ToString(preset)).c_str(), 100 * worst_area, 100 * worst_p0, time_ms);
+    std::printf(
+        "[ measured ] halfspace %-9s worst over H1-H4: area %.3f %%, p0 %.3f %%, "
+        "mean time %.0f ms\n",
+        std::string(ToString(preset)).c_str(), 100 * worst_area, 100 * worst_p0, time_ms);
   }
 }
 
 TEST(SolveContact, HertzModelIsAnalytic) {
   for (const auto& c : kHertzCases) {
-    const ContactResult r = SolveContact(HertzProblem(c, ModelKind::kHertz, AccuracyPreset::kStandard));
+    const ContactResult r =
+        SolveContact(HertzProblem(c, ModelKind::kHertz, AccuracyPreset::kStandard));
     ASSERT_EQ(r.status, SolverStatus::kConverged);
     ASSERT_EQ(r.patches.size(), 1u);
     // The table's 5 significant figures.
@@ -90,7 +92,8 @@ TEST(SolveContact, HertzModelIsAnalytic) {
 }
 
 TEST(SolveContact, SymmetricCaseGivesSymmetricPressureAndComplementarity) {
-  const ContactProblem p = HertzProblem(kHertzCases[0], ModelKind::kHalfspace, AccuracyPreset::kDraft);
+  const ContactProblem p =
+      HertzProblem(kHertzCases[0], ModelKind::kHalfspace, AccuracyPreset::kDraft);
   const ContactResult r = SolveContact(p);
   ASSERT_EQ(r.status, SolverStatus::kConverged);
   const PatchGrid& g = r.patches[0].grid;
@@ -208,7 +211,8 @@ TEST(SolveContact, NoContactIsAStatusNotAnError) {
 }
 
 TEST(SolveContact, PrescribedApproachReproducesTheLoad) {
-  const ContactProblem pf = HertzProblem(kHertzCases[3], ModelKind::kHalfspace, AccuracyPreset::kStandard);
+  const ContactProblem pf =
+      HertzProblem(kHertzCases[3], ModelKind::kHalfspace, AccuracyPreset::kStandard);
   const ContactResult rf = SolveContact(pf);
   ContactProblem pa = pf;
   pa.load = {};
@@ -249,7 +253,8 @@ TEST(SolveContact, TwoPointContactSharesOneApproach) {
   const ModelKind kinds[3] = {ModelKind::kHertz, ModelKind::kHalfspace, ModelKind::kConformal};
   for (int m = 0; m < 3; ++m) {
     p.model = MakeModelOptions(kinds[m]);
-    p.model.kernel = KernelModel::kBoussinesq;  // the seed's kernel is stiffer; compare like with like
+    p.model.kernel =
+        KernelModel::kBoussinesq;  // the seed's kernel is stiffer; compare like with like
     r[m] = SolveContact(p);
     ASSERT_EQ(r[m].status, SolverStatus::kConverged) << ToString(kinds[m]) << r[m].message;
     ASSERT_EQ(r[m].patches.size(), 2u) << ToString(kinds[m]);

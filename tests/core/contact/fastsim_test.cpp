@@ -77,10 +77,16 @@ FastsimOptions MakeOptions() {
 
 TEST(Fastsim, SmallCreepageMatchesLinearTheory) {
   const HertzPatch h = MakeHertzPatch(80, 80);
-  struct Case { const char* name; double xi, eta, phi; };
+  struct Case {
+    const char* name;
+    double xi, eta, phi;
+  };
   // Creepages 1e-6 (spin 1e-4 /m): the stick zone covers all but the trailing edge cells.
-  const Case cases[] = {{"xi", 1e-6, 0.0, 0.0}, {"eta", 0.0, 1e-6, 0.0}, {"spin", 0.0, 0.0, 1e-4},
-                        {"-xi", -1e-6, 0.0, 0.0}, {"mix", 1e-6, -1e-6, 1e-4}};
+  const Case cases[] = {{"xi", 1e-6, 0.0, 0.0},
+                        {"eta", 0.0, 1e-6, 0.0},
+                        {"spin", 0.0, 0.0, 1e-4},
+                        {"-xi", -1e-6, 0.0, 0.0},
+                        {"mix", 1e-6, -1e-6, 1e-4}};
   for (FlexibilityModel model : {FlexibilityModel::kThree, FlexibilityModel::kWeighted}) {
     for (const Case& c : cases) {
       // The single weighted flexibility is exact for each pure creepage only (fastsim.h).
@@ -101,9 +107,10 @@ TEST(Fastsim, SmallCreepageMatchesLinearTheory) {
         EXPECT_NEAR(sol.force_s_N, lin.force_y_N, kLinearRelTol * ref) << c.name << given_axes;
         const double err =
             std::hypot(sol.force_x_N - lin.force_x_N, sol.force_s_N - lin.force_y_N) / ref;
-        std::printf("linear %-8s %-5s axes %s: Fx %.6g (lin %.6g)  Fy %.6g (lin %.6g)  err %.3g%%\n",
-                    std::string(ToString(model)).c_str(), c.name, given_axes ? "given" : "estim",
-                    sol.force_x_N, lin.force_x_N, sol.force_s_N, lin.force_y_N, 100.0 * err);
+        std::printf(
+            "linear %-8s %-5s axes %s: Fx %.6g (lin %.6g)  Fy %.6g (lin %.6g)  err %.3g%%\n",
+            std::string(ToString(model)).c_str(), c.name, given_axes ? "given" : "estim",
+            sol.force_x_N, lin.force_x_N, sol.force_s_N, lin.force_y_N, 100.0 * err);
       }
     }
   }
@@ -175,9 +182,12 @@ TEST(Fastsim, ReadmeCheckCaseOnContactsDiscretisation) {
   // Reference README §4: Fy/(mu Fn) = -0.6118 (parabolic bound) and -0.6016 (elliptic bound),
   // CONTACT's FASTSIM on its 40 x 40-cell example (fastsim.h).
   const HertzPatch h = MakeHertzPatch(kContactCells, kContactCells, kA, kB, kFn, kContactScale);
-  struct Case { TractionBound bound; double expected; };
-  for (const Case& c : {Case{TractionBound::kParabolic, -0.6118},
-                        Case{TractionBound::kActualPressure, -0.6016}}) {
+  struct Case {
+    TractionBound bound;
+    double expected;
+  };
+  for (const Case& c :
+       {Case{TractionBound::kParabolic, -0.6118}, Case{TractionBound::kActualPressure, -0.6016}}) {
     FastsimOptions o = MakeOptions();
     o.bound = c.bound;
     o.march = FastsimMarch::kContactEuler;
@@ -188,10 +198,11 @@ TEST(Fastsim, ReadmeCheckCaseOnContactsDiscretisation) {
     const RollingInput in = MakeCreepage(h.grid, 0.0, -6.25e-4, 0.625);
     const TangentialSolution sol = SolveFastsim(h.grid, h.pressure_Pa, in, o, &patch);
     const double ratio = sol.force_s_N / (kMu * h.fn_N);
-    std::printf("README check, CONTACT discretisation, %s bound: Fy/(mu Fn) = %.4f (reference "
-                "%.4f, %+.2f %%), blend weight %.4f\n",
-                std::string(ToString(c.bound)).c_str(), ratio, c.expected,
-                100.0 * (ratio / c.expected - 1.0), patch.blend_weight);
+    std::printf(
+        "README check, CONTACT discretisation, %s bound: Fy/(mu Fn) = %.4f (reference "
+        "%.4f, %+.2f %%), blend weight %.4f\n",
+        std::string(ToString(c.bound)).c_str(), ratio, c.expected,
+        100.0 * (ratio / c.expected - 1.0), patch.blend_weight);
     EXPECT_NEAR(ratio, c.expected, kCheckRelTol * std::abs(c.expected)) << ToString(c.bound);
     EXPECT_GT(patch.blend_weight, 0.0);
     EXPECT_LT(patch.blend_weight, 1.0);
@@ -211,14 +222,18 @@ TEST(Fastsim, ReadmeCheckCaseConvergence) {
     const double r400 = CheckCaseRatio(MakeHertzPatch(400, 400), o);
     EXPECT_NEAR(r200, r400, kConvergedRelTol * std::abs(r400)) << ToString(bound);
     o.march = FastsimMarch::kContactEuler;
-    const double e40 = CheckCaseRatio(
-        MakeHertzPatch(kContactCells, kContactCells, kA, kB, kFn, kContactScale), o) - r400;
-    const double e80 = CheckCaseRatio(
-        MakeHertzPatch(2 * kContactCells, 2 * kContactCells, kA, kB, kFn, kContactScale), o) -
+    const double e40 =
+        CheckCaseRatio(MakeHertzPatch(kContactCells, kContactCells, kA, kB, kFn, kContactScale),
+                       o) -
         r400;
-    std::printf("%s bound: continuum %.4f (200: %.4f), first-order march error %.4f on 40 "
-                "cells, %.4f on 80 (ratio %.2f)\n",
-                std::string(ToString(bound)).c_str(), r400, r200, e40, e80, e40 / e80);
+    const double e80 =
+        CheckCaseRatio(
+            MakeHertzPatch(2 * kContactCells, 2 * kContactCells, kA, kB, kFn, kContactScale), o) -
+        r400;
+    std::printf(
+        "%s bound: continuum %.4f (200: %.4f), first-order march error %.4f on 40 "
+        "cells, %.4f on 80 (ratio %.2f)\n",
+        std::string(ToString(bound)).c_str(), r400, r200, e40, e80, e40 / e80);
     if (bound == TractionBound::kParabolic) {
       // The parabolic case is where the reference differs: its 40-cell error is several %.
       EXPECT_GT(e40 / e80, kFirstOrderRatioMin);

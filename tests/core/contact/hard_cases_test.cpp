@@ -159,8 +159,9 @@ TEST(HardCases, MeasuredWornProfiles) {
         p.model = MakeModelOptions(kind);
         p.model.accuracy = AccuracyPreset::kDraft;
         const ContactResult r = SolveContact(p);
-        ExpectSound(r, 1e5, std::string(wheel_file) + " shift " + std::to_string(shift_mm) +
-                                " " + std::string(ToString(kind)));
+        ExpectSound(r, 1e5,
+                    std::string(wheel_file) + " shift " + std::to_string(shift_mm) + " " +
+                        std::string(ToString(kind)));
       }
     }
   }
@@ -189,8 +190,8 @@ TEST(HardCases, HalfspaceOnTheSteepFlangeStaysOnTheFlange) {
       p.model = MakeModelOptions(ModelKind::kHalfspace);
       p.model.geometry = geometry;
       const ContactResult r = SolveContact(p);
-      const std::string what = "shift " + std::to_string(shift_mm) + " " +
-                               std::string(ToString(geometry));
+      const std::string what =
+          "shift " + std::to_string(shift_mm) + " " + std::string(ToString(geometry));
       ExpectSound(r, 1e5, what);
       EXPECT_GT(r.approach_m, 0.0) << what;
       ASSERT_EQ(r.patches.size(), 1u) << what;

@@ -3,8 +3,8 @@
 // benchmarks put a Hertz pressure and creepages on.
 #pragma once
 
-#include "core/geometry/patch_grid.h"
 #include "core/contact/tangential_types.h"
+#include "core/geometry/patch_grid.h"
 
 namespace railwear::testing {
 

@@ -39,8 +39,7 @@ constexpr HertzCase kCases[] = {
     {"H4", 10e3, 0.28, 460, 300, 3.3382, 2.5111, 26.33, 569.6, 22.62},
 };
 
-void ExpectRel(double actual, double expected, double rel, const char* what,
-               const char* name) {
+void ExpectRel(double actual, double expected, double rel, const char* what, const char* name) {
   EXPECT_NEAR(actual, expected, rel * std::abs(expected)) << name << " " << what;
 }
 

@@ -155,17 +155,19 @@ TEST(RectangleIntegral, ReproducesLovesCentreValue) {
 }
 
 TEST(RectangleIntegral, MatchesQuadratureNearAndInside) {
-  struct Case { double x, s, n, hx, hs; };
+  struct Case {
+    double x, s, n, hx, hs;
+  };
   const Case cases[] = {
-      {0.1, 0.2, 0.0, 1.0, 1.0},     // inside, off centre
-      {0.45, -0.3, 0.0, 1.0, 1.0},   // inside, near an edge
-      {0.5, 0.2, 0.0, 1.0, 1.0},     // on an edge
-      {0.5, 0.5, 0.0, 1.0, 1.0},     // on a corner
-      {0.7, 0.1, 0.0, 1.0, 1.0},     // just outside
-      {0.1, 0.2, 0.05, 1.0, 1.0},    // above the inside, near-singular
-      {0.1, -0.2, -0.3, 1.0, 1.0},   // below the inside
-      {1.2, 0.9, 0.4, 1.0, 1.0},     // outside and off the plane
-      {0.3, 0.1, 1e-3, 2.0, 0.5},    // elongated cell, very close to the plane
+      {0.1, 0.2, 0.0, 1.0, 1.0},    // inside, off centre
+      {0.45, -0.3, 0.0, 1.0, 1.0},  // inside, near an edge
+      {0.5, 0.2, 0.0, 1.0, 1.0},    // on an edge
+      {0.5, 0.5, 0.0, 1.0, 1.0},    // on a corner
+      {0.7, 0.1, 0.0, 1.0, 1.0},    // just outside
+      {0.1, 0.2, 0.05, 1.0, 1.0},   // above the inside, near-singular
+      {0.1, -0.2, -0.3, 1.0, 1.0},  // below the inside
+      {1.2, 0.9, 0.4, 1.0, 1.0},    // outside and off the plane
+      {0.3, 0.1, 1e-3, 2.0, 0.5},   // elongated cell, very close to the plane
       {-0.8, 0.2, 0.2, 2.0, 0.5},
   };
   for (const Case& c : cases) {
@@ -184,9 +186,11 @@ TEST(RectangleIntegral, MatchesQuadratureNearAndInside) {
 }
 
 TEST(RectangleIntegral, MatchesQuadratureFarAway) {
-  struct Case { double x, s, n, hx, hs; };
+  struct Case {
+    double x, s, n, hx, hs;
+  };
   const Case cases[] = {
-      {3.0, 0.0, 0.0, 1.0, 1.0},  {5.0, -7.0, 0.0, 1.0, 1.0}, {4.0, 2.0, 1.5, 1.0, 1.0},
+      {3.0, 0.0, 0.0, 1.0, 1.0},    {5.0, -7.0, 0.0, 1.0, 1.0},   {4.0, 2.0, 1.5, 1.0, 1.0},
       {-20.0, 13.0, 2.0, 1.0, 1.0}, {60.0, 80.0, 30.0, 1.0, 1.0}, {0.0, 9.0, 4.0, 2.0, 0.5},
   };
   for (const Case& c : cases) {
@@ -247,14 +251,14 @@ TEST(RectangleIntegral, FarFieldRuleIsWithinToleranceBeyondItsSwitch) {
         worst_inv_r = std::max(worst_inv_r, RelativeError(i_far, i_exact));
         if (ip > 0) worst_n2_r3 = std::max(worst_n2_r3, RelativeError(j_far, j_exact));
         const double a = 0.75 * (3.0 - 4.0 * 0.28);
-        worst_combined = std::max(worst_combined,
-                                  RelativeError(a * i_far + j_far, a * i_exact + j_exact));
+        worst_combined =
+            std::max(worst_combined, RelativeError(a * i_far + j_far, a * i_exact + j_exact));
       }
     }
   }
   std::cout << "far-field rule at " << internal::kFarFieldDiagonals
-            << " diagonals: worst relative error 1/R " << worst_inv_r << ", n^2/R^3 "
-            << worst_n2_r3 << ", golubenko " << worst_combined << "\n";
+            << " diagonals: worst relative error 1/R " << worst_inv_r << ", n^2/R^3 " << worst_n2_r3
+            << ", golubenko " << worst_combined << "\n";
   EXPECT_LT(worst_inv_r, kFarFieldRuleTolerance);
   EXPECT_LT(worst_n2_r3, kFarFieldRuleTolerance);
   EXPECT_LT(worst_combined, kFarFieldRuleTolerance);
@@ -332,8 +336,10 @@ TEST(CellKernel, GolubenkoOverBoussinesqOnFlatPatchIsTheReadmeRatio) {
   for (double nu : {0.28, 0.3}) {
     const double expected = 0.75 * (3.0 - 4.0 * nu) / (4.0 * (1.0 - nu) * (1.0 - nu));
     EXPECT_NEAR(expected, nu == 0.28 ? 0.680 : 0.689, 5e-4);  // the README's three digits
-    const Eigen::MatrixXd b = AssembleDenseInfluence(grid, MakeSettings(KernelModel::kBoussinesq, nu));
-    const Eigen::MatrixXd g = AssembleDenseInfluence(grid, MakeSettings(KernelModel::kGolubenko, nu));
+    const Eigen::MatrixXd b =
+        AssembleDenseInfluence(grid, MakeSettings(KernelModel::kBoussinesq, nu));
+    const Eigen::MatrixXd g =
+        AssembleDenseInfluence(grid, MakeSettings(KernelModel::kGolubenko, nu));
     EXPECT_LT(((g.array() / b.array()) - expected).abs().maxCoeff(), kMatrixRoundingTolerance);
   }
 }
@@ -365,10 +371,9 @@ TEST(CellKernel, CurvatureTermRaisesGolubenkoAboveItsFlatValue) {
   const Eigen::MatrixXd c0 = AssembleDenseInfluence(arc, no_cz);
   EXPECT_GE((c - c0).minCoeff(), 0.0);
   EXPECT_GT((c - c0).maxCoeff(), 0.0);
-  EXPECT_LT((AssembleDenseInfluence(flat, s) - AssembleDenseInfluence(flat, no_cz))
-                .cwiseAbs()
-                .maxCoeff(),
-            kMatrixRoundingTolerance * c.maxCoeff());
+  EXPECT_LT(
+      (AssembleDenseInfluence(flat, s) - AssembleDenseInfluence(flat, no_cz)).cwiseAbs().maxCoeff(),
+      kMatrixRoundingTolerance * c.maxCoeff());
 }
 
 // Separate convex and concave sets: the kernel sums each body with its own set,
@@ -414,9 +419,8 @@ TEST(CellKernel, RejectsBadMaterialWithMessage) {
 // ----- fast operators versus dense -----------------------------------------------------------
 
 void ExpectFastEqualsDense(const PatchGrid& grid, const InfluenceSettings& settings) {
-  SCOPED_TRACE(::testing::Message() << "nx=" << grid.nx << " ns=" << grid.ns
-                                    << " planar=" << grid.planar << " "
-                                    << ToString(settings.kernel));
+  SCOPED_TRACE(::testing::Message() << "nx=" << grid.nx << " ns=" << grid.ns << " planar="
+                                    << grid.planar << " " << ToString(settings.kernel));
   const auto fast = MakeInfluenceOperator(grid, settings);
   const auto dense = MakeDenseInfluenceOperator(grid, settings);
   ASSERT_EQ(fast->size(), grid.cells());
@@ -504,7 +508,6 @@ TEST(InfluenceOperator, FarCellsUseTheFarFieldRuleInsideTheOperators) {
   ExpectFastEqualsDense(arc, MakeDissimilarSettings(KernelModel::kGolubenko));
 }
 
-
 // ----- approximate inverses ------------------------------------------------------------------
 
 // |C M r - r| / |r| for a smooth displacement field r supported on the central half of the grid.
@@ -531,9 +534,8 @@ Eigen::VectorXd SmoothDisplacement(const PatchGrid& g) {
 }
 
 void ExpectApproximateInverse(const PatchGrid& grid, const InfluenceSettings& settings) {
-  SCOPED_TRACE(::testing::Message() << "nx=" << grid.nx << " ns=" << grid.ns
-                                    << " planar=" << grid.planar << " "
-                                    << ToString(settings.kernel));
+  SCOPED_TRACE(::testing::Message() << "nx=" << grid.nx << " ns=" << grid.ns << " planar="
+                                    << grid.planar << " " << ToString(settings.kernel));
   const auto op = MakeInfluenceOperator(grid, settings);
   const Eigen::VectorXd r = SmoothDisplacement(grid);
   Eigen::VectorXd z, cz;
@@ -552,8 +554,7 @@ void ExpectApproximateInverse(const PatchGrid& grid, const InfluenceSettings& se
   }
   ASSERT_TRUE(op->ApplyPreconditioner(a, &ma));
   ASSERT_TRUE(op->ApplyPreconditioner(b, &mb));
-  EXPECT_NEAR(a.dot(mb), b.dot(ma),
-              kPreconditionerSymmetryTolerance * a.norm() * mb.norm());
+  EXPECT_NEAR(a.dot(mb), b.dot(ma), kPreconditionerSymmetryTolerance * a.norm() * mb.norm());
   EXPECT_GT(a.dot(ma), 0.0);
   EXPECT_GT(b.dot(mb), 0.0);
 }

@@ -15,7 +15,9 @@ constexpr double kNodeTol = 1e-12;
 
 TEST(KalkerCoefficients, TableNodesAreExact) {
   // reference README §4: a/b = 0.5 row, a/b = 1 row and b/a = 0.5 row (a/b = 2).
-  struct Node { double a_over_b, nu, c11, c22, c23; };
+  struct Node {
+    double a_over_b, nu, c11, c22, c23;
+  };
   const Node nodes[] = {
       {0.5, 0.0, 2.88, 2.88, 0.827}, {0.5, 0.25, 3.62, 3.01, 0.929}, {0.5, 0.5, 4.83, 3.14, 1.07},
       {1.0, 0.25, 4.12, 3.67, 1.47}, {2.0, 0.25, 5.10, 4.90, 2.62},  {2.0, 0.5, 6.11, 5.56, 2.96},

@@ -21,8 +21,8 @@ struct ContactScene {
 ContactScene MakeScene(double wheel_slope, double rail_R = 0.3, double half_angle = 0.1) {
   ContactScene s;
   s.rail = testing::ArcProfile(rail_R, +1.0, half_angle, 2001);
-  s.wheel = testing::FunctionProfile([&](double y) { return 0.002 + wheel_slope * y; }, -0.05,
-                                     0.05, 201);
+  s.wheel =
+      testing::FunctionProfile([&](double y) { return 0.002 + wheel_slope * y; }, -0.05, 0.05, 201);
   WheelPose pose;
   pose.rolling_radius_m = 0.46;
   s.geom = std::make_unique<WheelRailGeometry>(s.wheel, s.rail, pose);

@@ -47,9 +47,7 @@ ContactProblem CrownProblem(double R_m) {
   return p;
 }
 
-bool StartsWith(const std::string& s, const std::string& prefix) {
-  return s.rfind(prefix, 0) == 0;
-}
+bool StartsWith(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
 
 TEST(ModelSelection, ConformityOfACrownUnderAFlatWheelMatchesClosedForms) {
   // Crown R = 30 mm, flat wheel, K = 1/2: the intermediate normal bisects the rail normal (angle

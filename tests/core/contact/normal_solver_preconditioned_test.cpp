@@ -177,8 +177,8 @@ TEST(PreconditionedNormalSolver, IterationsBarelyGrowWithTheGrid) {
     ASSERT_EQ(s.status, SolverStatus::kConverged) << s.message;
     iterations.push_back(s.iterations);
   }
-  SCOPED_TRACE(::testing::Message() << "iterations " << iterations[0] << ", " << iterations[1]
-                                    << ", " << iterations[2]);
+  SCOPED_TRACE(::testing::Message()
+               << "iterations " << iterations[0] << ", " << iterations[1] << ", " << iterations[2]);
   EXPECT_LE(iterations[2], kIterationGrowthLimit * iterations[0]);
   EXPECT_LE(iterations[1], kIterationGrowthLimit * iterations[0]);
 }

@@ -15,8 +15,8 @@
 #include <numbers>
 #include <vector>
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include "core/contact/hertz.h"
 
@@ -248,8 +248,7 @@ TEST(NormalSolver, LoadAndApproachAgree) {
   const NormalSolution t = SolveNormal(pr);
   ASSERT_EQ(t.status, SolverStatus::kConverged) << t.message;
   EXPECT_NEAR(t.force_N, kForce, 1e-8 * kForce);
-  EXPECT_LE((t.pressure_Pa - s.pressure_Pa).cwiseAbs().maxCoeff(),
-            1e-8 * s.pressure_Pa.maxCoeff());
+  EXPECT_LE((t.pressure_Pa - s.pressure_Pa).cwiseAbs().maxCoeff(), 1e-8 * s.pressure_Pa.maxCoeff());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -366,8 +365,7 @@ TEST(NormalSolver, NearlySymmetricOperatorConverges) {
 
 // Active set on the dense matrix: solve [C_II  -w_I; (A w)_I^T  0] [p_I; delta] = [-d_I; F],
 // drop cells with p < 0, add cells with g < 0, until stable. Small n only.
-Eigen::VectorXd NaiveActiveSet(const Eigen::MatrixXd& C, const NormalProblem& pr,
-                               double* delta) {
+Eigen::VectorXd NaiveActiveSet(const Eigen::MatrixXd& C, const NormalProblem& pr, double* delta) {
   const int n = static_cast<int>(pr.gap_m.size());
   std::vector<bool> active(n);
   const double dmin = pr.gap_m.minCoeff();
@@ -518,7 +516,7 @@ TEST(NormalSolver, DISABLED_IterationsVersusGridSize) {
     bool prescribed_approach;
     double skew;
   };
-  const Run runs[] = {{5, 1.5, false, 0}, {10, 1.5, false, 0}, {15, 1.5, false, 0},
+  const Run runs[] = {{5, 1.5, false, 0},  {10, 1.5, false, 0}, {15, 1.5, false, 0},
                       {20, 1.5, false, 0}, {30, 1.5, false, 0}, {10, 1.5, true, 0},
                       {20, 1.5, true, 0},  {10, 3.0, false, 0}, {10, 1.5, false, 0.1}};
   for (const Run& r : runs) {
@@ -537,9 +535,9 @@ TEST(NormalSolver, DISABLED_IterationsVersusGridSize) {
     std::printf(
         "cells/semi-axis %2d cover %.1f %s skew %.2f grid %3dx%3d  %s  iterations %3d  "
         "applies %3d  %8.1f ms  area %+.2f%%  p0 %+.2f%%  delta %+.2f%%  load %+.2f%%\n",
-        r.cells_per_semi_axis, r.coverage, r.prescribed_approach ? "approach" : "load    ",
-        r.skew, g.nx, g.ny, std::string(ToString(s.status)).c_str(), s.iterations,
-        s.operator_applications, ms, 100 * (ContactArea(pr, s) / h.area_m2 - 1),
+        r.cells_per_semi_axis, r.coverage, r.prescribed_approach ? "approach" : "load    ", r.skew,
+        g.nx, g.ny, std::string(ToString(s.status)).c_str(), s.iterations, s.operator_applications,
+        ms, 100 * (ContactArea(pr, s) / h.area_m2 - 1),
         100 * (s.pressure_Pa.maxCoeff() / h.p0_Pa - 1), 100 * (s.approach_m / h.approach_m - 1),
         100 * (s.force_N / kForce - 1));
   }

@@ -92,8 +92,10 @@ TEST(RollingContact, VaryingCreepageChangesFxMarkedly) {
   ASSERT_EQ(rc.status, SolverStatus::kConverged);
   const double fx_v = rv.patches[0].rolling->tangential.force_x_N;
   const double fx_c = rc.patches[0].rolling->tangential.force_x_N;
-  std::printf("[ measured ] conformal example Fx: constant creepage %.0f N, varying %.0f N "
-              "(%+.1f %%)\n", fx_c, fx_v, 100 * (fx_v / fx_c - 1));
+  std::printf(
+      "[ measured ] conformal example Fx: constant creepage %.0f N, varying %.0f N "
+      "(%+.1f %%)\n",
+      fx_c, fx_v, 100 * (fx_v / fx_c - 1));
   // Same sign, and |Fx| larger by more than 5 % with the varying creepage.
   EXPECT_GT(fx_v * fx_c, 0.0);
   EXPECT_GT(std::abs(fx_v), 1.05 * std::abs(fx_c));
@@ -141,7 +143,7 @@ TEST(RollingContact, PrescribedLongitudinalForceUpToFullSliding) {
     for (const auto& patch : r.patches) fx += patch.rolling->tangential.force_x_N;
     EXPECT_NEAR(fx, share * mu_fn, 1e-5 * mu_fn) << share;  // the solver's 1e-6 mu Fn, rounded
     // Traction needs the wheel to turn faster than it rolls (Omega more negative), braking slower.
-    EXPECT_EQ(r.pitch_velocity_rad_s < free_rolling.pitch_velocity_rad_s, share > 0) << share;
+    EXPECT_EQ(r.pitch_velocity_rad_s<free_rolling.pitch_velocity_rad_s, share> 0) << share;
   }
   p.rolling->longitudinal_force_N = 1.2 * mu_fn;
   const ContactResult beyond = SolveContact(p);

@@ -20,8 +20,8 @@ namespace {
 
 // ----- the Hertz case of the reference README §4 ---------------------------------------------
 
-constexpr double kA_m = 8e-3;     // semi-axis along x (rolling)
-constexpr double kB_m = 4e-3;     // semi-axis along s
+constexpr double kA_m = 8e-3;  // semi-axis along x (rolling)
+constexpr double kB_m = 4e-3;  // semi-axis along s
 constexpr double kFn_N = 82e3;
 constexpr double kG_Pa = 82e9;
 constexpr double kNu = 0.28;
@@ -143,9 +143,9 @@ TEST(TangentialExact, LinearTheoryAtSmallCreepage) {
   const double c11 = -sx.force_x_N / (kG_Pa * c2 * kSmallCreepage);
   const double c22 = -sy.force_s_N / (kG_Pa * c2 * kSmallCreepage);
   const double c23 = -sp.force_s_N / (kG_Pa * c3 * phi);
-  std::cout << "C11 " << c11 << " (Kalker " << kC11 << "), C22 " << c22 << " (" << kC22
-            << "), C23 " << c23 << " (" << kC23 << "); iterations " << sx.iterations << " "
-            << sy.iterations << " " << sp.iterations << "\n";
+  std::cout << "C11 " << c11 << " (Kalker " << kC11 << "), C22 " << c22 << " (" << kC22 << "), C23 "
+            << c23 << " (" << kC23 << "); iterations " << sx.iterations << " " << sy.iterations
+            << " " << sp.iterations << "\n";
   EXPECT_NEAR(c11, kC11, kLinearTheoryTolerance * kC11);
   EXPECT_NEAR(c22, kC22, kLinearTheoryTolerance * kC22);
   EXPECT_NEAR(c23, kC23, kLinearTheoryTolerance * kC23);
@@ -286,8 +286,8 @@ TEST(TangentialExact, AccelerationKeepsTheSolutionAndSavesSweeps) {
 // (measured 45 sweeps) and the forces oppose the creepage.
 TEST(TangentialExact, AcceleratedSweepConvergesWherePlainStalls) {
   const Case c = MakeCase(32);
-  const TangentialSolution s = SolveTangentialExact(c.grid, c.p, Creepage(c.grid, 1e-4, -1e-4, 0),
-                                                    SteelG(), SteelG());
+  const TangentialSolution s =
+      SolveTangentialExact(c.grid, c.p, Creepage(c.grid, 1e-4, -1e-4, 0), SteelG(), SteelG());
   ASSERT_EQ(s.status, SolverStatus::kConverged) << s.message;
   EXPECT_LT(s.iterations, kAcceleratedSweepBound);
   EXPECT_LT(s.force_x_N, 0.0);
@@ -299,10 +299,10 @@ TEST(TangentialExact, AcceleratedSweepConvergesWherePlainStalls) {
 TEST(TangentialExact, NoContactAndBadInput) {
   const Case c = MakeCase(4);
   const RollingInput in = Creepage(c.grid, 1e-4, 0, 0);
-  EXPECT_EQ(SolveTangentialExact(c.grid, Eigen::VectorXd::Zero(c.grid.cells()), in, SteelG(),
-                                 SteelG())
-                .status,
-            SolverStatus::kNoContact);
+  EXPECT_EQ(
+      SolveTangentialExact(c.grid, Eigen::VectorXd::Zero(c.grid.cells()), in, SteelG(), SteelG())
+          .status,
+      SolverStatus::kNoContact);
   RollingInput bad = in;
   bad.friction = 0.0;
   try {

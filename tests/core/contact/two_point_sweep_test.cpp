@@ -44,8 +44,8 @@ namespace {
 
 constexpr double kLoad_N = 100e3;
 constexpr double kStep_mm = 0.1;
-constexpr int kSubSteps = 5;                 // 0.02 mm, then 4 um
-constexpr double kFlagFraction = 0.01;       // of the load: steps worth refining
+constexpr int kSubSteps = 5;            // 0.02 mm, then 4 um
+constexpr double kFlagFraction = 0.01;  // of the load: steps worth refining
 // The load balance the normal solver guarantees (1e-10 relative) with room for the patch sum.
 constexpr double kLoadTolerance = 1e-8;
 
@@ -120,10 +120,11 @@ SweepOutcome Sweep(ModelOptions model) {
 void ExpectContinuous(const ModelOptions& model, const std::string& name) {
   const SweepOutcome o = Sweep(model);
   const double bound = PresetTolerance(model.accuracy) * kLoad_N;
-  std::printf("[ measured ] %s %s: largest jump of the lateral force %.0f N (%.2f %% of the load) "
-              "in the step from %.2f mm; %d solves\n",
-              name.c_str(), std::string(ToString(model.accuracy)).c_str(), o.worst_jump_N,
-              100.0 * o.worst_jump_N / kLoad_N, o.worst_at_mm, o.solves);
+  std::printf(
+      "[ measured ] %s %s: largest jump of the lateral force %.0f N (%.2f %% of the load) "
+      "in the step from %.2f mm; %d solves\n",
+      name.c_str(), std::string(ToString(model.accuracy)).c_str(), o.worst_jump_N,
+      100.0 * o.worst_jump_N / kLoad_N, o.worst_at_mm, o.solves);
   EXPECT_LE(o.worst_jump_N, bound) << name << " from " << o.worst_at_mm << " mm";
 }
 

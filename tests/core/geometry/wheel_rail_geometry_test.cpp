@@ -58,14 +58,15 @@ TEST(WheelRailGeometry, TwoPointContactGivesTwoCandidates) {
 TEST(WheelRailGeometry, MeridianOfABodyOfRevolution) {
   // Rotating a wheel point about the axle keeps its meridian coordinates.
   const Profile rail = testing::ArcProfile(0.3, +1.0, 0.15);
-  const Profile wheel = testing::FunctionProfile([](double y) { return 0.01 * y; }, -0.05, 0.05, 11);
+  const Profile wheel =
+      testing::FunctionProfile([](double y) { return 0.01 * y; }, -0.05, 0.05, 11);
   WheelPose pose;
   pose.roll_rad = 0.01;
   pose.lateral_shift_m = 0.003;
   const WheelRailGeometry g(wheel, rail, pose);
   const double r0 = pose.rolling_radius_m;
-  const Eigen::Vector2d pw(0.007, 0.0005);              // in the wheel profile frame
-  const Eigen::Vector2d pr = g.WheelToRail(pw);         // x = 0 cross-section, rail frame
+  const Eigen::Vector2d pw(0.007, 0.0005);       // in the wheel profile frame
+  const Eigen::Vector2d pr = g.WheelToRail(pw);  // x = 0 cross-section, rail frame
   EXPECT_NEAR((g.RailToWheel(pr) - pw).norm(), 0.0, 1e-15);
   // Rotate about the axle by 0.1 rad: the axle is along the wheel's y axis at z_W = -r0.
   const double a = 0.1, rr = r0 + pw.y();
@@ -109,7 +110,7 @@ TEST(WheelRailGeometry, SaddleBelowThresholdSplitsCandidates) {
   EXPECT_TRUE(two[0].split_hi);
   EXPECT_TRUE(two[1].split_lo);
   EXPECT_NEAR(two[0].y_hi_m, two[1].y_lo_m, 2e-5);  // they meet at the saddle
-  const auto one = g.FindCandidates(2e-3);  // prominence 80 um < 200 um: one basin
+  const auto one = g.FindCandidates(2e-3);          // prominence 80 um < 200 um: one basin
   ASSERT_EQ(one.size(), 1u);
   EXPECT_FALSE(one[0].split_lo || one[0].split_hi);
 }

@@ -38,8 +38,8 @@ bool HaveSharedProfiles(std::string* dir) {
   return std::filesystem::is_directory(*dir);
 }
 
-#define SKIP_WITHOUT_SHARED(dir)                                                        \
-  std::string dir;                                                                      \
+#define SKIP_WITHOUT_SHARED(dir) \
+  std::string dir;               \
   if (!HaveSharedProfiles(&dir)) GTEST_SKIP() << "../shared/data/profiles not found: " << dir
 
 TEST(S1002, CheckValues) {
@@ -66,7 +66,8 @@ TEST(S1002, PointsLieOnTheDefinitionAndRunFromFlangeBackToField) {
     // (they differ by the published jumps, up to 1.2e-4 mm).
     const double s_mm = pts[i].x() * 1e3, z_mm = pts[i].y() * 1e3;
     double dev = std::abs(z_mm - S1002RadiusIncrease_mm(s_mm));
-    for (double e : {-1e-9, 1e-9}) dev = std::min(dev, std::abs(z_mm - S1002RadiusIncrease_mm(s_mm + e)));
+    for (double e : {-1e-9, 1e-9})
+      dev = std::min(dev, std::abs(z_mm - S1002RadiusIncrease_mm(s_mm + e)));
     max_dev = std::max(max_dev, dev);
     if (i > 0) {
       EXPECT_GT(pts[i].x(), pts[i - 1].x()) << "point " << i;
@@ -85,12 +86,13 @@ TEST(S1002, MatchesManchesterFile) {
   const Profile s1002 = MakeS1002();
   double max_dev_mm = 0.0;
   for (const auto& q : f.profile.points()) {
-    max_dev_mm = std::max(max_dev_mm,
-                          std::abs(q.y() * 1e3 - S1002RadiusIncrease_mm(q.x() * 1e3)));
+    max_dev_mm = std::max(max_dev_mm, std::abs(q.y() * 1e3 - S1002RadiusIncrease_mm(q.x() * 1e3)));
   }
   int n = 0;
   const double spline_dev_mm =
-      MaxDistance(s1002, f.profile.points(), [](const Eigen::Vector2d&) { return true; }, &n) * 1e3;
+      MaxDistance(
+          s1002, f.profile.points(), [](const Eigen::Vector2d&) { return true; }, &n) *
+      1e3;
   std::cout << "[ measured ] MBench_S1002_v3.prw vs F(S): max |dz| = " << max_dev_mm
             << " mm; distance to MakeS1002 spline: max " << spline_dev_mm << " mm over " << n
             << " points\n";
@@ -146,9 +148,8 @@ TEST(Uic60, TangentContinuousAtBreakpoints) {
     ASSERT_GT(idx, 0) << "breakpoint " << breaks_mm[k] << " is not a profile point";
     const Eigen::Vector2d a = pts[idx] - pts[idx - 1], b = pts[idx + 1] - pts[idx];
     const double turn = std::acos(std::min(1.0, a.normalized().dot(b.normalized())));
-    const double allowed =
-        a.norm() * 1e3 / (2 * radii[k]) + b.norm() * 1e3 / (2 * radii[k + 1]) +
-        kPublishedTangentMismatch_rad;
+    const double allowed = a.norm() * 1e3 / (2 * radii[k]) + b.norm() * 1e3 / (2 * radii[k + 1]) +
+                           kPublishedTangentMismatch_rad;
     EXPECT_LT(turn, allowed) << "breakpoint " << breaks_mm[k];
   }
 }
@@ -229,8 +230,8 @@ TEST(CircleAndGroove, MatchSharedFiles) {
     const Profile file = ReadProfileFile(dir + "/circ_r100.prr").profile;
     int n = 0;
     const double d = MaxDistance(built, file.points(), inside(built), &n) * 1e3;
-    std::cout << "[ measured ] circ_r100.prr vs MakeCircle(100 mm, rail): max " << d
-              << " mm over " << n << " points\n";
+    std::cout << "[ measured ] circ_r100.prr vs MakeCircle(100 mm, rail): max " << d << " mm over "
+              << n << " points\n";
     EXPECT_GT(n, 900);
     EXPECT_LT(d, kCircleFileTol_mm);
   }
@@ -309,8 +310,8 @@ TEST(ProfileSpec, BuiltinsCirclesAndFiles) {
 }
 
 TEST(ProfileSpec, BadSpecsNameTheSpec) {
-  for (const char* bad : {"circle:-1", "circle:abc", "groove:inf", "circle:", "groove:0",
-                          "builtin:S1003"}) {
+  for (const char* bad :
+       {"circle:-1", "circle:abc", "groove:inf", "circle:", "groove:0", "builtin:S1003"}) {
     try {
       LoadProfileSpec(bad, BodyRole::kRail, "");
       ADD_FAILURE() << "no error for " << bad;
@@ -322,8 +323,7 @@ TEST(ProfileSpec, BadSpecsNameTheSpec) {
     LoadProfileSpec("no_such_profile.csv", BodyRole::kRail, "/nonexistent_dir");
     ADD_FAILURE() << "no error for a missing file";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent_dir/no_such_profile.csv"),
-              std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("/nonexistent_dir/no_such_profile.csv"), std::string::npos)
         << e.what();
   }
 }

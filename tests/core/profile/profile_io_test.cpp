@@ -22,9 +22,9 @@ using railwear::testing::SharedProfilesDir;
 // Files and writers use 6 decimals in mm: round-off 5e-7 mm.
 constexpr double kSixDecimals_mm = 1e-6;
 
-#define SKIP_WITHOUT_SHARED(dir)                      \
-  const std::string dir = SharedProfilesDir();        \
-  if (!std::filesystem::is_directory(dir))            \
+#define SKIP_WITHOUT_SHARED(dir)               \
+  const std::string dir = SharedProfilesDir(); \
+  if (!std::filesystem::is_directory(dir))     \
   GTEST_SKIP() << "../shared/data/profiles not found: " << dir
 
 std::string TempPath(const std::string& name) {
@@ -53,7 +53,8 @@ void ExpectReadError(const std::string& path, std::initializer_list<std::string>
   } catch (const InputError& e) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find(path), std::string::npos) << msg;
-    for (const auto& p : parts) EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
+    for (const auto& p : parts)
+      EXPECT_NE(msg.find(p), std::string::npos) << "'" << p << "' not in: " << msg;
   }
 }
 
@@ -152,9 +153,8 @@ TEST(SharedProfiles, MeasuredBanRailsAreTurnedYUp) {
     // Crown (min z) in the interior, both ends below it; the gauge face (X up to ~46 mm for the
     // high rail) is at negative y.
     const auto& p = f.profile.points();
-    const auto top = std::min_element(p.begin(), p.end(), [](const auto& a, const auto& b) {
-      return a.y() < b.y();
-    });
+    const auto top = std::min_element(p.begin(), p.end(),
+                                      [](const auto& a, const auto& b) { return a.y() < b.y(); });
     EXPECT_NE(top, p.begin());
     EXPECT_NE(top + 1, p.end());
     EXPECT_GT(p.front().y(), top->y() + 5e-3);
@@ -179,9 +179,8 @@ TEST(SharedProfiles, MiniProfWheelsInTheWheelFrame) {
     // back (X near 0 -> y near -70).
     EXPECT_LT(p.front().x() * 1e3, -68.0);
     // Flange tip: largest z, at X = 15..16 (y = -55..-54), 27.5..28.1 mm toward the rail.
-    const auto tip = std::max_element(p.begin(), p.end(), [](const auto& a, const auto& b) {
-      return a.y() < b.y();
-    });
+    const auto tip = std::max_element(p.begin(), p.end(),
+                                      [](const auto& a, const auto& b) { return a.y() < b.y(); });
     EXPECT_GT(tip->x() * 1e3, -56.0);
     EXPECT_LT(tip->x() * 1e3, -54.0);
     EXPECT_GT(tip->y() * 1e3, 27.5);
@@ -198,7 +197,8 @@ TEST(SharedProfiles, MiniProfWheelsInTheWheelFrame) {
 TEST(SharedProfiles, MeasuredScanGlitchesAreDroppedWithANote) {
   SKIP_WITHOUT_SHARED(dir);
   EXPECT_TRUE(HasNote(ReadProfileFile(dir + "/avg_HR.BAN"), "scan glitch dropped: line 136"));
-  EXPECT_TRUE(HasNote(ReadProfileFile(dir + "/Car7216_0001r.whl"), "scan glitch dropped: line 223"));
+  EXPECT_TRUE(
+      HasNote(ReadProfileFile(dir + "/Car7216_0001r.whl"), "scan glitch dropped: line 223"));
   EXPECT_TRUE(HasNote(ReadProfileFile(dir + "/avg_low2.ban"), "scan glitch dropped: line 74"));
 }
 
@@ -228,8 +228,7 @@ TEST(CsvReader, AcceptsCommentsSpacesExtraColumnsAndCrlf) {
 }
 
 TEST(CsvReader, BadInputNamesFileLineAndValue) {
-  ExpectReadError(WriteFile("noheader.csv", "1,2\n2,3\n3,4\n4,5\n"),
-                  {":1:", "'1,2'", "y_mm,z_mm"});
+  ExpectReadError(WriteFile("noheader.csv", "1,2\n2,3\n3,4\n4,5\n"), {":1:", "'1,2'", "y_mm,z_mm"});
   ExpectReadError(WriteFile("empty.csv", "# only a comment\n"), {"no CSV header", "y_mm,z_mm"});
   ExpectReadError(WriteFile("text.csv", "y_mm,z_mm\n0,0\n1,abc\n2,0\n3,0\n"),
                   {":3:", "'abc'", "column 2", "not a number"});
@@ -298,14 +297,17 @@ TEST(SimpackReader, BadInputNamesFileLineAndValue) {
                                                                         "spline.end\n"),
                   {":8:", "'point.begin'"});
   ExpectReadError(WriteFile("csvlike.prr", "y_mm,z_mm\n0,0\n"), {":1:", "not a SIMPACK"});
-  ExpectReadError(WriteFile("wheel.prr", "header.begin\n type = 1\nheader.end\nspline.begin\n"
-                                         "point.begin\n0 0\n1 0\n2 0\n3 0\npoint.end\nspline.end\n"),
+  ExpectReadError(WriteFile("wheel.prr",
+                            "header.begin\n type = 1\nheader.end\nspline.begin\n"
+                            "point.begin\n0 0\n1 0\n2 0\n3 0\npoint.end\nspline.end\n"),
                   {":2:", "type = 1", "expected type = 0"});
-  ExpectReadError(WriteFile("bad.prw", "header.begin\n type = 1\nheader.end\nspline.begin\n"
-                                       "point.begin\n0 0\n1 x\n2 0\n3 0\npoint.end\nspline.end\n"),
+  ExpectReadError(WriteFile("bad.prw",
+                            "header.begin\n type = 1\nheader.end\nspline.begin\n"
+                            "point.begin\n0 0\n1 x\n2 0\n3 0\npoint.end\nspline.end\n"),
                   {":7:", "'x'", "y z [weight]"});
-  ExpectReadError(WriteFile("open.prw", "header.begin\n type = 1\nheader.end\nspline.begin\n"
-                                        "point.begin\n0 0\n1 0\n2 0\n3 0\n"),
+  ExpectReadError(WriteFile("open.prw",
+                            "header.begin\n type = 1\nheader.end\nspline.begin\n"
+                            "point.begin\n0 0\n1 0\n2 0\n3 0\n"),
                   {":9:", "line 5", "'point.end'"});
   ExpectReadError(WriteFile("units.prw", "spline.begin\n units.len.f = mm\n point.begin\n"),
                   {":2:", "'mm'", "finite number"});
@@ -352,8 +354,9 @@ TEST(MiniProfReader, ManyBacktrackingPointsAreAnError) {
       WriteFile("one.ban", "XYPoints=6\n\n-2 -1\n-1 -0.2\n0 0\n-0.5 0\n1 -0.2\n2 -1\n"));
   EXPECT_TRUE(HasNote(one, "scan glitch dropped: line 6"));
   EXPECT_EQ(one.profile.size(), 5);
-  ExpectReadError(WriteFile("many.ban", "XYPoints=9\n\n0 0\n1 0\n0.5 0\n2 0\n1.5 0\n3 0\n"
-                                        "2.5 0\n4 0\n3.5 0\n5 0\n"),
+  ExpectReadError(WriteFile("many.ban",
+                            "XYPoints=9\n\n0 0\n1 0\n0.5 0\n2 0\n1.5 0\n3 0\n"
+                            "2.5 0\n4 0\n3.5 0\n5 0\n"),
                   {":5:", "turns the profile back"});
 }
 
@@ -378,9 +381,9 @@ TEST(MiniProfReader, WhlLayoutsAndFlangeSense) {
                             "MINIPROF 1\nname\n32.58 37.11 14.71 (Sd/Sh/qR)\n0 20\n10 25\n20 "
                             "10\n30 1\n"),
                   {":7:", "taping line"});
-  ExpectReadError(WriteFile("bad.whl",
-                            "MINIPROF 1\nname\n32.58 37.11 14.71 (Sd/Sh/qR)\n0 20\n10 25\nabc\n"),
-                  {":6:", "'abc'"});
+  ExpectReadError(
+      WriteFile("bad.whl", "MINIPROF 1\nname\n32.58 37.11 14.71 (Sd/Sh/qR)\n0 20\n10 25\nabc\n"),
+      {":6:", "'abc'"});
 }
 
 // ---------------------------------------------------------------------------- extension, files

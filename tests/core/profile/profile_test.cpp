@@ -126,7 +126,8 @@ TEST(Profile, TransformedRotatesYTowardZThenShifts) {
   EXPECT_NEAR(moved.Curvature(0.5 * moved.Length()), arc.Curvature(0.5 * arc.Length()), 1e-6);
 }
 
-void ExpectProfileError(std::vector<Eigen::Vector2d> pts, std::initializer_list<std::string> parts) {
+void ExpectProfileError(std::vector<Eigen::Vector2d> pts,
+                        std::initializer_list<std::string> parts) {
   try {
     Profile p(std::move(pts), "test.csv");
     ADD_FAILURE() << "no error";
@@ -187,7 +188,8 @@ TEST(ProfileSpline, FollowsACoarselySampledWallWithoutOvershoot) {
   }
   EXPECT_LT(worst, 3e-5);
   // Point arc lengths still name the points.
-  for (int i = 0; i < p.size(); ++i) EXPECT_NEAR((p.Position(p.KnotS(i)) - pts[i]).norm(), 0, 1e-12);
+  for (int i = 0; i < p.size(); ++i)
+    EXPECT_NEAR((p.Position(p.KnotS(i)) - pts[i]).norm(), 0, 1e-12);
 }
 
 }  // namespace
