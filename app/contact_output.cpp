@@ -117,6 +117,7 @@ nlohmann::json PatchJson(const PatchResult& p) {
   j["normal_force_N"] = p.normal_force_N;
   j["vertical_force_N"] = p.vertical_force_N;
   j["lateral_force_N"] = p.lateral_force_N;
+  j["contact_x_mm"] = p.contact_x_m * kToMm;
   j["contact_y_mm"] = p.contact_point_yz_m.x() * kToMm;
   j["contact_z_mm"] = p.contact_point_yz_m.y() * kToMm;
   j["contact_angle_deg"] = p.contact_angle_rad * kToDeg;

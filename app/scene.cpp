@@ -237,7 +237,7 @@ Creepage ReadCreepage(const Fields& load) {
 void ReadMotion(const Fields& t, Scene* scene) {
   if (const auto v = t.Number("speed_m_s", AtLeast(0.0))) scene->speed_m_s = *v;
   if (const auto yaw = t.Number("yaw_mrad", InRange(-kMaxRoll_rad * 1e3, kMaxRoll_rad * 1e3))) {
-    scene->motion.yaw_rad = *yaw * 1e-3;
+    scene->problem.placement.yaw_rad = *yaw * 1e-3;
   }
   scene->motion.pitch_velocity_rad_s = t.Number("pitch_velocity_rad_s", AnyFinite());
   scene->longitudinal_force_N = t.Number("longitudinal_force_N", AnyFinite());
@@ -315,7 +315,7 @@ void ReadWheelset(const Fields& top, Scene* scene) {
   w.roll_rad = ws->Number("roll_rad", InRange(-kMaxRoll_rad, kMaxRoll_rad)).value_or(0.0);
   w.rolling_radius_m = scene->problem.placement.rolling_radius_m;
   ReadMotion(*ws, scene);
-  w.yaw_rad = scene->motion.yaw_rad;
+  w.yaw_rad = scene->problem.placement.yaw_rad;
   if (scene->creepage &&
       (ws->Has("yaw_mrad") || ws->Has("pitch_velocity_rad_s") || ws->Has("longitudinal_force_N"))) {
     ws->Fail(ws->Has("yaw_mrad")               ? "yaw_mrad"

@@ -48,7 +48,7 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const CurveLocator& rail, cons
   problem.load.vertical_force_N = traffic.vertical_force_N;
   RollingOptions rolling;
   rolling.motion.speed_m_s = traffic.speed_m_s;
-  rolling.motion.yaw_rad = traffic.yaw_rad;
+  problem.placement.yaw_rad = traffic.yaw_rad;
   rolling.friction = traffic.friction;
   problem.rolling = rolling;
 

@@ -18,6 +18,10 @@ struct WheelPlacement {
   double lateral_shift_m = 0.0;  // y of the wheel profile origin in the rail frame [m]
   double roll_rad = 0.0;         // rotation about x; positive turns +y toward +z (field side down)
   double rolling_radius_m = 0.46;  // wheel radius at the wheel profile's z = 0 [m]
+  // About +z (down) through the wheel profile origin: positive turns the nose toward +y. In the
+  // contact geometry (the yawed wheel touches ahead of or behind its axle, WheelRailGeometry)
+  // and in the rigid slip (kinematics.h). |yaw| < 0.1 rad.
+  double yaw_rad = 0.0;
 };
 
 // Prescribe exactly one of the two.

@@ -34,6 +34,9 @@ struct PatchResult {
   double lateral_force_N = 0.0;   // on the rail, positive toward +y (field side)
   // Pressure centre mapped onto the rail profile, rail profile coordinates [m].
   Eigen::Vector2d contact_point_yz_m = Eigen::Vector2d::Zero();
+  // Longitudinal position of the pressure centre [m], R, from the wheel profile origin's
+  // cross-section (the axle's, without yaw): a yawed wheel touches ahead of or behind its axle.
+  double contact_x_m = 0.0;
   // Angle of the resultant force on the rail against the vertical [rad]: atan2(lateral,
   // vertical). Flange-root and gauge-corner contact push the rail toward the field side (+y) and
   // have large positive angles (40-70 degrees); tread contact a few degrees.

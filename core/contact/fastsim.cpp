@@ -377,6 +377,7 @@ void MarchStrips(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
 
 // Step 6 of SolveFastsim: forces, spin moment and frictional power from the tractions.
 void AddTotals(const PatchGrid& grid, TangentialSolution* sol_io) {
+  const double x_ref = grid.XCentre();
   TangentialSolution& sol = *sol_io;
   const double dA = grid.CellArea();
   // 6. Totals.
@@ -387,7 +388,7 @@ void AddTotals(const PatchGrid& grid, TangentialSolution* sol_io) {
       const double qx = sol.traction_x_Pa[k], qs = sol.traction_s_Pa[k];
       sol.force_x_N += qx * dA;
       fs_strip += qs * dA;
-      sol.spin_moment_Nm += (grid.X(i) * qs - grid.S(j) * qx) * dA;
+      sol.spin_moment_Nm += ((grid.X(i) - x_ref) * qs - grid.S(j) * qx) * dA;
       sol.frictional_power_W += std::abs(qx * sol.slip_x_m_s[k] + qs * sol.slip_s_m_s[k]) * dA;
     }
     sol.force_s_N += fs_strip;

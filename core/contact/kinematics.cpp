@@ -18,11 +18,10 @@ RollingInput RigidSlipFromMotion(const WheelRailGeometry& geom, const PatchGrid&
   // Axle: a point on it (x = 0) and its direction, in R.
   const Eigen::Vector2d axle_yz = geom.WheelToRail({0.0, -r0});
   const Eigen::Vector3d a0(0.0, axle_yz.x(), axle_yz.y());
-  const double roll = geom.pose().roll_rad, yaw = motion.yaw_rad;
-  const Eigen::Vector3d a_rolled(0.0, std::cos(roll), std::sin(roll));  // wheel y axis in R
-  const Eigen::Vector3d a(a_rolled.x() * std::cos(yaw) - a_rolled.y() * std::sin(yaw),
-                          a_rolled.x() * std::sin(yaw) + a_rolled.y() * std::cos(yaw),
-                          a_rolled.z());
+  // Axle direction in R: e_y yawed about z, then rolled about x (the geometry's order).
+  const double roll = geom.pose().roll_rad, yaw = geom.pose().yaw_rad;
+  const Eigen::Vector3d a(-std::sin(yaw), std::cos(yaw) * std::cos(roll),
+                          std::cos(yaw) * std::sin(roll));
   RollingInput in;
   in.speed_m_s = V;
   in.friction = friction;
@@ -33,7 +32,8 @@ RollingInput RigidSlipFromMotion(const WheelRailGeometry& geom, const PatchGrid&
     for (int i = 0; i < grid.nx; ++i) {
       const Eigen::Vector3d d = grid.Point(i, j) - a0;
       const Eigen::Vector3d r = d - d.dot(a) * a;  // perpendicular from the axle
-      const Eigen::Vector3d v = Eigen::Vector3d(V, 0.0, 0.0) + omega * a.cross(r);
+      const Eigen::Vector3d v =
+          Eigen::Vector3d(V, motion.lateral_velocity_m_s, 0.0) + omega * a.cross(r);
       in.creep_x[grid.Index(i, j)] = v.x() / V;
       in.creep_s[grid.Index(i, j)] = v.dot(t) / V;
     }

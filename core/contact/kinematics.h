@@ -4,14 +4,16 @@
 // z down. The wheel moves forward at speed V and turns about its axle with the pitch velocity
 // Omega (pure rolling at the nominal radius r0: Omega = -V / r0, negative about +y in this
 // frame). The axle is the wheel frame's y axis at z_W = -r0, turned by the wheel's roll about x
-// and by its yaw psi about +z (positive turns the nose toward +y). The rail is at rest. The
-// rigid slip velocity at a cell centre P is v = V e_x + Omega a x r, with a the axle direction
+// and by its yaw psi about +z (positive turns the nose toward +y; WheelPose::yaw_rad, the same
+// yaw as the contact geometry's, roll after yaw: a = R_x(roll) R_z(psi) e_y). The rail is at rest.
+// The rigid slip velocity at a cell centre P is v = V e_x + Omega a x r, with a the axle direction
 // and r the perpendicular from the axle to P; the creepage of the cell is v / V resolved on its
 // tangents: x and the patch cross-section's s tangent (tangent_yz).
 //
-// Yaw enters the kinematics only: the contact geometry is solved for the unyawed wheel (an
-// approximation good for the small yaw angles of tangent-track and curving cases, up to a few
-// tens of mrad; the contact point's longitudinal shift r tan(gamma) tan(psi) is neglected).
+// Yaw is part of the geometry (core/geometry/yawed_wheel.h): a yawed wheel touches ahead of or
+// behind its axle, and the cells' positions x carry that lead, so the rigid slip is taken at the
+// displaced contact point. At an inclined contact (angle gamma) this gives the lateral creepage
+// -psi sec(gamma) of the classical theory.
 #pragma once
 
 #include <optional>
@@ -27,7 +29,10 @@ namespace railwear {
 struct WheelMotion {
   double speed_m_s = 1.0;                      // V > 0
   std::optional<double> pitch_velocity_rad_s;  // Omega; pure rolling (-V/r0) when absent
-  double yaw_rad = 0.0;
+  // Lateral velocity of the wheel toward +y [m/s] (a wheelset's dy/dt while it moves across the
+  // track, e.g. in hunting): adds dy/dt / V to the lateral creepage before the contact angle's
+  // 1 / cos(gamma), as yaw's -psi does.
+  double lateral_velocity_m_s = 0.0;
 };
 
 // Kalker-style creepages: w_x = xi - phi (s - s_c), w_s = eta + phi (x - x_c), about the

@@ -107,7 +107,7 @@ PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
                            const Eigen::Ref<const Eigen::VectorXd>& p) {
   PatchResult r;
   const double area = grid.CellArea();
-  double fy = 0.0, fz = 0.0, fn = 0.0, ps = 0.0, psum = 0.0;
+  double fy = 0.0, fz = 0.0, fn = 0.0, ps = 0.0, px = 0.0, psum = 0.0;
   for (int j = 0; j < grid.ns; ++j) {
     const Eigen::Vector2d n = grid.normal_yz[j];
     for (int i = 0; i < grid.nx; ++i) {
@@ -118,6 +118,7 @@ PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
       fy += pk * area * (-n.x());
       fz += pk * area * (-n.y());
       ps += pk * grid.S(j);
+      px += pk * grid.X(i);
       psum += pk;
       r.p_max_Pa = std::max(r.p_max_Pa, pk);
     }
@@ -131,6 +132,7 @@ PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
   if (psum > 0) {
     // Pressure centre on the reference cross-section, projected onto the rail profile.
     const double sbar = ps / psum;
+    r.contact_x_m = px / psum;
     const double jf = std::clamp((sbar - grid.s0_m) / grid.ds_m, 0.0, grid.ns - 1.0);
     const int j0 = std::min(static_cast<int>(jf), std::max(grid.ns - 2, 0));
     const int j1 = std::min(j0 + 1, grid.ns - 1);
@@ -152,6 +154,7 @@ PatchResult HertzPatch(const ContactCandidate& c, const HertzSolution& h) {
   p.vertical_force_N = h.force_N * (-c.normal.y());
   p.lateral_force_N = h.force_N * (-c.normal.x());
   p.contact_point_yz_m = c.rail_point_m;
+  p.contact_x_m = c.x_m;
   p.contact_angle_rad = std::atan2(p.lateral_force_N, p.vertical_force_N);
   return p;
 }

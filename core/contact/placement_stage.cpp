@@ -40,7 +40,7 @@ void CheckRollingProblem(const ContactProblem& problem) {
 
 WheelRailGeometry PlaceWheel(const ContactProblem& problem) {
   const WheelPose pose{problem.placement.lateral_shift_m, problem.placement.roll_rad,
-                       problem.placement.rolling_radius_m};
+                       problem.placement.rolling_radius_m, problem.placement.yaw_rad};
   return WheelRailGeometry(problem.wheel_profile, problem.rail_profile, pose);
 }
 

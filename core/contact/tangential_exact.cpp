@@ -622,6 +622,7 @@ void CollectExactResults(const PatchGrid& grid, const SweepTables& tables,
                          const Eigen::VectorXd& sx, const Eigen::VectorXd& ss,
                          TangentialSolution* sol_io) {
   TangentialSolution& sol = *sol_io;
+  const double x_ref = grid.XCentre();  // moments about the contact point
   Eigen::VectorXd& qx = sol.traction_x_Pa;
   Eigen::VectorXd& qs = sol.traction_s_Pa;
   const double mu = in.friction;
@@ -651,7 +652,7 @@ void CollectExactResults(const PatchGrid& grid, const SweepTables& tables,
       sol.force_x_N += qx[k] * area;
       sol.force_s_N += qs[k] * area;
       sol.force_s_yz_N += qs[k] * area * grid.tangent_yz[js];
-      sol.spin_moment_Nm += (grid.X(ix) * qs[k] - grid.S(js) * qx[k]) * area;
+      sol.spin_moment_Nm += ((grid.X(ix) - x_ref) * qs[k] - grid.S(js) * qx[k]) * area;
       sol.frictional_power_W +=
           std::abs(qx[k] * sol.slip_x_m_s[k] + qs[k] * sol.slip_s_m_s[k]) * area;
     }

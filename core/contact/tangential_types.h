@@ -40,7 +40,9 @@ struct TangentialSolution {
   // The tangential force as a vector in the rail frame's (y, z) plane: sum of q_s dA t_j; on a
   // planar patch it is force_s_N along the one tangent.
   Eigen::Vector2d force_s_yz_N = Eigen::Vector2d::Zero();
-  double spin_moment_Nm = 0.0;  // sum of (x q_s - s q_x) dA about the patch origin
+  // Sum of ((x - x_c) q_s - s q_x) dA about the patch origin: the contact point, at s = 0 and
+  // the grid's centre column x_c (PatchGrid::XCentre; ahead of the axle for a yawed wheel).
+  double spin_moment_Nm = 0.0;
   double stick_area_m2 = 0.0;
   double slip_area_m2 = 0.0;
   double frictional_power_W = 0.0;  // sum of |q . v_slip| dA

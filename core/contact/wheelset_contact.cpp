@@ -15,15 +15,13 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
   const WheelPose& l = out.placement.left;
 
   ContactProblem right = problem.wheel_rail;
-  right.placement = {r.lateral_shift_m, r.roll_rad, r.rolling_radius_m};
-  if (right.rolling) right.rolling->motion.yaw_rad = problem.wheelset.yaw_rad;
+  right.placement = {r.lateral_shift_m, r.roll_rad, r.rolling_radius_m, r.yaw_rad};
 
   // The left wheel and rail are the mirror images of the right ones in the track; in the left
   // rail's own frame (y toward its field side) they are the same profiles, so only the pose
   // (PlaceWheelset) and the yaw are mirrored.
   ContactProblem left = problem.wheel_rail;
-  left.placement = {l.lateral_shift_m, l.roll_rad, l.rolling_radius_m};
-  if (left.rolling) left.rolling->motion.yaw_rad = -problem.wheelset.yaw_rad;
+  left.placement = {l.lateral_shift_m, l.roll_rad, l.rolling_radius_m, l.yaw_rad};
 
   // A force target applies to the axle: both wheels share its pitch velocity, and their F_x add
   // up to the target. Solve both normal problems once, then only the rolling stage per trial.

@@ -209,7 +209,8 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
   const double x_half = std::sqrt(2.0 * r_max * o.threshold_m);
   const int half_cells = std::max(1, static_cast<int>(std::ceil(x_half / o.cell_dx_m - 0.5)));
   grid.nx = 2 * half_cells + 1;
-  grid.x0_m = -half_cells * o.cell_dx_m;
+  // Centred on the contact point's x: ahead of or behind the axle for a yawed wheel (0 without).
+  grid.x0_m = c.x_m - half_cells * o.cell_dx_m;
 
   if (o.size_accepted && !o.size_accepted(grid)) {
     build.too_large = true;
@@ -235,7 +236,9 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
     if (n.dot(n0) < 0) n = -n;
     grid.normal_yz[j] = planar ? n0 : n;
     rail_s[j] = sections[k].rail_s;
-    wheel_s[j] = sections[k].wheel_s;
+    // The wheel search windows are on the wheel profile (the body of revolution), whose
+    // parameter differs from the yawed outline's that the sections walked along.
+    wheel_s[j] = g.SurfaceSource(sections[k].wheel_s).wheel_s_m;
     lambda_r[j] = sections[k].lambda_r + f * (sections[k + 1].lambda_r - sections[k].lambda_r);
     lambda_w[j] = sections[k].lambda_w + f * (sections[k + 1].lambda_w - sections[k].lambda_w);
   }
@@ -246,14 +249,17 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
   // starts from the neighbouring cell (the closest point moves by much less than a cell).
   const double window = 3 * o.cell_ds_m + 1e-3;
   const double warm_window = 1e-4 + 0.5 * std::max(o.cell_dx_m, o.cell_ds_m);
-  const int ic = half_cells;  // the x = 0 column
+  const int ic = half_cells;  // the column through the contact point (x = c.x_m)
+  // x of the lowest point of the wheel's parallel circle through the contact point: the axle
+  // line there (the contact point leads it by c.lead_m; both 0 without yaw).
+  const double x_axle = c.x_m - c.lead_m;
   for (int j = 0; j < grid.ns; ++j) {
     const Eigen::Vector2d p = grid.point_yz_m[j];
     if (!planar) {
       // Seed eq. 2: signed distance to the rail (prismatic) plus to the wheel (revolution).
       const auto pr = g.ProjectOnRail(p, rail_s[j] - window, rail_s[j] + window);
       const double s_centre =
-          g.ProjectOnWheel({0.0, p.x(), p.y()}, wheel_s[j] - window, wheel_s[j] + window).s;
+          g.ProjectOnWheel({c.x_m, p.x(), p.y()}, wheel_s[j] - window, wheel_s[j] + window).s;
       for (int dir : {+1, -1}) {
         double sg = s_centre;
         for (int i = (dir > 0 ? ic : ic - 1); i >= 0 && i < grid.nx; i += dir) {
@@ -269,7 +275,7 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
       const auto rail_cross = g.rail().IntersectLine(b, n0, rail_s[j] - window, rail_s[j] + window);
       const double lr = rail_cross ? rail_cross->lambda : lambda_r[j];
       const double s_centre =
-          g.ProjectOnWheel({0.0, (b + lambda_w[j] * n0).x(), (b + lambda_w[j] * n0).y()},
+          g.ProjectOnWheel({c.x_m, (b + lambda_w[j] * n0).x(), (b + lambda_w[j] * n0).y()},
                            wheel_s[j] - window, wheel_s[j] + window)
               .s;
       // March outward from the x = 0 column, each column starting from its neighbour's root and
@@ -281,7 +287,7 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
         double root = lambda_w[j];
         for (int i = (dir > 0 ? ic : ic - 1); i >= 0 && i < grid.nx; i += dir) {
           const double x = grid.X(i);
-          const double x_prev = i == ic ? 0.0 : grid.X(i - dir);
+          const double x_prev = i == ic ? c.x_m : grid.X(i - dir);
           // Root of the wheel's signed distance along the line (x, b + lambda n0); secant steps
           // from the neighbour's root plus the change of a body of revolution's lift.
           double s_found = sg;
@@ -292,7 +298,8 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
             s_found = pw.s;
             return pw.signed_distance;
           };
-          double l0 = root + (x * x - x_prev * x_prev) * w0 / (2.0 * r_max);
+          const double u = x - x_axle, u_prev = x_prev - x_axle;
+          double l0 = root + (u * u - u_prev * u_prev) * w0 / (2.0 * r_max);
           double f0 = dist(l0);
           double l1 = l0 + f0, f1 = dist(l1);
           for (int it = 0; it < 30 && std::abs(f1) > 1e-13; ++it) {

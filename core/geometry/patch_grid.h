@@ -35,6 +35,8 @@ struct PatchGrid {
   int Index(int i, int j) const { return j * nx + i; }
   double CellArea() const { return dx_m * ds_m; }
   double X(int i) const { return x0_m + i * dx_m; }
+  // x of the centre column: the contact point's (grids are centred on it in x; 0 without yaw).
+  double XCentre() const { return x0_m + 0.5 * (nx - 1) * dx_m; }
   double S(int j) const { return s0_m + j * ds_m; }
   // Cell-centre point in 3-D (x, y, z) [m].
   Eigen::Vector3d Point(int i, int j) const { return {X(i), point_yz_m[j].x(), point_yz_m[j].y()}; }

@@ -73,11 +73,18 @@ double ConvexCurvature(const CurveLocator& loc, double s) {
 WheelRailGeometry::WheelRailGeometry(const Profile& wheel, const Profile& rail,
                                      const WheelPose& pose, double vertical_step_m)
     : pose_(pose),
+      yawed_(pose.yaw_rad != 0.0 ? std::make_shared<const YawedWheelSection>(
+                                       wheel, pose.rolling_radius_m, pose.yaw_rad)
+                                 : nullptr),
       rail_locator_(rail, /*material_toward_plus_z=*/true),
-      wheel_locator_(wheel, /*material_toward_plus_z=*/false),
+      wheel_locator_(yawed_ ? yawed_->outline() : wheel, /*material_toward_plus_z=*/false),
       cos_roll_(std::cos(pose.roll_rad)),
-      sin_roll_(std::sin(pose.roll_rad)) {
+      sin_roll_(std::sin(pose.roll_rad)),
+      cos_yaw_(std::cos(pose.yaw_rad)),
+      sin_yaw_(std::sin(pose.yaw_rad)) {
   RAILWEAR_CHECK(pose.rolling_radius_m > 0 && vertical_step_m > 0);
+  if (yawed_) surface_locator_.emplace(wheel, /*material_toward_plus_z=*/false);
+  const Profile& section = yawed_ ? yawed_->outline() : wheel;
   // Sample both cross-sections (wheel at dz = 0) and intersect their lateral ranges.
   auto sample = [](const Profile& p, double step) {
     const int n = std::max(2, static_cast<int>(std::ceil(p.Length() / step)) + 1);
@@ -86,7 +93,7 @@ WheelRailGeometry::WheelRailGeometry(const Profile& wheel, const Profile& rail,
     return pts;
   };
   std::vector<Eigen::Vector2d> rail_pts = sample(rail, vertical_step_m);
-  std::vector<Eigen::Vector2d> wheel_pts = sample(wheel, vertical_step_m);
+  std::vector<Eigen::Vector2d> wheel_pts = sample(section, vertical_step_m);
   for (auto& p : wheel_pts) p = WheelToRail(p);  // dz_ is still 0
   double ry0 = kInf, ry1 = -kInf, wy0 = kInf, wy1 = -kInf;
   for (const auto& p : rail_pts) {
@@ -158,13 +165,26 @@ Eigen::Vector2d WheelRailGeometry::RailDirectionToWheel(const Eigen::Vector2d& d
 Eigen::Vector2d WheelRailGeometry::Meridian(const Eigen::Vector3d& p) const {
   const Eigen::Vector2d w = RailToWheel({p.y(), p.z()});
   const double r0 = pose_.rolling_radius_m;
-  const double r = std::hypot(p.x(), w.y() + r0);
-  return {w.x(), r - r0};
+  if (!yawed_) {
+    const double r = std::hypot(p.x(), w.y() + r0);
+    return {w.x(), r - r0};
+  }
+  // Undo the yaw about the vertical through the wheel profile origin: wheel axes (x_w along the
+  // wheel's own rolling direction, y_w along the axle).
+  const double x_w = cos_yaw_ * p.x() + sin_yaw_ * w.x();
+  const double y_w = -sin_yaw_ * p.x() + cos_yaw_ * w.x();
+  const double r = std::hypot(x_w, w.y() + r0);
+  return {y_w, r - r0};
 }
 
 CurveLocator::Projection WheelRailGeometry::ProjectOnWheel(const Eigen::Vector3d& p, double s_lo,
                                                            double s_hi) const {
-  return wheel_locator_.Project(Meridian(p), s_lo, s_hi);
+  return wheel_surface().Project(Meridian(p), s_lo, s_hi);
+}
+
+YawedWheelSection::Source WheelRailGeometry::SurfaceSource(double outline_s_m) const {
+  if (!yawed_) return {outline_s_m, 0.0};
+  return yawed_->SourceAt(outline_s_m);
 }
 
 CurveLocator::Projection WheelRailGeometry::ProjectOnRail(const Eigen::Vector2d& yz, double s_lo,
@@ -243,7 +263,20 @@ std::vector<ContactCandidate> WheelRailGeometry::FindCandidates(double threshold
     c.normal = rail_locator_.OutwardNormal(c.rail_s_m);
     c.rail_lateral_curvature = ConvexCurvature(rail_locator_, c.rail_s_m);
     c.wheel_lateral_curvature = ConvexCurvature(wheel_locator_, c.wheel_s_m);
-    c.wheel_radius_m = pose_.rolling_radius_m + wheel_locator_.profile().Position(c.wheel_s_m).y();
+    if (!yawed_) {
+      c.wheel_radius_m =
+          pose_.rolling_radius_m + wheel_locator_.profile().Position(c.wheel_s_m).y();
+    } else {
+      // The surface point behind the outline point: its radius, position along x, and lead over
+      // the axle line through it (the axle runs along (-sin psi, cos psi) in the wheel's unrolled
+      // frame, so at lateral position Y_w it lies at x = -Y_w tan psi).
+      const YawedWheelSection::Source src = yawed_->SourceAt(c.wheel_s_m);
+      c.wheel_radius_m =
+          pose_.rolling_radius_m + surface_locator_->profile().Position(src.wheel_s_m).y();
+      c.x_m = src.x_m;
+      const double y_w = wheel_locator_.profile().Position(c.wheel_s_m).x();
+      c.lead_m = c.x_m + y_w * sin_yaw_ / cos_yaw_;
+    }
     out.push_back(c);
   }
   return out;

@@ -5,14 +5,23 @@
 // W (origin on the taping line, z toward the rail, axle at z = -r0). The wheel profile's origin
 // sits at (lateral_shift, dz) in R, rotated by roll about x; dz is chosen so that the smallest
 // vertical gap between the bodies is zero (first contact).
+//
+// Yaw: a wheel yawed by psi touches the rail ahead of or behind its axle. The 2-D search runs on
+// the wheel's outline seen along the rail (core/geometry/yawed_wheel.h), which is exact for the
+// prismatic rail; wheel() is that outline's locator and wheel_surface() the wheel profile's, on
+// which ProjectOnWheel measures 3-D distances to the yawed body of revolution. Without yaw both
+// are the wheel profile and every result is that of the unyawed geometry, bit for bit. Roll turns
+// the yawed outline about x (roll after yaw; the kinematics use the same order).
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "core/geometry/curve_locator.h"
+#include "core/geometry/yawed_wheel.h"
 #include "core/profile/profile.h"
 
 namespace railwear {
@@ -21,6 +30,9 @@ struct WheelPose {
   double lateral_shift_m = 0.0;
   double roll_rad = 0.0;
   double rolling_radius_m = 0.46;
+  // About +z (down), through the wheel profile origin: positive turns the nose (+x) toward +y.
+  // |yaw| < 0.5 rad.
+  double yaw_rad = 0.0;
 };
 
 // A potential contact region found on the vertical-gap function g(y) at x = 0.
@@ -38,6 +50,11 @@ struct ContactCandidate {
   double rail_lateral_curvature = 0.0;                     // 1/m, convex positive
   double wheel_lateral_curvature = 0.0;                    // 1/m, convex positive
   double wheel_radius_m = 0.0;                             // rolling radius at the contact point
+  // Longitudinal position of the contact point [m], R, from the wheel profile origin's
+  // cross-section (0 without yaw), and its lead over the axle line at the point's lateral
+  // position (> 0 ahead of the axle): r tan(gamma) tan(psi) / cos(psi) on a cone.
+  double x_m = 0.0;
+  double lead_m = 0.0;
 };
 
 class WheelRailGeometry {
@@ -65,23 +82,35 @@ class WheelRailGeometry {
   Eigen::Vector2d Meridian(const Eigen::Vector3d& p_R) const;
 
   const CurveLocator& rail() const { return rail_locator_; }
+  // The wheel's cross-section seen along the rail (the yawed outline; the profile without yaw).
   const CurveLocator& wheel() const { return wheel_locator_; }
+  // The wheel profile itself (the body of revolution's meridian), for 3-D projections.
+  const CurveLocator& wheel_surface() const {
+    return surface_locator_ ? *surface_locator_ : wheel_locator_;
+  }
+  // The wheel-profile parameter of wheel()'s parameter s, and the longitudinal position x [m]
+  // (R, from the wheel profile origin's cross-section) of the surface point there.
+  YawedWheelSection::Source SurfaceSource(double outline_s_m) const;
 
   // Signed distance of a 3-D point (R) to the wheel surface (> 0 outside), with the wheel
-  // profile parameter of the closest point; the search covers [s_lo, s_hi] of the wheel profile.
+  // profile parameter of the closest point; the search covers [s_lo, s_hi] of the wheel profile
+  // (wheel_surface()'s parameter).
   CurveLocator::Projection ProjectOnWheel(const Eigen::Vector3d& p_R, double s_lo,
                                           double s_hi) const;
   // The same for the (prismatic) rail: only (y, z) matters.
   CurveLocator::Projection ProjectOnRail(const Eigen::Vector2d& yz_R, double s_lo,
                                          double s_hi) const;
 
-  // Outward normal of the wheel at profile parameter s, in R (x = 0 cross-section).
+  // Outward normal of the wheel's cross-section (wheel()) at its parameter s, in R.
   Eigen::Vector2d WheelOutwardNormalInRail(double s) const;
 
  private:
   WheelPose pose_;
+  // The yawed outline (null without yaw); shared so that copies keep the locator's profile.
+  std::shared_ptr<const YawedWheelSection> yawed_;
   CurveLocator rail_locator_;
   CurveLocator wheel_locator_;
+  std::optional<CurveLocator> surface_locator_;  // with yaw: on the wheel profile
   double dz_ = 0.0;
   bool has_overlap_ = false;
   // Vertical gap at y on the splines (after lowering), near gap sample `sample`.
@@ -90,6 +119,7 @@ class WheelRailGeometry {
   double RefineMinimum(int sample) const;
   std::vector<double> gap_y_, gap_, rail_top_, wheel_bottom_;
   double cos_roll_ = 1.0, sin_roll_ = 0.0;
+  double cos_yaw_ = 1.0, sin_yaw_ = 0.0;
 };
 
 }  // namespace railwear

@@ -53,17 +53,23 @@ WheelsetPlacement PlaceWheelset(const Profile& rail, const TrackSpec& track,
   out.rail_gauge_point_y_m = gauge_point.x();
   // Right rail: its gauge point at Y = gauge/2, so its origin at Y = gauge/2 - y_g.
   out.right_rail_origin_Y_m = 0.5 * track.gauge_m - gauge_point.x();
-  // Right wheel: flange back at Y = fbd/2 + displacement, so its origin at that minus y_fb.
-  const double wheel_origin_Y =
-      0.5 * ws.flange_back_distance_m - ws.flange_back_position_m + ws.lateral_displacement_m;
+  // Right wheel: flange back at Y = fbd/2 + displacement, so its origin at that minus y_fb; the
+  // wheelset yaws about its centre, so the origin lies (fbd/2 - y_fb) cos(yaw) from it in Y (and
+  // (fbd/2 - y_fb) sin(yaw) behind the centre in x, which a prismatic rail does not see).
+  const double half_span =
+      (0.5 * ws.flange_back_distance_m - ws.flange_back_position_m) * std::cos(ws.yaw_rad);
+  const double wheel_origin_Y = half_span + ws.lateral_displacement_m;
   out.right.lateral_shift_m = wheel_origin_Y - out.right_rail_origin_Y_m;
   out.right.roll_rad = ws.roll_rad;
   out.right.rolling_radius_m = ws.rolling_radius_m;
-  // Left: the mirror image, seen in its own (mirrored) frame: displacement and roll change sign.
+  out.right.yaw_rad = ws.yaw_rad;
+  // Left: the mirror image, seen in its own (mirrored) frame: displacement, roll and yaw change
+  // sign.
   out.left = out.right;
   out.left.lateral_shift_m =
       wheel_origin_Y - 2.0 * ws.lateral_displacement_m - out.right_rail_origin_Y_m;
   out.left.roll_rad = -ws.roll_rad;
+  out.left.yaw_rad = -ws.yaw_rad;
   return out;
 }
 

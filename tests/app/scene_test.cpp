@@ -353,7 +353,7 @@ TEST(SceneTest, PrescribedCreepageOrMotionNotBoth) {
   EXPECT_TRUE(Contains(ErrorOf(base + "creepage = { xi = 0.001, zeta = 1 }\n"),
                        "key 'load.creepage.zeta' = 1: expected one of the keys allowed"));
   const Scene yawed = ParseScene(base + "yaw_mrad = 5\npitch_velocity_rad_s = -43\n", "s.toml");
-  EXPECT_NEAR(yawed.motion.yaw_rad, 0.005, kTight);
+  EXPECT_NEAR(yawed.problem.placement.yaw_rad, 0.005, kTight);
   EXPECT_EQ(yawed.motion.pitch_velocity_rad_s, -43.0);
 }
 

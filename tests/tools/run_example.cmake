@@ -12,7 +12,8 @@
 #                reference/ folder: the tables of the committed results (exit 0, "read from");
 #                a config whose results are not committed is skipped with the reason (running
 #                it needs gmsh + CalculiX for minutes)
-# A skipped test prints "SKIPPED:" (the test's SKIP_REGULAR_EXPRESSION).
+# A skipped test prints "SKIPPED:" (the test's SKIP_REGULAR_EXPRESSION): FEM configs without
+# committed results, and examples whose ../shared profile files are absent.
 cmake_minimum_required(VERSION 3.22)
 foreach(var RAILWEAR EXAMPLE KIND WORK_DIR)
   if(NOT DEFINED ${var})
@@ -44,6 +45,19 @@ function(json_get result json)
   endif()
   set(${result} "${value}" PARENT_SCOPE)
 endfunction()
+
+# Examples that read the real profile files of ../shared/data/profiles/ (never copied into the
+# repository) are skipped with the reason when that folder is absent.
+file(STRINGS "${EXAMPLE}" shared_refs REGEX "\"[^\"]*shared/data/profiles/[^\"]*\"")
+get_filename_component(example_dir "${EXAMPLE}" DIRECTORY)
+foreach(line IN LISTS shared_refs)
+  string(REGEX MATCH "\"([^\"]*shared/data/profiles/[^\"]*)\"" _ "${line}")
+  if(NOT EXISTS "${example_dir}/${CMAKE_MATCH_1}")
+    message("SKIPPED: ${EXAMPLE} reads ${CMAKE_MATCH_1}, which is absent (../shared is not beside "
+            "the repository)")
+    return()
+  endif()
+endforeach()
 
 if(KIND STREQUAL "contact")
   run(contact "${EXAMPLE}" --accuracy draft --json -)

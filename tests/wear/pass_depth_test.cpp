@@ -202,7 +202,7 @@ ContactProblem GaugeCornerProblem(std::optional<Creepage> creepage = std::nullop
   RollingOptions ro;
   ro.friction = kMu;
   ro.motion.speed_m_s = kV;
-  ro.motion.yaw_rad = 5e-3;
+  p.placement.yaw_rad = 5e-3;
   ro.creepage = creepage;
   p.damage = true;
   p.rolling = ro;

@@ -101,6 +101,11 @@ TEST(WearSimulationTest, HalvingTheStepLimitChangesTheFinalDepthByLessThanTwoPer
   WearStudy coarse = MakeStudy(2);
   coarse.options.total_passes = 1.5e5;
   coarse.options.quadrature_points = 5;
+  // Unyawed: with its 4 mrad in the contact geometry (issue 14) this imposed-position traffic
+  // moves its contact between tread and gauge corner from step to step, and halving the step
+  // limit changes the final depth by 5.2 % (measured); the step control itself is what is
+  // tested here. Load cases from a vehicle in equilibrium replace such traffic (issue 15).
+  coarse.traffic[0].yaw_rad = 0.0;
   WearStudy fine = coarse;
   fine.options.max_depth_per_step_m = 0.5e-4;
   const RunOutcome a = RunAll(coarse), b = RunAll(fine);

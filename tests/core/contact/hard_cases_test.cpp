@@ -223,7 +223,8 @@ TEST(HardCases, BarelyTouchingPatchOnAWornRailStaysSmall) {
   p.model.kernel = KernelModel::kBoussinesq;
   RollingOptions rolling;
   rolling.motion.speed_m_s = 22.0;
-  rolling.motion.yaw_rad = 4e-3;
+  // Unyawed: the regression is the third patch's grid at this placement; the case's 4 mrad of
+  // yaw (a wear load case) now moves the contact in the geometry too and the third patch with it.
   rolling.friction = 0.35;
   p.rolling = rolling;
   const ContactResult r = SolveContact(p);

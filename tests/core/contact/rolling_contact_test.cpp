@@ -35,10 +35,12 @@ ContactProblem ConformalExample() {
   RollingOptions r;
   r.friction = 0.3;
   r.motion.speed_m_s = 10.0;
-  // xi = -0.004 at the contact point from the pitch velocity; the yaw's lateral slip -V sin(psi)
-  // is horizontal, so along the 45-degree tangent eta = -sin(psi) cos(45).
+  // xi = -0.004 at the contact point from the pitch velocity; a lateral velocity dy/dt gives the
+  // horizontal slip dy/dt, which along the 45-degree tangent is eta = dy/dt cos(45) / V. (The
+  // example's creepages are prescribed on the unyawed geometry: a yaw would move the contact
+  // point along the flange, yawed_wheel.h.)
   r.motion.pitch_velocity_rad_s = (-0.004 - 1.0) * r.motion.speed_m_s / 0.46;
-  r.motion.yaw_rad = std::asin(0.0098995 / std::cos(std::numbers::pi / 4));
+  r.motion.lateral_velocity_m_s = -0.0098995 / std::cos(std::numbers::pi / 4) * r.motion.speed_m_s;
   p.rolling = r;
   return p;
 }
@@ -129,7 +131,7 @@ TEST(RollingContact, PrescribedLongitudinalForceUpToFullSliding) {
   // the pitch velocity is found so that F_x meets the target; beyond adhesion it is a status,
   // not an exception.
   ContactProblem p = ConformalExample();
-  p.rolling->motion.yaw_rad = 0.0;
+  p.rolling->motion.lateral_velocity_m_s = 0.0;
   p.rolling->motion.pitch_velocity_rad_s.reset();
   const ContactResult free_rolling = SolveContact(p);
   double fn = 0.0;
