@@ -11,6 +11,10 @@
 //                             problem: S1002 on UIC60 1:40, shift -4 mm, 100 kN. model: 0 hertz,
 //                             1 halfspace, 2 conformal+boussinesq, 3 conformal+golubenko, 4 auto;
 //                             preset: 0 draft, 1 standard, 2 reference, 3 fine.
+//  BM_GaugeCornerYaw/model/preset/yaw_mrad  the same problem with the wheel yawed (0 or 15 mrad;
+//                             issue 14): what yaw in the contact geometry costs against the
+//                             unyawed solve (the yawed wheel's outline, grids centred on the
+//                             leading contact point). model 1 halfspace, 2 conformal+boussinesq.
 //
 // Run: build/tests/benchmarks/contact_bench --benchmark_repetitions=3
 //        --benchmark_report_aggregates_only=true
@@ -123,6 +127,7 @@ void BM_GaugeCorner(benchmark::State& state) {
   p.placement.lateral_shift_m = -0.004;
   p.placement.rolling_radius_m = 0.46;
   p.load.vertical_force_N = 100e3;
+  if (state.range(2) != 0) p.placement.yaw_rad = state.range(2) * 1e-3;
   const int model = static_cast<int>(state.range(0));
   p.model = MakeModelOptions(model == 0   ? ModelKind::kHertz
                              : model == 1 ? ModelKind::kHalfspace
@@ -138,7 +143,8 @@ void BM_GaugeCorner(benchmark::State& state) {
   }
   static const char* kModels[] = {"hertz", "halfspace", "conformal+boussinesq",
                                   "conformal+golubenko", "auto"};
-  state.SetLabel(std::string(kModels[model]) + " " + std::string(ToString(p.model.accuracy)));
+  state.SetLabel(std::string(kModels[model]) + " " + std::string(ToString(p.model.accuracy)) +
+                 (state.range(2) != 0 ? " yaw " + std::to_string(state.range(2)) + " mrad" : ""));
   int cells = 0, in_contact = 0;
   for (const auto& pr : r.patches) {
     cells += pr.cells;
@@ -151,7 +157,11 @@ void BM_GaugeCorner(benchmark::State& state) {
   state.counters["iterations"] = r.iterations;
 }
 BENCHMARK(BM_GaugeCorner)
-    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2, 3}})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2, 3}, {0}})
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GaugeCorner)
+    ->Name("BM_GaugeCornerYaw")
+    ->ArgsProduct({{1, 2}, {0, 1, 2}, {0, 15}})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
