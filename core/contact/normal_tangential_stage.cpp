@@ -19,6 +19,9 @@ namespace {
 // The smallest slope d(V_p + V_c)/dT a secant step divides by: creep forces that cancel the
 // pressure's vertical part (dV_c/dV_p near -1) leave no load to balance.
 constexpr double kMinBalanceSlope = 0.05;
+// A bracket on the target narrower than this (relative to the load) that has not met the
+// tolerance holds a jump of f, not a root.
+constexpr double kStalledBracket = 1e-10;
 
 std::pair<double, double> AreaAndPeak(const ContactResult& r) {
   double area = 0.0, p_max = 0.0;
@@ -46,7 +49,9 @@ class BalanceTarget {
     return std::abs(Error(r)) <= kBalanceTolerance * load_;
   }
   // The bracket has closed to round-off without meeting the tolerance: f jumps there.
-  bool Stalled() const { return lo_ && hi_ && hi_->first - lo_->first <= 1e-13 * load_; }
+  bool Stalled() const {
+    return lo_ && hi_ && hi_->first - lo_->first <= kStalledBracket * load_;
+  }
   // The jump of f across the closed bracket [N].
   double Jump() const { return lo_ && hi_ ? hi_->second - lo_->second : 0.0; }
 
