@@ -13,6 +13,7 @@
 #include "app/contact_output.h"
 #include "app/pressure_plot.h"
 #include "app/scene.h"
+#include "core/contact/contact_forces.h"
 #include "core/contact/wheelset_contact.h"
 #include "core/numerics/enum_names.h"
 #include "core/numerics/input_error.h"
@@ -72,6 +73,11 @@ void CheckOptions(const ContactOptions& o) {
   if (o.plot) RequireGnuplot();  // before the solve, so nobody waits for nothing
 }
 
+// The flange-climb warning on stderr (it is also in the summary and the JSON's "warnings").
+void WarnOfFlangeClimb(const ContactResult& r, const std::string& wheel) {
+  if (r.climb.exceeded) std::cerr << "warning: " << FlangeClimbWarning(r.climb, wheel) << "\n";
+}
+
 // A wheelset on a track: both wheels, each in its rail's own frame.
 void RunWheelset(const ContactOptions& o, const Scene& scene) {
   const WheelsetResult result = SolveWheelset({scene.problem, *scene.track, *scene.wheelset});
@@ -84,6 +90,8 @@ void RunWheelset(const ContactOptions& o, const Scene& scene) {
   }
   if (o.json != "-" && o.csv != "-")
     std::cout << FormatWheelsetSummary(scene, result) << std::flush;
+  WarnOfFlangeClimb(result.right, "right wheel");
+  WarnOfFlangeClimb(result.left, "left wheel");
   if (o.plot) {
     ContactResult both = result.right;  // right patches first, then the left ones
     for (const auto& p : result.left.patches) both.patches.push_back(p);
@@ -143,6 +151,7 @@ void RunContact(const ContactOptions& o) {
     WriteOutput(*o.csv, csv.str(), "CSV");
   }
   if (o.json != "-" && o.csv != "-") std::cout << FormatSummary(scene, result) << std::flush;
+  WarnOfFlangeClimb(result, "");
   if (o.plot) PlotPressure(scene, result, *o.plot);
 
   if (result.status != SolverStatus::kConverged) {

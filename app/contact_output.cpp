@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "app/influence_constants_file.h"
+#include "core/contact/contact_forces.h"
 #include "core/numerics/units.h"
 
 namespace railwear::app {
@@ -190,6 +191,100 @@ std::string PatchTable(const ContactResult& r) {
   return out;
 }
 
+nlohmann::json XyzJson(const Eigen::Vector3d& f) {
+  return {{"x", f.x()}, {"y", f.y()}, {"z", f.z()}};
+}
+
+nlohmann::json PatchAxesJson(const Eigen::Vector3d& f) {
+  return {{"normal", f.x()}, {"longitudinal", f.y()}, {"lateral", f.z()}};
+}
+
+// Normal (pressure), creep and net parts of a force on the rail in the rail and track frames.
+nlohmann::json FramesJson(const ForceParts& f, bool left_wheel) {
+  return {
+      {"rail",
+       {{"normal", XyzJson(f.normal_N)}, {"creep", XyzJson(f.creep_N)}, {"net", XyzJson(f.Net())}}},
+      {"track",
+       {{"normal", XyzJson(RailToTrackFrame(f.normal_N, left_wheel))},
+        {"creep", XyzJson(RailToTrackFrame(f.creep_N, left_wheel))},
+        {"net", XyzJson(RailToTrackFrame(f.Net(), left_wheel))}}}};
+}
+
+// The labelled forces of DESIGN.md §8 (issue 14): on the rail, in the rail, track and (per
+// patch) patch frames, as pressure ("normal"), creep and net parts.
+nlohmann::json ForcesJson(const ContactResult& r, bool left_wheel) {
+  nlohmann::json j;
+  j["on"] = "rail";
+  j["unit"] = "N";
+  j["frames"] = {
+      {"rail", "rail profile frame R: x forward, y toward this rail's field side, z down"},
+      {"track", left_wheel ? "track frame T: x forward, Y right, z down (left wheel: R mirrored)"
+                           : "track frame T: x forward, Y right, z down (right wheel: = R)"},
+      {"patch",
+       "normal (into the rail, along the patch's pressure resultant), longitudinal (x), lateral "
+       "(tangent plane, toward the field side)"}};
+  j["total"] = FramesJson(TotalForcesOnRail(r), left_wheel);
+  j["patches"] = nlohmann::json::array();
+  for (const PatchResult& p : r.patches) {
+    const ForceParts f = PatchForcesOnRail(p);
+    nlohmann::json pj = FramesJson(f, left_wheel);
+    pj["patch"] = {{"normal", PatchAxesJson(RailToPatchFrame(f.normal_N, p.contact_angle_rad))},
+                   {"creep", PatchAxesJson(RailToPatchFrame(f.creep_N, p.contact_angle_rad))},
+                   {"net", PatchAxesJson(RailToPatchFrame(f.Net(), p.contact_angle_rad))}};
+    pj["contact_angle_deg"] = p.contact_angle_rad * kToDeg;
+    j["patches"].push_back(std::move(pj));
+  }
+  return j;
+}
+
+nlohmann::json OptionalNumber(const std::optional<double>& v) {
+  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+// L/V, Nadal's limit and its verdict.
+nlohmann::json ClimbJson(const FlangeClimbCheck& c) {
+  return {{"l_over_v", c.l_over_v},
+          {"contact_angle_deg", c.contact_angle_rad * kToDeg},
+          {"friction", OptionalNumber(c.friction)},
+          {"nadal_limit", OptionalNumber(c.nadal_limit)},
+          {"exceeded", c.exceeded}};
+}
+
+std::string ClimbLine(const FlangeClimbCheck& c) {
+  std::string limit;
+  if (!c.friction) {
+    limit = "no Nadal limit (normal contact, no friction)";
+  } else if (!c.nadal_limit) {
+    limit = fmt::format(
+        "no Nadal limit (steepest contact angle {:.1f} deg <= atan(mu) = {:.1f} deg: no climb)",
+        c.contact_angle_rad * kToDeg, std::atan(*c.friction) * kToDeg);
+  } else {
+    limit = fmt::format("Nadal's limit {:.3f} at {:.1f} deg, mu {:.3g}{}", *c.nadal_limit,
+                        c.contact_angle_rad * kToDeg, *c.friction, c.exceeded ? ": EXCEEDED" : "");
+  }
+  return fmt::format("L/V         {:.3f} (net forces on the rail, rail frame); {}\n", c.l_over_v,
+                     limit);
+}
+
+// Per patch: the forces on the rail, rail frame, pressure / creep / net.
+std::string ForceTable(const ContactResult& r) {
+  std::string out = fmt::format("{:>5} {:>8} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11}\n", "patch",
+                                "part", "x_N", "y_N", "z_N", "normal_N", "long_N", "lat_N");
+  for (size_t k = 0; k < r.patches.size(); ++k) {
+    const ForceParts f = PatchForcesOnRail(r.patches[k]);
+    const double g = r.patches[k].contact_angle_rad;
+    const std::pair<const char*, Eigen::Vector3d> parts[] = {
+        {"pressure", f.normal_N}, {"creep", f.creep_N}, {"net", f.Net()}};
+    for (const auto& [name, v] : parts) {
+      const Eigen::Vector3d pf = RailToPatchFrame(v, g);
+      out +=
+          fmt::format("{:>5} {:>8} {:>11.1f} {:>11.1f} {:>11.1f} {:>11.1f} {:>11.1f} {:>11.1f}\n",
+                      k + 1, name, v.x(), v.y(), v.z(), pf.x(), pf.y(), pf.z());
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<PressureSample> PressureSamples(const PatchResult& patch, int patch_number) {
@@ -197,7 +292,7 @@ std::vector<PressureSample> PressureSamples(const PatchResult& patch, int patch_
   return GridSamples(patch, patch_number);
 }
 
-std::string FormatSummary(const Scene& scene, const ContactResult& r) {
+std::string FormatSummary(const Scene& scene, const ContactResult& r, bool left_wheel) {
   std::string out;
   out += fmt::format("scene       {} ({})\n", scene.name, scene.path);
   out += fmt::format("model       {}\n", ModelLine(r.model));
@@ -206,10 +301,33 @@ std::string FormatSummary(const Scene& scene, const ContactResult& r) {
   out += fmt::format("approach    {:.5f} mm\n", r.approach_m * kToMm);
   out += fmt::format("iterations  {}\n", r.iterations);
   out += fmt::format("time        {:.1f} ms{}\n", r.time_s * kToMs, StagesLine(r));
+  const ForceParts forces = TotalForcesOnRail(r);
+  const Eigen::Vector3d net = forces.Net();
   out += fmt::format(
-      "total       area {:.2f} mm2, p_max {:.1f} MPa, vertical {:.1f} N, "
-      "lateral {:.1f} N\n",
-      r.area_m2 * kToMm2, r.p_max_Pa * kToMPa, r.vertical_force_N, r.lateral_force_N);
+      "total       area {:.2f} mm2, p_max {:.1f} MPa; net force on the rail (rail frame): "
+      "vertical {:.1f} N, lateral {:.1f} N\n",
+      r.area_m2 * kToMm2, r.p_max_Pa * kToMPa, net.z(), net.y());
+  const bool rolling = !r.patches.empty() && r.patches[0].rolling;
+  if (rolling) {
+    out += fmt::format(
+        "            of which pressure vertical {:.1f} N, lateral {:.1f} N; creep forces "
+        "longitudinal {:.1f} N, vertical {:.1f} N, lateral {:.1f} N\n",
+        forces.normal_N.z(), forces.normal_N.y(), forces.creep_N.x(), forces.creep_N.z(),
+        forces.creep_N.y());
+    if (left_wheel) {
+      out += fmt::format("            track frame (Y right): lateral {:.1f} N\n",
+                         RailToTrackFrame(net, true).y());
+    }
+  }
+  if (r.balance_iterations > 0) {
+    out += fmt::format(
+        "balance     {} iterations: pressure and creep forces carry the load to {:.1e}\n",
+        r.balance_iterations, r.balance_residual);
+  }
+  if (!r.patches.empty()) {
+    out += ClimbLine(r.climb);
+    if (r.climb.exceeded) out += fmt::format("WARNING     {}\n", FlangeClimbWarning(r.climb, ""));
+  }
   if (r.coupling_iterations > 0) {
     out += fmt::format(
         "coupling    {} normal-tangential iterations: area {:+.3f} %, p_max {:+.3f} %\n",
@@ -223,16 +341,20 @@ std::string FormatSummary(const Scene& scene, const ContactResult& r) {
       out += fmt::format("patch {} model: {}\n", k + 1, r.patches[k].model_reason);
     }
   }
-  if (!r.patches.empty() && r.patches[0].rolling) {
+  if (rolling) {
     out += fmt::format(
-        "\nrolling (creep forces of the rail on the wheel; pitch velocity {:.4f} "
-        "rad/s)\n{}",
+        "\nrolling (creep forces of the rail ON THE WHEEL, patch frame: Fx longitudinal, Fy "
+        "lateral along s; pitch velocity {:.4f} rad/s)\n{}",
         r.pitch_velocity_rad_s, RollingTable(r));
+    out += fmt::format(
+        "\nforces ON THE RAIL per patch: rail frame (x, y toward the field side, z down) and "
+        "patch frame (normal, longitudinal, lateral)\n{}",
+        ForceTable(r));
   }
   return out;
 }
 
-nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r) {
+nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r, bool left_wheel) {
   nlohmann::json j;
   j["status"] = ToString(r.status);
   j["message"] = r.message;
@@ -262,6 +384,19 @@ nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r) {
                      {"area_change_percent", 100.0 * r.coupling_area_change},
                      {"p_max_change_percent", 100.0 * r.coupling_p_max_change}};
   }
+  // The old keys first: a non-finite value is named where it arises, not in "forces".
+  RequireFiniteJson(j, "contact result $");
+  if (r.balance_iterations > 0) {
+    j["balance"] = {{"iterations", r.balance_iterations},
+                    {"residual_relative", r.balance_residual}};
+  }
+  // total.vertical_force_N and lateral_force_N (and the patches' ones) are the pressure's part
+  // on the rail, as always; "forces" labels every part, body and frame.
+  j["forces"] = ForcesJson(r, left_wheel);
+  j["flange_climb_check"] = ClimbJson(r.climb);
+  j["flange_climb"] = r.climb.exceeded;
+  j["warnings"] = nlohmann::json::array();
+  if (r.climb.exceeded) j["warnings"].push_back(FlangeClimbWarning(r.climb, ""));
   RequireFiniteJson(j, "contact result $");
   return j;
 }
@@ -322,8 +457,13 @@ nlohmann::json MakeWheelsetJson(const Scene& scene, const WheelsetResult& r) {
                     {"right_roll_rad", r.placement.right.roll_rad},
                     {"left_roll_rad", r.placement.left.roll_rad},
                     {"rail_gauge_point_y_mm", r.placement.rail_gauge_point_y_m * kToMm}};
-  j["wheels"] = {{"right", MakeContactJson(scene, r.right)},
-                 {"left", MakeContactJson(scene, r.left)}};
+  j["wheels"] = {{"right", MakeContactJson(scene, r.right, false)},
+                 {"left", MakeContactJson(scene, r.left, true)}};
+  j["warnings"] = nlohmann::json::array();
+  for (const auto& [name, w] : {std::pair{"right wheel", &r.right}, {"left wheel", &r.left}}) {
+    if (w->climb.exceeded) j["warnings"].push_back(FlangeClimbWarning(w->climb, name));
+  }
+  j["flange_climb"] = r.right.climb.exceeded || r.left.climb.exceeded;
   return j;
 }
 
@@ -333,7 +473,7 @@ std::string FormatWheelsetSummary(const Scene& scene, const WheelsetResult& r) {
       "== right wheel (right rail's frame) ==\n{}\n== left wheel (left rail's own frame, y "
       "toward its field side) ==\n{}",
       r.placement.right.lateral_shift_m * kToMm, r.placement.left.lateral_shift_m * kToMm,
-      FormatSummary(scene, r.right), FormatSummary(scene, r.left));
+      FormatSummary(scene, r.right, false), FormatSummary(scene, r.left, true));
 }
 
 void RequireFiniteJson(const nlohmann::json& j, const std::string& where) {

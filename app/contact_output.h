@@ -43,12 +43,21 @@ constexpr int kHertzSamples = 41;
 // vector does not match the grid.
 std::vector<PressureSample> PressureSamples(const PatchResult& patch, int patch_number);
 
-// Human summary: model, status, approach, iterations, time, totals and a table of patches.
-std::string FormatSummary(const Scene& scene, const ContactResult& result);
+// Human summary: model, status, approach, iterations, time, totals (net forces on the rail, and
+// with rolling their pressure and creep parts), the vertical balance, L/V against Nadal's limit
+// (a WARNING line when exceeded) and tables of patches. `left_wheel`: the result is a wheelset's
+// left wheel (its track frame is its rail frame mirrored).
+std::string FormatSummary(const Scene& scene, const ContactResult& result, bool left_wheel = false);
 
 // The JSON object of DESIGN.md §4 (keys carry their units). Throws std::runtime_error naming
-// the key when a number is NaN or infinite, so that no such value reaches a file.
-nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& result);
+// the key when a number is NaN or infinite, so that no such value reaches a file. Besides the
+// old keys (total.vertical_force_N / lateral_force_N: the pressure's part on the rail; the
+// patches' creep_force_N: on the wheel): "forces" (on the rail; rail, track and patch frames;
+// normal, creep and net parts; totals and per patch), "balance" (vertical balance iterations),
+// "flange_climb_check" (L/V, Nadal's limit), "flange_climb" (true when L/V exceeds it) and
+// "warnings" (strings).
+nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& result,
+                               bool left_wheel = false);
 
 // No NaN or infinity reaches an output (issue 6): throws std::runtime_error naming the key path
 // (`where` + ".key[i]...") of the first non-finite number in `j`. MakeContactJson calls it; so
@@ -62,8 +71,9 @@ void RequireFiniteJson(const nlohmann::json& j, const std::string& where);
 void WritePressureCsv(const ContactResult& result, std::ostream& out, const std::string& wheel = "",
                       bool header = true);
 
-// A wheelset: { status, scene, scene_file, placement: {...}, wheels: {left: {...}, right: {...}} }
-// with each wheel's object as MakeContactJson gives it. Throws as MakeContactJson does.
+// A wheelset: { status, scene, scene_file, placement: {...}, wheels: {left: {...}, right: {...}},
+// warnings: [...], flange_climb } with each wheel's object as MakeContactJson gives it. Throws as
+// MakeContactJson does.
 nlohmann::json MakeWheelsetJson(const Scene& scene, const WheelsetResult& result);
 std::string FormatWheelsetSummary(const Scene& scene, const WheelsetResult& result);
 

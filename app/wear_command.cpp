@@ -70,7 +70,19 @@ json LoadCaseJson(const LoadCaseSummary& c, const WearStudy& study) {
   j["lateral_force_N"] = c.lateral_force_N;
   j["area_mm2"] = c.area_m2 * 1e6;
   j["p_max_MPa"] = c.p_max_Pa * 1e-6;
-  j["creep_force_N"] = {{"x", c.creep_force_x_N}, {"s", c.creep_force_s_N}};
+  j["creep_force_N"] = {{"x", c.creep_force_x_N}, {"s", c.creep_force_s_N}};  // on the wheel
+  // The labelled forces (issue 14): on the rail, rail frame, pressure / creep / net parts.
+  auto xyz = [](const Eigen::Vector3d& f) {
+    return json{{"x", f.x()}, {"y", f.y()}, {"z", f.z()}};
+  };
+  j["forces"] = {{"on", "rail"},
+                 {"frame", "rail"},
+                 {"normal", xyz(c.forces.normal_N)},
+                 {"creep", xyz(c.forces.creep_N)},
+                 {"net", xyz(c.forces.Net())}};
+  j["l_over_v"] = c.climb.l_over_v;
+  j["nadal_limit"] = c.climb.nadal_limit ? json(*c.climb.nadal_limit) : json(nullptr);
+  j["flange_climb"] = c.climb.exceeded;
   j["t_gamma_N"] = c.t_gamma_N;
   j["rcf_damage_per_pass"] = c.rcf_damage_per_pass;
   j["worn_area_per_pass_mm2"] = c.worn_area_per_pass_m2 * 1e6;
@@ -216,6 +228,25 @@ class Progress {
     if (tty_) std::cerr << "\n";
   }
 
+  // One line per step whose load cases exceed Nadal's limit: how many, and the worst.
+  void WarnOfFlangeClimb(const StepResult& step, const WearStudy& study) {
+    int count = 0;
+    const LoadCaseSummary* worst = nullptr;
+    for (const LoadCaseSummary& c : step.cases) {
+      if (!c.climb.exceeded) continue;
+      ++count;
+      const double margin = c.climb.l_over_v - *c.climb.nadal_limit;
+      if (!worst || margin > worst->climb.l_over_v - *worst->climb.nadal_limit) worst = &c;
+    }
+    if (count == 0) return;
+    std::cerr << fmt::format(
+        "{}warning: step {}: flange climb possible in {} of {} load cases (worst: {} at lateral "
+        "shift {:.2f} mm: {})\n",
+        tty_ ? "\n" : "", step.state.step, count, step.cases.size(),
+        study.traffic[worst->load_case.traffic_index].name, worst->load_case.lateral_shift_m * 1e3,
+        FlangeClimbWarning(worst->climb, ""));
+  }
+
  private:
   double total_, start_passes_;
   bool tty_;
@@ -346,6 +377,7 @@ void RunWearCommand(const WearCommandOptions& options) {
           store.AppendStep(run_id, MakeStepRecord(step, study, unworn, previous));
           previous = step.state.rail;
           progress.Step(step);
+          progress.WarnOfFlangeClimb(step, study);
           return true;
         },
         options.steps);

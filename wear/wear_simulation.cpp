@@ -69,6 +69,8 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const CurveLocator& rail, cons
   s.patches = static_cast<int>(result.patches.size());
   s.vertical_force_N = result.vertical_force_N;
   s.lateral_force_N = result.lateral_force_N;
+  s.forces = TotalForcesOnRail(result);
+  s.climb = result.climb;
   s.area_m2 = result.area_m2;
   s.p_max_Pa = result.p_max_Pa;
   double largest = -1.0;

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "core/contact/contact_forces.h"
 #include "core/contact/contact_solver.h"
 #include "core/profile/profile.h"
 #include "wear/depth_smoothing.h"
@@ -96,9 +97,13 @@ struct LoadCaseSummary {
   SolverStatus status = SolverStatus::kNoContact;
   std::string message;
   int patches = 0;
-  double vertical_force_N = 0.0, lateral_force_N = 0.0;  // on the rail
+  // The pressure's part of the force on the rail, rail frame (vertical +z down, lateral +y).
+  double vertical_force_N = 0.0, lateral_force_N = 0.0;
+  // The force on the rail, rail frame: pressure, creep and net parts (contact_forces.h).
+  ForceParts forces;
+  FlangeClimbCheck climb;  // L/V (net, on the rail) against Nadal's limit
   double area_m2 = 0.0, p_max_Pa = 0.0;
-  double creep_force_x_N = 0.0, creep_force_s_N = 0.0;  // sum over patches, on the wheel
+  double creep_force_x_N = 0.0, creep_force_s_N = 0.0;  // sum over patches, ON THE WHEEL
   double t_gamma_N = 0.0;                               // sum over patches
   double rcf_damage_per_pass = 0.0;                     // largest over patches
   double worn_area_per_pass_m2 = 0.0;                   // sum_b depth_b h

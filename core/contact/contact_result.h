@@ -29,7 +29,9 @@ struct RollingPatch {
 struct PatchResult {
   double area_m2 = 0.0;
   double p_max_Pa = 0.0;
-  double normal_force_N = 0.0;    // magnitude of the resultant of p over the patch
+  double normal_force_N = 0.0;  // magnitude of the resultant of p over the patch
+  // The pressure's resultant on the rail in the rail frame (the creep forces' part is in
+  // rolling->tangential, on the wheel; contact_forces.h sums both on the rail):
   double vertical_force_N = 0.0;  // on the rail, positive downward (+z)
   double lateral_force_N = 0.0;   // on the rail, positive toward +y (field side)
   // Pressure centre mapped onto the rail profile, rail profile coordinates [m].
@@ -53,6 +55,17 @@ struct PatchResult {
   std::string model_reason;
 };
 
+// L/V of one wheel and its check against Nadal's limit (core/contact/contact_forces.h).
+struct FlangeClimbCheck {
+  // |net lateral force on the rail| / net vertical force on the rail, both in R (0 without a
+  // positive vertical force).
+  double l_over_v = 0.0;
+  double contact_angle_rad = 0.0;     // of the steepest patch (largest contact angle)
+  std::optional<double> friction;     // the scene's mu; absent for normal contact
+  std::optional<double> nadal_limit;  // absent without friction or below atan(mu)
+  bool exceeded = false;              // L/V > Nadal's limit: flange climb possible
+};
+
 struct StageTime {
   std::string name;
   double seconds = 0.0;
@@ -67,6 +80,8 @@ struct ContactResult {
   double time_s = 0.0;
   double area_m2 = 0.0;
   double p_max_Pa = 0.0;
+  // Sums of the patches' vertical_force_N and lateral_force_N: the pressure's part only; the net
+  // forces with the creep parts are TotalForcesOnRail (core/contact/contact_forces.h).
   double vertical_force_N = 0.0;
   double lateral_force_N = 0.0;
   std::vector<PatchResult> patches;
@@ -77,6 +92,12 @@ struct ContactResult {
   int coupling_iterations = 0;
   double coupling_area_change = 0.0;
   double coupling_p_max_change = 0.0;
+  // The vertical balance (with a prescribed vertical load and rolling contact): iterations of
+  // the normal-tangential loop that made the net vertical force on the rail (pressure and creep
+  // forces) equal the load, and its final |V_net - Q| / Q (0 without the balance).
+  int balance_iterations = 0;
+  double balance_residual = 0.0;
+  FlangeClimbCheck climb;  // L/V and Nadal's limit of this wheel
 };
 
 }  // namespace railwear

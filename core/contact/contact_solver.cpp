@@ -7,14 +7,18 @@
 //   normal solve    normal_stage.h      SolveNormal and the solution's patches
 //   patch results   patch_results.h     areas, forces, pressure centres
 //   rolling         rolling_stage.h     tangential solution (one seam: tangential_method.h)
-//   coupling        coupling_stage.h    normal-tangential iteration
+//   normal-tangential normal_tangential_stage.h  coupling and the vertical balance with the
+//                   creep forces, in one loop
+//   (every exit)    contact_forces.h    L/V and Nadal's limit (FlangeClimbCheck)
 #include "core/contact/contact_solver.h"
 
 #include <algorithm>
+#include <optional>
 
-#include "core/contact/coupling_stage.h"
+#include "core/contact/contact_forces.h"
 #include "core/contact/hertz_estimate.h"
 #include "core/contact/normal_stage.h"
+#include "core/contact/normal_tangential_stage.h"
 #include "core/contact/operator_stage.h"
 #include "core/contact/patch_model_memory.h"
 #include "core/contact/patch_results.h"
@@ -28,7 +32,12 @@ using namespace internal;  // the stages
 
 ContactResult SolveContact(const ContactProblem& problem) {
   const auto t_start = Clock::now();
-  auto finish = [&](ContactResult r) { return FinishResult(std::move(r), SecondsSince(t_start)); };
+  auto finish = [&](ContactResult r) {
+    r = FinishResult(std::move(r), SecondsSince(t_start));
+    r.climb = CheckFlangeClimb(
+        r, problem.rolling ? std::optional<double>(problem.rolling->friction) : std::nullopt);
+    return r;
+  };
   CheckContactProblem(problem);
   ContactResult result;
   result.model = problem.model;
@@ -92,16 +101,18 @@ ContactResult SolveContact(const ContactProblem& problem) {
       result.message += "pressure reaches the edge of the potential contact area";
     }
 
-    // 5. Rolling and coupling.
+    // 5. Rolling, then coupling and the vertical balance.
     if (problem.rolling && result.status == SolverStatus::kConverged) {
       t0 = Clock::now();
       RunRollingStage(problem, geom, &result);
       AddStage(&result.stages, "tangential", SecondsSince(t0));
-      if (problem.rolling->coupling) {
+      if (result.status == SolverStatus::kConverged &&
+          (problem.rolling->coupling || problem.load.vertical_force_N)) {
         t0 = Clock::now();
-        SolveCoupled(problem, geom, builds.cands, kept.build, kept.offset, &assembly.np,
-                     sol.pressure_Pa, &result);
-        AddStage(&result.stages, "coupling", SecondsSince(t0));
+        IterateNormalTangential(problem, geom, builds.cands, kept.build, kept.offset, &assembly.np,
+                                sol.pressure_Pa, &result);
+        AddStage(&result.stages, problem.rolling->coupling ? "coupling" : "balance",
+                 SecondsSince(t0));
       }
     }
     return finish(result);

@@ -19,6 +19,8 @@ namespace railwear {
 // result->pitch_velocity_rad_s. problem.rolling must be set (and not hold a force target: that
 // is SolveContact's and SolveWheelset's business).
 // `geometry` is the problem's placed wheel and rail (to reuse it across repeated calls).
+// The normal patches are left as they are: no vertical balance with the new creep forces (that
+// is SolveContact's normal-tangential stage; SolveWheelset re-solves after its search).
 void ApplyRolling(const ContactProblem& problem, const WheelRailGeometry& geometry,
                   ContactResult* result);
 

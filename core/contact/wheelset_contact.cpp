@@ -6,7 +6,15 @@
 
 #include <fmt/format.h>
 
+#include "core/contact/contact_forces.h"
+
 namespace railwear {
+
+namespace {
+// Rounds of (balanced solve at the pitch velocity, pitch-velocity search) for an axle force
+// target under a prescribed load.
+constexpr int kBalanceRounds = 8;
+}  // namespace
 
 WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
   WheelsetResult out;
@@ -68,7 +76,33 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
     }
     return out;
   }
-  fx(*omega);
+  // The normal problems were balanced (vertical load with the creep forces) at the first pitch
+  // velocity: solve both wheels again at the one found, and search again from there, until
+  // the balanced wheels carry the target.
+  double found = *omega;
+  if (!right.load.vertical_force_N) {
+    fx(found);  // a prescribed approach: the normal solution does not depend on the creep forces
+  } else {
+    for (int round = 0; round < kBalanceRounds; ++round) {
+      right.rolling->motion.pitch_velocity_rad_s = found;
+      left.rolling->motion.pitch_velocity_rad_s = found;
+      out.right = SolveContact(right);
+      out.left = SolveContact(left);
+      if (out.right.status != SolverStatus::kConverged ||
+          out.left.status != SolverStatus::kConverged || round + 1 == kBalanceRounds) {
+        break;
+      }
+      const double error = total(out.right, false) + total(out.left, false) - *target;
+      if (std::abs(error) <= 1e-6 * mu_fn) break;
+      const auto again =
+          SolvePitchVelocityForForce(fx, *target, right.rolling->motion.speed_m_s,
+                                     problem.wheelset.rolling_radius_m, 1e-6 * mu_fn);
+      if (!again) break;
+      found = *again;
+    }
+  }
+  out.right.climb = CheckFlangeClimb(out.right, right.rolling->friction);
+  out.left.climb = CheckFlangeClimb(out.left, left.rolling->friction);
   return out;
 }
 

@@ -6,7 +6,9 @@
 // lateral forces, lateral creepage, spin) are in the left rail profile's own coordinates. Both
 // wheels carry the same vertical load and share the axle's pitch velocity; the left wheel sees the
 // mirrored yaw and roll. Prescribed creepages (RollingOptions::creepage) apply to each wheel in its
-// own frame.
+// own frame. Under a prescribed load each wheel is balanced vertically with its creep forces
+// (SolveContact); with an axle force target the balanced solves and the pitch-velocity search
+// alternate until both hold. Each wheel's FlangeClimbCheck (L/V, Nadal) is in its own rail frame.
 #pragma once
 
 #include "core/contact/contact_solver.h"

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/contact/contact_forces.h"
 #include "core/contact/contact_solver.h"
 #include "core/profile/builtin_profiles.h"
 #include "core/profile/profile_io.h"
@@ -22,7 +23,8 @@ constexpr double kLoadTolerance = 1e-8;
 void ExpectSound(const ContactResult& r, double force_N, const std::string& what) {
   ASSERT_EQ(r.status, SolverStatus::kConverged) << what << ": " << r.message;
   ASSERT_FALSE(r.patches.empty()) << what;
-  EXPECT_NEAR(r.vertical_force_N, force_N, kLoadTolerance * force_N) << what;
+  // The net vertical force on the rail (pressure and, rolling, the creep forces' vertical parts).
+  EXPECT_NEAR(TotalForcesOnRail(r).Net().z(), force_N, kLoadTolerance * force_N) << what;
   EXPECT_TRUE(std::isfinite(r.area_m2) && r.area_m2 > 0) << what;
   EXPECT_TRUE(std::isfinite(r.p_max_Pa) && r.p_max_Pa > 0) << what;
   EXPECT_TRUE(std::isfinite(r.approach_m)) << what;
@@ -211,6 +213,7 @@ TEST(HardCases, BarelyTouchingPatchOnAWornRailStaysSmall) {
   // asked for a 659 x 4017 grid and std::bad_alloc in the wear run; a patch's cells now scale
   // with its share of the load and grids are cropped to the cells the approach can close.
   // Measured: 3 patches, 3243 cells in all, 126.0 mm2, < 1 s (it was 15 s with the cap alone).
+  // With the vertical balance (issue 14) the creep forces carry 9.8 kN of the 110 kN: 117.9 mm2.
   const std::string file =
       std::string(RAILWEAR_SOURCE_DIR) + "/tests/data/worn_high_rail_step42_canted.csv";
   ContactProblem p;
@@ -233,7 +236,7 @@ TEST(HardCases, BarelyTouchingPatchOnAWornRailStaysSmall) {
   int cells = 0;
   for (const auto& patch : r.patches) cells += patch.cells;
   EXPECT_LT(cells, 10000);  // the flange patch needs ~1300 at the standard preset
-  EXPECT_NEAR(r.area_m2 * 1e6, 126.0, 1.5);
+  EXPECT_NEAR(r.area_m2 * 1e6, 117.9, 1.5);
 }
 
 TEST(HardCases, AGridTooLargeForMemoryIsAStatusNotACrash) {
