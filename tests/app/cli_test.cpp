@@ -267,8 +267,11 @@ yaw_mrad = 5
   }
   const double fx = p["creep_force_N"]["x"], fy = p["creep_force_N"]["y"];
   EXPECT_LE(std::hypot(fx, fy), 0.3 * double(p["normal_force_N"]) * (1 + 1e-9));
+  // Whole-cell count against the level-set area: at draft the yawed patch (issue 14) has 43
+  // cells, about half of them on its edge, and the count exceeds the area by 11 % (measured;
+  // 2 % on the unyawed patch before). Both converge together on finer grids.
   EXPECT_NEAR(double(p["stick_area_mm2"]) + double(p["slip_area_mm2"]), double(p["area_mm2"]),
-              0.1 * double(p["area_mm2"]));  // cell count against the level-set area
+              0.15 * double(p["area_mm2"]));
   for (const char* key : {"t_gamma_J_per_m", "wlrm_rcf_damage_per_axle", "fi_surf", "shakedown"}) {
     EXPECT_TRUE(p["damage"].contains(key)) << key;
   }

@@ -236,7 +236,9 @@ TEST(HardCases, BarelyTouchingPatchOnAWornRailStaysSmall) {
   int cells = 0;
   for (const auto& patch : r.patches) cells += patch.cells;
   EXPECT_LT(cells, 10000);  // the flange patch needs ~1300 at the standard preset
-  EXPECT_NEAR(r.area_m2 * 1e6, 117.9, 1.5);
+  // 126.0 mm2 before issue 14; the creep forces' vertical part now carries part of the load
+  // (vertical balance), and the rolling motion is unyawed with the geometry: 120.9 measured.
+  EXPECT_NEAR(r.area_m2 * 1e6, 120.9, 1.5);
 }
 
 TEST(HardCases, AGridTooLargeForMemoryIsAStatusNotACrash) {

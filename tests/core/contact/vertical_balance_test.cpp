@@ -30,7 +30,7 @@ ContactProblem GaugeCorner() {
   RollingOptions r;
   r.friction = 0.3;
   r.motion.speed_m_s = 20.0;
-  r.motion.yaw_rad = 5e-3;
+  p.placement.yaw_rad = 5e-3;
   p.rolling = r;
   return p;
 }
@@ -41,7 +41,7 @@ ContactProblem Flange(double yaw_rad, double friction) {
   p.placement.lateral_shift_m = -1.5e-3;
   p.load.vertical_force_N = 80e3;
   p.rolling->friction = friction;
-  p.rolling->motion.yaw_rad = yaw_rad;
+  p.placement.yaw_rad = yaw_rad;
   return p;
 }
 
@@ -159,7 +159,7 @@ TEST(FlangeClimb, FlangeCaseBeyondNadalIsFlaggedATreadCaseIsNot) {
 
   ContactProblem tread = GaugeCorner();
   tread.placement.lateral_shift_m = -8e-3;
-  tread.rolling->motion.yaw_rad = 0.0;
+  tread.placement.yaw_rad = 0.0;
   const ContactResult t = SolveContact(tread);
   ASSERT_EQ(t.status, SolverStatus::kConverged) << t.message;
   std::printf("[ measured ] tread: L/V %.3f at %.1f deg, %zu patches\n", t.climb.l_over_v,
