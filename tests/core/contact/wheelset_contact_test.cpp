@@ -43,6 +43,8 @@ void ExpectMirrored(const ContactResult& a, const ContactResult& b) {
     EXPECT_NEAR(ra.tangential.force_x_N, rb.tangential.force_x_N, 1e-6 * 50e3);
     EXPECT_NEAR(ra.tangential.force_s_N, rb.tangential.force_s_N, 1e-6 * 50e3);
     EXPECT_NEAR(ra.creepage.spin_per_m, rb.creepage.spin_per_m, 1e-9);
+    // Yaw in the geometry: the contact leads or trails the axle alike on both sides.
+    EXPECT_NEAR(a.patches[k].contact_x_m, b.patches[k].contact_x_m, 1e-9);
   }
 }
 
@@ -59,6 +61,18 @@ TEST(WheelsetContact, MirroredInputsGiveMirroredOutputs) {
   ExpectMirrored(plus.left, minus.right);
   // The displaced wheelset brings the right wheel toward flange contact: a steeper contact.
   EXPECT_GT(plus.right.patches[0].contact_angle_rad, plus.left.patches[0].contact_angle_rad);
+}
+
+TEST(WheelsetContact, MirroredFlangeContactUnderYawIsMirrored) {
+  // Issue 14: at 7 mm and 15 mrad the right wheel runs on its flange, its contact about 20 mm
+  // ahead of the axle; the mirrored inputs put the left wheel there, at the same lead.
+  const WheelsetResult plus = SolveWheelset(Problem(0.007, 0.015));
+  const WheelsetResult minus = SolveWheelset(Problem(-0.007, -0.015));
+  ExpectMirrored(plus.right, minus.left);
+  ExpectMirrored(plus.left, minus.right);
+  double lead = 0.0;
+  for (const auto& patch : plus.right.patches) lead = std::max(lead, patch.contact_x_m);
+  EXPECT_GT(lead, 0.01);  // a flange contact well ahead of the axle
 }
 
 }  // namespace
