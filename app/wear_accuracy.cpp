@@ -52,7 +52,7 @@ WearAccuracyRow RunOne(WearStudy study, const Profile& unworn, const WearGauge& 
   row.step_limit_mm = step_limit_mm;
   const auto start = std::chrono::steady_clock::now();
   const WearRunSummary summary =
-      RunWear(study, unworn, MakeInitialState(study), [](const StepResult&) { return true; });
+      RunWear(study, unworn, internal::InitialState(study), [](const StepResult&) { return true; });
   row.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   row.steps = summary.steps_done;
   row.passes = summary.state.passes;
@@ -111,12 +111,12 @@ WearAccuracyStudy RunWearAccuracyStudy(const Scene& scene, const WearAccuracyOpt
     study.options.total_passes.reset();
   }
   if (o.threads > 0) study.options.threads = o.threads;
-  ValidateWearStudy(study);
+  ValidateWearStudy(study);  // the study as changed above: once, before its runs
 
   WearAccuracyStudy s;
   s.scene_name = scene.name;
   s.scene_path = scene.path;
-  const Profile unworn = MakeInitialState(study).rail;
+  const Profile unworn = internal::InitialState(study).rail;
   const WearGauge gauge = MakeWearGauge(unworn);
   for (AccuracyPreset p : presets) {
     for (double limit : limits) {

@@ -353,7 +353,7 @@ void RunWearCommand(const WearCommandOptions& options) {
           "continue it",
           db, name));
     }
-    state = MakeInitialState(study);
+    state = internal::InitialState(study);  // the scene reader validated the study
     unworn = state.rail;
     RunInfo info;
     info.name = name;

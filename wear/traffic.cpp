@@ -75,6 +75,13 @@ std::vector<LoadCase> ExpandTraffic(const std::vector<TrafficCase>& traffic,
                                     int quadrature_points) {
   ValidateTraffic(traffic);
   ValidateQuadraturePoints(quadrature_points);
+  return internal::ExpandValidTraffic(traffic, quadrature_points);
+}
+
+namespace internal {
+
+std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic,
+                                         int quadrature_points) {
   double total_share = 0.0;
   for (const TrafficCase& c : traffic) total_share += c.share;
   std::vector<double> nodes, weights;
@@ -94,6 +101,8 @@ std::vector<LoadCase> ExpandTraffic(const std::vector<TrafficCase>& traffic,
   }
   return cases;
 }
+
+}  // namespace internal
 
 double MgtPerPass(const std::vector<TrafficCase>& traffic) {
   double share = 0.0, tonnes = 0.0;

@@ -55,6 +55,13 @@ void ValidateQuadraturePoints(int quadrature_points);
 // std is 0), in entry order. Weights sum to 1. Validates the traffic and quadrature_points.
 std::vector<LoadCase> ExpandTraffic(const std::vector<TrafficCase>& traffic, int quadrature_points);
 
+namespace internal {
+// ExpandTraffic without its checks, for the wear loop, whose study was validated once at its
+// entry (ValidateWearStudy): the traffic is not checked again at every step.
+std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic,
+                                         int quadrature_points);
+}  // namespace internal
+
 // Million gross tonnes per wheel pass of the mix: sum_c share_c axle_load_t_c / (1e6 sum share).
 double MgtPerPass(const std::vector<TrafficCase>& traffic);
 

@@ -229,10 +229,18 @@ Profile ResampleProfile(const Profile& profile, double spacing_m) {
 
 WearState MakeInitialState(const WearStudy& study) {
   ValidateWearStudy(study);
+  return internal::InitialState(study);
+}
+
+namespace internal {
+
+WearState InitialState(const WearStudy& study) {
   WearState state;
   state.rail = ResampleProfile(study.rail_profile, study.options.profile_spacing_m);
   return state;
 }
+
+}  // namespace internal
 
 StepResult RunWearStep(const WearStudy& study, const Profile& unworn, const WearState& state,
                        double passes_left) {
@@ -245,7 +253,8 @@ StepResult RunWearStep(const WearStudy& study, const Profile& unworn, const Wear
   StepResult step;
   step.grid = WearGrid::ForProfile(state.rail, o.bin_m);
   const int n = step.grid.n;
-  const std::vector<LoadCase> cases = ExpandTraffic(study.traffic, o.quadrature_points);
+  const std::vector<LoadCase> cases =
+      internal::ExpandValidTraffic(study.traffic, o.quadrature_points);
   const CurveLocator rail_locator(rail_track, /*material_toward_plus_z=*/true);
   const std::vector<CaseOutcome> outcomes = SolveLoadCases(study, rail_locator, step.grid, cases);
   step.depth_per_pass_m = WeightedSum(outcomes, cases, n, &CaseOutcome::depth_per_pass_m);
@@ -298,7 +307,6 @@ StepResult RunWearStep(const WearStudy& study, const Profile& unworn, const Wear
 
 WearRunSummary RunWear(const WearStudy& study, const Profile& unworn, WearState start,
                        const WearStepCallback& on_step, int max_steps) {
-  ValidateWearStudy(study);
   const double total = TotalPasses(study);
   WearRunSummary summary;
   summary.state = std::move(start);

@@ -91,6 +91,12 @@ struct WearState {
 // Step 0 of a run: the unworn rail resampled at the study's profile spacing.
 WearState MakeInitialState(const WearStudy& study);
 
+namespace internal {
+// MakeInitialState without ValidateWearStudy, for callers that validated the study once already
+// (the scene reader, railwear accuracy).
+WearState InitialState(const WearStudy& study);
+}  // namespace internal
+
 // What one load case of a step gave.
 struct LoadCaseSummary {
   LoadCase load_case;
@@ -134,7 +140,9 @@ struct WearRunSummary {
 
 // Runs steps from `start` until the total is reached, `max_steps` steps were done in this call
 // (<= 0: no limit) or the callback returns false. `unworn` is the step-0 profile (the wear
-// measures are taken against it). Throws InputError for a bad study; std::runtime_error when a
+// measures are taken against it). `study` must have passed ValidateWearStudy, once per input:
+// ReadWearScene (app/) runs it before any database is touched, MakeInitialState for library
+// callers; neither this loop nor its steps check it again. Throws std::runtime_error when a
 // load case fails to converge (the steps before it are complete and were handed out).
 WearRunSummary RunWear(const WearStudy& study, const Profile& unworn, WearState start,
                        const WearStepCallback& on_step, int max_steps = 0);
