@@ -16,6 +16,7 @@
 
 #include "app/gnuplot.h"
 #include "app/history_plot.h"
+#include "app/number_format.h"
 #include "app/paths.h"
 #include "core/numerics/input_error.h"
 #include "core/numerics/text_file.h"
@@ -310,10 +311,10 @@ void RunHistorySteps(const HistoryOptions& o, const HistoryStepsOptions& s) {
   std::vector<std::vector<std::string>> rows;
   for (const auto& st : db.Steps(run.id)) {
     rows.push_back({std::to_string(st.step), fmt::format("{:.6g}", st.passes),
-                    fmt::format("{:.4f}", st.mgt), fmt::format("{:.4f}", st.worn_area_mm2),
-                    fmt::format("{:.4f}", st.max_depth_mm),
-                    fmt::format("{:.3f}", st.max_depth_y_mm), fmt::format("{:.4f}", st.w1_mm),
-                    fmt::format("{:.4f}", st.w2_mm), fmt::format("{:.4f}", st.w3_mm),
+                    FixedNoNegativeZero(st.mgt, 4), FixedNoNegativeZero(st.worn_area_mm2, 4),
+                    FixedNoNegativeZero(st.max_depth_mm, 4),
+                    FixedNoNegativeZero(st.max_depth_y_mm, 3), FixedNoNegativeZero(st.w1_mm, 4),
+                    FixedNoNegativeZero(st.w2_mm, 4), FixedNoNegativeZero(st.w3_mm, 4),
                     fmt::format("{:.3e}", st.smoothing_area_error)});
   }
   std::cout << AlignedTable({"step", "passes", "MGT", "worn_area_mm2", "max_depth_mm", "at_y_mm",
