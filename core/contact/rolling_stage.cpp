@@ -53,18 +53,6 @@ void SolveRolling(const ContactProblem& problem, const WheelRailGeometry& geom,
   }
 }
 
-double TotalForceX(const ContactResult& r) {
-  double fx = 0.0;
-  for (const auto& p : r.patches) fx += p.rolling ? p.rolling->tangential.force_x_N : 0.0;
-  return fx;
-}
-
-double TotalNormalForce(const ContactResult& r) {
-  double fn = 0.0;
-  for (const auto& p : r.patches) fn += p.normal_force_N;
-  return fn;
-}
-
 // The rolling stage with a prescribed total longitudinal force: the pitch velocity is solved for.
 void SolveRollingForForce(const ContactProblem& problem, const WheelRailGeometry& geom,
                           ContactResult* result) {
@@ -91,6 +79,18 @@ void SolveRollingForForce(const ContactProblem& problem, const WheelRailGeometry
 }
 
 }  // namespace
+
+double TotalForceX(const ContactResult& r) {
+  double fx = 0.0;
+  for (const auto& p : r.patches) fx += p.rolling ? p.rolling->tangential.force_x_N : 0.0;
+  return fx;
+}
+
+double TotalNormalForce(const ContactResult& r) {
+  double fn = 0.0;
+  for (const auto& p : r.patches) fn += p.normal_force_N;
+  return fn;
+}
 
 std::optional<double> SolvePitchVelocityForForce(const std::function<double(double)>& fx,
                                                  double target_N, double speed_m_s,

@@ -32,6 +32,11 @@ std::optional<double> SolvePitchVelocityForForce(const std::function<double(doub
                                                  double target_N, double speed_m_s,
                                                  double rolling_radius_m, double tolerance_N);
 
+// Sums over a result's patches [N]: the creep forces F_x on the wheel (0 for a patch without a
+// rolling solution), and the pressures' normal forces.
+double TotalForceX(const ContactResult& r);
+double TotalNormalForce(const ContactResult& r);
+
 namespace internal {
 
 // The rolling stage of SolveContact: ApplyRolling, or with problem.rolling->longitudinal_force_N

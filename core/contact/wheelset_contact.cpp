@@ -45,13 +45,6 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
       out.left.status != SolverStatus::kConverged) {
     return out;
   }
-  auto total = [](const ContactResult& r, bool normal) {
-    double f = 0.0;
-    for (const auto& p : r.patches) {
-      f += normal ? p.normal_force_N : (p.rolling ? p.rolling->tangential.force_x_N : 0.0);
-    }
-    return f;
-  };
   // Each wheel's placed geometry, built once for all trials of the search.
   const WheelRailGeometry right_geom(right.wheel_profile, right.rail_profile, r);
   const WheelRailGeometry left_geom(left.wheel_profile, left.rail_profile, l);
@@ -60,16 +53,17 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
     left.rolling->motion.pitch_velocity_rad_s = omega;
     ApplyRolling(right, right_geom, &out.right);
     ApplyRolling(left, left_geom, &out.left);
-    return total(out.right, false) + total(out.left, false);
+    return TotalForceX(out.right) + TotalForceX(out.left);
   };
-  const double mu_fn = right.rolling->friction * (total(out.right, true) + total(out.left, true));
+  const double mu_fn =
+      right.rolling->friction * (TotalNormalForce(out.right) + TotalNormalForce(out.left));
   const auto omega = SolvePitchVelocityForForce(fx, *target, right.rolling->motion.speed_m_s,
                                                 problem.wheelset.rolling_radius_m, 1e-6 * mu_fn);
   if (!omega) {
     const std::string message = fmt::format(
         "the axle's longitudinal force {:.1f} N cannot be carried: friction limits it to about "
         "{:.1f} N here (mu F_n = {:.1f} N)",
-        *target, std::abs(total(out.right, false) + total(out.left, false)), mu_fn);
+        *target, std::abs(TotalForceX(out.right) + TotalForceX(out.left)), mu_fn);
     for (ContactResult* r : {&out.right, &out.left}) {
       r->status = SolverStatus::kNotConverged;
       r->message = message;
@@ -92,7 +86,7 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
           out.left.status != SolverStatus::kConverged || round + 1 == kBalanceRounds) {
         break;
       }
-      const double error = total(out.right, false) + total(out.left, false) - *target;
+      const double error = TotalForceX(out.right) + TotalForceX(out.left) - *target;
       if (std::abs(error) <= 1e-6 * mu_fn) break;
       const auto again =
           SolvePitchVelocityForForce(fx, *target, right.rolling->motion.speed_m_s,
