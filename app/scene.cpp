@@ -22,6 +22,7 @@ namespace {
 
 constexpr double kMPa = 1e6;          // MPa -> Pa
 constexpr double kMaxRoll_rad = 0.5;  // a wheel rolls by milliradians; 0.5 rad catches typos
+constexpr double kMaxYaw_mrad = 100.0;  // angles of attack are tens of mrad (wear traffic alike)
 
 const std::vector<std::string_view> kKnownEffects = {"normal", "tangential", "coupling", "wear",
                                                      "damage"};
@@ -236,7 +237,8 @@ Creepage ReadCreepage(const Fields& load) {
 // The rolling keys shared by the single wheel ([load]) and the wheelset ([wheelset]).
 void ReadMotion(const Fields& t, Scene* scene) {
   if (const auto v = t.Number("speed_m_s", AtLeast(0.0))) scene->speed_m_s = *v;
-  if (const auto yaw = t.Number("yaw_mrad", InRange(-kMaxRoll_rad * 1e3, kMaxRoll_rad * 1e3))) {
+  // As for traffic: yaw is tens of milliradians; the yawed outline needs |yaw| < 0.5 rad.
+  if (const auto yaw = t.Number("yaw_mrad", InRange(-kMaxYaw_mrad, kMaxYaw_mrad))) {
     scene->problem.placement.yaw_rad = *yaw * 1e-3;
   }
   scene->motion.pitch_velocity_rad_s = t.Number("pitch_velocity_rad_s", AnyFinite());

@@ -679,3 +679,19 @@ TEST(SceneTest, WearSceneErrorsNameTheKey) {
 
 }  // namespace
 }  // namespace railwear::app
+
+namespace railwear::app {
+namespace {
+
+TEST(SceneTest, YawBeyondAnglesOfAttackIsRefused) {
+  // Yaw enters the contact geometry (issue 14): -500 mrad passed the old range and then tripped
+  // the yawed outline's internal check; angles of attack are tens of milliradians.
+  const std::string base = std::string(kMinimal) + "friction = 0.3\nspeed_m_s = 20\n";
+  EXPECT_TRUE(Contains(ErrorOf(base + "yaw_mrad = -500\n"),
+                       "key 'load.yaw_mrad' = -500: expected a number in [-100, 100)"));
+  EXPECT_NEAR(ParseScene(base + "yaw_mrad = -99\n", "s.toml").problem.placement.yaw_rad, -0.099,
+              1e-15);
+}
+
+}  // namespace
+}  // namespace railwear::app
