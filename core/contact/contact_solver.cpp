@@ -31,9 +31,18 @@ namespace railwear {
 using namespace internal;  // the stages
 
 ContactResult SolveContact(const ContactProblem& problem) {
+  CheckContactProblem(problem);
+  // 1. Placement.
+  const auto t0 = Clock::now();
+  const WheelRailGeometry geom = PlaceWheel(problem);
+  return SolveContact(problem, geom, SecondsSince(t0));
+}
+
+ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometry& geom,
+                           double placement_s) {
   const auto t_start = Clock::now();
   auto finish = [&](ContactResult r) {
-    r = FinishResult(std::move(r), SecondsSince(t_start));
+    r = FinishResult(std::move(r), placement_s + SecondsSince(t_start));
     r.climb = CheckFlangeClimb(
         r, problem.rolling ? std::optional<double>(problem.rolling->friction) : std::nullopt);
     return r;
@@ -41,11 +50,9 @@ ContactResult SolveContact(const ContactProblem& problem) {
   CheckContactProblem(problem);
   ContactResult result;
   result.model = problem.model;
+  AddStage(&result.stages, "placement", placement_s);
 
-  // 1. Placement, and the cases that end before any grid.
-  auto t0 = Clock::now();
-  const WheelRailGeometry geom = PlaceWheel(problem);
-  AddStage(&result.stages, "placement", SecondsSince(t0));
+  // The cases that end before any grid.
   if (const auto no_contact = NoContactBeforeGrid(problem, geom)) {
     result.status = SolverStatus::kNoContact;
     result.message = *no_contact;
@@ -74,6 +81,7 @@ ContactResult SolveContact(const ContactProblem& problem) {
   int total_iterations = 0;
   for (int attempt = 0; attempt < 12; ++attempt) {
     PatchBuilds builds;
+    auto t0 = Clock::now();
     if (!area.Build(geom, &models, approach_now, &builds, &result)) return finish(result);
 
     t0 = Clock::now();

@@ -15,4 +15,11 @@ namespace railwear {
 // yield stress).
 ContactResult SolveContact(const ContactProblem& problem);
 
+// The same with the wheel already placed on the rail: `placed` must be the WheelRailGeometry of
+// problem.wheel_profile, problem.rail_profile and problem.placement (callers that solve one
+// placement several times, e.g. a wheelset's axle-force search, build it once).
+// `placement_s` is the time its construction took (reported as the "placement" stage).
+ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometry& placed,
+                           double placement_s = 0.0);
+
 }  // namespace railwear

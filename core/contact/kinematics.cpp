@@ -22,6 +22,8 @@ RollingInput RigidSlipFromMotion(const WheelRailGeometry& geom, const PatchGrid&
   const double roll = geom.pose().roll_rad, yaw = geom.pose().yaw_rad;
   const Eigen::Vector3d a(-std::sin(yaw), std::cos(yaw) * std::cos(roll),
                           std::cos(yaw) * std::sin(roll));
+  const Eigen::Vector2d origin_yz = geom.WheelToRail({0.0, 0.0});
+  const double yaw_rate = motion.yaw_velocity_rad_s;
   RollingInput in;
   in.speed_m_s = V;
   in.friction = friction;
@@ -32,8 +34,11 @@ RollingInput RigidSlipFromMotion(const WheelRailGeometry& geom, const PatchGrid&
     for (int i = 0; i < grid.nx; ++i) {
       const Eigen::Vector3d d = grid.Point(i, j) - a0;
       const Eigen::Vector3d r = d - d.dot(a) * a;  // perpendicular from the axle
-      const Eigen::Vector3d v =
-          Eigen::Vector3d(V, motion.lateral_velocity_m_s, 0.0) + omega * a.cross(r);
+      Eigen::Vector3d v = Eigen::Vector3d(V, motion.lateral_velocity_m_s, 0.0) + omega * a.cross(r);
+      if (yaw_rate != 0.0) {
+        const Eigen::Vector3d p = grid.Point(i, j);
+        v += yaw_rate * Eigen::Vector3d(-(p.y() - origin_yz.x()), p.x(), 0.0);
+      }
       in.creep_x[grid.Index(i, j)] = v.x() / V;
       in.creep_s[grid.Index(i, j)] = v.dot(t) / V;
     }

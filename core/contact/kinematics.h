@@ -33,6 +33,11 @@ struct WheelMotion {
   // track, e.g. in hunting): adds dy/dt / V to the lateral creepage before the contact angle's
   // 1 / cos(gamma), as yaw's -psi does.
   double lateral_velocity_m_s = 0.0;
+  // Yaw velocity of the wheel about +z (down) through its profile origin [rad/s] (a wheelset in
+  // a curve of radius R turns at -V/R): adds omega_z e_z x (P - O) to the slip at P, O the
+  // origin, so a contact point away from the origin slips with its distance from the curve's
+  // centre. `speed_m_s` is the origin's speed.
+  double yaw_velocity_rad_s = 0.0;
 };
 
 // Kalker-style creepages: w_x = xi - phi (s - s_c), w_s = eta + phi (x - x_c), about the

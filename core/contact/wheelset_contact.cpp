@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/contact/contact_forces.h"
+#include "core/numerics/input_error.h"
 
 namespace railwear {
 
@@ -18,7 +19,19 @@ constexpr int kBalanceRounds = 8;
 
 WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
   WheelsetResult out;
-  out.placement = PlaceWheelset(problem.wheel_rail.rail_profile, problem.track, problem.wheelset);
+  const Profile& right_rail = problem.wheel_rail.rail_profile;
+  const Profile& left_rail =
+      problem.left_rail_profile ? *problem.left_rail_profile : problem.wheel_rail.rail_profile;
+  if (problem.gauge_points) {
+    out.placement = PlaceWheelsetAt(*problem.gauge_points, problem.track, problem.wheelset);
+  } else if (problem.left_rail_profile) {
+    const double h = problem.track.gauge_height_m;
+    out.placement =
+        PlaceWheelsetAt({RailGaugePoint(right_rail, h).x(), RailGaugePoint(left_rail, h).x()},
+                        problem.track, problem.wheelset);
+  } else {
+    out.placement = PlaceWheelset(right_rail, problem.track, problem.wheelset);
+  }
   const WheelPose& r = out.placement.right;
   const WheelPose& l = out.placement.left;
 
@@ -29,7 +42,31 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
   // rail's own frame (y toward its field side) they are the same profiles, so only the pose
   // (PlaceWheelset) and the yaw are mirrored.
   ContactProblem left = problem.wheel_rail;
+  if (problem.left_rail_profile) left.rail_profile = *problem.left_rail_profile;
   left.placement = {l.lateral_shift_m, l.roll_rad, l.rolling_radius_m, l.yaw_rad};
+  if (problem.left_vertical_force_N) {
+    if (!left.load.vertical_force_N) {
+      throw InputError("wheelset: a left wheel load needs a prescribed vertical load");
+    }
+    left.load.vertical_force_N = problem.left_vertical_force_N;
+  }
+  if (problem.curvature_per_m != 0.0 && right.rolling) {
+    // Each wheel's forward speed on the curve: its origin's distance from the curve's centre.
+    const double v = problem.wheel_rail.rolling->motion.speed_m_s;
+    const double y_right = out.placement.right_rail_origin_Y_m + r.lateral_shift_m;
+    const double y_left = out.placement.left_rail_origin_Y_m - l.lateral_shift_m;
+    right.rolling->motion.speed_m_s = v * (1.0 + problem.curvature_per_m * y_right);
+    left.rolling->motion.speed_m_s = v * (1.0 + problem.curvature_per_m * y_left);
+    // The wheelset turns with the curve (toward -Y); the left rail's frame is mirrored.
+    right.rolling->motion.yaw_velocity_rad_s = -v * problem.curvature_per_m;
+    left.rolling->motion.yaw_velocity_rad_s = v * problem.curvature_per_m;
+    // One axle, one pitch velocity: pure rolling of the centre's speed at r0 unless prescribed.
+    if (!right.rolling->motion.pitch_velocity_rad_s) {
+      const double omega = -v / problem.wheelset.rolling_radius_m;
+      right.rolling->motion.pitch_velocity_rad_s = omega;
+      left.rolling->motion.pitch_velocity_rad_s = omega;
+    }
+  }
 
   // A force target applies to the axle: both wheels share its pitch velocity, and their F_x add
   // up to the target. Solve both normal problems once, then only the rolling stage per trial.
@@ -39,15 +76,15 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
     right.rolling->longitudinal_force_N.reset();
     left.rolling->longitudinal_force_N.reset();
   }
-  out.right = SolveContact(right);
-  out.left = SolveContact(left);
+  // Each wheel's placed geometry, built once for all its solves and the trials of the search.
+  const WheelRailGeometry right_geom(right.wheel_profile, right.rail_profile, r);
+  const WheelRailGeometry left_geom(left.wheel_profile, left.rail_profile, l);
+  out.right = SolveContact(right, right_geom);
+  out.left = SolveContact(left, left_geom);
   if (!target || out.right.status != SolverStatus::kConverged ||
       out.left.status != SolverStatus::kConverged) {
     return out;
   }
-  // Each wheel's placed geometry, built once for all trials of the search.
-  const WheelRailGeometry right_geom(right.wheel_profile, right.rail_profile, r);
-  const WheelRailGeometry left_geom(left.wheel_profile, left.rail_profile, l);
   auto fx = [&](double omega) {
     right.rolling->motion.pitch_velocity_rad_s = omega;
     left.rolling->motion.pitch_velocity_rad_s = omega;
@@ -57,8 +94,9 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
   };
   const double mu_fn =
       right.rolling->friction * (TotalNormalForce(out.right) + TotalNormalForce(out.left));
-  const auto omega = SolvePitchVelocityForForce(fx, *target, right.rolling->motion.speed_m_s,
-                                                problem.wheelset.rolling_radius_m, 1e-6 * mu_fn);
+  const auto omega =
+      SolvePitchVelocityForForce(fx, *target, problem.wheel_rail.rolling->motion.speed_m_s,
+                                 problem.wheelset.rolling_radius_m, 1e-6 * mu_fn);
   if (!omega) {
     const std::string message = fmt::format(
         "the axle's longitudinal force {:.1f} N cannot be carried: friction limits it to about "
@@ -80,8 +118,8 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
     for (int round = 0; round < kBalanceRounds; ++round) {
       right.rolling->motion.pitch_velocity_rad_s = found;
       left.rolling->motion.pitch_velocity_rad_s = found;
-      out.right = SolveContact(right);
-      out.left = SolveContact(left);
+      out.right = SolveContact(right, right_geom);
+      out.left = SolveContact(left, left_geom);
       if (out.right.status != SolverStatus::kConverged ||
           out.left.status != SolverStatus::kConverged || round + 1 == kBalanceRounds) {
         break;
@@ -89,7 +127,7 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
       const double error = TotalForceX(out.right) + TotalForceX(out.left) - *target;
       if (std::abs(error) <= 1e-6 * mu_fn) break;
       const auto again =
-          SolvePitchVelocityForForce(fx, *target, right.rolling->motion.speed_m_s,
+          SolvePitchVelocityForForce(fx, *target, problem.wheel_rail.rolling->motion.speed_m_s,
                                      problem.wheelset.rolling_radius_m, 1e-6 * mu_fn);
       if (!again) break;
       found = *again;

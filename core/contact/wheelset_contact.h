@@ -20,6 +20,21 @@ struct WheelsetProblem {
   ContactProblem wheel_rail;  // right-hand profiles, materials, model, load per wheel, rolling
   TrackSpec track;
   WheelsetSpec wheelset;
+  // Two different rails, unequal loads and a curve (the defaults: the same rail and load on both
+  // sides, tangent track).
+  std::optional<Profile> left_rail_profile;  // the left rail in its own frame (y to its field)
+  // Where the rails stand (each gauge point in its own rail's frame); absent: from the profiles.
+  // A worn rail keeps its unworn place: pass the unworn rails' gauge points.
+  std::optional<RailGaugePoints> gauge_points;
+  // The left wheel's vertical load [N] when it differs from wheel_rail.load (curving's load
+  // transfer); only with a prescribed vertical load.
+  std::optional<double> left_vertical_force_N;
+  // Track curvature 1/R [1/m], >= 0, the curve turning left (toward -Y, the right rail high):
+  // each wheel's origin moves forward at V (1 + curvature Y_w), Y_w its Y, V the speed of the
+  // wheelset centre (wheel_rail.rolling->motion.speed_m_s), and the wheelset turns at -V/R
+  // (WheelMotion::yaw_velocity_rad_s), so every cell slips with its own distance from the
+  // curve's centre. Without a prescribed pitch velocity the axle rolls at -V/r0.
+  double curvature_per_m = 0.0;
 };
 
 struct WheelsetResult {

@@ -48,26 +48,31 @@ Eigen::Vector2d RailGaugePoint(const Profile& rail, double gauge_height_m) {
 
 WheelsetPlacement PlaceWheelset(const Profile& rail, const TrackSpec& track,
                                 const WheelsetSpec& ws) {
+  const double y_g = RailGaugePoint(rail, track.gauge_height_m).x();
+  return PlaceWheelsetAt({y_g, y_g}, track, ws);
+}
+
+WheelsetPlacement PlaceWheelsetAt(const RailGaugePoints& gauge_points, const TrackSpec& track,
+                                  const WheelsetSpec& ws) {
   WheelsetPlacement out;
-  const Eigen::Vector2d gauge_point = RailGaugePoint(rail, track.gauge_height_m);
-  out.rail_gauge_point_y_m = gauge_point.x();
-  // Right rail: its gauge point at Y = gauge/2, so its origin at Y = gauge/2 - y_g.
-  out.right_rail_origin_Y_m = 0.5 * track.gauge_m - gauge_point.x();
+  out.rail_gauge_point_y_m = gauge_points.right_y_m;
+  // Right rail: its gauge point at Y = gauge/2, so its origin at Y = gauge/2 - y_g; the left
+  // rail's at Y = -(gauge/2 - y_g,left), its y pointing to -Y.
+  out.right_rail_origin_Y_m = 0.5 * track.gauge_m - gauge_points.right_y_m;
+  out.left_rail_origin_Y_m = -(0.5 * track.gauge_m - gauge_points.left_y_m);
   // Right wheel: flange back at Y = fbd/2 + displacement, so its origin at that minus y_fb; the
   // wheelset yaws about its centre, so the origin lies (fbd/2 - y_fb) cos(yaw) from it in Y (and
   // (fbd/2 - y_fb) sin(yaw) behind the centre in x, which a prismatic rail does not see).
   const double half_span =
       (0.5 * ws.flange_back_distance_m - ws.flange_back_position_m) * std::cos(ws.yaw_rad);
-  const double wheel_origin_Y = half_span + ws.lateral_displacement_m;
-  out.right.lateral_shift_m = wheel_origin_Y - out.right_rail_origin_Y_m;
+  out.right.lateral_shift_m = half_span + ws.lateral_displacement_m - out.right_rail_origin_Y_m;
   out.right.roll_rad = ws.roll_rad;
   out.right.rolling_radius_m = ws.rolling_radius_m;
   out.right.yaw_rad = ws.yaw_rad;
-  // Left: the mirror image, seen in its own (mirrored) frame: displacement, roll and yaw change
-  // sign.
+  // Left: the mirror image, seen in its own (mirrored) frame: the wheel origin at
+  // Y = -half_span + displacement, so y = -(Y - Y_left_origin); roll and yaw change sign.
   out.left = out.right;
-  out.left.lateral_shift_m =
-      wheel_origin_Y - 2.0 * ws.lateral_displacement_m - out.right_rail_origin_Y_m;
+  out.left.lateral_shift_m = half_span - ws.lateral_displacement_m + out.left_rail_origin_Y_m;
   out.left.roll_rad = -ws.roll_rad;
   out.left.yaw_rad = -ws.yaw_rad;
   return out;

@@ -34,7 +34,15 @@ struct WheelsetPlacement {
   WheelPose right;  // in the right rail's profile frame
   WheelPose left;   // in the left rail's own profile frame (y toward its field side)
   double right_rail_origin_Y_m = 0.0;  // Y of the right rail profile's origin
-  double rail_gauge_point_y_m = 0.0;   // gauge point in the rail profile frame (negative)
+  double left_rail_origin_Y_m = 0.0;   // Y of the left rail profile's origin (negative)
+  double rail_gauge_point_y_m = 0.0;   // the right rail's gauge point in its frame (negative)
+};
+
+// Where each rail's gauge point lies in its own profile frame [m] (negative: gauge side). A worn
+// rail keeps the unworn rail's place in the track: its placement uses the unworn gauge points.
+struct RailGaugePoints {
+  double right_y_m = 0.0;
+  double left_y_m = 0.0;
 };
 
 // The gauge point of a rail profile: the gauge-side crossing (smallest y) of the level
@@ -46,5 +54,11 @@ Eigen::Vector2d RailGaugePoint(const Profile& rail, double gauge_height_m);
 // in the left rail's own frame, where the same profiles describe the mirrored pair.
 WheelsetPlacement PlaceWheelset(const Profile& rail, const TrackSpec& track,
                                 const WheelsetSpec& wheelset);
+
+// Places both wheels on rails whose gauge points are given (each in its own rail's frame): the
+// rails may differ (a worn high rail and a worn low rail), and stay where the gauge points put
+// them.
+WheelsetPlacement PlaceWheelsetAt(const RailGaugePoints& gauge_points, const TrackSpec& track,
+                                  const WheelsetSpec& wheelset);
 
 }  // namespace railwear

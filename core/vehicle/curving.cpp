@@ -1,0 +1,438 @@
+// Steady-state curving (see curving.h).
+#include "core/vehicle/curving.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <Eigen/Dense>
+
+#include "core/contact/contact_forces.h"
+#include "core/contact/rolling_stage.h"
+#include "core/numerics/input_error.h"
+
+namespace railwear {
+
+namespace {
+
+constexpr double kHalfBase_m = 0.75;  // l0: half the distance between the contact points
+constexpr double kStepY_m = 1e-5;     // finite-difference steps of the contact Jacobian
+constexpr double kStepYaw_rad = 1e-5;
+constexpr double kMaxStepY_m = 2e-3;  // Newton steps are scaled down to these per iteration
+constexpr double kMaxStepYaw_rad = 2e-3;
+
+// The layout of a vehicle: per wheelset and bogie its position x from the car body's centre and
+// the index of its bogie; the unknown vector is [wheelsets (y, psi)..., bogies (y, psi)...,
+// body (y, psi)].
+struct Layout {
+  int wheelsets = 1, bogies = 0;
+  std::vector<double> wheelset_x, bogie_x;
+  std::vector<int> bogie_of;  // per wheelset
+  int size() const { return 2 * (wheelsets + bogies + (bogies > 0 ? 1 : 0)); }
+  int BogieIndex(int j) const { return 2 * (wheelsets + j); }
+  int BodyIndex() const { return 2 * (wheelsets + bogies); }
+};
+
+Layout MakeLayout(const VehicleSpec& v) {
+  Layout l;
+  l.wheelsets = v.wheelsets();
+  l.bogies = v.bogies();
+  if (v.kind == VehicleKind::kWheelset) {
+    l.wheelset_x = {0.0};
+    l.bogie_of = {-1};
+    return l;
+  }
+  const double a = 0.5 * v.wheelbase_m, L = 0.5 * v.bogie_spacing_m;
+  l.bogie_x = {L, -L};
+  l.wheelset_x = {L + a, L - a, -L + a, -L - a};
+  l.bogie_of = {0, 0, 1, 1};
+  return l;
+}
+
+// The suspension's generalised forces (lateral force, yaw moment on each body) at state q, with
+// the curve's offsets: linear in q.
+Eigen::VectorXd SuspensionForces(const VehicleSpec& v, const Layout& l, double kappa,
+                                 const Eigen::VectorXd& q) {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(q.size());
+  if (l.bogies == 0) return f;
+  // Absolute lateral position and yaw (against the car body centre's tangent) of a body at X.
+  auto y_abs = [&](int k, double X) { return q[k] - 0.5 * kappa * X * X; };
+  auto psi_abs = [&](int k, double X) { return q[k + 1] - kappa * X; };
+  const double ky = 2.0 * v.primary_ky_N_m;
+  const double kpsi = 2.0 * v.primary_kx_N_m * v.primary_semi_spacing_m * v.primary_semi_spacing_m;
+  for (int i = 0; i < l.wheelsets; ++i) {
+    const int j = l.bogie_of[i];
+    const int w = 2 * i, b = l.BogieIndex(j);
+    const double Xw = l.wheelset_x[i], Xb = l.bogie_x[j], x = Xw - Xb;
+    const double d = y_abs(w, Xw) - (y_abs(b, Xb) + x * psi_abs(b, Xb));
+    const double theta = psi_abs(w, Xw) - psi_abs(b, Xb);
+    f[w] -= ky * d;
+    f[w + 1] -= kpsi * theta;
+    f[b] += ky * d;
+    f[b + 1] += x * ky * d + kpsi * theta;
+  }
+  const int c = l.BodyIndex();
+  for (int j = 0; j < l.bogies; ++j) {
+    const int b = l.BogieIndex(j);
+    const double X = l.bogie_x[j];
+    const double d = y_abs(b, X) - (q[c] + X * q[c + 1]);
+    const double theta = psi_abs(b, X) - q[c + 1];
+    f[b] -= v.secondary_ky_N_m * d;
+    f[b + 1] -= v.secondary_yaw_Nm_rad * theta;
+    f[c] += v.secondary_ky_N_m * d;
+    f[c + 1] += X * v.secondary_ky_N_m * d + v.secondary_yaw_Nm_rad * theta;
+  }
+  return f;
+}
+
+// The wheelset's roll from both wheels touching their rails: each wheel lowered onto its rail
+// (WheelRailGeometry's dz), the axle through both wheel origins. Taken without the yaw (its
+// effect on the wheels' heights is of order yaw^2), on a coarse lateral sampling (dz to a
+// micrometre is 1e-6 / 1.5 m of roll), in two fixed-point steps (the roll moves dz by
+// roll x the wheel's lateral slope, a contraction of about 0.05).
+double KinematicRoll(const WheelsetProblem& p) {
+  constexpr double kSampling_m = 2e-4;
+  WheelsetSpec ws = p.wheelset;
+  ws.yaw_rad = 0.0;
+  const Profile& right_rail = p.wheel_rail.rail_profile;
+  const Profile& left_rail = p.left_rail_profile ? *p.left_rail_profile : right_rail;
+  const double half_span = 0.5 * ws.flange_back_distance_m - ws.flange_back_position_m;
+  double roll = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    ws.roll_rad = roll;
+    const WheelsetPlacement placed = PlaceWheelsetAt(*p.gauge_points, p.track, ws);
+    const WheelRailGeometry right(p.wheel_rail.wheel_profile, right_rail, placed.right,
+                                  kSampling_m);
+    const WheelRailGeometry left(p.wheel_rail.wheel_profile, left_rail, placed.left, kSampling_m);
+    if (!right.has_overlap() || !left.has_overlap()) return roll;
+    // z is down: the right wheel's origin lower by dz_R - dz_L over the span 2 half_span.
+    roll = std::asin(std::clamp((right.dz_m() - left.dz_m()) / (2.0 * half_span), -0.1, 0.1));
+  }
+  return roll;
+}
+
+// What one wheelset's contact solve needs besides its (y, psi).
+struct WheelsetContext {
+  const CurvingProblem* problem = nullptr;
+  ModelOptions model;
+  double high_load_N = 0.0, low_load_N = 0.0;
+};
+
+CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw) {
+  const CurvingProblem& p = *ctx.problem;
+  const VehicleSpec& v = p.vehicle;
+  WheelsetProblem wp;
+  wp.wheel_rail.setup() = p.contact;
+  wp.wheel_rail.model = ctx.model;
+  wp.wheel_rail.wheel_profile = v.wheel_profile;
+  wp.wheel_rail.rail_profile = p.high_rail;
+  wp.wheel_rail.load.vertical_force_N = ctx.high_load_N;
+  RollingOptions rolling;
+  rolling.motion.speed_m_s = p.speed_m_s;
+  rolling.friction = p.friction;
+  rolling.longitudinal_force_N = v.traction_N_per_axle;
+  wp.wheel_rail.rolling = rolling;
+  wp.track = p.track;
+  wp.wheelset.flange_back_distance_m = v.flange_back_distance_m;
+  wp.wheelset.flange_back_position_m = v.flange_back_position_m;
+  wp.wheelset.rolling_radius_m = v.rolling_radius_m;
+  wp.wheelset.lateral_displacement_m = y;
+  wp.wheelset.yaw_rad = yaw;
+  wp.left_rail_profile = p.low_rail;
+  wp.gauge_points = p.gauge_points;
+  wp.left_vertical_force_N = ctx.low_load_N;
+  wp.curvature_per_m = p.curve.curvature_per_m();
+  wp.wheelset.roll_rad = KinematicRoll(wp);
+
+  CurvedWheelset out;
+  out.lateral_m = y;
+  out.yaw_rad = yaw;
+  out.roll_rad = wp.wheelset.roll_rad;
+  out.high_load_N = ctx.high_load_N;
+  out.low_load_N = ctx.low_load_N;
+  out.contact = SolveWheelset(wp);
+  out.pitch_velocity_rad_s = out.contact.right.pitch_velocity_rad_s;
+  const WheelsetPlacement& placed = out.contact.placement;
+  const double half_span =
+      (0.5 * v.flange_back_distance_m - v.flange_back_position_m) * std::sin(yaw);
+  // The rails' forces on the wheelset and their moment about its centre, patch by patch.
+  auto add = [&](const ContactResult& r, bool left) {
+    for (const PatchResult& patch : r.patches) {
+      const Eigen::Vector3d f = -RailToTrackFrame(PatchForcesOnRail(patch).Net(), left);
+      const double y_rail = patch.contact_point_yz_m.x();
+      const double Y =
+          left ? placed.left_rail_origin_Y_m - y_rail : placed.right_rail_origin_Y_m + y_rail;
+      // The wheel's origin lies half_span sin(yaw) behind (right) or ahead of (left) the centre.
+      const double x = (left ? half_span : -half_span) + patch.contact_x_m;
+      out.force_N += f;
+      out.yaw_moment_Nm += x * f.y() - Y * f.x();
+    }
+  };
+  add(out.contact.right, false);
+  add(out.contact.left, true);
+  out.high_lateral_N = TotalForcesOnRail(out.contact.right).Net().y();
+  return out;
+}
+
+bool Converged(const CurvedWheelset& w) {
+  return w.contact.right.status == SolverStatus::kConverged &&
+         w.contact.left.status == SolverStatus::kConverged;
+}
+
+// The Newton iteration of one phase (one contact model).
+class Equilibrium {
+ public:
+  Equilibrium(const CurvingProblem& p, const Layout& layout, std::vector<WheelsetContext> ctx,
+              double unbalanced_force_N, double q0)
+      : p_(p), l_(layout), ctx_(std::move(ctx)), unbalanced_N_(unbalanced_force_N), q0_(q0) {
+    const int n = l_.size();
+    kappa_ = p.curve.curvature_per_m();
+    // The suspension's stiffness: its forces are linear in q, exact by differences of one.
+    const Eigen::VectorXd f0 = SuspensionForces(p.vehicle, l_, kappa_, Eigen::VectorXd::Zero(n));
+    suspension_offset_ = f0;
+    suspension_ = Eigen::MatrixXd::Zero(n, n);
+    for (int k = 0; k < n; ++k) {
+      Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
+      e[k] = 1.0;
+      suspension_.col(k) = SuspensionForces(p.vehicle, l_, kappa_, e) - f0;
+    }
+    scale_ = Eigen::VectorXd::Constant(n, 1.0 / q0_);
+    for (int k = 1; k < n; k += 2) scale_[k] = 1.0 / (q0_ * kHalfBase_m);
+  }
+
+  // Residual (generalised forces) at q; fills the wheelsets' states. False when a contact failed.
+  bool Residual(const Eigen::VectorXd& q, std::vector<CurvedWheelset>* ws, Eigen::VectorXd* r) {
+    *r = suspension_ * q + suspension_offset_;
+    // The unbalanced lateral force: on the car body, or on the single wheelset.
+    (*r)[l_.bogies > 0 ? l_.BodyIndex() : 0] += unbalanced_N_;
+    ws->resize(l_.wheelsets);
+    bool ok = true;
+    for (int i = 0; i < l_.wheelsets; ++i) {
+      (*ws)[i] = EvaluateWheelset(ctx_[i], q[2 * i], q[2 * i + 1]);
+      ++solves_;
+      (*ws)[i].x_m = l_.wheelset_x[i];
+      ok = ok && Converged((*ws)[i]);
+      (*r)[2 * i] += (*ws)[i].force_N.y();
+      (*r)[2 * i + 1] += (*ws)[i].yaw_moment_Nm;
+    }
+    return ok;
+  }
+
+  double Norm(const Eigen::VectorXd& r) const {
+    return r.cwiseProduct(scale_).cwiseAbs().maxCoeff();
+  }
+
+  // Newton from q; returns iterations, or -1 when it stopped without converging (message set).
+  int Solve(Eigen::VectorXd* q, std::vector<CurvedWheelset>* ws, Eigen::VectorXd* r,
+            std::string* message, bool* no_equilibrium) {
+    const CurvingOptions& o = p_.options;
+    if (!Residual(*q, ws, r)) return Fail("a wheel's contact did not converge", message);
+    // The Jacobian of the last phase (the predictor's) starts the next one as a chord.
+    Eigen::MatrixXd& J = jacobian_;
+    bool fresh = false;  // J was evaluated at the current q
+    double last_ratio = 1.0;
+    for (int it = 0; it < o.max_iterations; ++it) {
+      if (Norm(*r) <= o.tolerance) return it;
+      // The Jacobian is kept while it still reduces the residual fast (chord steps); a slow or
+      // failed step evaluates it again.
+      if (J.size() == 0 || last_ratio > 0.3) {
+        J = Jacobian(*q, *ws);
+        fresh = true;
+      }
+      Eigen::VectorXd step = J.fullPivLu().solve(-*r);
+      if (!step.allFinite()) return Fail("singular equilibrium Jacobian", message);
+      // Limit the step: the contact forces are strongly nonlinear where a flange touches.
+      double shrink = 1.0;
+      for (int k = 0; k < step.size(); ++k) {
+        const double limit = k % 2 == 0 ? kMaxStepY_m : kMaxStepYaw_rad;
+        if (std::abs(step[k]) > limit) shrink = std::min(shrink, limit / std::abs(step[k]));
+      }
+      step *= shrink;
+      // Backtracking on the largest scaled residual.
+      const double before = Norm(*r);
+      double alpha = 1.0;
+      bool accepted = false;
+      for (int k = 0; k < 7 && !accepted; ++k, alpha *= 0.5) {
+        const Eigen::VectorXd trial = *q + alpha * step;
+        if (!WithinBounds(trial)) continue;
+        std::vector<CurvedWheelset> trial_ws;
+        Eigen::VectorXd trial_r;
+        if (!Residual(trial, &trial_ws, &trial_r)) continue;
+        if (Norm(trial_r) < (1.0 - 1e-4 * alpha) * before || (k == 6 && fresh)) {
+          *q = trial;
+          *ws = std::move(trial_ws);
+          *r = trial_r;
+          accepted = true;
+        }
+      }
+      last_ratio = accepted ? Norm(*r) / before : 1.0;
+      if (!accepted && !fresh) continue;  // an old Jacobian: evaluate it again and retry
+      fresh = false;
+      if (!accepted) {
+        if (!WithinBounds(*q + step)) {
+          *no_equilibrium = true;
+          return Fail(fmt::format("a wheelset would pass the lateral limit of {:.1f} mm: it "
+                                  "climbs the flange, no steady state",
+                                  o.max_lateral_m * 1e3),
+                      message);
+        }
+        return Fail("no step reduced the residual", message);
+      }
+    }
+    if (Norm(*r) <= o.tolerance) return o.max_iterations;
+    return Fail(fmt::format("{} iterations, largest scaled residual {:.2e} (tolerance {:.1e})",
+                            o.max_iterations, Norm(*r), o.tolerance),
+                message);
+  }
+
+  // The Jacobian at q: the suspension's exact part plus each wheelset's contact block by forward
+  // differences (a wheelset's contact forces depend on its own (y, psi) only).
+  Eigen::MatrixXd Jacobian(const Eigen::VectorXd& q, const std::vector<CurvedWheelset>& ws) {
+    Eigen::MatrixXd J = suspension_;
+    for (int i = 0; i < l_.wheelsets; ++i) {
+      const CurvedWheelset dy = EvaluateWheelset(ctx_[i], q[2 * i] + kStepY_m, q[2 * i + 1]);
+      const CurvedWheelset dpsi = EvaluateWheelset(ctx_[i], q[2 * i], q[2 * i + 1] + kStepYaw_rad);
+      solves_ += 2;
+      const CurvedWheelset& w = ws[i];
+      J(2 * i, 2 * i) += (dy.force_N.y() - w.force_N.y()) / kStepY_m;
+      J(2 * i + 1, 2 * i) += (dy.yaw_moment_Nm - w.yaw_moment_Nm) / kStepY_m;
+      J(2 * i, 2 * i + 1) += (dpsi.force_N.y() - w.force_N.y()) / kStepYaw_rad;
+      J(2 * i + 1, 2 * i + 1) += (dpsi.yaw_moment_Nm - w.yaw_moment_Nm) / kStepYaw_rad;
+    }
+    return J;
+  }
+
+  int solves() const { return solves_; }
+  void set_contexts(std::vector<WheelsetContext> ctx) { ctx_ = std::move(ctx); }
+
+ private:
+  bool WithinBounds(const Eigen::VectorXd& q) const {
+    for (int i = 0; i < l_.wheelsets; ++i) {
+      if (std::abs(q[2 * i]) > p_.options.max_lateral_m) return false;
+    }
+    return true;
+  }
+  static int Fail(std::string text, std::string* message) {
+    *message = std::move(text);
+    return -1;
+  }
+
+  const CurvingProblem& p_;
+  const Layout& l_;
+  std::vector<WheelsetContext> ctx_;
+  double unbalanced_N_ = 0.0, q0_ = 1.0, kappa_ = 0.0;
+  Eigen::MatrixXd suspension_, jacobian_;
+  Eigen::VectorXd suspension_offset_, scale_;
+  int solves_ = 0;
+};
+
+void Validate(const CurvingProblem& p) {
+  ValidateCurve(p.curve);
+  ValidateVehicle(p.vehicle, fmt::format("vehicle \"{}\"", p.vehicle.name));
+  if (!(p.speed_m_s > 0.0) || !std::isfinite(p.speed_m_s)) {
+    throw InputError(fmt::format("curving: speed_m_s = {}: expected a speed > 0", p.speed_m_s));
+  }
+  if (!(p.friction > 0.0) || !std::isfinite(p.friction)) {
+    throw InputError(fmt::format("curving: friction = {}: expected mu > 0", p.friction));
+  }
+}
+
+}  // namespace
+
+ModelOptions CurvingOptions::PredictorModel() {
+  ModelOptions m = MakeModelOptions(ModelKind::kHalfspace);
+  m.accuracy = AccuracyPreset::kDraft;
+  return m;
+}
+
+CurvingResult SolveCurving(const CurvingProblem& problem_in) {
+  Validate(problem_in);
+  const auto start = std::chrono::steady_clock::now();
+  CurvingProblem p = problem_in;
+  if (!p.gauge_points) {
+    const double h = p.track.gauge_height_m;
+    p.gauge_points =
+        RailGaugePoints{RailGaugePoint(p.high_rail, h).x(), RailGaugePoint(p.low_rail, h).x()};
+  }
+  const VehicleSpec& v = p.vehicle;
+  const Layout layout = MakeLayout(v);
+  CurvingResult out;
+  out.unbalanced_acceleration_m_s2 = UnbalancedLateralAcceleration(p.curve, p.speed_m_s);
+  out.cant_deficiency_m = CantDeficiency(p.curve, p.speed_m_s);
+  // Quasi-static loads: the axle load normal to the track plane, and the load transfer.
+  const double g_ratio = TrackNormalAcceleration(p.curve, p.speed_m_s) / kGravity_m_s2;
+  const double axle_mass_kg = v.axle_load_N / kGravity_m_s2;
+  const double q0 = 0.5 * v.axle_load_N * g_ratio;
+  const double transfer =
+      axle_mass_kg * out.unbalanced_acceleration_m_s2 * v.cg_height_m / (2.0 * kHalfBase_m);
+  if (q0 - std::abs(transfer) <= 0.0) {
+    out.status = CurvingStatus::kNoEquilibrium;
+    out.message =
+        fmt::format("the load transfer {:.0f} N unloads a wheel of {:.0f} N: the vehicle overturns",
+                    transfer, q0);
+    return out;
+  }
+  auto contexts = [&](const ModelOptions& model) {
+    std::vector<WheelsetContext> ctx(layout.wheelsets);
+    for (WheelsetContext& c : ctx) c = {&p, model, q0 + transfer, q0 - transfer};
+    return ctx;
+  };
+  const double unbalanced_N = axle_mass_kg * layout.wheelsets * out.unbalanced_acceleration_m_s2;
+
+  // Start: centred, every wheelset and bogie along its local tangent.
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(layout.size());
+  for (int i = 0; i < layout.wheelsets && layout.bogies > 0; ++i) {
+    const double X = layout.wheelset_x[i], Xb = layout.bogie_x[layout.bogie_of[i]];
+    q[2 * i + 1] = p.curve.curvature_per_m() * (X - Xb);  // rigid with a frame on its tangent
+  }
+  std::vector<CurvedWheelset> ws;
+  Eigen::VectorXd r;
+  bool no_equilibrium = false;
+  Equilibrium eq(p, layout, contexts(p.options.predictor ? *p.options.predictor : p.contact.model),
+                 unbalanced_N, q0);
+  int iterations = 0;
+  if (p.options.predictor) {
+    iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
+    out.predictor_iterations = iterations;
+    if (iterations >= 0) {
+      eq.set_contexts(contexts(p.contact.model));
+      iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
+      out.full_iterations = iterations;
+    }
+  } else {
+    iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
+    out.full_iterations = iterations;
+  }
+  out.contact_solves = eq.solves();
+  out.wheelsets = ws;
+  for (int j = 0; j < layout.bogies; ++j) {
+    out.bogies.emplace_back(q[layout.BogieIndex(j)], q[layout.BogieIndex(j) + 1]);
+  }
+  if (layout.bogies > 0) out.body = q.segment<2>(layout.BodyIndex());
+  for (int k = 0; k < r.size(); ++k) {
+    double& largest = k % 2 == 0 ? out.lateral_residual_N : out.yaw_residual_Nm;
+    largest = std::max(largest, std::abs(r[k]));
+  }
+  for (const CurvedWheelset& w : ws) {
+    out.longitudinal_residual_N =
+        std::max(out.longitudinal_residual_N, std::abs(w.force_N.x() - v.traction_N_per_axle));
+  }
+  if (iterations < 0) {
+    out.status = no_equilibrium ? CurvingStatus::kNoEquilibrium : CurvingStatus::kNotConverged;
+  } else {
+    out.status = CurvingStatus::kConverged;
+    for (const CurvedWheelset& w : ws) {
+      for (const ContactResult* c : {&w.contact.right, &w.contact.left}) {
+        if (c->climb.exceeded) out.status = CurvingStatus::kFlangeClimb;
+      }
+    }
+    if (out.status == CurvingStatus::kFlangeClimb) {
+      out.message = "a wheel's L/V exceeds Nadal's limit: flange climb possible";
+    }
+  }
+  out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace railwear

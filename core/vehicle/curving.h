@@ -1,0 +1,125 @@
+// Steady-state curving: where a vehicle's wheelsets run in a curve of constant radius and cant,
+// found by balancing the contact forces of railwear's own wheel-rail contact against the
+// suspension and the unbalanced lateral force.
+//
+// Unknowns (core/vehicle/vehicle.h for the layout), each in its own local track frame: every
+// wheelset's lateral displacement y (toward the high rail, +Y) and angle of attack psi (yaw
+// against the local track tangent, positive nose toward the high rail); a bogie vehicle adds
+// each bogie frame's (y, psi) and the car body's (y, psi). Each wheelset's pitch velocity is
+// found inside its contact solve (core/contact/wheelset_contact.h) so that its wheels' creep
+// forces F_x add up to the axle's traction (0: free rolling), and its roll so that both wheels
+// touch their rails. The equations: per body the lateral force and the yaw moment about its
+// centre, with
+//   - the contact forces of both wheels (normal and creep parts, with two-point contact and the
+//     flange force as the contact finds them: the flange force is a result of the equilibrium);
+//   - the primary and secondary springs, deflected by the bodies' positions against each other
+//     and by the curve itself (a body at x from the car body's centre sits kappa x^2 / 2 inside
+//     and yawed by -kappa x against the centre's tangent);
+//   - the unbalanced lateral force m a_u (core/vehicle/curve.h), lumped on the car body (on the
+//     wheelset of a single-wheelset vehicle), and the load transfer m a_u h_cg / (2 l0) from the
+//     low to the high wheel of every axle.
+// Solution: damped Newton with a finite-difference Jacobian of each wheelset's contact forces
+// (the suspension's part is linear and exact). The iterates first use the cheap predictor contact
+// model (the half-space model on the draft grid, with the same rolling-contact
+// method), as MBS codes use precomputed
+// contact functions; the solution is then finished with the problem's own contact model, so the
+// returned state and forces are those of the full contact at the scene's accuracy.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/contact/wheelset_contact.h"
+#include "core/vehicle/curve.h"
+#include "core/vehicle/vehicle.h"
+
+namespace railwear {
+
+struct CurvingOptions {
+  // The contact model of the iterates; absent: the full model throughout (slower, no better).
+  std::optional<ModelOptions> predictor = PredictorModel();
+  // Convergence: every residual below tolerance x Q0 (forces) or tolerance x Q0 x l0 (moments),
+  // Q0 the static wheel load, l0 = 0.75 m.
+  double tolerance = 1e-4;
+  int max_iterations = 40;  // per phase (predictor, full)
+  // A wheelset pushed beyond this lateral displacement has no equilibrium (it climbs) [m].
+  double max_lateral_m = 0.02;
+
+  static ModelOptions PredictorModel();
+};
+
+struct CurvingProblem {
+  ContactSetup contact;  // materials, model (the solution's accuracy), tangential method, damage
+  Profile high_rail;     // the right (outer) rail, its own frame, inclination applied
+  Profile low_rail;      // the left (inner) rail, its own frame, inclination applied
+  // Where the rails stand; absent: from the profiles (pass the unworn rails' for worn ones).
+  std::optional<RailGaugePoints> gauge_points;
+  TrackSpec track;
+  CurveSpec curve;
+  VehicleSpec vehicle;
+  double speed_m_s = 20.0;
+  double friction = 0.3;
+  CurvingOptions options;
+};
+
+enum class CurvingStatus {
+  kConverged,      // equilibrium found, every wheel below Nadal's limit
+  kFlangeClimb,    // equilibrium found, but some wheel's L/V exceeds Nadal's limit
+  kNoEquilibrium,  // a wheelset went past max_lateral_m, or a wheel unloaded: no steady state
+  kNotConverged,   // the iterations stopped before the tolerance
+};
+
+inline constexpr std::array<EnumName<CurvingStatus>, 4> kCurvingStatusNames = {{
+    {CurvingStatus::kConverged, "converged"},
+    {CurvingStatus::kFlangeClimb, "flange_climb"},
+    {CurvingStatus::kNoEquilibrium, "no_equilibrium"},
+    {CurvingStatus::kNotConverged, "not_converged"},
+}};
+inline std::string_view ToString(CurvingStatus s) { return EnumToString(kCurvingStatusNames, s); }
+
+// One wheelset's steady state.
+struct CurvedWheelset {
+  double x_m = 0.0;        // position from the car body's centre (0 for a single wheelset)
+  double lateral_m = 0.0;  // y, toward the high rail, against the local track centre line
+  double yaw_rad = 0.0;    // angle of attack against the local tangent
+  double roll_rad = 0.0;   // from both wheels touching their rails
+  double pitch_velocity_rad_s = 0.0;
+  double high_load_N = 0.0, low_load_N = 0.0;  // prescribed vertical wheel loads
+  WheelsetResult contact;  // right = high rail, left = low rail (each in its rail's frame)
+  // The rails' forces on the wheelset, track frame (x forward, Y toward the high rail) [N], and
+  // their yaw moment about the wheelset centre (+z down: positive turns the nose toward +Y) [N m].
+  Eigen::Vector3d force_N = Eigen::Vector3d::Zero();
+  double yaw_moment_Nm = 0.0;
+  // The high rail's lateral force from this wheelset's high wheel (on the rail, toward its field
+  // side, all patches) [N]: the flange force when the wheel is in flange contact.
+  double high_lateral_N = 0.0;
+};
+
+struct CurvingResult {
+  CurvingStatus status = CurvingStatus::kNotConverged;
+  std::string message;
+  double unbalanced_acceleration_m_s2 = 0.0;
+  double cant_deficiency_m = 0.0;
+  std::vector<CurvedWheelset> wheelsets;           // from the front
+  std::vector<Eigen::Vector2d> bogies;             // (y, psi) of each bogie frame, local
+  Eigen::Vector2d body = Eigen::Vector2d::Zero();  // (y, psi) of the car body
+  // The largest residuals of all bodies at the solution: lateral [N], yaw [N m], and the
+  // wheelsets' longitudinal (F_x minus traction) [N].
+  double lateral_residual_N = 0.0;
+  double yaw_residual_Nm = 0.0;
+  double longitudinal_residual_N = 0.0;
+  int predictor_iterations = 0;
+  int full_iterations = 0;
+  int contact_solves = 0;  // wheelset contact solves, all phases
+  double time_s = 0.0;
+};
+
+// Throws InputError for bad input (curve, vehicle, speed, friction; the contact set-up as
+// SolveContact does). Failure to converge or to find an equilibrium is a status, never an
+// exception.
+CurvingResult SolveCurving(const CurvingProblem& problem);
+
+}  // namespace railwear

@@ -1,0 +1,157 @@
+// Steady-state curving against closed forms: the free conical wheelset's pure-rolling offset,
+// the rigid bogie's linear curving (Wickens), radial wheelsets without primary yaw stiffness,
+// and an S1002/UIC60 bogie vehicle in flange contact on R 300 m.
+#include "core/vehicle/curving.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/contact/kalker_coefficients.h"
+#include "core/profile/builtin_profiles.h"
+
+namespace railwear {
+namespace {
+
+constexpr double kR0 = 0.46;
+constexpr double kHalfSpan = 0.75;  // wheel origin (taping line) from the wheelset centre
+
+// A flangeless cone of conicity lambda: r = r0 - lambda y (flange side at negative y).
+Profile MakeCone(double lambda) {
+  std::vector<Eigen::Vector2d> points;
+  for (int k = -60; k <= 70; ++k) points.emplace_back(k * 1e-3, -lambda * k * 1e-3);
+  return Profile(points, "cone");
+}
+
+CurvingProblem BaseProblem(const Profile& wheel, double radius_m) {
+  CurvingProblem p;
+  p.contact.model = CurvingOptions::PredictorModel();
+  p.contact.tangential = TangentialMethod::kFastsim;
+  p.high_rail = ApplyCant(MakeUic60(), 1.0 / 40.0);
+  p.low_rail = p.high_rail;
+  p.curve.radius_m = radius_m;
+  p.vehicle.name = "test";
+  p.vehicle.kind = VehicleKind::kWheelset;
+  p.vehicle.axle_load_N = 100e3;
+  p.vehicle.wheel_profile = wheel;
+  p.vehicle.rolling_radius_m = kR0;
+  p.vehicle.cg_height_m = 0.0;
+  p.speed_m_s = 20.0;
+  p.friction = 0.3;
+  p.options.predictor.reset();  // the full model is the predictor's here
+  return p;
+}
+
+TEST(CurvingTest, FreeConicalWheelsetRollsPurelyAtItsOffset) {
+  const double lambda = 0.05, radius = 1000.0;
+  CurvingProblem p = BaseProblem(MakeCone(lambda), radius);
+  // No cant deficiency: the speed at which a_u = 0 for zero cant is 0; use a low speed instead
+  // and cancel the rest with cant.
+  p.speed_m_s = 10.0;
+  p.curve.cant_m = p.curve.cant_base_m * p.speed_m_s * p.speed_m_s / radius / kGravity_m_s2;
+  const CurvingResult r = SolveCurving(p);
+  ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
+  EXPECT_NEAR(r.unbalanced_acceleration_m_s2, 0.0, 1e-3);
+  // r0 and l0 of the classical formula are those of the contact points of the centred wheelset:
+  // the cone touches the rail head on its gauge side, l0 from the track centre line, where the
+  // cone's radius is r0 + lambda (0.75 m - l0).
+  CurvingProblem centred = p;
+  centred.curve = CurveSpec{};
+  const CurvingResult c = SolveCurving(centred);
+  ASSERT_EQ(c.status, CurvingStatus::kConverged) << c.message;
+  const WheelsetResult& cw = c.wheelsets[0].contact;
+  const double l0 = cw.placement.right_rail_origin_Y_m + cw.right.patches[0].contact_point_yz_m.x();
+  const double r0 = kR0 + lambda * (kHalfSpan - l0);
+  const double expected = r0 * l0 / (lambda * radius);
+  const CurvedWheelset& w = r.wheelsets[0];
+  EXPECT_NEAR(w.lateral_m, expected, 0.02 * expected);
+  EXPECT_NEAR(w.yaw_rad, 0.0, 0.02 * kHalfSpan / radius);
+  // The residual difference is the rail crown's: the wheelset's roll moves both contact points
+  // across the rail heads, so the cone acts with a slightly larger (effective) conicity.
+  std::printf(
+      "free wheelset: l0 %.4f m, r0 %.4f m; y %.4f mm (pure rolling %.4f), yaw %.3e rad, %d "
+      "iterations, %d "
+      "solves, residuals %.2e N %.2e N m %.2e N\n",
+      l0, r0, w.lateral_m * 1e3, expected * 1e3, w.yaw_rad, r.full_iterations, r.contact_solves,
+      r.lateral_residual_N, r.yaw_residual_Nm, r.longitudinal_residual_N);
+}
+
+TEST(CurvingTest, FreeWheelsetOnTangentTrackCentres) {
+  CurvingProblem p = BaseProblem(MakeCone(0.05), 0.0);
+  const CurvingResult r = SolveCurving(p);
+  ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
+  EXPECT_NEAR(r.wheelsets[0].lateral_m, 0.0, 1e-5);
+  EXPECT_NEAR(r.wheelsets[0].yaw_rad, 0.0, 1e-5);
+}
+
+// A bogie vehicle of cone wheelsets with stiff or soft primary suspension, no cant deficiency.
+CurvingProblem ConeBogie(double lambda, double radius, double primary_kx) {
+  CurvingProblem p = BaseProblem(MakeCone(lambda), radius);
+  p.vehicle.kind = VehicleKind::kBogie;
+  p.vehicle.wheelbase_m = 2.5;
+  p.vehicle.bogie_spacing_m = 19.0;
+  p.vehicle.primary_kx_N_m = primary_kx;
+  p.vehicle.primary_ky_N_m = 1e10;
+  p.vehicle.primary_semi_spacing_m = 1.0;
+  p.vehicle.secondary_ky_N_m = 1e5;
+  p.vehicle.secondary_yaw_Nm_rad = 1.0;  // no yaw restraint from the car body
+  p.friction = 1.0;  // creepages of 4e-4 stay in the linear range of the creep curves
+  p.speed_m_s = 10.0;
+  p.curve.cant_m = p.curve.cant_base_m * p.speed_m_s * p.speed_m_s / radius / kGravity_m_s2;
+  return p;
+}
+
+// Wickens (Fundamentals of Rail Vehicle Dynamics, 2003, ch. 8; also Boocock 1969): a rigid bogie
+// of semi-wheelbase a on a large radius, without cant deficiency, runs with its frame along the
+// tangent (psi = 0), its wheelsets at the angles of attack +-a/R and displaced outward to
+//     y = r0 l0 / (lambda R) (1 + (f22 / f11) (a / l0)^2),
+// the free wheelset's pure-rolling offset times a factor set by the creep coefficients. The test
+// takes r0 l0 / lambda from the free wheelset on the same rails (which carries the effective
+// conicity) and f22 / f11 = C22 / C11 at the patch's axis ratio (FASTSIM's linear limit).
+TEST(CurvingTest, RigidBogieMatchesTheLinearClosedForm) {
+  const double lambda = 0.05, radius = 3000.0, a = 1.25;
+  CurvingProblem p = ConeBogie(lambda, radius, 1e10);
+  const CurvingResult r = SolveCurving(p);
+  ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
+  CurvingProblem single = BaseProblem(MakeCone(lambda), radius);
+  single.friction = p.friction;
+  single.speed_m_s = p.speed_m_s;
+  single.curve = p.curve;
+  const CurvingResult f = SolveCurving(single);
+  ASSERT_EQ(f.status, CurvingStatus::kConverged) << f.message;
+  const double y_free = f.wheelsets[0].lateral_m;
+  const WheelsetResult& c = r.wheelsets[0].contact;
+  const RollingPatch& patch = *c.right.patches[0].rolling;
+  const CreepCoefficients k = KalkerCoefficients(patch.semi_axis_x_m / patch.semi_axis_s_m, 0.28);
+  const double l0 = c.placement.right_rail_origin_Y_m + c.right.patches[0].contact_point_yz_m.x();
+  const double expected = y_free * (1.0 + k.c22 / k.c11 * (a / l0) * (a / l0));
+  std::printf(
+      "rigid bogie: frame psi %.3e, wheelsets y %.4f %.4f %.4f %.4f mm (closed form "
+      "%.4f), psi %.3e %.3e (a/R %.3e), %d + %d iterations, %d solves\n",
+      r.bogies[0].y(), r.wheelsets[0].lateral_m * 1e3, r.wheelsets[1].lateral_m * 1e3,
+      r.wheelsets[2].lateral_m * 1e3, r.wheelsets[3].lateral_m * 1e3, expected * 1e3,
+      r.wheelsets[0].yaw_rad, r.wheelsets[1].yaw_rad, a / radius, r.predictor_iterations,
+      r.full_iterations, r.contact_solves);
+  for (int i = 0; i < 4; ++i) {
+    const CurvedWheelset& w = r.wheelsets[i];
+    EXPECT_NEAR(w.lateral_m, expected, 0.05 * expected) << "wheelset " << i;
+    EXPECT_NEAR(w.yaw_rad, (i % 2 == 0 ? 1.0 : -1.0) * a / radius, 0.05 * a / radius);
+  }
+  EXPECT_NEAR(r.bogies[0].y(), 0.0, 0.05 * a / radius);  // frame psi: bogies hold (y, psi)
+}
+
+// Without primary yaw stiffness every wheelset steers itself: radial (psi = 0) at the free
+// wheelset's pure-rolling offset.
+TEST(CurvingTest, SoftPrimaryYawLetsWheelsetsGoRadial) {
+  const double lambda = 0.05, radius = 3000.0, a = 1.25;
+  CurvingProblem p = ConeBogie(lambda, radius, 1.0);
+  const CurvingResult r = SolveCurving(p);
+  ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(r.wheelsets[i].yaw_rad, 0.0, 0.02 * a / radius) << "wheelset " << i;
+    EXPECT_NEAR(r.wheelsets[i].lateral_m, r.wheelsets[0].lateral_m, 1e-6);
+  }
+}
+
+}  // namespace
+}  // namespace railwear
