@@ -12,6 +12,7 @@
 #include "app/history_command.h"
 #include "app/init_command.h"
 #include "app/profile_command.h"
+#include "app/traffic_command.h"
 #include "app/wear_command.h"
 #include "core/numerics/input_error.h"
 
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
   railwear::app::SetupAccuracy(app);
   railwear::app::SetupCalibrate(app);
   railwear::app::SetupFemReference(app);
+  railwear::app::SetupTraffic(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -5,6 +5,8 @@
 #   [calibration]  a calibration config  -> calibrate --json -
 #   [fem]          a FEM config          -> fem-reference --report-only (skipped with the reason
 #                                           when its results are not committed)
+#   *_mbs.csv      an MBS time history   -> traffic import into a scratch collective, compared
+#                                           with the committed <stem>_collective.toml beside it
 # Other .toml files are data, not runnable (influence-constants files such as
 # calibration/calibrated_paper.toml, FEM results in fem/reference/) and get no test.
 # Test names: example.<path without .toml, '/' -> '.'>, e.g. example.calibration.synthetic.
@@ -33,4 +35,20 @@ foreach(example IN LISTS RAILWEAR_EXAMPLES)
                    -P ${CMAKE_CURRENT_SOURCE_DIR}/tools/run_example.cmake)
   set_tests_properties(example.${name} PROPERTIES LABELS "example;${kind}" TIMEOUT 300
                        SKIP_REGULAR_EXPRESSION "SKIPPED:")
+endforeach()
+
+# MBS time histories (examples/**/NAME_mbs.csv): `traffic import` must write the committed
+# NAME_collective.toml beside it (below its comment header, the source path aside).
+file(GLOB_RECURSE RAILWEAR_MBS_EXAMPLES CONFIGURE_DEPENDS RELATIVE ${PROJECT_SOURCE_DIR}/examples
+     ${PROJECT_SOURCE_DIR}/examples/*_mbs.csv)
+list(SORT RAILWEAR_MBS_EXAMPLES)
+foreach(example IN LISTS RAILWEAR_MBS_EXAMPLES)
+  string(REGEX REPLACE "\\.csv$" "" name ${example})
+  string(REPLACE "/" "." name ${name})
+  add_test(NAME example.${name}
+           COMMAND ${CMAKE_COMMAND} -DRAILWEAR=$<TARGET_FILE:railwear>
+                   -DEXAMPLE=${PROJECT_SOURCE_DIR}/examples/${example} -DKIND=mbs
+                   -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/examples/${name}
+                   -P ${CMAKE_CURRENT_SOURCE_DIR}/tools/run_example.cmake)
+  set_tests_properties(example.${name} PROPERTIES LABELS "example;mbs" TIMEOUT 300)
 endforeach()

@@ -1,5 +1,5 @@
 # Runs one example as a test (registered by tests/examples.cmake, one ctest per file):
-#   cmake -DRAILWEAR=<binary> -DEXAMPLE=<file> -DKIND=contact|wear|calibration|fem
+#   cmake -DRAILWEAR=<binary> -DEXAMPLE=<file> -DKIND=contact|wear|calibration|fem|mbs
 #         -DWORK_DIR=<scratch dir> -P run_example.cmake
 # with small arguments, and checks the exit code and a key line of the output:
 #   contact      `contact FILE --accuracy draft --json -`: exit 0, one JSON object, status
@@ -12,6 +12,9 @@
 #                reference/ folder: the tables of the committed results (exit 0, "read from");
 #                a config whose results are not committed is skipped with the reason (running
 #                it needs gmsh + CalculiX for minutes)
+#   mbs          `traffic import FILE --out WORK_DIR/collective.toml`: exit 0, "wrote" on stdout,
+#                and the file equals the committed NAME_collective.toml beside NAME_mbs.csv from
+#                its [collective] table on, the source line aside (the path differs)
 # A skipped test prints "SKIPPED:" (the test's SKIP_REGULAR_EXPRESSION): FEM configs without
 # committed results, and examples whose ../shared profile files are absent.
 cmake_minimum_required(VERSION 3.22)
@@ -130,6 +133,34 @@ elseif(KIND STREQUAL "fem")
   endif()
   set(err "${errors}")
   fail("fem-reference --report-only failed with both output folders")
+elseif(KIND STREQUAL "mbs")
+  run(traffic import "${EXAMPLE}" --out "${WORK_DIR}/collective.toml")
+  if(NOT code EQUAL 0)
+    fail("exit ${code}, expected 0")
+  endif()
+  if(NOT out MATCHES "wrote [^\n]*")
+    fail("no line \"wrote ...\" on stdout")
+  endif()
+  message("${CMAKE_MATCH_0}")
+  string(REGEX REPLACE "_mbs\\.csv$" "_collective.toml" committed "${EXAMPLE}")
+  # The body from [collective] on, without the source line.
+  function(collective_body result path)
+    file(READ "${path}" text)
+    string(FIND "${text}" "\n[collective]" at)
+    if(at LESS 0)
+      fail("${path} has no [collective] table")
+    endif()
+    string(SUBSTRING "${text}" ${at} -1 text)
+    string(REGEX REPLACE "\nsource = [^\n]*" "" text "${text}")
+    set(${result} "${text}" PARENT_SCOPE)
+  endfunction()
+  collective_body(expected "${committed}")
+  collective_body(written "${WORK_DIR}/collective.toml")
+  if(NOT expected STREQUAL written)
+    fail("${WORK_DIR}/collective.toml differs from ${committed}; if the change is intended, "
+         "rewrite it: railwear traffic import ${EXAMPLE} --out ${committed} --force")
+  endif()
+  message("equals ${committed}")
 else()
-  message(FATAL_ERROR "run_example.cmake: KIND '${KIND}': expected contact, wear, calibration or fem")
+  message(FATAL_ERROR "run_example.cmake: KIND '${KIND}': expected contact, wear, calibration, fem or mbs")
 endif()
