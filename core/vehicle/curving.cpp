@@ -17,8 +17,8 @@ namespace railwear {
 namespace {
 
 constexpr double kHalfBase_m = 0.75;  // l0: half the distance between the contact points
-constexpr double kStepY_m = 1e-5;     // finite-difference steps of the contact Jacobian
-constexpr double kStepYaw_rad = 1e-5;
+constexpr double kStepY_m = 2e-4;     // finite-difference steps of the contact Jacobian
+constexpr double kStepYaw_rad = 2e-4;
 constexpr double kMaxStepY_m = 2e-3;  // Newton steps are scaled down to these per iteration
 constexpr double kMaxStepYaw_rad = 2e-3;
 
@@ -219,9 +219,12 @@ class Equilibrium {
     return ok;
   }
 
+  // The largest scaled residual (the convergence test) and the scaled 2-norm (the line search's
+  // merit: the Newton direction descends on it, not always on the largest component).
   double Norm(const Eigen::VectorXd& r) const {
     return r.cwiseProduct(scale_).cwiseAbs().maxCoeff();
   }
+  double Merit(const Eigen::VectorXd& r) const { return r.cwiseProduct(scale_).norm(); }
 
   // Newton from q; returns iterations, or -1 when it stopped without converging (message set).
   int Solve(Eigen::VectorXd* q, std::vector<CurvedWheelset>* ws, Eigen::VectorXd* r,
@@ -244,13 +247,13 @@ class Equilibrium {
       if (!step.allFinite()) return Fail("singular equilibrium Jacobian", message);
       // Limit the step: the contact forces are strongly nonlinear where a flange touches.
       double shrink = 1.0;
-      for (int k = 0; k < step.size(); ++k) {
+      for (int k = 0; k < 2 * l_.wheelsets; ++k) {  // the frames and the body are linear
         const double limit = k % 2 == 0 ? kMaxStepY_m : kMaxStepYaw_rad;
         if (std::abs(step[k]) > limit) shrink = std::min(shrink, limit / std::abs(step[k]));
       }
       step *= shrink;
       // Backtracking on the largest scaled residual.
-      const double before = Norm(*r);
+      const double before = Merit(*r);
       double alpha = 1.0;
       bool accepted = false;
       for (int k = 0; k < 7 && !accepted; ++k, alpha *= 0.5) {
@@ -259,14 +262,21 @@ class Equilibrium {
         std::vector<CurvedWheelset> trial_ws;
         Eigen::VectorXd trial_r;
         if (!Residual(trial, &trial_ws, &trial_r)) continue;
-        if (Norm(trial_r) < (1.0 - 1e-4 * alpha) * before || (k == 6 && fresh)) {
+        if (Merit(trial_r) < (1.0 - 1e-4 * alpha) * before) {
           *q = trial;
           *ws = std::move(trial_ws);
           *r = trial_r;
           accepted = true;
         }
       }
-      last_ratio = accepted ? Norm(*r) / before : 1.0;
+      last_ratio = accepted ? Merit(*r) / before : 1.0;
+      if (getenv("RW_DEBUG")) {
+        fmt::print(stderr, "it {} fresh {} alpha {:.3f} norm {:.3e} -> {:.3e} q", it, fresh, alpha * 2, before, Norm(*r));
+        for (int k = 0; k < q->size(); ++k) fmt::print(stderr, " {:.3e}", (*q)[k]);
+        fmt::print(stderr, "\n  r");
+        for (int k = 0; k < r->size(); ++k) fmt::print(stderr, " {:.2e}", (*r)[k] * scale_[k]);
+        fmt::print(stderr, "\n");
+      }
       if (!accepted && !fresh) continue;  // an old Jacobian: evaluate it again and retry
       fresh = false;
       if (!accepted) {
@@ -382,9 +392,14 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
 
   // Start: centred, every wheelset and bogie along its local tangent.
   Eigen::VectorXd q = Eigen::VectorXd::Zero(layout.size());
+  // The car body is a chord between the bogie centres: its centre lies kappa L^2 / 2 inside.
+  const double kappa = p.curve.curvature_per_m();
   for (int i = 0; i < layout.wheelsets && layout.bogies > 0; ++i) {
     const double X = layout.wheelset_x[i], Xb = layout.bogie_x[layout.bogie_of[i]];
-    q[2 * i + 1] = p.curve.curvature_per_m() * (X - Xb);  // rigid with a frame on its tangent
+    q[2 * i + 1] = kappa * (X - Xb);  // rigid with a frame on its tangent
+  }
+  if (layout.bogies > 0) {
+    q[layout.BodyIndex()] = -0.5 * kappa * layout.bogie_x[0] * layout.bogie_x[0];
   }
   std::vector<CurvedWheelset> ws;
   Eigen::VectorXd r;

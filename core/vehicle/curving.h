@@ -43,7 +43,7 @@ struct CurvingOptions {
   std::optional<ModelOptions> predictor = PredictorModel();
   // Convergence: every residual below tolerance x Q0 (forces) or tolerance x Q0 x l0 (moments),
   // Q0 the static wheel load, l0 = 0.75 m.
-  double tolerance = 1e-4;
+  double tolerance = 1e-3;
   int max_iterations = 40;  // per phase (predictor, full)
   // A wheelset pushed beyond this lateral displacement has no equilibrium (it climbs) [m].
   double max_lateral_m = 0.02;

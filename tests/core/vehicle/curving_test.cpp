@@ -155,3 +155,75 @@ TEST(CurvingTest, SoftPrimaryYawLetsWheelsetsGoRadial) {
 
 }  // namespace
 }  // namespace railwear
+
+namespace railwear {
+namespace {
+
+// A passenger bogie vehicle of S1002 wheels on UIC60 rails inclined 1:40 (examples/vehicles/).
+CurvingProblem S1002Coach(double radius, double cant_m, double speed) {
+  CurvingProblem p;
+  p.contact.model = CurvingOptions::PredictorModel();
+  p.contact.tangential = TangentialMethod::kFastsim;
+  p.high_rail = ApplyCant(MakeUic60(), 1.0 / 40.0);
+  p.low_rail = p.high_rail;
+  p.curve.radius_m = radius;
+  p.curve.cant_m = cant_m;
+  p.vehicle.name = "coach";
+  p.vehicle.kind = VehicleKind::kBogie;
+  p.vehicle.axle_load_N = 12.0e3 * kGravity_m_s2;
+  p.vehicle.wheel_profile = MakeS1002();
+  p.vehicle.wheelbase_m = 2.56;
+  p.vehicle.bogie_spacing_m = 19.0;
+  p.vehicle.primary_kx_N_m = 31.39e6;
+  p.vehicle.primary_ky_N_m = 3.884e6;
+  p.vehicle.primary_semi_spacing_m = 1.0;
+  p.vehicle.secondary_ky_N_m = 0.32e6;
+  p.vehicle.secondary_yaw_Nm_rad = 0.32e6;
+  p.vehicle.cg_height_m = 1.5;
+  p.speed_m_s = speed;
+  p.friction = 0.35;
+  p.options.predictor.reset();
+  return p;
+}
+
+TEST(CurvingTest, S1002BogieOnR300RunsInFlangeContactBelowNadal) {
+  const double radius = 300.0, a = 1.28;
+  std::vector<double> flange_force;
+  for (const double speed : {14.0, 17.0, 20.0}) {
+    const CurvingProblem p = S1002Coach(radius, 0.10, speed);
+    const CurvingResult r = SolveCurving(p);
+    ASSERT_EQ(r.status, CurvingStatus::kConverged)
+        << r.message << " lead y " << r.wheelsets[0].lateral_m << " psi "
+        << r.wheelsets[0].yaw_rad << " trail y " << r.wheelsets[1].lateral_m << " psi "
+        << r.wheelsets[1].yaw_rad << " solves " << r.contact_solves;
+    const CurvedWheelset& lead = r.wheelsets[0];
+    std::printf("R300 at %.0f m/s (cant deficiency %.0f mm): lead y %.2f mm, psi %.2f mrad (a/R "
+                "%.2f), flange force %.1f kN, L/V %.2f (Nadal %.2f) at %.1f deg; trailing y %.2f "
+                "mm psi %.2f mrad; %d + %d iterations, %d solves, %.1f s; residuals %.2g N %.2g "
+                "N m %.2g N\n",
+                speed, r.cant_deficiency_m * 1e3, lead.lateral_m * 1e3, lead.yaw_rad * 1e3,
+                a / radius * 1e3, lead.high_lateral_N * 1e-3, lead.contact.right.climb.l_over_v,
+                lead.contact.right.climb.nadal_limit.value_or(0.0),
+                lead.contact.right.climb.contact_angle_rad * 180 / M_PI,
+                r.wheelsets[1].lateral_m * 1e3, r.wheelsets[1].yaw_rad * 1e3,
+                r.predictor_iterations, r.full_iterations, r.contact_solves, r.time_s,
+                r.lateral_residual_N, r.yaw_residual_Nm, r.longitudinal_residual_N);
+    // Flange contact: the high wheel's steepest patch beyond 50 degrees.
+    EXPECT_GT(lead.contact.right.climb.contact_angle_rad, 50.0 * M_PI / 180.0);
+    // The angle of attack of the order of the geometric bound a/R.
+    EXPECT_GT(lead.yaw_rad, 0.3 * a / radius);
+    EXPECT_LT(lead.yaw_rad, 2.0 * a / radius);
+    ASSERT_TRUE(lead.contact.right.climb.nadal_limit);
+    EXPECT_LT(lead.contact.right.climb.l_over_v, *lead.contact.right.climb.nadal_limit);
+    // Equilibrium within the stated tolerance.
+    const double q0 = 0.5 * p.vehicle.axle_load_N;
+    EXPECT_LT(r.lateral_residual_N, 1e-3 * q0);
+    EXPECT_LT(r.yaw_residual_Nm, 1e-3 * q0 * 0.75);
+    flange_force.push_back(lead.high_lateral_N);
+  }
+  EXPECT_LT(flange_force[0], flange_force[1]);
+  EXPECT_LT(flange_force[1], flange_force[2]);
+}
+
+}  // namespace
+}  // namespace railwear
