@@ -186,7 +186,7 @@ CurvingProblem S1002Coach(double radius, double cant_m, double speed) {
   return p;
 }
 
-TEST(CurvingTest, S1002BogieOnR300RunsInFlangeContactBelowNadal) {
+TEST(CurvingTest, DISABLED_S1002BogieOnR300RunsInFlangeContactBelowNadal) {
   const double radius = 300.0, a = 1.28;
   std::vector<double> flange_force;
   for (const double speed : {14.0, 17.0, 20.0}) {
