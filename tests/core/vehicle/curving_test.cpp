@@ -9,38 +9,11 @@
 
 #include "core/contact/kalker_coefficients.h"
 #include "core/profile/builtin_profiles.h"
+#include "tests/core/vehicle/curving_cases.h"
 
 namespace railwear {
 namespace {
-
-constexpr double kR0 = 0.46;
-constexpr double kHalfSpan = 0.75;  // wheel origin (taping line) from the wheelset centre
-
-// A flangeless cone of conicity lambda: r = r0 - lambda y (flange side at negative y).
-Profile MakeCone(double lambda) {
-  std::vector<Eigen::Vector2d> points;
-  for (int k = -60; k <= 70; ++k) points.emplace_back(k * 1e-3, -lambda * k * 1e-3);
-  return Profile(points, "cone");
-}
-
-CurvingProblem BaseProblem(const Profile& wheel, double radius_m) {
-  CurvingProblem p;
-  p.contact.model = CurvingOptions::PredictorModel();
-  p.contact.tangential = TangentialMethod::kFastsim;
-  p.high_rail = ApplyCant(MakeUic60(), 1.0 / 40.0);
-  p.low_rail = p.high_rail;
-  p.curve.radius_m = radius_m;
-  p.vehicle.name = "test";
-  p.vehicle.kind = VehicleKind::kWheelset;
-  p.vehicle.axle_load_N = 100e3;
-  p.vehicle.wheel_profile = wheel;
-  p.vehicle.rolling_radius_m = kR0;
-  p.vehicle.cg_height_m = 0.0;
-  p.speed_m_s = 20.0;
-  p.friction = 0.3;
-  p.options.predictor.reset();  // the full model is the predictor's here
-  return p;
-}
+using namespace test;
 
 TEST(CurvingTest, FreeConicalWheelsetRollsPurelyAtItsOffset) {
   const double lambda = 0.05, radius = 1000.0;
@@ -82,23 +55,6 @@ TEST(CurvingTest, FreeWheelsetOnTangentTrackCentres) {
   ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
   EXPECT_NEAR(r.wheelsets[0].lateral_m, 0.0, 1e-5);
   EXPECT_NEAR(r.wheelsets[0].yaw_rad, 0.0, 1e-5);
-}
-
-// A bogie vehicle of cone wheelsets with stiff or soft primary suspension, no cant deficiency.
-CurvingProblem ConeBogie(double lambda, double radius, double primary_kx) {
-  CurvingProblem p = BaseProblem(MakeCone(lambda), radius);
-  p.vehicle.kind = VehicleKind::kBogie;
-  p.vehicle.wheelbase_m = 2.5;
-  p.vehicle.bogie_spacing_m = 19.0;
-  p.vehicle.primary_kx_N_m = primary_kx;
-  p.vehicle.primary_ky_N_m = 1e10;
-  p.vehicle.primary_semi_spacing_m = 1.0;
-  p.vehicle.secondary_ky_N_m = 1e5;
-  p.vehicle.secondary_yaw_Nm_rad = 1.0;  // no yaw restraint from the car body
-  p.friction = 1.0;  // creepages of 4e-4 stay in the linear range of the creep curves
-  p.speed_m_s = 10.0;
-  p.curve.cant_m = p.curve.cant_base_m * p.speed_m_s * p.speed_m_s / radius / kGravity_m_s2;
-  return p;
 }
 
 // Wickens (Fundamentals of Rail Vehicle Dynamics, 2003, ch. 8; also Boocock 1969): a rigid bogie
@@ -158,6 +114,7 @@ TEST(CurvingTest, SoftPrimaryYawLetsWheelsetsGoRadial) {
 
 namespace railwear {
 namespace {
+using namespace test;
 
 // A passenger bogie vehicle of S1002 wheels on UIC60 rails inclined 1:40 (examples/vehicles/).
 CurvingProblem S1002Coach(double radius, double cant_m, double speed) {
@@ -193,21 +150,21 @@ TEST(CurvingTest, DISABLED_S1002BogieOnR300RunsInFlangeContactBelowNadal) {
     const CurvingProblem p = S1002Coach(radius, 0.10, speed);
     const CurvingResult r = SolveCurving(p);
     ASSERT_EQ(r.status, CurvingStatus::kConverged)
-        << r.message << " lead y " << r.wheelsets[0].lateral_m << " psi "
-        << r.wheelsets[0].yaw_rad << " trail y " << r.wheelsets[1].lateral_m << " psi "
-        << r.wheelsets[1].yaw_rad << " solves " << r.contact_solves;
+        << r.message << " lead y " << r.wheelsets[0].lateral_m << " psi " << r.wheelsets[0].yaw_rad
+        << " trail y " << r.wheelsets[1].lateral_m << " psi " << r.wheelsets[1].yaw_rad
+        << " solves " << r.contact_solves;
     const CurvedWheelset& lead = r.wheelsets[0];
-    std::printf("R300 at %.0f m/s (cant deficiency %.0f mm): lead y %.2f mm, psi %.2f mrad (a/R "
-                "%.2f), flange force %.1f kN, L/V %.2f (Nadal %.2f) at %.1f deg; trailing y %.2f "
-                "mm psi %.2f mrad; %d + %d iterations, %d solves, %.1f s; residuals %.2g N %.2g "
-                "N m %.2g N\n",
-                speed, r.cant_deficiency_m * 1e3, lead.lateral_m * 1e3, lead.yaw_rad * 1e3,
-                a / radius * 1e3, lead.high_lateral_N * 1e-3, lead.contact.right.climb.l_over_v,
-                lead.contact.right.climb.nadal_limit.value_or(0.0),
-                lead.contact.right.climb.contact_angle_rad * 180 / M_PI,
-                r.wheelsets[1].lateral_m * 1e3, r.wheelsets[1].yaw_rad * 1e3,
-                r.predictor_iterations, r.full_iterations, r.contact_solves, r.time_s,
-                r.lateral_residual_N, r.yaw_residual_Nm, r.longitudinal_residual_N);
+    std::printf(
+        "R300 at %.0f m/s (cant deficiency %.0f mm): lead y %.2f mm, psi %.2f mrad (a/R "
+        "%.2f), flange force %.1f kN, L/V %.2f (Nadal %.2f) at %.1f deg; trailing y %.2f "
+        "mm psi %.2f mrad; %d + %d iterations, %d solves, %.1f s; residuals %.2g N %.2g "
+        "N m %.2g N\n",
+        speed, r.cant_deficiency_m * 1e3, lead.lateral_m * 1e3, lead.yaw_rad * 1e3,
+        a / radius * 1e3, lead.high_lateral_N * 1e-3, lead.contact.right.climb.l_over_v,
+        lead.contact.right.climb.nadal_limit.value_or(0.0),
+        lead.contact.right.climb.contact_angle_rad * 180 / M_PI, r.wheelsets[1].lateral_m * 1e3,
+        r.wheelsets[1].yaw_rad * 1e3, r.predictor_iterations, r.full_iterations, r.contact_solves,
+        r.time_s, r.lateral_residual_N, r.yaw_residual_Nm, r.longitudinal_residual_N);
     // Flange contact: the high wheel's steepest patch beyond 50 degrees.
     EXPECT_GT(lead.contact.right.climb.contact_angle_rad, 50.0 * M_PI / 180.0);
     // The angle of attack of the order of the geometric bound a/R.
