@@ -62,7 +62,7 @@ json LoadCaseJson(const LoadCaseSummary& c, const WearStudy& study) {
   json j;
   j["traffic"] = study.traffic[c.load_case.traffic_index].name;
   j["node"] = c.load_case.node;
-  j["lateral_shift_mm"] = c.load_case.lateral_shift_m * 1e3;
+  j["lateral_shift_mm"] = c.load_case.placement.lateral_shift_m * 1e3;
   j["weight"] = c.load_case.weight;
   j["status"] = std::string(ToString(c.status));
   j["patches"] = c.patches;
@@ -243,7 +243,7 @@ class Progress {
         "{}warning: step {}: flange climb possible in {} of {} load cases (worst: {} at lateral "
         "shift {:.2f} mm: {})\n",
         tty_ ? "\n" : "", step.state.step, count, step.cases.size(),
-        study.traffic[worst->load_case.traffic_index].name, worst->load_case.lateral_shift_m * 1e3,
+        study.traffic[worst->load_case.traffic_index].name, worst->load_case.placement.lateral_shift_m * 1e3,
         FlangeClimbWarning(worst->climb, ""));
   }
 
