@@ -23,6 +23,7 @@
 #include "core/numerics/units.h"
 #include "core/profile/profile_io.h"
 #include "profiles_db/profile_store.h"
+#include "wear/traffic.h"
 #include "wear/wear_measures.h"
 
 namespace railwear::app {
@@ -75,6 +76,26 @@ void CheckStep(const ProfileStore& db, const RunInfo& run, const std::vector<Ste
                     "from {} to {}",
                     db.path(), run.name, what, step, steps.front().step, steps.back().step));
   }
+}
+
+// The rail --rail names; InputError for another name.
+RailSide RailOrThrow(const HistoryRailOption& o) {
+  if (const auto side = RailSideFromString(o.rail)) return *side;
+  throw InputError(
+      fmt::format("--rail '{}': expected {}", o.rail, JoinEnumChoices(kRailSideNames, " or ")));
+}
+
+// A step's profile of the chosen rail; InputError naming the run when it has no low rail.
+Profile LoadRailProfile(const ProfileStore& db, const RunInfo& run, int step, RailSide rail) {
+  if (rail == RailSide::kHigh) return db.LoadProfile(run.id, step);
+  const std::vector<StepRecord> steps = db.Steps(run.id);
+  if (steps.empty() || !steps.front().low_rail) {
+    throw InputError(fmt::format(
+        "database '{}': run '{}' has one rail only: expected --rail high (or no --rail) for a "
+        "single-rail run",
+        db.path(), run.name));
+  }
+  return db.LoadLowRailProfile(run.id, step);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -166,21 +187,18 @@ HistoryProfileFormat ChooseFormat(const HistoryProfileOptions& o) {
 }
 
 nlohmann::json ProfileJson(const ProfileStore& db, const RunInfo& run, const StepRecord& step,
-                           const Profile& profile) {
+                           const Profile& profile, RailSide rail) {
   nlohmann::json y = nlohmann::json::array(), z = nlohmann::json::array();
   for (const auto& p : profile.points()) {
     y.push_back(p.x() * kToMm);
     z.push_back(p.y() * kToMm);
   }
-  return {{"database", db.path()},
-          {"run", run.name},
-          {"step", step.step},
-          {"passes", step.passes},
-          {"mgt", step.mgt},
-          {"points", profile.size()},
-          {"frame", "rail frame: y toward the field side, z downward, mm"},
-          {"y_mm", std::move(y)},
-          {"z_mm", std::move(z)}};
+  return {
+      {"database", db.path()},    {"run", run.name},
+      {"step", step.step},        {"rail", std::string(ToString(rail))},
+      {"passes", step.passes},    {"mgt", step.mgt},
+      {"points", profile.size()}, {"frame", "rail frame: y toward the field side, z downward, mm"},
+      {"y_mm", std::move(y)},     {"z_mm", std::move(z)}};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -236,6 +254,8 @@ void SetupHistory(CLI::App& app) {
   profile_cmd->add_option("--format", profile->format,
                           "csv, ban or json (default: by --out's extension, else csv)");
   profile_cmd->add_option("--out", profile->out, "File to write (default: stdout)");
+  profile_cmd->add_option("--rail", profile->rail, "high or low: the rail of a two-rail run")
+      ->capture_default_str();
   profile_cmd->callback([common, profile]() { RunHistoryProfile(*common, *profile); });
 
   auto diff = std::make_shared<HistoryDiffOptions>();
@@ -245,6 +265,8 @@ void SetupHistory(CLI::App& app) {
   diff_cmd->add_option("A", diff->from_step, "Earlier step")->required();
   diff_cmd->add_option("B", diff->to_step, "Later step")->required();
   diff_cmd->add_flag("--json", diff->json, "One JSON object on stdout");
+  diff_cmd->add_option("--rail", diff->rail, "high or low: the rail of a two-rail run")
+      ->capture_default_str();
   diff_cmd->callback([common, diff]() { RunHistoryDiff(*common, *diff); });
 
   auto plot = std::make_shared<HistoryPlotOptions>();
@@ -305,23 +327,59 @@ void RunHistoryCalibrations(const HistoryOptions& o) {
   std::cerr << fmt::format("railwear: {} calibration(s) in {}\n", rows.size(), db.path());
 }
 
+namespace {
+
+// A rate cell [mm/MGT]; NULL for the first step and where no traffic passed.
+std::string RateCell(double mm_per_mgt) {
+  return std::isfinite(mm_per_mgt) ? FixedNoNegativeZero(mm_per_mgt, 4) : std::string("NULL");
+}
+
+// One rail's measure cells of step k and its W2 / W3 rates since step k - 1.
+std::vector<std::string> MeasureCells(const std::vector<StepRecord>& steps, size_t k) {
+  const StepRecord& st = steps[k];
+  const WearRates rate =
+      k == 0 ? WearRates{std::nan(""), std::nan("")} : RatesBetween(steps[k - 1], st);
+  return {FixedNoNegativeZero(st.worn_area_mm2, 4),
+          FixedNoNegativeZero(st.max_depth_mm, 4),
+          FixedNoNegativeZero(st.max_depth_y_mm, 3),
+          FixedNoNegativeZero(st.w1_mm, 4),
+          FixedNoNegativeZero(st.w2_mm, 4),
+          FixedNoNegativeZero(st.w3_mm, 4),
+          fmt::format("{:.3e}", st.smoothing_area_error),
+          RateCell(rate.w2_mm_per_mgt),
+          RateCell(rate.w3_mm_per_mgt)};
+}
+
+}  // namespace
+
 void RunHistorySteps(const HistoryOptions& o, const HistoryStepsOptions& s) {
   const ProfileStore db = OpenExisting(o.db);
   const RunInfo run = FindRunOrThrow(db, s.run);
-  std::vector<std::vector<std::string>> rows;
-  for (const auto& st : db.Steps(run.id)) {
-    rows.push_back({std::to_string(st.step), fmt::format("{:.6g}", st.passes),
-                    FixedNoNegativeZero(st.mgt, 4), FixedNoNegativeZero(st.worn_area_mm2, 4),
-                    FixedNoNegativeZero(st.max_depth_mm, 4),
-                    FixedNoNegativeZero(st.max_depth_y_mm, 3), FixedNoNegativeZero(st.w1_mm, 4),
-                    FixedNoNegativeZero(st.w2_mm, 4), FixedNoNegativeZero(st.w3_mm, 4),
-                    fmt::format("{:.3e}", st.smoothing_area_error)});
+  const std::vector<StepRecord> steps = db.Steps(run.id);
+  const std::vector<StepRecord> low = LowRailSteps(steps);
+  std::vector<std::string> columns = {
+      "step",  "passes", "MGT",   "worn_area_mm2",        "max_depth_mm",  "at_y_mm",
+      "W1_mm", "W2_mm",  "W3_mm", "smoothing_area_error", "W2_mm_per_MGT", "W3_mm_per_MGT"};
+  if (!low.empty()) {
+    for (const std::string& c : std::vector<std::string>(columns.begin() + 3, columns.end())) {
+      columns.push_back("low_" + c);
+    }
   }
-  std::cout << AlignedTable({"step", "passes", "MGT", "worn_area_mm2", "max_depth_mm", "at_y_mm",
-                             "W1_mm", "W2_mm", "W3_mm", "smoothing_area_error"},
-                            rows);
-  std::cerr << fmt::format("railwear: run '{}' ({}), {} step(s), in {}\n", run.name,
-                           ToString(run.state), rows.size(), db.path());
+  std::vector<std::vector<std::string>> rows;
+  for (size_t k = 0; k < steps.size(); ++k) {
+    const StepRecord& st = steps[k];
+    std::vector<std::string> row = {std::to_string(st.step), fmt::format("{:.6g}", st.passes),
+                                    FixedNoNegativeZero(st.mgt, 4)};
+    for (std::string& cell : MeasureCells(steps, k)) row.push_back(std::move(cell));
+    if (!low.empty()) {
+      for (std::string& cell : MeasureCells(low, k)) row.push_back(std::move(cell));
+    }
+    rows.push_back(std::move(row));
+  }
+  std::cout << AlignedTable(columns, rows);
+  std::cerr << fmt::format("railwear: run '{}' ({}), {} step(s){}, in {}\n", run.name,
+                           ToString(run.state), rows.size(),
+                           low.empty() ? "" : ", high and low rail (low_*)", db.path());
 }
 
 void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) {
@@ -332,10 +390,11 @@ void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) 
   const int step_number = p.step.value_or(steps.back().step);
   CheckStep(db, run, steps, step_number, "--step");
   const StepRecord& step = steps[static_cast<size_t>(step_number - steps.front().step)];
-  const Profile profile = db.LoadProfile(run.id, step_number);
+  const RailSide rail = RailOrThrow(p);
+  const Profile profile = LoadRailProfile(db, run, step_number, rail);
 
   if (format == HistoryProfileFormat::kJson) {
-    const std::string text = ProfileJson(db, run, step, profile).dump(1) + "\n";
+    const std::string text = ProfileJson(db, run, step, profile, rail).dump(1) + "\n";
     if (p.out.empty()) {
       std::cout << text;
     } else {
@@ -353,9 +412,9 @@ void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) 
     WriteProfileFile(profile, file.string());
     std::cout << ReadTextFile(file.string()).value_or("");
   }
-  std::cerr << fmt::format("railwear: run '{}' step {} ({:.4f} MGT), {} points{}\n", run.name,
-                           step_number, step.mgt, profile.size(),
-                           p.out.empty() ? std::string() : ", written to " + p.out);
+  std::cerr << fmt::format("railwear: run '{}' step {}{} ({:.4f} MGT), {} points{}\n", run.name,
+                           step_number, rail == RailSide::kLow ? " low rail" : "", step.mgt,
+                           profile.size(), p.out.empty() ? std::string() : ", written to " + p.out);
 }
 
 void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
@@ -366,9 +425,10 @@ void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
   CheckStep(db, run, steps, d.to_step, "step B =");
   const StepRecord& a = steps[static_cast<size_t>(d.from_step - steps.front().step)];
   const StepRecord& b = steps[static_cast<size_t>(d.to_step - steps.front().step)];
-  const Profile unworn = db.LoadProfile(run.id, steps.front().step);
-  const Profile pa = db.LoadProfile(run.id, a.step);
-  const Profile pb = db.LoadProfile(run.id, b.step);
+  const RailSide rail = RailOrThrow(d);
+  const Profile unworn = LoadRailProfile(db, run, steps.front().step, rail);
+  const Profile pa = LoadRailProfile(db, run, a.step, rail);
+  const Profile pb = LoadRailProfile(db, run, b.step, rail);
   WearMeasureOptions options;
   options.gauge = MakeWearGauge(unworn, options.side_wear_depth_m);
   const WearMeasures m = CompareProfiles(pa, pb, options);
@@ -377,6 +437,7 @@ void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
     // NaN (a line that misses a profile) is written as null.
     const nlohmann::json j = {{"database", db.path()},
                               {"run", run.name},
+                              {"rail", std::string(ToString(rail))},
                               {"from", {{"step", a.step}, {"passes", a.passes}, {"mgt", a.mgt}}},
                               {"to", {{"step", b.step}, {"passes", b.passes}, {"mgt", b.mgt}}},
                               {"worn_area_mm2", m.worn_area_m2 * kToMm2},
@@ -392,6 +453,7 @@ void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
   } else {
     std::string out;
     out += fmt::format("run           {}\n", run.name);
+    if (rail == RailSide::kLow) out += "rail          low\n";
     out += fmt::format("from step     {} ({:.4f} MGT, {:.6g} passes)\n", a.step, a.mgt, a.passes);
     out += fmt::format("to step       {} ({:.4f} MGT, {:.6g} passes)\n", b.step, b.mgt, b.passes);
     out += fmt::format("worn area     {:.4f} mm^2\n", m.worn_area_m2 * kToMm2);

@@ -41,14 +41,20 @@ std::string ToString(HistoryProfileFormat format);
 // Throws InputError naming the value and the choices.
 HistoryProfileFormat HistoryProfileFormatFromString(const std::string& text);
 
-struct HistoryProfileOptions {
+// Which rail of a two-rail run `history profile` and `diff` read: "high" (default, also the only
+// rail of a single-rail run) or "low" (wear/traffic.h RailSide names).
+struct HistoryRailOption {
+  std::string rail = "high";
+};
+
+struct HistoryProfileOptions : HistoryRailOption {
   std::string run;
   std::optional<int> step;  // default: the run's last step
   std::string format;       // "csv", "ban" or "json"; default: by --out's extension, else csv
   std::string out;          // file to write; empty: stdout
 };
 
-struct HistoryDiffOptions {
+struct HistoryDiffOptions : HistoryRailOption {
   std::string run;
   int from_step = 0;  // A
   int to_step = 0;    // B
@@ -74,13 +80,16 @@ void RunHistoryRuns(const HistoryOptions& options);
 // calibrations: table id, name, created, status, well conditioned, fitted constants, version
 // (the rows `railwear calibrate --db` stores; their inputs: `history sql`).
 void RunHistoryCalibrations(const HistoryOptions& options);
-// steps: table step, passes, MGT, worn area, max depth and its y, W1 W2 W3, smoothing error.
+// steps: table step, passes, MGT, worn area, max depth and its y, W1 W2 W3, smoothing error, the
+// W2 and W3 rates [mm/MGT] since the previous stored step; for a two-rail run the same measures
+// and rates of the low rail in columns low_*.
 void RunHistorySteps(const HistoryOptions& options, const HistoryStepsOptions& steps);
 // profile: the step's rail profile (mm) as CSV or MiniProf BAN (core/profile/profile_io.h), or
-// JSON {run, step, passes, mgt, points, y_mm[], z_mm[]}.
+// JSON {run, step, passes, mgt, points, y_mm[], z_mm[]}; --rail low: the low rail's (own frame).
 void RunHistoryProfile(const HistoryOptions& options, const HistoryProfileOptions& profile);
 // diff: CompareProfiles(step A, step B) with the wear gauge of the run's step 0, so W1/W2/W3
-// between A and B are the differences of their values against step 0 (wear/wear_measures.h).
+// between A and B are the differences of their values against step 0 (wear/wear_measures.h);
+// --rail low: of the low rail.
 void RunHistoryDiff(const HistoryOptions& options, const HistoryDiffOptions& diff);
 // plot: three PNGs via gnuplot (app/history_plot.h); std::runtime_error when gnuplot is missing.
 void RunHistoryPlot(const HistoryOptions& options, const HistoryPlotOptions& plot);

@@ -80,9 +80,8 @@ std::string ProfilesScript(const std::string& run, const std::vector<StepRecord>
   return g.str();
 }
 
-std::string DepthScript(const std::string& run, const std::vector<StepRecord>& steps,
-                        const std::vector<DepthCurve>& curves, const fs::path& dir,
-                        const std::string& png) {
+// The depth data file of one rail's curves; returns how many were stored with s.
+int WriteDepthData(const std::vector<DepthCurve>& curves, const fs::path& file) {
   std::string data;
   int stored = 0;
   for (const auto& c : curves) {
@@ -96,16 +95,58 @@ std::string DepthScript(const std::string& run, const std::vector<StepRecord>& s
     }
     data += "\n";
   }
-  const fs::path file = dir / "depth.dat";
   WriteFile(file, data);
+  return stored;
+}
 
-  const std::string source =
-      stored == static_cast<int>(curves.size())
-          ? "stored wear_depth_mm"
-          : (stored == 0 ? "normal depth against step 0"
-                         : fmt::format("stored for {} of {} steps, else normal depth against "
-                                       "step 0",
-                                       stored, curves.size()));
+std::string DepthSourceText(int stored, size_t curves) {
+  return stored == static_cast<int>(curves)
+             ? "stored wear_depth_mm"
+             : (stored == 0 ? "normal depth against step 0"
+                            : fmt::format("stored for {} of {} steps, else normal depth against "
+                                          "step 0",
+                                          stored, curves));
+}
+
+// One depth panel: `title` over the curves of one rail written to `file`.
+void DepthPanel(std::ostringstream& g, const std::string& title, bool empty, const fs::path& file) {
+  g << "set title " << GnuplotQuote(title) << "\n";
+  if (empty) {
+    g << "unset colorbox\nset label 1 'no wear steps yet' at graph 0.5, 0.5 center\n"
+      << "plot [0:1][0:1] NaN notitle\n";
+  } else {
+    g << "plot " << GnuplotQuote(file.string()) << " using 1:2:3 with lines lc palette lw 1.5 "
+      << "notitle\n";
+  }
+}
+
+std::string DepthScript(const std::string& run, const std::vector<StepRecord>& steps,
+                        const std::vector<DepthCurve>& curves,
+                        const std::vector<DepthCurve>* low_curves, const fs::path& dir,
+                        const std::string& png) {
+  const fs::path file = dir / "depth.dat";
+  int stored = WriteDepthData(curves, file);
+  if (low_curves != nullptr) {
+    const fs::path low_file = dir / "depth_low.dat";
+    const int low_stored = WriteDepthData(*low_curves, low_file);
+    std::ostringstream g;
+    g << GnuplotPngTerminal(1000, 1000) << "set output " << GnuplotQuote(png) << "\n";
+    g << "set multiplot layout 2,1\n";
+    g << "set xlabel 's [mm] along the step-0 profile (from its first point)'\n";
+    g << "set ylabel 'wear depth [mm]'\nset cblabel 'MGT'\nset palette rgb 33,13,10\nset grid\n";
+    g << CbRange(steps);
+    DepthPanel(g,
+               fmt::format("run {}: high rail wear depth ({})", run,
+                           DepthSourceText(stored, curves.size())),
+               curves.empty(), file);
+    DepthPanel(g,
+               fmt::format("run {}: low rail wear depth ({})", run,
+                           DepthSourceText(low_stored, low_curves->size())),
+               low_curves->empty(), low_file);
+    g << "unset multiplot\n";
+    return g.str();
+  }
+  const std::string source = DepthSourceText(stored, curves.size());
   std::ostringstream g;
   g << GnuplotPngTerminal(1000, 600) << "set output " << GnuplotQuote(png) << "\n";
   g << "set title " << GnuplotQuote(fmt::format("run {}: wear depth ({})", run, source)) << "\n";
@@ -123,14 +164,36 @@ std::string DepthScript(const std::string& run, const std::vector<StepRecord>& s
 }
 
 std::string MeasuresScript(const std::string& run, const std::vector<StepRecord>& steps,
-                           const fs::path& dir, const std::string& png) {
+                           const std::vector<StepRecord>& low_steps, const fs::path& dir,
+                           const std::string& png) {
   std::string data;
-  for (const auto& s : steps) {
-    data += fmt::format("{:.9g} {:.9g} {:.9g} {:.9g}\n", s.mgt, s.w1_mm, s.w2_mm, s.w3_mm);
+  for (size_t k = 0; k < steps.size(); ++k) {
+    const StepRecord& s = steps[k];
+    data += fmt::format("{:.9g} {:.9g} {:.9g} {:.9g}", s.mgt, s.w1_mm, s.w2_mm, s.w3_mm);
+    if (!low_steps.empty()) {
+      const StepRecord& l = low_steps[k];
+      data += fmt::format(" {:.9g} {:.9g} {:.9g}", l.w1_mm, l.w2_mm, l.w3_mm);
+    }
+    data += "\n";
   }
   const fs::path file = dir / "measures.dat";
   WriteFile(file, data);
   const std::string q = GnuplotQuote(file.string());
+  if (!low_steps.empty()) {
+    std::ostringstream g;
+    g << GnuplotPngTerminal(900, 600) << "set output " << GnuplotQuote(png) << "\n";
+    g << "set title " << GnuplotQuote(fmt::format("run {}: wear measures, both rails", run))
+      << "\n";
+    g << "set xlabel 'traffic [MGT]'\nset ylabel 'wear [mm]'\nset grid\nset key top left\n";
+    if (steps.size() < 2) g << "set xrange [*:*] noextend\nset offsets 0.5, 0.5, 0, 0\n";
+    g << "plot " << q << " using 1:2 with linespoints lc 1 title 'high W1 vertical', \\\n"
+      << "     " << q << " using 1:3 with linespoints lc 2 title 'high W2 side', \\\n"
+      << "     " << q << " using 1:4 with linespoints lc 3 title 'high W3 45 degrees', \\\n"
+      << "     " << q << " using 1:5 with linespoints dt 2 lc 1 title 'low W1 vertical', \\\n"
+      << "     " << q << " using 1:6 with linespoints dt 2 lc 2 title 'low W2 side', \\\n"
+      << "     " << q << " using 1:7 with linespoints dt 2 lc 3 title 'low W3 45 degrees'\n";
+    return g.str();
+  }
   std::ostringstream g;
   g << GnuplotPngTerminal(900, 600) << "set output " << GnuplotQuote(png) << "\n";
   g << "set title " << GnuplotQuote(fmt::format("run {}: wear measures", run)) << "\n";
@@ -143,6 +206,52 @@ std::string MeasuresScript(const std::string& run, const std::vector<StepRecord>
 }
 
 }  // namespace
+
+std::vector<StepRecord> LowRailSteps(const std::vector<StepRecord>& steps) {
+  std::vector<StepRecord> out;
+  if (steps.empty() || !steps.front().low_rail) return out;
+  for (const StepRecord& s : steps) {
+    StepRecord r;
+    r.step = s.step;
+    r.passes = s.passes;
+    r.mgt = s.mgt;
+    r.created_utc = s.created_utc;
+    if (s.low_rail) {
+      const RailStepRecord& l = *s.low_rail;
+      r.worn_area_mm2 = l.worn_area_mm2;
+      r.max_depth_mm = l.max_depth_mm;
+      r.max_depth_y_mm = l.max_depth_y_mm;
+      r.w1_mm = l.w1_mm;
+      r.w2_mm = l.w2_mm;
+      r.w3_mm = l.w3_mm;
+      r.smoothing_area_error = l.smoothing_area_error;
+      r.profile = l.profile;
+      r.distributions = l.distributions;
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+WearRates RatesBetween(const StepRecord& a, const StepRecord& b) {
+  const double mgt = b.mgt - a.mgt;
+  if (!(mgt > 0.0)) return {std::nan(""), std::nan("")};
+  return {(b.w2_mm - a.w2_mm) / mgt, (b.w3_mm - a.w3_mm) / mgt};
+}
+
+WearRates LastHalfRates(const std::vector<StepRecord>& steps) {
+  StepRecord half;
+  half.mgt = 0.5 * steps.back().mgt;
+  for (size_t k = 1; k < steps.size(); ++k) {
+    const StepRecord &a = steps[k - 1], &b = steps[k];
+    if (b.mgt < half.mgt || !(b.mgt > a.mgt)) continue;
+    const double t = (half.mgt - a.mgt) / (b.mgt - a.mgt);
+    half.w2_mm = a.w2_mm + t * (b.w2_mm - a.w2_mm);
+    half.w3_mm = a.w3_mm + t * (b.w3_mm - a.w3_mm);
+    break;
+  }
+  return RatesBetween(half, steps.back());
+}
 
 std::vector<DepthCurve> WearDepthCurves(const std::vector<StepRecord>& steps) {
   std::vector<DepthCurve> curves;
@@ -188,13 +297,18 @@ std::vector<std::string> PlotHistory(const std::string& run_name,
   }
   const WearGauge gauge = MakeWearGauge(steps.front().profile);  // InputError: not a rail head
   const std::vector<DepthCurve> curves = WearDepthCurves(steps);
+  const std::vector<StepRecord> low_steps = LowRailSteps(steps);
+  std::vector<DepthCurve> low_curves;
+  if (!low_steps.empty()) low_curves = WearDepthCurves(low_steps);
   const ScopedTempDir tmp("railwear-plot");
   const std::vector<std::string> outputs = {fs::absolute(prefix + "_profiles.png").string(),
                                             fs::absolute(prefix + "_depth.png").string(),
                                             fs::absolute(prefix + "_measures.png").string()};
   std::string script = ProfilesScript(run_name, steps, gauge, tmp.path(), outputs[0]);
-  script += "reset\n" + DepthScript(run_name, steps, curves, tmp.path(), outputs[1]);
-  script += "reset\n" + MeasuresScript(run_name, steps, tmp.path(), outputs[2]);
+  script +=
+      "reset\n" + DepthScript(run_name, steps, curves, low_steps.empty() ? nullptr : &low_curves,
+                              tmp.path(), outputs[1]);
+  script += "reset\n" + MeasuresScript(run_name, steps, low_steps, tmp.path(), outputs[2]);
   RunGnuplot(script, tmp, outputs);
   return {prefix + "_profiles.png", prefix + "_depth.png", prefix + "_measures.png"};
 }

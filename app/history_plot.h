@@ -4,6 +4,10 @@
 //   PREFIX_depth.png     wear depth against the arc length s along the step-0 profile, one curve
 //                        per step coloured by MGT;
 //   PREFIX_measures.png  W1, W2, W3 (wear/wear_measures.h) against MGT.
+// A two-rail run (issue 15) gets the low rail next to the high one in the depth plot (a second
+// panel) and the measures plot (dashed curves); the profile plot shows the high rail.
+//
+// Also the wear rates both `railwear wear` and `history steps` print: W2 and W3 in mm/MGT.
 #pragma once
 
 #include <string>
@@ -12,6 +16,24 @@
 #include "profiles_db/profile_store.h"
 
 namespace railwear::app {
+
+// The low rail of a two-rail run as a run of its own: each step's low_rail moved into the
+// StepRecord fields (measures, profile, distributions), passes and MGT kept. Empty when the run
+// has no low rail (steps[0].low_rail absent).
+std::vector<StepRecord> LowRailSteps(const std::vector<StepRecord>& steps);
+
+// W2 (side) and W3 (45 degree) wear rates [mm/MGT] from step a to step b of one rail's steps:
+// (W(b) - W(a)) / (MGT(b) - MGT(a)); NaN when no traffic passed between them.
+struct WearRates {
+  double w2_mm_per_mgt = 0.0;
+  double w3_mm_per_mgt = 0.0;
+};
+WearRates RatesBetween(const StepRecord& a, const StepRecord& b);
+
+// W2 and W3 rates [mm/MGT] over the last half of a run (by MGT): from half the final MGT, where
+// W2 and W3 are interpolated linearly between the stored steps around it, to the last step.
+// NaN when the run has no traffic. `steps` in step order (one rail's), not empty.
+WearRates LastHalfRates(const std::vector<StepRecord>& steps);
 
 // Where a step's wear-depth curve came from.
 enum class DepthSource {

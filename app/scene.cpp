@@ -20,8 +20,8 @@
 namespace railwear::app {
 namespace {
 
-constexpr double kMPa = 1e6;          // MPa -> Pa
-constexpr double kMaxRoll_rad = 0.5;  // a wheel rolls by milliradians; 0.5 rad catches typos
+constexpr double kMPa = 1e6;            // MPa -> Pa
+constexpr double kMaxRoll_rad = 0.5;    // a wheel rolls by milliradians; 0.5 rad catches typos
 constexpr double kMaxYaw_mrad = 100.0;  // angles of attack are tens of mrad (wear traffic alike)
 
 const std::vector<std::string_view> kKnownEffects = {"normal", "tangential", "coupling", "wear",
@@ -193,18 +193,19 @@ void ReadWheel(const Fields& top, Scene* scene) {
   scene->problem.wheel_profile = std::move(p);
 }
 
-double ReadCant(const Fields& t, Scene* scene) {
-  const toml::node* node = t.Node("cant");
+// The rail inclination under `key` ([rail] cant, [track] inclination).
+double ReadCant(const Fields& t, Scene* scene, std::string_view key = "cant") {
+  const toml::node* node = t.Node(key);
   if (node == nullptr) return 0.0;
   const std::string expected = "a cant ratio \"1:N\" (e.g. \"1:40\") or 0";
   if (const auto i = node->value_exact<int64_t>(); i && *i == 0) return 0.0;
   const auto text = node->value_exact<std::string>();
-  if (!text) t.Fail("cant", expected);
+  if (!text) t.Fail(key, expected);
   scene->cant = *text;
   try {
     return ParseCant(*text);
   } catch (const InputError&) {
-    t.Fail("cant", expected);
+    t.Fail(key, expected);
   }
 }
 
@@ -221,6 +222,27 @@ void ReadRail(const Fields& top, Scene* scene) {
   }
   if (scene->cant_ratio != 0.0) p = ApplyCant(p, scene->cant_ratio);
   scene->problem.rail_profile = std::move(p);
+}
+
+// [track] of a wear scene (issue 15): both rails, each in its own rail frame, and their
+// inclination; replaces [rail]. The one place the wear scene's track is read (curve radius,
+// superelevation and gauge are added here when vehicles run on it).
+void ReadTrackTable(const Fields& top, Scene* scene) {
+  const Fields t = RequiredTable(top, "track", "a [track] table with high_rail");
+  t.AllowOnly({"high_rail", "low_rail", "inclination"});
+  scene->rail_profile_spec = t.RequiredString("high_rail", kProfileExpected);
+  scene->low_rail_profile_spec = t.String("low_rail").value_or(scene->rail_profile_spec);
+  scene->cant_ratio = ReadCant(t, scene, "inclination");
+  Profile high =
+      LoadProfileFor(t, "high_rail", BodyRole::kRail, scene->rail_profile_spec, scene->path);
+  Profile low = LoadProfileFor(t, t.Has("low_rail") ? "low_rail" : "high_rail", BodyRole::kRail,
+                               scene->low_rail_profile_spec, scene->path);
+  // A wear run cants each worn profile itself (with the motion of the unworn one).
+  WearStudy& study = scene->wear.emplace();
+  study.rail_profile = high;
+  study.low_rail_profile = std::move(low);
+  if (scene->cant_ratio != 0.0) high = ApplyCant(high, scene->cant_ratio);
+  scene->problem.rail_profile = std::move(high);
 }
 
 // [load] creepage = { xi, eta, spin_per_mm }: prescribed creepages instead of kinematics.
@@ -489,9 +511,17 @@ void ReadTraffic(const Fields& top, Scene* scene) {
     const Fields t(*entry.as_table(), fmt::format("traffic[{}]", index), top.file());
     t.AllowOnly({"name", "wheel_profile", "mirror_y", "rolling_radius_mm", "vertical_N",
                  "axle_load_t", "lateral_shift_mm", "roll_rad", "yaw_mrad", "friction", "speed_m_s",
-                 "share"});
+                 "share", "rail"});
     TrafficCase c;
     c.name = t.String("name").value_or(fmt::format("traffic[{}]", index));
+    if (const auto rail = t.Choice("rail", EnumChoices(kRailSideNames))) {
+      c.rail = *RailSideFromString(*rail);
+      if (c.rail == RailSide::kLow && !scene->wear->low_rail_profile) {
+        t.Fail("rail",
+               "\"high\" in a scene with [rail] (a low-rail entry needs a [track] table with "
+               "high_rail and low_rail instead of [rail])");
+      }
+    }
     if (const auto spec = t.String("wheel_profile")) {
       Profile p = LoadProfileFor(t, "wheel_profile", BodyRole::kWheel, *spec, scene->path);
       if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
@@ -523,9 +553,9 @@ void ReadTraffic(const Fields& top, Scene* scene) {
   }
 }
 
-// A wear scene: model, materials, rail, optional default wheel, [wear] and [[traffic]].
+// A wear scene: model, materials, rail or track, optional default wheel, [wear] and [[traffic]].
 void ReadWearScene(const Fields& top, Scene* scene) {
-  for (const std::string_view key : {"load", "track", "wheelset"}) {
+  for (const std::string_view key : {"load", "wheelset"}) {
     if (top.Has(key)) {
       throw InputError(fmt::format(
           "{}: expected no [{}] in a wear scene: its wheels, loads and positions come from the "
@@ -534,7 +564,21 @@ void ReadWearScene(const Fields& top, Scene* scene) {
     }
   }
   if (top.Has("wheel")) ReadWheel(top, scene);
-  ReadRail(top, scene);
+  if (top.Has("track") && top.Has("rail")) {
+    throw InputError(fmt::format(
+        "{}: expected either [rail] (one rail) or [track] (both rails) in a wear scene, not both",
+        FieldPrefix(top.file(), *top.Node("track"), "track")));
+  }
+  if (top.Has("track")) {
+    ReadTrackTable(top, scene);
+  } else {
+    if (!top.Has("rail")) {
+      top.FailMissing("rail",
+                      "a [rail] table with profile (one rail), or a [track] table with "
+                      "high_rail and low_rail (both rails)");
+    }
+    ReadRail(top, scene);
+  }
   ReadWearTable(top, scene);
   ReadTraffic(top, scene);
   if (scene->problem.model.kind == ModelKind::kHertz) {

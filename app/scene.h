@@ -23,10 +23,11 @@ struct Scene {
   std::vector<std::string> effects;  // always contains "normal"; as listed, in order
   std::string text;  // the original TOML text, stored with results so a run can be repeated
 
-  std::string wheel_profile_spec;  // [wheel] profile, as written
-  std::string rail_profile_spec;   // [rail] profile, as written
-  std::string cant = "0";          // [rail] cant, as written ("1:40")
-  double cant_ratio = 0.0;         // 1:40 -> 0.025
+  std::string wheel_profile_spec;     // [wheel] profile, as written
+  std::string rail_profile_spec;      // [rail] profile or [track] high_rail, as written
+  std::string low_rail_profile_spec;  // [track] low_rail (default high_rail); empty with [rail]
+  std::string cant = "0";             // [rail] cant or [track] inclination, as written ("1:40")
+  double cant_ratio = 0.0;            // 1:40 -> 0.025
   // [model] tangential as written ("fastsim" | "exact"); the solver uses problem.tangential.
   std::string tangential_method = "fastsim";
   // Where the influence constants came from: "default", "inline" or the resolved file path.
@@ -54,9 +55,10 @@ struct Scene {
 
   ContactProblem problem;  // profiles loaded (cant, mirroring applied), SI units throughout
 
-  // A wear scene (effect "wear", [wear] and [[traffic]] tables): the study to run. Then
-  // `problem` carries only the model, materials and rail; the loads come from the traffic mix.
-  std::optional<WearStudy> wear;  // its rail_profile is the [rail] profile before cant
+  // A wear scene (effect "wear", [wear] and [[traffic]] tables, and [rail] for one rail or
+  // [track] for both): the study to run. Then `problem` carries only the model, materials and
+  // (high) rail; the loads come from the traffic mix.
+  std::optional<WearStudy> wear;  // its rail profiles are the scene's before cant
   std::string wear_db;  // [wear] db resolved against the scene's directory; empty when not given
 };
 

@@ -51,8 +51,10 @@ WearAccuracyRow RunOne(WearStudy study, const Profile& unworn, const WearGauge& 
   row.level = std::string(ToString(preset));
   row.step_limit_mm = step_limit_mm;
   const auto start = std::chrono::steady_clock::now();
-  const WearRunSummary summary =
-      RunWear(study, unworn, internal::InitialState(study), [](const StepResult&) { return true; });
+  // A two-rail study runs both rails; the table measures the high rail.
+  const WearState initial = internal::InitialState(study);
+  const WearRunSummary summary = RunWear(study, UnwornRails(unworn, initial.low_rail), initial,
+                                         [](const StepResult&) { return true; });
   row.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   row.steps = summary.steps_done;
   row.passes = summary.state.passes;

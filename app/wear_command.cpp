@@ -61,8 +61,9 @@ json WearLawJson(const WearStudy& study) {
 json LoadCaseJson(const LoadCaseSummary& c, const WearStudy& study) {
   json j;
   j["traffic"] = study.traffic[c.load_case.traffic_index].name;
+  j["rail"] = std::string(ToString(c.load_case.rail));
   j["node"] = c.load_case.node;
-  j["lateral_shift_mm"] = c.load_case.lateral_shift_m * 1e3;
+  j["lateral_shift_mm"] = c.load_case.placement.lateral_shift_m * 1e3;
   j["weight"] = c.load_case.weight;
   j["status"] = std::string(ToString(c.status));
   j["patches"] = c.patches;
@@ -106,23 +107,66 @@ Distribution BinDistribution(const std::string& kind, const Profile& profile, co
 }
 
 // No NaN or infinity reaches the database: a measure that cannot be taken is a failure.
-void RequireFinite(const StepResult& step) {
-  const WearMeasures& m = step.measures;
+void RequireFinite(const WearMeasures& m, const StepResult& step, const char* rail) {
   for (const double v :
        {m.worn_area_m2, m.max_depth_m, m.max_depth_y_m, m.vertical_wear_m, m.side_wear_m,
         m.wear_45_m, step.state.passes, step.state.mgt, step.smoothing_area_error}) {
     if (!std::isfinite(v)) {
       throw std::runtime_error(fmt::format(
-          "wear step {}: a wear measure is not finite (a measuring line missed the worn "
-          "profile, or the profile degenerated); the run stops before storing it",
-          step.state.step));
+          "wear step {}: a wear measure of the {} is not finite (a measuring line missed the "
+          "worn profile, or the profile degenerated); the run stops before storing it",
+          step.state.step, rail));
     }
   }
 }
 
-StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const Profile& unworn,
-                          const Profile& previous) {
-  RequireFinite(step);
+// One rail's part of a step as stored: measures, profile after the step and its distributions
+// (`unworn` the rail's step 0, `previous` its profile before the step).
+struct RailRecordParts {
+  WearMeasures measures;
+  std::vector<Distribution> distributions;
+};
+
+RailRecordParts MakeRailParts(const WearMeasures& m, const WearGrid& grid,
+                              const std::vector<double>& step_depth_m,
+                              const std::vector<double>& depth_per_pass_m, const Profile& after,
+                              const std::vector<double>& damage, const WearStudy& study,
+                              const Profile& unworn, const Profile& previous) {
+  RailRecordParts r;
+  r.measures = m;
+  Distribution depth;
+  depth.kind = "wear_depth_mm";
+  for (size_t k = 0; k < m.s_m.size(); ++k) {
+    // A sample whose normal misses the worn profile has no depth (NaN): left out, never stored.
+    if (!std::isfinite(m.depth_m[k])) continue;
+    depth.s_m.push_back(m.s_m[k]);
+    depth.y_m.push_back(unworn.Position(m.s_m[k]).x());
+    depth.value.push_back(m.depth_m[k] * 1e3);
+  }
+  r.distributions.push_back(std::move(depth));
+  std::vector<double> step_mm(step_depth_m), per_pass_nm(depth_per_pass_m);
+  for (double& v : step_mm) v *= 1e3;
+  for (double& v : per_pass_nm) v *= 1e9;
+  r.distributions.push_back(BinDistribution("step_depth_mm", previous, grid, step_mm));
+  r.distributions.push_back(BinDistribution("depth_per_pass_nm", previous, grid, per_pass_nm));
+  if (study.damage) {
+    // Stored as computed (no unit change): --resume reads it back bit for bit.
+    const WearGrid after_grid = WearGrid::ForProfile(after, study.options.bin_m);
+    r.distributions.push_back(BinDistribution("rcf_damage", after, after_grid, damage));
+  }
+  return r;
+}
+
+// The profiles before a step (to place its bins): the high rail's and the low rail's.
+struct PreviousProfiles {
+  Profile high;
+  std::optional<Profile> low;
+};
+
+StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const UnwornRails& unworn,
+                          const PreviousProfiles& previous) {
+  RequireFinite(step.measures, step, step.low_rail ? "high rail" : "rail");
+  if (step.low_rail) RequireFinite(step.low_rail->measures, step, "low rail");
   StepRecord r;
   r.step = step.state.step;
   r.passes = step.state.passes;
@@ -141,26 +185,26 @@ StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const 
     RequireFiniteJson(j, fmt::format("wear step {} load case", step.state.step));
     r.load_cases_json.push_back(j.dump());
   }
-  Distribution depth;
-  depth.kind = "wear_depth_mm";
-  for (size_t k = 0; k < m.s_m.size(); ++k) {
-    // A sample whose normal misses the worn profile has no depth (NaN): left out, never stored.
-    if (!std::isfinite(m.depth_m[k])) continue;
-    depth.s_m.push_back(m.s_m[k]);
-    depth.y_m.push_back(unworn.Position(m.s_m[k]).x());
-    depth.value.push_back(m.depth_m[k] * 1e3);
-  }
-  r.distributions.push_back(std::move(depth));
-  std::vector<double> step_mm(step.step_depth_m), per_pass_nm(step.depth_per_pass_m);
-  for (double& v : step_mm) v *= 1e3;
-  for (double& v : per_pass_nm) v *= 1e9;
-  r.distributions.push_back(BinDistribution("step_depth_mm", previous, step.grid, step_mm));
-  r.distributions.push_back(BinDistribution("depth_per_pass_nm", previous, step.grid, per_pass_nm));
-  if (study.damage) {
-    // Stored as computed (no unit change): --resume reads it back bit for bit.
-    const WearGrid grid = WearGrid::ForProfile(step.state.rail, study.options.bin_m);
-    r.distributions.push_back(
-        BinDistribution("rcf_damage", step.state.rail, grid, step.state.damage));
+  r.distributions =
+      MakeRailParts(m, step.grid, step.step_depth_m, step.depth_per_pass_m, step.state.rail,
+                    step.state.damage, study, unworn.high, previous.high)
+          .distributions;
+  if (step.low_rail) {
+    const RailStepResult& low = *step.low_rail;
+    RailStepRecord l;
+    l.worn_area_mm2 = low.measures.worn_area_m2 * 1e6;
+    l.max_depth_mm = low.measures.max_depth_m * 1e3;
+    l.max_depth_y_mm = low.measures.max_depth_y_m * 1e3;
+    l.w1_mm = low.measures.vertical_wear_m * 1e3;
+    l.w2_mm = low.measures.side_wear_m * 1e3;
+    l.w3_mm = low.measures.wear_45_m * 1e3;
+    l.smoothing_area_error = low.smoothing_area_error;
+    l.profile = *step.state.low_rail;
+    l.distributions = MakeRailParts(low.measures, low.grid, low.step_depth_m, low.depth_per_pass_m,
+                                    *step.state.low_rail, step.state.low_damage, study, *unworn.low,
+                                    *previous.low)
+                          .distributions;
+    r.low_rail = std::move(l);
   }
   return r;
 }
@@ -169,6 +213,10 @@ StepRecord MakeInitialRecord(const WearState& state) {
   StepRecord r;
   r.step = 0;
   r.profile = state.rail;
+  if (state.low_rail) {
+    r.low_rail.emplace();
+    r.low_rail->profile = *state.low_rail;
+  }
   return r;
 }
 
@@ -181,6 +229,12 @@ WearState StateFromStore(const ProfileStore& store, int64_t run, int step) {
   state.rail = r.profile;
   for (const Distribution& d : r.distributions) {
     if (d.kind == "rcf_damage") state.damage = d.value;
+  }
+  if (r.low_rail) {
+    state.low_rail = r.low_rail->profile;
+    for (const Distribution& d : r.low_rail->distributions) {
+      if (d.kind == "rcf_damage") state.low_damage = d.value;
+    }
   }
   return state;
 }
@@ -219,9 +273,14 @@ class Progress {
     } else {
       std::cerr << fmt::format(
           "railwear: step {}: {:.4g} passes ({:.3g} MGT, {:.1f} %), max depth {:.3f} mm at y = "
-          "{:.2f} mm, {:.2f} s\n",
+          "{:.2f} mm{}, {:.2f} s\n",
           step.state.step, step.state.passes, step.state.mgt, 100.0 * fraction,
-          step.measures.max_depth_m * 1e3, step.measures.max_depth_y_m * 1e3, step.seconds);
+          step.measures.max_depth_m * 1e3, step.measures.max_depth_y_m * 1e3,
+          step.low_rail ? fmt::format(" (high rail), {:.3f} mm at y = {:.2f} mm (low rail)",
+                                      step.low_rail->measures.max_depth_m * 1e3,
+                                      step.low_rail->measures.max_depth_y_m * 1e3)
+                        : std::string(),
+          step.seconds);
     }
   }
   void Finish() {
@@ -240,11 +299,13 @@ class Progress {
     }
     if (count == 0) return;
     std::cerr << fmt::format(
-        "{}warning: step {}: flange climb possible in {} of {} load cases (worst: {} at lateral "
+        "{}warning: step {}: flange climb possible in {} of {} load cases (worst: {}{} at lateral "
         "shift {:.2f} mm: {})\n",
         tty_ ? "\n" : "", step.state.step, count, step.cases.size(),
-        study.traffic[worst->load_case.traffic_index].name, worst->load_case.lateral_shift_m * 1e3,
-        FlangeClimbWarning(worst->climb, ""));
+        study.traffic[worst->load_case.traffic_index].name,
+        study.low_rail_profile ? fmt::format(" on the {} rail", ToString(worst->load_case.rail))
+                               : std::string(),
+        worst->load_case.placement.lateral_shift_m * 1e3, FlangeClimbWarning(worst->climb, ""));
   }
 
  private:
@@ -253,16 +314,11 @@ class Progress {
   std::chrono::steady_clock::time_point start_;
 };
 
-void PrintSummary(const ProfileStore& store, int64_t run, const std::string& name, bool finished,
-                  double seconds, int new_steps) {
-  const std::vector<StepRecord> steps = store.Steps(run);
-  std::cout << fmt::format("run '{}' in {}: {} steps{}, {} new in {:.1f} s\n", name, store.path(),
-                           steps.size() - 1, finished ? " (complete)" : " (not complete: --resume)",
-                           new_steps, seconds);
+// One rail's step table: the first, every k-th and the last step, at most about 25 lines.
+void PrintStepTable(const std::vector<StepRecord>& steps) {
   std::cout << fmt::format("{:>5} {:>12} {:>9} {:>12} {:>10} {:>9} {:>7} {:>7} {:>7}\n", "step",
                            "passes", "MGT", "area_mm2", "depth_mm", "at_y_mm", "W1_mm", "W2_mm",
                            "W3_mm");
-  // Long runs: the first, every k-th and the last step, at most about 25 lines.
   const int n = static_cast<int>(steps.size());
   const int every = std::max(1, n / 24);
   for (int i = 0; i < n; ++i) {
@@ -274,6 +330,44 @@ void PrintSummary(const ProfileStore& store, int64_t run, const std::string& nam
         s.step, s.passes, s.mgt, s.worn_area_mm2, s.max_depth_mm, s.max_depth_y_mm, s.w1_mm,
         s.w2_mm, s.w3_mm);
   }
+}
+
+std::string Rate(double mm_per_mgt) {
+  return std::isfinite(mm_per_mgt) ? fmt::format("{:.4f}", mm_per_mgt) : std::string("n/a");
+}
+
+// Each rail's W2 and W3 rate over the run and over its last half (by MGT).
+void PrintRates(const std::vector<StepRecord>& high, const std::vector<StepRecord>& low) {
+  if (high.size() < 2) return;
+  std::cout << fmt::format(
+      "wear rates [mm/MGT], over the run (MGT {:.4g} to {:.4g}) and its last half (MGT {:.4g} "
+      "to {:.4g}):\n",
+      high.front().mgt, high.back().mgt, 0.5 * high.back().mgt, high.back().mgt);
+  const auto line = [&](const char* rail, const std::vector<StepRecord>& steps) {
+    const WearRates run = RatesBetween(steps.front(), steps.back());
+    const WearRates last = LastHalfRates(steps);
+    std::cout << fmt::format("  {:<10} W2 {:>8} (last half {:>8})   W3 {:>8} (last half {:>8})\n",
+                             rail, Rate(run.w2_mm_per_mgt), Rate(last.w2_mm_per_mgt),
+                             Rate(run.w3_mm_per_mgt), Rate(last.w3_mm_per_mgt));
+  };
+  line(low.empty() ? "rail" : "high rail", high);
+  if (!low.empty()) line("low rail", low);
+}
+
+void PrintSummary(const ProfileStore& store, int64_t run, const std::string& name, bool finished,
+                  double seconds, int new_steps) {
+  const std::vector<StepRecord> steps = store.Steps(run);
+  const std::vector<StepRecord> low = LowRailSteps(steps);
+  std::cout << fmt::format("run '{}' in {}: {} steps{}, {} new in {:.1f} s\n", name, store.path(),
+                           steps.size() - 1, finished ? " (complete)" : " (not complete: --resume)",
+                           new_steps, seconds);
+  if (!low.empty()) std::cout << "high rail:\n";
+  PrintStepTable(steps);
+  if (!low.empty()) {
+    std::cout << "low rail:\n";
+    PrintStepTable(low);
+  }
+  PrintRates(steps, low);
 }
 
 }  // namespace
@@ -322,7 +416,7 @@ void RunWearCommand(const WearCommandOptions& options) {
   ProfileStore store = ProfileStore::Open(db);
   int64_t run_id = 0;
   WearState state;
-  Profile unworn;
+  UnwornRails unworn{Profile()};
   const std::optional<RunInfo> existing = store.FindRun(name);
   if (options.resume) {
     if (!existing) {
@@ -342,8 +436,15 @@ void RunWearCommand(const WearCommandOptions& options) {
     if (!last) {
       throw InputError(fmt::format("{}: run '{}' has no stored step to resume from", db, name));
     }
-    unworn = store.LoadProfile(run_id, 0);
+    unworn = UnwornRails::Of(StateFromStore(store, run_id, 0));
     state = StateFromStore(store, run_id, *last);
+    if (state.low_rail.has_value() != study.low_rail_profile.has_value() ||
+        unworn.low.has_value() != study.low_rail_profile.has_value()) {
+      throw InputError(fmt::format(
+          "{}: run '{}' stored {} but the scene has {}: expected the same rails to resume", db,
+          name, state.low_rail ? "two rails" : "one rail",
+          study.low_rail_profile ? "two ([track])" : "one ([rail])"));
+    }
     std::cerr << fmt::format("railwear: resuming run '{}' from step {} ({:.4g} passes)\n", name,
                              state.step, state.passes);
   } else {
@@ -354,7 +455,7 @@ void RunWearCommand(const WearCommandOptions& options) {
           db, name));
     }
     state = internal::InitialState(study);  // the scene reader validated the study
-    unworn = state.rail;
+    unworn = UnwornRails::Of(state);
     RunInfo info;
     info.name = name;
     info.program_version = RAILWEAR_VERSION;
@@ -368,14 +469,14 @@ void RunWearCommand(const WearCommandOptions& options) {
   const double total = TotalPasses(study);
   Progress progress(total, state.passes);
   const auto start = std::chrono::steady_clock::now();
-  Profile previous = state.rail;
+  PreviousProfiles previous{state.rail, state.low_rail};
   WearRunSummary summary;
   try {
     summary = railwear::RunWear(
         study, unworn, state,
         [&](const StepResult& step) {
           store.AppendStep(run_id, MakeStepRecord(step, study, unworn, previous));
-          previous = step.state.rail;
+          previous = {step.state.rail, step.state.low_rail};
           progress.Step(step);
           progress.WarnOfFlangeClimb(step, study);
           return true;

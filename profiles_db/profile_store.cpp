@@ -363,8 +363,39 @@ CREATE TABLE calibration_inputs(
 )sql");
 }
 
+// Version 4: the low rail of a two-rail wear study (issue 15): its per-step measures and
+// profile, and its distributions, next to the high rail's in steps/profiles/distributions (which
+// keep their meaning, so older readers still see the high rail). Older runs have no rows here.
+void MigrateTo4(const Connection& c) {
+  c.Exec(R"sql(
+CREATE TABLE low_rail_steps(
+  run_id               INTEGER NOT NULL,
+  step                 INTEGER NOT NULL,
+  worn_area_mm2        REAL NOT NULL,
+  max_depth_mm         REAL NOT NULL,
+  max_depth_y_mm       REAL NOT NULL,
+  w1_mm                REAL NOT NULL,
+  w2_mm                REAL NOT NULL,
+  w3_mm                REAL NOT NULL,
+  smoothing_area_error REAL NOT NULL,
+  n_points             INTEGER NOT NULL,
+  yz                   BLOB NOT NULL CHECK (length(yz) = 16 * n_points),
+  PRIMARY KEY (run_id, step),
+  FOREIGN KEY (run_id, step) REFERENCES steps(run_id, step) ON DELETE CASCADE);
+CREATE TABLE low_rail_distributions(
+  run_id INTEGER NOT NULL,
+  step   INTEGER NOT NULL,
+  kind   TEXT NOT NULL,
+  y      BLOB NOT NULL,
+  value  BLOB NOT NULL CHECK (length(value) = length(y)),
+  s      BLOB CHECK (s IS NULL OR length(s) = length(value)),
+  PRIMARY KEY (run_id, step, kind),
+  FOREIGN KEY (run_id, step) REFERENCES low_rail_steps(run_id, step) ON DELETE CASCADE);
+)sql");
+}
+
 using Migration = void (*)(const Connection&);
-constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3};
+constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3, &MigrateTo4};
 static_assert(std::size(kMigrations) == ProfileStore::kSchemaVersion);
 
 const char* kNowUtc = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
@@ -458,6 +489,36 @@ constexpr const char* kRunColumns =
 constexpr const char* kStepColumns =
     "step, passes, mgt, worn_area_mm2, max_depth_mm, max_depth_y_mm, w1_mm, w2_mm, w3_mm, "
     "smoothing_area_error, created_utc";
+
+constexpr const char* kLowRailColumns =
+    "worn_area_mm2, max_depth_mm, max_depth_y_mm, w1_mm, w2_mm, w3_mm, smoothing_area_error";
+
+// The low rail's summary from columns kLowRailColumns starting at `first`.
+RailStepRecord ReadLowRail(const Statement& s, int first) {
+  RailStepRecord r;
+  r.worn_area_mm2 = s.Double(first);
+  r.max_depth_mm = s.Double(first + 1);
+  r.max_depth_y_mm = s.Double(first + 2);
+  r.w1_mm = s.Double(first + 3);
+  r.w2_mm = s.Double(first + 4);
+  r.w3_mm = s.Double(first + 5);
+  r.smoothing_area_error = s.Double(first + 6);
+  return r;
+}
+
+// A profile from its point count and (y, z) BLOB; InputError naming `what` when they disagree.
+Profile DecodeProfile(const Statement& s, int n_col, int yz_col, const std::string& path,
+                      const std::string& what) {
+  const std::vector<double> yz = s.Doubles(yz_col);
+  if (yz.size() != 2 * static_cast<size_t>(s.Int64(n_col))) {
+    throw InputError(fmt::format(
+        "database '{}': {}: profile BLOB of {} values for {} points; expected 2 per point", path,
+        what, yz.size(), s.Int64(n_col)));
+  }
+  std::vector<Eigen::Vector2d> points(yz.size() / 2);
+  for (size_t i = 0; i < points.size(); ++i) points[i] = {yz[2 * i], yz[2 * i + 1]};
+  return Profile(std::move(points), fmt::format("{}:{}", path, what));
+}
 
 constexpr const char* kCalibrationColumns =
     "id, name, created_utc, program_version, config_path, config_text, status, "
@@ -619,6 +680,46 @@ void ProfileStore::SetRunState(int64_t run, RunState state) {
   }
 }
 
+namespace {
+
+// Inserts `distributions` into `table` (distributions or low_rail_distributions) inside the
+// caller's transaction; a kind given twice is InputError (the transaction then rolls back).
+void WriteDistributions(const internal::Connection& c, const char* table, int64_t run, int step,
+                        const std::vector<Distribution>& distributions) {
+  internal::Statement s(c, fmt::format("INSERT INTO {}(run_id, step, kind, y, value, s) "
+                                       "VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
+                                       table));
+  for (const auto& d : distributions) {
+    sqlite3_reset(s.get());
+    sqlite3_clear_bindings(s.get());  // ?6 stays NULL for a distribution without s
+    s.Bind(1, run).Bind(2, step).Bind(3, d.kind);
+    s.BindBlob(4, internal::EncodeDoubles(d.y_m)).BindBlob(5, internal::EncodeDoubles(d.value));
+    if (!d.s_m.empty()) s.BindBlob(6, internal::EncodeDoubles(d.s_m));
+    int constraint = 0;
+    s.Step(&constraint);
+    if (constraint != 0) {
+      throw InputError(fmt::format(
+          "database '{}': run {} step {}: {} kind '{}' given twice; expected each kind once",
+          c.path(), run, step,
+          std::string(table) == "distributions" ? "distribution" : "low-rail distribution",
+          d.kind));
+    }
+  }
+}
+
+std::vector<Distribution> ReadDistributions(const internal::Connection& c, const char* table,
+                                            int64_t run, int step) {
+  internal::Statement s(c, fmt::format("SELECT kind, y, value, s FROM {} WHERE run_id = ?1 AND "
+                                       "step = ?2 ORDER BY kind",
+                                       table));
+  s.Bind(1, run).Bind(2, step);
+  std::vector<Distribution> out;
+  while (s.Step()) out.push_back({s.Text(0), s.Doubles(1), s.Doubles(2), s.Doubles(3)});
+  return out;
+}
+
+}  // namespace
+
 void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
   const Connection& c = impl_->db;
   if (step.profile.size() == 0) {
@@ -627,7 +728,19 @@ void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
                     "the rail profile after the step",
                     path(), run, step.step));
   }
-  for (const auto& d : step.distributions) {
+  if (step.low_rail && step.low_rail->profile.size() == 0) {
+    throw InputError(
+        fmt::format("database '{}': run {} step {}: the low rail's profile is empty; expected "
+                    "the low rail's profile after the step",
+                    path(), run, step.step));
+  }
+  std::vector<const Distribution*> all;
+  for (const auto& d : step.distributions) all.push_back(&d);
+  if (step.low_rail) {
+    for (const auto& d : step.low_rail->distributions) all.push_back(&d);
+  }
+  for (const Distribution* dp : all) {
+    const Distribution& d = *dp;
     if (d.kind.empty() || d.y_m.size() != d.value.size()) {
       throw InputError(fmt::format(
           "database '{}': run {} step {}: distribution '{}' ({} positions, {} values); expected a "
@@ -683,25 +796,19 @@ void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
       s.Run();
     }
   }
-  {
-    Statement s(c,
-                "INSERT INTO distributions(run_id, step, kind, y, value, s) "
-                "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
-    for (const auto& d : step.distributions) {
-      sqlite3_reset(s.get());
-      sqlite3_clear_bindings(s.get());  // ?6 stays NULL for a distribution without s
-      s.Bind(1, run).Bind(2, step.step).Bind(3, d.kind);
-      s.BindBlob(4, internal::EncodeDoubles(d.y_m)).BindBlob(5, internal::EncodeDoubles(d.value));
-      if (!d.s_m.empty()) s.BindBlob(6, internal::EncodeDoubles(d.s_m));
-      int constraint = 0;
-      s.Step(&constraint);
-      if (constraint != 0) {  // the transaction rolls back the rows already written
-        throw InputError(
-            fmt::format("database '{}': run {} step {}: distribution kind '{}' "
-                        "given twice; expected each kind once",
-                        path(), run, step.step, d.kind));
-      }
-    }
+  WriteDistributions(c, "distributions", run, step.step, step.distributions);
+  if (step.low_rail) {
+    const RailStepRecord& low = *step.low_rail;
+    Statement s(c, fmt::format("INSERT INTO low_rail_steps(run_id, step, {}, n_points, yz) "
+                               "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)",
+                               internal::kLowRailColumns));
+    s.Bind(1, run).Bind(2, step.step);
+    s.Bind(3, low.worn_area_mm2).Bind(4, low.max_depth_mm).Bind(5, low.max_depth_y_mm);
+    s.Bind(6, low.w1_mm).Bind(7, low.w2_mm).Bind(8, low.w3_mm);
+    s.Bind(9, low.smoothing_area_error).Bind(10, low.profile.size());
+    s.BindBlob(11, internal::EncodePoints(low.profile.points()));
+    s.Run();
+    WriteDistributions(c, "low_rail_distributions", run, step.step, low.distributions);
   }
   t.Commit();
 }
@@ -712,6 +819,17 @@ std::vector<StepRecord> ProfileStore::Steps(int64_t run) const {
   s.Bind(1, run);
   std::vector<StepRecord> steps;
   while (s.Step()) steps.push_back(internal::ReadStep(s));
+  Statement low(impl_->db,
+                fmt::format("SELECT step, {} FROM low_rail_steps WHERE run_id = ?1 ORDER BY step",
+                            internal::kLowRailColumns));
+  low.Bind(1, run);
+  size_t i = 0;  // both in step order
+  while (low.Step()) {
+    const int step = static_cast<int>(low.Int64(0));
+    while (i < steps.size() && steps[i].step < step) ++i;
+    if (i < steps.size() && steps[i].step == step)
+      steps[i].low_rail = internal::ReadLowRail(low, 1);
+  }
   return steps;
 }
 
@@ -721,16 +839,19 @@ Profile ProfileStore::LoadProfile(int64_t run, int step) const {
   if (!s.Step()) {
     throw InputError(fmt::format("database '{}': run {} has no step {}", path(), run, step));
   }
-  const std::vector<double> yz = s.Doubles(1);
-  if (yz.size() != 2 * static_cast<size_t>(s.Int64(0))) {
-    throw InputError(
-        fmt::format("database '{}': run {} step {}: profile BLOB of {} values for {} "
-                    "points; expected 2 per point",
-                    path(), run, step, yz.size(), s.Int64(0)));
+  return internal::DecodeProfile(s, 0, 1, path(), fmt::format("run {} step {}", run, step));
+}
+
+Profile ProfileStore::LoadLowRailProfile(int64_t run, int step) const {
+  Statement s(impl_->db, "SELECT n_points, yz FROM low_rail_steps WHERE run_id = ?1 AND step = ?2");
+  s.Bind(1, run).Bind(2, step);
+  if (!s.Step()) {
+    throw InputError(fmt::format(
+        "database '{}': run {} has no low rail at step {}; expected a step of a two-rail run",
+        path(), run, step));
   }
-  std::vector<Eigen::Vector2d> points(yz.size() / 2);
-  for (size_t i = 0; i < points.size(); ++i) points[i] = {yz[2 * i], yz[2 * i + 1]};
-  return Profile(std::move(points), fmt::format("{}:run {} step {}", path(), run, step));
+  return internal::DecodeProfile(s, 0, 1, path(),
+                                 fmt::format("run {} step {} low rail", run, step));
 }
 
 StepRecord ProfileStore::LoadStep(int64_t run, int step) const {
@@ -753,13 +874,18 @@ StepRecord ProfileStore::LoadStep(int64_t run, int step) const {
     s.Bind(1, run).Bind(2, step);
     while (s.Step()) r.load_cases_json.push_back(s.Text(0));
   }
+  r.distributions = ReadDistributions(c, "distributions", run, step);
   {
-    Statement s(c,
-                "SELECT kind, y, value, s FROM distributions WHERE run_id = ?1 AND step = ?2 "
-                "ORDER BY kind");
+    Statement s(c, fmt::format("SELECT {}, n_points, yz FROM low_rail_steps WHERE run_id = ?1 "
+                               "AND step = ?2",
+                               internal::kLowRailColumns));
     s.Bind(1, run).Bind(2, step);
-    while (s.Step()) {
-      r.distributions.push_back({s.Text(0), s.Doubles(1), s.Doubles(2), s.Doubles(3)});
+    if (s.Step()) {
+      RailStepRecord low = internal::ReadLowRail(s, 0);
+      low.profile = internal::DecodeProfile(s, 7, 8, path(),
+                                            fmt::format("run {} step {} low rail", run, step));
+      low.distributions = ReadDistributions(c, "low_rail_distributions", run, step);
+      r.low_rail = std::move(low);
     }
   }
   return r;

@@ -9,7 +9,7 @@
 // A study database may also hold influence-constant calibrations (`railwear calibrate`), each
 // with the text of every input it was made from.
 //
-// Schema version 3 (PRAGMA user_version = 3, PRAGMA application_id = kApplicationId), also
+// Schema version 4 (PRAGMA user_version = 4, PRAGMA application_id = kApplicationId), also
 // documented for users of the sqlite3 shell in profiles_db/SCHEMA.md:
 //
 //   meta(key TEXT PRIMARY KEY, value TEXT)          -- ('format', 'railwear-profile-history'), ...
@@ -29,10 +29,18 @@
 //                residuals_json, ceres_report, constants_toml)             -- since v3
 //   calibration_inputs(calibration_id, input_index, kind, path, text,
 //                      PRIMARY KEY(calibration_id, input_index))           -- since v3
+//   low_rail_steps(run_id, step, worn_area_mm2, max_depth_mm, max_depth_y_mm, w1_mm, w2_mm,
+//                  w3_mm, smoothing_area_error, n_points, yz BLOB,
+//                  PRIMARY KEY(run_id, step))                              -- since v4
+//   low_rail_distributions(run_id, step, kind, y, value, s,
+//                          PRIMARY KEY(run_id, step, kind))                -- since v4
+//         -- the low rail of a two-rail study, as steps/profiles/distributions hold the high
+//         -- (or only) rail; no rows for single-rail runs
 //
 // Migrations (applied on open, all of them in one transaction): 0 -> 1 creates the schema;
 // 1 -> 2 adds the nullable column distributions.s (rows written by version 1 keep s NULL);
-// 2 -> 3 adds the calibrations and calibration_inputs tables.
+// 2 -> 3 adds the calibrations and calibration_inputs tables; 3 -> 4 adds low_rail_steps and
+// low_rail_distributions (older runs have no rows there: they are single-rail runs).
 //
 // The database runs in WAL mode with foreign keys on. Each AppendStep is one transaction: a crash
 // loses at most the step in flight. Opening never modifies a file it refuses.
@@ -81,7 +89,22 @@ struct Distribution {
   std::vector<double> s_m = {};
 };
 
-// One wear step. Step 0 is conventionally the unworn profile (passes = 0).
+// The low rail's part of a step of a two-rail study (schema 4): its measures, profile and
+// distributions, as the StepRecord fields of the same names hold the high rail's.
+struct RailStepRecord {
+  double worn_area_mm2 = 0.0;
+  double max_depth_mm = 0.0;
+  double max_depth_y_mm = 0.0;  // in the low rail's own frame (y toward its field side)
+  double w1_mm = 0.0;
+  double w2_mm = 0.0;
+  double w3_mm = 0.0;
+  double smoothing_area_error = 0.0;
+  Profile profile;                          // own frame (not filled by Steps())
+  std::vector<Distribution> distributions;  // not filled by Steps()
+};
+
+// One wear step. Step 0 is conventionally the unworn profile (passes = 0). The summary, profile
+// and distributions are the high (or only) rail's; `low_rail` the low rail's in a two-rail study.
 struct StepRecord {
   int step = 0;
   double passes = 0.0;          // cumulative wheel passes up to the end of this step
@@ -97,6 +120,8 @@ struct StepRecord {
   Profile profile;                    // the rail profile after this step (not filled by Steps())
   std::vector<std::string> load_cases_json;  // per load case (index = case_index): JSON text
   std::vector<Distribution> distributions;   // wear and damage per rail-profile position
+  // The low rail (two-rail studies); its profile and distributions are not filled by Steps().
+  std::optional<RailStepRecord> low_rail = std::nullopt;
 };
 
 // One input of a calibration, verbatim: kind "config", "displacement_curves", "scene" or
@@ -136,7 +161,7 @@ struct QueryResult {
 class ProfileStore {
  public:
   // Schema version written by this program (PRAGMA user_version).
-  static constexpr int kSchemaVersion = 3;
+  static constexpr int kSchemaVersion = 4;
   // PRAGMA application_id of railwear databases: "RWDB" in ASCII.
   static constexpr int32_t kApplicationId = 0x52574442;
   // Value of meta.format in railwear databases.
@@ -166,19 +191,22 @@ class ProfileStore {
   // Throws InputError for an unknown run id.
   void SetRunState(int64_t run, RunState state);
 
-  // Writes the step row, its profile, load cases and distributions in one transaction (all or
-  // nothing). Throws InputError when the run does not exist, step.step is not LastStep()+1 (0 for
-  // a run without steps), the profile is empty, or a distribution is malformed (empty or
-  // duplicate kind, y and value of different lengths, s neither empty nor as long as value).
+  // Writes the step row, its profile, load cases and distributions, and the low rail's when
+  // present, in one transaction (all or nothing). Throws InputError when the run does not exist,
+  // step.step is not LastStep()+1 (0 for a run without steps), a profile is empty, or a
+  // distribution is malformed (empty or duplicate kind, y and value of different lengths, s
+  // neither empty nor as long as value).
   void AppendStep(int64_t run, const StepRecord& step);
-  // The steps of a run in order, summary columns only (profile, load cases and distributions
-  // are left empty; see LoadProfile / LoadStep).
+  // The steps of a run in order, summary columns only, with the low rail's summary when stored
+  // (profiles, load cases and distributions are left empty; see LoadProfile / LoadStep).
   std::vector<StepRecord> Steps(int64_t run) const;
   // One step in full: summary, profile, load cases and distributions. Throws InputError when
   // absent.
   StepRecord LoadStep(int64_t run, int step) const;
   // The profile stored for a step, points bit-for-bit as appended. Throws InputError when absent.
   Profile LoadProfile(int64_t run, int step) const;
+  // The low rail's profile stored for a step; InputError when the step has no low rail.
+  Profile LoadLowRailProfile(int64_t run, int step) const;
   // The last stored step of a run, nullopt when it has none.
   std::optional<int> LastStep(int64_t run) const;
 

@@ -10,6 +10,12 @@
 
 namespace railwear {
 
+std::string_view ToString(RailSide side) { return EnumToString(kRailSideNames, side); }
+
+std::optional<RailSide> RailSideFromString(std::string_view name) {
+  return EnumFromString(kRailSideNames, name);
+}
+
 void GaussHermiteProbabilists(int n, std::vector<double>* nodes, std::vector<double>* weights) {
   RAILWEAR_CHECK(n >= 1 && n <= 20);
   // Golub-Welsch: the Jacobi matrix of the monic probabilists' Hermite polynomials has zero
@@ -82,21 +88,36 @@ namespace internal {
 
 std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic,
                                          int quadrature_points) {
-  double total_share = 0.0;
-  for (const TrafficCase& c : traffic) total_share += c.share;
+  // Shares are normalised per rail: each rail's case weights sum to 1.
+  double total_share[2] = {0.0, 0.0};
+  for (const TrafficCase& c : traffic) total_share[static_cast<int>(c.rail)] += c.share;
   std::vector<double> nodes, weights;
   GaussHermiteProbabilists(quadrature_points, &nodes, &weights);
   std::vector<LoadCase> cases;
   for (int t = 0; t < static_cast<int>(traffic.size()); ++t) {
     const TrafficCase& c = traffic[t];
-    const double share = c.share / total_share;
+    const double share = c.share / total_share[static_cast<int>(c.rail)];
+    LoadCase base;
+    base.traffic_index = t;
+    base.rail = c.rail;
+    base.placement.lateral_shift_m = c.lateral_shift_mean_m;
+    base.placement.roll_rad = c.roll_rad;
+    base.placement.rolling_radius_m = c.rolling_radius_m;
+    base.placement.yaw_rad = c.yaw_rad;
+    base.vertical_force_N = c.vertical_force_N;
+    base.motion.speed_m_s = c.speed_m_s;  // pure rolling at r0: no pitch velocity
+    base.friction = c.friction;
     if (c.lateral_shift_std_m == 0.0) {
-      cases.push_back({t, 0, c.lateral_shift_mean_m, share});
+      base.weight = share;
+      cases.push_back(base);
       continue;
     }
     for (int k = 0; k < quadrature_points; ++k) {
-      cases.push_back(
-          {t, k, c.lateral_shift_mean_m + c.lateral_shift_std_m * nodes[k], share * weights[k]});
+      LoadCase node = base;
+      node.node = k;
+      node.placement.lateral_shift_m = c.lateral_shift_mean_m + c.lateral_shift_std_m * nodes[k];
+      node.weight = share * weights[k];
+      cases.push_back(node);
     }
   }
   return cases;
@@ -104,9 +125,20 @@ std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic
 
 }  // namespace internal
 
+bool HasTrafficOn(const std::vector<TrafficCase>& traffic, RailSide side) {
+  for (const TrafficCase& c : traffic) {
+    if (c.rail == side) return true;
+  }
+  return false;
+}
+
 double MgtPerPass(const std::vector<TrafficCase>& traffic) {
+  // A pass is one axle: counted once, from the high rail's wheels (the low rail's without any).
+  const RailSide counted =
+      HasTrafficOn(traffic, RailSide::kHigh) ? RailSide::kHigh : RailSide::kLow;
   double share = 0.0, tonnes = 0.0;
   for (const TrafficCase& c : traffic) {
+    if (c.rail != counted) continue;
     share += c.share;
     tonnes += c.share * c.axle_load_t;
   }

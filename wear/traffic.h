@@ -1,5 +1,10 @@
-// Traffic mix of a wear run: the wheels that pass over the rail, each with its share of passes,
+// Traffic mix of a wear run: the wheels that pass over the rails, each with its share of passes,
 // and their expansion into the load cases one wear step solves.
+//
+// Two rails (issue 15): an entry loads the high (outer, right, +Y of the track frame) or the low
+// rail (`rail`, default high). A pass is one axle, one wheel on each rail: shares are normalised
+// per rail, so each rail's case weights sum to 1, and the MGT of a pass is counted from the high
+// rail's entries (from the low rail's when the mix has no high-rail entry).
 //
 // A traffic entry's lateral wheel position is normally distributed (mean, standard deviation):
 // the expectation over it is integrated by Gauss-Hermite quadrature (probabilists' form, nodes
@@ -7,15 +12,34 @@
 // quadrature node, weighted by share x quadrature weight. With std = 0 an entry is one load case.
 //
 // Totals: a wheel pass of entry c carries axle_load_t of gross tonnage, so one pass of the mix
-// is sum_c share_c axle_load_t_c / 1e6 MGT (million gross tonnes).
+// is sum_c share_c axle_load_t_c / (1e6 sum_c share_c) MGT (million gross tonnes), over the
+// entries of the high rail (or of the low rail when there are none on the high rail).
 #pragma once
 
+#include <array>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "core/contact/contact_problem.h"
+#include "core/contact/kinematics.h"
+#include "core/numerics/enum_names.h"
 #include "core/profile/profile.h"
 
 namespace railwear {
+
+// Which rail a wheel runs on. The high rail is the outer (right, +Y) rail of a curve, the low rail
+// the inner (left) one; on tangent track simply right and left (core/notation.md). Each rail is
+// described in its own rail frame (the low rail's mirrored, y toward its own field side).
+enum class RailSide { kHigh, kLow };
+inline constexpr std::array<EnumName<RailSide>, 2> kRailSideNames = {{
+    {RailSide::kHigh, "high"},
+    {RailSide::kLow, "low"},
+}};
+std::string_view ToString(RailSide side);
+// std::nullopt for anything but "high" and "low".
+std::optional<RailSide> RailSideFromString(std::string_view name);
 
 struct TrafficCase {
   std::string name;                   // for messages and reports, e.g. "traffic[0]"
@@ -29,15 +53,25 @@ struct TrafficCase {
   double yaw_rad = 0.0;     // angle of attack of the wheel [rad]
   double friction = 0.3;    // > 0
   double speed_m_s = 20.0;  // > 0
-  double share = 1.0;       // relative share of passes, > 0 (normalised over the mix)
+  double share = 1.0;       // relative share of passes, > 0 (normalised over its rail's entries)
+  RailSide rail = RailSide::kHigh;  // the rail this wheel runs on
 };
 
-// One contact problem of a wear step.
+// One contact problem of a wear step, self-contained: everything the contact needs for one wheel
+// except the wheel itself (profile, name, from study.traffic[traffic_index]). Prescribed traffic,
+// imported collectives and vehicle curving all produce these.
 struct LoadCase {
-  int traffic_index = 0;         // into the traffic vector
-  int node = 0;                  // quadrature node (0 when std = 0)
-  double lateral_shift_m = 0.0;  // this node's lateral position
-  double weight = 0.0;           // share (normalised) x quadrature weight; sums to 1 over cases
+  int traffic_index = 0;            // the entry it comes from (name, wheel profile, axle load)
+  int node = 0;                     // quadrature node (0 without spread)
+  RailSide rail = RailSide::kHigh;  // which rail it loads
+  // In that rail's own frame (mirrored for the low rail): lateral shift [m], roll, yaw [rad] and
+  // the rolling radius at the wheel profile's z = 0 [m].
+  WheelPlacement placement;
+  double vertical_force_N = 0.0;  // wheel load, > 0
+  // The wheel's forward speed and, when set, its pitch velocity (absent: pure rolling at r0).
+  WheelMotion motion;
+  double friction = 0.3;  // > 0
+  double weight = 0.0;    // share (normalised per rail) x quadrature weight; sums to 1 per rail
 };
 
 // Nodes x_k and weights w_k (sum 1) with E[f(X)] ~ sum_k w_k f(x_k) for X ~ N(0, 1), exact for
@@ -52,7 +86,8 @@ void ValidateTraffic(const std::vector<TrafficCase>& traffic);
 void ValidateQuadraturePoints(int quadrature_points);
 
 // The load cases of the mix: each entry at `quadrature_points` Gauss-Hermite nodes (1 when its
-// std is 0), in entry order. Weights sum to 1. Validates the traffic and quadrature_points.
+// std is 0), in entry order. The weights of each rail's cases sum to 1. Validates the traffic
+// and quadrature_points.
 std::vector<LoadCase> ExpandTraffic(const std::vector<TrafficCase>& traffic, int quadrature_points);
 
 namespace internal {
@@ -62,7 +97,11 @@ std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic
                                          int quadrature_points);
 }  // namespace internal
 
-// Million gross tonnes per wheel pass of the mix: sum_c share_c axle_load_t_c / (1e6 sum share).
+// Million gross tonnes per axle pass of the mix: sum_c share_c axle_load_t_c / (1e6 sum share)
+// over the high rail's entries, or over the low rail's when no entry is on the high rail.
 double MgtPerPass(const std::vector<TrafficCase>& traffic);
+
+// Whether any entry runs on `side`.
+bool HasTrafficOn(const std::vector<TrafficCase>& traffic, RailSide side);
 
 }  // namespace railwear

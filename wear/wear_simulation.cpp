@@ -33,23 +33,28 @@ struct CaseOutcome {
   std::vector<double> damage_per_pass;   // [grid.n], empty without the damage effect
 };
 
-CaseOutcome SolveLoadCase(const WearStudy& study, const CurveLocator& rail, const WearGrid& grid,
+// The rail a case loads, canted into its track frame, and the bins of its current profile.
+struct RailTarget {
+  const CurveLocator* locator = nullptr;
+  const WearGrid* grid = nullptr;
+};
+
+CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
                           const LoadCase& load_case) {
+  const CurveLocator& rail = *target.locator;
+  const WearGrid& grid = *target.grid;
   const Profile& rail_track = rail.profile();
   const TrafficCase& traffic = study.traffic[load_case.traffic_index];
-  // The study's set-up; the load case fills in only placement, load and motion.
+  // The study's set-up; the wheel from its traffic entry, everything else from the case.
   ContactProblem problem;
   problem.setup() = study.setup();
   problem.wheel_profile = traffic.wheel_profile;
   problem.rail_profile = rail_track;
-  problem.placement.lateral_shift_m = load_case.lateral_shift_m;
-  problem.placement.roll_rad = traffic.roll_rad;
-  problem.placement.rolling_radius_m = traffic.rolling_radius_m;
-  problem.load.vertical_force_N = traffic.vertical_force_N;
+  problem.placement = load_case.placement;
+  problem.load.vertical_force_N = load_case.vertical_force_N;
   RollingOptions rolling;
-  rolling.motion.speed_m_s = traffic.speed_m_s;
-  problem.placement.yaw_rad = traffic.yaw_rad;
-  rolling.friction = traffic.friction;
+  rolling.motion = load_case.motion;
+  rolling.friction = load_case.friction;
   problem.rolling = rolling;
 
   const ContactResult result = SolveContact(problem);
@@ -62,8 +67,10 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const CurveLocator& rail, cons
   s.message = result.message;
   if (result.status == SolverStatus::kNotConverged) {
     throw std::runtime_error(fmt::format(
-        "wear: {} at lateral shift {:.3f} mm: the contact solution did not converge: {}",
-        traffic.name, load_case.lateral_shift_m * 1e3, result.message));
+        "wear: {} on the {} rail at lateral shift {:.3f} mm: the contact solution did not "
+        "converge: {}",
+        traffic.name, ToString(load_case.rail), load_case.placement.lateral_shift_m * 1e3,
+        result.message));
   }
   if (result.status == SolverStatus::kNoContact) return out;
   s.patches = static_cast<int>(result.patches.size());
@@ -75,8 +82,9 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const CurveLocator& rail, cons
   s.p_max_Pa = result.p_max_Pa;
   double largest = -1.0;
   for (const PatchResult& patch : result.patches) {
-    const std::vector<double> depth = CalcPatchPassDepth(
-        patch, rail, study.options.law, study.rail_material.hardness_Pa, traffic.speed_m_s, grid);
+    const std::vector<double> depth =
+        CalcPatchPassDepth(patch, rail, study.options.law, study.rail_material.hardness_Pa,
+                           load_case.motion.speed_m_s, grid);
     for (int b = 0; b < grid.n; ++b) out.depth_per_pass_m[b] += depth[b];
     if (patch.rolling) {
       s.creep_force_x_N += patch.rolling->tangential.force_x_N;
@@ -100,10 +108,10 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const CurveLocator& rail, cons
   return out;
 }
 
-// Solves every case on `threads` workers. Each result goes to its own slot; exceptions are
-// rethrown in case order after all workers have stopped.
-std::vector<CaseOutcome> SolveLoadCases(const WearStudy& study, const CurveLocator& rail,
-                                        const WearGrid& grid, const std::vector<LoadCase>& cases) {
+// Solves every case on `threads` workers, each against its rail (targets[RailSide]). Each result
+// goes to its own slot; exceptions are rethrown in case order after all workers have stopped.
+std::vector<CaseOutcome> SolveLoadCases(const WearStudy& study, const RailTarget targets[2],
+                                        const std::vector<LoadCase>& cases) {
   const int n = static_cast<int>(cases.size());
   std::vector<CaseOutcome> outcomes(n);
   std::vector<std::exception_ptr> errors(n);
@@ -111,7 +119,7 @@ std::vector<CaseOutcome> SolveLoadCases(const WearStudy& study, const CurveLocat
   auto worker = [&]() {
     for (int c = next++; c < n; c = next++) {
       try {
-        outcomes[c] = SolveLoadCase(study, rail, grid, cases[c]);
+        outcomes[c] = SolveLoadCase(study, targets[static_cast<int>(cases[c].rail)], cases[c]);
       } catch (...) {
         errors[c] = std::current_exception();
       }
@@ -134,15 +142,16 @@ std::vector<CaseOutcome> SolveLoadCases(const WearStudy& study, const CurveLocat
   return outcomes;
 }
 
-// sum_c weight_c * field_c[b] per bin, adding the terms of each bin in increasing order so the
-// sum does not depend on the order of the cases.
+// sum_c weight_c * field_c[b] per bin over the cases on `rail`, adding the terms of each bin in
+// increasing order so the sum does not depend on the order of the cases.
 std::vector<double> WeightedSum(const std::vector<CaseOutcome>& outcomes,
-                                const std::vector<LoadCase>& cases, int n,
+                                const std::vector<LoadCase>& cases, RailSide rail, int n,
                                 std::vector<double> CaseOutcome::*field) {
   std::vector<double> sum(n, 0.0), terms(outcomes.size());
   for (int b = 0; b < n; ++b) {
     int count = 0;
     for (size_t c = 0; c < outcomes.size(); ++c) {
+      if (cases[c].rail != rail) continue;
       const std::vector<double>& f = outcomes[c].*field;
       if (!f.empty() && f[b] != 0.0) terms[count++] = cases[c].weight * f[b];
     }
@@ -183,6 +192,16 @@ void ValidateWearStudy(const WearStudy& study) {
   const WearOptions& o = study.options;
   ValidateWearLaw(o.law);
   ValidateTraffic(study.traffic);
+  if (!study.low_rail_profile) {
+    for (const TrafficCase& c : study.traffic) {
+      if (c.rail == RailSide::kLow) {
+        throw InputError(fmt::format(
+            "{}: rail = \"low\": expected a study with a low rail (a scene's [track] table "
+            "with high_rail and low_rail instead of [rail])",
+            c.name));
+      }
+    }
+  }
   if (study.model.kind == ModelKind::kHertz) {
     throw InputError(
         "wear: model.kind = \"hertz\": expected a grid model (halfspace or conformal):"
@@ -237,75 +256,152 @@ namespace internal {
 WearState InitialState(const WearStudy& study) {
   WearState state;
   state.rail = ResampleProfile(study.rail_profile, study.options.profile_spacing_m);
+  if (study.low_rail_profile) {
+    state.low_rail = ResampleProfile(*study.low_rail_profile, study.options.profile_spacing_m);
+  }
   return state;
+}
+
+std::vector<LoadCase> StepLoadCases(const WearStudy& study,
+                                    [[maybe_unused]] const Profile& high_rail_track,
+                                    [[maybe_unused]] const std::optional<Profile>& low_rail_track) {
+  // Prescribed traffic: positions fixed in each rail's unworn track frame, so the current
+  // profiles are not needed. Vehicle entries (curving on the current rails) are added here.
+  return ExpandValidTraffic(study.traffic, study.options.quadrature_points);
 }
 
 }  // namespace internal
 
-StepResult RunWearStep(const WearStudy& study, const Profile& unworn, const WearState& state,
+namespace {
+
+// One rail through a step: its current profile in the track frame, its bins, and its summed and
+// smoothed per-pass depth.
+struct RailWork {
+  RailSide side = RailSide::kHigh;
+  const Profile* current = nullptr;             // own frame
+  const Profile* unworn = nullptr;              // own frame
+  const std::vector<double>* damage = nullptr;  // accumulated, per bin of `current`
+  Profile track;                                // `current` canted into the track frame
+  std::optional<CurveLocator> locator;          // on `track`
+  WearGrid grid;                                // bins of `current`
+  std::vector<double> depth_per_pass_m;         // weighted sum over the rail's cases
+  double deepest = 0.0;                         // max of depth_per_pass_m
+  DepthSmoothing smoothed;                      // of depth_per_pass_m / deepest
+  double peak = 0.0;                            // max of smoothed.depth_m
+
+  RailWork(RailSide s, const Profile& now, const Profile& step0, const std::vector<double>& d,
+           const WearStudy& study)
+      : side(s), current(&now), unworn(&step0), damage(&d) {
+    // The track frame is fixed by the unworn rail: the same rigid motion cants every worn profile.
+    const CantTransform cant = CalcCantTransform(step0, study.cant_ratio);
+    track = now.Transformed(cant.angle_rad, cant.shift_m);
+    locator.emplace(track, /*material_toward_plus_z=*/true);
+    grid = WearGrid::ForProfile(now, study.options.bin_m);
+  }
+
+  // Sums the cases on this rail and smooths the field (scaled to a unit maximum: the smoothing
+  // is homogeneous in the field).
+  void Collect(const std::vector<CaseOutcome>& outcomes, const std::vector<LoadCase>& cases,
+               const DepthSmoothingOptions& options) {
+    depth_per_pass_m = WeightedSum(outcomes, cases, side, grid.n, &CaseOutcome::depth_per_pass_m);
+    deepest = *std::max_element(depth_per_pass_m.begin(), depth_per_pass_m.end());
+    if (deepest <= 0.0) return;
+    std::vector<double> unit(grid.n);
+    for (int b = 0; b < grid.n; ++b) unit[b] = depth_per_pass_m[b] / deepest;
+    smoothed = SmoothDepthField(unit, grid.h_m, options);
+    peak = *std::max_element(smoothed.depth_m.begin(), smoothed.depth_m.end());
+  }
+
+  // The deepest smoothed wear of one pass [m] (0 when nothing wears this rail).
+  double SmoothedDeepest() const { return deepest > 0.0 ? deepest * peak : 0.0; }
+
+  // Applies `passes` of wear: the rail's part of the step, its next profile and damage.
+  RailStepResult Apply(double passes, const std::vector<CaseOutcome>& outcomes,
+                       const std::vector<LoadCase>& cases, const WearStudy& study,
+                       Profile* next_profile, std::vector<double>* next_damage) const {
+    const WearOptions& o = study.options;
+    const int n = grid.n;
+    RailStepResult r;
+    r.grid = grid;
+    r.depth_per_pass_m = depth_per_pass_m;
+    if (deepest > 0.0) {
+      r.smoothing_area_error = smoothed.area_error;
+      r.step_depth_m.resize(n);
+      for (int b = 0; b < n; ++b) r.step_depth_m[b] = passes * deepest * smoothed.depth_m[b];
+      *next_profile = ResampleProfile(MoveAlongInwardNormal(*current, grid, r.step_depth_m),
+                                      o.profile_spacing_m);
+    } else {
+      r.step_depth_m.assign(n, 0.0);
+      *next_profile = *current;
+    }
+    if (study.damage) {
+      const std::vector<double> damage_per_pass =
+          WeightedSum(outcomes, cases, side, n, &CaseOutcome::damage_per_pass);
+      // Damage stays with its arc-length bin; the worn profile's bins are the same positions.
+      const int n_next = WearGrid::ForProfile(*next_profile, o.bin_m).n;
+      next_damage->assign(n_next, 0.0);
+      for (int b = 0; b < std::min(n, n_next); ++b) {
+        const double previous = b < static_cast<int>(damage->size()) ? (*damage)[b] : 0.0;
+        const double removed = std::min(1.0, r.step_depth_m[b] / o.damage_layer_m);
+        (*next_damage)[b] = (previous + passes * damage_per_pass[b]) * (1.0 - removed);
+      }
+    }
+    r.measures = CompareProfiles(*unworn, *next_profile);
+    return r;
+  }
+};
+
+}  // namespace
+
+StepResult RunWearStep(const WearStudy& study, const UnwornRails& unworn, const WearState& state,
                        double passes_left) {
   const auto start = std::chrono::steady_clock::now();
   const WearOptions& o = study.options;
-  // The track frame is fixed by the unworn rail: the same rigid motion cants every worn profile.
-  const CantTransform cant = CalcCantTransform(unworn, study.cant_ratio);
-  const Profile rail_track = state.rail.Transformed(cant.angle_rad, cant.shift_m);
+  RAILWEAR_CHECK(state.low_rail.has_value() == unworn.low.has_value());
+  RailWork high(RailSide::kHigh, state.rail, unworn.high, state.damage, study);
+  std::optional<RailWork> low;
+  if (state.low_rail)
+    low.emplace(RailSide::kLow, *state.low_rail, *unworn.low, state.low_damage, study);
+
+  std::optional<Profile> low_track;
+  if (low) low_track = low->track;
+  const std::vector<LoadCase> cases = internal::StepLoadCases(study, high.track, low_track);
+  const RailTarget targets[2] = {{&*high.locator, &high.grid},
+                                 {low ? &*low->locator : nullptr, low ? &low->grid : nullptr}};
+  for (const LoadCase& c : cases) RAILWEAR_CHECK(targets[static_cast<int>(c.rail)].locator);
+  const std::vector<CaseOutcome> outcomes = SolveLoadCases(study, targets, cases);
 
   StepResult step;
-  step.grid = WearGrid::ForProfile(state.rail, o.bin_m);
-  const int n = step.grid.n;
-  const std::vector<LoadCase> cases =
-      internal::ExpandValidTraffic(study.traffic, o.quadrature_points);
-  const CurveLocator rail_locator(rail_track, /*material_toward_plus_z=*/true);
-  const std::vector<CaseOutcome> outcomes = SolveLoadCases(study, rail_locator, step.grid, cases);
-  step.depth_per_pass_m = WeightedSum(outcomes, cases, n, &CaseOutcome::depth_per_pass_m);
   for (const CaseOutcome& c : outcomes) step.cases.push_back(c.summary);
+  high.Collect(outcomes, cases, o.smoothing);
+  if (low) low->Collect(outcomes, cases, o.smoothing);
 
-  // The per-pass field is smoothed first (scaled to a unit maximum: the smoothing is
-  // homogeneous in the field), then the step control makes the deepest smoothed wear of the
-  // step equal max_depth_per_step, or takes the passes left when they are fewer.
-  const double deepest =
-      *std::max_element(step.depth_per_pass_m.begin(), step.depth_per_pass_m.end());
+  // Step control: the deepest smoothed wear of either rail in the step equals
+  // max_depth_per_step, or the passes left when they are fewer.
+  const double deepest = std::max(high.SmoothedDeepest(), low ? low->SmoothedDeepest() : 0.0);
+  step.step_passes = deepest > 0.0 ? std::min(passes_left, o.max_depth_per_step_m / deepest)
+                                   : passes_left;  // nothing wears: the rest in one step
   WearState& next = step.state;
   next.step = state.step + 1;
-  if (deepest > 0.0) {
-    std::vector<double> unit(n);
-    for (int b = 0; b < n; ++b) unit[b] = step.depth_per_pass_m[b] / deepest;
-    const DepthSmoothing smoothed = SmoothDepthField(unit, step.grid.h_m, o.smoothing);
-    step.smoothing_area_error = smoothed.area_error;
-    const double peak = *std::max_element(smoothed.depth_m.begin(), smoothed.depth_m.end());
-    step.step_passes = std::min(passes_left, o.max_depth_per_step_m / (deepest * peak));
-    step.step_depth_m.resize(n);
-    for (int b = 0; b < n; ++b) {
-      step.step_depth_m[b] = step.step_passes * deepest * smoothed.depth_m[b];
-    }
-    next.rail = ResampleProfile(MoveAlongInwardNormal(state.rail, step.grid, step.step_depth_m),
-                                o.profile_spacing_m);
-  } else {
-    step.step_passes = passes_left;  // nothing wears: the rest of the run in one step
-    step.step_depth_m.assign(n, 0.0);
-    next.rail = state.rail;
+  RailStepResult high_step =
+      high.Apply(step.step_passes, outcomes, cases, study, &next.rail, &next.damage);
+  step.grid = std::move(high_step.grid);
+  step.depth_per_pass_m = std::move(high_step.depth_per_pass_m);
+  step.step_depth_m = std::move(high_step.step_depth_m);
+  step.smoothing_area_error = high_step.smoothing_area_error;
+  step.measures = std::move(high_step.measures);
+  if (low) {
+    next.low_rail.emplace();
+    step.low_rail =
+        low->Apply(step.step_passes, outcomes, cases, study, &*next.low_rail, &next.low_damage);
   }
   next.passes = state.passes + step.step_passes;
   next.mgt = state.mgt + step.step_passes * MgtPerPass(study.traffic);
-
-  if (study.damage) {
-    const std::vector<double> damage_per_pass =
-        WeightedSum(outcomes, cases, n, &CaseOutcome::damage_per_pass);
-    // Damage stays with its arc-length bin; the worn profile's bins are the same positions.
-    const int n_next = WearGrid::ForProfile(next.rail, o.bin_m).n;
-    next.damage.assign(n_next, 0.0);
-    for (int b = 0; b < std::min(n, n_next); ++b) {
-      const double previous = b < static_cast<int>(state.damage.size()) ? state.damage[b] : 0.0;
-      const double removed = std::min(1.0, step.step_depth_m[b] / o.damage_layer_m);
-      next.damage[b] = (previous + step.step_passes * damage_per_pass[b]) * (1.0 - removed);
-    }
-  }
-  step.measures = CompareProfiles(unworn, next.rail);
   step.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return step;
 }
 
-WearRunSummary RunWear(const WearStudy& study, const Profile& unworn, WearState start,
+WearRunSummary RunWear(const WearStudy& study, const UnwornRails& unworn, WearState start,
                        const WearStepCallback& on_step, int max_steps) {
   const double total = TotalPasses(study);
   WearRunSummary summary;

@@ -1,26 +1,29 @@
-// The wear simulation loop: a rail profile worn by a traffic mix over many wheel passes.
+// The wear simulation loop: the rails worn by a traffic mix over many axle passes.
 //
-// One step (DESIGN.md §1, §2):
-//   1. the current rail profile (rail's own frame) is canted into the track frame with the
-//      motion computed once on the unworn rail (CantTransform), so the track frame stays fixed;
-//   2. every load case of the traffic mix (wear/traffic.h) is solved as a rolling contact (normal
-//      + tangential, and damage when asked), in parallel threads;
-//   3. each case's per-pass wear depth and RCF damage are binned along the rail's arc length
-//      (wear/pass_depth.h) and summed with the case weights in a fixed order per bin (sorted
-//      by value), so the result depends neither on the thread count nor on the order of cases;
-//   4. the summed per-pass depth is smoothed (wear/depth_smoothing.h: area kept, peak not
-//      moved, non-negative, bin-scale noise removed);
-//   5. step control: the passes of the step are chosen so the deepest smoothed wear of the step
-//      equals max_depth_per_step (or the passes left, whichever is fewer); every profile point
-//      moves along the rail's inward normal by the step's depth, and the moved curve is
-//      resampled at a uniform arc-length spacing;
+// A study wears the high rail (WearStudy::rail_profile) and, when it has one, the low rail
+// (low_rail_profile; issue 15), each in its own rail frame. One step (DESIGN.md §1, §2):
+//   1. each rail's current profile (its own frame) is canted into its track frame with the
+//      motion computed once on its unworn profile (CantTransform), so the frame stays fixed;
+//   2. the step's load cases (internal::StepLoadCases: today the prescribed traffic mix,
+//      wear/traffic.h) are solved as rolling contacts (normal + tangential, and damage when
+//      asked) against the rail each case loads, in parallel threads;
+//   3. each case's per-pass wear depth and RCF damage are binned along its rail's arc length
+//      (wear/pass_depth.h) and summed per rail with the case weights in a fixed order per bin
+//      (sorted by value), so the result depends neither on the thread count nor on the order of
+//      cases;
+//   4. each rail's summed per-pass depth is smoothed (wear/depth_smoothing.h: area kept, peak
+//      not moved, non-negative, bin-scale noise removed);
+//   5. step control: the passes of the step are chosen so the deepest smoothed wear of either
+//      rail in the step equals max_depth_per_step (or the passes left, whichever is fewer);
+//      every profile point moves along its rail's inward normal by the step's depth, and the
+//      moved curve is resampled at a uniform arc-length spacing;
 //   6. accumulated damage grows by the step's damage and loses the fraction of the damaged
 //      surface layer that wear removed (D <- D * max(0, 1 - dz / damage_layer));
 //   7. the finished step goes to a callback (app/ stores it in the database).
 //
-// The loop knows nothing of storage. Its whole state between steps is WearState (profile,
-// passes, MGT, damage per position), so a run resumed from a stored state continues exactly as
-// the uninterrupted run would have.
+// The loop knows nothing of storage. Its whole state between steps is WearState (profiles,
+// passes, MGT, damage per position of each rail), so a run resumed from a stored state continues
+// exactly as the uninterrupted run would have.
 #pragma once
 
 #include <functional>
@@ -62,19 +65,23 @@ struct WearOptions {
 
 // Everything a wear run needs: the contact set-up of every load case (base; rail_material needs
 // hardness_Pa for Archard and KTH, shear_yield_Pa for damage; model a grid model, not Hertz;
-// damage: RCF damage per position), the rail and the traffic mix.
+// damage: RCF damage per position), the rails and the traffic mix.
 struct WearStudy : ContactSetup {
-  Profile rail_profile;     // the unworn rail, its own frame (as in the scene)
-  double cant_ratio = 0.0;  // 1:40 -> 0.025
+  Profile rail_profile;  // the unworn high (right) rail, its own frame (as in the scene)
+  // The unworn low (left) rail, its own frame (mirrored: y toward its field side); absent in a
+  // single-rail study, which then has no low-rail traffic.
+  std::optional<Profile> low_rail_profile;
+  double cant_ratio = 0.0;  // rail inclination of both rails, 1:40 -> 0.025
   std::vector<TrafficCase> traffic;
   WearOptions options;
 };
 
 // Throws InputError for an inconsistent study (Hertz model, missing hardness, both or neither
-// total, non-positive limits, bad traffic, damage without shear yield).
+// total, non-positive limits, bad traffic, damage without shear yield, low-rail traffic without
+// a low rail).
 void ValidateWearStudy(const WearStudy& study);
 
-// The run's length in wheel passes: total_passes, or total_MGT over the mix's MGT per pass.
+// The run's length in axle passes: total_passes, or total_MGT over the mix's MGT per pass.
 double TotalPasses(const WearStudy& study);
 
 // The state between steps: all a run needs to continue.
@@ -82,14 +89,28 @@ struct WearState {
   int step = 0;         // steps done (0: the unworn profile)
   double passes = 0.0;  // cumulative wheel passes
   double mgt = 0.0;     // cumulative million gross tonnes
-  Profile rail;         // current rail profile, rail's own frame
+  Profile rail;         // current high rail profile, its own frame
   // Accumulated RCF damage per arc-length bin of `rail` (WearGrid::ForProfile(rail, bin_m)).
   // Empty means zero everywhere (no damage effect, or nothing accumulated yet).
   std::vector<double> damage;
+  // The low rail, as `rail` and `damage` (its own frame); absent in a single-rail study.
+  std::optional<Profile> low_rail;
+  std::vector<double> low_damage;
 };
 
-// Step 0 of a run: the unworn rail resampled at the study's profile spacing.
+// Step 0 of a run: the unworn rails resampled at the study's profile spacing.
 WearState MakeInitialState(const WearStudy& study);
+
+// The step-0 profiles the wear measures are taken against and whose cant fixes each rail's track
+// frame. Implicit from one profile for single-rail callers.
+struct UnwornRails {
+  UnwornRails(Profile high_rail, std::optional<Profile> low_rail = std::nullopt)  // NOLINT
+      : high(std::move(high_rail)), low(std::move(low_rail)) {}
+  // The rails of a step-0 state (MakeInitialState, or step 0 read back from storage).
+  static UnwornRails Of(const WearState& step0) { return {step0.rail, step0.low_rail}; }
+  Profile high;
+  std::optional<Profile> low;
+};
 
 namespace internal {
 // MakeInitialState without ValidateWearStudy, for callers that validated the study once already
@@ -117,16 +138,29 @@ struct LoadCaseSummary {
   double contact_y_m = 0.0;  // its pressure centre on the rail (track frame)
 };
 
-struct StepResult {
-  WearState state;                       // after this step
-  double step_passes = 0.0;              // passes of this step
+// What a step did to one rail (the low rail's part of StepResult; the high rail's are the fields
+// of StepResult itself).
+struct RailStepResult {
   WearGrid grid;                         // the bins of the profile the step started from
-  std::vector<double> depth_per_pass_m;  // weighted mean depth per wheel pass, shape [grid.n]
+  std::vector<double> depth_per_pass_m;  // weighted mean depth per axle pass, shape [grid.n]
   std::vector<double> step_depth_m;      // smoothed depth removed in this step, shape [grid.n]
   double smoothing_area_error = 0.0;     // relative, before the area correction
   WearMeasures measures;                 // against step 0 (cumulative)
-  std::vector<LoadCaseSummary> cases;
-  double seconds = 0.0;  // wall time of the step
+};
+
+// A step. The grid, depths and measures below are the high rail's; `low_rail` holds the same for
+// the low rail in a two-rail study.
+struct StepResult {
+  WearState state;                         // after this step
+  double step_passes = 0.0;                // passes of this step
+  WearGrid grid;                           // the bins of the profile the step started from
+  std::vector<double> depth_per_pass_m;    // weighted mean depth per wheel pass, shape [grid.n]
+  std::vector<double> step_depth_m;        // smoothed depth removed in this step, shape [grid.n]
+  double smoothing_area_error = 0.0;       // relative, before the area correction
+  WearMeasures measures;                   // against step 0 (cumulative)
+  std::optional<RailStepResult> low_rail;  // present when the study has a low rail
+  std::vector<LoadCaseSummary> cases;      // both rails' cases, in StepLoadCases order
+  double seconds = 0.0;                    // wall time of the step
 };
 
 // Called after each finished step; return false to stop the run after it.
@@ -139,18 +173,29 @@ struct WearRunSummary {
 };
 
 // Runs steps from `start` until the total is reached, `max_steps` steps were done in this call
-// (<= 0: no limit) or the callback returns false. `unworn` is the step-0 profile (the wear
-// measures are taken against it). `study` must have passed ValidateWearStudy, once per input:
-// ReadWearScene (app/) runs it before any database is touched, MakeInitialState for library
-// callers; neither this loop nor its steps check it again. Throws std::runtime_error when a
-// load case fails to converge (the steps before it are complete and were handed out).
-WearRunSummary RunWear(const WearStudy& study, const Profile& unworn, WearState start,
+// (<= 0: no limit) or the callback returns false. `unworn` are the step-0 profiles (the wear
+// measures are taken against them; a two-rail study needs both). `study` must have passed
+// ValidateWearStudy, once per input: ReadWearScene (app/) runs it before any database is touched,
+// MakeInitialState for library callers; neither this loop nor its steps check it again. Throws
+// std::runtime_error when a load case fails to converge (the steps before it are complete and were
+// handed out).
+WearRunSummary RunWear(const WearStudy& study, const UnwornRails& unworn, WearState start,
                        const WearStepCallback& on_step, int max_steps = 0);
 
 // One step from `state` (exposed for tests and benchmarks): solves the load cases and returns
 // the step. `passes_left` caps the step's passes.
-StepResult RunWearStep(const WearStudy& study, const Profile& unworn, const WearState& state,
+StepResult RunWearStep(const WearStudy& study, const UnwornRails& unworn, const WearState& state,
                        double passes_left);
+
+namespace internal {
+// The load cases of one step: the seam every source of load cases goes through. Today the
+// prescribed traffic expanded by Gauss-Hermite (ExpandValidTraffic); sources that depend on the
+// current rails (vehicle curving on the worn profiles) get each rail's current profile canted
+// into its track frame: `high_rail_track`, and `low_rail_track` (absent in a single-rail study).
+// Each rail's case weights sum to 1 (over the cases on it).
+std::vector<LoadCase> StepLoadCases(const WearStudy& study, const Profile& high_rail_track,
+                                    const std::optional<Profile>& low_rail_track);
+}  // namespace internal
 
 // A profile resampled at uniform arc length: ceil(L / spacing) + 1 points including both ends.
 Profile ResampleProfile(const Profile& profile, double spacing_m);

@@ -211,7 +211,7 @@ TEST_F(HistoryTest, StepsTableHasTheStoredNumbers) {
   for (int k = 0; k < 3; ++k) {
     SCOPED_TRACE(k);
     const StepRecord& s = stored_[k];
-    ASSERT_EQ(rows[k].size(), 10u);
+    ASSERT_EQ(rows[k].size(), 12u);
     EXPECT_EQ(std::stoi(rows[k][0]), k);
     EXPECT_DOUBLE_EQ(std::stod(rows[k][1]), s.passes);
     EXPECT_NEAR(std::stod(rows[k][2]), s.mgt, kTableTol);
@@ -220,6 +220,15 @@ TEST_F(HistoryTest, StepsTableHasTheStoredNumbers) {
     EXPECT_NEAR(std::stod(rows[k][6]), s.w1_mm, kTableTol);
     EXPECT_NEAR(std::stod(rows[k][7]), s.w2_mm, kTableTol);
     EXPECT_NEAR(std::stod(rows[k][8]), s.w3_mm, kTableTol);
+    // W2 and W3 rates since the previous stored step [mm/MGT] (issue 15).
+    if (k == 0) {
+      EXPECT_EQ(rows[k][10], "NULL");
+      EXPECT_EQ(rows[k][11], "NULL");
+    } else {
+      const StepRecord& p = stored_[k - 1];
+      EXPECT_NEAR(std::stod(rows[k][10]), (s.w2_mm - p.w2_mm) / (s.mgt - p.mgt), kTableTol);
+      EXPECT_NEAR(std::stod(rows[k][11]), (s.w3_mm - p.w3_mm) / (s.mgt - p.mgt), kTableTol);
+    }
   }
   // The stored values themselves are the hand-calculated ones (wear/wear_measures.h).
   EXPECT_NEAR(std::stod(rows[2][8]), 1.0, kSplineTol_mm + kTableTol);

@@ -35,4 +35,47 @@ friction = 0.4
 speed_m_s = 20.0
 )";
 
+// Both rails (issue 15), draft accuracy, no spread: the high rail loaded near its gauge corner,
+// the low rail on its crown; two steps of at most 0.1 mm (the high rail's case sets them).
+inline const char* const kTwoRailWearStudy = R"([scene]
+name = "two rails"
+effects = ["wear", "damage"]
+[model]
+geometry = "conformal"
+kernel = "boussinesq"
+accuracy = "draft"
+[materials]
+wheel = { E_MPa = 210000, nu = 0.28 }
+rail = { E_MPa = 210000, nu = 0.28, hardness_MPa = 2600, shear_yield_MPa = 350 }
+[track]
+high_rail = "builtin:UIC60"
+inclination = "1:40"
+[wheel]
+profile = "builtin:S1002"
+rolling_radius_mm = 460
+[wear]
+law = "archard"
+k = 1e-4
+total_passes = 2e4
+max_depth_per_step_mm = 0.1
+quadrature_points = 1
+[[traffic]]
+name = "outer wheel"
+vertical_N = 80000
+axle_load_t = 16
+lateral_shift_mm = -4.5
+yaw_mrad = 4.0
+friction = 0.4
+speed_m_s = 20.0
+[[traffic]]
+name = "inner wheel"
+rail = "low"
+vertical_N = 80000
+axle_load_t = 16
+lateral_shift_mm = -8.0
+yaw_mrad = 4.0
+friction = 0.4
+speed_m_s = 20.0
+)";
+
 }  // namespace railwear::test

@@ -249,8 +249,10 @@ TEST(ProfileStore, CreatesSchemaInMemory) {
       db.Query("SELECT name FROM sqlite_schema WHERE type = 'table' ORDER BY name");
   std::vector<std::string> names;
   for (const auto& row : tables.rows) names.push_back(row[0]);
-  EXPECT_EQ(names, (std::vector<std::string>{"calibration_inputs", "calibrations", "distributions",
-                                             "load_cases", "meta", "profiles", "runs", "steps"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"calibration_inputs", "calibrations", "distributions",
+                                      "load_cases", "low_rail_distributions", "low_rail_steps",
+                                      "meta", "profiles", "runs", "steps"}));
   EXPECT_EQ(db.Query("PRAGMA application_id").rows[0][0],
             std::to_string(ProfileStore::kApplicationId));
 }
@@ -332,11 +334,15 @@ TEST(ProfileStore, MigratesVersion2KeepingItsDataAndAddsCalibrations) {
   RawExec(path, Version2Database());
   {
     ProfileStore db = ProfileStore::Open(path);
-    EXPECT_EQ(db.SchemaVersion(), 3);
+    EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
     const auto run = db.FindRun("old");
     ASSERT_TRUE(run.has_value());
     EXPECT_EQ(run->scene_text, "scene");
     ASSERT_EQ(db.LastStep(run->id), 1);
+    // Version 4's low-rail tables exist and are empty: an old run is a single-rail run.
+    for (const StepRecord& s : db.Steps(run->id)) EXPECT_FALSE(s.low_rail.has_value());
+    EXPECT_FALSE(db.LoadStep(run->id, 1).low_rail.has_value());
+    EXPECT_EQ(db.Query("SELECT count(*) FROM low_rail_steps").rows[0][0], "0");
     const StepRecord one = db.LoadStep(run->id, 1);
     EXPECT_EQ(one.passes, 100.0);
     ASSERT_EQ(one.distributions.size(), 1u);
@@ -348,6 +354,63 @@ TEST(ProfileStore, MigratesVersion2KeepingItsDataAndAddsCalibrations) {
   ProfileStore db = ProfileStore::Open(path);
   ASSERT_EQ(db.Calibrations().size(), 1u);
   EXPECT_EQ(db.Runs().size(), 1u);
+}
+
+RailStepRecord TestLowRail(int step) {
+  RailStepRecord low;
+  low.worn_area_mm2 = 0.25 * step;
+  low.max_depth_mm = 0.005 * step;
+  low.max_depth_y_mm = -12.5;
+  low.w1_mm = 0.05;
+  low.w2_mm = 1.0 / 3.0;
+  low.w3_mm = 0.125;
+  low.smoothing_area_error = -2e-4;
+  low.profile = TestProfile(30, -1e-5 * step);
+  low.distributions = {{"wear_depth_mm", {-0.02, 0.0}, {1e-3, 0.0}, {0.0, 0.02}}};
+  return low;
+}
+
+TEST(ProfileStore, TheLowRailRoundTripsNextToTheHighRail) {
+  ProfileStore db = ProfileStore::Open(":memory:");
+  const int64_t run = db.CreateRun(TestRun("two rails"));
+  for (int k = 0; k < 2; ++k) {
+    StepRecord step = TestStep(k);
+    step.low_rail = TestLowRail(k);
+    db.AppendStep(run, step);
+  }
+  const std::vector<StepRecord> steps = db.Steps(run);
+  ASSERT_EQ(steps.size(), 2u);
+  ASSERT_TRUE(steps[1].low_rail.has_value());
+  EXPECT_EQ(steps[1].low_rail->w2_mm, 1.0 / 3.0);
+  EXPECT_EQ(steps[1].low_rail->max_depth_mm, 0.005);
+  EXPECT_EQ(steps[1].low_rail->smoothing_area_error, -2e-4);
+  EXPECT_EQ(steps[1].low_rail->profile.size(), 0);  // summaries only
+  EXPECT_EQ(steps[1].w2_mm, 0.2);                   // the high rail's unchanged
+  const StepRecord back = db.LoadStep(run, 1);
+  ASSERT_TRUE(back.low_rail.has_value());
+  const RailStepRecord want = TestLowRail(1);
+  ASSERT_EQ(back.low_rail->profile.size(), want.profile.size());
+  EXPECT_EQ(std::memcmp(back.low_rail->profile.points().data(), want.profile.points().data(),
+                        sizeof(Eigen::Vector2d) * want.profile.size()),
+            0);
+  EXPECT_EQ(db.LoadLowRailProfile(run, 1).points(), want.profile.points());
+  ASSERT_EQ(back.low_rail->distributions.size(), 1u);
+  EXPECT_EQ(back.low_rail->distributions[0].value, want.distributions[0].value);
+  EXPECT_EQ(back.low_rail->distributions[0].s_m, want.distributions[0].s_m);
+  EXPECT_EQ(back.distributions.size(), 2u);  // the high rail's, as before
+  EXPECT_EQ(back.profile.points(), TestProfile(40, 1e-5).points());
+
+  // A single-rail step has no low rail; asking for its low-rail profile names the step.
+  const int64_t single = db.CreateRun(TestRun("one rail"));
+  db.AppendStep(single, TestStep(0));
+  EXPECT_FALSE(db.LoadStep(single, 0).low_rail.has_value());
+  ExpectInputError([&] { db.LoadLowRailProfile(single, 0); }, {"no low rail at step 0"});
+  // A low-rail distribution given twice rolls back the whole step.
+  StepRecord bad = TestStep(2);
+  bad.low_rail = TestLowRail(2);
+  bad.low_rail->distributions.push_back(bad.low_rail->distributions[0]);
+  ExpectInputError([&] { db.AppendStep(run, bad); }, {"low-rail distribution kind"});
+  EXPECT_EQ(db.LastStep(run), 1);
 }
 
 TEST(ProfileStore, CalibrationsRoundTripWithTheirInputs) {

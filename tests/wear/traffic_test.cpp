@@ -51,8 +51,8 @@ TEST(TrafficTest, ExpandWeightsSumToOneAndMeanIsKept) {
   for (const LoadCase& c : cases) {
     sum += c.weight;
     if (c.traffic_index == 0) {
-      mean0 += c.weight / 0.7 * c.lateral_shift_m;
-      var0 += c.weight / 0.7 * std::pow(c.lateral_shift_m + 4e-3, 2);
+      mean0 += c.weight / 0.7 * c.placement.lateral_shift_m;
+      var0 += c.weight / 0.7 * std::pow(c.placement.lateral_shift_m + 4e-3, 2);
     }
   }
   EXPECT_NEAR(sum, 1.0, 1e-14);
@@ -65,6 +65,54 @@ TEST(TrafficTest, MgtPerPassIsShareWeightedAxleLoad) {
   std::vector<TrafficCase> traffic = {MakeCase(3.0, 0.0), MakeCase(1.0, 0.0)};
   traffic[1].axle_load_t = 10.0;
   EXPECT_NEAR(MgtPerPass(traffic), (3 * 20.0 + 10.0) / 4.0 / 1e6, 1e-20);
+}
+
+TEST(TrafficTest, SharesAreNormalisedPerRailAndCasesCarryTheEntry) {
+  std::vector<TrafficCase> traffic = {MakeCase(3.0, 1.0), MakeCase(1.0, 0.0), MakeCase(0.5, 0.0)};
+  traffic[1].rail = RailSide::kLow;
+  traffic[1].yaw_rad = -2e-3;
+  traffic[1].roll_rad = 1e-3;
+  traffic[1].rolling_radius_m = 0.45;
+  traffic[1].friction = 0.25;
+  traffic[1].speed_m_s = 30.0;
+  traffic[1].vertical_force_N = 70e3;
+  const std::vector<LoadCase> cases = ExpandTraffic(traffic, 3);
+  ASSERT_EQ(cases.size(), 5u);  // 3 nodes + 1 + 1
+  double high = 0.0, low = 0.0;
+  for (const LoadCase& c : cases) (c.rail == RailSide::kHigh ? high : low) += c.weight;
+  EXPECT_NEAR(high, 1.0, 1e-14);
+  EXPECT_NEAR(low, 1.0, 1e-14);
+  const LoadCase& l = cases[3];
+  EXPECT_EQ(l.traffic_index, 1);
+  EXPECT_EQ(l.rail, RailSide::kLow);
+  EXPECT_EQ(l.weight, 1.0);
+  EXPECT_EQ(l.placement.lateral_shift_m, -4e-3);
+  EXPECT_EQ(l.placement.yaw_rad, -2e-3);
+  EXPECT_EQ(l.placement.roll_rad, 1e-3);
+  EXPECT_EQ(l.placement.rolling_radius_m, 0.45);
+  EXPECT_EQ(l.friction, 0.25);
+  EXPECT_EQ(l.motion.speed_m_s, 30.0);
+  EXPECT_FALSE(l.motion.pitch_velocity_rad_s.has_value());  // pure rolling at r0
+  EXPECT_EQ(l.vertical_force_N, 70e3);
+  EXPECT_NEAR(cases[4].weight, 0.5 / 3.5, 1e-15);
+}
+
+TEST(TrafficTest, MgtPerPassCountsTheHighRailOrElseTheLowRail) {
+  std::vector<TrafficCase> traffic = {MakeCase(1.0, 0.0), MakeCase(1.0, 0.0)};
+  traffic[1].rail = RailSide::kLow;
+  traffic[1].axle_load_t = 10.0;
+  EXPECT_NEAR(MgtPerPass(traffic), 20.0 / 1e6, 1e-20);  // an axle is counted once
+  traffic[0].rail = RailSide::kLow;
+  EXPECT_NEAR(MgtPerPass(traffic), 15.0 / 1e6, 1e-20);
+  EXPECT_FALSE(HasTrafficOn(traffic, RailSide::kHigh));
+  EXPECT_TRUE(HasTrafficOn(traffic, RailSide::kLow));
+}
+
+TEST(TrafficTest, RailSideNames) {
+  EXPECT_EQ(ToString(RailSide::kHigh), "high");
+  EXPECT_EQ(ToString(RailSide::kLow), "low");
+  EXPECT_EQ(RailSideFromString("low"), RailSide::kLow);
+  EXPECT_FALSE(RailSideFromString("left").has_value());
 }
 
 TEST(TrafficTest, BadEntriesNameTheKey) {

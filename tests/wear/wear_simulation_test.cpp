@@ -52,7 +52,7 @@ RunOutcome RunAll(const WearStudy& study, int max_steps = 0) {
   RunOutcome run;
   const WearState start = MakeInitialState(study);
   run.summary = RunWear(
-      study, start.rail, start,
+      study, UnwornRails::Of(start), start,
       [&](const StepResult& s) {
         run.steps.push_back(s);
         return true;
@@ -225,6 +225,117 @@ TEST(WearSimulationTest, TwoHundredStepsKeepASmoothProfile) {
   // no radius below ~4 mm) and does not keep growing over the second hundred steps.
   for (double k : curvature) EXPECT_LT(k, 3.0 * unworn);
   EXPECT_LT(curvature[3], 1.25 * curvature[1]);
+}
+
+// ---- two rails (issue 15) ----
+
+// One S1002 case on each rail (UIC60 1:40 both), no spread, at the given lateral shifts [m]:
+// -8 mm runs on the crown (contact angle ~5 deg), -2 mm on the gauge corner (~67 deg; that case
+// needs about 40x fewer passes for 0.1 mm).
+WearStudy MakeTwoRailStudy(double high_shift_m, double low_shift_m) {
+  WearStudy study = MakeStudy(2);
+  study.low_rail_profile = MakeUic60();  // own frame (mirrored UIC60 is UIC60)
+  study.traffic[0].lateral_shift_std_m = 0.0;
+  study.traffic[0].lateral_shift_mean_m = high_shift_m;
+  study.options.quadrature_points = 1;
+  TrafficCase low = study.traffic[0];
+  low.name = "low";
+  low.rail = RailSide::kLow;
+  low.lateral_shift_mean_m = low_shift_m;
+  study.traffic.push_back(low);
+  return study;
+}
+
+double MaxOf(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
+
+TEST(WearSimulationTest, BothRailsWearWhereTheirCasesTouchAndTheDeeperRailSetsTheStep) {
+  // Crown case on the high rail, gauge-corner case on the low rail, and the other way round.
+  for (const bool flange_on_low : {true, false}) {
+    const WearStudy study =
+        flange_on_low ? MakeTwoRailStudy(-8e-3, -2e-3) : MakeTwoRailStudy(-2e-3, -8e-3);
+    const RunOutcome run = RunAll(study, 1);
+    ASSERT_EQ(run.steps.size(), 1u);
+    const StepResult& s = run.steps[0];
+    ASSERT_TRUE(s.low_rail.has_value() && s.state.low_rail.has_value());
+    ASSERT_EQ(s.cases.size(), 2u);
+    ASSERT_EQ(s.cases[1].load_case.rail, RailSide::kLow);
+    const RailStepResult high{s.grid, s.depth_per_pass_m, s.step_depth_m, s.smoothing_area_error,
+                              s.measures};
+    const RailStepResult& low = *s.low_rail;
+    const RailStepResult& crown = flange_on_low ? high : low;
+    const RailStepResult& corner = flange_on_low ? low : high;
+    const LoadCaseSummary& crown_case = s.cases[flange_on_low ? 0 : 1];
+    const LoadCaseSummary& corner_case = s.cases[flange_on_low ? 1 : 0];
+    // Each rail wears where its own case touches: the crown case near the centre line, the
+    // corner case at the gauge corner (rail frame: gauge side y < 0).
+    EXPECT_LT(crown_case.contact_angle_rad, 0.2);
+    EXPECT_GT(corner_case.contact_angle_rad, 0.8);
+    EXPECT_GT(crown.measures.max_depth_m, 0.0);
+    EXPECT_GT(corner.measures.max_depth_m, 0.0);
+    EXPECT_GT(crown.measures.max_depth_y_m, -20e-3);
+    EXPECT_LT(corner.measures.max_depth_y_m, -28e-3);
+    // Step control takes the deeper rail (the corner): its smoothed step depth is the limit.
+    EXPECT_NEAR(MaxOf(corner.step_depth_m), 1e-4, 1e-15);
+    EXPECT_LT(MaxOf(crown.step_depth_m), 0.2e-4);
+    EXPECT_GT(MaxOf(crown.step_depth_m), 0.0);
+    EXPECT_NEAR(s.state.passes, s.step_passes, 0.0);
+    std::printf(
+        "[figure] two rails, step 1 (%s): %.4g passes, high %.4f mm at y %.2f mm, low %.4f mm "
+        "at y %.2f mm\n",
+        flange_on_low ? "corner case on the low rail" : "corner case on the high rail",
+        s.step_passes, MaxOf(high.step_depth_m) * 1e3, high.measures.max_depth_y_m * 1e3,
+        MaxOf(low.step_depth_m) * 1e3, low.measures.max_depth_y_m * 1e3);
+  }
+}
+
+TEST(WearSimulationTest, LowRailTrafficAloneLeavesTheHighRailUnchanged) {
+  WearStudy study = MakeTwoRailStudy(-8e-3, -2e-3);
+  study.traffic.erase(study.traffic.begin());  // only the low rail's entry
+  study.traffic[0].axle_load_t = 12.0;
+  const WearState start = MakeInitialState(study);
+  const RunOutcome run = RunAll(study, 1);
+  const StepResult& s = run.steps.at(0);
+  EXPECT_EQ(MaxAbsDifference(s.state.rail, start.rail), 0.0);
+  EXPECT_EQ(MaxOf(s.step_depth_m), 0.0);
+  EXPECT_LT(s.measures.max_depth_m, 1e-15);  // the measure of an unchanged profile: round-off
+  EXPECT_GT(s.low_rail->measures.max_depth_m, 0.0);
+  // MGT from the low rail's entries when the high rail has none.
+  EXPECT_NEAR(s.state.mgt, s.step_passes * 12.0 / 1e6, 1e-12 * s.state.mgt);
+}
+
+TEST(WearSimulationTest, ResumingATwoRailRunEndsWithTheSameProfiles) {
+  WearStudy study = MakeTwoRailStudy(-2e-3, -8e-3);  // the low rail's crown case damages it
+  study.damage = true;
+  const RunOutcome whole = RunAll(study, 3);
+  const RunOutcome first = RunAll(study, 1);
+  WearState stored;  // as read back from storage: plain numbers
+  stored.step = first.summary.state.step;
+  stored.passes = first.summary.state.passes;
+  stored.mgt = first.summary.state.mgt;
+  stored.rail = Profile(first.summary.state.rail.points(), "stored");
+  stored.damage = first.summary.state.damage;
+  stored.low_rail = Profile(first.summary.state.low_rail->points(), "stored low");
+  stored.low_damage = first.summary.state.low_damage;
+  const WearState start = MakeInitialState(study);
+  const WearRunSummary rest = RunWear(study, UnwornRails::Of(start), stored, nullptr, 2);
+  EXPECT_EQ(rest.state.step, 3);
+  EXPECT_EQ(MaxAbsDifference(rest.state.rail, whole.summary.state.rail), 0.0);
+  EXPECT_EQ(MaxAbsDifference(*rest.state.low_rail, *whole.summary.state.low_rail), 0.0);
+  EXPECT_EQ(rest.state.passes, whole.summary.state.passes);
+  EXPECT_EQ(rest.state.damage, whole.summary.state.damage);
+  EXPECT_EQ(rest.state.low_damage, whole.summary.state.low_damage);
+  EXPECT_GT(*std::max_element(rest.state.low_damage.begin(), rest.state.low_damage.end()), 0.0);
+}
+
+TEST(WearSimulationTest, LowRailTrafficNeedsALowRail) {
+  WearStudy study = MakeTwoRailStudy(-8e-3, -2e-3);
+  study.low_rail_profile.reset();
+  try {
+    MakeInitialState(study);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("low: rail = \"low\""), std::string::npos) << e.what();
+  }
 }
 
 TEST(WearSimulationTest, InconsistentStudiesAreRefused) {
