@@ -38,8 +38,8 @@ std::string LoadCollectiveFileText(const LoadCollective& c, const std::string& v
                    c.rows_read, c.rows_zero_weight);
   t += fmt::format("# Weight ({}): high rail {} in {} bins, low rail {} in {} bins.\n",
                    ToString(c.weight_unit), Num(c.total_weight_high),
-                   EntryCount(c, CollectiveRail::kHigh), Num(c.total_weight_low),
-                   EntryCount(c, CollectiveRail::kLow));
+                   EntryCount(c, RailSide::kHigh), Num(c.total_weight_low),
+                   EntryCount(c, RailSide::kLow));
   t += fmt::format(
       "# Bin widths: y {} mm, yaw {} mrad, Q {} kN, V {} m/s, mu {}, xi {} (mu and xi only when "
       "the CSV has them).\n",
@@ -146,7 +146,7 @@ LoadCollective ReadLoadCollective(const std::string& path) {
   const std::vector<Fields> entries =
       ArrayOfTables(top, "traffic", "[[traffic]] tables, one per bin");
   if (entries.empty()) top.FailMissing("traffic", "at least one [[traffic]] entry");
-  const std::vector<std::string_view> rails = EnumChoices(kCollectiveRailNames);
+  const std::vector<std::string_view> rails = EnumChoices(kRailSideNames);
   double share_sum[2] = {0.0, 0.0};
   for (const Fields& t : entries) {
     t.AllowOnly({"name", "rail", "wheelset_y_mm", "yaw_mrad", "roll_mrad", "vertical_N",
@@ -156,7 +156,7 @@ LoadCollective ReadLoadCollective(const std::string& path) {
     e.name = t.RequiredString("name", "a string");
     const auto rail = t.Choice("rail", rails);
     if (!rail) t.FailMissing("rail", JoinQuoted(rails));
-    e.rail = *EnumFromString(kCollectiveRailNames, *rail);
+    e.rail = *EnumFromString(kRailSideNames, *rail);
     e.wheelset_y_m = t.RequiredNumber("wheelset_y_mm", AnyFinite()) * kMm;
     e.yaw_rad = t.RequiredNumber("yaw_mrad", InRange(-100.0, 100.0)) / kToMrad;
     e.roll_rad = t.Number("roll_mrad", AnyFinite()).value_or(0.0) / kToMrad;
@@ -179,11 +179,11 @@ LoadCollective ReadLoadCollective(const std::string& path) {
         e.mbs.push_back(mbs->RequiredNumber(n, AnyFinite()));
       }
     }
-    share_sum[e.rail == CollectiveRail::kHigh ? 0 : 1] += e.share;
+    share_sum[e.rail == RailSide::kHigh ? 0 : 1] += e.share;
     c.entries.push_back(std::move(e));
   }
-  for (const CollectiveRail r : {CollectiveRail::kHigh, CollectiveRail::kLow}) {
-    const double sum = share_sum[r == CollectiveRail::kHigh ? 0 : 1];
+  for (const RailSide r : {RailSide::kHigh, RailSide::kLow}) {
+    const double sum = share_sum[r == RailSide::kHigh ? 0 : 1];
     if (EntryCount(c, r) > 0 && std::abs(sum - 1.0) > kShareSumTolerance) {
       throw InputError(
           fmt::format("{}: the shares of the {} rail's entries sum to {}: expected 1 "

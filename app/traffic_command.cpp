@@ -93,9 +93,9 @@ void RunTrafficImport(const TrafficImportOptions& o) {
     std::cout << fmt::format(" ({} of weight 0, not binned)", collective.rows_zero_weight);
   }
   std::cout << "\n";
-  for (const CollectiveRail rail : {CollectiveRail::kHigh, CollectiveRail::kLow}) {
+  for (const RailSide rail : {RailSide::kHigh, RailSide::kLow}) {
     const double total =
-        rail == CollectiveRail::kHigh ? collective.total_weight_high : collective.total_weight_low;
+        rail == RailSide::kHigh ? collective.total_weight_high : collective.total_weight_low;
     std::cout << fmt::format("{:<4} rail: {:>4} bins, weight {:.6g} {}\n", ToString(rail),
                              EntryCount(collective, rail), total, unit);
   }

@@ -229,9 +229,9 @@ MbsRow ParseRow(const std::string& source, int line, std::string_view text, cons
         break;
       case Column::kSide:
         if (value == "high" || value == "right") {
-          row.rail = CollectiveRail::kHigh;
+          row.rail = RailSide::kHigh;
         } else if (value == "low" || value == "left") {
-          row.rail = CollectiveRail::kLow;
+          row.rail = RailSide::kLow;
         } else {
           FailValue(c, "'high' or 'low' (or 'right' / 'left': right is the high rail)");
         }
@@ -369,7 +369,7 @@ LoadCollective BinLoadCollective(const MbsTimeHistory& h, const LoadCollectiveBi
       ++out.rows_zero_weight;
       continue;
     }
-    Key key{r.rail == CollectiveRail::kHigh ? 0 : 1,
+    Key key{r.rail == RailSide::kHigh ? 0 : 1,
             {BinIndex(r, h.source, "y_mm", r.wheelset_y_m, widths.wheelset_y_m),
              BinIndex(r, h.source, "yaw_mrad", r.yaw_rad, widths.yaw_rad),
              BinIndex(r, h.source, "Q_N", r.vertical_force_N, widths.vertical_force_N),
@@ -390,7 +390,7 @@ LoadCollective BinLoadCollective(const MbsTimeHistory& h, const LoadCollectiveBi
     s.mbs.resize(r.mbs.size(), 0.0);
     for (std::size_t k = 0; k < r.mbs.size(); ++k) s.mbs[k] += w * r.mbs[k];
     ++s.rows;
-    (r.rail == CollectiveRail::kHigh ? out.total_weight_high : out.total_weight_low) += w;
+    (r.rail == RailSide::kHigh ? out.total_weight_high : out.total_weight_low) += w;
   }
   if (bins.empty()) {
     throw InputError(
@@ -405,7 +405,7 @@ LoadCollective BinLoadCollective(const MbsTimeHistory& h, const LoadCollectiveBi
     if (key.first != previous_rail) index_on_rail = 0;
     previous_rail = key.first;
     LoadCollectiveEntry e;
-    e.rail = key.first == 0 ? CollectiveRail::kHigh : CollectiveRail::kLow;
+    e.rail = key.first == 0 ? RailSide::kHigh : RailSide::kLow;
     e.weight = s.weight;
     e.rows = s.rows;
     e.wheelset_y_m = s.y / s.weight;
@@ -420,7 +420,7 @@ LoadCollective BinLoadCollective(const MbsTimeHistory& h, const LoadCollectiveBi
     e.mbs.resize(s.mbs.size());
     for (std::size_t k = 0; k < s.mbs.size(); ++k) e.mbs[k] = s.mbs[k] / s.weight;
     const double total =
-        e.rail == CollectiveRail::kHigh ? out.total_weight_high : out.total_weight_low;
+        e.rail == RailSide::kHigh ? out.total_weight_high : out.total_weight_low;
     e.share = s.weight / total;
     e.name = fmt::format("{} {}: y {:.2f} mm, yaw {:.2f} mrad, Q {:.1f} kN", ToString(e.rail),
                          index_on_rail, e.wheelset_y_m * kToMm, e.yaw_rad / kMrad,
@@ -431,7 +431,7 @@ LoadCollective BinLoadCollective(const MbsTimeHistory& h, const LoadCollectiveBi
   return out;
 }
 
-int EntryCount(const LoadCollective& collective, CollectiveRail rail) {
+int EntryCount(const LoadCollective& collective, RailSide rail) {
   return static_cast<int>(
       std::count_if(collective.entries.begin(), collective.entries.end(),
                     [&](const LoadCollectiveEntry& e) { return e.rail == rail; }));

@@ -27,16 +27,9 @@
 #include <vector>
 
 #include "core/numerics/enum_names.h"
+#include "wear/traffic.h"
 
 namespace railwear {
-
-// The rail a wheel row runs on. "high" is the outer (right, +Y) rail of a curve, "low" the inner
-// (left) one; on tangent track high = right and low = left (docs/mbs_import.md). Local to the
-// import until the wear study's RailSide (wear/traffic.h) takes its place; same names.
-enum class CollectiveRail { kHigh, kLow };
-inline constexpr std::array<EnumName<CollectiveRail>, 2> kCollectiveRailNames = {
-    {{CollectiveRail::kHigh, "high"}, {CollectiveRail::kLow, "low"}}};
-inline std::string_view ToString(CollectiveRail r) { return EnumToString(kCollectiveRailNames, r); }
 
 // What a row's weight counts: wheel passes (column weight_passes), or metres run (weight_m, the
 // time step times the speed of a time history). Shares do not depend on it.
@@ -48,7 +41,7 @@ inline std::string_view ToString(WeightUnit u) { return EnumToString(kWeightUnit
 // One wheel at one time step or case, in SI.
 struct MbsRow {
   int line = 0;  // line in the file (1-based), for messages
-  CollectiveRail rail = CollectiveRail::kHigh;
+  RailSide rail = RailSide::kHigh;
   double weight = 0.0;                // >= 0, in the file's WeightUnit
   double speed_m_s = 0.0;             // > 0
   double wheelset_y_m = 0.0;          // toward the high rail
@@ -101,7 +94,7 @@ void ValidateBinWidths(const LoadCollectiveBinWidths& widths);
 // One bin: the weighted means of its rows (SI), its total weight and its share of its rail.
 struct LoadCollectiveEntry {
   std::string name;  // "high 3: y 6.02 mm, yaw 2.11 mrad, Q 88.1 kN"
-  CollectiveRail rail = CollectiveRail::kHigh;
+  RailSide rail = RailSide::kHigh;
   double wheelset_y_m = 0.0;
   double yaw_rad = 0.0;
   double roll_rad = 0.0;
@@ -138,6 +131,6 @@ LoadCollective BinLoadCollective(const MbsTimeHistory& history,
                                  const LoadCollectiveBinWidths& widths);
 
 // Number of entries on `rail`.
-int EntryCount(const LoadCollective& collective, CollectiveRail rail);
+int EntryCount(const LoadCollective& collective, RailSide rail);
 
 }  // namespace railwear

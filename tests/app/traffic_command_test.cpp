@@ -76,9 +76,9 @@ TEST_F(TrafficCommandTest, ExampleImportsWithItsSummaryAndReadsBack) {
   const LoadCollective expected = BinLoadCollective(ReadMbsTimeHistory(kExample), {});
   EXPECT_TRUE(Contains(o.out, "read 320 rows from " + kExample));
   EXPECT_TRUE(Contains(o.out, fmt::format("high rail: {:>4} bins, weight 33.6144 m run",
-                                          EntryCount(expected, CollectiveRail::kHigh))));
+                                          EntryCount(expected, RailSide::kHigh))));
   EXPECT_TRUE(Contains(o.out, fmt::format("low  rail: {:>4} bins, weight 33.6144 m run",
-                                          EntryCount(expected, CollectiveRail::kLow))));
+                                          EntryCount(expected, RailSide::kLow))));
   const LoadCollective back = app::ReadLoadCollective((dir_ / "collective.toml").string());
   ExpectSameCollective(back, expected);
   // The example: 4 wheelsets x 2 wheels x 40 steps of 0.01 s at about 21 m/s, with mu, xi and
@@ -231,8 +231,8 @@ TEST_F(TrafficCommandTest, ExistingOutputIsReplacedOnlyWithForce) {
   ASSERT_EQ(forced.exit_code, 0) << forced.err;
   const LoadCollective back = app::ReadLoadCollective((dir_ / "out.toml").string());
   ASSERT_EQ(back.entries.size(), 2u);
-  EXPECT_EQ(back.entries[0].rail, CollectiveRail::kHigh);
-  EXPECT_EQ(back.entries[1].rail, CollectiveRail::kLow);
+  EXPECT_EQ(back.entries[0].rail, RailSide::kHigh);
+  EXPECT_EQ(back.entries[1].rail, RailSide::kLow);
   EXPECT_DOUBLE_EQ(back.entries[1].vertical_force_N, 7e4);
 }
 

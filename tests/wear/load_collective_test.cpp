@@ -41,8 +41,8 @@ TEST(LoadCollectiveTest, ParsesColumnsInAnyOrderWithCommentsBlankLinesAndCrlf) {
   const MbsRow& r = h.rows[0];
   EXPECT_EQ(r.line, 5);
   EXPECT_EQ(h.rows[1].line, 7);
-  EXPECT_EQ(r.rail, CollectiveRail::kHigh);  // right = high
-  EXPECT_EQ(h.rows[1].rail, CollectiveRail::kLow);
+  EXPECT_EQ(r.rail, RailSide::kHigh);  // right = high
+  EXPECT_EQ(h.rows[1].rail, RailSide::kLow);
   EXPECT_DOUBLE_EQ(r.vertical_force_N, 80000.0);
   EXPECT_DOUBLE_EQ(r.wheelset_y_m, 5.5e-3);  // SI inside
   EXPECT_DOUBLE_EQ(r.yaw_rad, 2.5e-3);
@@ -93,8 +93,8 @@ struct RailSums {
   int rows = 0;
 };
 
-std::map<CollectiveRail, RailSums> RowSums(const MbsTimeHistory& h) {
-  std::map<CollectiveRail, RailSums> s;
+std::map<RailSide, RailSums> RowSums(const MbsTimeHistory& h) {
+  std::map<RailSide, RailSums> s;
   for (const MbsRow& r : h.rows) {
     RailSums& a = s[r.rail];
     const double w = r.weight;
@@ -112,8 +112,8 @@ std::map<CollectiveRail, RailSums> RowSums(const MbsTimeHistory& h) {
   return s;
 }
 
-std::map<CollectiveRail, RailSums> EntrySums(const LoadCollective& c) {
-  std::map<CollectiveRail, RailSums> s;
+std::map<RailSide, RailSums> EntrySums(const LoadCollective& c) {
+  std::map<RailSide, RailSums> s;
   for (const LoadCollectiveEntry& e : c.entries) {
     RailSums& a = s[e.rail];
     const double w = e.weight;
@@ -154,10 +154,10 @@ TEST(LoadCollectiveTest, BinningKeepsEachRailsWeightAndWeightedMeans) {
   EXPECT_EQ(c.rows_zero_weight, 24);  // i % 17 == 0 for i < 400
   const auto rows = RowSums(h);
   const auto bins = EntrySums(c);
-  for (const CollectiveRail rail : {CollectiveRail::kHigh, CollectiveRail::kLow}) {
+  for (const RailSide rail : {RailSide::kHigh, RailSide::kLow}) {
     SCOPED_TRACE(std::string(ToString(rail)));
     ExpectSameSums(bins.at(rail), rows.at(rail));
-    EXPECT_NEAR(rail == CollectiveRail::kHigh ? c.total_weight_high : c.total_weight_low,
+    EXPECT_NEAR(rail == RailSide::kHigh ? c.total_weight_high : c.total_weight_low,
                 rows.at(rail).weight, kSumTolerance * rows.at(rail).weight);
     double share = 0.0;
     for (const LoadCollectiveEntry& e : c.entries) {
@@ -176,10 +176,10 @@ TEST(LoadCollectiveTest, EntriesAreOrderedByRailThenBinAndMeansLieInTheirBins) {
   std::vector<double> previous;
   bool low_seen = false;
   for (const LoadCollectiveEntry& e : c.entries) {
-    if (e.rail == CollectiveRail::kLow) low_seen = true;
-    EXPECT_FALSE(low_seen && e.rail == CollectiveRail::kHigh) << "high after low: " << e.name;
+    if (e.rail == RailSide::kLow) low_seen = true;
+    EXPECT_FALSE(low_seen && e.rail == RailSide::kHigh) << "high after low: " << e.name;
     // A weighted mean of values in [k w, (k+1) w) lies in that cell (up to rounding at an edge).
-    const std::vector<double> key = {e.rail == CollectiveRail::kHigh ? 0.0 : 1.0,
+    const std::vector<double> key = {e.rail == RailSide::kHigh ? 0.0 : 1.0,
                                      cell(e.wheelset_y_m * (1 + 1e-12), w.wheelset_y_m),
                                      cell(e.yaw_rad * (1 + 1e-12), w.yaw_rad),
                                      cell(e.vertical_force_N, w.vertical_force_N),
@@ -227,7 +227,7 @@ TEST(LoadCollectiveTest, BinWidthsSetHowManyEntries) {
   const auto rows = RowSums(h);
   // Each collective keeps the weight, whatever its bins.
   for (const LoadCollective* c : {&c_fine, &c_default, &c_coarse, &c_huge}) {
-    ExpectSameSums(EntrySums(*c).at(CollectiveRail::kLow), rows.at(CollectiveRail::kLow));
+    ExpectSameSums(EntrySums(*c).at(RailSide::kLow), rows.at(RailSide::kLow));
   }
 }
 
@@ -267,8 +267,8 @@ TEST(LoadCollectiveTest, CsvFromKnownStatesGivesTheStatesBack) {
     EXPECT_DOUBLE_EQ(e.share, s.passes / 40.0);
     EXPECT_EQ(e.rows, 2);
   }
-  EXPECT_EQ(EntryCount(c, CollectiveRail::kHigh), 2);
-  EXPECT_EQ(EntryCount(c, CollectiveRail::kLow), 2);
+  EXPECT_EQ(EntryCount(c, RailSide::kHigh), 2);
+  EXPECT_EQ(EntryCount(c, RailSide::kLow), 2);
 }
 
 TEST(LoadCollectiveTest, BadWidthsAndWeightlessFilesAreRefused) {
