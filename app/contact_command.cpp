@@ -80,7 +80,11 @@ void WarnOfFlangeClimb(const ContactResult& r, const std::string& wheel) {
 
 // A wheelset on a track: both wheels, each in its rail's own frame.
 void RunWheelset(const ContactOptions& o, const Scene& scene) {
-  const WheelsetResult result = SolveWheelset({scene.problem, *scene.track, *scene.wheelset});
+  WheelsetProblem problem;
+  problem.wheel_rail = scene.problem;
+  problem.track = *scene.track;
+  problem.wheelset = *scene.wheelset;
+  const WheelsetResult result = SolveWheelset(problem);
   if (o.json) WriteOutput(*o.json, MakeWheelsetJson(scene, result).dump(2) + "\n", "JSON");
   if (o.csv) {
     std::ostringstream csv;

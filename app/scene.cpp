@@ -229,7 +229,8 @@ void ReadRail(const Fields& top, Scene* scene) {
 // superelevation and gauge are added here when vehicles run on it).
 void ReadTrackTable(const Fields& top, Scene* scene) {
   const Fields t = RequiredTable(top, "track", "a [track] table with high_rail");
-  t.AllowOnly({"high_rail", "low_rail", "inclination"});
+  t.AllowOnly({"high_rail", "low_rail", "inclination", "gauge_mm", "gauge_height_mm", "radius_m",
+               "cant_mm"});
   scene->rail_profile_spec = t.RequiredString("high_rail", kProfileExpected);
   scene->low_rail_profile_spec = t.String("low_rail").value_or(scene->rail_profile_spec);
   scene->cant_ratio = ReadCant(t, scene, "inclination");
@@ -241,6 +242,12 @@ void ReadTrackTable(const Fields& top, Scene* scene) {
   WearStudy& study = scene->wear.emplace();
   study.rail_profile = high;
   study.low_rail_profile = std::move(low);
+  // The track's gauge and curve, for vehicle traffic (a curve turns toward the low rail).
+  study.track.gauge_m = t.Number("gauge_mm", InRange(1000.0, 1700.0)).value_or(1435.0) * kMm;
+  study.track.gauge_height_m =
+      t.Number("gauge_height_mm", InRange(0.0, 30.0)).value_or(14.0) * kMm;
+  study.curve.radius_m = t.Number("radius_m", AtLeast(50.0)).value_or(0.0);
+  study.curve.cant_m = t.Number("cant_mm", InRange(0.0, 250.0)).value_or(0.0) * kMm;
   if (scene->cant_ratio != 0.0) high = ApplyCant(high, scene->cant_ratio);
   scene->problem.rail_profile = std::move(high);
 }
@@ -386,7 +393,6 @@ void CheckRolling(const Fields& top, const Scene& scene) {
 
 // ---- wear scenes: [wear] and [[traffic]] ----
 
-constexpr double kGravity_m_s2 = 9.80665;
 
 WearLaw ReadWearLaw(const Fields& t) {
   WearLaw law;
@@ -497,6 +503,92 @@ void ReadLateralShift(const Fields& t, TrafficCase* c) {
   c->lateral_shift_mean_m = t.RequiredNumber("lateral_shift_mm", AnyFinite()) * kMm;
 }
 
+// [[vehicle]]: the vehicles that vehicle traffic names (core/vehicle/vehicle.h). Units as in
+// the literature: stiffnesses in MN/m and kN m/rad, lengths in m, profile positions in mm.
+void ReadVehicles(const Fields& top, Scene* scene) {
+  const std::vector<Fields> tables =
+      ArrayOfTables(top, "vehicle", "[[vehicle]] tables, one per vehicle");
+  if (!tables.empty() && !top.Has("track")) {
+    tables.front().Fail("name", "no [[vehicle]] without a [track] table (a vehicle runs on both "
+                                "rails of a track)");
+  }
+  for (const Fields& t : tables) {
+    t.AllowOnly({"name", "source", "kind", "axle_load_t", "wheel_profile", "mirror_y",
+                 "rolling_radius_mm", "flange_back_distance_mm", "flange_back_position_mm",
+                 "wheelbase_m", "bogie_spacing_m", "primary_kx_MN_m", "primary_ky_MN_m",
+                 "primary_semi_spacing_m", "secondary_ky_MN_m", "secondary_yaw_kNm_rad",
+                 "cg_height_m", "traction_kN_per_axle"});
+    VehicleSpec v;
+    v.name = t.RequiredString("name", "the vehicle's name, which [[traffic]] entries use");
+    for (const VehicleSpec& other : scene->wear->vehicles) {
+      if (other.name == v.name) t.Fail("name", "a name no other [[vehicle]] has");
+    }
+    v.source = t.String("source").value_or("");
+    if (const auto kind = t.Choice("kind", EnumChoices(kVehicleKindNames))) {
+      v.kind = *EnumFromString(kVehicleKindNames, *kind);
+    }
+    v.axle_load_N = t.RequiredNumber("axle_load_t", OpenClosed(0.0, 40.0)) * 1000.0 * kGravity_m_s2;
+    if (const auto spec = t.String("wheel_profile")) {
+      Profile p = LoadProfileFor(t, "wheel_profile", BodyRole::kWheel, *spec, scene->path);
+      if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
+      v.wheel_profile = std::move(p);
+    } else if (top.Has("wheel")) {
+      v.wheel_profile = scene->problem.wheel_profile;
+    } else {
+      t.FailMissing("wheel_profile", std::string(kProfileExpected) + " (or a [wheel] table)");
+    }
+    v.rolling_radius_m = t.Number("rolling_radius_mm", Positive())
+                             .value_or(scene->problem.placement.rolling_radius_m / kMm) *
+                         kMm;
+    v.flange_back_distance_m =
+        t.Number("flange_back_distance_mm", InRange(1000.0, 1700.0)).value_or(1360.0) * kMm;
+    v.flange_back_position_m =
+        t.Number("flange_back_position_mm", InRange(-200.0, 0.0)).value_or(-70.0) * kMm;
+    v.cg_height_m = t.Number("cg_height_m", InRange(0.0, 5.0)).value_or(v.cg_height_m);
+    v.traction_N_per_axle = t.Number("traction_kN_per_axle", AnyFinite()).value_or(0.0) * 1e3;
+    if (v.kind == VehicleKind::kBogie) {
+      v.wheelbase_m = t.RequiredNumber("wheelbase_m", OpenClosed(0.0, 10.0));
+      v.bogie_spacing_m = t.RequiredNumber("bogie_spacing_m", OpenClosed(0.0, 40.0));
+      v.primary_kx_N_m = t.RequiredNumber("primary_kx_MN_m", Positive()) * 1e6;
+      v.primary_ky_N_m = t.RequiredNumber("primary_ky_MN_m", Positive()) * 1e6;
+      v.primary_semi_spacing_m = t.RequiredNumber("primary_semi_spacing_m", OpenClosed(0.0, 2.0));
+      v.secondary_ky_N_m = t.RequiredNumber("secondary_ky_MN_m", Positive()) * 1e6;
+      v.secondary_yaw_Nm_rad = t.RequiredNumber("secondary_yaw_kNm_rad", Positive()) * 1e3;
+    }
+    try {
+      ValidateVehicle(v, fmt::format("vehicle \"{}\"", v.name));
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}:{}: {}", t.file(), t.Line(), e.what()));
+    }
+    scene->wear->vehicles.push_back(std::move(v));
+  }
+}
+
+// A [[traffic]] entry that names a vehicle: its wheels and positions come from curving.
+void ReadVehicleTraffic(const Fields& t, Scene* scene, TrafficCase* c) {
+  t.AllowOnly({"name", "vehicle", "speed_m_s", "friction", "share", "lateral_spread_mm"});
+  const std::string name = t.RequiredString("vehicle", "the name of a [[vehicle]]");
+  const std::vector<VehicleSpec>& vehicles = scene->wear->vehicles;
+  for (int i = 0; i < static_cast<int>(vehicles.size()); ++i) {
+    if (vehicles[i].name == name) c->vehicle = i;
+  }
+  if (c->vehicle < 0) {
+    std::vector<std::string_view> names;
+    for (const VehicleSpec& v : vehicles) names.push_back(v.name);
+    t.Fail("vehicle", names.empty() ? std::string("a [[vehicle]] table of that name")
+                                    : "one of " + JoinQuoted(names));
+  }
+  const VehicleSpec& v = vehicles[c->vehicle];
+  c->wheel_profile = v.wheel_profile;
+  c->rolling_radius_m = v.rolling_radius_m;
+  c->axle_load_t = v.axle_load_N / kGravity_m_s2 / 1000.0;
+  c->vertical_force_N = 0.5 * v.axle_load_N;  // static; curving sets each wheel's load
+  c->lateral_shift_std_m = t.Number("lateral_spread_mm", AtLeast(0.0)).value_or(0.0) * kMm;
+  c->friction = t.RequiredNumber("friction", OpenClosed(0.0, 2.0));
+  c->speed_m_s = t.RequiredNumber("speed_m_s", Positive());
+  c->share = t.Number("share", Positive()).value_or(1.0);
+}
+
 void ReadTraffic(const Fields& top, Scene* scene) {
   // A [wheel] table, when a wear scene has one, gives each entry its default wheel.
   const bool has_wheel = top.Has("wheel");
@@ -509,6 +601,14 @@ void ReadTraffic(const Fields& top, Scene* scene) {
   int index = 0;
   for (const toml::node& entry : entries) {
     const Fields t(*entry.as_table(), fmt::format("traffic[{}]", index), top.file());
+    if (t.Has("vehicle")) {
+      TrafficCase c;
+      c.name = t.String("name").value_or(fmt::format("traffic[{}]", index));
+      ReadVehicleTraffic(t, scene, &c);
+      scene->wear->traffic.push_back(std::move(c));
+      ++index;
+      continue;
+    }
     t.AllowOnly({"name", "wheel_profile", "mirror_y", "rolling_radius_mm", "vertical_N",
                  "axle_load_t", "lateral_shift_mm", "roll_rad", "yaw_mrad", "friction", "speed_m_s",
                  "share", "rail"});
@@ -580,6 +680,7 @@ void ReadWearScene(const Fields& top, Scene* scene) {
     ReadRail(top, scene);
   }
   ReadWearTable(top, scene);
+  ReadVehicles(top, scene);
   ReadTraffic(top, scene);
   if (scene->problem.model.kind == ModelKind::kHertz) {
     const auto model = top.Table("model", "a table");
@@ -624,7 +725,7 @@ Scene ParseScene(const std::string& text, const std::string& path) {
   const toml::table root = ParseToml(text, path);
   const Fields top(root, "", path);
   top.AllowOnly({"scene", "model", "materials", "wheel", "rail", "load", "track", "wheelset",
-                 "wear", "traffic"});
+                 "wear", "traffic", "vehicle"});
   Scene scene;
   scene.path = path;
   scene.text = text;

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "core/numerics/enum_names.h"
+#include "core/numerics/units.h"
 #include "wear/traffic.h"
 
 namespace railwear {
@@ -104,7 +105,7 @@ struct LoadCollectiveEntry {
   std::optional<double> creepage_x;  // when the CSV has xi
   double share = 0.0;                // weight / the rail's total weight; sums to 1 per rail
   double weight = 0.0;               // the bin's total weight, in the collective's WeightUnit
-  double axle_load_t = 0.0;          // mean of axle_load_t, else 2 Q / g / 1000 (g = 9.81)
+  double axle_load_t = 0.0;          // mean of axle_load_t, else 2 Q / g / 1000 (standard g)
   std::vector<double> mbs;           // means of the mbs_* columns, LoadCollective::mbs_names
   int rows = 0;                      // rows of weight > 0 in the bin
 };
@@ -123,7 +124,7 @@ struct LoadCollective {
 };
 
 // g for the axle load estimate 2 Q / g when the CSV has no axle_load_t column [m/s^2].
-inline constexpr double kAxleLoadGravity_m_s2 = 9.81;
+inline constexpr double kAxleLoadGravity_m_s2 = kGravity_m_s2;
 
 // Bins the rows (see the file comment). Rows of weight 0 are left out; a rail without rows has
 // no entries. Throws InputError when no row has a weight > 0, or for invalid widths.

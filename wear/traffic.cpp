@@ -56,17 +56,18 @@ void Require(bool ok, const TrafficCase& c, const char* key, double value, const
 void ValidateTraffic(const std::vector<TrafficCase>& traffic) {
   if (traffic.empty()) throw InputError("traffic: no entries: expected at least one [[traffic]]");
   for (const TrafficCase& c : traffic) {
-    Require(c.rolling_radius_m > 0.0, c, "rolling_radius_mm", c.rolling_radius_m * 1e3, "> 0");
-    Require(c.vertical_force_N > 0.0, c, "vertical_N", c.vertical_force_N, "> 0");
-    Require(c.axle_load_t > 0.0, c, "axle_load_t", c.axle_load_t, "> 0");
-    Require(true, c, "lateral_shift_mm.mean", c.lateral_shift_mean_m * 1e3, "a finite number");
-    Require(c.lateral_shift_std_m >= 0.0, c, "lateral_shift_mm.std", c.lateral_shift_std_m * 1e3,
-            ">= 0");
-    Require(true, c, "roll_rad", c.roll_rad, "a finite number");
-    Require(std::abs(c.yaw_rad) < 0.1, c, "yaw_mrad", c.yaw_rad * 1e3, "|yaw| < 100 mrad");
     Require(c.friction > 0.0 && c.friction <= 2.0, c, "friction", c.friction, "in (0, 2]");
     Require(c.speed_m_s > 0.0, c, "speed_m_s", c.speed_m_s, "> 0");
     Require(c.share > 0.0, c, "share", c.share, "> 0");
+    Require(c.axle_load_t > 0.0, c, "axle_load_t", c.axle_load_t, "> 0");
+    Require(c.lateral_shift_std_m >= 0.0, c, "lateral_shift_mm.std", c.lateral_shift_std_m * 1e3,
+            ">= 0");
+    if (c.is_vehicle()) continue;  // its wheels and positions come from the vehicle
+    Require(c.rolling_radius_m > 0.0, c, "rolling_radius_mm", c.rolling_radius_m * 1e3, "> 0");
+    Require(c.vertical_force_N > 0.0, c, "vertical_N", c.vertical_force_N, "> 0");
+    Require(true, c, "lateral_shift_mm.mean", c.lateral_shift_mean_m * 1e3, "a finite number");
+    Require(true, c, "roll_rad", c.roll_rad, "a finite number");
+    Require(std::abs(c.yaw_rad) < 0.1, c, "yaw_mrad", c.yaw_rad * 1e3, "|yaw| < 100 mrad");
   }
 }
 
@@ -89,13 +90,13 @@ namespace internal {
 std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic,
                                          int quadrature_points) {
   // Shares are normalised per rail: each rail's case weights sum to 1.
-  double total_share[2] = {0.0, 0.0};
-  for (const TrafficCase& c : traffic) total_share[static_cast<int>(c.rail)] += c.share;
+  const std::array<double, 2> total_share = RailShareTotals(traffic);
   std::vector<double> nodes, weights;
   GaussHermiteProbabilists(quadrature_points, &nodes, &weights);
   std::vector<LoadCase> cases;
   for (int t = 0; t < static_cast<int>(traffic.size()); ++t) {
     const TrafficCase& c = traffic[t];
+    if (c.is_vehicle()) continue;
     const double share = c.share / total_share[static_cast<int>(c.rail)];
     LoadCase base;
     base.traffic_index = t;
@@ -125,9 +126,22 @@ std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic
 
 }  // namespace internal
 
+std::array<double, 2> RailShareTotals(const std::vector<TrafficCase>& traffic) {
+  std::array<double, 2> total = {0.0, 0.0};
+  for (const TrafficCase& c : traffic) {
+    if (c.is_vehicle()) {
+      total[0] += c.share;
+      total[1] += c.share;
+    } else {
+      total[static_cast<int>(c.rail)] += c.share;
+    }
+  }
+  return total;
+}
+
 bool HasTrafficOn(const std::vector<TrafficCase>& traffic, RailSide side) {
   for (const TrafficCase& c : traffic) {
-    if (c.rail == side) return true;
+    if (c.rail == side || c.is_vehicle()) return true;
   }
   return false;
 }

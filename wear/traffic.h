@@ -55,6 +55,13 @@ struct TrafficCase {
   double speed_m_s = 20.0;  // > 0
   double share = 1.0;       // relative share of passes, > 0 (normalised over its rail's entries)
   RailSide rail = RailSide::kHigh;  // the rail this wheel runs on
+  // Vehicle traffic (issue 15): the index of a vehicle (WearStudy::vehicles), -1 for prescribed
+  // traffic. A vehicle entry's load cases come from steady-state curving on the current rails,
+  // on both rails; it uses name, speed_m_s, friction, share, lateral_shift_std_m (the spread of
+  // every wheelset around its equilibrium) and axle_load_t (the vehicle's, for MGT); its wheel is
+  // the vehicle's.
+  int vehicle = -1;
+  bool is_vehicle() const { return vehicle >= 0; }
 };
 
 // One contact problem of a wear step, self-contained: everything the contact needs for one wheel
@@ -85,7 +92,8 @@ void ValidateTraffic(const std::vector<TrafficCase>& traffic);
 // Throws InputError unless quadrature_points (Gauss-Hermite nodes per entry) is 1 to 20.
 void ValidateQuadraturePoints(int quadrature_points);
 
-// The load cases of the mix: each entry at `quadrature_points` Gauss-Hermite nodes (1 when its
+// The load cases of the mix's prescribed entries (vehicle entries give theirs in the wear step,
+// from curving): each entry at `quadrature_points` Gauss-Hermite nodes (1 when its
 // std is 0), in entry order. The weights of each rail's cases sum to 1. Validates the traffic
 // and quadrature_points.
 std::vector<LoadCase> ExpandTraffic(const std::vector<TrafficCase>& traffic, int quadrature_points);
@@ -101,7 +109,11 @@ std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic
 // over the high rail's entries, or over the low rail's when no entry is on the high rail.
 double MgtPerPass(const std::vector<TrafficCase>& traffic);
 
-// Whether any entry runs on `side`.
+// The sum of the shares of each rail's entries ([0] high, [1] low): a vehicle entry counts on
+// both rails.
+std::array<double, 2> RailShareTotals(const std::vector<TrafficCase>& traffic);
+
+// Whether any entry runs on `side` (vehicle entries run on both).
 bool HasTrafficOn(const std::vector<TrafficCase>& traffic, RailSide side);
 
 }  // namespace railwear

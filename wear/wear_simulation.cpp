@@ -15,6 +15,7 @@
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
+#include "wear/vehicle_traffic.h"
 
 namespace railwear {
 
@@ -192,6 +193,21 @@ void ValidateWearStudy(const WearStudy& study) {
   const WearOptions& o = study.options;
   ValidateWearLaw(o.law);
   ValidateTraffic(study.traffic);
+  ValidateCurve(study.curve);
+  for (const TrafficCase& c : study.traffic) {
+    if (!c.is_vehicle()) continue;
+    if (c.vehicle >= static_cast<int>(study.vehicles.size())) {
+      throw InputError(fmt::format("{}: vehicle index {}: expected one of the study's {} vehicles",
+                                   c.name, c.vehicle, study.vehicles.size()));
+    }
+    ValidateVehicle(study.vehicles[c.vehicle], c.name);
+    if (!study.low_rail_profile) {
+      throw InputError(fmt::format(
+          "{}: a vehicle runs on both rails: expected a study with a low rail (a scene's [track] "
+          "table instead of [rail])",
+          c.name));
+    }
+  }
   if (!study.low_rail_profile) {
     for (const TrafficCase& c : study.traffic) {
       if (c.rail == RailSide::kLow) {
@@ -262,12 +278,17 @@ WearState InitialState(const WearStudy& study) {
   return state;
 }
 
-std::vector<LoadCase> StepLoadCases(const WearStudy& study,
-                                    [[maybe_unused]] const Profile& high_rail_track,
-                                    [[maybe_unused]] const std::optional<Profile>& low_rail_track) {
+std::vector<LoadCase> StepLoadCases(const WearStudy& study, const Profile& high_rail_track,
+                                    const std::optional<Profile>& low_rail_track) {
   // Prescribed traffic: positions fixed in each rail's unworn track frame, so the current
-  // profiles are not needed. Vehicle entries (curving on the current rails) are added here.
-  return ExpandValidTraffic(study.traffic, study.options.quadrature_points);
+  // profiles are not needed. Vehicle entries: curving on the current rails.
+  std::vector<LoadCase> cases = ExpandValidTraffic(study.traffic, study.options.quadrature_points);
+  for (int t = 0; t < static_cast<int>(study.traffic.size()); ++t) {
+    if (!study.traffic[t].is_vehicle()) continue;
+    std::vector<LoadCase> more = VehicleLoadCases(study, t, high_rail_track, *low_rail_track);
+    cases.insert(cases.end(), more.begin(), more.end());
+  }
+  return cases;
 }
 
 }  // namespace internal

@@ -36,6 +36,7 @@
 #include "core/profile/profile.h"
 #include "wear/depth_smoothing.h"
 #include "wear/pass_depth.h"
+#include "core/vehicle/curving.h"
 #include "wear/traffic.h"
 #include "wear/wear_law.h"
 #include "wear/wear_measures.h"
@@ -73,6 +74,12 @@ struct WearStudy : ContactSetup {
   std::optional<Profile> low_rail_profile;
   double cant_ratio = 0.0;  // rail inclination of both rails, 1:40 -> 0.025
   std::vector<TrafficCase> traffic;
+  // Vehicle traffic (TrafficCase::vehicle): the vehicles, the track's gauge and its curve. Each
+  // step solves steady-state curving (core/vehicle/curving.h) of every vehicle entry on the
+  // current worn rails, which keep the unworn rails' places in the track.
+  std::vector<VehicleSpec> vehicles;
+  TrackSpec track;
+  CurveSpec curve;
   WearOptions options;
 };
 

@@ -17,6 +17,26 @@ namespace {
 constexpr int kBalanceRounds = 8;
 }  // namespace
 
+WheelMotions CurveWheelMotions(const WheelMotion& axle, const WheelsetPlacement& placed,
+                               double curvature_per_m, double rolling_radius_m) {
+  WheelMotions out{axle, axle};
+  if (curvature_per_m == 0.0) return out;
+  const double v = axle.speed_m_s;
+  // Each wheel's origin: its distance from the curve's centre sets its forward speed.
+  const double y_right = placed.right_rail_origin_Y_m + placed.right.lateral_shift_m;
+  const double y_left = placed.left_rail_origin_Y_m - placed.left.lateral_shift_m;
+  out.right.speed_m_s = v * (1.0 + curvature_per_m * y_right);
+  out.left.speed_m_s = v * (1.0 + curvature_per_m * y_left);
+  // The wheelset turns with the curve (toward -Y); the left rail's frame is mirrored.
+  out.right.yaw_velocity_rad_s = -v * curvature_per_m;
+  out.left.yaw_velocity_rad_s = v * curvature_per_m;
+  // One axle, one pitch velocity: pure rolling of the centre's speed at r0 unless given.
+  const double omega = axle.pitch_velocity_rad_s.value_or(-v / rolling_radius_m);
+  out.right.pitch_velocity_rad_s = omega;
+  out.left.pitch_velocity_rad_s = omega;
+  return out;
+}
+
 WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
   WheelsetResult out;
   const Profile& right_rail = problem.wheel_rail.rail_profile;
@@ -51,21 +71,11 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
     left.load.vertical_force_N = problem.left_vertical_force_N;
   }
   if (problem.curvature_per_m != 0.0 && right.rolling) {
-    // Each wheel's forward speed on the curve: its origin's distance from the curve's centre.
-    const double v = problem.wheel_rail.rolling->motion.speed_m_s;
-    const double y_right = out.placement.right_rail_origin_Y_m + r.lateral_shift_m;
-    const double y_left = out.placement.left_rail_origin_Y_m - l.lateral_shift_m;
-    right.rolling->motion.speed_m_s = v * (1.0 + problem.curvature_per_m * y_right);
-    left.rolling->motion.speed_m_s = v * (1.0 + problem.curvature_per_m * y_left);
-    // The wheelset turns with the curve (toward -Y); the left rail's frame is mirrored.
-    right.rolling->motion.yaw_velocity_rad_s = -v * problem.curvature_per_m;
-    left.rolling->motion.yaw_velocity_rad_s = v * problem.curvature_per_m;
-    // One axle, one pitch velocity: pure rolling of the centre's speed at r0 unless prescribed.
-    if (!right.rolling->motion.pitch_velocity_rad_s) {
-      const double omega = -v / problem.wheelset.rolling_radius_m;
-      right.rolling->motion.pitch_velocity_rad_s = omega;
-      left.rolling->motion.pitch_velocity_rad_s = omega;
-    }
+    const WheelMotions m = CurveWheelMotions(problem.wheel_rail.rolling->motion, out.placement,
+                                             problem.curvature_per_m,
+                                             problem.wheelset.rolling_radius_m);
+    right.rolling->motion = m.right;
+    left.rolling->motion = m.left;
   }
 
   // A force target applies to the axle: both wheels share its pitch velocity, and their F_x add

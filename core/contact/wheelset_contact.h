@@ -43,6 +43,16 @@ struct WheelsetResult {
   ContactResult left;
 };
 
+// Each wheel's motion on a curve of the given curvature (1/R, turning toward -Y): the wheel's
+// origin moves at V (1 + curvature Y_w), the wheelset turns at -V curvature (mirrored in the left
+// rail's frame), and both share the axle's pitch velocity (-V/r0 when `axle` has none). `axle`
+// is the wheelset centre's motion; with curvature 0 both wheels get it unchanged.
+struct WheelMotions {
+  WheelMotion right, left;
+};
+WheelMotions CurveWheelMotions(const WheelMotion& axle, const WheelsetPlacement& placed,
+                               double curvature_per_m, double rolling_radius_m);
+
 // Throws InputError as SolveContact does, and when the rail is too shallow for the gauge height.
 WheelsetResult SolveWheelset(const WheelsetProblem& problem);
 

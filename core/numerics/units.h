@@ -12,5 +12,7 @@ inline constexpr double kToMm = 1e3;    // m -> mm
 inline constexpr double kToMm2 = 1e6;   // m^2 -> mm^2
 inline constexpr double kToMPa = 1e-6;  // Pa -> MPa
 inline constexpr double kToMs = 1e3;    // s -> ms
+// Standard gravity [m/s^2]: axle loads in tonnes to newtons, and the curve's accelerations.
+inline constexpr double kGravity_m_s2 = 9.80665;
 
 }  // namespace railwear

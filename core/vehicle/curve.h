@@ -12,9 +12,10 @@
 // equilibrium speed).
 #pragma once
 
+#include "core/numerics/units.h"
+
 namespace railwear {
 
-inline constexpr double kGravity_m_s2 = 9.81;
 
 struct CurveSpec {
   double radius_m = 0.0;     // > 0 for a curve; 0 means tangent track

@@ -38,7 +38,11 @@ struct Solved {
 };
 Solved Solve(int n) {
   Solved s{LoadScene(CaseFile(n)), {}};
-  s.result = SolveWheelset({s.scene.problem, *s.scene.track, *s.scene.wheelset});
+  WheelsetProblem problem;
+  problem.wheel_rail = s.scene.problem;
+  problem.track = *s.scene.track;
+  problem.wheelset = *s.scene.wheelset;
+  s.result = SolveWheelset(problem);
   EXPECT_EQ(s.result.right.status, SolverStatus::kConverged) << "case " << n;
   EXPECT_EQ(s.result.left.status, SolverStatus::kConverged) << "case " << n;
   return s;

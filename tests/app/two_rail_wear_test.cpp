@@ -90,9 +90,9 @@ TEST(TwoRailSceneTest, BadRailsAndTracksAreInputErrors) {
       Replace(two, "[track]\nhigh_rail = \"builtin:UIC60\"\ninclination = \"1:40\"\n", "");
   EXPECT_NE(SceneError(neither).find("'rail' is missing"), std::string::npos)
       << SceneError(neither);
-  // Keys that are not (yet) part of a wear scene's track are unknown.
+  // The curve's radius must be one a vehicle can run (at least 50 m).
   EXPECT_NE(
-      SceneError(Replace(two, "inclination", "radius_m = 600\ninclination")).find("track.radius_m"),
+      SceneError(Replace(two, "inclination", "radius_m = 20\ninclination")).find("track.radius_m"),
       std::string::npos);
   EXPECT_NE(SceneError(Replace(two, "high_rail", "low_rail = \"builtin:UIC99\"\nhigh_rail"))
                 .find("track.low_rail"),

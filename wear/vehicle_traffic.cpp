@@ -1,0 +1,94 @@
+// Vehicle traffic in a wear step (see vehicle_traffic.h).
+#include "wear/vehicle_traffic.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "core/profile/builtin_profiles.h"
+
+namespace railwear {
+
+namespace {
+// A wheel in flange contact: its steepest loaded patch is steeper than this.
+constexpr double kFlangeAngle_rad = 45.0 * M_PI / 180.0;
+}  // namespace
+
+RailGaugePoints UnwornGaugePoints(const WearStudy& study) {
+  auto in_track = [&](const Profile& rail) {
+    const CantTransform cant = CalcCantTransform(rail, study.cant_ratio);
+    return RailGaugePoint(rail.Transformed(cant.angle_rad, cant.shift_m),
+                          study.track.gauge_height_m)
+        .x();
+  };
+  const Profile& low = study.low_rail_profile ? *study.low_rail_profile : study.rail_profile;
+  return {in_track(study.rail_profile), in_track(low)};
+}
+
+std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index,
+                                       const Profile& high_track, const Profile& low_track) {
+  const TrafficCase& c = study.traffic[traffic_index];
+  const VehicleSpec& v = study.vehicles[c.vehicle];
+  CurvingProblem p;
+  p.contact = study.setup();
+  p.high_rail = high_track;
+  p.low_rail = low_track;
+  p.gauge_points = UnwornGaugePoints(study);
+  p.track = study.track;
+  p.curve = study.curve;
+  p.vehicle = v;
+  p.speed_m_s = c.speed_m_s;
+  p.friction = c.friction;
+  const CurvingResult r = SolveCurving(p);
+  if (r.status != CurvingStatus::kConverged && r.status != CurvingStatus::kFlangeClimb) {
+    throw std::runtime_error(fmt::format(
+        "wear: {}: steady-state curving of vehicle \"{}\" at {} m/s on the current rails: {}: {}",
+        c.name, v.name, c.speed_m_s, ToString(r.status), r.message));
+  }
+  std::vector<double> nodes = {0.0}, weights = {1.0};
+  if (c.lateral_shift_std_m > 0.0) {
+    GaussHermiteProbabilists(study.options.quadrature_points, &nodes, &weights);
+  }
+  const std::array<double, 2> totals = RailShareTotals(study.traffic);
+  const double kappa = study.curve.curvature_per_m();
+  const int n_ws = static_cast<int>(r.wheelsets.size());
+  std::vector<LoadCase> cases;
+  for (const CurvedWheelset& w : r.wheelsets) {
+    const bool high_flange = w.contact.right.climb.contact_angle_rad > kFlangeAngle_rad;
+    const bool low_flange = w.contact.left.climb.contact_angle_rad > kFlangeAngle_rad;
+    for (int k = 0; k < static_cast<int>(nodes.size()); ++k) {
+      double offset = c.lateral_shift_std_m * nodes[k];
+      if ((offset > 0.0 && high_flange) || (offset < 0.0 && low_flange)) offset = 0.0;
+      WheelsetSpec ws;
+      ws.flange_back_distance_m = v.flange_back_distance_m;
+      ws.flange_back_position_m = v.flange_back_position_m;
+      ws.rolling_radius_m = v.rolling_radius_m;
+      ws.lateral_displacement_m = w.lateral_m + offset;
+      ws.yaw_rad = w.yaw_rad;
+      ws.roll_rad = w.roll_rad;
+      const WheelsetPlacement placed = PlaceWheelsetAt(*p.gauge_points, p.track, ws);
+      WheelMotion axle;
+      axle.speed_m_s = c.speed_m_s;
+      axle.pitch_velocity_rad_s = w.pitch_velocity_rad_s;
+      const WheelMotions motions = CurveWheelMotions(axle, placed, kappa, v.rolling_radius_m);
+      for (const RailSide side : {RailSide::kHigh, RailSide::kLow}) {
+        const bool high = side == RailSide::kHigh;
+        const WheelPose& pose = high ? placed.right : placed.left;
+        LoadCase lc;
+        lc.traffic_index = traffic_index;
+        lc.node = k;
+        lc.rail = side;
+        lc.placement = {pose.lateral_shift_m, pose.roll_rad, pose.rolling_radius_m, pose.yaw_rad};
+        lc.vertical_force_N = high ? w.high_load_N : w.low_load_N;
+        lc.motion = high ? motions.right : motions.left;
+        lc.friction = c.friction;
+        lc.weight = c.share / totals[static_cast<int>(side)] * weights[k] / n_ws;
+        cases.push_back(lc);
+      }
+    }
+  }
+  return cases;
+}
+
+}  // namespace railwear

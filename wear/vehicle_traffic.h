@@ -1,0 +1,34 @@
+// Vehicle traffic in a wear step: the load cases of a traffic entry that names a vehicle, from
+// steady-state curving (core/vehicle/curving.h) on the current worn rails.
+//
+// Each step solves the vehicle's equilibrium on the step's rails (both canted into the track
+// frame; the rails keep the unworn rails' places, so the wheels follow the worn gauge face) and
+// emits, per wheelset and rail, that wheel's contact: its placement in the rail's own frame, its
+// vertical load (with the load transfer), its own forward speed, the axle's pitch velocity from
+// the free-rolling (or traction) balance and the curve's yaw rate. With a lateral spread
+// (lateral_shift_std_m: track irregularity, hunting) every wheelset is also placed at the
+// Gauss-Hermite nodes around its equilibrium at the same yaw, roll, loads and pitch velocity;
+// nodes that would push a wheel further into flange contact (beyond the equilibrium of a wheel
+// whose steepest patch is steeper than 45 degrees) are not imposed: they take the equilibrium's
+// position, whose flange force is the equilibrium's. Weights: the entry's share (normalised per
+// rail) times the node's weight over the vehicle's wheelsets.
+#pragma once
+
+#include <vector>
+
+#include "wear/traffic.h"
+#include "wear/wear_simulation.h"
+
+namespace railwear {
+
+// The rails' gauge points in their own track-frame profiles: where the unworn rails stand.
+RailGaugePoints UnwornGaugePoints(const WearStudy& study);
+
+// The load cases of study.traffic[traffic_index] (a vehicle entry) on the rails of this step,
+// both in the track frame (canted). Throws std::runtime_error naming the entry and the vehicle
+// when the curving has no equilibrium or does not converge (a flange-climb equilibrium is kept:
+// its cases carry their L/V checks).
+std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index,
+                                       const Profile& high_track, const Profile& low_track);
+
+}  // namespace railwear
