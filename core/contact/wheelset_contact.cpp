@@ -94,9 +94,10 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
   };
   const double mu_fn =
       right.rolling->friction * (TotalNormalForce(out.right) + TotalNormalForce(out.left));
+  const double tolerance_N = problem.axle_force_tolerance_N.value_or(tolerance_N);
   const auto omega =
       SolvePitchVelocityForForce(fx, *target, problem.wheel_rail.rolling->motion.speed_m_s,
-                                 problem.wheelset.rolling_radius_m, 1e-6 * mu_fn);
+                                 problem.wheelset.rolling_radius_m, tolerance_N);
   if (!omega) {
     const std::string message = fmt::format(
         "the axle's longitudinal force {:.1f} N cannot be carried: friction limits it to about "
@@ -125,10 +126,10 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
         break;
       }
       const double error = TotalForceX(out.right) + TotalForceX(out.left) - *target;
-      if (std::abs(error) <= 1e-6 * mu_fn) break;
+      if (std::abs(error) <= tolerance_N) break;
       const auto again =
           SolvePitchVelocityForForce(fx, *target, problem.wheel_rail.rolling->motion.speed_m_s,
-                                     problem.wheelset.rolling_radius_m, 1e-6 * mu_fn);
+                                     problem.wheelset.rolling_radius_m, tolerance_N);
       if (!again) break;
       found = *again;
     }
