@@ -244,8 +244,7 @@ void ReadTrackTable(const Fields& top, Scene* scene) {
   study.low_rail_profile = std::move(low);
   // The track's gauge and curve, for vehicle traffic (a curve turns toward the low rail).
   study.track.gauge_m = t.Number("gauge_mm", InRange(1000.0, 1700.0)).value_or(1435.0) * kMm;
-  study.track.gauge_height_m =
-      t.Number("gauge_height_mm", InRange(0.0, 30.0)).value_or(14.0) * kMm;
+  study.track.gauge_height_m = t.Number("gauge_height_mm", InRange(0.0, 30.0)).value_or(14.0) * kMm;
   study.curve.radius_m = t.Number("radius_m", AtLeast(50.0)).value_or(0.0);
   study.curve.cant_m = t.Number("cant_mm", InRange(0.0, 250.0)).value_or(0.0) * kMm;
   if (scene->cant_ratio != 0.0) high = ApplyCant(high, scene->cant_ratio);
@@ -393,7 +392,6 @@ void CheckRolling(const Fields& top, const Scene& scene) {
 
 // ---- wear scenes: [wear] and [[traffic]] ----
 
-
 WearLaw ReadWearLaw(const Fields& t) {
   WearLaw law;
   if (const auto name = t.Choice("law", EnumChoices(kWearLawKindNames))) {
@@ -509,8 +507,9 @@ void ReadVehicles(const Fields& top, Scene* scene) {
   const std::vector<Fields> tables =
       ArrayOfTables(top, "vehicle", "[[vehicle]] tables, one per vehicle");
   if (!tables.empty() && !top.Has("track")) {
-    tables.front().Fail("name", "no [[vehicle]] without a [track] table (a vehicle runs on both "
-                                "rails of a track)");
+    tables.front().Fail("name",
+                        "no [[vehicle]] without a [track] table (a vehicle runs on both "
+                        "rails of a track)");
   }
   for (const Fields& t : tables) {
     t.AllowOnly({"name", "source", "kind", "axle_load_t", "wheel_profile", "mirror_y",

@@ -71,9 +71,9 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
     left.load.vertical_force_N = problem.left_vertical_force_N;
   }
   if (problem.curvature_per_m != 0.0 && right.rolling) {
-    const WheelMotions m = CurveWheelMotions(problem.wheel_rail.rolling->motion, out.placement,
-                                             problem.curvature_per_m,
-                                             problem.wheelset.rolling_radius_m);
+    const WheelMotions m =
+        CurveWheelMotions(problem.wheel_rail.rolling->motion, out.placement,
+                          problem.curvature_per_m, problem.wheelset.rolling_radius_m);
     right.rolling->motion = m.right;
     left.rolling->motion = m.left;
   }
@@ -104,9 +104,10 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
   };
   const double mu_fn =
       right.rolling->friction * (TotalNormalForce(out.right) + TotalNormalForce(out.left));
+  const double tolerance_N = problem.axle_force_tolerance_N.value_or(tolerance_N);
   const auto omega =
       SolvePitchVelocityForForce(fx, *target, problem.wheel_rail.rolling->motion.speed_m_s,
-                                 problem.wheelset.rolling_radius_m, 1e-6 * mu_fn);
+                                 problem.wheelset.rolling_radius_m, tolerance_N);
   if (!omega) {
     const std::string message = fmt::format(
         "the axle's longitudinal force {:.1f} N cannot be carried: friction limits it to about "
@@ -135,10 +136,10 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
         break;
       }
       const double error = TotalForceX(out.right) + TotalForceX(out.left) - *target;
-      if (std::abs(error) <= 1e-6 * mu_fn) break;
+      if (std::abs(error) <= tolerance_N) break;
       const auto again =
           SolvePitchVelocityForForce(fx, *target, problem.wheel_rail.rolling->motion.speed_m_s,
-                                     problem.wheelset.rolling_radius_m, 1e-6 * mu_fn);
+                                     problem.wheelset.rolling_radius_m, tolerance_N);
       if (!again) break;
       found = *again;
     }

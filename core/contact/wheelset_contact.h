@@ -35,6 +35,10 @@ struct WheelsetProblem {
   // (WheelMotion::yaw_velocity_rad_s), so every cell slips with its own distance from the
   // curve's centre. Without a prescribed pitch velocity the axle rolls at -V/r0.
   double curvature_per_m = 0.0;
+  // How closely the wheels' F_x must add up to an axle force target [N]; absent: 1e-6 mu F_n
+  // (F_n both wheels' normal forces). Each round of the search solves both wheels again, so a
+  // caller with a coarser tolerance of its own (steady-state curving) passes it here.
+  std::optional<double> axle_force_tolerance_N;
 };
 
 struct WheelsetResult {

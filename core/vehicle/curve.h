@@ -16,7 +16,6 @@
 
 namespace railwear {
 
-
 struct CurveSpec {
   double radius_m = 0.0;     // > 0 for a curve; 0 means tangent track
   double cant_m = 0.0;       // superelevation of the high rail, >= 0

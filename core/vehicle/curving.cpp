@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 
 #include <fmt/format.h>
 #include <Eigen/Dense>
@@ -112,11 +113,42 @@ double KinematicRoll(const WheelsetProblem& p) {
   return roll;
 }
 
+// Nadal's check of one wheel at its steepest loaded contact angle. The contact's own check
+// (CheckFlangeClimb) takes each patch's resultant angle; a conformal patch that wraps from the
+// flange root (about 30 degrees) onto the flange (70) as the flange comes into contact has a
+// resultant angle between both, and Nadal's limit there is far below the one that governs
+// climbing, that of the flange where the wheel would climb. So the angle here is the steepest
+// of the grid columns that carry at least kLoadedColumn of the patch's most loaded column (the
+// patch's own angle for a planar grid or a Hertz patch, where every normal is the same).
+FlangeClimbCheck WheelClimb(const ContactResult& c, double friction) {
+  constexpr double kLoadedColumn = 0.05;
+  FlangeClimbCheck check = CheckFlangeClimb(c, friction);
+  for (const PatchResult& patch : c.patches) {
+    check.contact_angle_rad = std::max(check.contact_angle_rad, patch.contact_angle_rad);
+    const PatchGrid& g = patch.grid;
+    if (g.cells() == 0 || patch.pressure_Pa.size() != g.cells()) continue;
+    Eigen::VectorXd column = Eigen::VectorXd::Zero(g.ns);
+    for (int j = 0; j < g.ns; ++j) {
+      for (int i = 0; i < g.nx; ++i) column[j] += std::max(patch.pressure_Pa[g.Index(i, j)], 0.0);
+    }
+    const double largest = column.maxCoeff();
+    for (int j = 0; j < g.ns && largest > 0.0; ++j) {
+      if (column[j] < kLoadedColumn * largest) continue;
+      const Eigen::Vector2d& n = g.normal_yz[j];  // out of the rail: the pressure acts along -n
+      check.contact_angle_rad = std::max(check.contact_angle_rad, std::atan2(-n.x(), -n.y()));
+    }
+  }
+  check.nadal_limit = NadalLimit(check.contact_angle_rad, friction);
+  check.exceeded = check.nadal_limit && check.l_over_v > *check.nadal_limit;
+  return check;
+}
+
 // What one wheelset's contact solve needs besides its (y, psi).
 struct WheelsetContext {
   const CurvingProblem* problem = nullptr;
   ModelOptions model;
   double high_load_N = 0.0, low_load_N = 0.0;
+  double q0_N = 0.0;  // the static wheel load, the scale of the tolerance
 };
 
 CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw) {
@@ -143,6 +175,8 @@ CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw
   wp.gauge_points = p.gauge_points;
   wp.left_vertical_force_N = ctx.low_load_N;
   wp.curvature_per_m = p.curve.curvature_per_m();
+  // The axle's F_x to a twentieth of the equilibrium's tolerance (every round solves both wheels).
+  wp.axle_force_tolerance_N = 0.05 * p.options.tolerance * ctx.q0_N;
   wp.wheelset.roll_rad = KinematicRoll(wp);
 
   CurvedWheelset out;
@@ -172,6 +206,8 @@ CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw
   add(out.contact.right, false);
   add(out.contact.left, true);
   out.high_lateral_N = TotalForcesOnRail(out.contact.right).Net().y();
+  out.high_climb = WheelClimb(out.contact.right, p.friction);
+  out.low_climb = WheelClimb(out.contact.left, p.friction);
   return out;
 }
 
@@ -197,8 +233,25 @@ class Equilibrium {
       e[k] = 1.0;
       suspension_.col(k) = SuspensionForces(p.vehicle, l_, kappa_, e) - f0;
     }
+    // The frames and the body carry no contact: their equations are linear in q, and solved
+    // exactly for the wheelsets' positions at every iterate (Project).
+    const int nw = 2 * l_.wheelsets, nf = n - nw;
+    if (nf > 0) {
+      frames_ = suspension_.bottomRightCorner(nf, nf).fullPivLu();
+      frame_constant_ = suspension_offset_.tail(nf);
+      frame_constant_[nf - 2] += unbalanced_N_;  // on the car body
+    }
     scale_ = Eigen::VectorXd::Constant(n, 1.0 / q0_);
     for (int k = 1; k < n; k += 2) scale_[k] = 1.0 / (q0_ * kHalfBase_m);
+  }
+
+  // Sets the frames' and the body's (y, psi) in q to their equilibrium on the suspension for
+  // the wheelsets' (y, psi) in q.
+  void Project(Eigen::VectorXd* q) const {
+    const int nw = 2 * l_.wheelsets, nf = static_cast<int>(q->size()) - nw;
+    if (nf == 0) return;
+    q->tail(nf) =
+        frames_.solve(-(suspension_.bottomLeftCorner(nf, nw) * q->head(nw) + frame_constant_));
   }
 
   // Residual (generalised forces) at q; fills the wheelsets' states. False when a contact failed.
@@ -230,6 +283,7 @@ class Equilibrium {
   int Solve(Eigen::VectorXd* q, std::vector<CurvedWheelset>* ws, Eigen::VectorXd* r,
             std::string* message, bool* no_equilibrium) {
     const CurvingOptions& o = p_.options;
+    Project(q);
     if (!Residual(*q, ws, r)) return Fail("a wheel's contact did not converge", message);
     // The Jacobian of the last phase (the predictor's) starts the next one as a chord.
     Eigen::MatrixXd& J = jacobian_;
@@ -239,39 +293,64 @@ class Equilibrium {
       if (Norm(*r) <= o.tolerance) return it;
       // The Jacobian is kept while it still reduces the residual fast (chord steps); a slow or
       // failed step evaluates it again.
-      if (J.size() == 0 || last_ratio > 0.3) {
+      if (J.size() == 0 || last_ratio > 0.9) {
         J = Jacobian(*q, *ws);
         fresh = true;
       }
       Eigen::VectorXd step = J.fullPivLu().solve(-*r);
       if (!step.allFinite()) return Fail("singular equilibrium Jacobian", message);
-      // Limit the step: the contact forces are strongly nonlinear where a flange touches.
-      double shrink = 1.0;
-      for (int k = 0; k < 2 * l_.wheelsets; ++k) {  // the frames and the body are linear
-        const double limit = k % 2 == 0 ? kMaxStepY_m : kMaxStepYaw_rad;
-        if (std::abs(step[k]) > limit) shrink = std::min(shrink, limit / std::abs(step[k]));
-      }
-      step *= shrink;
-      // Backtracking on the largest scaled residual.
       const double before = Merit(*r);
-      double alpha = 1.0;
-      bool accepted = false;
-      for (int k = 0; k < 7 && !accepted; ++k, alpha *= 0.5) {
-        const Eigen::VectorXd trial = *q + alpha * step;
-        if (!WithinBounds(trial)) continue;
-        std::vector<CurvedWheelset> trial_ws;
-        Eigen::VectorXd trial_r;
-        if (!Residual(trial, &trial_ws, &trial_r)) continue;
-        if (Merit(trial_r) < (1.0 - 1e-4 * alpha) * before) {
-          *q = trial;
-          *ws = std::move(trial_ws);
-          *r = trial_r;
-          accepted = true;
+      // Backtracking on the scaled 2-norm, on the step limited on the wheelsets (the contact
+      // forces are strongly nonlinear where a flange touches; the frames and the body follow
+      // the wheelsets exactly, Project).
+      auto try_step = [&](Eigen::VectorXd d, int halvings) {
+        double shrink = 1.0;
+        for (int k = 0; k < 2 * l_.wheelsets; ++k) {
+          const double limit = k % 2 == 0 ? kMaxStepY_m : kMaxStepYaw_rad;
+          if (std::abs(d[k]) > limit) shrink = std::min(shrink, limit / std::abs(d[k]));
+        }
+        d *= shrink;
+        double alpha = 1.0;
+        for (int k = 0; k <= halvings; ++k, alpha *= 0.5) {
+          Eigen::VectorXd trial = *q + alpha * d;
+          Project(&trial);
+          if (!WithinBounds(trial)) continue;
+          std::vector<CurvedWheelset> trial_ws;
+          Eigen::VectorXd trial_r;
+          if (!Residual(trial, &trial_ws, &trial_r)) continue;
+          if (Merit(trial_r) < (1.0 - 1e-4 * alpha) * before) {
+            BroydenUpdate(&J, trial - *q, trial_r - *r);
+            *q = trial;
+            *ws = std::move(trial_ws);
+            *r = trial_r;
+            return true;
+          }
+        }
+        return false;
+      };
+      bool accepted = try_step(step, 3);
+      // A fresh Jacobian whose Newton step fails (the tread's creep forces saturating, the
+      // contact angle jumping): Levenberg-Marquardt steps on the scaled system, from nearly
+      // Newton's toward the scaled gradient's direction.
+      if (!accepted && fresh) {
+        const Eigen::MatrixXd Js = scale_.asDiagonal() * J;
+        const Eigen::VectorXd rs = scale_.cwiseProduct(*r);
+        const Eigen::MatrixXd JtJ = Js.transpose() * Js;
+        const Eigen::VectorXd g = Js.transpose() * rs;
+        for (double lambda : {1e-2, 1e-1, 1.0, 10.0}) {
+          Eigen::MatrixXd A = JtJ;
+          A.diagonal() += lambda * JtJ.diagonal();
+          const Eigen::VectorXd d = A.ldlt().solve(-g);
+          if (d.allFinite() && try_step(d, 1)) {
+            accepted = true;
+            break;
+          }
         }
       }
       last_ratio = accepted ? Merit(*r) / before : 1.0;
       if (getenv("RW_DEBUG")) {
-        fmt::print(stderr, "it {} fresh {} alpha {:.3f} norm {:.3e} -> {:.3e} q", it, fresh, alpha * 2, before, Norm(*r));
+        fmt::print(stderr, "it {} fresh {} acc {} merit {:.3e} -> {:.3e} q", it, fresh, accepted,
+                   before, Norm(*r));
         for (int k = 0; k < q->size(); ++k) fmt::print(stderr, " {:.3e}", (*q)[k]);
         fmt::print(stderr, "\n  r");
         for (int k = 0; k < r->size(); ++k) fmt::print(stderr, " {:.2e}", (*r)[k] * scale_[k]);
@@ -280,7 +359,7 @@ class Equilibrium {
       if (!accepted && !fresh) continue;  // an old Jacobian: evaluate it again and retry
       fresh = false;
       if (!accepted) {
-        if (!WithinBounds(*q + step)) {
+        if (AtBound(*q, step)) {
           *no_equilibrium = true;
           return Fail(fmt::format("a wheelset would pass the lateral limit of {:.1f} mm: it "
                                   "climbs the flange, no steady state",
@@ -313,8 +392,30 @@ class Equilibrium {
     return J;
   }
 
+  // The secant (Broyden) update of each wheelset's contact block from an accepted step dq and
+  // its residual change dr: the suspension's part of J is exact, and a wheelset's contact forces
+  // depend on its own (y, psi) only, so each 2 x 2 block is corrected on its own rows. In flange
+  // contact the lateral force turns from the tread's to the flange's stiffness within about
+  // 0.1 mm, less than a finite-difference step above the grids' noise: the steps' secants give
+  // the local slope there.
+  void BroydenUpdate(Eigen::MatrixXd* J, const Eigen::VectorXd& dq, const Eigen::VectorXd& dr) {
+    for (int i = 0; i < l_.wheelsets; ++i) {
+      // y [m] and psi [rad] have the same scale here (mm and mrad).
+      const Eigen::Vector2d d = dq.segment<2>(2 * i);
+      const double dd = d.squaredNorm();
+      if (dd < 1e-18) continue;  // below 1 nm: the change is the grids' noise
+      const Eigen::Vector2d miss = dr.segment<2>(2 * i) - J->middleRows<2>(2 * i) * dq;
+      J->block<2, 2>(2 * i, 2 * i) += miss * d.transpose() / dd;
+    }
+  }
+
   int solves() const { return solves_; }
   void set_contexts(std::vector<WheelsetContext> ctx) { ctx_ = std::move(ctx); }
+  // A new start: the contexts of the first phase, no Jacobian kept.
+  void Restart(std::vector<WheelsetContext> ctx) {
+    ctx_ = std::move(ctx);
+    jacobian_.resize(0, 0);
+  }
 
  private:
   bool WithinBounds(const Eigen::VectorXd& q) const {
@@ -322,6 +423,16 @@ class Equilibrium {
       if (std::abs(q[2 * i]) > p_.options.max_lateral_m) return false;
     }
     return true;
+  }
+  // A wheelset within one step limit of max_lateral_m that the Newton step pushes outward.
+  bool AtBound(const Eigen::VectorXd& q, const Eigen::VectorXd& step) const {
+    for (int i = 0; i < l_.wheelsets; ++i) {
+      const double y = q[2 * i];
+      if (std::abs(y) + kMaxStepY_m > p_.options.max_lateral_m && y * step[2 * i] > 0.0) {
+        return true;
+      }
+    }
+    return false;
   }
   static int Fail(std::string text, std::string* message) {
     *message = std::move(text);
@@ -333,6 +444,8 @@ class Equilibrium {
   std::vector<WheelsetContext> ctx_;
   double unbalanced_N_ = 0.0, q0_ = 1.0, kappa_ = 0.0;
   Eigen::MatrixXd suspension_, jacobian_;
+  Eigen::FullPivLU<Eigen::MatrixXd> frames_;  // the frames' and body's block of the suspension
+  Eigen::VectorXd frame_constant_;
   Eigen::VectorXd suspension_offset_, scale_;
   int solves_ = 0;
 };
@@ -351,7 +464,7 @@ void Validate(const CurvingProblem& p) {
 }  // namespace
 
 ModelOptions CurvingOptions::PredictorModel() {
-  ModelOptions m = MakeModelOptions(ModelKind::kHalfspace);
+  ModelOptions m = MakeModelOptions(ModelKind::kAuto);
   m.accuracy = AccuracyPreset::kDraft;
   return m;
 }
@@ -385,42 +498,52 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
   }
   auto contexts = [&](const ModelOptions& model) {
     std::vector<WheelsetContext> ctx(layout.wheelsets);
-    for (WheelsetContext& c : ctx) c = {&p, model, q0 + transfer, q0 - transfer};
+    for (WheelsetContext& c : ctx) c = {&p, model, q0 + transfer, q0 - transfer, q0};
     return ctx;
   };
   const double unbalanced_N = axle_mass_kg * layout.wheelsets * out.unbalanced_acceleration_m_s2;
 
-  // Start: centred, every wheelset and bogie along its local tangent.
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(layout.size());
-  // The car body is a chord between the bogie centres: its centre lies kappa L^2 / 2 inside.
+  // Start: centred, every wheelset and bogie along its local tangent (the frames and the body
+  // then follow the wheelsets, Equilibrium::Project).
+  Eigen::VectorXd centred = Eigen::VectorXd::Zero(layout.size());
   const double kappa = p.curve.curvature_per_m();
   for (int i = 0; i < layout.wheelsets && layout.bogies > 0; ++i) {
     const double X = layout.wheelset_x[i], Xb = layout.bogie_x[layout.bogie_of[i]];
-    q[2 * i + 1] = kappa * (X - Xb);  // rigid with a frame on its tangent
+    centred[2 * i + 1] = kappa * (X - Xb);  // rigid with a frame on its tangent
   }
-  if (layout.bogies > 0) {
-    q[layout.BodyIndex()] = -0.5 * kappa * layout.bogie_x[0] * layout.bogie_x[0];
+  std::vector<Eigen::VectorXd> starts;
+  if (p.options.start && p.options.start->size() == layout.size()) {
+    starts.push_back(*p.options.start);
   }
+  starts.push_back(centred);
+  Eigen::VectorXd q;
   std::vector<CurvedWheelset> ws;
   Eigen::VectorXd r;
   bool no_equilibrium = false;
   Equilibrium eq(p, layout, contexts(p.options.predictor ? *p.options.predictor : p.contact.model),
                  unbalanced_N, q0);
   int iterations = 0;
-  if (p.options.predictor) {
-    iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
-    out.predictor_iterations = iterations;
-    if (iterations >= 0) {
-      eq.set_contexts(contexts(p.contact.model));
+  for (const Eigen::VectorXd& start : starts) {
+    q = start;
+    no_equilibrium = false;
+    eq.Restart(contexts(p.options.predictor ? *p.options.predictor : p.contact.model));
+    if (p.options.predictor) {
       iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
-      out.full_iterations = iterations;
+      out.predictor_iterations += std::max(iterations, 0);
+      if (iterations >= 0) {
+        eq.set_contexts(contexts(p.contact.model));
+        iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
+        out.full_iterations += std::max(iterations, 0);
+      }
+    } else {
+      iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
+      out.full_iterations += std::max(iterations, 0);
     }
-  } else {
-    iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
-    out.full_iterations = iterations;
+    if (iterations >= 0 || no_equilibrium) break;
   }
   out.contact_solves = eq.solves();
   out.wheelsets = ws;
+  out.state = q;
   for (int j = 0; j < layout.bogies; ++j) {
     out.bogies.emplace_back(q[layout.BogieIndex(j)], q[layout.BogieIndex(j) + 1]);
   }
@@ -438,12 +561,13 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
   } else {
     out.status = CurvingStatus::kConverged;
     for (const CurvedWheelset& w : ws) {
-      for (const ContactResult* c : {&w.contact.right, &w.contact.left}) {
-        if (c->climb.exceeded) out.status = CurvingStatus::kFlangeClimb;
+      for (const FlangeClimbCheck* c : {&w.high_climb, &w.low_climb}) {
+        if (c->exceeded && out.status != CurvingStatus::kFlangeClimb) {
+          out.status = CurvingStatus::kFlangeClimb;
+          out.message = FlangeClimbWarning(*c, fmt::format("wheelset {} {} wheel", &w - ws.data(),
+                                                           c == &w.high_climb ? "high" : "low"));
+        }
       }
-    }
-    if (out.status == CurvingStatus::kFlangeClimb) {
-      out.message = "a wheel's L/V exceeds Nadal's limit: flange climb possible";
     }
   }
   out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

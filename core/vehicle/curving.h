@@ -20,8 +20,11 @@
 //     low to the high wheel of every axle.
 // Solution: damped Newton with a finite-difference Jacobian of each wheelset's contact forces
 // (the suspension's part is linear and exact). The iterates first use the cheap predictor contact
-// model (the half-space model on the draft grid, with the same rolling-contact
-// method), as MBS codes use precomputed
+// model (the auto model on the draft grid, with the same rolling-contact method: a planar
+// half-space patch on the tread, a conformal one where the patch wraps from the flange root
+// onto the flange; a planar patch there keeps its first point's normal, and the lateral force
+// jumped by 70 kN within 4 um of y at the S1002/UIC60 flange, leaving no equilibrium), as MBS
+// codes use precomputed
 // contact functions; the solution is then finished with the problem's own contact model, so the
 // returned state and forces are those of the full contact at the scene's accuracy.
 #pragma once
@@ -47,6 +50,9 @@ struct CurvingOptions {
   int max_iterations = 40;  // per phase (predictor, full)
   // A wheelset pushed beyond this lateral displacement has no equilibrium (it climbs) [m].
   double max_lateral_m = 0.02;
+  // A solution to start from (CurvingResult::state of the same vehicle at a nearby speed, cant
+  // or on slightly different rails: continuation); the centred start is tried after it.
+  std::optional<Eigen::VectorXd> start;
 
   static ModelOptions PredictorModel();
 };
@@ -67,7 +73,7 @@ struct CurvingProblem {
 
 enum class CurvingStatus {
   kConverged,      // equilibrium found, every wheel below Nadal's limit
-  kFlangeClimb,    // equilibrium found, but some wheel's L/V exceeds Nadal's limit
+  kFlangeClimb,    // equilibrium found, but some wheel's L/V exceeds Nadal's limit (high_climb)
   kNoEquilibrium,  // a wheelset went past max_lateral_m, or a wheel unloaded: no steady state
   kNotConverged,   // the iterations stopped before the tolerance
 };
@@ -96,6 +102,11 @@ struct CurvedWheelset {
   // The high rail's lateral force from this wheelset's high wheel (on the rail, toward its field
   // side, all patches) [N]: the flange force when the wheel is in flange contact.
   double high_lateral_N = 0.0;
+  // Nadal's check of each wheel (its own rail's frame): its L/V (all patches, with the creep
+  // forces) against Nadal's limit at the steepest contact angle that carries load, the flange's
+  // in flange contact even where one conformal patch wraps from the flange root onto the flange
+  // (contact.right.climb takes each patch's resultant angle instead).
+  FlangeClimbCheck high_climb, low_climb;
 };
 
 struct CurvingResult {
@@ -106,6 +117,9 @@ struct CurvingResult {
   std::vector<CurvedWheelset> wheelsets;           // from the front
   std::vector<Eigen::Vector2d> bogies;             // (y, psi) of each bogie frame, local
   Eigen::Vector2d body = Eigen::Vector2d::Zero();  // (y, psi) of the car body
+  // All unknowns, [wheelsets (y, psi)..., frames (y, psi)..., body (y, psi)]: a start for
+  // CurvingOptions::start.
+  Eigen::VectorXd state;
   // The largest residuals of all bodies at the solution: lateral [N], yaw [N m], and the
   // wheelsets' longitudinal (F_x minus traction) [N].
   double lateral_residual_N = 0.0;

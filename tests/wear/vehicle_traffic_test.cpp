@@ -1,0 +1,95 @@
+// Vehicle traffic in a wear step: a single S1002 wheelset on UIC60 1:40 rails in a curve gives
+// both rails their load cases from its curving equilibrium, and both rails wear.
+#include "wear/vehicle_traffic.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/profile/builtin_profiles.h"
+
+namespace railwear {
+namespace {
+
+WearStudy VehicleStudy(double spread_m) {
+  WearStudy study;
+  study.rail_profile = MakeUic60();
+  study.low_rail_profile = MakeUic60();
+  study.cant_ratio = 0.025;
+  study.rail_material.hardness_Pa = 2.6e9;
+  study.model = MakeModelOptions(ModelKind::kAuto);
+  study.model.accuracy = AccuracyPreset::kDraft;
+  study.curve.radius_m = 1500.0;
+  VehicleSpec v;
+  v.name = "wheelset";
+  v.kind = VehicleKind::kWheelset;
+  v.axle_load_N = 16e3 * kGravity_m_s2;
+  v.wheel_profile = MakeS1002();
+  v.cg_height_m = 1.5;
+  study.vehicles = {v};
+  TrafficCase c;
+  c.name = "one wheelset";
+  c.vehicle = 0;
+  c.wheel_profile = v.wheel_profile;
+  c.axle_load_t = 16.0;
+  c.vertical_force_N = 0.5 * v.axle_load_N;
+  c.lateral_shift_std_m = spread_m;
+  c.friction = 0.3;
+  c.speed_m_s = 25.0;
+  study.traffic = {c};
+  study.options.law.archard_k = 1e-4;
+  study.options.total_passes = 1e6;
+  study.options.quadrature_points = 3;
+  study.options.threads = 1;
+  return study;
+}
+
+TEST(VehicleTrafficTest, BothWheelsOfTheEquilibriumAreCases) {
+  const WearStudy study = VehicleStudy(0.0);
+  ValidateWearStudy(study);
+  const WearState s0 = MakeInitialState(study);
+  auto in_track = [&](const Profile& rail) {
+    const CantTransform cant = CalcCantTransform(rail, study.cant_ratio);
+    return rail.Transformed(cant.angle_rad, cant.shift_m);
+  };
+  const std::vector<LoadCase> cases =
+      VehicleLoadCases(study, 0, in_track(s0.rail), in_track(*s0.low_rail));
+  ASSERT_EQ(cases.size(), 2u);
+  const LoadCase& high = cases[0];
+  const LoadCase& low = cases[1];
+  EXPECT_EQ(high.rail, RailSide::kHigh);
+  EXPECT_EQ(low.rail, RailSide::kLow);
+  EXPECT_DOUBLE_EQ(high.weight, 1.0);
+  EXPECT_DOUBLE_EQ(low.weight, 1.0);
+  // A 25 m/s run on R 1500 m without cant is deficient: the load moves to the high wheel.
+  EXPECT_GT(high.vertical_force_N, low.vertical_force_N);
+  EXPECT_NEAR(high.vertical_force_N + low.vertical_force_N, study.vehicles[0].axle_load_N,
+              1e-6 * study.vehicles[0].axle_load_N);
+  // One axle: one pitch velocity; the outer wheel runs the longer way.
+  ASSERT_TRUE(high.motion.pitch_velocity_rad_s && low.motion.pitch_velocity_rad_s);
+  EXPECT_EQ(*high.motion.pitch_velocity_rad_s, *low.motion.pitch_velocity_rad_s);
+  EXPECT_GT(high.motion.speed_m_s, low.motion.speed_m_s);
+  EXPECT_NEAR(high.motion.yaw_velocity_rad_s, -25.0 / 1500.0, 1e-12);
+  // Mirrored yaw in the low rail's frame.
+  EXPECT_DOUBLE_EQ(high.placement.yaw_rad, -low.placement.yaw_rad);
+}
+
+TEST(VehicleTrafficTest, SpreadNodesAndBothRailsWear) {
+  const WearStudy study = VehicleStudy(1.0e-3);
+  const WearState s0 = MakeInitialState(study);
+  const StepResult step = RunWearStep(study, UnwornRails::Of(s0), s0, 1e6);
+  ASSERT_EQ(step.cases.size(), 6u);  // 3 nodes x 2 rails
+  double high_weight = 0.0, low_weight = 0.0;
+  for (const LoadCaseSummary& c : step.cases) {
+    (c.load_case.rail == RailSide::kHigh ? high_weight : low_weight) += c.load_case.weight;
+  }
+  EXPECT_NEAR(high_weight, 1.0, 1e-12);
+  EXPECT_NEAR(low_weight, 1.0, 1e-12);
+  ASSERT_TRUE(step.low_rail);
+  EXPECT_GT(step.measures.worn_area_m2, 0.0);
+  EXPECT_GT(step.low_rail->measures.worn_area_m2, 0.0);
+  EXPECT_GT(step.step_passes, 0.0);
+}
+
+}  // namespace
+}  // namespace railwear
