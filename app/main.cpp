@@ -8,6 +8,7 @@
 #include "app/accuracy_command.h"
 #include "app/calibrate_command.h"
 #include "app/contact_command.h"
+#include "app/curving_command.h"
 #include "app/fem_reference_command.h"
 #include "app/history_command.h"
 #include "app/init_command.h"
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
   railwear::app::SetupCalibrate(app);
   railwear::app::SetupFemReference(app);
   railwear::app::SetupTraffic(app);
+  railwear::app::SetupCurving(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -123,6 +124,10 @@ std::string ReadInputFile(const std::string& path, std::string_view what) {
 }
 
 void WriteOutputFile(const std::string& path, std::string_view text, std::string_view what) {
+  if (path == "-") {
+    std::cout << text << std::flush;
+    return;
+  }
   if (!WriteTextFile(path, text)) throw InputError(fmt::format("{}: cannot write {}", path, what));
 }
 

@@ -92,6 +92,7 @@ toml::table ParseToml(const std::string& text, const std::string& file);
 // calibration config").
 std::string ReadInputFile(const std::string& path, std::string_view what);
 // Writes `text` to `path` (replaced). Throws InputError "PATH: cannot write WHAT" when it fails.
+// "-" writes to stdout.
 void WriteOutputFile(const std::string& path, std::string_view text, std::string_view what);
 
 // The [[KEY]] tables of `top`, named "KEY[0]", "KEY[1]", ...; none when the key is absent.

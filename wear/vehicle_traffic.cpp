@@ -10,11 +10,6 @@
 
 namespace railwear {
 
-namespace {
-// A wheel in flange contact: its steepest loaded patch is steeper than this.
-constexpr double kFlangeAngle_rad = 45.0 * M_PI / 180.0;
-}  // namespace
-
 RailGaugePoints UnwornGaugePoints(const WearStudy& study) {
   auto in_track = [&](const Profile& rail) {
     const CantTransform cant = CalcCantTransform(rail, study.cant_ratio);
@@ -55,8 +50,8 @@ std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index
   const int n_ws = static_cast<int>(r.wheelsets.size());
   std::vector<LoadCase> cases;
   for (const CurvedWheelset& w : r.wheelsets) {
-    const bool high_flange = w.high_climb.contact_angle_rad > kFlangeAngle_rad;
-    const bool low_flange = w.low_climb.contact_angle_rad > kFlangeAngle_rad;
+    const bool high_flange = w.high_climb.contact_angle_rad > kFlangeContactAngle_rad;
+    const bool low_flange = w.low_climb.contact_angle_rad > kFlangeContactAngle_rad;
     for (int k = 0; k < static_cast<int>(nodes.size()); ++k) {
       double offset = c.lateral_shift_std_m * nodes[k];
       if ((offset > 0.0 && high_flange) || (offset < 0.0 && low_flange)) offset = 0.0;

@@ -1,0 +1,148 @@
+// `railwear curving`: steady-state curving of a scene's vehicle traffic (see curving_command.h).
+#include "app/curving_command.h"
+
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "app/scene.h"
+#include "app/toml_fields.h"
+#include "core/contact/contact_forces.h"
+#include "core/numerics/input_error.h"
+#include "core/numerics/units.h"
+#include "core/profile/builtin_profiles.h"
+#include "wear/vehicle_traffic.h"
+
+namespace railwear::app {
+namespace {
+
+CurvingProblem ProblemOf(const WearStudy& study, const TrafficCase& c) {
+  auto in_track = [&](const Profile& rail) {
+    const CantTransform cant = CalcCantTransform(rail, study.cant_ratio);
+    return rail.Transformed(cant.angle_rad, cant.shift_m);
+  };
+  CurvingProblem p;
+  p.contact = study.setup();
+  p.high_rail = in_track(study.rail_profile);
+  p.low_rail = in_track(*study.low_rail_profile);
+  p.gauge_points = UnwornGaugePoints(study);
+  p.track = study.track;
+  p.curve = study.curve;
+  p.vehicle = study.vehicles[c.vehicle];
+  p.speed_m_s = c.speed_m_s;
+  p.friction = c.friction;
+  return p;
+}
+
+std::string NadalText(const FlangeClimbCheck& c) {
+  return c.nadal_limit ? fmt::format("{:5.2f}", *c.nadal_limit) : std::string("    -");
+}
+
+void Print(const TrafficCase& c, const CurvingProblem& p, const CurvingResult& r) {
+  std::cout << fmt::format(
+      "{}: vehicle \"{}\" at {:.1f} m/s on R {} m, cant {:.0f} mm: cant deficiency {:.0f} mm "
+      "(a_u {:.3f} m/s^2)\n",
+      c.name, p.vehicle.name, p.speed_m_s,
+      p.curve.radius_m > 0 ? fmt::format("{:.0f}", p.curve.radius_m) : std::string("inf"),
+      p.curve.cant_m * kToMm, r.cant_deficiency_m * kToMm, r.unbalanced_acceleration_m_s2);
+  std::cout << "  ws      x_m    y_mm  yaw_mrad  Q_high_kN  Q_low_kN  Y_high_kN  angle_deg  "
+               "L/V_high  Nadal\n";
+  for (size_t i = 0; i < r.wheelsets.size(); ++i) {
+    const CurvedWheelset& w = r.wheelsets[i];
+    std::cout << fmt::format(
+        "  {:2d} {:8.2f} {:7.2f} {:9.2f} {:10.1f} {:9.1f} {:10.1f} {:10.1f} "
+        "{:9.2f}  {}\n",
+        i, w.x_m, w.lateral_m * kToMm, w.yaw_rad * 1e3, w.high_load_N * 1e-3, w.low_load_N * 1e-3,
+        w.high_lateral_N * 1e-3, w.high_climb.contact_angle_rad * 180.0 / M_PI,
+        w.high_climb.l_over_v, NadalText(w.high_climb));
+  }
+  std::cout << fmt::format(
+      "  status {}{}; residuals: lateral {:.1f} N, yaw {:.1f} N m, longitudinal {:.1f} N; "
+      "{} + {} iterations, {} wheelset contact solves, {:.1f} s\n",
+      ToString(r.status), r.message.empty() ? "" : " (" + r.message + ")", r.lateral_residual_N,
+      r.yaw_residual_Nm, r.longitudinal_residual_N, r.predictor_iterations, r.full_iterations,
+      r.contact_solves, r.time_s);
+}
+
+nlohmann::json Json(const TrafficCase& c, const CurvingProblem& p, const CurvingResult& r) {
+  nlohmann::json j = {{"traffic", c.name},
+                      {"vehicle", p.vehicle.name},
+                      {"speed_m_s", p.speed_m_s},
+                      {"radius_m", p.curve.radius_m},
+                      {"cant_mm", p.curve.cant_m * kToMm},
+                      {"cant_deficiency_mm", r.cant_deficiency_m * kToMm},
+                      {"status", ToString(r.status)},
+                      {"message", r.message},
+                      {"residuals",
+                       {{"lateral_N", r.lateral_residual_N},
+                        {"yaw_Nm", r.yaw_residual_Nm},
+                        {"longitudinal_N", r.longitudinal_residual_N}}},
+                      {"time_s", r.time_s}};
+  for (const CurvedWheelset& w : r.wheelsets) {
+    j["wheelsets"].push_back(
+        {{"x_m", w.x_m},
+         {"y_mm", w.lateral_m * kToMm},
+         {"yaw_mrad", w.yaw_rad * 1e3},
+         {"roll_mrad", w.roll_rad * 1e3},
+         {"pitch_velocity_rad_s", w.pitch_velocity_rad_s},
+         {"Q_high_N", w.high_load_N},
+         {"Q_low_N", w.low_load_N},
+         {"Y_high_N", w.high_lateral_N},
+         {"force_on_wheelset_N", {w.force_N.x(), w.force_N.y(), w.force_N.z()}},
+         {"yaw_moment_Nm", w.yaw_moment_Nm},
+         {"high_l_over_v", w.high_climb.l_over_v},
+         {"high_contact_angle_deg", w.high_climb.contact_angle_rad * 180 / M_PI},
+         {"high_nadal_limit", w.high_climb.nadal_limit ? nlohmann::json(*w.high_climb.nadal_limit)
+                                                       : nlohmann::json(nullptr)}});
+  }
+  return j;
+}
+
+}  // namespace
+
+void SetupCurving(CLI::App& app) {
+  auto o = std::make_shared<CurvingOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "curving",
+      "Steady-state curving of a wear scene's vehicle traffic on its unworn rails "
+      "(docs/curving.md)");
+  cmd->add_option("scene", o->scene, "Wear scene with [track], [[vehicle]] and vehicle traffic")
+      ->required();
+  cmd->add_option("--json", o->json, "Write the equilibria as JSON to FILE ('-': stdout)");
+  cmd->callback([o]() { RunCurving(*o); });
+}
+
+void RunCurving(const CurvingOptions& o) {
+  const Scene scene = LoadScene(o.scene);
+  if (!scene.wear || scene.wear->vehicles.empty()) {
+    throw InputError(fmt::format(
+        "{}: expected a wear scene with [track], [[vehicle]] tables and [[traffic]] entries "
+        "naming a vehicle",
+        o.scene));
+  }
+  const WearStudy& study = *scene.wear;
+  nlohmann::json all = nlohmann::json::array();
+  std::string failures;
+  for (const TrafficCase& c : study.traffic) {
+    if (!c.is_vehicle()) continue;
+    const CurvingProblem p = ProblemOf(study, c);
+    const CurvingResult r = SolveCurving(p);
+    if (!o.json || *o.json != "-") Print(c, p, r);
+    if (r.status == CurvingStatus::kFlangeClimb) {
+      std::cerr << "warning: " << c.name << ": " << r.message << "\n";
+    }
+    if (r.status == CurvingStatus::kNotConverged || r.status == CurvingStatus::kNoEquilibrium) {
+      failures += fmt::format("{}{}: {}: {}", failures.empty() ? "" : "; ", c.name,
+                              ToString(r.status), r.message);
+    }
+    all.push_back(Json(c, p, r));
+  }
+  if (o.json) WriteOutputFile(*o.json, all.dump(2) + "\n", "JSON");
+  if (!failures.empty()) throw std::runtime_error("curving: " + failures);
+}
+
+}  // namespace railwear::app
