@@ -1,0 +1,95 @@
+// `railwear curving` and the scene keys of vehicle traffic: [track] radius and cant, [[vehicle]]
+// tables, traffic entries naming a vehicle; a single S1002 wheelset on R 1500 m (about a second).
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/app/cli_runner.h"
+
+namespace railwear::test {
+namespace {
+
+using CurvingCommandTest = CliFixture;
+
+constexpr const char* kScene = R"([scene]
+name = "wheelset on R1500"
+effects = ["wear"]
+[model]
+kind = "auto"
+accuracy = "draft"
+[materials]
+wheel = { E_MPa = 210000, nu = 0.28 }
+rail = { E_MPa = 210000, nu = 0.28, hardness_MPa = 2600 }
+[track]
+high_rail = "builtin:UIC60"
+inclination = "1:40"
+radius_m = 1500
+cant_mm = 0
+[wheel]
+profile = "builtin:S1002"
+rolling_radius_mm = 460
+[wear]
+law = "archard"
+k = 1e-4
+total_passes = 1e5
+[[vehicle]]
+name = "wheelset"
+source = "a test"
+kind = "wheelset"
+axle_load_t = 16
+[[traffic]]
+vehicle = "wheelset"
+speed_m_s = 25
+friction = 0.3
+)";
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST_F(CurvingCommandTest, PrintsTheEquilibriumAndWritesJson) {
+  std::ofstream(dir_ / "s.toml") << kScene;
+  const Outcome o = Run("curving s.toml --json eq.json");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(Contains(o.out, "vehicle \"wheelset\" at 25.0 m/s on R 1500 m"));
+  EXPECT_TRUE(Contains(o.out, "status converged"));
+  const nlohmann::json j = nlohmann::json::parse(ReadFile(dir_ / "eq.json"));
+  ASSERT_EQ(j.size(), 1u);
+  const nlohmann::json& w = j[0]["wheelsets"][0];
+  // 25 m/s on R 1500 m without cant: 0.42 m/s^2 outward; the high wheel carries more.
+  EXPECT_NEAR(j[0]["cant_deficiency_mm"].get<double>(), 1500.0 * 625.0 / 1500.0 / 9.80665, 1e-6);
+  EXPECT_GT(w["Q_high_N"].get<double>(), w["Q_low_N"].get<double>());
+  EXPECT_GT(w["y_mm"].get<double>(), 0.0);  // pushed toward the high rail
+  EXPECT_EQ(j[0]["status"], "converged");
+}
+
+TEST_F(CurvingCommandTest, BadVehicleInputIsExitTwoWithFileAndKey) {
+  struct Case {
+    std::string from, to, expected;
+  };
+  const Case cases[] = {
+      {"vehicle = \"wheelset\"\nspeed", "vehicle = \"tram\"\nspeed",
+       "key 'traffic[0].vehicle' = \"tram\": expected one of 'wheelset'"},
+      {"axle_load_t = 16", "axle_load_t = -1", "vehicle[0].axle_load_t"},
+      {"radius_m = 1500", "radius_m = 10", "track.radius_m"},
+      {"cant_mm = 0", "cant_mm = 400", "track.cant_mm"},
+      {"kind = \"wheelset\"", "kind = \"bogie\"", "key 'vehicle[0].wheelbase_m' is missing"},
+      {"source = \"a test\"", "source = \"a test\"\nspring = 3", "vehicle[0].spring"},
+  };
+  for (const Case& c : cases) {
+    std::ofstream(dir_ / "bad.toml") << Replace(kScene, c.from, c.to);
+    const Outcome o = Run("curving bad.toml");
+    EXPECT_EQ(o.exit_code, 2) << c.to << "\n" << o.err;
+    EXPECT_TRUE(Contains(o.err, "bad.toml:")) << o.err;
+    EXPECT_TRUE(Contains(o.err, c.expected)) << o.err;
+  }
+  // A scene without vehicles is not a curving scene.
+  std::ofstream(dir_ / "none.toml") << "[scene]\nname = \"x\"\n";
+  EXPECT_EQ(Run("curving none.toml").exit_code, 2);
+}
+
+}  // namespace
+}  // namespace railwear::test
