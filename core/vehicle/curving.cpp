@@ -352,14 +352,6 @@ class Equilibrium {
         }
       }
       last_ratio = accepted ? Merit(*r) / before : 1.0;
-      if (getenv("RW_DEBUG")) {
-        fmt::print(stderr, "it {} fresh {} acc {} merit {:.3e} -> {:.3e} q", it, fresh, accepted,
-                   before, Norm(*r));
-        for (int k = 0; k < q->size(); ++k) fmt::print(stderr, " {:.3e}", (*q)[k]);
-        fmt::print(stderr, "\n  r");
-        for (int k = 0; k < r->size(); ++k) fmt::print(stderr, " {:.2e}", (*r)[k] * scale_[k]);
-        fmt::print(stderr, "\n");
-      }
       if (!accepted && !fresh) continue;  // an old Jacobian: evaluate it again and retry
       fresh = false;
       if (!accepted) {

@@ -66,7 +66,7 @@ TEST(LoadCollectiveTest, OptionalColumnsStayAbsent) {
   ASSERT_EQ(c.entries.size(), 1u);
   EXPECT_FALSE(c.entries[0].friction || c.entries[0].creepage_x);
   // 2 Q / g / 1000 when the CSV has no axle_load_t column.
-  EXPECT_DOUBLE_EQ(c.entries[0].axle_load_t, 2.0 * 80000.0 / 9.81 / 1000.0);
+  EXPECT_DOUBLE_EQ(c.entries[0].axle_load_t, 2.0 * 80000.0 / kGravity_m_s2 / 1000.0);
   EXPECT_FALSE(c.axle_load_from_column);
 }
 
