@@ -20,24 +20,6 @@
 namespace railwear::app {
 namespace {
 
-CurvingProblem ProblemOf(const WearStudy& study, const TrafficCase& c) {
-  auto in_track = [&](const Profile& rail) {
-    const CantTransform cant = CalcCantTransform(rail, study.cant_ratio);
-    return rail.Transformed(cant.angle_rad, cant.shift_m);
-  };
-  CurvingProblem p;
-  p.contact = study.setup();
-  p.high_rail = in_track(study.rail_profile);
-  p.low_rail = in_track(*study.low_rail_profile);
-  p.gauge_points = UnwornGaugePoints(study);
-  p.track = study.track;
-  p.curve = study.curve;
-  p.vehicle = study.vehicles[c.vehicle];
-  p.speed_m_s = c.speed_m_s;
-  p.friction = c.friction;
-  return p;
-}
-
 std::string NadalText(const FlangeClimbCheck& c) {
   return c.nadal_limit ? fmt::format("{:5.2f}", *c.nadal_limit) : std::string("    -");
 }
@@ -129,7 +111,10 @@ void RunCurving(const CurvingOptions& o) {
   std::string failures;
   for (const TrafficCase& c : study.traffic) {
     if (!c.is_vehicle()) continue;
-    const CurvingProblem p = ProblemOf(study, c);
+    const int t = static_cast<int>(&c - study.traffic.data());
+    const CurvingProblem p =
+        VehicleCurvingProblem(study, t, RailInTrack(study, study.rail_profile, study.rail_profile),
+                              RailInTrack(study, *study.low_rail_profile, *study.low_rail_profile));
     const CurvingResult r = SolveCurving(p);
     if (!o.json || *o.json != "-") Print(c, p, r);
     if (r.status == CurvingStatus::kFlangeClimb) {

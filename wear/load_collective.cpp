@@ -419,8 +419,7 @@ LoadCollective BinLoadCollective(const MbsTimeHistory& h, const LoadCollectiveBi
                                     : 2.0 * e.vertical_force_N / kAxleLoadGravity_m_s2 / 1000.0;
     e.mbs.resize(s.mbs.size());
     for (std::size_t k = 0; k < s.mbs.size(); ++k) e.mbs[k] = s.mbs[k] / s.weight;
-    const double total =
-        e.rail == RailSide::kHigh ? out.total_weight_high : out.total_weight_low;
+    const double total = e.rail == RailSide::kHigh ? out.total_weight_high : out.total_weight_low;
     e.share = s.weight / total;
     e.name = fmt::format("{} {}: y {:.2f} mm, yaw {:.2f} mrad, Q {:.1f} kN", ToString(e.rail),
                          index_on_rail, e.wheelset_y_m * kToMm, e.yaw_rad / kMrad,

@@ -12,19 +12,15 @@ namespace railwear {
 
 RailGaugePoints UnwornGaugePoints(const WearStudy& study) {
   auto in_track = [&](const Profile& rail) {
-    const CantTransform cant = CalcCantTransform(rail, study.cant_ratio);
-    return RailGaugePoint(rail.Transformed(cant.angle_rad, cant.shift_m),
-                          study.track.gauge_height_m)
-        .x();
+    return RailGaugePoint(RailInTrack(study, rail, rail), study.track.gauge_height_m).x();
   };
   const Profile& low = study.low_rail_profile ? *study.low_rail_profile : study.rail_profile;
   return {in_track(study.rail_profile), in_track(low)};
 }
 
-std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index,
-                                       const Profile& high_track, const Profile& low_track) {
+CurvingProblem VehicleCurvingProblem(const WearStudy& study, int traffic_index,
+                                     const Profile& high_track, const Profile& low_track) {
   const TrafficCase& c = study.traffic[traffic_index];
-  const VehicleSpec& v = study.vehicles[c.vehicle];
   CurvingProblem p;
   p.contact = study.setup();
   p.high_rail = high_track;
@@ -32,9 +28,42 @@ std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index
   p.gauge_points = UnwornGaugePoints(study);
   p.track = study.track;
   p.curve = study.curve;
-  p.vehicle = v;
+  p.vehicle = study.vehicles[c.vehicle];
   p.speed_m_s = c.speed_m_s;
   p.friction = c.friction;
+  if (traffic_index < static_cast<int>(study.vehicle_starts.size()) &&
+      study.vehicle_starts[traffic_index].size() > 0) {
+    p.options.start = study.vehicle_starts[traffic_index];
+  }
+  return p;
+}
+
+Profile RailInTrack(const WearStudy& study, const Profile& unworn, const Profile& current) {
+  const CantTransform cant = CalcCantTransform(unworn, study.cant_ratio);
+  return current.Transformed(cant.angle_rad, cant.shift_m);
+}
+
+std::vector<Eigen::VectorXd> VehicleStarts(const WearStudy& study, const Profile& unworn_high,
+                                           const Profile& unworn_low) {
+  std::vector<Eigen::VectorXd> starts(study.traffic.size());
+  for (int t = 0; t < static_cast<int>(study.traffic.size()); ++t) {
+    if (!study.traffic[t].is_vehicle()) continue;
+    CurvingProblem p = VehicleCurvingProblem(study, t, RailInTrack(study, unworn_high, unworn_high),
+                                             RailInTrack(study, unworn_low, unworn_low));
+    p.options.start.reset();
+    const CurvingResult r = SolveCurving(p);
+    if (r.status == CurvingStatus::kConverged || r.status == CurvingStatus::kFlangeClimb) {
+      starts[t] = r.state;
+    }
+  }
+  return starts;
+}
+
+std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index,
+                                       const Profile& high_track, const Profile& low_track) {
+  const TrafficCase& c = study.traffic[traffic_index];
+  const VehicleSpec& v = study.vehicles[c.vehicle];
+  const CurvingProblem p = VehicleCurvingProblem(study, traffic_index, high_track, low_track);
   const CurvingResult r = SolveCurving(p);
   if (r.status != CurvingStatus::kConverged && r.status != CurvingStatus::kFlangeClimb) {
     throw std::runtime_error(fmt::format(

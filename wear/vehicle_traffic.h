@@ -24,6 +24,21 @@ namespace railwear {
 // The rails' gauge points in their own track-frame profiles: where the unworn rails stand.
 RailGaugePoints UnwornGaugePoints(const WearStudy& study);
 
+// The curving problem of study.traffic[traffic_index] (a vehicle entry) on these rails (track
+// frame): the study's contact set-up, the unworn rails' places, its track, curve, vehicle, speed
+// and friction, and its start from study.vehicle_starts when there is one.
+CurvingProblem VehicleCurvingProblem(const WearStudy& study, int traffic_index,
+                                     const Profile& high_track, const Profile& low_track);
+
+// A rail of a study in the track frame: each canted with its unworn profile's motion.
+Profile RailInTrack(const WearStudy& study, const Profile& unworn, const Profile& current);
+
+// Each vehicle entry's curving solution on the unworn rails (own frames, as in a step-0 state),
+// for WearStudy::vehicle_starts: an empty vector for prescribed entries and for a vehicle whose
+// curving did not converge there (its steps then start centred).
+std::vector<Eigen::VectorXd> VehicleStarts(const WearStudy& study, const Profile& unworn_high,
+                                           const Profile& unworn_low);
+
 // The load cases of study.traffic[traffic_index] (a vehicle entry) on the rails of this step,
 // both in the track frame (canted). Throws std::runtime_error naming the entry and the vehicle
 // when the curving has no equilibrium or does not converge (a flange-climb equilibrium is kept:

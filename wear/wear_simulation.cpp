@@ -424,7 +424,16 @@ StepResult RunWearStep(const WearStudy& study, const UnwornRails& unworn, const 
 
 WearRunSummary RunWear(const WearStudy& study, const UnwornRails& unworn, WearState start,
                        const WearStepCallback& on_step, int max_steps) {
-  const double total = TotalPasses(study);
+  // Vehicle traffic starts every step's curving from its equilibrium on the unworn rails.
+  std::optional<WearStudy> prepared;
+  if (study.vehicle_starts.empty() && unworn.low &&
+      std::any_of(study.traffic.begin(), study.traffic.end(),
+                  [](const TrafficCase& c) { return c.is_vehicle(); })) {
+    prepared = study;
+    prepared->vehicle_starts = VehicleStarts(study, unworn.high, *unworn.low);
+  }
+  const WearStudy& run = prepared ? *prepared : study;
+  const double total = TotalPasses(run);
   WearRunSummary summary;
   summary.state = std::move(start);
   while (true) {
@@ -434,7 +443,7 @@ WearRunSummary RunWear(const WearStudy& study, const UnwornRails& unworn, WearSt
       break;
     }
     if (max_steps > 0 && summary.steps_done >= max_steps) break;
-    StepResult step = RunWearStep(study, unworn, summary.state, left);
+    StepResult step = RunWearStep(run, unworn, summary.state, left);
     ++summary.steps_done;
     summary.state = step.state;
     if (on_step && !on_step(step)) break;

@@ -34,9 +34,9 @@
 #include "core/contact/contact_forces.h"
 #include "core/contact/contact_solver.h"
 #include "core/profile/profile.h"
+#include "core/vehicle/curving.h"
 #include "wear/depth_smoothing.h"
 #include "wear/pass_depth.h"
-#include "core/vehicle/curving.h"
 #include "wear/traffic.h"
 #include "wear/wear_law.h"
 #include "wear/wear_measures.h"
@@ -80,6 +80,11 @@ struct WearStudy : ContactSetup {
   std::vector<VehicleSpec> vehicles;
   TrackSpec track;
   CurveSpec curve;
+  // Per traffic entry, the curving solution each step starts from (CurvingResult::state); empty
+  // (or an empty entry): the centred start. RunWear fills it with each vehicle's equilibrium on
+  // the unworn rails of step 0, so every step starts near its own solution and a resumed run
+  // starts exactly where the uninterrupted one did.
+  std::vector<Eigen::VectorXd> vehicle_starts;
   WearOptions options;
 };
 

@@ -48,12 +48,9 @@ TEST(VehicleTrafficTest, BothWheelsOfTheEquilibriumAreCases) {
   const WearStudy study = VehicleStudy(0.0);
   ValidateWearStudy(study);
   const WearState s0 = MakeInitialState(study);
-  auto in_track = [&](const Profile& rail) {
-    const CantTransform cant = CalcCantTransform(rail, study.cant_ratio);
-    return rail.Transformed(cant.angle_rad, cant.shift_m);
-  };
   const std::vector<LoadCase> cases =
-      VehicleLoadCases(study, 0, in_track(s0.rail), in_track(*s0.low_rail));
+      VehicleLoadCases(study, 0, RailInTrack(study, s0.rail, s0.rail),
+                       RailInTrack(study, *s0.low_rail, *s0.low_rail));
   ASSERT_EQ(cases.size(), 2u);
   const LoadCase& high = cases[0];
   const LoadCase& low = cases[1];
@@ -89,6 +86,23 @@ TEST(VehicleTrafficTest, SpreadNodesAndBothRailsWear) {
   EXPECT_GT(step.measures.worn_area_m2, 0.0);
   EXPECT_GT(step.low_rail->measures.worn_area_m2, 0.0);
   EXPECT_GT(step.step_passes, 0.0);
+}
+
+// RunWear starts every step's curving from the equilibrium on the unworn rails: a run stopped
+// after one step and resumed from its state ends exactly where the uninterrupted run does.
+TEST(VehicleTrafficTest, ResumedRunEqualsUninterrupted) {
+  WearStudy study = VehicleStudy(0.0);
+  study.options.max_depth_per_step_m = 1e-6;  // steps far shorter than the run
+  const WearState s0 = MakeInitialState(study);
+  const UnwornRails unworn = UnwornRails::Of(s0);
+  const WearRunSummary whole = RunWear(study, unworn, s0, nullptr, 2);
+  const WearRunSummary first = RunWear(study, unworn, s0, nullptr, 1);
+  const WearRunSummary rest = RunWear(study, unworn, first.state, nullptr, 1);
+  ASSERT_EQ(whole.state.step, 2);
+  ASSERT_EQ(rest.state.step, 2);
+  EXPECT_EQ(whole.state.passes, rest.state.passes);
+  EXPECT_EQ(whole.state.rail.points(), rest.state.rail.points());
+  EXPECT_EQ(whole.state.low_rail->points(), rest.state.low_rail->points());
 }
 
 }  // namespace
