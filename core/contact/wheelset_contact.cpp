@@ -104,7 +104,7 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
   };
   const double mu_fn =
       right.rolling->friction * (TotalNormalForce(out.right) + TotalNormalForce(out.left));
-  const double tolerance_N = problem.axle_force_tolerance_N.value_or(tolerance_N);
+  const double tolerance_N = problem.axle_force_tolerance_N.value_or(1e-6 * mu_fn);
   const auto omega =
       SolvePitchVelocityForForce(fx, *target, problem.wheel_rail.rolling->motion.speed_m_s,
                                  problem.wheelset.rolling_radius_m, tolerance_N);
