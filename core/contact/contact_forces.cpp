@@ -60,6 +60,29 @@ FlangeClimbCheck CheckFlangeClimb(const ContactResult& result, std::optional<dou
   return c;
 }
 
+FlangeClimbCheck CheckFlangeClimbAtSteepest(const ContactResult& result, double friction) {
+  constexpr double kLoadedColumn = 0.05;
+  FlangeClimbCheck check = CheckFlangeClimb(result, friction);
+  for (const PatchResult& patch : result.patches) {
+    check.contact_angle_rad = std::max(check.contact_angle_rad, patch.contact_angle_rad);
+    const PatchGrid& g = patch.grid;
+    if (g.cells() == 0 || patch.pressure_Pa.size() != g.cells()) continue;
+    Eigen::VectorXd column = Eigen::VectorXd::Zero(g.ns);
+    for (int j = 0; j < g.ns; ++j) {
+      for (int i = 0; i < g.nx; ++i) column[j] += std::max(patch.pressure_Pa[g.Index(i, j)], 0.0);
+    }
+    const double largest = column.maxCoeff();
+    for (int j = 0; j < g.ns && largest > 0.0; ++j) {
+      if (column[j] < kLoadedColumn * largest) continue;
+      const Eigen::Vector2d& n = g.normal_yz[j];  // out of the rail: the pressure acts along -n
+      check.contact_angle_rad = std::max(check.contact_angle_rad, std::atan2(-n.x(), -n.y()));
+    }
+  }
+  check.nadal_limit = NadalLimit(check.contact_angle_rad, friction);
+  check.exceeded = check.nadal_limit && check.l_over_v > *check.nadal_limit;
+  return check;
+}
+
 std::string FlangeClimbWarning(const FlangeClimbCheck& check, const std::string& wheel) {
   return fmt::format(
       "{}L/V {:.3f} exceeds Nadal's limit {:.3f} at contact angle {:.1f} deg, "

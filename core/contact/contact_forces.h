@@ -49,6 +49,15 @@ std::optional<double> NadalLimit(double contact_angle_rad, double friction);
 // The check for a result; friction absent for normal contact (L/V only, no limit).
 FlangeClimbCheck CheckFlangeClimb(const ContactResult& result, std::optional<double> friction);
 
+// The same check at the wheel's steepest loaded contact angle instead of each patch's resultant
+// angle (steady-state curving, core/vehicle/curving.h). A conformal patch that wraps from the
+// flange root (about 30 degrees) onto the flange (70) as the flange comes into contact has a
+// resultant angle between both, and Nadal's limit there is far below the one that governs
+// climbing, that of the flange. The angle here is the steepest of the grid columns that carry at
+// least 5 % of the patch's most loaded column (the patch's own angle for a planar grid or a
+// Hertz patch, where every normal is the same).
+FlangeClimbCheck CheckFlangeClimbAtSteepest(const ContactResult& result, double friction);
+
 // The one-line warning for an exceeded check ("L/V 2.31 exceeds Nadal's limit 1.18 at 69.5 deg,
 // mu 0.35: flange climb possible"); `wheel` ("right wheel", ...) may be empty.
 std::string FlangeClimbWarning(const FlangeClimbCheck& check, const std::string& wheel);

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 
 #include <fmt/format.h>
 #include <Eigen/Dense>
@@ -116,36 +115,6 @@ double KinematicRoll(const WheelsetProblem& p) {
   return roll;
 }
 
-// Nadal's check of one wheel at its steepest loaded contact angle. The contact's own check
-// (CheckFlangeClimb) takes each patch's resultant angle; a conformal patch that wraps from the
-// flange root (about 30 degrees) onto the flange (70) as the flange comes into contact has a
-// resultant angle between both, and Nadal's limit there is far below the one that governs
-// climbing, that of the flange where the wheel would climb. So the angle here is the steepest
-// of the grid columns that carry at least kLoadedColumn of the patch's most loaded column (the
-// patch's own angle for a planar grid or a Hertz patch, where every normal is the same).
-FlangeClimbCheck WheelClimb(const ContactResult& c, double friction) {
-  constexpr double kLoadedColumn = 0.05;
-  FlangeClimbCheck check = CheckFlangeClimb(c, friction);
-  for (const PatchResult& patch : c.patches) {
-    check.contact_angle_rad = std::max(check.contact_angle_rad, patch.contact_angle_rad);
-    const PatchGrid& g = patch.grid;
-    if (g.cells() == 0 || patch.pressure_Pa.size() != g.cells()) continue;
-    Eigen::VectorXd column = Eigen::VectorXd::Zero(g.ns);
-    for (int j = 0; j < g.ns; ++j) {
-      for (int i = 0; i < g.nx; ++i) column[j] += std::max(patch.pressure_Pa[g.Index(i, j)], 0.0);
-    }
-    const double largest = column.maxCoeff();
-    for (int j = 0; j < g.ns && largest > 0.0; ++j) {
-      if (column[j] < kLoadedColumn * largest) continue;
-      const Eigen::Vector2d& n = g.normal_yz[j];  // out of the rail: the pressure acts along -n
-      check.contact_angle_rad = std::max(check.contact_angle_rad, std::atan2(-n.x(), -n.y()));
-    }
-  }
-  check.nadal_limit = NadalLimit(check.contact_angle_rad, friction);
-  check.exceeded = check.nadal_limit && check.l_over_v > *check.nadal_limit;
-  return check;
-}
-
 // What one wheelset's contact solve needs besides its (y, psi).
 struct WheelsetContext {
   const CurvingProblem* problem = nullptr;
@@ -209,8 +178,8 @@ CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw
   add(out.contact.right, false);
   add(out.contact.left, true);
   out.high_lateral_N = TotalForcesOnRail(out.contact.right).Net().y();
-  out.high_climb = WheelClimb(out.contact.right, p.friction);
-  out.low_climb = WheelClimb(out.contact.left, p.friction);
+  out.high_climb = CheckFlangeClimbAtSteepest(out.contact.right, p.friction);
+  out.low_climb = CheckFlangeClimbAtSteepest(out.contact.left, p.friction);
   return out;
 }
 
@@ -226,15 +195,15 @@ class Equilibrium {
               double unbalanced_force_N, double q0)
       : p_(p), l_(layout), ctx_(std::move(ctx)), unbalanced_N_(unbalanced_force_N), q0_(q0) {
     const int n = l_.size();
-    kappa_ = p.curve.curvature_per_m();
+    const double kappa = p.curve.curvature_per_m();
     // The suspension's stiffness: its forces are linear in q, exact by differences of one.
-    const Eigen::VectorXd f0 = SuspensionForces(p.vehicle, l_, kappa_, Eigen::VectorXd::Zero(n));
+    const Eigen::VectorXd f0 = SuspensionForces(p.vehicle, l_, kappa, Eigen::VectorXd::Zero(n));
     suspension_offset_ = f0;
     suspension_ = Eigen::MatrixXd::Zero(n, n);
     for (int k = 0; k < n; ++k) {
       Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
       e[k] = 1.0;
-      suspension_.col(k) = SuspensionForces(p.vehicle, l_, kappa_, e) - f0;
+      suspension_.col(k) = SuspensionForces(p.vehicle, l_, kappa, e) - f0;
     }
     // The frames and the body carry no contact: their equations are linear in q, and solved
     // exactly for the wheelsets' positions at every iterate (Project).
@@ -449,7 +418,7 @@ class Equilibrium {
   const CurvingProblem& p_;
   const Layout& l_;
   std::vector<WheelsetContext> ctx_;
-  double unbalanced_N_ = 0.0, q0_ = 1.0, kappa_ = 0.0;
+  double unbalanced_N_ = 0.0, q0_ = 1.0;
   Eigen::MatrixXd suspension_, jacobian_;
   Eigen::FullPivLU<Eigen::MatrixXd> frames_;  // the frames' and body's block of the suspension
   Eigen::VectorXd frame_constant_;
