@@ -31,6 +31,7 @@ CurvingProblem VehicleCurvingProblem(const WearStudy& study, int traffic_index,
   p.vehicle = study.vehicles[c.vehicle];
   p.speed_m_s = c.speed_m_s;
   p.friction = c.friction;
+  p.options.threads = study.options.threads;
   if (traffic_index < static_cast<int>(study.vehicle_starts.size()) &&
       study.vehicle_starts[traffic_index].size() > 0) {
     p.options.start = study.vehicle_starts[traffic_index];

@@ -1,12 +1,9 @@
 #include "wear/wear_simulation.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <stdexcept>
-#include <thread>
 
 #include <fmt/format.h>
 
@@ -14,6 +11,7 @@
 #include "core/geometry/curve_locator.h"
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/parallel.h"
 #include "core/profile/builtin_profiles.h"
 #include "wear/vehicle_traffic.h"
 
@@ -109,37 +107,14 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
   return out;
 }
 
-// Solves every case on `threads` workers, each against its rail (targets[RailSide]). Each result
-// goes to its own slot; exceptions are rethrown in case order after all workers have stopped.
+// Solves every case on the study's workers, each against its rail (targets[RailSide]), each
+// result in its own slot (core/numerics/parallel.h).
 std::vector<CaseOutcome> SolveLoadCases(const WearStudy& study, const RailTarget targets[2],
                                         const std::vector<LoadCase>& cases) {
-  const int n = static_cast<int>(cases.size());
-  std::vector<CaseOutcome> outcomes(n);
-  std::vector<std::exception_ptr> errors(n);
-  std::atomic<int> next{0};
-  auto worker = [&]() {
-    for (int c = next++; c < n; c = next++) {
-      try {
-        outcomes[c] = SolveLoadCase(study, targets[static_cast<int>(cases[c].rail)], cases[c]);
-      } catch (...) {
-        errors[c] = std::current_exception();
-      }
-    }
-  };
-  int threads = study.options.threads > 0
-                    ? study.options.threads
-                    : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  threads = std::min(threads, n);
-  if (threads <= 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
-    for (std::thread& t : pool) t.join();
-  }
-  for (const std::exception_ptr& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
+  std::vector<CaseOutcome> outcomes(cases.size());
+  ParallelFor(static_cast<int>(cases.size()), study.options.threads, [&](int c) {
+    outcomes[c] = SolveLoadCase(study, targets[static_cast<int>(cases[c].rail)], cases[c]);
+  });
   return outcomes;
 }
 

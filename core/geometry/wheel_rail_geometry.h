@@ -113,8 +113,14 @@ class WheelRailGeometry {
   std::optional<CurveLocator> surface_locator_;  // with yaw: on the wheel profile
   double dz_ = 0.0;
   bool has_overlap_ = false;
-  // Vertical gap at y on the splines (after lowering), near gap sample `sample`.
-  double ExactVerticalGap(double y, int sample) const;
+  // The splines' parameters of a crossing found at a nearby y [m].
+  struct GapWindow {
+    double rail_s, wheel_s;
+  };
+  // Vertical gap at y on the splines (after lowering), near gap sample `sample`. With `near`
+  // set, the scan for each crossing is limited to kGapWindow_m of arc about it (the whole profile
+  // when nothing crosses there); `near` is then set to this y's crossings.
+  double ExactVerticalGap(double y, int sample, std::optional<GapWindow>* near = nullptr) const;
   // Lateral position of the smallest exact gap near gap sample `sample`.
   double RefineMinimum(int sample) const;
   std::vector<double> gap_y_, gap_, rail_top_, wheel_bottom_;

@@ -11,6 +11,7 @@
 #include "core/contact/contact_forces.h"
 #include "core/contact/rolling_stage.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/parallel.h"
 
 namespace railwear {
 
@@ -232,10 +233,11 @@ class Equilibrium {
     // The unbalanced lateral force: on the car body, or on the single wheelset.
     (*r)[l_.bogies > 0 ? l_.BodyIndex() : 0] += unbalanced_N_;
     ws->resize(l_.wheelsets);
+    ParallelFor(l_.wheelsets, p_.options.threads,
+                [&](int i) { (*ws)[i] = EvaluateWheelset(ctx_[i], q[2 * i], q[2 * i + 1]); });
+    solves_ += l_.wheelsets;
     bool ok = true;
     for (int i = 0; i < l_.wheelsets; ++i) {
-      (*ws)[i] = EvaluateWheelset(ctx_[i], q[2 * i], q[2 * i + 1]);
-      ++solves_;
       (*ws)[i].x_m = l_.wheelset_x[i];
       ok = ok && Converged((*ws)[i]);
       (*r)[2 * i] += (*ws)[i].force_N.y();
@@ -355,10 +357,17 @@ class Equilibrium {
   // differences (a wheelset's contact forces depend on its own (y, psi) only).
   Eigen::MatrixXd Jacobian(const Eigen::VectorXd& q, const std::vector<CurvedWheelset>& ws) {
     Eigen::MatrixXd J = suspension_;
+    // Per wheelset a step in y (task 2i) and in psi (task 2i + 1).
+    std::vector<CurvedWheelset> stepped(2 * l_.wheelsets);
+    ParallelFor(2 * l_.wheelsets, p_.options.threads, [&](int t) {
+      const int i = t / 2;
+      stepped[t] = t % 2 == 0 ? EvaluateWheelset(ctx_[i], q[2 * i] + kStepY_m, q[2 * i + 1])
+                              : EvaluateWheelset(ctx_[i], q[2 * i], q[2 * i + 1] + kStepYaw_rad);
+    });
+    solves_ += 2 * l_.wheelsets;
     for (int i = 0; i < l_.wheelsets; ++i) {
-      const CurvedWheelset dy = EvaluateWheelset(ctx_[i], q[2 * i] + kStepY_m, q[2 * i + 1]);
-      const CurvedWheelset dpsi = EvaluateWheelset(ctx_[i], q[2 * i], q[2 * i + 1] + kStepYaw_rad);
-      solves_ += 2;
+      const CurvedWheelset& dy = stepped[2 * i];
+      const CurvedWheelset& dpsi = stepped[2 * i + 1];
       const CurvedWheelset& w = ws[i];
       J(2 * i, 2 * i) += (dy.force_N.y() - w.force_N.y()) / kStepY_m;
       J(2 * i + 1, 2 * i) += (dy.yaw_moment_Nm - w.yaw_moment_Nm) / kStepY_m;

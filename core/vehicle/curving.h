@@ -60,6 +60,9 @@ struct CurvingOptions {
   // A solution to start from (CurvingResult::state of the same vehicle at a nearby speed, cant
   // or on slightly different rails: continuation); the centred start is tried after it.
   std::optional<Eigen::VectorXd> start;
+  // Workers for the wheelsets' contact solves (each iterate's wheelsets and finite differences
+  // are independent): 0 = the machine's hardware threads. Results do not depend on it.
+  int threads = 0;
 
   static ModelOptions PredictorModel();
 };
