@@ -10,12 +10,14 @@
 #include <fmt/format.h>
 
 #include "app/influence_constants_file.h"
+#include "app/load_collective_file.h"
 #include "app/paths.h"
 #include "app/toml_fields.h"
 #include "core/numerics/enum_names.h"
 #include "core/numerics/input_error.h"
 #include "core/numerics/units.h"
 #include "core/profile/builtin_profiles.h"
+#include "wear/collective_traffic.h"
 
 namespace railwear::app {
 namespace {
@@ -588,6 +590,74 @@ void ReadVehicleTraffic(const Fields& t, Scene* scene, TrafficCase* c) {
   c->share = t.Number("share", Positive()).value_or(1.0);
 }
 
+// The wheel of a prescribed or collective entry: its profile and rolling radius (from the
+// entry, else from the scene's [wheel]).
+void ReadTrafficWheel(const Fields& t, Scene* scene, bool has_wheel, TrafficCase* c) {
+  if (const auto spec = t.String("wheel_profile")) {
+    Profile p = LoadProfileFor(t, "wheel_profile", BodyRole::kWheel, *spec, scene->path);
+    if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
+    c->wheel_profile = std::move(p);
+  } else if (has_wheel) {
+    c->wheel_profile = scene->problem.wheel_profile;
+  } else {
+    t.FailMissing("wheel_profile", std::string(kProfileExpected) + " (or a [wheel] table)");
+  }
+  if (const auto r = t.Number("rolling_radius_mm", Positive())) {
+    c->rolling_radius_m = *r * kMm;
+  } else if (has_wheel) {
+    c->rolling_radius_m = scene->problem.placement.rolling_radius_m;
+  } else {
+    t.FailMissing("rolling_radius_mm",
+                  "the wheel radius at the profile's z = 0 in mm (or a [wheel] table)");
+  }
+}
+
+// A [[traffic]] entry that names an imported load collective (`railwear traffic import`): each
+// bin is one load case at its wheelset state on the unworn rails (wear/collective_traffic.h).
+void ReadCollectiveTraffic(const Fields& t, Scene* scene, bool has_wheel, TrafficCase* c) {
+  t.AllowOnly({"name", "collective", "share", "friction", "axle_load_t", "wheel_profile",
+               "mirror_y", "rolling_radius_mm", "flange_back_distance_mm",
+               "flange_back_position_mm"});
+  const std::string file =
+      t.RequiredString("collective",
+                       "the path of a load-collective TOML file (railwear traffic import), "
+                       "relative to the scene");
+  if (!scene->wear->low_rail_profile) {
+    t.Fail("collective",
+           "a [track] table with high_rail and low_rail instead of [rail] (a collective places "
+           "wheelsets on both rails)");
+  }
+  auto traffic = std::make_shared<CollectiveTraffic>();
+  const std::string path = ResolveRelativeTo(DirectoryOf(scene->path), file);
+  try {
+    traffic->collective = ReadLoadCollective(path);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}:{}: key '{}' = \"{}\": {}", t.file(),
+                                 LineOf(*t.Node("collective")), t.KeyName("collective"), file,
+                                 e.what()));
+  }
+  ReadTrafficWheel(t, scene, has_wheel, c);
+  traffic->flange_back_distance_m =
+      t.Number("flange_back_distance_mm", InRange(1000.0, 1700.0)).value_or(1360.0) * kMm;
+  traffic->flange_back_position_m =
+      t.Number("flange_back_position_mm", InRange(-200.0, 0.0)).value_or(-70.0) * kMm;
+  c->share = t.Number("share", Positive()).value_or(1.0);
+  const LoadCollective& lc = traffic->collective;
+  const bool every_bin_has_mu =
+      std::all_of(lc.entries.begin(), lc.entries.end(),
+                  [](const LoadCollectiveEntry& e) { return e.friction.has_value(); });
+  if (const auto mu = t.Number("friction", OpenClosed(0.0, 2.0))) {
+    c->friction = *mu;
+  } else if (!every_bin_has_mu) {
+    t.FailMissing("friction",
+                  "the friction coefficient of the bins without mu (the collective's CSV had no "
+                  "mu column)");
+  }
+  c->axle_load_t =
+      t.Number("axle_load_t", OpenClosed(0.0, 40.0)).value_or(CollectiveAxleLoad_t(lc));
+  c->collective = std::move(traffic);
+}
+
 void ReadTraffic(const Fields& top, Scene* scene) {
   // A [wheel] table, when a wear scene has one, gives each entry its default wheel.
   const bool has_wheel = top.Has("wheel");
@@ -608,6 +678,14 @@ void ReadTraffic(const Fields& top, Scene* scene) {
       ++index;
       continue;
     }
+    if (t.Has("collective")) {
+      TrafficCase c;
+      c.name = t.String("name").value_or(fmt::format("traffic[{}]", index));
+      ReadCollectiveTraffic(t, scene, has_wheel, &c);
+      scene->wear->traffic.push_back(std::move(c));
+      ++index;
+      continue;
+    }
     t.AllowOnly({"name", "wheel_profile", "mirror_y", "rolling_radius_mm", "vertical_N",
                  "axle_load_t", "lateral_shift_mm", "roll_rad", "yaw_mrad", "friction", "speed_m_s",
                  "share", "rail"});
@@ -621,23 +699,7 @@ void ReadTraffic(const Fields& top, Scene* scene) {
                "high_rail and low_rail instead of [rail])");
       }
     }
-    if (const auto spec = t.String("wheel_profile")) {
-      Profile p = LoadProfileFor(t, "wheel_profile", BodyRole::kWheel, *spec, scene->path);
-      if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
-      c.wheel_profile = std::move(p);
-    } else if (has_wheel) {
-      c.wheel_profile = scene->problem.wheel_profile;
-    } else {
-      t.FailMissing("wheel_profile", std::string(kProfileExpected) + " (or a [wheel] table)");
-    }
-    if (const auto r = t.Number("rolling_radius_mm", Positive())) {
-      c.rolling_radius_m = *r * kMm;
-    } else if (has_wheel) {
-      c.rolling_radius_m = scene->problem.placement.rolling_radius_m;
-    } else {
-      t.FailMissing("rolling_radius_mm",
-                    "the wheel radius at the profile's z = 0 in mm (or a [wheel] table)");
-    }
+    ReadTrafficWheel(t, scene, has_wheel, &c);
     c.vertical_force_N = t.RequiredNumber("vertical_N", Positive());
     c.axle_load_t = t.Number("axle_load_t", Positive())
                         .value_or(2.0 * c.vertical_force_N / kGravity_m_s2 / 1000.0);

@@ -7,6 +7,7 @@
 
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
+#include "wear/collective_traffic.h"
 
 namespace railwear {
 
@@ -14,6 +15,12 @@ std::string_view ToString(RailSide side) { return EnumToString(kRailSideNames, s
 
 std::optional<RailSide> RailSideFromString(std::string_view name) {
   return EnumFromString(kRailSideNames, name);
+}
+
+bool TrafficCase::RunsOn(RailSide side) const {
+  if (is_vehicle()) return true;
+  if (is_collective()) return EntryCount(collective->collective, side) > 0;
+  return rail == side;
 }
 
 void GaussHermiteProbabilists(int n, std::vector<double>* nodes, std::vector<double>* weights) {
@@ -63,6 +70,13 @@ void ValidateTraffic(const std::vector<TrafficCase>& traffic) {
     Require(c.lateral_shift_std_m >= 0.0, c, "lateral_shift_mm.std", c.lateral_shift_std_m * 1e3,
             ">= 0");
     if (c.is_vehicle()) continue;  // its wheels and positions come from the vehicle
+    if (c.is_collective()) {       // its positions, loads and speeds come from its bins
+      Require(c.rolling_radius_m > 0.0, c, "rolling_radius_mm", c.rolling_radius_m * 1e3, "> 0");
+      if (c.collective->collective.entries.empty()) {
+        throw InputError(fmt::format("{}: collective: no bins: expected at least one", c.name));
+      }
+      continue;
+    }
     Require(c.rolling_radius_m > 0.0, c, "rolling_radius_mm", c.rolling_radius_m * 1e3, "> 0");
     Require(c.vertical_force_N > 0.0, c, "vertical_N", c.vertical_force_N, "> 0");
     Require(true, c, "lateral_shift_mm.mean", c.lateral_shift_mean_m * 1e3, "a finite number");
@@ -96,7 +110,7 @@ std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic
   std::vector<LoadCase> cases;
   for (int t = 0; t < static_cast<int>(traffic.size()); ++t) {
     const TrafficCase& c = traffic[t];
-    if (c.is_vehicle()) continue;
+    if (c.is_vehicle() || c.is_collective()) continue;
     const double share = c.share / total_share[static_cast<int>(c.rail)];
     LoadCase base;
     base.traffic_index = t;
@@ -129,11 +143,8 @@ std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic
 std::array<double, 2> RailShareTotals(const std::vector<TrafficCase>& traffic) {
   std::array<double, 2> total = {0.0, 0.0};
   for (const TrafficCase& c : traffic) {
-    if (c.is_vehicle()) {
-      total[0] += c.share;
-      total[1] += c.share;
-    } else {
-      total[static_cast<int>(c.rail)] += c.share;
+    for (const RailSide side : {RailSide::kHigh, RailSide::kLow}) {
+      if (c.RunsOn(side)) total[static_cast<int>(side)] += c.share;
     }
   }
   return total;
@@ -141,7 +152,7 @@ std::array<double, 2> RailShareTotals(const std::vector<TrafficCase>& traffic) {
 
 bool HasTrafficOn(const std::vector<TrafficCase>& traffic, RailSide side) {
   for (const TrafficCase& c : traffic) {
-    if (c.rail == side || c.is_vehicle()) return true;
+    if (c.RunsOn(side)) return true;
   }
   return false;
 }
@@ -152,7 +163,7 @@ double MgtPerPass(const std::vector<TrafficCase>& traffic) {
       HasTrafficOn(traffic, RailSide::kHigh) ? RailSide::kHigh : RailSide::kLow;
   double share = 0.0, tonnes = 0.0;
   for (const TrafficCase& c : traffic) {
-    if (c.rail != counted) continue;
+    if (!c.RunsOn(counted)) continue;
     share += c.share;
     tonnes += c.share * c.axle_load_t;
   }

@@ -13,10 +13,12 @@
 //
 // Totals: a wheel pass of entry c carries axle_load_t of gross tonnage, so one pass of the mix
 // is sum_c share_c axle_load_t_c / (1e6 sum_c share_c) MGT (million gross tonnes), over the
-// entries of the high rail (or of the low rail when there are none on the high rail).
+// entries of the high rail (or of the low rail when there are none on the high rail). Vehicle
+// and collective entries count on every rail they run on (TrafficCase::RunsOn).
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -41,6 +43,8 @@ std::string_view ToString(RailSide side);
 // std::nullopt for anything but "high" and "low".
 std::optional<RailSide> RailSideFromString(std::string_view name);
 
+struct CollectiveTraffic;  // wear/collective_traffic.h
+
 struct TrafficCase {
   std::string name;                   // for messages and reports, e.g. "traffic[0]"
   Profile wheel_profile;              // wheel profile frame (core/notation.md)
@@ -62,6 +66,16 @@ struct TrafficCase {
   // the vehicle's.
   int vehicle = -1;
   bool is_vehicle() const { return vehicle >= 0; }
+  // Collective traffic (issue 15, wear/collective_traffic.h): an imported MBS load collective,
+  // null for other entries. Each bin is one load case on its rail, at its wheelset state placed
+  // on the unworn rails; the entry uses name, wheel_profile, rolling_radius_m, friction (for
+  // bins without mu), share (counted on each rail where the collective has bins) and
+  // axle_load_t (one axle pass: CollectiveAxleLoad_t unless the scene gives it).
+  std::shared_ptr<const CollectiveTraffic> collective;
+  bool is_collective() const { return collective != nullptr; }
+  // Whether this entry's wheels load `side`: a vehicle both rails, a collective the rails it has
+  // bins on, a prescribed entry its `rail`.
+  bool RunsOn(RailSide side) const;
 };
 
 // One contact problem of a wear step, self-contained: everything the contact needs for one wheel
@@ -93,9 +107,9 @@ void ValidateTraffic(const std::vector<TrafficCase>& traffic);
 void ValidateQuadraturePoints(int quadrature_points);
 
 // The load cases of the mix's prescribed entries (vehicle entries give theirs in the wear step,
-// from curving): each entry at `quadrature_points` Gauss-Hermite nodes (1 when its
-// std is 0), in entry order. The weights of each rail's cases sum to 1. Validates the traffic
-// and quadrature_points.
+// from curving; collective entries theirs from wear/collective_traffic.h): each entry at
+// `quadrature_points` Gauss-Hermite nodes (1 when its std is 0), in entry order. The weights of
+// each rail's cases sum to 1. Validates the traffic and quadrature_points.
 std::vector<LoadCase> ExpandTraffic(const std::vector<TrafficCase>& traffic, int quadrature_points);
 
 namespace internal {
@@ -110,10 +124,10 @@ std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic
 double MgtPerPass(const std::vector<TrafficCase>& traffic);
 
 // The sum of the shares of each rail's entries ([0] high, [1] low): a vehicle entry counts on
-// both rails.
+// both rails, a collective entry on each rail it has bins on.
 std::array<double, 2> RailShareTotals(const std::vector<TrafficCase>& traffic);
 
-// Whether any entry runs on `side` (vehicle entries run on both).
+// Whether any entry runs on `side` (TrafficCase::RunsOn).
 bool HasTrafficOn(const std::vector<TrafficCase>& traffic, RailSide side);
 
 }  // namespace railwear

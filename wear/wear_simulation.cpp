@@ -13,6 +13,7 @@
 #include "core/numerics/input_error.h"
 #include "core/numerics/parallel.h"
 #include "core/profile/builtin_profiles.h"
+#include "wear/collective_traffic.h"
 #include "wear/vehicle_traffic.h"
 
 namespace railwear {
@@ -185,6 +186,12 @@ void ValidateWearStudy(const WearStudy& study) {
   }
   if (!study.low_rail_profile) {
     for (const TrafficCase& c : study.traffic) {
+      if (c.is_collective()) {
+        throw InputError(fmt::format(
+            "{}: a load collective places wheelsets on both rails: expected a study with a low "
+            "rail (a scene's [track] table instead of [rail])",
+            c.name));
+      }
       if (c.rail == RailSide::kLow) {
         throw InputError(fmt::format(
             "{}: rail = \"low\": expected a study with a low rail (a scene's [track] table "
@@ -255,12 +262,16 @@ WearState InitialState(const WearStudy& study) {
 
 std::vector<LoadCase> StepLoadCases(const WearStudy& study, const Profile& high_rail_track,
                                     const std::optional<Profile>& low_rail_track) {
-  // Prescribed traffic: positions fixed in each rail's unworn track frame, so the current
-  // profiles are not needed. Vehicle entries: curving on the current rails.
+  // Prescribed traffic and imported collectives: positions fixed in each rail's unworn track
+  // frame, so the current profiles are not needed. Vehicle entries: curving on the current rails.
   std::vector<LoadCase> cases = ExpandValidTraffic(study.traffic, study.options.quadrature_points);
   for (int t = 0; t < static_cast<int>(study.traffic.size()); ++t) {
-    if (!study.traffic[t].is_vehicle()) continue;
-    std::vector<LoadCase> more = VehicleLoadCases(study, t, high_rail_track, *low_rail_track);
+    std::vector<LoadCase> more;
+    if (study.traffic[t].is_vehicle()) {
+      more = VehicleLoadCases(study, t, high_rail_track, *low_rail_track);
+    } else if (study.traffic[t].is_collective()) {
+      more = CollectiveLoadCases(study, t);
+    }
     cases.insert(cases.end(), more.begin(), more.end());
   }
   return cases;

@@ -4,9 +4,10 @@
 // (low_rail_profile; issue 15), each in its own rail frame. One step (DESIGN.md §1, §2):
 //   1. each rail's current profile (its own frame) is canted into its track frame with the
 //      motion computed once on its unworn profile (CantTransform), so the frame stays fixed;
-//   2. the step's load cases (internal::StepLoadCases: today the prescribed traffic mix,
-//      wear/traffic.h) are solved as rolling contacts (normal + tangential, and damage when
-//      asked) against the rail each case loads, in parallel threads;
+//   2. the step's load cases (internal::StepLoadCases: the prescribed traffic mix,
+//      wear/traffic.h; vehicle curving, wear/vehicle_traffic.h; imported load collectives,
+//      wear/collective_traffic.h) are solved as rolling contacts (normal + tangential, and damage
+//      when asked) against the rail each case loads, in parallel threads;
 //   3. each case's per-pass wear depth and RCF damage are binned along its rail's arc length
 //      (wear/pass_depth.h) and summed per rail with the case weights in a fixed order per bin
 //      (sorted by value), so the result depends neither on the thread count nor on the order of
@@ -200,8 +201,10 @@ StepResult RunWearStep(const WearStudy& study, const UnwornRails& unworn, const 
                        double passes_left);
 
 namespace internal {
-// The load cases of one step: the seam every source of load cases goes through. Today the
-// prescribed traffic expanded by Gauss-Hermite (ExpandValidTraffic); sources that depend on the
+// The load cases of one step: the seam every source of load cases goes through: the
+// prescribed traffic expanded by Gauss-Hermite (ExpandValidTraffic), then, in entry order, each
+// vehicle entry's (VehicleLoadCases) and each collective entry's (CollectiveLoadCases, fixed
+// in the unworn track frame); sources that depend on the
 // current rails (vehicle curving on the worn profiles) get each rail's current profile canted
 // into its track frame: `high_rail_track`, and `low_rail_track` (absent in a single-rail study).
 // Each rail's case weights sum to 1 (over the cases on it).
