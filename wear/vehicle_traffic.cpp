@@ -1,14 +1,61 @@
 // Vehicle traffic in a wear step (see vehicle_traffic.h).
 #include "wear/vehicle_traffic.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
+#include "core/geometry/wheel_rail_geometry.h"
 #include "core/profile/builtin_profiles.h"
 
 namespace railwear {
+
+namespace {
+
+// The contact angle of a wheel's rigid first contact (its smallest vertical gap) on its rail,
+// both in the rail's frame [rad]; 0 without overlap. Geometry only, on a 0.1 mm sampling.
+double RigidContactAngle(const Profile& wheel, const Profile& rail, const WheelPose& pose) {
+  constexpr double kSampling_m = 1e-4, kThreshold_m = 1e-5;
+  const WheelRailGeometry g(wheel, rail, pose, kSampling_m);
+  if (!g.has_overlap()) return 0.0;
+  const std::vector<ContactCandidate> candidates = g.FindCandidates(kThreshold_m);
+  if (candidates.empty()) return 0.0;
+  const ContactCandidate& first = *std::min_element(
+      candidates.begin(), candidates.end(),
+      [](const ContactCandidate& a, const ContactCandidate& b) { return a.gap_m < b.gap_m; });
+  return std::atan2(std::abs(first.normal.x()), std::abs(first.normal.y()));
+}
+
+// The part of a spread node's offset (toward the rail of `side`) that keeps that wheel's rigid
+// contact below flange contact (kFlangeContactAngle_rad): the whole offset when it stays there,
+// else the onset of flange contact found by bisection to 10 um (0 when the equilibrium is
+// already at it). A node is a wheelset displaced by the track's irregularity; in flange contact
+// the flange force would be the equilibrium's, not an imposed position's.
+double OffsetBeforeFlange(const WheelsetSpec& at_equilibrium, double offset, RailSide side,
+                          const CurvingProblem& p) {
+  const Profile& wheel = p.vehicle.wheel_profile;
+  auto flanging = [&](double d) {
+    WheelsetSpec ws = at_equilibrium;
+    ws.lateral_displacement_m += d;
+    const WheelsetPlacement placed = PlaceWheelsetAt(*p.gauge_points, p.track, ws);
+    const double angle = side == RailSide::kHigh
+                             ? RigidContactAngle(wheel, p.high_rail, placed.right)
+                             : RigidContactAngle(wheel, p.low_rail, placed.left);
+    return angle >= kFlangeContactAngle_rad;
+  };
+  if (!flanging(offset)) return offset;
+  double lo = 0.0, hi = offset;
+  if (flanging(lo)) return 0.0;
+  while (std::abs(hi - lo) > 1e-5) {
+    const double mid = 0.5 * (lo + hi);
+    (flanging(mid) ? hi : lo) = mid;
+  }
+  return lo;
+}
+
+}  // namespace
 
 RailGaugePoints UnwornGaugePoints(const WearStudy& study) {
   auto in_track = [&](const Profile& rail) {
@@ -82,16 +129,24 @@ std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index
   for (const CurvedWheelset& w : r.wheelsets) {
     const bool high_flange = w.high_climb.contact_angle_rad > kFlangeContactAngle_rad;
     const bool low_flange = w.low_climb.contact_angle_rad > kFlangeContactAngle_rad;
+    WheelsetSpec ws;
+    ws.flange_back_distance_m = v.flange_back_distance_m;
+    ws.flange_back_position_m = v.flange_back_position_m;
+    ws.rolling_radius_m = v.rolling_radius_m;
+    ws.lateral_displacement_m = w.lateral_m;
+    ws.yaw_rad = w.yaw_rad;
+    ws.roll_rad = w.roll_rad;
+    const WheelsetSpec at_equilibrium = ws;
     for (int k = 0; k < static_cast<int>(nodes.size()); ++k) {
       double offset = c.lateral_shift_std_m * nodes[k];
+      // A node pushing a wheel toward its rail's flange stops where flange contact begins (at
+      // the equilibrium when that wheel is in flange contact already).
       if ((offset > 0.0 && high_flange) || (offset < 0.0 && low_flange)) offset = 0.0;
-      WheelsetSpec ws;
-      ws.flange_back_distance_m = v.flange_back_distance_m;
-      ws.flange_back_position_m = v.flange_back_position_m;
-      ws.rolling_radius_m = v.rolling_radius_m;
+      if (offset != 0.0) {
+        offset = OffsetBeforeFlange(at_equilibrium, offset,
+                                    offset > 0.0 ? RailSide::kHigh : RailSide::kLow, p);
+      }
       ws.lateral_displacement_m = w.lateral_m + offset;
-      ws.yaw_rad = w.yaw_rad;
-      ws.roll_rad = w.roll_rad;
       const WheelsetPlacement placed = PlaceWheelsetAt(*p.gauge_points, p.track, ws);
       WheelMotion axle;
       axle.speed_m_s = c.speed_m_s;

@@ -8,9 +8,11 @@
 // the free-rolling (or traction) balance and the curve's yaw rate. With a lateral spread
 // (lateral_shift_std_m: track irregularity, hunting) every wheelset is also placed at the
 // Gauss-Hermite nodes around its equilibrium at the same yaw, roll, loads and pitch velocity;
-// nodes that would push a wheel further into flange contact (beyond the equilibrium of a wheel
-// whose steepest patch is steeper than 45 degrees) are not imposed: they take the equilibrium's
-// position, whose flange force is the equilibrium's. Weights: the entry's share (normalised per
+// a node never pushes a wheel into flange contact: its offset toward a rail stops where that
+// wheel's rigid contact reaches 45 degrees (the flange's onset, found on the step's rails), and
+// at the equilibrium when the wheel is in flange contact already (its flange force is the
+// equilibrium's: an imposed position there would be wheel climb, not a vehicle's state). Weights:
+// the entry's share (normalised per
 // rail) times the node's weight over the vehicle's wheelsets.
 #pragma once
 

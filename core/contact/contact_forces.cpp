@@ -56,7 +56,8 @@ FlangeClimbCheck CheckFlangeClimb(const ContactResult& result, std::optional<dou
     c.contact_angle_rad = std::max(c.contact_angle_rad, p.contact_angle_rad);
   }
   if (friction) c.nadal_limit = NadalLimit(c.contact_angle_rad, *friction);
-  c.exceeded = c.nadal_limit && c.l_over_v > *c.nadal_limit;
+  c.exceeded = c.nadal_limit && c.l_over_v > *c.nadal_limit &&
+               c.contact_angle_rad >= kFlangeContactAngle_rad;
   return c;
 }
 
@@ -79,7 +80,8 @@ FlangeClimbCheck CheckFlangeClimbAtSteepest(const ContactResult& result, double 
     }
   }
   check.nadal_limit = NadalLimit(check.contact_angle_rad, friction);
-  check.exceeded = check.nadal_limit && check.l_over_v > *check.nadal_limit;
+  check.exceeded = check.nadal_limit && check.l_over_v > *check.nadal_limit &&
+                   check.contact_angle_rad >= kFlangeContactAngle_rad;
   return check;
 }
 

@@ -56,6 +56,10 @@ struct PatchResult {
 };
 
 // L/V of one wheel and its check against Nadal's limit (core/contact/contact_forces.h).
+// A wheel is in flange contact when its steepest patch is steeper than this: Nadal's
+// flange-climb limit applies there.
+inline constexpr double kFlangeContactAngle_rad = 45.0 * 3.14159265358979323846 / 180.0;
+
 struct FlangeClimbCheck {
   // |net lateral force on the rail| / net vertical force on the rail, both in R (0 without a
   // positive vertical force).
@@ -63,7 +67,11 @@ struct FlangeClimbCheck {
   double contact_angle_rad = 0.0;     // of the steepest patch (largest contact angle)
   std::optional<double> friction;     // the scene's mu; absent for normal contact
   std::optional<double> nadal_limit;  // absent without friction or below atan(mu)
-  bool exceeded = false;              // L/V > Nadal's limit: flange climb possible
+  // L/V > Nadal's limit in flange contact (contact_angle_rad >= kFlangeContactAngle_rad):
+  // flange climb possible. Below, on the tread or the gauge corner, a wheel whose L/V passes the
+  // limit at its angle slides up onto its flange: that is reported (l_over_v, nadal_limit), but
+  // it is no climb.
+  bool exceeded = false;
 };
 
 struct StageTime {

@@ -547,8 +547,7 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
     out.status = CurvingStatus::kConverged;
     for (const CurvedWheelset& w : ws) {
       for (const FlangeClimbCheck* c : {&w.high_climb, &w.low_climb}) {
-        if (c->exceeded && c->contact_angle_rad >= kFlangeContactAngle_rad &&
-            out.status != CurvingStatus::kFlangeClimb) {
+        if (c->exceeded && out.status != CurvingStatus::kFlangeClimb) {
           out.status = CurvingStatus::kFlangeClimb;
           out.message = FlangeClimbWarning(*c, fmt::format("wheelset {} {} wheel", &w - ws.data(),
                                                            c == &w.high_climb ? "high" : "low"));

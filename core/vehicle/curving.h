@@ -41,11 +41,6 @@
 
 namespace railwear {
 
-// A wheel is in flange contact when its steepest loaded patch is steeper than this: Nadal's
-// flange-climb limit applies there (below, on the tread or the gauge corner, a wheel that slides
-// up its contact slope runs onto its flange: its L/V is reported, but it is no climb).
-inline constexpr double kFlangeContactAngle_rad = 45.0 * 3.14159265358979323846 / 180.0;
-
 struct CurvingOptions {
   // The contact model of the iterates; absent: the full model throughout (slower, no better).
   std::optional<ModelOptions> predictor = PredictorModel();

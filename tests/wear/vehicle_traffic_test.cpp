@@ -3,6 +3,7 @@
 #include "wear/vehicle_traffic.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include <gtest/gtest.h>
 
@@ -86,6 +87,30 @@ TEST(VehicleTrafficTest, SpreadNodesAndBothRailsWear) {
   EXPECT_GT(step.measures.worn_area_m2, 0.0);
   EXPECT_GT(step.low_rail->measures.worn_area_m2, 0.0);
   EXPECT_GT(step.step_passes, 0.0);
+}
+
+// A spread wider than the flangeway (nodes at +-10.4 mm around a wheelset near the centre) never
+// pushes a wheel onto its flange: the nodes stop at the flange's onset, where the rigid contact
+// reaches 45 degrees, so no case is an imposed wheel climb.
+TEST(VehicleTrafficTest, SpreadNodesStopAtTheFlangesOnset) {
+  const WearStudy study = VehicleStudy(6.0e-3);
+  const WearState s0 = MakeInitialState(study);
+  const StepResult step = RunWearStep(study, UnwornRails::Of(s0), s0, 1e6);
+  ASSERT_EQ(step.cases.size(), 6u);
+  const double onset_rad = kFlangeContactAngle_rad;
+  for (const LoadCaseSummary& c : step.cases) {
+    std::printf("[ measured ] node %d %s rail: shift %.2f mm, contact angle %.1f deg, L/V %.3f\n",
+                c.load_case.node, ToString(c.load_case.rail).data(),
+                c.load_case.placement.lateral_shift_m * 1e3, c.contact_angle_rad * 180 / M_PI,
+                c.climb.l_over_v);
+    // The loaded patch sits at the rigid contact's 45 degrees to within the patch's spread.
+    EXPECT_LT(c.contact_angle_rad, onset_rad + 0.1) << "node " << c.load_case.node;
+    EXPECT_FALSE(c.climb.exceeded) << "node " << c.load_case.node;
+  }
+  // The outer nodes were clipped: they lie closer together than the +-10.4 mm imposed.
+  const double spread_high = step.cases[4].load_case.placement.lateral_shift_m -
+                             step.cases[0].load_case.placement.lateral_shift_m;
+  EXPECT_LT(std::abs(spread_high), 2.0 * std::sqrt(3.0) * 6.0e-3 - 1e-3);
 }
 
 // RunWear starts every step's curving from the equilibrium on the unworn rails: a run stopped
