@@ -183,7 +183,13 @@ class Statement {
   }
 
   int64_t Int64(int col) const { return sqlite3_column_int64(stmt_, col); }
-  double Double(int col) const { return sqlite3_column_double(stmt_, col); }
+  // Every double read back is checked (issue 17): railwear never stores a NaN or an infinity,
+  // so one is a damaged row, reported with its table, row and column, never printed or resumed.
+  double Double(int col) const {
+    const double v = sqlite3_column_double(stmt_, col);
+    if (!std::isfinite(v)) ThrowDamaged(col, fmt::format("{}", v));
+    return v;
+  }
   std::string Text(int col) const {
     const auto* p = sqlite3_column_text(stmt_, col);
     return p ? std::string(reinterpret_cast<const char*>(p),
@@ -194,8 +200,41 @@ class Statement {
     const auto* p = static_cast<const unsigned char*>(sqlite3_column_blob(stmt_, col));
     const int n = sqlite3_column_bytes(stmt_, col);
     std::vector<double> v(static_cast<size_t>(n) / 8);
-    for (size_t i = 0; i < v.size(); ++i) v[i] = ReadDouble(p + 8 * i);
+    for (size_t i = 0; i < v.size(); ++i) {
+      v[i] = ReadDouble(p + 8 * i);
+      if (!std::isfinite(v[i])) ThrowDamaged(col, fmt::format("{} at element {}", v[i], i));
+    }
     return v;
+  }
+  // InputError (exit 2: the file's contents are bad input, changed outside railwear) naming the
+  // database, the table, the row (its step when the statement selects one, and the statement's
+  // WHERE clause with its values) and the column.
+  [[noreturn]] void ThrowDamaged(int col, const std::string& value) const {
+    const char* column = sqlite3_column_name(stmt_, col);
+    std::string table = "?";
+    const std::string sql = sql_;
+    if (const size_t from = sql.find(" FROM "); from != std::string::npos) {
+      table = sql.substr(from + 6);
+      table = table.substr(0, table.find_first_of(" ,;"));
+    }
+    std::string row;
+    if (const char* c0 = sqlite3_column_name(stmt_, 0); c0 && std::string(c0) == "step") {
+      row = fmt::format("step {}", sqlite3_column_int64(stmt_, 0));
+    }
+    char* expanded = sqlite3_expanded_sql(stmt_);
+    if (expanded) {
+      const std::string e = expanded;
+      sqlite3_free(expanded);
+      if (const size_t where = e.find(" WHERE "); where != std::string::npos) {
+        std::string cond = e.substr(where + 7);
+        cond = cond.substr(0, cond.find(" ORDER BY"));
+        row += (row.empty() ? "" : ", ") + std::string("where ") + cond;
+      }
+    }
+    throw InputError(fmt::format(
+        "database '{}': damaged row in table '{}' ({}): column '{}' = {}; expected a finite "
+        "number (railwear never stores one: the file was changed outside railwear)",
+        c_->path(), table, row.empty() ? "row unknown" : row, column ? column : "?", value));
   }
   sqlite3_stmt* get() const { return stmt_; }
 

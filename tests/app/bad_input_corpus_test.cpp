@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 
 #include "tests/app/cli_runner.h"
 #include "tests/app/wear_scenes.h"
@@ -193,6 +194,31 @@ std::vector<CorpusCase> Corpus() {
                  {"s.toml:", "load cases per wear step", "'wear.quadrature_points' (now 3)"}});
   }
 
+  // calibrate: values whose fit gave infinite residuals with exit 0.
+  {
+    const std::string config = Source("examples/calibration/synthetic.toml");
+    const std::map<std::string, std::string> base = {
+        {"synthetic_r15_convex.csv", Source("examples/calibration/synthetic_r15_convex.csv")},
+        {"synthetic_r15_5_concave.csv", Source("examples/calibration/synthetic_r15_5_concave.csv")},
+        {"groove.toml", Source("examples/groove_conformal.toml")}};
+    auto files = base;
+    files["c.toml"] = Replace(ReplaceAll(config, "../groove_conformal.toml", "groove.toml"),
+                              "area_mm2 = 27.794", "area_mm2 = 1e-300");
+    c.push_back({"calibrate_area_1e-300",
+                 files,
+                 "calibrate c.toml --out k.toml --csv r.csv",
+                 2,
+                 {"c.toml:", "key 'contact_results[0].area_mm2' = 1e-300", "[0.001, 100000]"}});
+    files = base;
+    files["c.toml"] = ReplaceAll(config, "../groove_conformal.toml", "groove.toml");
+    files["synthetic_r15_convex.csv"] =
+        Replace(base.at("synthetic_r15_convex.csv"), "# E_MPa = 210000", "# E_MPa = 1e308");
+    c.push_back({"calibrate_curve_E_1e308",
+                 files,
+                 "calibrate c.toml --out k.toml --csv r.csv",
+                 2,
+                 {"synthetic_r15_convex.csv:4:", "E_MPa", "1e308", "[1, 1e7]"}});
+  }
   return c;
 }
 
@@ -239,6 +265,31 @@ INSTANTIATE_TEST_SUITE_P(Issue17, BadInputCorpus, ::testing::ValuesIn(Corpus()),
                            }
                            return n;
                          });
+
+// A damaged row (a value written by another program: passes = +Inf) is reported with its table,
+// row and column (exit 2: the file's contents are bad input), never printed or resumed.
+TEST_F(CliFixture, DamagedRowIsReportedNotPrintedOrResumed) {
+  Write("s.toml", kSmallWearStudy);
+  ASSERT_EQ(Run("wear s.toml --db s.sqlite --steps 2").exit_code, 0);
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open((dir_ / "s.sqlite").c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(
+      sqlite3_exec(db, "UPDATE steps SET passes = 9e999 WHERE step = 1", nullptr, nullptr, nullptr),
+      SQLITE_OK);
+  sqlite3_close(db);
+  const std::regex non_finite(R"((^|[^A-Za-z_])(nan|inf)([^A-Za-z_]|$))", std::regex::icase);
+  for (const std::string args :
+       {"history --db s.sqlite steps \"small study\"",
+        "history --db s.sqlite diff \"small study\" 0 1", "wear s.toml --db s.sqlite --resume"}) {
+    const Outcome o = Run(args);
+    EXPECT_EQ(o.exit_code, 2) << args << ": " << o.err;
+    for (const std::string part :
+         {"database 's.sqlite'", "table 'steps'", "step 1", "column 'passes'"}) {
+      EXPECT_NE(o.err.find(part), std::string::npos) << args << ": " << o.err;
+    }
+    EXPECT_FALSE(std::regex_search(o.out, non_finite)) << args << ": " << o.out;
+  }
+}
 
 }  // namespace
 }  // namespace railwear::test
