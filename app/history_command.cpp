@@ -47,7 +47,7 @@ ProfileStore OpenExisting(const std::string& path) {
                     "profile-history database",
                     path));
   }
-  return ProfileStore::Open(path);
+  return ProfileStore::OpenReadOnly(path);  // never writes, migrates or recovers the file
 }
 
 RunInfo FindRunOrThrow(const ProfileStore& db, const std::string& name) {

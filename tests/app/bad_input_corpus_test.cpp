@@ -291,5 +291,43 @@ TEST_F(CliFixture, DamagedRowIsReportedNotPrintedOrResumed) {
   }
 }
 
+// history opens read-only: on a clean database it creates no -wal/-shm and changes no byte; an
+// older schema is refused (not migrated, not switched to WAL) naming the command that migrates
+// it; a foreign file with a hot journal is refused with its bytes and journal unchanged.
+TEST_F(CliFixture, HistoryNeverWritesTheDatabase) {
+  Write("s.toml", kSmallWearStudy);
+  ASSERT_EQ(Run("wear s.toml --db s.sqlite --steps 1").exit_code, 0);
+  ASSERT_FALSE(fs::exists(dir_ / "s.sqlite-wal"));
+  const std::string before = ReadFile(dir_ / "s.sqlite");
+  for (const std::string args :
+       {"history --db s.sqlite runs", "history --db s.sqlite steps \"small study\"",
+        "history --db s.sqlite diff \"small study\" 0 1"}) {
+    const Outcome o = Run(args);
+    EXPECT_EQ(o.exit_code, 0) << args << ": " << o.err;
+    EXPECT_EQ(ReadFile(dir_ / "s.sqlite"), before) << args;
+    for (const char* suffix : {"-wal", "-shm", "-journal"}) {
+      EXPECT_FALSE(fs::exists(dir_ / ("s.sqlite" + std::string(suffix)))) << args << suffix;
+    }
+  }
+
+  // A schema-1 style file is refused untouched (no WAL switch, no migration).
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open((dir_ / "old.sqlite").c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db,
+                         "PRAGMA application_id = 1381450818; CREATE TABLE meta(key TEXT PRIMARY "
+                         "KEY, value TEXT NOT NULL); INSERT INTO meta VALUES ('format', "
+                         "'railwear-profile-history'); PRAGMA user_version = 2;",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  const std::string old_bytes = ReadFile(dir_ / "old.sqlite");
+  const Outcome old = Run("history --db old.sqlite runs");
+  EXPECT_EQ(old.exit_code, 2);
+  EXPECT_NE(old.err.find("database 'old.sqlite': schema version 2"), std::string::npos) << old.err;
+  EXPECT_NE(old.err.find("railwear wear SCENE --db old.sqlite --resume"), std::string::npos);
+  EXPECT_EQ(ReadFile(dir_ / "old.sqlite"), old_bytes);
+  EXPECT_FALSE(fs::exists(dir_ / "old.sqlite-wal"));
+}
+
 }  // namespace
 }  // namespace railwear::test
