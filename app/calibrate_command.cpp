@@ -2,6 +2,7 @@
 // outputs (calibrate_output.h, influence_constants_file.h). See calibrate_command.h.
 #include "app/calibrate_command.h"
 
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
@@ -18,6 +19,28 @@
 #include "profiles_db/profile_store.h"
 
 namespace railwear::app {
+
+namespace {
+
+// The JSON path and value of the first non-finite number in `j` ("" when all are finite).
+std::string FirstNonFinite(const nlohmann::json& j, const std::string& path) {
+  if (j.is_number_float() && !std::isfinite(j.get<double>())) {
+    return fmt::format("{} = {}", path.empty() ? "/" : path, j.get<double>());
+  }
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items()) {
+      if (std::string b = FirstNonFinite(v, path + "/" + k); !b.empty()) return b;
+    }
+  }
+  if (j.is_array()) {
+    for (size_t i = 0; i < j.size(); ++i) {
+      if (std::string b = FirstNonFinite(j[i], fmt::format("{}/{}", path, i)); !b.empty()) return b;
+    }
+  }
+  return "";
+}
+
+}  // namespace
 
 void SetupCalibrate(CLI::App& app) {
   auto o = std::make_shared<CalibrateOptions>();
@@ -66,6 +89,14 @@ void RunCalibrate(const CalibrateOptions& o) {
     throw std::runtime_error("calibration failed: " + s.message + "; nothing written");
   }
   for (const auto& w : s.warnings) std::cerr << "railwear: warning: " << w << "\n";
+  // No output carries an infinity or NaN (issue 17): every number of the report is in the JSON,
+  // checked here before anything is written (exit 1: the inputs passed their checks).
+  if (const std::string bad = FirstNonFinite(CalibrateJson(config, s, out, db), ""); !bad.empty()) {
+    throw std::runtime_error(fmt::format(
+        "calibration failed: the fit produced a non-finite value ({}); nothing written: check "
+        "the ranges of the curve files' and contact results' values",
+        bad));
+  }
 
   // The constants file, checked by reading it back as a scene would.
   const std::string created = NowUtc();

@@ -93,6 +93,8 @@ void ReadCurveEntries(const Fields& top, CalibrateConfig* c) {
   }
 }
 
+constexpr double kMinArea_mm2 = 1e-3, kMaxArea_mm2 = 1e5, kMinP_MPa = 1.0, kMaxP_MPa = 1e5;
+
 void ReadContactEntries(const Fields& top, CalibrateConfig* c) {
   for (const Fields& t : ArrayOfTables(top, "contact_results",
                                        "[[contact_results]] tables with scene, area_mm2, "
@@ -117,13 +119,24 @@ void ReadContactEntries(const Fields& top, CalibrateConfig* c) {
             fmt::format("{}: the result has status '{}'{}; expected status 'ok' and a scene",
                         prefix, fem.status, fem.scene.empty() ? " and no scene" : ""));
       }
+      if (!(fem.area_mm2 >= kMinArea_mm2 && fem.area_mm2 <= kMaxArea_mm2 &&
+            fem.p_max_MPa >= kMinP_MPa && fem.p_max_MPa <= kMaxP_MPa)) {
+        throw InputError(fmt::format(
+            "{}: the result's area_mm2 = {} and p_max_MPa = {}; expected area_mm2 in [{}, {}] "
+            "and p_max_MPa in [{}, {}] (the range the fit bears)",
+            prefix, fem.area_mm2, fem.p_max_MPa, kMinArea_mm2, kMaxArea_mm2, kMinP_MPa, kMaxP_MPa));
+      }
       e.scene = fem.scene;
       e.target.area_m2 = fem.area_mm2 / kToMm2;
       e.target.p_max_Pa = fem.p_max_MPa / kToMPa;
     } else {
       e.scene = ExistingFile(t, "scene", c->path, "a contact scene (TOML)");
-      e.target.area_m2 = t.RequiredNumber("area_mm2", Positive()) / kToMm2;
-      e.target.p_max_Pa = t.RequiredNumber("p_max_MPa", Positive()) / kToMPa;
+      // Ranges the fit bears (area_mm2 = 1e-300 gave an infinite residual): patches of a
+      // thousandth to a hundred thousand square millimetres, pressures up to 1e5 MPa.
+      e.target.area_m2 =
+          t.RequiredNumber("area_mm2", Positive(), Closed(kMinArea_mm2, kMaxArea_mm2)) / kToMm2;
+      e.target.p_max_Pa =
+          t.RequiredNumber("p_max_MPa", Positive(), Closed(kMinP_MPa, kMaxP_MPa)) / kToMPa;
       prefix = FieldPrefix(t.file(), *t.Node("scene"), t.KeyName("scene"));
     }
     e.target.weight = t.Number("weight", Positive()).value_or(1.0);

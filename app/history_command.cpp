@@ -47,7 +47,7 @@ ProfileStore OpenExisting(const std::string& path) {
                     "profile-history database",
                     path));
   }
-  return ProfileStore::Open(path);
+  return ProfileStore::OpenReadOnly(path);  // never writes, migrates or recovers the file
 }
 
 RunInfo FindRunOrThrow(const ProfileStore& db, const std::string& name) {
@@ -204,8 +204,10 @@ nlohmann::json ProfileJson(const ProfileStore& db, const RunInfo& run, const Ste
 // ---------------------------------------------------------------------------------------------
 // diff.
 
+// A wear measure in mm; "n/a" where the profile does not reach the measuring point (never "nan"),
+// and never "-0.0000".
 std::string Mm(double metres, int decimals = 4) {
-  return std::isnan(metres) ? std::string("nan") : fmt::format("{:.{}f}", metres * kToMm, decimals);
+  return std::isfinite(metres) ? FixedNoNegativeZero(metres * kToMm, decimals) : std::string("n/a");
 }
 
 }  // namespace
@@ -345,7 +347,7 @@ std::vector<std::string> MeasureCells(const std::vector<StepRecord>& steps, size
           FixedNoNegativeZero(st.w1_mm, 4),
           FixedNoNegativeZero(st.w2_mm, 4),
           FixedNoNegativeZero(st.w3_mm, 4),
-          fmt::format("{:.3e}", st.smoothing_area_error),
+          fmt::format("{:.3e}", st.smoothing_area_error + 0.0),  // + 0.0: -0 prints as 0
           RateCell(rate.w2_mm_per_mgt),
           RateCell(rate.w3_mm_per_mgt)};
 }

@@ -21,9 +21,11 @@ constexpr const char* kConstantSetExpected = "a table { c_f, c_z, c_s }";
 InfluenceConstantSet ReadConstantSet(const Fields& t) {
   t.AllowOnly({"c_f", "c_z", "c_s"});
   InfluenceConstantSet c;
-  c.c_f = t.Number("c_f", Positive()).value_or(c.c_f);
-  c.c_z = t.Number("c_z", Positive()).value_or(c.c_z);
-  c.c_s = t.Number("c_s", AnyFinite()).value_or(c.c_s);
+  // Ranges the influence operator bears (1e-308 made its Cholesky factor fail); the fitted and
+  // published constants are of order 1.
+  c.c_f = t.Number("c_f", Positive(), Closed(1e-6, 1e3)).value_or(c.c_f);
+  c.c_z = t.Number("c_z", Positive(), Closed(1e-6, 1e3)).value_or(c.c_z);
+  c.c_s = t.Number("c_s", AnyFinite(), Closed(-1e3, 1e3)).value_or(c.c_s);
   return c;
 }
 

@@ -120,17 +120,26 @@ void ReadGeometryAndKernel(const Fields& t, ModelOptions* model) {
   model->kind = KindOf(model->geometry, model->kernel);
 }
 
+constexpr double kMinCell_mm = 0.01, kMaxCell_mm = 20.0;
+
 void ReadCellSize(const Fields& t, ModelOptions* model) {
   const toml::node* node = t.Node("cell_mm");
   if (node == nullptr) return;
-  const std::string expected = "two positive numbers [dx, ds] in mm";
+  // Cells from 0.01 mm (the lateral walk that sizes a patch steps an eighth of a cell: below
+  // this it takes minutes and gigabytes before the operator's memory estimate can refuse the
+  // grid) to 20 mm (a whole patch in one cell; 1e308 overflowed the operator).
+  const std::string expected = fmt::format(
+      "two positive numbers [dx, ds] in mm, each in [{}, {}] (the range the numerics bear)",
+      kMinCell_mm, kMaxCell_mm);
   const toml::array* a = node->as_array();
   if (a == nullptr || a->size() != 2) t.Fail("cell_mm", expected);
   double v[2] = {0.0, 0.0};
   for (int i = 0; i < 2; ++i) {
     const toml::node& e = *a->get(i);
     if (const auto n = e.value<double>()) v[i] = *n;  // integers convert
-    if (!(e.is_number() && std::isfinite(v[i]) && v[i] > 0.0)) t.Fail("cell_mm", expected);
+    if (!(e.is_number() && std::isfinite(v[i]) && v[i] >= kMinCell_mm && v[i] <= kMaxCell_mm)) {
+      t.Fail("cell_mm", expected);
+    }
   }
   model->cell_dx_m = v[0] * kMm;
   model->cell_ds_m = v[1] * kMm;
@@ -323,7 +332,7 @@ void ReadWheelset(const Fields& top, Scene* scene) {
   const auto track = top.Table("track", "a table");
   const auto ws = top.Table("wheelset", "a table");
   if (track && !ws) {
-    track->Fail("gauge_mm", "a [wheelset] table next to [track] (a track alone places nothing)");
+    top.Fail("track", "a [wheelset] table next to [track] (a track alone places nothing)");
   }
   if (!ws) return;
   TrackSpec tr;
@@ -658,6 +667,10 @@ void ReadCollectiveTraffic(const Fields& t, Scene* scene, bool has_wheel, Traffi
   c->collective = std::move(traffic);
 }
 
+// At most this many load cases per wear step (about 20 ms each at draft accuracy: under two
+// minutes a step on one thread).
+constexpr size_t kMaxLoadCasesPerStep = 5000;
+
 void ReadTraffic(const Fields& top, Scene* scene) {
   // A [wheel] table, when a wear scene has one, gives each entry its default wheel.
   const bool has_wheel = top.Has("wheel");
@@ -667,9 +680,27 @@ void ReadTraffic(const Fields& top, Scene* scene) {
     top.FailMissing("traffic", "at least one [[traffic]] table for the wear effect");
   }
   const toml::array& entries = *node->as_array();
+  // The time and memory estimate of a step, before any entry is read (each loads its wheel):
+  // every entry is at least one contact solve per step and a spread entry one per quadrature
+  // node. 100 000 entries once ran out of memory at 8 GB.
+  const int nodes = scene->wear->options.quadrature_points;
+  const auto refuse = [&](size_t cases) {
+    throw InputError(fmt::format(
+        "{}: {} [[traffic]] entries give up to {} load cases per wear step (each a contact "
+        "solve, stored per step); expected at most {}: merge similar entries (their shares add) "
+        "or lower 'wear.quadrature_points' (now {})",
+        FieldPrefix(top.file(), *node, "traffic"), entries.size(), cases, kMaxLoadCasesPerStep,
+        nodes));
+  };
+  if (entries.size() > kMaxLoadCasesPerStep) refuse(entries.size());
+  size_t cases = 0;
   int index = 0;
   for (const toml::node& entry : entries) {
     const Fields t(*entry.as_table(), fmt::format("traffic[{}]", index), top.file());
+    // A vehicle entry and a spread entry take every node, a fixed position one case.
+    const toml::node* shift = t.Node("lateral_shift_mm");
+    cases += (t.Has("vehicle") || (shift != nullptr && shift->is_table())) ? nodes : 1;
+    if (cases > kMaxLoadCasesPerStep) refuse(cases);
     if (t.Has("vehicle")) {
       TrafficCase c;
       c.name = t.String("name").value_or(fmt::format("traffic[{}]", index));

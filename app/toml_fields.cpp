@@ -27,6 +27,10 @@ NumberRule InRange(double lo, double hi) {
   return {[lo, hi](double v) { return v >= lo && v < hi; },
           fmt::format("a number in [{}, {})", lo, hi)};
 }
+NumberRule Closed(double lo, double hi) {
+  return {[lo, hi](double v) { return v >= lo && v <= hi; },
+          fmt::format("a number in [{}, {}]", lo, hi)};
+}
 NumberRule OpenClosed(double lo, double hi) {
   return {[lo, hi](double v) { return v > lo && v <= hi; },
           fmt::format("a number in ({}, {}]", lo, hi)};
@@ -154,10 +158,16 @@ Material ReadMaterial(const Fields& parent, std::string_view key, MaterialKeys k
     t->AllowOnly({"E_MPa", "nu"});
   }
   Material m;
-  m.youngs_modulus_Pa = t->RequiredNumber("E_MPa", Positive()) * kMPa;
+  // Moduli from soft rubber (1 MPa) to beyond diamond (1e7 MPa): the contact modulus and the
+  // approach of the solvers are bounded there (1e-308 MPa aborted the normal solver).
+  m.youngs_modulus_Pa = t->RequiredNumber("E_MPa", Positive(), Closed(1.0, 1e7)) * kMPa;
   m.poisson_ratio = t->RequiredNumber("nu", InRange(0.0, 0.5));
-  if (const auto h = t->Number("hardness_MPa", Positive())) m.hardness_Pa = *h * kMPa;
-  if (const auto y = t->Number("shear_yield_MPa", Positive())) m.shear_yield_Pa = *y * kMPa;
+  if (const auto h = t->Number("hardness_MPa", Positive(), Closed(1.0, 1e6))) {
+    m.hardness_Pa = *h * kMPa;
+  }
+  if (const auto y = t->Number("shear_yield_MPa", Positive(), Closed(1.0, 1e6))) {
+    m.shear_yield_Pa = *y * kMPa;
+  }
   return m;
 }
 
@@ -171,7 +181,11 @@ std::string Fields::KeyName(std::string_view key) const {
 }
 
 void Fields::Fail(std::string_view key, std::string_view expected) const {
-  throw InputError(FieldError(file_, *table_.get(key), KeyName(key), expected));
+  // A rule that relates keys may name one that is absent (kth_v2_m_s when only kth_v1_m_s is
+  // given): say it is missing instead of dereferencing nothing.
+  const toml::node* node = table_.get(key);
+  if (node == nullptr) FailMissing(key, expected);
+  throw InputError(FieldError(file_, *node, KeyName(key), expected));
 }
 
 void Fields::FailMissing(std::string_view key, std::string_view expected) const {
@@ -208,6 +222,20 @@ std::optional<double> Fields::Number(std::string_view key, const NumberRule& rul
 
 double Fields::RequiredNumber(std::string_view key, const NumberRule& rule) const {
   const auto v = Number(key, rule);
+  if (!v) FailMissing(key, rule.expected);
+  return *v;
+}
+
+std::optional<double> Fields::Number(std::string_view key, const NumberRule& rule,
+                                     const NumberRule& range) const {
+  const auto v = Number(key, rule);
+  if (v && !range.ok(*v)) Fail(key, range.expected + " (the range the numerics bear)");
+  return v;
+}
+
+double Fields::RequiredNumber(std::string_view key, const NumberRule& rule,
+                              const NumberRule& range) const {
+  const auto v = Number(key, rule, range);
   if (!v) FailMissing(key, rule.expected);
   return *v;
 }

@@ -27,6 +27,7 @@ NumberRule AnyFinite();
 NumberRule Positive();
 NumberRule AtLeast(double lo);
 NumberRule InRange(double lo_inclusive, double hi_exclusive);     // [lo, hi)
+NumberRule Closed(double lo_inclusive, double hi_inclusive);      // [lo, hi]
 NumberRule OpenClosed(double lo_exclusive, double hi_inclusive);  // (lo, hi]
 NumberRule IntegerAtLeast(int lo);  // "an integer >= lo" (and below 1e6)
 NumberRule IntegerInRange(int lo_inclusive, int hi_inclusive);  // "an integer in [lo, hi]"
@@ -43,6 +44,12 @@ class Fields {
 
   std::optional<double> Number(std::string_view key, const NumberRule& rule) const;
   double RequiredNumber(std::string_view key, const NumberRule& rule) const;
+  // The same, then `range` (the finite range the numerics bear, issue 17): a value that passes
+  // `rule` but not `range` fails with "expected RANGE (the range the numerics bear)".
+  std::optional<double> Number(std::string_view key, const NumberRule& rule,
+                               const NumberRule& range) const;
+  double RequiredNumber(std::string_view key, const NumberRule& rule,
+                        const NumberRule& range) const;
   // An integer: `rule` must only accept whole numbers that fit an int (IntegerAtLeast,
   // IntegerInRange). The two-rule form checks `number` first (its message for values it
   // rejects) and then `integer` (its message for values that pass the first but are not one).
@@ -124,9 +131,9 @@ enum class MaterialKeys {
   kElastic,     // { E_MPa, nu }
   kWithDamage,  // { E_MPa, nu, hardness_MPa, shear_yield_MPa } (the rail of a scene)
 };
-// The material table at `key` of `parent` (inline or not; required): E_MPa > 0 and nu in
-// [0, 0.5) required, hardness_MPa and shear_yield_MPa (> 0, optional) when `keys` allows them.
-// Returns SI values (Pa); the optional properties stay NaN when absent.
+// The material table at `key` of `parent` (inline or not; required): E_MPa in [1, 1e7] and nu
+// in [0, 0.5) required, hardness_MPa and shear_yield_MPa (in [1, 1e6], optional) when `keys` allows
+// them. Returns SI values (Pa); the optional properties stay NaN when absent.
 Material ReadMaterial(const Fields& parent, std::string_view key, MaterialKeys keys);
 
 }  // namespace railwear::app

@@ -171,11 +171,13 @@ DisplacementCurves ReadDisplacementCurves(const std::string& path) {
         }
       } else if (key == "radius_mm") {
         radius_mm = MetadataNumber(
-            path, number, key, value, [](double v) { return v > 0.0; }, "a radius > 0 in mm");
+            path, number, key, value, [](double v) { return v >= 1e-3 && v <= 1e6; },
+            "a radius > 0 in mm, in [0.001, 1e6]");
       } else if (key == "E_MPa") {
+        // The range the fit bears (1e308 gave an infinite residual): as in scenes.
         e_mpa = MetadataNumber(
-            path, number, key, value, [](double v) { return v > 0.0; },
-            "Young's modulus > 0 in MPa");
+            path, number, key, value, [](double v) { return v >= 1.0 && v <= 1e7; },
+            "Young's modulus > 0 in MPa, in [1, 1e7]");
       } else if (key == "nu") {
         nu = MetadataNumber(
             path, number, key, value, [](double v) { return v >= 0.0 && v < 0.5; },

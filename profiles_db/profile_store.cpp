@@ -88,8 +88,11 @@ std::string EncodePoints(const std::vector<Eigen::Vector2d>& points) {
 class Connection {
  public:
   Connection() = default;
-  Connection(const std::string& path, int flags) : path_(path) {
-    const int rc = sqlite3_open_v2(path.c_str(), &db_, flags, nullptr);
+  Connection(const std::string& path, int flags) : Connection(path, flags, path) {}
+  // Opens `name` (a file name, or a "file:" URI with SQLITE_OPEN_URI) and names it `path` in
+  // messages.
+  Connection(const std::string& name, int flags, const std::string& path) : path_(path) {
+    const int rc = sqlite3_open_v2(name.c_str(), &db_, flags, nullptr);
     if (rc != SQLITE_OK) {
       const std::string msg = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
       sqlite3_close_v2(db_);
@@ -183,7 +186,13 @@ class Statement {
   }
 
   int64_t Int64(int col) const { return sqlite3_column_int64(stmt_, col); }
-  double Double(int col) const { return sqlite3_column_double(stmt_, col); }
+  // Every double read back is checked (issue 17): railwear never stores a NaN or an infinity,
+  // so one is a damaged row, reported with its table, row and column, never printed or resumed.
+  double Double(int col) const {
+    const double v = sqlite3_column_double(stmt_, col);
+    if (!std::isfinite(v)) ThrowDamaged(col, fmt::format("{}", v));
+    return v;
+  }
   std::string Text(int col) const {
     const auto* p = sqlite3_column_text(stmt_, col);
     return p ? std::string(reinterpret_cast<const char*>(p),
@@ -194,8 +203,41 @@ class Statement {
     const auto* p = static_cast<const unsigned char*>(sqlite3_column_blob(stmt_, col));
     const int n = sqlite3_column_bytes(stmt_, col);
     std::vector<double> v(static_cast<size_t>(n) / 8);
-    for (size_t i = 0; i < v.size(); ++i) v[i] = ReadDouble(p + 8 * i);
+    for (size_t i = 0; i < v.size(); ++i) {
+      v[i] = ReadDouble(p + 8 * i);
+      if (!std::isfinite(v[i])) ThrowDamaged(col, fmt::format("{} at element {}", v[i], i));
+    }
     return v;
+  }
+  // InputError (exit 2: the file's contents are bad input, changed outside railwear) naming the
+  // database, the table, the row (its step when the statement selects one, and the statement's
+  // WHERE clause with its values) and the column.
+  [[noreturn]] void ThrowDamaged(int col, const std::string& value) const {
+    const char* column = sqlite3_column_name(stmt_, col);
+    std::string table = "?";
+    const std::string sql = sql_;
+    if (const size_t from = sql.find(" FROM "); from != std::string::npos) {
+      table = sql.substr(from + 6);
+      table = table.substr(0, table.find_first_of(" ,;"));
+    }
+    std::string row;
+    if (const char* c0 = sqlite3_column_name(stmt_, 0); c0 && std::string(c0) == "step") {
+      row = fmt::format("step {}", sqlite3_column_int64(stmt_, 0));
+    }
+    char* expanded = sqlite3_expanded_sql(stmt_);
+    if (expanded) {
+      const std::string e = expanded;
+      sqlite3_free(expanded);
+      if (const size_t where = e.find(" WHERE "); where != std::string::npos) {
+        std::string cond = e.substr(where + 7);
+        cond = cond.substr(0, cond.find(" ORDER BY"));
+        row += (row.empty() ? "" : ", ") + std::string("where ") + cond;
+      }
+    }
+    throw InputError(fmt::format(
+        "database '{}': damaged row in table '{}' ({}): column '{}' = {}; expected a finite "
+        "number (railwear never stores one: the file was changed outside railwear)",
+        c_->path(), table, row.empty() ? "row unknown" : row, column ? column : "?", value));
   }
   sqlite3_stmt* get() const { return stmt_; }
 
@@ -588,7 +630,99 @@ RunState RunStateFromString(const std::string& text) {
 struct ProfileStore::Impl {
   Connection db;
   bool in_memory = false;
+  bool read_only = false;  // OpenReadOnly: db is a read-only (or immutable) connection
 };
+
+namespace internal {
+
+// A "file:" URI for `path` with `query` ("immutable=1"): '%', '?' and '#' percent-encoded; an
+// absolute path gets an empty authority ("file:///abs").
+std::string FileUri(const std::string& path, const std::string& query) {
+  std::string out = path.rfind('/', 0) == 0 ? "file://" : "file:";
+  for (char ch : path) {
+    if (ch == '%' || ch == '?' || ch == '#') {
+      out += fmt::format("%{:02X}", static_cast<unsigned char>(ch));
+    } else {
+      out += ch;
+    }
+  }
+  return out + "?" + query;
+}
+
+// The file as it is on disk, without SQLite's locking, journal recovery or checkpoints (URI
+// immutable=1, read-only): nothing is written and no -wal, -shm or -journal file is created or
+// changed. Throws InputError (leaving every file untouched) for a file that is not a railwear
+// database; returns the user_version its main file holds (0 for an empty database, which may
+// still have its schema in a pending -wal).
+int InspectImmutable(const std::string& path) {
+  Connection probe(FileUri(path, "immutable=1"), SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, path);
+  Transaction snapshot(probe, "BEGIN");
+  return InspectDatabase(probe);
+}
+
+bool NonEmptyFile(const std::string& path) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) > 0;
+}
+
+}  // namespace internal
+
+ProfileStore ProfileStore::OpenReadOnly(const std::string& path) {
+  auto impl = std::make_unique<Impl>();
+  impl->read_only = true;
+  std::error_code ec;
+  if (path.empty() || path == ":memory:" || !std::filesystem::exists(path, ec)) {
+    throw InputError(fmt::format(
+        "database '{}': no such file; expected an existing railwear profile-history database "
+        "(read-only commands never create one)",
+        path));
+  }
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(fmt::format(
+        "database '{}': is a directory; expected a railwear profile-history database file", path));
+  }
+  // 1. The main file as it is: a foreign file is refused before SQLite could recover its
+  // journal or checkpoint its WAL.
+  int version = internal::InspectImmutable(path);
+  // 2. A rollback journal left by an interrupted write would have to be rolled back (a write):
+  // refused, the file and its journal untouched.
+  if (internal::NonEmptyFile(path + "-journal")) {
+    throw InputError(fmt::format(
+        "database '{}': has a rollback journal '{}-journal' left by an interrupted write; a "
+        "read-only command does not roll it back (that changes the file): run a command that "
+        "writes to the database (railwear wear SCENE --db {} --resume) to recover it",
+        path, path, path));
+  }
+  const int ro = SQLITE_OPEN_READONLY | SQLITE_OPEN_URI;
+  if (!std::filesystem::exists(path + "-wal", ec)) {
+    // 3a. No WAL: the main file is the whole database. Immutable: no lock, no -shm or -wal is
+    // created (so it also reads a database on read-only media or in a read-only folder).
+    impl->db = Connection(internal::FileUri(path, "immutable=1"), ro, path);
+  } else {
+    // 3b. A -wal (a run writing now, or one killed before its checkpoint): read through it
+    // read-only. SQLite may build its wal-index in -shm; the database and its -wal are never
+    // written (read-only file handles, no checkpoint on close).
+    impl->db = Connection(internal::FileUri(path, "mode=ro"), ro, path);
+    sqlite3_db_config(impl->db.get(), SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, nullptr);
+    Transaction snapshot(impl->db, "BEGIN");
+    version = internal::InspectDatabase(impl->db);
+  }
+  if (version == 0) {
+    throw InputError(fmt::format(
+        "database '{}': an empty SQLite database; expected a railwear profile-history database",
+        path));
+  }
+  if (version < kSchemaVersion) {
+    throw InputError(fmt::format(
+        "database '{}': schema version {} (written by an older railwear); read-only commands "
+        "read version {} and never migrate a file: run a command that writes to it once "
+        "(railwear wear SCENE --db {} --resume, or railwear calibrate CONFIG --db {}) to "
+        "migrate it",
+        path, version, kSchemaVersion, path, path));
+  }
+  impl->db.Exec("PRAGMA query_only = ON");
+  return ProfileStore(std::move(impl));
+}
 
 ProfileStore::ProfileStore(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 ProfileStore::ProfileStore(ProfileStore&&) noexcept = default;
@@ -605,8 +739,14 @@ ProfileStore ProfileStore::Open(const std::string& path) {
                     "profile-history database file",
                     path));
   }
+  // An existing file is inspected as it is first (immutable): a foreign file with a pending WAL
+  // or a hot journal is refused before a read-write connection could recover it.
+  if (!impl->in_memory && internal::NonEmptyFile(path)) internal::InspectImmutable(path);
   impl->db = Connection(path, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
   const Connection& c = impl->db;
+  // Until the file is accepted, closing must not checkpoint a pending WAL into it (a file
+  // whose main part is still empty is only known after reading through its WAL).
+  sqlite3_db_config(c.get(), SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, nullptr);
   // Nothing is written before InspectDatabase has accepted the file. Its reads share one
   // snapshot: another process may create the schema between two of them.
   int version = 0;
@@ -614,6 +754,7 @@ ProfileStore ProfileStore::Open(const std::string& path) {
     Transaction snapshot(c, "BEGIN");
     version = internal::InspectDatabase(c);
   }  // rolled back: it only read
+  sqlite3_db_config(c.get(), SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 0, nullptr);
   c.Exec("PRAGMA foreign_keys = ON");
   if (!impl->in_memory) internal::SwitchToWal(c);
   // All migrations in one transaction: a failure leaves the database at its old version.
@@ -978,7 +1119,7 @@ QueryResult ProfileStore::Query(const std::string& sql) const {
   // A file database gets its own read-only connection: SQLite itself refuses any write there.
   // ":memory:" cannot be shared with a second connection, so it is queried here, query_only.
   std::optional<Connection> own;
-  if (!impl_->in_memory) own.emplace(path(), SQLITE_OPEN_READONLY);
+  if (!impl_->in_memory && !impl_->read_only) own.emplace(path(), SQLITE_OPEN_READONLY);
   const Connection& c = own ? *own : impl_->db;
   c.Exec("PRAGMA query_only = ON");
   // sqlite3_stmt_readonly() accepts ATTACH, DETACH and transaction control, which would change
@@ -986,11 +1127,12 @@ QueryResult ProfileStore::Query(const std::string& sql) const {
   sqlite3_set_authorizer(c.get(), &internal::QueryAuthorizer, nullptr);
   struct Restore {
     const Connection& c;
+    bool read_only;
     ~Restore() {
       sqlite3_set_authorizer(c.get(), nullptr, nullptr);
-      sqlite3_exec(c.get(), "PRAGMA query_only = OFF", nullptr, nullptr, nullptr);
+      if (!read_only) sqlite3_exec(c.get(), "PRAGMA query_only = OFF", nullptr, nullptr, nullptr);
     }
-  } restore{c};
+  } restore{c, impl_->read_only};
 
   sqlite3_stmt* raw = nullptr;
   const char* tail = nullptr;

@@ -174,6 +174,15 @@ class ProfileStore {
   // an SQLite database of another application, or was written by a newer railwear
   // (user_version > kSchemaVersion), or cannot be opened at all.
   static ProfileStore Open(const std::string& path);
+  // Opens an existing file database for reading only (the `history` commands), never writing
+  // to it, its -wal or its -journal: the main file is inspected as it is (URI immutable=1, so a
+  // foreign file is refused before any journal recovery or checkpoint); a database without a
+  // -wal is then read immutable (nothing created: works on read-only media and folders), one
+  // with a -wal read-only through it (SQLite may create its -shm; no checkpoint on close).
+  // Throws InputError for a missing file, a foreign or empty database, a non-empty -journal
+  // (an interrupted write that would need rolling back), a newer schema, and an older one
+  // (never migrated here; the message names the commands that do).
+  static ProfileStore OpenReadOnly(const std::string& path);
 
   ProfileStore(ProfileStore&&) noexcept;
   ProfileStore& operator=(ProfileStore&&) noexcept;

@@ -47,6 +47,14 @@ Profile::Profile(std::vector<Eigen::Vector2d> points_m, std::string source)
       throw InputError(fmt::format("{}: point {} has a non-finite coordinate (y = {}, z = {} mm)",
                                    where, i + 1, points_[i].x() * 1e3, points_[i].y() * 1e3));
     }
+    if (std::abs(points_[i].x()) > kMaxCoordinate_m ||
+        std::abs(points_[i].y()) > kMaxCoordinate_m) {
+      throw InputError(
+          fmt::format("{}: point {} (y = {}, z = {} mm) lies beyond {} mm of the origin; expected "
+                      "coordinates within +-{} mm",
+                      where, i + 1, points_[i].x() * 1e3, points_[i].y() * 1e3,
+                      kMaxCoordinate_m * 1e3, kMaxCoordinate_m * 1e3));
+    }
   }
   for (size_t i = 1; i < points_.size(); ++i) {
     if ((points_[i] - points_[i - 1]).norm() < kDuplicateDistance_m) {

@@ -20,13 +20,18 @@ class Profile {
   Profile() = default;
   // points_m: ordered (y, z) points in metres, shape [n][2], n >= 4. `source` names where they
   // came from (a file, "builtin:S1002") and is used in error messages.
-  // Throws InputError for fewer than 4 points, a non-finite coordinate, a duplicate point
+  // Throws InputError for fewer than 4 points, a non-finite coordinate or one beyond
+  // kMaxCoordinate_m, a duplicate point
   // (closer than kDuplicateDistance_m to its predecessor) or a backtracking point (the curve
   // turns back by more than kMaxTurnAngle_rad between consecutive segments). Messages name the
   // source and the 1-based point number.
   explicit Profile(std::vector<Eigen::Vector2d> points_m, std::string source = {});
 
   static constexpr double kDuplicateDistance_m = 1e-9;
+  // No coordinate may lie farther than this from the profile's origin: a wheel or rail section
+  // spans some 0.2 m, and the spline, arc-length and contact numerics overflow long before
+  // 1e300 (a point at 1e308 mm aborted an internal check). Larger is refused as InputError.
+  static constexpr double kMaxCoordinate_m = 10.0;
   static constexpr double kMaxTurnAngle_rad = 2.6179938779914944;  // 150 degrees
   // A segment longer than kMaxSegmentRatio times a neighbouring one is subdivided along its
   // chord (into pieces of about twice the neighbour, at most kMaxSubdivision) before the spline

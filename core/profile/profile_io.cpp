@@ -132,8 +132,23 @@ RawPoint ParsePointTokens(const std::vector<std::string>& tokens, const std::str
   return p;
 }
 
+// Every coordinate within Profile::kMaxCoordinate_m, naming the first line beyond it (before any
+// arithmetic on the points: products of 1e300 mm coordinates overflow).
+void CheckCoordinateRange(const std::vector<RawPoint>& pts, const std::string& path) {
+  const double max_mm = Profile::kMaxCoordinate_m * 1e3;
+  for (const RawPoint& p : pts) {
+    if (std::abs(p.y) > max_mm || std::abs(p.z) > max_mm) {
+      throw InputError(
+          fmt::format("{}:{}: point (y = {}, z = {} mm) lies beyond {} mm of the origin; expected "
+                      "coordinates within +-{} mm (after units.len.f and transformations)",
+                      path, p.line, p.y, p.z, max_mm, max_mm));
+    }
+  }
+}
+
 // The checks of the Profile constructor, on millimetre points, naming file lines.
 void ValidatePoints(const std::vector<RawPoint>& pts, const std::string& path, int last_line) {
+  CheckCoordinateRange(pts, path);
   if (pts.size() < 4) {
     throw InputError(
         fmt::format("{}:{}: {} profile point(s) read by the end of the file; expected at least 4",
@@ -171,6 +186,7 @@ void ValidatePoints(const std::vector<RawPoint>& pts, const std::string& path, i
 // (ValidatePoints reports the first offending line).
 void DropScanGlitches(std::vector<RawPoint>* pts, const std::string& path, int last_line,
                       std::vector<std::string>* notes) {
+  CheckCoordinateRange(*pts, path);
   const size_t max_drops = std::max<size_t>(3, pts->size() / 100);
   const double dup_mm = Profile::kDuplicateDistance_m * 1e3;
   const double cos_max_turn = std::cos(Profile::kMaxTurnAngle_rad);
@@ -404,9 +420,11 @@ ProfileFile ReadSimpack(const std::string& path, bool wheel) {
     else if (key == "units.len.f") {
       units_len = number();
       units_len_seen = true;
-      if (!(units_len > 0.0)) {
+      // Between a kilometre and a micrometre as the file's unit: 1e-300 made every point
+      // overflow to 1e303 mm.
+      if (!(units_len >= 1e-3 && units_len <= 1e6)) {
         throw InputError(
-            fmt::format("{}:{}: units.len.f = '{}'; expected a positive factor "
+            fmt::format("{}:{}: units.len.f = '{}'; expected a factor in [0.001, 1e6] "
                         "(user length per metre, 1000 for mm)",
                         path, line.number, value));
       }

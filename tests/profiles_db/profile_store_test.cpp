@@ -4,6 +4,7 @@
 #include "profiles_db/profile_store.h"
 
 #include <sqlite3.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -15,6 +16,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -768,6 +770,169 @@ TEST(ProfileStore, QueryIsReadOnly) {
     // The store still writes after a query (query_only is switched back off).
     db.AppendStep(run, TestStep(2));
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Read-only opens (issue 17): OpenReadOnly never writes the database, its -wal or its -journal,
+// and refuses foreign files before SQLite could recover or checkpoint them.
+
+// The files of a database: name -> bytes, for those that exist.
+std::map<std::string, std::string> DatabaseFiles(const std::string& path) {
+  std::map<std::string, std::string> out;
+  for (const char* suffix : {"", "-wal", "-journal"}) {
+    if (fs::exists(path + suffix)) out[suffix] = ReadBytes(path + suffix);
+  }
+  return out;
+}
+
+// In a child process: runs `sql` on `path` and exits without closing the connection (as a
+// killed program would), leaving a pending WAL or a hot rollback journal behind.
+void RawExecAndDie(const std::string& path, const std::string& sql) {
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    sqlite3* db = nullptr;
+    if (sqlite3_open(path.c_str(), &db) != SQLITE_OK) _exit(1);
+    _exit(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr) == SQLITE_OK ? 0 : 2);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+}
+
+// A clean railwear database (no -wal): read without creating any file, bytes unchanged. This is
+// what makes `history` work in a read-only folder or on read-only media: the immutable open
+// needs no lock file, -shm or -wal (the test runs as any user; as root a chmod 0555 folder would
+// not refuse writes, so the absence of created files is what it checks).
+TEST(ProfileStoreReadOnly, ReadsACleanDatabaseWithoutCreatingOrChangingAnyFile) {
+  TempDir tmp;
+  const std::string path = tmp.File("study.rwdb");
+  int64_t run = 0;
+  {
+    ProfileStore db = ProfileStore::Open(path);
+    run = db.CreateRun(TestRun("r"));
+    db.AppendStep(run, TestStep(0));
+    db.AppendStep(run, TestStep(1));
+  }
+  ASSERT_FALSE(fs::exists(path + "-wal"));
+  const std::string before = ReadBytes(path);
+  {
+    ProfileStore db = ProfileStore::OpenReadOnly(path);
+    EXPECT_EQ(db.FindRun("r")->id, run);
+    EXPECT_EQ(db.Steps(run).size(), 2u);
+    EXPECT_EQ(db.LoadProfile(run, 1).points(), TestStep(1).profile.points());
+    EXPECT_EQ(db.Query("SELECT count(*) FROM steps").rows[0][0], "2");
+    ExpectInputError([&] { db.Query("DELETE FROM steps"); }, {"read-only"});
+    EXPECT_THROW(db.CreateRun(TestRun("new")), std::exception);
+    for (const char* suffix : {"-wal", "-shm", "-journal"}) {
+      EXPECT_FALSE(fs::exists(path + suffix)) << suffix << " created while open";
+    }
+  }
+  EXPECT_EQ(ReadBytes(path), before);
+  for (const char* suffix : {"-wal", "-shm", "-journal"}) EXPECT_FALSE(fs::exists(path + suffix));
+  // In a folder without write permission (a real test when not run as root).
+  fs::permissions(tmp.File(""), fs::perms::owner_read | fs::perms::owner_exec |
+                                    fs::perms::group_read | fs::perms::group_exec |
+                                    fs::perms::others_read | fs::perms::others_exec);
+  {
+    ProfileStore db = ProfileStore::OpenReadOnly(path);
+    EXPECT_EQ(db.Steps(run).size(), 2u);
+  }
+  fs::permissions(tmp.File(""), fs::perms::owner_all);
+  EXPECT_EQ(ReadBytes(path), before);
+}
+
+// A railwear database with a pending WAL (a run writing now, or killed before its checkpoint):
+// read through the WAL; the database and its -wal keep their bytes.
+TEST(ProfileStoreReadOnly, ReadsThroughAPendingWalWithoutCheckpointing) {
+  TempDir tmp;
+  const std::string path = tmp.File("study.rwdb");
+  ProfileStore writer = ProfileStore::Open(path);
+  const int64_t run = writer.CreateRun(TestRun("r"));
+  writer.AppendStep(run, TestStep(0));
+  ASSERT_TRUE(fs::exists(path + "-wal"));
+  const auto before = DatabaseFiles(path);
+  {
+    ProfileStore db = ProfileStore::OpenReadOnly(path);
+    EXPECT_EQ(db.Steps(run).size(), 1u);
+  }
+  EXPECT_EQ(DatabaseFiles(path), before);
+}
+
+TEST(ProfileStoreReadOnly, RefusesAForeignFileWithAPendingWalByteIdentical) {
+  TempDir tmp;
+  const std::string path = tmp.File("other.db");
+  // Main file with a schema, newer rows only in the WAL (never checkpointed).
+  RawExecAndDie(path,
+                "PRAGMA journal_mode = WAL; CREATE TABLE t(x); INSERT INTO t VALUES (1);"
+                "PRAGMA wal_checkpoint(TRUNCATE); INSERT INTO t VALUES (2);");
+  ASSERT_TRUE(fs::exists(path + "-wal"));
+  ASSERT_GT(fs::file_size(path + "-wal"), 0u);
+  const auto before = DatabaseFiles(path);
+  ExpectInputError([&] { ProfileStore::OpenReadOnly(path); }, {path, "another application"});
+  EXPECT_EQ(DatabaseFiles(path), before);
+  ExpectInputError([&] { ProfileStore::Open(path); }, {path, "another application"});
+  EXPECT_EQ(DatabaseFiles(path), before);
+}
+
+TEST(ProfileStoreReadOnly, RefusesAForeignFileWhoseSchemaIsOnlyInItsWalByteIdentical) {
+  TempDir tmp;
+  const std::string path = tmp.File("other.db");
+  RawExecAndDie(path, "PRAGMA journal_mode = WAL; CREATE TABLE t(x); INSERT INTO t VALUES (1);");
+  const auto before = DatabaseFiles(path);
+  ASSERT_EQ(before.count("-wal"), 1u);
+  ExpectInputError([&] { ProfileStore::OpenReadOnly(path); }, {path, "another application"});
+  EXPECT_EQ(DatabaseFiles(path), before);
+  // The read-write open too: no checkpoint on close before the file is accepted.
+  ExpectInputError([&] { ProfileStore::Open(path); }, {path, "another application"});
+  EXPECT_EQ(DatabaseFiles(path), before);
+}
+
+TEST(ProfileStoreReadOnly, RefusesAForeignFileWithAHotJournalByteIdentical) {
+  TempDir tmp;
+  const std::string path = tmp.File("other.db");
+  RawExec(path, "CREATE TABLE t(x); INSERT INTO t VALUES (randomblob(100000));");
+  // A transaction larger than the page cache spills into the file, then the writer dies.
+  RawExecAndDie(path,
+                "PRAGMA cache_size = 2; BEGIN; UPDATE t SET x = randomblob(100000); "
+                "INSERT INTO t VALUES (randomblob(200000));");
+  ASSERT_TRUE(fs::exists(path + "-journal"));
+  const auto before = DatabaseFiles(path);
+  ExpectInputError([&] { ProfileStore::OpenReadOnly(path); }, {path, "another application"});
+  EXPECT_EQ(DatabaseFiles(path), before);
+  ExpectInputError([&] { ProfileStore::Open(path); }, {path, "another application"});
+  EXPECT_EQ(DatabaseFiles(path), before);
+}
+
+// A railwear database with a hot journal (an older rollback-mode file): a read-only open does
+// not roll it back.
+TEST(ProfileStoreReadOnly, RefusesARailwearFileWithAHotJournalUntouched) {
+  TempDir tmp;
+  const std::string path = tmp.File("old.rwdb");
+  RawExec(path, Version2Database());
+  RawExecAndDie(path,
+                "PRAGMA cache_size = 2; BEGIN; INSERT INTO load_cases SELECT run_id, step, "
+                "case_index + 1000, hex(randomblob(300000)) FROM load_cases;");
+  ASSERT_TRUE(fs::exists(path + "-journal"));
+  const auto before = DatabaseFiles(path);
+  ExpectInputError([&] { ProfileStore::OpenReadOnly(path); },
+                   {path, "rollback journal", "--resume"});
+  EXPECT_EQ(DatabaseFiles(path), before);
+}
+
+// An older schema is neither migrated nor switched to WAL by a read-only open: refused with the
+// commands that migrate it, every byte unchanged.
+TEST(ProfileStoreReadOnly, RefusesAnOlderSchemaWithoutMigratingIt) {
+  TempDir tmp;
+  const std::string path = tmp.File("old.rwdb");
+  RawExec(path, Version2Database());
+  const auto before = DatabaseFiles(path);
+  ExpectInputError([&] { ProfileStore::OpenReadOnly(path); },
+                   {path, "schema version 2", "never migrate", "railwear wear SCENE --db"});
+  EXPECT_EQ(DatabaseFiles(path), before);
+  EXPECT_EQ(ReadBytes(path)[18], 1);  // still rollback-journal mode (WAL would be 2)
+  ExpectInputError([&] { ProfileStore::OpenReadOnly(tmp.File("missing.rwdb")); }, {"no such file"});
+  EXPECT_FALSE(fs::exists(tmp.File("missing.rwdb")));
 }
 
 }  // namespace

@@ -1,0 +1,333 @@
+// The bad-input corpus of issue 17: generated malformed or extreme inputs run through the railwear
+// binary, each checked for its documented exit code (2: bad input, 1: failure), no signal (no
+// crash), a message naming the file and the key (or line) and the value, no "nan"/"inf" in
+// stdout or in any file written, and the input files byte-identical afterwards. The cases live
+// in one table (Corpus()); later reliability fixes add theirs there.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include "tests/app/cli_runner.h"
+#include "tests/app/wear_scenes.h"
+
+namespace railwear::test {
+namespace {
+
+std::string Source(const std::string& relative) {
+  return ReadFile(fs::path(RAILWEAR_SOURCE_DIR) / relative);
+}
+
+// `text` with every `from` replaced by `to`.
+std::string ReplaceAll(std::string text, const std::string& from, const std::string& to) {
+  for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+    text.replace(at, from.size(), to);
+  }
+  return text;
+}
+
+// `text` with the first `from` replaced by `to` (the case fails when `from` is absent).
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  if (at == std::string::npos) return "MISSING '" + from + "'";
+  return text.replace(at, from.size(), to);
+}
+
+// A rail profile CSV (mm): a shallow arc of 40 points, with `edit` applied to each (y, z).
+std::string ArcCsv(const std::function<void(double*, double*)>& edit) {
+  std::string out = "y_mm,z_mm\n";
+  for (int i = 0; i < 40; ++i) {
+    double y = -35.0 + 70.0 * i / 39.0, z = y * y / 600.0;
+    edit(&y, &z);
+    out += std::to_string(y) + "," + std::to_string(z) + "\n";
+  }
+  return out;
+}
+std::string ArcCsvExact(const std::function<void(int, std::string*, std::string*)>& edit) {
+  std::string out = "y_mm,z_mm\n";
+  for (int i = 0; i < 40; ++i) {
+    const double y = -35.0 + 70.0 * i / 39.0;
+    std::string ys = std::to_string(y), zs = std::to_string(y * y / 600.0);
+    edit(i, &ys, &zs);
+    out += ys + "," + zs + "\n";
+  }
+  return out;
+}
+
+std::string SimpackRail(const std::string& units) {
+  std::string out =
+      "! corpus\nheader.begin\n  version = 1\n  type = 0\nheader.end\nspline.begin\n  units.len.f "
+      "= " +
+      units + "\n  point.begin\n";
+  for (int i = 0; i < 40; ++i) {
+    const double y = -0.035 + 0.07 * i / 39.0;
+    out += "   " + std::to_string(y) + " " + std::to_string(y * y / 0.6) + "\n";
+  }
+  return out + "  point.end\nspline.end\n";
+}
+
+struct CorpusCase {
+  std::string name;
+  std::map<std::string, std::string> files;  // written into the test's folder
+  std::string args;                          // railwear's arguments
+  int exit_code = 2;
+  std::vector<std::string> message;  // substrings of stderr (file, key, value)
+};
+
+std::vector<CorpusCase> Corpus() {
+  const std::string tread = Source("examples/tread.toml");
+  const std::string wear = kSmallWearStudy;
+  const std::string two_rail = kTwoRailWearStudy;
+  std::vector<CorpusCase> c;
+
+  // Crashes: Fields::Fail on a key that is not in the table (SIGSEGV before).
+  c.push_back({"kth_v1_without_v2",
+               {{"s.toml",
+                 Replace(wear, "law = \"archard\"\nk = 1e-4", "law = \"kth\"\nkth_v1_m_s = 0.8")}},
+               "wear s.toml --db s.sqlite",
+               2,
+               {"s.toml:", "key 'wear.kth_v2_m_s' is missing", "above kth_v1_m_s = 0.8"}});
+  c.push_back({"empty_track_in_contact_scene",
+               {{"s.toml", tread + "\n[track]\n"}},
+               "contact s.toml",
+               2,
+               {"s.toml:", "key 'track'", "[wheelset]"}});
+  c.push_back({"empty_track_in_wear_scene",
+               {{"s.toml",
+                 Replace(two_rail, "high_rail = \"builtin:UIC60\"\ninclination = \"1:40\"\n", "")}},
+               "wear s.toml --db s.sqlite",
+               2,
+               {"s.toml:", "key 'track.high_rail' is missing"}});
+
+  // Finite but extreme values that passed validation and aborted internal checks.
+  // {as written, as the message shows it}
+  for (const auto& [v, shown] : std::vector<std::pair<std::string, std::string>>{
+           {"1e-308", "1e-308"}, {"1e308", "1e+308"}}) {
+    c.push_back({"E_MPa_" + v,
+                 {{"s.toml", Replace(tread, "wheel = { E_MPa = 210000", "wheel = { E_MPa = " + v)}},
+                 "contact s.toml",
+                 2,
+                 {"s.toml:21:", "key 'materials.wheel.E_MPa' = " + shown, "[1, 10000000]"}});
+    c.push_back({"c_f_" + v,
+                 {{"s.toml",
+                   Replace(tread, "accuracy = \"standard\"",
+                           "accuracy = \"standard\"\ninfluence_constants = { c_f = " + v + " }")}},
+                 "contact s.toml",
+                 2,
+                 {"s.toml:", "key 'model.influence_constants.c_f' = " + shown, "[1e-06, 1000]"}});
+  }
+  c.push_back({"hardness_1e-308",
+               {{"s.toml", Replace(wear, "hardness_MPa = 2600", "hardness_MPa = 1e-308")}},
+               "wear s.toml --db s.sqlite",
+               2,
+               {"s.toml:", "key 'materials.rail.hardness_MPa' = 1e-308"}});
+  for (const auto& [v, shown] :
+       std::vector<std::pair<std::string, std::string>>{{"[1e308, 1e308]", "[1e+308, 1e+308]"},
+                                                        {"[1e-6, 1e-6]", "[1e-06, 1e-06]"},
+                                                        {"[0.001, 0.5]", "[0.001, 0.5]"},
+                                                        {"[0.5, 21]", "[0.5, 21]"}}) {
+    c.push_back({"cell_mm_" + v,
+                 {{"s.toml", Replace(tread, "accuracy = \"standard\"",
+                                     "accuracy = \"standard\"\ncell_mm = " + v)}},
+                 "contact s.toml",
+                 2,
+                 {"s.toml:19:", "key 'model.cell_mm' = " + shown, "[0.01, 20]"}});
+  }
+  // At the smallest cell accepted the grid's memory estimate refuses before any work (exit 1, a
+  // solver status), naming the key to change.
+  c.push_back({"cell_mm_smallest_refused_by_memory_estimate",
+               {{"s.toml", Replace(tread, "accuracy = \"standard\"",
+                                   "accuracy = \"standard\"\ncell_mm = [0.01, 0.01]")}},
+               "contact s.toml",
+               1,
+               {"influence operator would take", "larger cell_mm"}});
+  // Profiles: a point at 1e308 mm, every coordinate x 1e300, SIMPACK units of 1e-300.
+  const std::string csv_rail = Replace(tread, "profile = \"builtin:UIC60\"", "profile = \"r.csv\"");
+  c.push_back(
+      {"profile_point_1e308",
+       {{"s.toml", csv_rail}, {"r.csv", ArcCsvExact([](int i, std::string*, std::string* z) {
+                                 if (i == 20) *z = "1e308";
+                               })}},
+       "contact s.toml",
+       2,
+       {"r.csv:22:", "z = 1e+308 mm", "within +-10000 mm"}});
+  c.push_back({"profile_times_1e300",
+               {{"s.toml", csv_rail}, {"r.csv", ArcCsv([](double* y, double* z) {
+                                         *y *= 1e300;
+                                         *z *= 1e300;
+                                       })}},
+               "contact s.toml",
+               2,
+               {"r.csv:2:", "e+301", "within +-10000 mm"}});
+  c.push_back({"simpack_units_1e-300",
+               {{"s.toml", Replace(tread, "profile = \"builtin:UIC60\"", "profile = \"r.prr\"")},
+                {"r.prr", SimpackRail("1e-300")}},
+               "contact s.toml",
+               2,
+               {"r.prr:7:", "units.len.f = '1e-300'", "[0.001, 1e6]"}});
+
+  // The step's time and memory estimate: 100 000 traffic entries (8 GB before).
+  {
+    const std::string entry = wear.substr(wear.find("[[traffic]]"));
+    std::string many = wear.substr(0, wear.find("[[traffic]]"));
+    for (int i = 0; i < 100000; ++i) many += entry;
+    c.push_back({"traffic_100000_entries",
+                 {{"s.toml", many}},
+                 "wear s.toml --db s.sqlite",
+                 2,
+                 {"s.toml:", "key 'traffic'", "100000 [[traffic]] entries", "at most 5000",
+                  "wear.quadrature_points"}});
+    // 2000 spread entries at 3 nodes: 6000 cases, above the limit though the entries are not.
+    std::string spread = wear.substr(0, wear.find("[[traffic]]"));
+    for (int i = 0; i < 2000; ++i) spread += entry;
+    c.push_back({"traffic_cases_over_limit",
+                 {{"s.toml", spread}},
+                 "wear s.toml --db s.sqlite",
+                 2,
+                 {"s.toml:", "load cases per wear step", "'wear.quadrature_points' (now 3)"}});
+  }
+
+  // calibrate: values whose fit gave infinite residuals with exit 0.
+  {
+    const std::string config = Source("examples/calibration/synthetic.toml");
+    const std::map<std::string, std::string> base = {
+        {"synthetic_r15_convex.csv", Source("examples/calibration/synthetic_r15_convex.csv")},
+        {"synthetic_r15_5_concave.csv", Source("examples/calibration/synthetic_r15_5_concave.csv")},
+        {"groove.toml", Source("examples/groove_conformal.toml")}};
+    auto files = base;
+    files["c.toml"] = Replace(ReplaceAll(config, "../groove_conformal.toml", "groove.toml"),
+                              "area_mm2 = 27.794", "area_mm2 = 1e-300");
+    c.push_back({"calibrate_area_1e-300",
+                 files,
+                 "calibrate c.toml --out k.toml --csv r.csv",
+                 2,
+                 {"c.toml:", "key 'contact_results[0].area_mm2' = 1e-300", "[0.001, 100000]"}});
+    files = base;
+    files["c.toml"] = ReplaceAll(config, "../groove_conformal.toml", "groove.toml");
+    files["synthetic_r15_convex.csv"] =
+        Replace(base.at("synthetic_r15_convex.csv"), "# E_MPa = 210000", "# E_MPa = 1e308");
+    c.push_back({"calibrate_curve_E_1e308",
+                 files,
+                 "calibrate c.toml --out k.toml --csv r.csv",
+                 2,
+                 {"synthetic_r15_convex.csv:4:", "E_MPa", "1e308", "[1, 1e7]"}});
+  }
+  return c;
+}
+
+void PrintTo(const CorpusCase& c, std::ostream* os) { *os << c.name << ": railwear " << c.args; }
+
+class BadInputCorpus : public CliFixture, public ::testing::WithParamInterface<CorpusCase> {};
+
+TEST_P(BadInputCorpus, RefusedCleanly) {
+  const CorpusCase& k = GetParam();
+  for (const auto& [name, text] : k.files) {
+    ASSERT_EQ(text.find("MISSING '"), std::string::npos) << name << ": the base text changed";
+    Write(name, text);
+  }
+  std::map<std::string, std::string> before;
+  for (const auto& [name, text] : k.files) before[name] = ReadFile(dir_ / name);
+
+  const Outcome o = Run(k.args);
+
+  // A signal shows as -1 or, through the shell, as 128 + signal number.
+  EXPECT_EQ(o.exit_code, k.exit_code) << "stderr: " << o.err;
+  for (const std::string& part : k.message) {
+    EXPECT_NE(o.err.find(part), std::string::npos) << "'" << part << "' not in: " << o.err;
+  }
+  // The inputs are untouched, and nothing written carries a NaN or an infinity.
+  for (const auto& [name, bytes] : before) {
+    EXPECT_EQ(ReadFile(dir_ / name), bytes) << name << " was changed";
+  }
+  const std::regex non_finite(R"((^|[^A-Za-z_])(nan|inf|infinity)([^A-Za-z_]|$))",
+                              std::regex::icase);
+  EXPECT_FALSE(std::regex_search(o.out, non_finite)) << o.out;
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    const std::string name = entry.path().filename().string();
+    if (k.files.count(name) || name == "stdout.txt" || name == "stderr.txt") continue;
+    if (entry.path().extension() == ".sqlite") continue;  // checked by the database cases
+    EXPECT_FALSE(std::regex_search(ReadFile(entry.path()), non_finite)) << name;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Issue17, BadInputCorpus, ::testing::ValuesIn(Corpus()),
+                         [](const ::testing::TestParamInfo<CorpusCase>& info) {
+                           std::string n = info.param.name;
+                           for (char& ch : n) {
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           }
+                           return n;
+                         });
+
+// A damaged row (a value written by another program: passes = +Inf) is reported with its table,
+// row and column (exit 2: the file's contents are bad input), never printed or resumed.
+TEST_F(CliFixture, DamagedRowIsReportedNotPrintedOrResumed) {
+  Write("s.toml", kSmallWearStudy);
+  ASSERT_EQ(Run("wear s.toml --db s.sqlite --steps 2").exit_code, 0);
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open((dir_ / "s.sqlite").c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(
+      sqlite3_exec(db, "UPDATE steps SET passes = 9e999 WHERE step = 1", nullptr, nullptr, nullptr),
+      SQLITE_OK);
+  sqlite3_close(db);
+  const std::regex non_finite(R"((^|[^A-Za-z_])(nan|inf)([^A-Za-z_]|$))", std::regex::icase);
+  for (const std::string args :
+       {"history --db s.sqlite steps \"small study\"",
+        "history --db s.sqlite diff \"small study\" 0 1", "wear s.toml --db s.sqlite --resume"}) {
+    const Outcome o = Run(args);
+    EXPECT_EQ(o.exit_code, 2) << args << ": " << o.err;
+    for (const std::string part :
+         {"database 's.sqlite'", "table 'steps'", "step 1", "column 'passes'"}) {
+      EXPECT_NE(o.err.find(part), std::string::npos) << args << ": " << o.err;
+    }
+    EXPECT_FALSE(std::regex_search(o.out, non_finite)) << args << ": " << o.out;
+  }
+}
+
+// history opens read-only: on a clean database it creates no -wal/-shm and changes no byte; an
+// older schema is refused (not migrated, not switched to WAL) naming the command that migrates
+// it; a foreign file with a hot journal is refused with its bytes and journal unchanged.
+TEST_F(CliFixture, HistoryNeverWritesTheDatabase) {
+  Write("s.toml", kSmallWearStudy);
+  ASSERT_EQ(Run("wear s.toml --db s.sqlite --steps 1").exit_code, 0);
+  ASSERT_FALSE(fs::exists(dir_ / "s.sqlite-wal"));
+  const std::string before = ReadFile(dir_ / "s.sqlite");
+  for (const std::string args :
+       {"history --db s.sqlite runs", "history --db s.sqlite steps \"small study\"",
+        "history --db s.sqlite diff \"small study\" 0 1"}) {
+    const Outcome o = Run(args);
+    EXPECT_EQ(o.exit_code, 0) << args << ": " << o.err;
+    EXPECT_EQ(ReadFile(dir_ / "s.sqlite"), before) << args;
+    for (const char* suffix : {"-wal", "-shm", "-journal"}) {
+      EXPECT_FALSE(fs::exists(dir_ / ("s.sqlite" + std::string(suffix)))) << args << suffix;
+    }
+  }
+
+  // A schema-1 style file is refused untouched (no WAL switch, no migration).
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open((dir_ / "old.sqlite").c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db,
+                         "PRAGMA application_id = 1381450818; CREATE TABLE meta(key TEXT PRIMARY "
+                         "KEY, value TEXT NOT NULL); INSERT INTO meta VALUES ('format', "
+                         "'railwear-profile-history'); PRAGMA user_version = 2;",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  const std::string old_bytes = ReadFile(dir_ / "old.sqlite");
+  const Outcome old = Run("history --db old.sqlite runs");
+  EXPECT_EQ(old.exit_code, 2);
+  EXPECT_NE(old.err.find("database 'old.sqlite': schema version 2"), std::string::npos) << old.err;
+  EXPECT_NE(old.err.find("railwear wear SCENE --db old.sqlite --resume"), std::string::npos);
+  EXPECT_EQ(ReadFile(dir_ / "old.sqlite"), old_bytes);
+  EXPECT_FALSE(fs::exists(dir_ / "old.sqlite-wal"));
+}
+
+}  // namespace
+}  // namespace railwear::test
