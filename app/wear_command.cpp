@@ -3,12 +3,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -18,6 +20,7 @@
 #include "app/scene.h"
 #include "core/numerics/input_error.h"
 #include "profiles_db/profile_store.h"
+#include "wear/vehicle_traffic.h"
 #include "wear/wear_simulation.h"
 
 namespace railwear::app {
@@ -65,6 +68,10 @@ json LoadCaseJson(const LoadCaseSummary& c, const WearStudy& study) {
   j["node"] = c.load_case.node;
   j["lateral_shift_mm"] = c.load_case.placement.lateral_shift_m * 1e3;
   j["weight"] = c.load_case.weight;
+  if (study.traffic[c.load_case.traffic_index].is_vehicle()) {
+    j["equilibrium"] = {{"converged", c.load_case.equilibrium_converged},
+                        {"largest_scaled_residual", c.load_case.equilibrium_residual}};
+  }
   j["status"] = std::string(ToString(c.status));
   j["patches"] = c.patches;
   j["vertical_force_N"] = c.vertical_force_N;
@@ -287,6 +294,25 @@ class Progress {
     if (tty_) std::cerr << "\n";
   }
 
+  // One line per step whose vehicle equilibria stopped above their tolerance (but within
+  // CurvingOptions::usable_multiple of it): which entries, and the largest residual.
+  void WarnOfEquilibria(const StepResult& step, const WearStudy& study) {
+    std::vector<std::string> names;
+    double largest = 0.0;
+    for (const LoadCaseSummary& c : step.cases) {
+      if (c.load_case.equilibrium_converged) continue;
+      const std::string& name = study.traffic[c.load_case.traffic_index].name;
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+      largest = std::max(largest, c.load_case.equilibrium_residual);
+    }
+    if (names.empty()) return;
+    std::cerr << fmt::format(
+        "{}warning: step {}: the curving of {} stopped above its tolerance (largest scaled "
+        "residual {:.1e}, at most {} x the tolerance accepted): its loads are used\n",
+        tty_ ? "\n" : "", step.state.step, fmt::join(names, ", "), largest,
+        CurvingOptions().usable_multiple);
+  }
+
   // One line per step whose load cases exceed Nadal's limit: how many, and the worst.
   void WarnOfFlangeClimb(const StepResult& step, const WearStudy& study) {
     int count = 0;
@@ -479,6 +505,7 @@ void RunWearCommand(const WearCommandOptions& options) {
           previous = {step.state.rail, step.state.low_rail};
           progress.Step(step);
           progress.WarnOfFlangeClimb(step, study);
+          progress.WarnOfEquilibria(step, study);
           return true;
         },
         options.steps);

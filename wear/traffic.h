@@ -93,6 +93,11 @@ struct LoadCase {
   WheelMotion motion;
   double friction = 0.3;  // > 0
   double weight = 0.0;    // share (normalised per rail) x quadrature weight; sums to 1 per rail
+  // Vehicle cases: the curving equilibrium's largest scaled residual (CurvingResult) and whether
+  // it met the tolerance (false: accepted within CurvingOptions::usable_multiple x tolerance, with
+  // a warning).
+  double equilibrium_residual = 0.0;
+  bool equilibrium_converged = true;
 };
 
 // Nodes x_k and weights w_k (sum 1) with E[f(X)] ~ sum_k w_k f(x_k) for X ~ N(0, 1), exact for

@@ -113,7 +113,12 @@ std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index
   const VehicleSpec& v = study.vehicles[c.vehicle];
   const CurvingProblem p = VehicleCurvingProblem(study, traffic_index, high_track, low_track);
   const CurvingResult r = SolveCurving(p);
-  if (r.status != CurvingStatus::kConverged && r.status != CurvingStatus::kFlangeClimb) {
+  // An equilibrium stopped just above the tolerance (the contact grid's force noise in flange
+  // contact on a worn rail: measured 1.1e-2 Q0 against 3e-3) still gives the wear its loads: it
+  // is used, and its cases say so (LoadCase::equilibrium_converged, the step's warning).
+  const bool usable = r.status == CurvingStatus::kNotConverged &&
+                      r.largest_scaled_residual <= p.options.usable_multiple * p.options.tolerance;
+  if (r.status != CurvingStatus::kConverged && r.status != CurvingStatus::kFlangeClimb && !usable) {
     throw std::runtime_error(fmt::format(
         "wear: {}: steady-state curving of vehicle \"{}\" at {} m/s on the current rails: {}: {}",
         c.name, v.name, c.speed_m_s, ToString(r.status), r.message));
@@ -164,6 +169,8 @@ std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index
         lc.motion = high ? motions.right : motions.left;
         lc.friction = c.friction;
         lc.weight = c.share / totals[static_cast<int>(side)] * weights[k] / n_ws;
+        lc.equilibrium_residual = r.largest_scaled_residual;
+        lc.equilibrium_converged = !usable;
         cases.push_back(lc);
       }
     }

@@ -508,6 +508,14 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
   Equilibrium eq(p, layout, contexts(p.options.predictor ? *p.options.predictor : p.contact.model),
                  unbalanced_N, q0);
   int iterations = 0;
+  // The best stopped attempt (smallest largest scaled residual) when no start converges: a later
+  // start that goes astray does not replace a nearer one.
+  struct Attempt {
+    Eigen::VectorXd q, r;
+    std::vector<CurvedWheelset> ws;
+    std::string message;
+  };
+  std::optional<Attempt> best;
   for (const Eigen::VectorXd& start : starts) {
     q = start;
     no_equilibrium = false;
@@ -525,7 +533,21 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
       out.full_iterations += std::max(iterations, 0);
     }
     if (iterations >= 0 || no_equilibrium) break;
+    const bool contacts_converged =
+        ws.size() == static_cast<size_t>(layout.wheelsets) &&
+        std::all_of(ws.begin(), ws.end(), [](const CurvedWheelset& w) { return Converged(w); });
+    if (contacts_converged && r.size() == q.size() && (!best || eq.Norm(r) < eq.Norm(best->r))) {
+      best = Attempt{q, r, ws, out.message};
+    }
+    if (best && eq.Norm(best->r) <= p.options.usable_multiple * p.options.tolerance) break;
   }
+  if (iterations < 0 && !no_equilibrium && best) {
+    q = best->q;
+    r = best->r;
+    ws = best->ws;
+    out.message = best->message;
+  }
+  if (r.size() == q.size()) out.largest_scaled_residual = eq.Norm(r);
   out.contact_solves = eq.solves();
   out.wheelsets = ws;
   out.state = q;

@@ -223,6 +223,13 @@ TEST(CurvingTest, HardCasesConvergeOrNameTheirStatus) {
     if (r.status != CurvingStatus::kConverged) {
       EXPECT_FALSE(r.message.empty()) << c.what;
     }
+    // The reported residual is the returned state's (the best start's when none converged).
+    EXPECT_TRUE(std::isfinite(r.largest_scaled_residual)) << c.what;
+    if (r.status == CurvingStatus::kConverged) {
+      EXPECT_LE(r.largest_scaled_residual, 3.0 * p.options.tolerance) << c.what;  // noise floor
+    } else if (r.status == CurvingStatus::kNotConverged) {
+      EXPECT_GT(r.largest_scaled_residual, p.options.tolerance) << c.what;
+    }
     if (c.radius_m == 0.0) {
       ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
       EXPECT_NEAR(r.wheelsets[0].lateral_m, 0.0, 0.5e-3);  // centred, within the tread's play
