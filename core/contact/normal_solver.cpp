@@ -265,8 +265,10 @@ class PkSolver {
     std::optional<std::pair<double, double>> lo, hi, last;  // (delta, F(delta) - F)
     int side = 0;
     NormalSolution sol;
+    int steps = 0;
     for (int step = 0; step < kMaxApproachSteps; ++step) {
       sol = SolveForApproach(delta, &start);
+      ++steps;
       if (sol.status != SolverStatus::kConverged) return sol;
       start = sol.pressure_Pa;
       const double e = sol.force_N - force_N;
@@ -298,7 +300,14 @@ class PkSolver {
       delta = next;
     }
     if (sol.status != SolverStatus::kConverged) return sol;
-    return SolveForLoad(force_N, &start);
+    const int search_iterations = total_iterations_;
+    NormalSolution out = SolveForLoad(force_N, &start);
+    std::ostringstream msg;
+    msg << "; pressure limit " << p_lim * 1e-6 << " MPa: " << out.plastic_cells
+        << " plastic cells, after " << steps << " solves on the approach (" << search_iterations
+        << " iterations with the elastic solve)";
+    out.message += msg.str();
+    return out;
   }
 
  private:
@@ -809,7 +818,12 @@ NormalSolution SolveNormal(const NormalProblem& problem, const NormalSolverOptio
     return elastic;
   }
   solver.SetLimit(*problem.pressure_limit_Pa);
-  return solver.SolveForApproach(delta, &elastic.pressure_Pa);
+  NormalSolution out = solver.SolveForApproach(delta, &elastic.pressure_Pa);
+  std::ostringstream msg;
+  msg << "; pressure limit " << *problem.pressure_limit_Pa * 1e-6 << " MPa: " << out.plastic_cells
+      << " plastic cells (" << elastic.iterations << " iterations in the elastic solve first)";
+  out.message += msg.str();
+  return out;
 }
 
 }  // namespace railwear
