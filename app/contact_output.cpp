@@ -175,6 +175,54 @@ std::string StagesLine(const ContactResult& r) {
   return out.empty() ? std::string() : fmt::format(" ({})", out);
 }
 
+// The plastic share (cells at the pressure limit) of one patch or of the total, when the scene
+// set a limit: cells, their share of the cells in contact, area and normal load.
+nlohmann::json PlasticJson(int cells, int cells_in_contact, double area_m2, double force_N,
+                           double normal_force_N) {
+  return {{"cells", cells},
+          {"cell_share", cells_in_contact > 0 ? double(cells) / cells_in_contact : 0.0},
+          {"area_mm2", area_m2 * kToMm2},
+          {"normal_force_N", force_N},
+          {"force_share", normal_force_N > 0.0 ? force_N / normal_force_N : 0.0}};
+}
+
+std::string PlasticText(int cells, int cells_in_contact, double area_m2, double force_N,
+                        double normal_force_N) {
+  return fmt::format(
+      "{} of {} cells in contact ({:.1f} %), area {:.2f} mm2, load {:.1f} N ({:.1f} % "
+      "of the normal load)",
+      cells, cells_in_contact, cells_in_contact > 0 ? 100.0 * cells / cells_in_contact : 0.0,
+      area_m2 * kToMm2, force_N, normal_force_N > 0.0 ? 100.0 * force_N / normal_force_N : 0.0);
+}
+
+// Sums over the patches of the cells in contact and the normal force [N].
+std::pair<int, double> ContactCellsAndNormalForce(const ContactResult& r) {
+  int cells = 0;
+  double normal = 0.0;
+  for (const PatchResult& p : r.patches) {
+    cells += p.cells_in_contact;
+    normal += p.normal_force_N;
+  }
+  return {cells, normal};
+}
+
+std::string PlasticLines(const ContactResult& r) {
+  if (!r.pressure_limit_Pa) return "";
+  const auto [cells, normal] = ContactCellsAndNormalForce(r);
+  std::string out = fmt::format(
+      "plastic     pressure limit {:.1f} MPa: {}\n", *r.pressure_limit_Pa * kToMPa,
+      PlasticText(r.plastic_cells, cells, r.plastic_area_m2, r.plastic_force_N, normal));
+  if (r.patches.size() > 1) {
+    for (size_t k = 0; k < r.patches.size(); ++k) {
+      const PatchResult& p = r.patches[k];
+      out += fmt::format("            patch {}: {}\n", k + 1,
+                         PlasticText(p.plastic_cells, p.cells_in_contact, p.plastic_area_m2,
+                                     p.plastic_force_N, p.normal_force_N));
+    }
+  }
+  return out;
+}
+
 std::string PatchTable(const ContactResult& r) {
   std::string out =
       fmt::format("{:>5} {:>10} {:>10} {:>11} {:>9} {:>9} {:>9} {:>15}\n", "patch", "area_mm2",
@@ -319,6 +367,7 @@ std::string FormatSummary(const Scene& scene, const ContactResult& r, bool left_
                          RailToTrackFrame(net, true).y());
     }
   }
+  out += PlasticLines(r);
   if (r.balance_iterations > 0) {
     out += fmt::format(
         "balance     {} iterations: pressure and creep forces carry the load to {:.1e}\n",
@@ -373,6 +422,19 @@ nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r, bool 
                              {contact_json::kLateralForceN, r.lateral_force_N}};
   j[contact_json::kPatches] = nlohmann::json::array();
   for (const auto& p : r.patches) j[contact_json::kPatches].push_back(PatchJson(p));
+  if (r.pressure_limit_Pa) {  // only with a limit: the JSON of elastic scenes is unchanged
+    const auto [cells, normal] = ContactCellsAndNormalForce(r);
+    nlohmann::json plastic =
+        PlasticJson(r.plastic_cells, cells, r.plastic_area_m2, r.plastic_force_N, normal);
+    plastic["pressure_limit_MPa"] = *r.pressure_limit_Pa * kToMPa;
+    j[contact_json::kTotal]["plastic"] = std::move(plastic);
+    for (size_t k = 0; k < r.patches.size(); ++k) {
+      const PatchResult& p = r.patches[k];
+      j[contact_json::kPatches][k]["plastic"] =
+          PlasticJson(p.plastic_cells, p.cells_in_contact, p.plastic_area_m2, p.plastic_force_N,
+                      p.normal_force_N);
+    }
+  }
   if (!r.patches.empty() && r.patches[0].rolling) {
     j["pitch_velocity_rad_s"] = r.pitch_velocity_rad_s;
     double fx = 0.0;

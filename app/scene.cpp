@@ -150,8 +150,8 @@ void ReadModel(const Fields& top, Scene* scene) {
   model = MakeModelOptions(ModelKind::kConformal);
   const auto t = top.Table("model", "a table");
   if (!t) return;
-  t->AllowOnly(
-      {"kind", "geometry", "kernel", "influence_constants", "accuracy", "cell_mm", "tangential"});
+  t->AllowOnly({"kind", "geometry", "kernel", "influence_constants", "accuracy", "cell_mm",
+                "tangential", "pressure_limit", "pressure_limit_MPa"});
   if (const auto kind = t->Choice("kind", EnumChoices(kModelKindNames))) {
     model = MakeModelOptions(*ModelKindFromString(*kind));
   }
@@ -167,13 +167,49 @@ void ReadModel(const Fields& top, Scene* scene) {
   ReadInfluenceConstants(*t, scene->path, scene);
 }
 
+// [model] pressure_limit = "none" | "hardness", or pressure_limit_MPa = p_lim: the elastic-
+// perfectly-plastic limit of the normal solve (docs/contact_plasticity.md). After ReadMaterials
+// (the hardness) and ReadModel (the kind).
+void ReadPressureLimit(const Fields& top, Scene* scene) {
+  const auto t = top.Table("model", "a table");
+  if (!t) return;
+  PressureLimit& limit = scene->problem.pressure_limit;
+  if (t->Has("pressure_limit") && t->Has("pressure_limit_MPa")) {
+    t->Fail("pressure_limit_MPa",
+            "either pressure_limit (\"none\" or \"hardness\") or pressure_limit_MPa, not both");
+  }
+  if (const auto name = t->Choice("pressure_limit", EnumChoices(kPressureLimitKindNames))) {
+    limit.kind = *name == "hardness" ? PressureLimitKind::kHardness : PressureLimitKind::kNone;
+  }
+  // Pressures from 1 MPa (far below any steel's yield) to 1e6 MPa.
+  if (const auto v = t->Number("pressure_limit_MPa", Positive(), Closed(1.0, 1e6))) {
+    limit.kind = PressureLimitKind::kValue;
+    limit.value_Pa = *v * kMPa;
+  }
+  if (limit.kind == PressureLimitKind::kNone) return;
+  const std::string_view key =
+      limit.kind == PressureLimitKind::kValue ? "pressure_limit_MPa" : "pressure_limit";
+  if (scene->problem.model.kind == ModelKind::kHertz) {
+    t->Fail(key,
+            "no pressure limit with kind = 'hertz' (the analytic ellipse has no plastic cells; use "
+            "'halfspace', 'conformal' or 'auto')");
+  }
+  const auto lim =
+      PressureLimitOf(limit, scene->problem.wheel_material, scene->problem.rail_material);
+  if (!(lim && *lim > 0.0)) {
+    t->Fail(key,
+            "a hardness to take the limit from: give materials.rail.hardness_MPa (or "
+            "materials.wheel.hardness_MPa), or the limit itself as pressure_limit_MPa");
+  }
+}
+
 void ReadMaterials(const Fields& top, Scene* scene) {
   scene->problem.wheel_material = DefaultSteel();
   scene->problem.rail_material = DefaultSteel();
   const auto t = top.Table("materials", "a table");
   if (!t) return;
   t->AllowOnly({"wheel", "rail"});
-  scene->problem.wheel_material = ReadMaterial(*t, "wheel", MaterialKeys::kElastic);
+  scene->problem.wheel_material = ReadMaterial(*t, "wheel", MaterialKeys::kWithHardness);
   scene->problem.rail_material = ReadMaterial(*t, "rail", MaterialKeys::kWithDamage);
 }
 
@@ -834,6 +870,7 @@ Scene ParseScene(const std::string& text, const std::string& path) {
   }
   ReadModel(top, &scene);
   ReadMaterials(top, &scene);
+  ReadPressureLimit(top, &scene);
   if (HasEffect(scene, "wear")) {
     ReadWearScene(top, &scene);
     return scene;

@@ -45,12 +45,17 @@ accuracy = "standard"         # "draft" | "standard" | "reference" | "fine"; def
 # cell_mm = [0.2, 0.2]        # explicit cell size [dx, ds] in mm (> 0); overrides accuracy
 tangential = "fastsim"        # "fastsim" | "exact"; default "fastsim": the tangential solver
                               # of the "tangential" effect (not with kind = "hertz")
+# pressure_limit = "hardness" # "none" | "hardness"; default "none" (elastic). "hardness":
+                              # elastic-perfectly-plastic contact, p <= the softer body's
+                              # hardness_MPa (docs/contact_plasticity.md; not with "hertz")
+# pressure_limit_MPa = 2600   # or the limit itself, in [1, 1e6] MPa (not with pressure_limit)
 
 [materials]                   # optional table; without it both bodies are steel,
                               # E_MPa = 210000 and nu = 0.28. With it, give both bodies.
 wheel = { E_MPa = 210000, nu = 0.28 }          # E_MPa > 0, 0 <= nu < 0.5
 rail = { E_MPa = 210000, nu = 0.28, hardness_MPa = 2600, shear_yield_MPa = 350 }
-                              # hardness_MPa, shear_yield_MPa optional (> 0), for wear/damage
+                              # hardness_MPa, shear_yield_MPa optional (> 0), for wear/damage;
+                              # the wheel may give hardness_MPa too (for pressure_limit)
 
 [wheel]                       # required
 profile = "builtin:S1002"     # "builtin:S1002", "circle:R_mm", or a file (.csv, .whl, .prw,

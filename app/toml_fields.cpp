@@ -154,6 +154,8 @@ Material ReadMaterial(const Fields& parent, std::string_view key, MaterialKeys k
   if (!t) parent.FailMissing(key, "an inline table { E_MPa, nu }");
   if (keys == MaterialKeys::kWithDamage) {
     t->AllowOnly({"E_MPa", "nu", "hardness_MPa", "shear_yield_MPa"});
+  } else if (keys == MaterialKeys::kWithHardness) {
+    t->AllowOnly({"E_MPa", "nu", "hardness_MPa"});
   } else {
     t->AllowOnly({"E_MPa", "nu"});
   }

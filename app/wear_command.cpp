@@ -78,6 +78,13 @@ json LoadCaseJson(const LoadCaseSummary& c, const WearStudy& study) {
   j["lateral_force_N"] = c.lateral_force_N;
   j["area_mm2"] = c.area_m2 * 1e6;
   j["p_max_MPa"] = c.p_max_Pa * 1e-6;
+  if (c.pressure_limit_Pa) {  // only with [model] pressure_limit: older runs' JSON unchanged
+    j["plastic"] = {{"pressure_limit_MPa", *c.pressure_limit_Pa * 1e-6},
+                    {"cells", c.plastic_cells},
+                    {"area_mm2", c.plastic_area_m2 * 1e6},
+                    {"normal_force_N", c.plastic_force_N},
+                    {"force_share", c.plastic_force_share}};
+  }
   j["creep_force_N"] = {{"x", c.creep_force_x_N}, {"s", c.creep_force_s_N}};  // on the wheel
   // The labelled forces (issue 14): on the rail, rail frame, pressure / creep / net parts.
   auto xyz = [](const Eigen::Vector3d& f) {

@@ -80,6 +80,13 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
   s.climb = result.climb;
   s.area_m2 = result.area_m2;
   s.p_max_Pa = result.p_max_Pa;
+  s.pressure_limit_Pa = result.pressure_limit_Pa;
+  s.plastic_cells = result.plastic_cells;
+  s.plastic_area_m2 = result.plastic_area_m2;
+  s.plastic_force_N = result.plastic_force_N;
+  double normal_N = 0.0;
+  for (const PatchResult& patch : result.patches) normal_N += patch.normal_force_N;
+  s.plastic_force_share = normal_N > 0.0 ? result.plastic_force_N / normal_N : 0.0;
   double largest = -1.0;
   for (const PatchResult& patch : result.patches) {
     const std::vector<double> depth =

@@ -143,6 +143,12 @@ struct LoadCaseSummary {
   ForceParts forces;
   FlangeClimbCheck climb;  // L/V (net, on the rail) against Nadal's limit
   double area_m2 = 0.0, p_max_Pa = 0.0;
+  // The pressure limit of the study (absent: elastic) and the plastic cells at it, their area
+  // [m^2] and normal load [N], summed over the patches (ContactResult).
+  std::optional<double> pressure_limit_Pa;
+  int plastic_cells = 0;
+  double plastic_area_m2 = 0.0, plastic_force_N = 0.0;
+  double plastic_force_share = 0.0;  // plastic_force_N over the patches' normal force [-]
   double creep_force_x_N = 0.0, creep_force_s_N = 0.0;  // sum over patches, ON THE WHEEL
   double t_gamma_N = 0.0;                               // sum over patches
   double rcf_damage_per_pass = 0.0;                     // largest over patches

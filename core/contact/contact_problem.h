@@ -40,6 +40,9 @@ struct ContactSetup {
   NormalSolverOptions solver;
   // The rolling stage's tangential solver (used when a problem carries RollingOptions).
   TangentialMethod tangential = TangentialMethod::kFastsim;
+  // The elastic-perfectly-plastic pressure limit of the normal solve (contact_types.h); none by
+  // default. Needs a grid model (not kind = hertz).
+  PressureLimit pressure_limit;
   // The "damage" effect: T-gamma, WLRM RCF damage, FI_surf, shakedown per rolling patch (and,
   // in a wear study, RCF damage per position).
   bool damage = false;

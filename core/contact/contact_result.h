@@ -45,6 +45,12 @@ struct PatchResult {
   double contact_angle_rad = 0.0;
   int cells = 0;
   int cells_in_contact = 0;
+  // With a pressure limit p_lim (ContactSetup::pressure_limit): the cells at p_lim (plastic),
+  // their area (whole cells) [m^2] and the normal load they carry, sum of p A over them [N] (a
+  // part of normal_force_N). 0 without a limit.
+  int plastic_cells = 0;
+  double plastic_area_m2 = 0.0;
+  double plastic_force_N = 0.0;
   PatchGrid grid;                       // empty for the Hertz model
   Eigen::VectorXd pressure_Pa;          // per grid cell
   std::optional<HertzSolution> hertz;   // the Hertz model's ellipse
@@ -88,6 +94,12 @@ struct ContactResult {
   double time_s = 0.0;
   double area_m2 = 0.0;
   double p_max_Pa = 0.0;
+  // The pressure limit p_lim [Pa] the normal solve bounded the pressure by (absent: elastic),
+  // and the sums of the patches' plastic cells, area and load (PatchResult).
+  std::optional<double> pressure_limit_Pa;
+  int plastic_cells = 0;
+  double plastic_area_m2 = 0.0;
+  double plastic_force_N = 0.0;
   // Sums of the patches' vertical_force_N and lateral_force_N: the pressure's part only; the net
   // forces with the creep parts are TotalForcesOnRail (core/contact/contact_forces.h).
   double vertical_force_N = 0.0;

@@ -50,6 +50,8 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
   CheckContactProblem(problem);
   ContactResult result;
   result.model = problem.model;
+  result.pressure_limit_Pa =
+      PressureLimitOf(problem.pressure_limit, problem.wheel_material, problem.rail_material);
   AddStage(&result.stages, "placement", placement_s);
 
   // The cases that end before any grid.
@@ -93,7 +95,9 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
     const bool converged = sol.status == SolverStatus::kConverged;
     if (converged) approach_now = sol.approach_m;
     const AreaReview review = area.Review(&builds, sol, assembly.np.cell_area_m2, &models);
-    if (converged && review.Again() && attempt < 11) {
+    // A plastic patch larger than the whole grid (every cell at the pressure limit, the load not
+    // carried) grows the grid like a converged one whose pressure reaches its edge.
+    if ((converged || sol.load_above_limit) && review.Again() && attempt < 11) {
       area.Widen(review, sol);
       continue;
     }
@@ -103,7 +107,8 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
     result.message = sol.message;
     result.approach_m = sol.approach_m;
     result.iterations = total_iterations;
-    const KeptPatches kept = CollectPatches(geom, &builds, sol, models.is_auto(), &result);
+    const KeptPatches kept = CollectPatches(geom, &builds, sol, models.is_auto(),
+                                            assembly.np.pressure_limit_Pa, &result);
     if (review.grow) {
       result.message += (result.message.empty() ? "" : "; ");
       result.message += "pressure reaches the edge of the potential contact area";

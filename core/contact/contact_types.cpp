@@ -29,6 +29,26 @@ int BodyCurvatureSign(double curvature_per_m) { return curvature_per_m > 0 ? -1 
 std::string_view ToString(KernelModel v) { return EnumToString(kKernelModelNames, v); }
 std::string_view ToString(ModelKind v) { return EnumToString(kModelKindNames, v); }
 std::string_view ToString(AccuracyPreset v) { return EnumToString(kAccuracyPresetNames, v); }
+std::string_view ToString(PressureLimitKind v) { return EnumToString(kPressureLimitKindNames, v); }
+
+std::optional<double> PressureLimitOf(const PressureLimit& limit, const Material& wheel,
+                                      const Material& rail) {
+  switch (limit.kind) {
+    case PressureLimitKind::kNone:
+      return std::nullopt;
+    case PressureLimitKind::kValue:
+      return limit.value_Pa;
+    case PressureLimitKind::kHardness: {
+      // The softer body yields first; a body without a hardness does not bound the pressure.
+      double h = std::numeric_limits<double>::quiet_NaN();
+      for (const double v : {wheel.hardness_Pa, rail.hardness_Pa}) {
+        if (v > 0.0 && !(h <= v)) h = v;
+      }
+      return h;
+    }
+  }
+  return std::nullopt;
+}
 
 std::optional<KernelModel> KernelModelFromString(std::string_view s) {
   return EnumFromString(kKernelModelNames, s);

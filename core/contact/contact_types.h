@@ -125,6 +125,32 @@ struct ModelOptions {
   std::optional<double> cell_dx_m, cell_ds_m;
 };
 
+// The elastic-perfectly-plastic limit on the contact pressure (issue 16): the normal solver
+// bounds every cell's pressure by p_lim (NormalProblem::pressure_limit_Pa), so that a patch whose
+// elastic pressure would pass it grows until it carries the load (docs/contact_plasticity.md).
+//   kNone:     elastic, no limit (the default).
+//   kHardness: p_lim = the softer body's hardness, min of the bodies' hardness_Pa that are given:
+//              the mean pressure of a fully plastic indentation (Tabor: H ~ 2.8-3 Y; Johnson,
+//              Contact Mechanics ch. 6), and the pressure axis of the KTH wear map.
+//   kValue:    p_lim = value_Pa, given explicitly.
+enum class PressureLimitKind { kNone, kHardness, kValue };
+inline constexpr std::array<EnumName<PressureLimitKind>, 3> kPressureLimitKindNames = {{
+    {PressureLimitKind::kNone, "none"},
+    {PressureLimitKind::kHardness, "hardness"},
+    {PressureLimitKind::kValue, "value", /*selectable=*/false},
+}};
+std::string_view ToString(PressureLimitKind v);
+
+struct PressureLimit {
+  PressureLimitKind kind = PressureLimitKind::kNone;
+  double value_Pa = 0.0;  // kValue only: p_lim [Pa] > 0
+};
+
+// p_lim [Pa] for the pair: absent for kNone; for kHardness the smaller of the bodies' hardness_Pa
+// that are given (NaN when neither is); for kValue value_Pa.
+std::optional<double> PressureLimitOf(const PressureLimit& limit, const Material& wheel,
+                                      const Material& rail);
+
 // Builds ModelOptions for a `kind` shorthand: hertz, halfspace = planar + boussinesq,
 // conformal = conformal + golubenko, auto = per patch, conformal patches with boussinesq.
 ModelOptions MakeModelOptions(ModelKind kind);

@@ -18,12 +18,32 @@
 //   5. p <- p - tau t on I; negative p -> 0; cells outside I with g < 0 get -tau g (PK's rule).
 //   6. u <- u - tau r when nothing was projected, otherwise u = C p afresh; under a prescribed
 //      load p and u are rescaled so that <w, p> = F exactly.
+//
+// With a pressure limit p_lim (elastic-perfectly-plastic cells, normal_solver.h) the elastic
+// problem is solved first, exactly as above; when its peak stays at or below p_lim that is the
+// answer (so a case below the limit is unchanged, bit for bit, at no extra cost). Otherwise the
+// same iteration runs on the box 0 <= p <= p_lim, from the elastic pressures clipped: the set I
+// above becomes the free set F = {0 < p < p_lim} (the fit of delta, the directions), the plastic
+// set P = {p = p_lim} keeps its pressure, the step also projects onto p <= p_lim, and PK's rule
+// also releases plastic cells whose gap opens (g > 0: p = p_lim - tau g). These bounded solves
+// run unpreconditioned (see SetLimit).
+//   - Prescribed approach: one bounded solve.
+//   - Prescribed load: restoring the load by a common factor after each step cannot work when
+//     the patch must grow (clipped cells lose load that only new cells can carry), so first the
+//     approach that carries F is searched with bounded solves under a prescribed approach
+//     (secant steps, regula falsi once bracketed, each solve from the last one's pressures) to
+//     1e-6 of F; the load-controlled bounded solve then starts from there, restoring the load by
+//     "water filling": p <- min(s p, p_lim) on the free cells with s such that <w, p> = F (when
+//     every loaded cell is plastic and F is still short, the unloaded cells nearest to contact,
+//     smallest (d + u)/w, are loaded to p_lim, the last one with the rest).
 #include "core/contact/normal_solver.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
+#include <utility>
 
 #include "core/numerics/check.h"
 
@@ -43,6 +63,13 @@ constexpr double kInitialGuessRelChange = 0.05;
 // iterations (see DISABLED_IterationsVersusGridSize), so this never fires there.
 constexpr int kStagnationWindow = 30;
 constexpr double kStagnationFactor = 0.5;
+// With plastic cells: a load factor on the free cells within this of 1 is rounding (the steps
+// keep the load), and u = C p is kept instead of applied afresh.
+constexpr double kRoundingFactor = 1e-12;
+// The bounded solve under a prescribed load (SolveBoundedForLoad): the search on the approach
+// stops within this share of the load, or after this many steps.
+constexpr double kApproachLoadTolerance = 1e-6;
+constexpr int kMaxApproachSteps = 60;
 
 // u = C p for the block-diagonal operator; per-block buffers are allocated once.
 class BlockOperator {
@@ -114,6 +141,15 @@ class BlockOperator {
     }
   }
 
+  // The operator's diagonal, cell by cell [m/Pa].
+  Eigen::VectorXd Diagonal() const {
+    Eigen::VectorXd d(offsets_.empty() ? 0 : offsets_.back() + blocks_.back()->size());
+    for (size_t b = 0; b < blocks_.size(); ++b) {
+      for (int k = 0; k < blocks_[b]->size(); ++k) d[offsets_[b] + k] = blocks_[b]->Diagonal(k);
+    }
+    return d;
+  }
+
   int applications() const { return applications_; }
   int preconditioner_applications() const { return preconditioner_applications_; }
 
@@ -140,6 +176,9 @@ void ValidateProblem(const NormalProblem& problem, const NormalSolverOptions& op
   RAILWEAR_CHECK(problem.cell_area_m2.minCoeff() > 0.0);
   if (problem.force_N) RAILWEAR_CHECK(std::isfinite(*problem.force_N));
   if (problem.approach_m) RAILWEAR_CHECK(std::isfinite(*problem.approach_m));
+  if (problem.pressure_limit_Pa) {
+    RAILWEAR_CHECK(*problem.pressure_limit_Pa > 0.0 && std::isfinite(*problem.pressure_limit_Pa));
+  }
 }
 
 // The solver's working state and its O(n) kernels.
@@ -151,7 +190,8 @@ class PkSolver {
         area_(problem.cell_area_m2),
         options_(options),
         op_(problem.blocks, static_cast<int>(problem.gap_m.size())),
-        n_(static_cast<int>(problem.gap_m.size())) {
+        n_(static_cast<int>(problem.gap_m.size())),
+        p_lim_(problem.pressure_limit_Pa.value_or(std::numeric_limits<double>::infinity())) {
     p_.setZero(n_);
     u_.setZero(n_);
     g_.setZero(n_);
@@ -159,41 +199,139 @@ class PkSolver {
     r_.setZero(n_);
     min_ratio_ = (d_.array() / w_.array()).minCoeff();
     if (options.preconditioner != CgPreconditioner::kNone) {
-      preconditioned_ = op_.HasPreconditioner();
+      can_precondition_ = op_.HasPreconditioner();
     }
-    if (preconditioned_) {
+    SetLimit(p_lim_);
+    if (can_precondition_) {
       z_.setZero(n_);
       masked_.setZero(n_);
     }
   }
 
   double min_ratio() const { return min_ratio_; }
+  bool grid_full() const { return grid_full_; }
 
-  NormalSolution SolveForLoad(double force_N) {
+  // The pressure limit of the next solves [Pa] (+inf: none).
+  // The bounded solves run unpreconditioned: the restricted inverse R M R mixes the plastic
+  // cells' neighbours so that released cells were pushed back over the limit step after step
+  // (no convergence on the Hertz cases of the tests), where plain PK converges in tens of
+  // iterations.
+  void SetLimit(double p_lim) {
+    p_lim_ = p_lim;
+    preconditioned_ = can_precondition_ && !std::isfinite(p_lim);
+    if (std::isfinite(p_lim) && diag_.size() == 0) diag_ = op_.Diagonal();
+  }
+
+  // Without `start` from the initial guess; with it from those pressures (clipped to the limit,
+  // scaled to the load).
+  NormalSolution SolveForLoad(double force_N, const Eigen::VectorXd* start = nullptr) {
     force_ = force_N;
     load_control_ = true;
-    InitialGuessForLoad();
+    if (start == nullptr) {
+      InitialGuessForLoad();
+    } else {
+      p_ = *start;
+      ClipToLimit();
+      op_.Apply(p_, &u_);
+      if (ScaleToLoad()) op_.Apply(p_, &u_);
+    }
     return Iterate();
   }
 
-  NormalSolution SolveForApproach(double approach_m) {
+  NormalSolution SolveForApproach(double approach_m, const Eigen::VectorXd* start = nullptr) {
     load_control_ = false;
     delta_ = approach_m;
-    InitialGuessForApproach();
+    if (start == nullptr) {
+      InitialGuessForApproach();
+    } else {
+      p_ = *start;
+      ClipToLimit();
+      op_.Apply(p_, &u_);
+    }
     return Iterate();
+  }
+
+  // The bounded problem under a prescribed load F, from the elastic solution `elastic` (whose
+  // peak passes the limit): the approach that carries F with p <= p_lim, by secant steps
+  // (regula falsi once bracketed) on delta with bounded solves under a prescribed approach, each
+  // from the last one's pressures, until the load is within kApproachLoadTolerance; then the
+  // load-controlled bounded solve from there makes the load exact. Its active sets are then
+  // nearly right, so the load's restoration by water filling moves only a few cells.
+  NormalSolution SolveBoundedForLoad(double force_N, double p_lim, const NormalSolution& elastic) {
+    SetLimit(p_lim);
+    const double x0 = min_ratio_;  // first contact: F(x0) = 0
+    double delta = elastic.approach_m;
+    Eigen::VectorXd start = elastic.pressure_Pa;
+    std::optional<std::pair<double, double>> lo, hi, last;  // (delta, F(delta) - F)
+    int side = 0;
+    NormalSolution sol;
+    int steps = 0;
+    for (int step = 0; step < kMaxApproachSteps; ++step) {
+      sol = SolveForApproach(delta, &start);
+      ++steps;
+      if (sol.status != SolverStatus::kConverged) return sol;
+      start = sol.pressure_Pa;
+      const double e = sol.force_N - force_N;
+      if (std::abs(e) <= kApproachLoadTolerance * force_N) break;
+      if (e < 0 && sol.plastic_cells == n_) break;  // the whole grid plastic: it cannot carry F
+      if (e < 0) {
+        if (hi && side == -1) hi->second *= 0.5;  // Illinois
+        lo = std::pair{delta, e};
+        side = -1;
+      } else {
+        if (lo && side == +1) lo->second *= 0.5;
+        hi = std::pair{delta, e};
+        side = +1;
+      }
+      double next;
+      if (lo && hi) {
+        next = (lo->first * hi->second - hi->first * lo->second) / (hi->second - lo->second);
+        if (!(next > lo->first && next < hi->first)) next = 0.5 * (lo->first + hi->first);
+      } else if (last && last->second != e) {
+        next = delta - e * (delta - last->first) / (e - last->second);
+      } else {
+        next = x0 + (delta - x0) * force_N / std::max(sol.force_N, 1e-3 * force_N);
+      }
+      // Unbracketed secant steps may overshoot: at most doubling the approach from first
+      // contact, never back past the lower end.
+      if (!hi) next = std::min(next, x0 + 2.0 * (delta - x0));
+      if (lo && !(next > lo->first)) next = lo->first + 0.5 * (delta - lo->first);
+      last = std::pair{delta, e};
+      delta = next;
+    }
+    if (sol.status != SolverStatus::kConverged) return sol;
+    const int search_iterations = total_iterations_;
+    NormalSolution out = SolveForLoad(force_N, &start);
+    std::ostringstream msg;
+    msg << "; pressure limit " << p_lim * 1e-6 << " MPa: " << out.plastic_cells
+        << " plastic cells, after " << steps << " solves on the approach (" << search_iterations
+        << " iterations with the elastic solve)";
+    out.message += msg.str();
+    return out;
   }
 
  private:
   double Load() const { return (area_.array() * w_.array() * p_.array()).sum(); }
+
+  // Free cell: in contact and below the limit (without a limit: in contact).
+  bool Free(int k) const { return p_[k] > 0.0 && p_[k] < p_lim_; }
 
   // delta = <w, d + u>_I / <w, w>_I over I = {p > 0}; g = d - delta w + u.
   void UpdateGap() {
     if (load_control_) {
       double num = 0.0, den = 0.0;
       for (int k = 0; k < n_; ++k) {
-        if (p_[k] > 0.0) {
+        if (Free(k)) {
           num += area_[k] * w_[k] * (d_[k] + u_[k]);
           den += area_[k] * w_[k] * w_[k];
+        }
+      }
+      if (!(den > 0.0)) {  // every loaded cell plastic: fit over all of them
+        for (int k = 0; k < n_; ++k) {
+          if (p_[k] > 0.0) {
+            num += area_[k] * w_[k] * (d_[k] + u_[k]);
+            den += area_[k] * w_[k] * w_[k];
+          }
         }
       }
       RAILWEAR_CHECK(den > 0.0);
@@ -206,7 +344,10 @@ class PkSolver {
   void Measure(double* residual, double* scale) const {
     double res = 0.0, h = 0.0;
     for (int k = 0; k < n_; ++k) {
-      if (p_[k] > 0.0) {
+      if (p_[k] >= p_lim_) {  // plastic: the gap may not open (g <= 0)
+        res = std::max(res, g_[k]);
+        h = std::max(h, std::abs(delta_ * w_[k] - d_[k]));
+      } else if (p_[k] > 0.0) {
         res = std::max(res, std::abs(g_[k]));
         h = std::max(h, std::abs(delta_ * w_[k] - d_[k]));
       } else {
@@ -226,10 +367,101 @@ class PkSolver {
     }
   }
 
-  void ScaleToLoad() {
+  // Restores <w, p> = F. Without cells pushed past the limit: p and u scaled by one factor
+  // (u stays C p). Otherwise water filling (see the top of the file); returns true when u is no
+  // longer C p and must be applied afresh.
+  bool ScaleToLoad() {
     const double s = force_ / Load();
-    p_ *= s;
-    u_ *= s;
+    const double p_max = p_.maxCoeff();
+    if (!std::isfinite(p_lim_) || (p_max < p_lim_ && s * p_max < p_lim_)) {
+      p_ *= s;
+      u_ *= s;
+      return false;
+    }
+    return WaterFill();
+  }
+
+  // p <- min(s p, p_lim) on the cells below the limit, with the factor s that carries F, the
+  // cells at the limit kept there (a uniform factor below 1 would release them all); when every
+  // loaded cell reaches the limit and F is still not carried, Grow().
+  bool WaterFill() {
+    std::vector<char> at_limit(n_);
+    for (int k = 0; k < n_; ++k) at_limit[k] = p_[k] >= p_lim_;
+    double s = 1.0;
+    bool clipped_new = false;
+    for (bool first = true;; first = false) {
+      double carried = 0.0, free_load = 0.0;
+      for (int k = 0; k < n_; ++k) {
+        const double a = area_[k] * w_[k];
+        if (at_limit[k]) {
+          carried += a * p_lim_;
+        } else {
+          free_load += a * p_[k];
+        }
+      }
+      if (!(free_load > 0.0)) {
+        for (int k = 0; k < n_; ++k) {
+          if (at_limit[k]) p_[k] = p_lim_;
+        }
+        if (carried < force_) Grow(force_ - carried);
+        return true;
+      }
+      if (first && !(carried < force_)) {
+        // The plastic cells alone carry F or more: every cell scaled down, none at the limit.
+        const double f = force_ / Load();
+        p_ *= f;
+        u_ *= f;
+        return false;
+      }
+      s = (force_ - carried) / free_load;
+      bool more = false;
+      for (int k = 0; k < n_; ++k) {
+        if (!at_limit[k] && s * p_[k] > p_lim_) {
+          at_limit[k] = 1;
+          more = true;
+        }
+      }
+      if (!more) break;
+      clipped_new = true;
+    }
+    for (int k = 0; k < n_; ++k) p_[k] = at_limit[k] ? p_lim_ : s * p_[k];
+    // A factor within rounding of 1 on the free cells alone (the steps keep the load; only
+    // rounding moves it) leaves u as good as C p.
+    return clipped_new || std::abs(s - 1.0) > kRoundingFactor;
+  }
+
+  // Every loaded cell is at the limit and `missing` [N] is not carried: load the unloaded cells
+  // nearest to contact under the current displacement (smallest (d + u)/w) to p_lim, the last
+  // one with what is left. Sets grid_full_ when the grid's cells run out.
+  void Grow(double missing) {
+    std::vector<int> order;
+    for (int k = 0; k < n_; ++k) {
+      if (!(p_[k] > 0.0)) order.push_back(k);
+    }
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return (d_[a] + u_[a]) / w_[a] < (d_[b] + u_[b]) / w_[b]; });
+    for (int k : order) {
+      const double full = area_[k] * w_[k] * p_lim_;
+      if (full >= missing) {
+        p_[k] = missing / (area_[k] * w_[k]);
+        return;
+      }
+      p_[k] = p_lim_;
+      missing -= full;
+    }
+    grid_full_ = true;
+  }
+
+  // Pressures above the limit clipped to it (a guess or a step); true when any was.
+  bool ClipToLimit() {
+    bool clipped = false;
+    for (int k = 0; k < n_; ++k) {
+      if (p_[k] > p_lim_) {
+        p_[k] = p_lim_;
+        clipped = true;
+      }
+    }
+    return clipped;
   }
 
   // Fixed point on the contact threshold theta: shape for theta, scale to F, fit delta,
@@ -242,7 +474,7 @@ class PkSolver {
     for (int pass = 0; pass < kMaxInitialGuessPasses; ++pass) {
       ShapeForThreshold(theta);
       op_.Apply(p_, &u_);
-      ScaleToLoad();
+      if (ScaleToLoad()) op_.Apply(p_, &u_);
       UpdateGap();
       const double next = 0.5 * (min_ratio_ + delta_);
       const double change = std::abs(next - theta);
@@ -264,6 +496,7 @@ class PkSolver {
     const double alpha = (den > 0.0 && num > 0.0) ? num / den : 0.0;
     p_ *= alpha;
     u_ *= alpha;
+    if (ClipToLimit()) op_.Apply(p_, &u_);
   }
 
   NormalSolution Iterate() {
@@ -294,8 +527,12 @@ class PkSolver {
       if (residual <= tol * scale) {
         if (u_fresh) break;
         op_.Apply(p_, &u_);  // confirm with an exact C p before accepting
-        if (load_control_) ScaleToLoad();
+        if (load_control_ && ScaleToLoad()) op_.Apply(p_, &u_);
         u_fresh = true;
+        if (grid_full_) {
+          failure = "the load exceeds the pressure limit times the whole grid's area";
+          break;
+        }
         continue;
       }
       if (it >= options_.max_iterations) {
@@ -322,14 +559,14 @@ class PkSolver {
         G = PreconditionedResidual();
       } else {
         for (int k = 0; k < n_; ++k) {
-          if (p_[k] > 0.0) G += area_[k] * g_[k] * g_[k];
+          if (Free(k)) G += area_[k] * g_[k] * g_[k];
         }
       }
       const Eigen::VectorXd& z = preconditioned_ ? z_ : g_;
       const double beta = (reset || g_old <= 0.0) ? 0.0 : G / g_old;
       double tw = 0.0, ww = 0.0;
       for (int k = 0; k < n_; ++k) {
-        if (p_[k] > 0.0) {
+        if (Free(k)) {
           t_[k] = z[k] + beta * t_[k];
           tw += area_[k] * t_[k] * w_[k];
           ww += area_[k] * w_[k] * w_[k];
@@ -340,7 +577,7 @@ class PkSolver {
       if (load_control_ && ww > 0.0) {
         const double c = tw / ww;
         for (int k = 0; k < n_; ++k) {
-          if (p_[k] > 0.0) t_[k] -= c * w_[k];
+          if (Free(k)) t_[k] -= c * w_[k];
         }
       }
       g_old = G;
@@ -348,32 +585,53 @@ class PkSolver {
       op_.Apply(t_, &r_);
       double gt = 0.0, rt = 0.0;
       for (int k = 0; k < n_; ++k) {
-        if (p_[k] > 0.0) {
+        if (Free(k)) {
           gt += area_[k] * g_[k] * t_[k];
           rt += area_[k] * r_[k] * t_[k];
         }
       }
-      if (!(rt > 0.0) || !std::isfinite(gt)) {
+      double tau = 0.0;
+      bool no_direction = false;
+      if (!(rt > 0.0) && (t_.array() == 0.0).all()) {
+        // No direction: no free cell, or under a prescribed load a single one (its pressure is
+        // the load's rest). Only PK's rules below change the sets, at the scale of the
+        // operator's diagonal (a cell's own compliance).
+        no_direction = true;  // PK's rules below at each cell's own compliance
+      } else if (!(rt > 0.0) || !std::isfinite(gt)) {
         if (beta != 0.0) {  // lost conjugacy (nearly symmetric operator): restart
           reset = true;
           continue;
         }
         failure = "operator not positive on the contact set";
         break;
+      } else {
+        tau = gt / rt;
       }
-      const double tau = gt / rt;
 
       // Step, projection onto p >= 0, and PK's rule for overlapping cells outside the set.
       bool projected = false, grew = false;
       for (int k = 0; k < n_; ++k) {
-        if (p_[k] > 0.0) {
+        if (p_[k] >= p_lim_) {
+          // A plastic cell whose gap opens is released (PK's rule mirrored; without a
+          // direction by the pressure that would close its gap alone, g / C_kk).
+          if (g_[k] > 0.0 && (tau > 0.0 || no_direction)) {
+            p_[k] = std::max(0.0, p_lim_ - (no_direction ? g_[k] / diag_[k] : tau * g_[k]));
+            grew = true;
+          }
+        } else if (p_[k] > 0.0) {
           p_[k] -= tau * t_[k];
           if (p_[k] <= 0.0) {
             p_[k] = 0.0;
             projected = true;
+          } else if (p_[k] >= p_lim_) {
+            p_[k] = p_lim_;
+            projected = true;
           }
         } else if (g_[k] < 0.0 && tau > 0.0) {
-          p_[k] = -tau * g_[k];
+          p_[k] = std::min(p_lim_, -tau * g_[k]);
+          grew = true;
+        } else if (g_[k] < 0.0 && no_direction) {
+          p_[k] = std::min(p_lim_, -g_[k] / diag_[k]);
           grew = true;
         }
       }
@@ -385,10 +643,19 @@ class PkSolver {
         u_fresh = false;
       }
       reset = grew;
-      if (load_control_ && Load() > 0.0) ScaleToLoad();
+      if (load_control_ && Load() > 0.0 && ScaleToLoad()) {
+        op_.Apply(p_, &u_);
+        u_fresh = true;
+        reset = true;
+      }
+      if (grid_full_) {
+        failure = "the load exceeds the pressure limit times the whole grid's area";
+        break;
+      }
     }
 
-    out.iterations = it;
+    total_iterations_ += it;
+    out.iterations = total_iterations_;
     out.pressure_Pa = p_;
     out.approach_m = delta_;
     out.force_N = Load();
@@ -400,6 +667,13 @@ class PkSolver {
     out.operator_applications = op_.applications();
     out.preconditioner_applications = op_.preconditioner_applications();
     out.preconditioned = preconditioned_;
+    out.load_above_limit = grid_full_;
+    for (int k = 0; k < n_; ++k) {
+      if (p_[k] >= p_lim_) {
+        ++out.plastic_cells;
+        out.plastic_force_N += area_[k] * w_[k] * p_[k];
+      }
+    }
     const bool converged =
         failure.empty() && residual <= tol * scale && out.load_error_relative <= tol;
     std::ostringstream msg;
@@ -426,11 +700,11 @@ class PkSolver {
   // iterations on the half-space benchmark and costs a preconditioner application each time the
   // contact set changes.)
   double PreconditionedResidual() {
-    for (int k = 0; k < n_; ++k) masked_[k] = p_[k] > 0.0 ? g_[k] : 0.0;
+    for (int k = 0; k < n_; ++k) masked_[k] = Free(k) ? g_[k] : 0.0;
     op_.Precondition(masked_, &z_);
     double G = 0.0;
     for (int k = 0; k < n_; ++k) {
-      if (p_[k] > 0.0) {
+      if (Free(k)) {
         G += area_[k] * g_[k] * z_[k];
       } else {
         z_[k] = 0.0;
@@ -447,9 +721,14 @@ class PkSolver {
   const int n_;
   Eigen::VectorXd p_, u_, g_, t_, r_;
   // Preconditioning (PreconditionedResidual): the direction's first term z and a masked input.
-  bool preconditioned_ = false;
+  bool can_precondition_ = false;  // asked for and every block has an inverse
+  bool preconditioned_ = false;    // ... and used by the current solve (not with a limit)
   Eigen::VectorXd z_, masked_;
   double min_ratio_ = 0.0;
+  double p_lim_;              // pressure limit [Pa], +inf without one
+  Eigen::VectorXd diag_;      // the operator's diagonal C_kk [m/Pa], with a finite limit
+  int total_iterations_ = 0;  // over every solve of this solver
+  bool grid_full_ = false;    // every cell at the limit and the load still not carried
   double delta_ = 0.0;
   double force_ = 0.0;
   bool load_control_ = true;
@@ -512,7 +791,16 @@ NormalSolution SolveNormal(const NormalProblem& problem, const NormalSolverOptio
       return NoContact(problem, min_ratio, msg.str());
     }
     PkSolver solver(problem, options);
-    return solver.SolveForLoad(*problem.force_N);
+    if (!problem.pressure_limit_Pa) return solver.SolveForLoad(*problem.force_N);
+    // With a limit: the elastic solve first (unchanged, and the answer when its peak stays
+    // below the limit), the bounded one from there.
+    solver.SetLimit(std::numeric_limits<double>::infinity());
+    NormalSolution elastic = solver.SolveForLoad(*problem.force_N);
+    if (elastic.status != SolverStatus::kConverged ||
+        !(elastic.pressure_Pa.maxCoeff() > *problem.pressure_limit_Pa)) {
+      return elastic;
+    }
+    return solver.SolveBoundedForLoad(*problem.force_N, *problem.pressure_limit_Pa, elastic);
   }
   const double delta = *problem.approach_m;
   if (delta <= min_ratio) {
@@ -522,7 +810,20 @@ NormalSolution SolveNormal(const NormalProblem& problem, const NormalSolverOptio
     return NoContact(problem, delta, msg.str());
   }
   PkSolver solver(problem, options);
-  return solver.SolveForApproach(delta);
+  if (!problem.pressure_limit_Pa) return solver.SolveForApproach(delta);
+  solver.SetLimit(std::numeric_limits<double>::infinity());
+  NormalSolution elastic = solver.SolveForApproach(delta);
+  if (elastic.status != SolverStatus::kConverged ||
+      !(elastic.pressure_Pa.maxCoeff() > *problem.pressure_limit_Pa)) {
+    return elastic;
+  }
+  solver.SetLimit(*problem.pressure_limit_Pa);
+  NormalSolution out = solver.SolveForApproach(delta, &elastic.pressure_Pa);
+  std::ostringstream msg;
+  msg << "; pressure limit " << *problem.pressure_limit_Pa * 1e-6 << " MPa: " << out.plastic_cells
+      << " plastic cells (" << elastic.iterations << " iterations in the elastic solve first)";
+  out.message += msg.str();
+  return out;
 }
 
 }  // namespace railwear

@@ -5,6 +5,14 @@
 // m). Deformed gap g = d - delta * w + C p, with w_k = e_F . (-n_k) the share of the approach
 // that closes cell k's normal gap. Conditions: g >= 0, p >= 0, p_k g_k = 0, and either
 //   sum_k p_k A_k w_k = F   (prescribed load; A_k cell area)   or   delta = delta0 (prescribed).
+// With a pressure limit p_lim (elastic-perfectly-plastic surface layer) the pressures are bounded,
+// 0 <= p_k <= p_lim, and the conditions become
+//   p_k = 0          where g_k >= 0   (the gap is open),
+//   0 < p_k < p_lim  where g_k = 0    (elastic contact),
+//   p_k = p_lim      where g_k <= 0   (plastic cells: -g_k is the interpenetration that the
+//                                      elastic half-spaces cannot take up, the plastic set),
+// with the same load or approach condition, so that under a prescribed load the patch grows until
+// it carries the load. Without a limit the solve is the elastic one, operation for operation.
 // Method: projected conjugate gradients of Polonsky & Keer (1999) type, with the approach as the
 // multiplier of the load condition. Numerical outcomes (no contact, no convergence) are reported
 // in the status, never thrown.
@@ -64,10 +72,14 @@ struct NormalProblem {
   Eigen::VectorXd cell_area_m2;      // A, per cell [m^2]
   std::optional<double> force_N;     // prescribed load F [N] (F <= 0 gives kNoContact) ...
   std::optional<double> approach_m;  // ... or prescribed approach delta [m]; exactly one is set
+  // Pressure limit p_lim [Pa] (> 0, finite) of every cell: elastic-perfectly-plastic contact.
+  // Absent: elastic, p unbounded above.
+  std::optional<double> pressure_limit_Pa;
 };
 // Preconditions (checked, abort on violation: the caller builds the problem): at least one
 // block, none null, block sizes summing to n = gap_m.size(); approach_weight and cell_area_m2
-// of size n; 0 < w_k <= 1; A_k > 0; all entries finite; options.Validate() == "".
+// of size n; 0 < w_k <= 1; A_k > 0; all entries finite; pressure_limit_Pa > 0 when given;
+// options.Validate() == "".
 // The operators should be positive definite on any contact set (Boussinesq), or nearly so
 // (seed kernel on a curved grid); if the iteration stagnates the result is kNotConverged.
 
@@ -77,12 +89,13 @@ struct NormalSolution {
   Eigen::VectorXd pressure_Pa;     // per cell
   Eigen::VectorXd deformed_gap_m;  // g per cell
   // delta [m]: the prescribed one, or the load multiplier (weighted least-squares fit of d + Cp
-  // against w over the contact set). With no contact under a prescribed load: min_k d_k / w_k,
-  // the largest approach that carries nothing.
+  // against w over the contact set; with a limit over its free cells 0 < p < p_lim). With no
+  // contact under a prescribed load: min_k d_k / w_k, the largest approach that carries nothing.
   double approach_m = 0.0;
   double force_N = 0.0;  // sum_k p_k A_k w_k [N] (the load that follows a prescribed approach)
   int iterations = 0;    // projected-CG iterations
-  // max( max_{p_k > 0} |g_k|, max_{p_k = 0} max(0, -g_k) ) [m]
+  // max( max_{0 < p_k < p_lim} |g_k|, max_{p_k = 0} max(0, -g_k), max_{p_k = p_lim} max(0, g_k) )
+  // [m] (without a limit the last set is empty)
   double complementarity_residual_m = 0.0;
   // |sum_k p_k A_k w_k - F| / F under a prescribed load; 0 under a prescribed approach.
   double load_error_relative = 0.0;
@@ -90,6 +103,13 @@ struct NormalSolution {
   // Calls of InfluenceOperator::ApplyPreconditioner (per block set); about as costly as Apply.
   int preconditioner_applications = 0;
   bool preconditioned = false;  // the directions were preconditioned (see CgPreconditioner)
+  // With a pressure limit: cells at p_lim (plastic) and the load they carry, sum p_k A_k w_k
+  // over them [N]. 0 without a limit.
+  int plastic_cells = 0;
+  double plastic_force_N = 0.0;
+  // Every cell of the grids is at p_lim and the prescribed load is still not carried (status
+  // kNotConverged): the grid is too small for a plastic patch; a larger grid may carry it.
+  bool load_above_limit = false;
 };
 
 NormalSolution SolveNormal(const NormalProblem& problem, const NormalSolverOptions& options = {});

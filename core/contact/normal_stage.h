@@ -3,6 +3,7 @@
 // SolveContact.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "core/contact/contact_result.h"
@@ -25,7 +26,9 @@ struct KeptPatches {
 
 // Appends to result->patches one PatchResult per grid with cells in contact (its grid moved out
 // of *builds), labelled with its model (and, with auto_model, the reason).
+// pressure_limit_Pa: the NormalProblem's (plastic cells are counted against it).
 KeptPatches CollectPatches(const WheelRailGeometry& geom, PatchBuilds* builds,
-                           const NormalSolution& sol, bool auto_model, ContactResult* result);
+                           const NormalSolution& sol, bool auto_model,
+                           std::optional<double> pressure_limit_Pa, ContactResult* result);
 
 }  // namespace railwear::internal

@@ -49,9 +49,7 @@ class BalanceTarget {
     return std::abs(Error(r)) <= kBalanceTolerance * load_;
   }
   // The bracket has closed to round-off without meeting the tolerance: f jumps there.
-  bool Stalled() const {
-    return lo_ && hi_ && hi_->first - lo_->first <= kStalledBracket * load_;
-  }
+  bool Stalled() const { return lo_ && hi_ && hi_->first - lo_->first <= kStalledBracket * load_; }
   // The jump of f across the closed bracket [N].
   double Jump() const { return lo_ && hi_ ? hi_->second - lo_->second : 0.0; }
 
@@ -170,8 +168,8 @@ bool Iterate(const ContactProblem& problem, const WheelRailGeometry& geom,
     for (size_t k = 0; k < result->patches.size(); ++k) {
       PatchGrid grid = result->patches[k].grid;
       const int n = grid.cells();
-      PatchResult updated =
-          NumericalPatch(geom, std::move(grid), sol.pressure_Pa.segment(kept_offset[k], n));
+      PatchResult updated = NumericalPatch(
+          geom, std::move(grid), sol.pressure_Pa.segment(kept_offset[k], n), np->pressure_limit_Pa);
       updated.model = std::move(result->patches[k].model);
       updated.model_reason = std::move(result->patches[k].model_reason);
       result->patches[k] = std::move(updated);

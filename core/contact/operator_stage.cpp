@@ -33,6 +33,8 @@ NormalAssembly AssembleNormalProblem(const PatchBuilds& builds, const ContactPro
   }
   np.force_N = problem.load.vertical_force_N;
   np.approach_m = problem.load.approach_m;
+  np.pressure_limit_Pa =
+      PressureLimitOf(problem.pressure_limit, problem.wheel_material, problem.rail_material);
   return out;
 }
 

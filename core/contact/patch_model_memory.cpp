@@ -56,6 +56,13 @@ std::optional<ContactResult> PatchModelMemory::CheckHertz(ContactResult* result)
       Verdicts(search.cands, search.hs, search.delta, geom_.FindCandidates(search.delta));
   AddStage(&result->stages, "model selection", SecondsSince(t0));
   if (!all_hertz(hertz_verdicts_)) return std::nullopt;
+  if (const auto lim = PressureLimitOf(problem_.pressure_limit, problem_.wheel_material,
+                                       problem_.rail_material)) {
+    for (const HertzSolution& h : search.hs) {
+      if (h.force_N > 0 && h.p0_Pa > *lim) hertz_above_limit_ = true;
+    }
+    if (hertz_above_limit_) return std::nullopt;
+  }
   ContactResult r = SolveHertzModel(search, std::move(*result), Clock::now());
   RAILWEAR_CHECK(r.patches.size() == hertz_verdicts_.size());
   for (size_t k = 0; k < r.patches.size(); ++k) {
@@ -69,6 +76,10 @@ std::string PatchModelMemory::NoHertzReason(const ContactCandidate& c) const {
   for (const auto& v : hertz_verdicts_) {
     if (c.y_m < v.y_lo_m || c.y_m > v.y_hi_m) continue;
     if (v.choice.model == PatchModel::kHertz) {
+      if (hertz_above_limit_) {
+        return "Hertz would do here, but its peak pressure passes the pressure limit (plastic "
+               "cells need a grid)";
+      }
       return "Hertz would do here, but another patch needs a grid";
     }
     if (v.choice.model == PatchModel::kConformal) {

@@ -34,6 +34,7 @@ class PatchModelMemory {
   // point first (the usual verdict, at no extra search), then on all Hertz's patches. When every
   // patch qualifies, the Hertz model's result (from *result, with each patch's reason);
   // otherwise std::nullopt and *result keeps its stage time. Adds the "model selection" stage.
+  // With a pressure limit, a Hertz peak above it sends the case to the grid (plastic cells).
   std::optional<ContactResult> CheckHertz(ContactResult* result);
 
   // The model of candidate c's grid; approach_now [m] the best estimate of the approach so far.
@@ -64,6 +65,8 @@ class PatchModelMemory {
   const FirstContactEstimate& first_;
   PatchModelChoice fixed_choice_;             // the scene's model when it is not auto
   std::vector<ChoiceMemory> hertz_verdicts_;  // of the Hertz check, per Hertz patch
+  // The Hertz check qualified every patch, but a Hertz peak passes the pressure limit.
+  bool hertz_above_limit_ = false;
   std::vector<ChoiceMemory> choice_memory_;
   std::vector<ContactCandidate> at_approach_;  // FindCandidates(at_approach_delta_)
   double at_approach_delta_;

@@ -104,7 +104,8 @@ double SubCellArea(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>& 
 }
 
 PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
-                           const Eigen::Ref<const Eigen::VectorXd>& p) {
+                           const Eigen::Ref<const Eigen::VectorXd>& p,
+                           std::optional<double> pressure_limit_Pa) {
   PatchResult r;
   const double area = grid.CellArea();
   double fy = 0.0, fz = 0.0, fn = 0.0, ps = 0.0, px = 0.0, psum = 0.0;
@@ -121,6 +122,11 @@ PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
       px += pk * grid.X(i);
       psum += pk;
       r.p_max_Pa = std::max(r.p_max_Pa, pk);
+      if (pressure_limit_Pa && pk >= *pressure_limit_Pa) {
+        ++r.plastic_cells;
+        r.plastic_area_m2 += area;
+        r.plastic_force_N += pk * area;
+      }
     }
   }
   r.cells = grid.cells();
@@ -166,6 +172,9 @@ ContactResult FinishResult(ContactResult r, double time_s) {
     r.p_max_Pa = std::max(r.p_max_Pa, p.p_max_Pa);
     r.vertical_force_N += p.vertical_force_N;
     r.lateral_force_N += p.lateral_force_N;
+    r.plastic_cells += p.plastic_cells;
+    r.plastic_area_m2 += p.plastic_area_m2;
+    r.plastic_force_N += p.plastic_force_N;
   }
   return r;
 }

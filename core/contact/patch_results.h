@@ -3,6 +3,7 @@
 // of the contact that the potential-area stage checks its grid against. Internal to SolveContact.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,9 +30,11 @@ Extent MeasureExtent(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>
 double SubCellArea(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>& p);
 
 // A grid patch's result from its pressure p [Pa] (shape [grid.cells()]): forces, peak, the
-// sub-cell area and the pressure centre projected onto the rail profile of `geom`.
+// sub-cell area and the pressure centre projected onto the rail profile of `geom`; with a
+// pressure limit p_lim [Pa] also the plastic cells (p >= p_lim), their area and load.
 PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
-                           const Eigen::Ref<const Eigen::VectorXd>& p);
+                           const Eigen::Ref<const Eigen::VectorXd>& p,
+                           std::optional<double> pressure_limit_Pa = std::nullopt);
 
 // The Hertz model's patch at candidate c with ellipse h.
 PatchResult HertzPatch(const ContactCandidate& c, const HertzSolution& h);

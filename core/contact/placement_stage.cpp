@@ -1,6 +1,8 @@
 // The placement stage of SolveContact (placement_stage.h).
 #include "core/contact/placement_stage.h"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "core/contact/damage.h"
@@ -19,6 +21,20 @@ void CheckContactProblem(const ContactProblem& problem) {
   }
   const std::string invalid = problem.solver.Validate();
   if (!invalid.empty()) throw InputError("normal solver options: " + invalid);
+  if (const auto lim =
+          PressureLimitOf(problem.pressure_limit, problem.wheel_material, problem.rail_material)) {
+    if (!(*lim > 0.0) || !std::isfinite(*lim)) {
+      throw InputError(fmt::format(
+          "pressure limit ({}) = {} MPa: expected a positive finite pressure (with \"hardness\", "
+          "give materials.rail.hardness_MPa)",
+          ToString(problem.pressure_limit.kind), *lim * 1e-6));
+    }
+    if (problem.model.kind == ModelKind::kHertz) {
+      throw InputError(
+          "a pressure limit needs a patch grid: use the halfspace, conformal or auto model, not "
+          "hertz (the analytic ellipse has no plastic cells)");
+    }
+  }
 }
 
 void CheckRollingProblem(const ContactProblem& problem) {
