@@ -17,6 +17,7 @@
 #include "app/contact_output.h"
 #include "app/gnuplot.h"
 #include "app/history_plot.h"
+#include "app/number_format.h"
 #include "app/scene.h"
 #include "core/numerics/input_error.h"
 #include "profiles_db/profile_store.h"
@@ -358,15 +359,15 @@ void PrintStepTable(const std::vector<StepRecord>& steps) {
     if (i % every != 0 && i != n - 1) continue;
     const StepRecord& s = steps[i];
     std::cout << fmt::format(
-        "{:>5} {:>12.5g} {:>9.4g} {:>12.4f} {:>10.4f} {:>9.2f} {:>7.3f} "
-        "{:>7.3f} {:>7.3f}\n",
-        s.step, s.passes, s.mgt, s.worn_area_mm2, s.max_depth_mm, s.max_depth_y_mm, s.w1_mm,
-        s.w2_mm, s.w3_mm);
+        "{:>5} {:>12.5g} {:>9.4g} {:>12} {:>10} {:>9} {:>7} {:>7} {:>7}\n", s.step, s.passes, s.mgt,
+        FixedNoNegativeZero(s.worn_area_mm2, 4), FixedNoNegativeZero(s.max_depth_mm, 4),
+        FixedNoNegativeZero(s.max_depth_y_mm, 2), FixedNoNegativeZero(s.w1_mm, 3),
+        FixedNoNegativeZero(s.w2_mm, 3), FixedNoNegativeZero(s.w3_mm, 3));
   }
 }
 
 std::string Rate(double mm_per_mgt) {
-  return std::isfinite(mm_per_mgt) ? fmt::format("{:.4f}", mm_per_mgt) : std::string("n/a");
+  return std::isfinite(mm_per_mgt) ? FixedNoNegativeZero(mm_per_mgt, 4) : std::string("n/a");
 }
 
 // Each rail's W2 and W3 rate over the run and over its last half (by MGT).
