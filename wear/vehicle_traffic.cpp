@@ -134,13 +134,7 @@ std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index
   for (const CurvedWheelset& w : r.wheelsets) {
     const bool high_flange = w.high_climb.contact_angle_rad > kFlangeContactAngle_rad;
     const bool low_flange = w.low_climb.contact_angle_rad > kFlangeContactAngle_rad;
-    WheelsetSpec ws;
-    ws.flange_back_distance_m = v.flange_back_distance_m;
-    ws.flange_back_position_m = v.flange_back_position_m;
-    ws.rolling_radius_m = v.rolling_radius_m;
-    ws.lateral_displacement_m = w.lateral_m;
-    ws.yaw_rad = w.yaw_rad;
-    ws.roll_rad = w.roll_rad;
+    WheelsetSpec ws = v.WheelsetAt(w.lateral_m, w.yaw_rad, w.roll_rad);
     const WheelsetSpec at_equilibrium = ws;
     for (int k = 0; k < static_cast<int>(nodes.size()); ++k) {
       double offset = c.lateral_shift_std_m * nodes[k];

@@ -139,11 +139,7 @@ CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw
   rolling.longitudinal_force_N = v.traction_N_per_axle;
   wp.wheel_rail.rolling = rolling;
   wp.track = p.track;
-  wp.wheelset.flange_back_distance_m = v.flange_back_distance_m;
-  wp.wheelset.flange_back_position_m = v.flange_back_position_m;
-  wp.wheelset.rolling_radius_m = v.rolling_radius_m;
-  wp.wheelset.lateral_displacement_m = y;
-  wp.wheelset.yaw_rad = yaw;
+  wp.wheelset = v.WheelsetAt(y, yaw, 0.0);
   wp.left_rail_profile = p.low_rail;
   wp.gauge_points = p.gauge_points;
   wp.left_vertical_force_N = ctx.low_load_N;

@@ -15,6 +15,7 @@
 #include <array>
 #include <string>
 
+#include "core/geometry/wheelset.h"
 #include "core/numerics/enum_names.h"
 #include "core/profile/profile.h"
 
@@ -51,6 +52,17 @@ struct VehicleSpec {
   double traction_N_per_axle = 0.0;
 
   int wheelsets() const { return kind == VehicleKind::kBogie ? 4 : 1; }
+  // One of its wheelsets at a state: y toward the high rail [m], yaw and roll [rad].
+  WheelsetSpec WheelsetAt(double y_m, double yaw_rad, double roll_rad) const {
+    WheelsetSpec ws;
+    ws.flange_back_distance_m = flange_back_distance_m;
+    ws.flange_back_position_m = flange_back_position_m;
+    ws.rolling_radius_m = rolling_radius_m;
+    ws.lateral_displacement_m = y_m;
+    ws.yaw_rad = yaw_rad;
+    ws.roll_rad = roll_rad;
+    return ws;
+  }
   int bogies() const { return kind == VehicleKind::kBogie ? 2 : 0; }
 };
 

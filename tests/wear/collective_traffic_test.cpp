@@ -99,13 +99,7 @@ std::string CsvFromCurving(const WearStudy& study, const std::vector<CurvingResu
     const CurvingResult& r = solutions[t];
     const VehicleSpec& v = study.vehicles[c.vehicle];
     for (const CurvedWheelset& w : r.wheelsets) {
-      WheelsetSpec ws;
-      ws.flange_back_distance_m = v.flange_back_distance_m;
-      ws.flange_back_position_m = v.flange_back_position_m;
-      ws.rolling_radius_m = v.rolling_radius_m;
-      ws.lateral_displacement_m = w.lateral_m;
-      ws.yaw_rad = w.yaw_rad;
-      ws.roll_rad = w.roll_rad;
+      const WheelsetSpec ws = v.WheelsetAt(w.lateral_m, w.yaw_rad, w.roll_rad);
       const WheelsetPlacement placed = PlaceWheelsetAt(UnwornGaugePoints(study), study.track, ws);
       WheelMotion axle;
       axle.speed_m_s = c.speed_m_s;
