@@ -37,6 +37,7 @@
 #include "core/profile/profile.h"
 #include "core/vehicle/curving.h"
 #include "wear/depth_smoothing.h"
+#include "wear/friction_condition.h"
 #include "wear/pass_depth.h"
 #include "wear/traffic.h"
 #include "wear/wear_law.h"
@@ -46,6 +47,9 @@ namespace railwear {
 
 struct WearOptions {
   WearLaw law;
+  // The friction conditions traffic entries name (TrafficCase::condition, gauge_face_condition):
+  // each one's mu and wear factors, and the gauge-face zone's contact-angle boundary.
+  FrictionConditions conditions;
   // Step control: the deepest wear of one step [m], > 0.
   double max_depth_per_step_m = 1e-4;
   // Length of the run: exactly one of the two, > 0.
