@@ -18,7 +18,8 @@
 // USFD takes the same factors (railwear's choice): its wear rate is a function of the
 // frictional energy T-gamma/A, but on the flange T-gamma/A lies on the law's plateau
 // (W = 55 ug/(m mm^2) from 10.4 to 77.2 N/mm^2), where a lower mu changes nothing: measured on
-// the default study, a lubricated gauge face at mu 0.1 without a factor wore 1 % MORE than dry.
+// the default study, the flange (patches above 30 degrees) at mu 0.1 without a factor wore 1 %
+// MORE than dry.
 // Every value can be overridden in the scene ([wear.conditions.NAME]).
 //
 // Zones: a traffic entry's `condition` applies to the top of the rail, its
