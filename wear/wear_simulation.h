@@ -8,8 +8,10 @@
 //      wear/traffic.h; vehicle curving, wear/vehicle_traffic.h; imported load collectives,
 //      wear/collective_traffic.h) are solved as rolling contacts (normal + tangential, and damage
 //      when asked) against the rail each case loads, in parallel threads;
-//   3. each case's per-pass wear depth and RCF damage are binned along its rail's arc length
-//      (wear/pass_depth.h) and summed per rail with the case weights in a fixed order per bin
+//   3. each case's per-pass wear depth (times its friction condition's wear factor, per patch
+//      by the patch's zone: top of rail or gauge face, wear/friction_condition.h) and RCF damage
+//      are binned along its rail's arc length (wear/pass_depth.h) and summed per rail with the
+//      case weights in a fixed order per bin
 //      (sorted by value), so the result depends neither on the thread count nor on the order of
 //      cases;
 //   4. each rail's summed per-pass depth is smoothed (wear/depth_smoothing.h: area kept, peak

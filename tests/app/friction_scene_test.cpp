@@ -3,6 +3,8 @@
 // gauge_face_angle_deg) and rail grades ([materials] rail = { grade = "R350HT" }); bad values
 // name file, line, key and value and exit 2.
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -122,6 +124,38 @@ TEST(FrictionSceneTest, ARailGradePresetsTheRailAndKeysBesideItOverride) {
   // Without a grade E and nu stay required.
   EXPECT_TRUE(Contains(ErrorOf(Replace(kBase, rail_line, "rail = { hardness_MPa = 2600 }")),
                        "key 'materials.rail.E_MPa' is missing"));
+}
+
+std::string ReadSource(const std::string& path) {
+  std::ifstream in(std::string(RAILWEAR_SOURCE_DIR) + "/" + path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(FrictionSceneTest, VehicleAndCollectiveEntriesTakeConditions) {
+  const std::string dir = std::string(RAILWEAR_SOURCE_DIR) + "/examples/";
+  // A vehicle entry: the condition gives mu (the curving equilibrium's and the top of rail's).
+  const std::string vehicles = ReadSource("examples/curve_r600_vehicles.toml");
+  const Scene v = ParseScene(
+      Replace(vehicles, "friction = 0.35\n",
+              "condition = \"friction_modified\"\ngauge_face_condition = \"lubricated\"\n"),
+      dir + "v.toml");
+  const TrafficCase& vc = v.wear->traffic[0];
+  ASSERT_TRUE(vc.is_vehicle());
+  EXPECT_EQ(vc.condition, FrictionCondition::kFrictionModified);
+  EXPECT_EQ(vc.gauge_face_condition, FrictionCondition::kLubricated);
+  EXPECT_DOUBLE_EQ(vc.friction, 0.35);
+  // A collective whose bins carry mu: the condition adds its factors, the bins keep their mu.
+  const std::string collective = ReadSource("examples/curve_r600_mbs_collective.toml");
+  const size_t at = collective.find("\ncollective = ") + 1;
+  ASSERT_NE(at, 0u);
+  std::string text = collective;
+  text.insert(at, "gauge_face_condition = \"lubricated\"\n");
+  const Scene c = ParseScene(text, dir + "c.toml");
+  ASSERT_TRUE(c.wear->traffic[0].is_collective());
+  EXPECT_EQ(c.wear->traffic[0].gauge_face_condition, FrictionCondition::kLubricated);
+  EXPECT_FALSE(c.wear->traffic[0].condition.has_value());
 }
 
 class FrictionCli : public test::CliFixture {};
