@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -474,6 +475,31 @@ WearLaw ReadWearLaw(const Fields& t) {
   return law;
 }
 
+// [wear.conditions.NAME] overrides (friction, archard_factor, kth_factor, usfd_factor) and
+// [wear] gauge_face_angle_deg (wear/friction_condition.h).
+void ReadFrictionConditions(const Fields& t, FrictionConditions* conditions) {
+  const NumberRule below_right_angle{[](double v) { return v > 0.0 && v < 90.0; },
+                                     "an angle in (0, 90) degrees"};
+  if (const auto angle = t.Number("gauge_face_angle_deg", below_right_angle)) {
+    conditions->gauge_face_angle_rad = *angle * std::numbers::pi / 180.0;
+  }
+  const auto table = t.Table("conditions", "a table of friction conditions by name");
+  if (!table) return;
+  table->AllowOnly(EnumChoices(kFrictionConditionNames));
+  for (const auto& entry : kFrictionConditionNames) {
+    const auto c =
+        table->Table(entry.name, "a table { friction, archard_factor, kth_factor, usfd_factor }");
+    if (!c) continue;
+    c->AllowOnly({"friction", "archard_factor", "kth_factor", "usfd_factor"});
+    FrictionConditionParams& p = (*conditions)[entry.value];
+    p.friction = c->Number("friction", OpenClosed(0.0, 2.0)).value_or(p.friction);
+    p.archard_factor =
+        c->Number("archard_factor", OpenClosed(0.0, 10.0)).value_or(p.archard_factor);
+    p.kth_factor = c->Number("kth_factor", OpenClosed(0.0, 10.0)).value_or(p.kth_factor);
+    p.usfd_factor = c->Number("usfd_factor", OpenClosed(0.0, 10.0)).value_or(p.usfd_factor);
+  }
+}
+
 void ReadWearTable(const Fields& top, Scene* scene) {
   const Fields t = RequiredTable(top, "wear", "a [wear] table (law, total_passes or total_MGT)");
   t.AllowOnly({"law",
@@ -488,6 +514,8 @@ void ReadWearTable(const Fields& top, Scene* scene) {
                "kth_velocity_band",
                "kth_pressure_band",
                "density_kg_m3",
+               "conditions",
+               "gauge_face_angle_deg",
                "max_depth_per_step_mm",
                "total_passes",
                "total_MGT",
@@ -500,6 +528,7 @@ void ReadWearTable(const Fields& top, Scene* scene) {
                "db"});
   WearOptions& o = scene->wear->options;
   o.law = ReadWearLaw(t);
+  ReadFrictionConditions(t, &o.conditions);
   o.max_depth_per_step_m = t.Number("max_depth_per_step_mm", OpenClosed(0.0, 1.0))
                                .value_or(o.max_depth_per_step_m / kMm) *
                            kMm;
@@ -610,9 +639,33 @@ void ReadVehicles(const Fields& top, Scene* scene) {
   }
 }
 
+// An entry's friction conditions (wear/friction_condition.h) and its top-of-rail mu: `friction`
+// when given, else its condition's. `required`: an entry without either is refused (a
+// collective whose every bin has mu needs neither).
+void ReadEntryFriction(const Fields& t, const FrictionConditions& conditions, bool required,
+                       TrafficCase* c) {
+  const std::vector<std::string_view> names = EnumChoices(kFrictionConditionNames);
+  if (const auto n = t.Choice("condition", names)) {
+    c->condition = *FrictionConditionFromString(*n);
+  }
+  if (const auto n = t.Choice("gauge_face_condition", names)) {
+    c->gauge_face_condition = *FrictionConditionFromString(*n);
+  }
+  if (const auto mu = t.Number("friction", OpenClosed(0.0, 2.0))) {
+    c->friction = *mu;
+  } else if (c->condition) {
+    c->friction = conditions[*c->condition].friction;
+  } else if (required) {
+    t.FailMissing("friction",
+                  "a friction coefficient in (0, 2], or a condition (\"dry\", \"wet\", "
+                  "\"lubricated\" or \"friction_modified\") whose mu it takes");
+  }
+}
+
 // A [[traffic]] entry that names a vehicle: its wheels and positions come from curving.
 void ReadVehicleTraffic(const Fields& t, Scene* scene, TrafficCase* c) {
-  t.AllowOnly({"name", "vehicle", "speed_m_s", "friction", "share", "lateral_spread_mm"});
+  t.AllowOnly({"name", "vehicle", "speed_m_s", "friction", "condition", "gauge_face_condition",
+               "share", "lateral_spread_mm"});
   const std::string name = t.RequiredString("vehicle", "the name of a [[vehicle]]");
   const std::vector<VehicleSpec>& vehicles = scene->wear->vehicles;
   for (int i = 0; i < static_cast<int>(vehicles.size()); ++i) {
@@ -630,7 +683,7 @@ void ReadVehicleTraffic(const Fields& t, Scene* scene, TrafficCase* c) {
   c->axle_load_t = v.axle_load_N / kGravity_m_s2 / 1000.0;
   c->vertical_force_N = 0.5 * v.axle_load_N;  // static; curving sets each wheel's load
   c->lateral_shift_std_m = t.Number("lateral_spread_mm", AtLeast(0.0)).value_or(0.0) * kMm;
-  c->friction = t.RequiredNumber("friction", OpenClosed(0.0, 2.0));
+  ReadEntryFriction(t, scene->wear->options.conditions, /*required=*/true, c);
   c->speed_m_s = t.RequiredNumber("speed_m_s", Positive());
   c->share = t.Number("share", Positive()).value_or(1.0);
 }
@@ -660,9 +713,9 @@ void ReadTrafficWheel(const Fields& t, Scene* scene, bool has_wheel, TrafficCase
 // A [[traffic]] entry that names an imported load collective (`railwear traffic import`): each
 // bin is one load case at its wheelset state on the unworn rails (wear/collective_traffic.h).
 void ReadCollectiveTraffic(const Fields& t, Scene* scene, bool has_wheel, TrafficCase* c) {
-  t.AllowOnly({"name", "collective", "share", "friction", "axle_load_t", "wheel_profile",
-               "mirror_y", "rolling_radius_mm", "flange_back_distance_mm",
-               "flange_back_position_mm"});
+  t.AllowOnly({"name", "collective", "share", "friction", "condition", "gauge_face_condition",
+               "axle_load_t", "wheel_profile", "mirror_y", "rolling_radius_mm",
+               "flange_back_distance_mm", "flange_back_position_mm"});
   const std::string file =
       t.RequiredString("collective",
                        "the path of a load-collective TOML file (railwear traffic import), "
@@ -691,13 +744,12 @@ void ReadCollectiveTraffic(const Fields& t, Scene* scene, bool has_wheel, Traffi
   const bool every_bin_has_mu =
       std::all_of(lc.entries.begin(), lc.entries.end(),
                   [](const LoadCollectiveEntry& e) { return e.friction.has_value(); });
-  if (const auto mu = t.Number("friction", OpenClosed(0.0, 2.0))) {
-    c->friction = *mu;
-  } else if (!every_bin_has_mu) {
+  if (!every_bin_has_mu && !t.Has("friction") && !t.Has("condition")) {
     t.FailMissing("friction",
                   "the friction coefficient of the bins without mu (the collective's CSV had no "
-                  "mu column)");
+                  "mu column), or a condition whose mu they take");
   }
+  ReadEntryFriction(t, scene->wear->options.conditions, /*required=*/false, c);
   c->axle_load_t =
       t.Number("axle_load_t", OpenClosed(0.0, 40.0)).value_or(CollectiveAxleLoad_t(lc));
   c->collective = std::move(traffic);
@@ -754,8 +806,8 @@ void ReadTraffic(const Fields& top, Scene* scene) {
       continue;
     }
     t.AllowOnly({"name", "wheel_profile", "mirror_y", "rolling_radius_mm", "vertical_N",
-                 "axle_load_t", "lateral_shift_mm", "roll_rad", "yaw_mrad", "friction", "speed_m_s",
-                 "share", "rail"});
+                 "axle_load_t", "lateral_shift_mm", "roll_rad", "yaw_mrad", "friction", "condition",
+                 "gauge_face_condition", "speed_m_s", "share", "rail"});
     TrafficCase c;
     c.name = t.String("name").value_or(fmt::format("traffic[{}]", index));
     if (const auto rail = t.Choice("rail", EnumChoices(kRailSideNames))) {
@@ -773,7 +825,7 @@ void ReadTraffic(const Fields& top, Scene* scene) {
     ReadLateralShift(t, &c);
     c.roll_rad = t.Number("roll_rad", InRange(-kMaxRoll_rad, kMaxRoll_rad)).value_or(0.0);
     c.yaw_rad = t.Number("yaw_mrad", InRange(-100.0, 100.0)).value_or(0.0) * 1e-3;
-    c.friction = t.RequiredNumber("friction", OpenClosed(0.0, 2.0));
+    ReadEntryFriction(t, scene->wear->options.conditions, /*required=*/true, &c);
     c.speed_m_s = t.RequiredNumber("speed_m_s", Positive());
     c.share = t.Number("share", Positive()).value_or(1.0);
     scene->wear->traffic.push_back(std::move(c));

@@ -56,6 +56,8 @@ wheel = { E_MPa = 210000, nu = 0.28 }          # E_MPa > 0, 0 <= nu < 0.5
 rail = { E_MPa = 210000, nu = 0.28, hardness_MPa = 2600, shear_yield_MPa = 350 }
                               # hardness_MPa, shear_yield_MPa optional (> 0), for wear/damage;
                               # the wheel may give hardness_MPa too (for pressure_limit)
+# rail = { grade = "R260" }   # or a rail grade: "R200" | "R260" | "R350HT" (EN 13674-1) presets
+                              # E, nu, hardness and shear yield; keys beside it override them
 
 [wheel]                       # required
 profile = "builtin:S1002"     # "builtin:S1002", "circle:R_mm", or a file (.csv, .whl, .prw,
@@ -119,6 +121,12 @@ speed_m_s = 20.0              # > 0; needed by the "tangential" effect
 # profile_spacing_mm = 0.2     # point spacing of the updated rail profile
 # damage_layer_mm = 0.5        # wearing this depth removes all accumulated RCF damage there
 # threads = 0                  # load cases in parallel; 0 = all cores
+# gauge_face_angle_deg = 15    # patches steeper than this are on the gauge face, (0, 90)
+# [wear.conditions.lubricated] # override a friction condition ("dry", "wet", "lubricated",
+# friction = 0.1               # "friction_modified"): mu in (0, 2] and the factors on each
+# archard_factor = 0.1         # law's wear coefficient, in (0, 10]; defaults and sources in
+# kth_factor = 0.1             # docs/wear.md
+# usfd_factor = 0.1
 # db = "wear.sqlite"           # relative to this file; --db overrides
 #
 # [[traffic]]                  # one per kind of wheel; at least one
@@ -130,7 +138,9 @@ speed_m_s = 20.0              # > 0; needed by the "tangential" effect
 # lateral_shift_mm = { mean = -4.5, std = 1.0 }   # or a number (no spread)
 # roll_rad = 0.0
 # yaw_mrad = 4.0               # angle of attack, |yaw| < 100 mrad
-# friction = 0.35              # required, (0, 2]
+# friction = 0.35              # (0, 2]; required unless a condition gives it
+# condition = "dry"            # top of rail: "dry" | "wet" | "lubricated" | "friction_modified"
+# gauge_face_condition = "lubricated"  # gauge corner and face (default: the top of rail's)
 # speed_m_s = 22.0             # required, > 0
 # share = 0.4                  # relative share of passes, > 0
 )toml";

@@ -11,6 +11,7 @@
 
 #include "core/numerics/input_error.h"
 #include "core/numerics/text_file.h"
+#include "wear/rail_grade.h"
 
 namespace railwear::app {
 
@@ -153,17 +154,30 @@ Material ReadMaterial(const Fields& parent, std::string_view key, MaterialKeys k
   const auto t = parent.Table(key, "an inline table { E_MPa, nu }");
   if (!t) parent.FailMissing(key, "an inline table { E_MPa, nu }");
   if (keys == MaterialKeys::kWithDamage) {
-    t->AllowOnly({"E_MPa", "nu", "hardness_MPa", "shear_yield_MPa"});
+    t->AllowOnly({"grade", "E_MPa", "nu", "hardness_MPa", "shear_yield_MPa"});
   } else if (keys == MaterialKeys::kWithHardness) {
     t->AllowOnly({"E_MPa", "nu", "hardness_MPa"});
   } else {
     t->AllowOnly({"E_MPa", "nu"});
   }
   Material m;
+  // A rail grade (wear/rail_grade.h) presets every value; the keys given beside it override.
+  std::optional<RailGradeProperties> grade;
+  if (keys == MaterialKeys::kWithDamage) {
+    if (const auto name = t->Choice("grade", EnumChoices(kRailGradeNames))) {
+      grade = RailGradeOf(*RailGradeFromString(*name));
+      m.youngs_modulus_Pa = grade->youngs_modulus_Pa;
+      m.poisson_ratio = grade->poisson_ratio;
+      m.hardness_Pa = grade->hardness_Pa;
+      m.shear_yield_Pa = grade->shear_yield_Pa;
+    }
+  }
   // Moduli from soft rubber (1 MPa) to beyond diamond (1e7 MPa): the contact modulus and the
   // approach of the solvers are bounded there (1e-308 MPa aborted the normal solver).
-  m.youngs_modulus_Pa = t->RequiredNumber("E_MPa", Positive(), Closed(1.0, 1e7)) * kMPa;
-  m.poisson_ratio = t->RequiredNumber("nu", InRange(0.0, 0.5));
+  if (!grade || t->Has("E_MPa")) {
+    m.youngs_modulus_Pa = t->RequiredNumber("E_MPa", Positive(), Closed(1.0, 1e7)) * kMPa;
+  }
+  if (!grade || t->Has("nu")) m.poisson_ratio = t->RequiredNumber("nu", InRange(0.0, 0.5));
   if (const auto h = t->Number("hardness_MPa", Positive(), Closed(1.0, 1e6))) {
     m.hardness_Pa = *h * kMPa;
   }

@@ -28,6 +28,7 @@
 #include "core/contact/kinematics.h"
 #include "core/numerics/enum_names.h"
 #include "core/profile/profile.h"
+#include "wear/friction_condition.h"
 
 namespace railwear {
 
@@ -54,8 +55,14 @@ struct TrafficCase {
   double lateral_shift_mean_m = 0.0;  // wheel profile origin in the track frame [m]
   double lateral_shift_std_m = 0.0;   // >= 0
   double roll_rad = 0.0;
-  double yaw_rad = 0.0;     // angle of attack of the wheel [rad]
-  double friction = 0.3;    // > 0
+  double yaw_rad = 0.0;   // angle of attack of the wheel [rad]
+  double friction = 0.3;  // > 0, the top of rail's mu (a condition's unless the scene gave it)
+  // Friction conditions (issue 16, wear/friction_condition.h): the top of rail's, absent for
+  // none (the laws' dry coefficients, factor 1, at `friction`), and the gauge face's (patches
+  // steeper than WearOptions::conditions.gauge_face_angle_rad), absent for the top of rail's.
+  // The gauge face is solved at its condition's mu and both zones' wear follows their factors.
+  std::optional<FrictionCondition> condition;
+  std::optional<FrictionCondition> gauge_face_condition;
   double speed_m_s = 20.0;  // > 0
   double share = 1.0;       // relative share of passes, > 0 (normalised over its rail's entries)
   RailSide rail = RailSide::kHigh;  // the rail this wheel runs on

@@ -20,9 +20,11 @@
 //    band (railwear's documented choice, not Jendel's): in ln v_s with half-width
 //    kth_velocity_band (default 0.25, i.e. about +-28 % in v_s), and in p/H with half-width
 //    kth_pressure_band (default 0.05). Outside the bands it equals the published map.
-//  - "usfd": the Sheffield (USFD) law for R260-type rail, Lewis & Dwyer-Joyce (2004) as quoted
-//    in the reference README: wear rate W [ug per metre rolled per mm^2 of contact] against the
-//    local energy index Tg/A = |q . v_slip| / V [N/mm^2]:
+//  - "usfd": the Sheffield (USFD) wear function of R8T WHEEL steel (twin-disc tests against
+//    rail steel: Lewis & Dwyer-Joyce 2004; used for wheels by Braghin et al., Wear 261 (2006)
+//    1253-1264), as quoted in the reference README. railwear applies it to the rail for want of
+//    a published rail-steel set (docs/wear.md "Rail grades"). Wear rate W [ug per metre rolled
+//    per mm^2 of contact] against the local energy index Tg/A = |q . v_slip| / V [N/mm^2]:
 //        W = 5.3 Tg/A            for Tg/A < 10.4
 //        W = 55.0                for 10.4 <= Tg/A <= 77.2
 //        W = 61.9 Tg/A - 4778.7  for Tg/A > 77.2
@@ -68,7 +70,7 @@ struct WearLaw {
   double kth_velocity_band = 0.25;  // kth-continuous: half-width of the blend in ln(v_s) [-]
   double kth_pressure_band = 0.05;  // kth-continuous: half-width of the blend in p/H [-]
 
-  double density_kg_m3 = 7850.0;  // rail steel, for the USFD law (mass -> depth)
+  double density_kg_m3 = 7850.0;  // steel (rail or wheel), for the USFD law (mass -> depth)
 };
 
 // Checks the parameters (positive coefficients, v1 < v2, positive bands and density); throws

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "core/contact/contact_forces.h"
 #include "core/contact/damage.h"
 #include "core/geometry/curve_locator.h"
 #include "core/numerics/check.h"
@@ -39,6 +40,59 @@ struct RailTarget {
   const WearGrid* grid = nullptr;
 };
 
+// The friction zones of a solved load case (wear/friction_condition.h). Patches steeper than
+// the gauge-face boundary take the entry's gauge-face condition: when its mu differs from the top
+// of rail's, the case is solved again at that mu and those patches are replaced by the second
+// solution's (matched by the nearest contact point; the contact search does not depend on mu),
+// and the result's pressure totals and flange-climb check are made again from the merged
+// patches. Returns each patch's wear factor, in result->patches order.
+std::vector<double> ApplyFrictionZones(const WearStudy& study, const TrafficCase& traffic,
+                                       ContactProblem problem, ContactResult* result) {
+  const FrictionConditions& conditions = study.options.conditions;
+  const WearLawKind law = study.options.law.kind;
+  const double top_factor =
+      traffic.condition ? WearFactor(conditions[*traffic.condition], law) : 1.0;
+  std::vector<double> factors(result->patches.size(), top_factor);
+  if (!traffic.gauge_face_condition) return factors;
+  const FrictionConditionParams& gauge = conditions[*traffic.gauge_face_condition];
+  std::vector<int> gauge_patches;
+  for (size_t i = 0; i < result->patches.size(); ++i) {
+    if (result->patches[i].contact_angle_rad > conditions.gauge_face_angle_rad) {
+      gauge_patches.push_back(static_cast<int>(i));
+      factors[i] = WearFactor(gauge, law);
+    }
+  }
+  if (gauge_patches.empty() || gauge.friction == problem.rolling->friction) return factors;
+  problem.rolling->friction = gauge.friction;
+  ContactResult at_gauge = SolveContact(problem);
+  if (at_gauge.status != SolverStatus::kConverged || at_gauge.patches.empty()) {
+    throw std::runtime_error(
+        fmt::format("wear: {}: the gauge-face solution at mu {} did not converge: {}", traffic.name,
+                    gauge.friction, at_gauge.message));
+  }
+  for (const int i : gauge_patches) {
+    const Eigen::Vector2d& p = result->patches[i].contact_point_yz_m;
+    size_t nearest = 0;
+    for (size_t j = 1; j < at_gauge.patches.size(); ++j) {
+      if ((at_gauge.patches[j].contact_point_yz_m - p).norm() <
+          (at_gauge.patches[nearest].contact_point_yz_m - p).norm()) {
+        nearest = j;
+      }
+    }
+    result->patches[i] = at_gauge.patches[nearest];
+  }
+  result->area_m2 = result->p_max_Pa = 0.0;
+  result->vertical_force_N = result->lateral_force_N = 0.0;
+  for (const PatchResult& patch : result->patches) {
+    result->area_m2 += patch.area_m2;
+    result->p_max_Pa = std::max(result->p_max_Pa, patch.p_max_Pa);
+    result->vertical_force_N += patch.vertical_force_N;
+    result->lateral_force_N += patch.lateral_force_N;
+  }
+  result->climb = CheckFlangeClimb(*result, gauge.friction);
+  return factors;
+}
+
 CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
                           const LoadCase& load_case) {
   const CurveLocator& rail = *target.locator;
@@ -57,7 +111,13 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
   rolling.friction = load_case.friction;
   problem.rolling = rolling;
 
-  const ContactResult result = SolveContact(problem);
+  ContactResult result = SolveContact(problem);
+  // The wear factor of each patch: its zone's friction condition (top of rail, or gauge face
+  // when the patch is steeper than the boundary and the entry has a gauge-face condition).
+  std::vector<double> factors;
+  if (result.status == SolverStatus::kConverged) {
+    factors = ApplyFrictionZones(study, traffic, problem, &result);
+  }
   CaseOutcome out;
   out.depth_per_pass_m.assign(grid.n, 0.0);
   if (study.damage) out.damage_per_pass.assign(grid.n, 0.0);
@@ -92,7 +152,8 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
     const std::vector<double> depth =
         CalcPatchPassDepth(patch, rail, study.options.law, study.rail_material.hardness_Pa,
                            load_case.motion.speed_m_s, grid);
-    for (int b = 0; b < grid.n; ++b) out.depth_per_pass_m[b] += depth[b];
+    const double factor = factors[&patch - result.patches.data()];
+    for (int b = 0; b < grid.n; ++b) out.depth_per_pass_m[b] += factor * depth[b];
     if (patch.rolling) {
       s.creep_force_x_N += patch.rolling->tangential.force_x_N;
       s.creep_force_s_N += patch.rolling->tangential.force_s_N;
@@ -175,6 +236,7 @@ Profile MoveAlongInwardNormal(const Profile& rail, const WearGrid& grid,
 void ValidateWearStudy(const WearStudy& study) {
   const WearOptions& o = study.options;
   ValidateWearLaw(o.law);
+  ValidateFrictionConditions(o.conditions);
   ValidateTraffic(study.traffic);
   ValidateCurve(study.curve);
   for (const TrafficCase& c : study.traffic) {

@@ -8,8 +8,10 @@
 //      wear/traffic.h; vehicle curving, wear/vehicle_traffic.h; imported load collectives,
 //      wear/collective_traffic.h) are solved as rolling contacts (normal + tangential, and damage
 //      when asked) against the rail each case loads, in parallel threads;
-//   3. each case's per-pass wear depth and RCF damage are binned along its rail's arc length
-//      (wear/pass_depth.h) and summed per rail with the case weights in a fixed order per bin
+//   3. each case's per-pass wear depth (times its friction condition's wear factor, per patch
+//      by the patch's zone: top of rail or gauge face, wear/friction_condition.h) and RCF damage
+//      are binned along its rail's arc length (wear/pass_depth.h) and summed per rail with the
+//      case weights in a fixed order per bin
 //      (sorted by value), so the result depends neither on the thread count nor on the order of
 //      cases;
 //   4. each rail's summed per-pass depth is smoothed (wear/depth_smoothing.h: area kept, peak
@@ -37,6 +39,7 @@
 #include "core/profile/profile.h"
 #include "core/vehicle/curving.h"
 #include "wear/depth_smoothing.h"
+#include "wear/friction_condition.h"
 #include "wear/pass_depth.h"
 #include "wear/traffic.h"
 #include "wear/wear_law.h"
@@ -46,6 +49,9 @@ namespace railwear {
 
 struct WearOptions {
   WearLaw law;
+  // The friction conditions traffic entries name (TrafficCase::condition, gauge_face_condition):
+  // each one's mu and wear factors, and the gauge-face zone's contact-angle boundary.
+  FrictionConditions conditions;
   // Step control: the deepest wear of one step [m], > 0.
   double max_depth_per_step_m = 1e-4;
   // Length of the run: exactly one of the two, > 0.
