@@ -150,7 +150,7 @@ namespace railwear::test {
 namespace {
 
 TEST_F(WearCommandTest, DefaultStudyExampleRunsTwoSteps) {
-  // The README's main job, cut to two steps (the full run is the README command).
+  // The imposed-position study (the README's earlier main job), cut to two steps.
   const Outcome o =
       Run("wear '" RAILWEAR_SOURCE_DIR "/examples/wear_high_rail.toml' --db demo.sqlite --steps 2");
   ASSERT_EQ(o.exit_code, 0) << o.err;
