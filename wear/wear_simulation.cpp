@@ -9,6 +9,7 @@
 
 #include "core/contact/contact_forces.h"
 #include "core/contact/damage.h"
+#include "core/contact/rolling_stage.h"
 #include "core/geometry/curve_locator.h"
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
@@ -81,14 +82,7 @@ std::vector<double> ApplyFrictionZones(const WearStudy& study, const TrafficCase
     }
     result->patches[i] = at_gauge.patches[nearest];
   }
-  result->area_m2 = result->p_max_Pa = 0.0;
-  result->vertical_force_N = result->lateral_force_N = 0.0;
-  for (const PatchResult& patch : result->patches) {
-    result->area_m2 += patch.area_m2;
-    result->p_max_Pa = std::max(result->p_max_Pa, patch.p_max_Pa);
-    result->vertical_force_N += patch.vertical_force_N;
-    result->lateral_force_N += patch.lateral_force_N;
-  }
+  SumPatchTotals(result);
   result->climb = CheckFlangeClimb(*result, gauge.friction);
   return factors;
 }
@@ -144,8 +138,7 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
   s.plastic_cells = result.plastic_cells;
   s.plastic_area_m2 = result.plastic_area_m2;
   s.plastic_force_N = result.plastic_force_N;
-  double normal_N = 0.0;
-  for (const PatchResult& patch : result.patches) normal_N += patch.normal_force_N;
+  const double normal_N = TotalNormalForce(result);
   s.plastic_force_share = normal_N > 0.0 ? result.plastic_force_N / normal_N : 0.0;
   double largest = -1.0;
   for (const PatchResult& patch : result.patches) {

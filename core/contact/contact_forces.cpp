@@ -45,6 +45,21 @@ std::optional<double> NadalLimit(double contact_angle_rad, double friction) {
   return (t - friction) / (1.0 + friction * t);
 }
 
+void SumPatchTotals(ContactResult* r) {
+  r->area_m2 = r->p_max_Pa = r->vertical_force_N = r->lateral_force_N = 0.0;
+  r->plastic_cells = 0;
+  r->plastic_area_m2 = r->plastic_force_N = 0.0;
+  for (const PatchResult& p : r->patches) {
+    r->area_m2 += p.area_m2;
+    r->p_max_Pa = std::max(r->p_max_Pa, p.p_max_Pa);
+    r->vertical_force_N += p.vertical_force_N;
+    r->lateral_force_N += p.lateral_force_N;
+    r->plastic_cells += p.plastic_cells;
+    r->plastic_area_m2 += p.plastic_area_m2;
+    r->plastic_force_N += p.plastic_force_N;
+  }
+}
+
 FlangeClimbCheck CheckFlangeClimb(const ContactResult& result, std::optional<double> friction) {
   FlangeClimbCheck c;
   c.friction = friction;

@@ -46,6 +46,11 @@ Eigen::Vector3d RailToTrackFrame(const Eigen::Vector3d& f, bool left_wheel);
 // climb a slope that friction alone holds (railwear reports no limit and warns of nothing).
 std::optional<double> NadalLimit(double contact_angle_rad, double friction);
 
+// Sets a result's totals from its patches: area, largest p_max, vertical and lateral force, and
+// the plastic cells, area and force (after a caller replaced patches, as the wear's friction
+// zones do).
+void SumPatchTotals(ContactResult* r);
+
 // The check for a result; friction absent for normal contact (L/V only, no limit).
 FlangeClimbCheck CheckFlangeClimb(const ContactResult& result, std::optional<double> friction);
 

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/contact/contact_forces.h"
+
 namespace railwear::internal {
 
 Extent MeasureExtent(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>& p) {
@@ -167,15 +169,7 @@ PatchResult HertzPatch(const ContactCandidate& c, const HertzSolution& h) {
 
 ContactResult FinishResult(ContactResult r, double time_s) {
   r.time_s = time_s;
-  for (const auto& p : r.patches) {
-    r.area_m2 += p.area_m2;
-    r.p_max_Pa = std::max(r.p_max_Pa, p.p_max_Pa);
-    r.vertical_force_N += p.vertical_force_N;
-    r.lateral_force_N += p.lateral_force_N;
-    r.plastic_cells += p.plastic_cells;
-    r.plastic_area_m2 += p.plastic_area_m2;
-    r.plastic_force_N += p.plastic_force_N;
-  }
+  SumPatchTotals(&r);
   return r;
 }
 
