@@ -221,6 +221,13 @@ StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const 
                           .distributions;
     r.low_rail = std::move(l);
   }
+  for (size_t t = 0; t < step.state.curving.size(); ++t) {
+    const CurvingStart& c = step.state.curving[t];
+    if (c.state.size() == 0) continue;
+    r.curving_starts.push_back(
+        {static_cast<int>(t), std::vector<double>(c.state.data(), c.state.data() + c.state.size()),
+         std::vector<double>(c.jacobian.data(), c.jacobian.data() + c.jacobian.size())});
+  }
   return r;
 }
 
@@ -250,6 +257,17 @@ WearState StateFromStore(const ProfileStore& store, int64_t run, int step) {
     for (const Distribution& d : r.low_rail->distributions) {
       if (d.kind == "rcf_damage") state.low_damage = d.value;
     }
+  }
+  // Each vehicle entry's curving solution: where the next step starts (bit-identical resume).
+  for (const CurvingStartRecord& c : r.curving_starts) {
+    if (c.traffic_index >= static_cast<int>(state.curving.size())) {
+      state.curving.resize(c.traffic_index + 1);
+    }
+    CurvingStart& start = state.curving[c.traffic_index];
+    const auto n = static_cast<Eigen::Index>(c.state.size());
+    start.state = Eigen::Map<const Eigen::VectorXd>(c.state.data(), n);
+    if (!c.jacobian.empty())
+      start.jacobian = Eigen::Map<const Eigen::MatrixXd>(c.jacobian.data(), n, n);
   }
   return state;
 }

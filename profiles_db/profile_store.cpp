@@ -436,8 +436,27 @@ CREATE TABLE low_rail_distributions(
 )sql");
 }
 
+// Version 5: each vehicle traffic entry's curving solution of a step (issue 15): the next step
+// starts from it, so a resumed run continues exactly where it stopped. Older runs have no rows
+// here (their steps start from the unworn rails' solution). state: n float64; jacobian: n x n
+// float64 in column order, or empty.
+void MigrateTo5(const Connection& c) {
+  c.Exec(R"sql(
+CREATE TABLE curving_starts(
+  run_id        INTEGER NOT NULL,
+  step          INTEGER NOT NULL,
+  traffic_index INTEGER NOT NULL CHECK (traffic_index >= 0),
+  state         BLOB NOT NULL CHECK (length(state) > 0 AND length(state) % 8 = 0),
+  jacobian      BLOB NOT NULL
+                CHECK (length(jacobian) = 0 OR length(jacobian) * 8 = length(state) * length(state)),
+  PRIMARY KEY (run_id, step, traffic_index),
+  FOREIGN KEY (run_id, step) REFERENCES steps(run_id, step) ON DELETE CASCADE);
+)sql");
+}
+
 using Migration = void (*)(const Connection&);
-constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3, &MigrateTo4};
+constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3, &MigrateTo4,
+                                     &MigrateTo5};
 static_assert(std::size(kMigrations) == ProfileStore::kSchemaVersion);
 
 const char* kNowUtc = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
@@ -951,6 +970,32 @@ void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
     s.Run();
     WriteDistributions(c, "low_rail_distributions", run, step.step, low.distributions);
   }
+  if (!step.curving_starts.empty()) {
+    Statement s(c,
+                "INSERT INTO curving_starts(run_id, step, traffic_index, state, jacobian) "
+                "VALUES (?1, ?2, ?3, ?4, ?5)");
+    for (const CurvingStartRecord& cs : step.curving_starts) {
+      const size_t n = cs.state.size();
+      if (n == 0 || cs.traffic_index < 0 || !(cs.jacobian.empty() || cs.jacobian.size() == n * n)) {
+        throw InputError(fmt::format(
+            "database '{}': run {} step {}: curving start of traffic entry {}: {} state values "
+            "and {} Jacobian values; expected n > 0 and 0 or n^2",
+            path(), run, step.step, cs.traffic_index, n, cs.jacobian.size()));
+      }
+      sqlite3_reset(s.get());
+      s.Bind(1, run).Bind(2, step.step).Bind(3, cs.traffic_index);
+      s.BindBlob(4, internal::EncodeDoubles(cs.state));
+      s.BindBlob(5, internal::EncodeDoubles(cs.jacobian));
+      int constraint = 0;
+      s.Step(&constraint);
+      if (constraint != 0) {
+        throw InputError(fmt::format(
+            "database '{}': run {} step {}: curving start of traffic entry {} given twice; "
+            "expected each entry once",
+            path(), run, step.step, cs.traffic_index));
+      }
+    }
+  }
   t.Commit();
 }
 
@@ -1027,6 +1072,16 @@ StepRecord ProfileStore::LoadStep(int64_t run, int step) const {
                                             fmt::format("run {} step {} low rail", run, step));
       low.distributions = ReadDistributions(c, "low_rail_distributions", run, step);
       r.low_rail = std::move(low);
+    }
+  }
+  // A file opened read-only may predate the table (OpenReadOnly reads older schemas as they are).
+  if (internal::TableExists(c, "curving_starts")) {
+    Statement s(c,
+                "SELECT traffic_index, state, jacobian FROM curving_starts WHERE run_id = ?1 AND "
+                "step = ?2 ORDER BY traffic_index");
+    s.Bind(1, run).Bind(2, step);
+    while (s.Step()) {
+      r.curving_starts.push_back({static_cast<int>(s.Int64(0)), s.Doubles(1), s.Doubles(2)});
     }
   }
   return r;

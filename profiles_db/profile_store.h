@@ -9,7 +9,7 @@
 // A study database may also hold influence-constant calibrations (`railwear calibrate`), each
 // with the text of every input it was made from.
 //
-// Schema version 4 (PRAGMA user_version = 4, PRAGMA application_id = kApplicationId), also
+// Schema version 5 (PRAGMA user_version = 5, PRAGMA application_id = kApplicationId), also
 // documented for users of the sqlite3 shell in profiles_db/SCHEMA.md:
 //
 //   meta(key TEXT PRIMARY KEY, value TEXT)          -- ('format', 'railwear-profile-history'), ...
@@ -36,11 +36,16 @@
 //                          PRIMARY KEY(run_id, step, kind))                -- since v4
 //         -- the low rail of a two-rail study, as steps/profiles/distributions hold the high
 //         -- (or only) rail; no rows for single-rail runs
+//   curving_starts(run_id, step, traffic_index, state BLOB, jacobian BLOB,
+//                  PRIMARY KEY(run_id, step, traffic_index))               -- since v5
+//         -- each vehicle traffic entry's curving solution at the step (float64; the Jacobian
+//         -- n x n in column order, or empty): the next step's start
 //
 // Migrations (applied on open, all of them in one transaction): 0 -> 1 creates the schema;
 // 1 -> 2 adds the nullable column distributions.s (rows written by version 1 keep s NULL);
 // 2 -> 3 adds the calibrations and calibration_inputs tables; 3 -> 4 adds low_rail_steps and
-// low_rail_distributions (older runs have no rows there: they are single-rail runs).
+// low_rail_distributions (older runs have no rows there: they are single-rail runs); 4 -> 5 adds
+// curving_starts (older runs have no rows there: their steps start from the unworn solution).
 //
 // The database runs in WAL mode with foreign keys on. Each AppendStep is one transaction: a crash
 // loses at most the step in flight. Opening never modifies a file it refuses.
@@ -103,6 +108,14 @@ struct RailStepRecord {
   std::vector<Distribution> distributions;  // not filled by Steps()
 };
 
+// A vehicle traffic entry's curving solution at a step (wear/: WearState::curving): the unknowns
+// and the equilibrium Jacobian there, n x n in column order (empty when none was evaluated).
+struct CurvingStartRecord {
+  int traffic_index = 0;
+  std::vector<double> state;
+  std::vector<double> jacobian;
+};
+
 // One wear step. Step 0 is conventionally the unworn profile (passes = 0). The summary, profile
 // and distributions are the high (or only) rail's; `low_rail` the low rail's in a two-rail study.
 struct StepRecord {
@@ -122,6 +135,8 @@ struct StepRecord {
   std::vector<Distribution> distributions;   // wear and damage per rail-profile position
   // The low rail (two-rail studies); its profile and distributions are not filled by Steps().
   std::optional<RailStepRecord> low_rail = std::nullopt;
+  // The vehicle entries' curving solutions of the step (not filled by Steps()).
+  std::vector<CurvingStartRecord> curving_starts;
 };
 
 // One input of a calibration, verbatim: kind "config", "displacement_curves", "scene" or
@@ -161,7 +176,7 @@ struct QueryResult {
 class ProfileStore {
  public:
   // Schema version written by this program (PRAGMA user_version).
-  static constexpr int kSchemaVersion = 4;
+  static constexpr int kSchemaVersion = 5;
   // PRAGMA application_id of railwear databases: "RWDB" in ASCII.
   static constexpr int32_t kApplicationId = 0x52574442;
   // Value of meta.format in railwear databases.
@@ -200,17 +215,18 @@ class ProfileStore {
   // Throws InputError for an unknown run id.
   void SetRunState(int64_t run, RunState state);
 
-  // Writes the step row, its profile, load cases and distributions, and the low rail's when
-  // present, in one transaction (all or nothing). Throws InputError when the run does not exist,
-  // step.step is not LastStep()+1 (0 for a run without steps), a profile is empty, or a
-  // distribution is malformed (empty or duplicate kind, y and value of different lengths, s
-  // neither empty nor as long as value).
+  // Writes the step row, its profile, load cases and distributions, the low rail's when present
+  // and the curving starts, in one transaction (all or nothing). Throws InputError when the run
+  // does not exist, step.step is not LastStep()+1 (0 for a run without steps), a profile is
+  // empty, a distribution is malformed (empty or duplicate kind, y and value of different
+  // lengths, s neither empty nor as long as value) or a curving start is (an empty state, a
+  // Jacobian neither empty nor n x n, a traffic entry given twice).
   void AppendStep(int64_t run, const StepRecord& step);
   // The steps of a run in order, summary columns only, with the low rail's summary when stored
   // (profiles, load cases and distributions are left empty; see LoadProfile / LoadStep).
   std::vector<StepRecord> Steps(int64_t run) const;
-  // One step in full: summary, profile, load cases and distributions. Throws InputError when
-  // absent.
+  // One step in full: summary, profile, load cases, distributions and curving starts. Throws
+  // InputError when absent.
   StepRecord LoadStep(int64_t run, int step) const;
   // The profile stored for a step, points bit-for-bit as appended. Throws InputError when absent.
   Profile LoadProfile(int64_t run, int step) const;

@@ -66,7 +66,8 @@ RailGaugePoints UnwornGaugePoints(const WearStudy& study) {
 }
 
 CurvingProblem VehicleCurvingProblem(const WearStudy& study, int traffic_index,
-                                     const Profile& high_track, const Profile& low_track) {
+                                     const Profile& high_track, const Profile& low_track,
+                                     const CurvingStart* start) {
   const TrafficCase& c = study.traffic[traffic_index];
   CurvingProblem p;
   p.contact = study.setup();
@@ -79,8 +80,10 @@ CurvingProblem VehicleCurvingProblem(const WearStudy& study, int traffic_index,
   p.speed_m_s = c.speed_m_s;
   p.friction = c.friction;
   p.options.threads = study.options.threads;
-  if (traffic_index < static_cast<int>(study.vehicle_starts.size()) &&
-      study.vehicle_starts[traffic_index].size() > 0) {
+  if (start && start->state.size() > 0) {
+    p.options.start = *start;
+  } else if (traffic_index < static_cast<int>(study.vehicle_starts.size()) &&
+             study.vehicle_starts[traffic_index].state.size() > 0) {
     p.options.start = study.vehicle_starts[traffic_index];
   }
   return p;
@@ -91,9 +94,9 @@ Profile RailInTrack(const WearStudy& study, const Profile& unworn, const Profile
   return current.Transformed(cant.angle_rad, cant.shift_m);
 }
 
-std::vector<Eigen::VectorXd> VehicleStarts(const WearStudy& study, const Profile& unworn_high,
-                                           const Profile& unworn_low) {
-  std::vector<Eigen::VectorXd> starts(study.traffic.size());
+std::vector<CurvingStart> VehicleStarts(const WearStudy& study, const Profile& unworn_high,
+                                        const Profile& unworn_low) {
+  std::vector<CurvingStart> starts(study.traffic.size());
   for (int t = 0; t < static_cast<int>(study.traffic.size()); ++t) {
     if (!study.traffic[t].is_vehicle()) continue;
     CurvingProblem p = VehicleCurvingProblem(study, t, RailInTrack(study, unworn_high, unworn_high),
@@ -101,17 +104,19 @@ std::vector<Eigen::VectorXd> VehicleStarts(const WearStudy& study, const Profile
     p.options.start.reset();
     const CurvingResult r = SolveCurving(p);
     if (r.status == CurvingStatus::kConverged || r.status == CurvingStatus::kFlangeClimb) {
-      starts[t] = r.state;
+      starts[t] = r.Start();
     }
   }
   return starts;
 }
 
 std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index,
-                                       const Profile& high_track, const Profile& low_track) {
+                                       const Profile& high_track, const Profile& low_track,
+                                       const CurvingStart* start, CurvingStart* solved) {
   const TrafficCase& c = study.traffic[traffic_index];
   const VehicleSpec& v = study.vehicles[c.vehicle];
-  const CurvingProblem p = VehicleCurvingProblem(study, traffic_index, high_track, low_track);
+  const CurvingProblem p =
+      VehicleCurvingProblem(study, traffic_index, high_track, low_track, start);
   const CurvingResult r = SolveCurving(p);
   // An equilibrium stopped just above the tolerance (the contact grid's force noise in flange
   // contact on a worn rail: measured 1.1e-2 Q0 against 3e-3) still gives the wear its loads: it
@@ -123,6 +128,7 @@ std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index
         "wear: {}: steady-state curving of vehicle \"{}\" at {} m/s on the current rails: {}: {}",
         c.name, v.name, c.speed_m_s, ToString(r.status), r.message));
   }
+  if (solved) *solved = r.Start();
   std::vector<double> nodes = {0.0}, weights = {1.0};
   if (c.lateral_shift_std_m > 0.0) {
     GaussHermiteProbabilists(study.options.quadrature_points, &nodes, &weights);

@@ -28,9 +28,11 @@ RailGaugePoints UnwornGaugePoints(const WearStudy& study);
 
 // The curving problem of study.traffic[traffic_index] (a vehicle entry) on these rails (track
 // frame): the study's contact set-up, the unworn rails' places, its track, curve, vehicle, speed
-// and friction, and its start from study.vehicle_starts when there is one.
+// and friction, and its start: `start` when it has a state, else study.vehicle_starts' when
+// there is one.
 CurvingProblem VehicleCurvingProblem(const WearStudy& study, int traffic_index,
-                                     const Profile& high_track, const Profile& low_track);
+                                     const Profile& high_track, const Profile& low_track,
+                                     const CurvingStart* start = nullptr);
 
 // A rail of a study in the track frame: each canted with its unworn profile's motion.
 Profile RailInTrack(const WearStudy& study, const Profile& unworn, const Profile& current);
@@ -38,14 +40,17 @@ Profile RailInTrack(const WearStudy& study, const Profile& unworn, const Profile
 // Each vehicle entry's curving solution on the unworn rails (own frames, as in a step-0 state),
 // for WearStudy::vehicle_starts: an empty vector for prescribed entries and for a vehicle whose
 // curving did not converge there (its steps then start centred).
-std::vector<Eigen::VectorXd> VehicleStarts(const WearStudy& study, const Profile& unworn_high,
-                                           const Profile& unworn_low);
+std::vector<CurvingStart> VehicleStarts(const WearStudy& study, const Profile& unworn_high,
+                                        const Profile& unworn_low);
 
 // The load cases of study.traffic[traffic_index] (a vehicle entry) on the rails of this step,
 // both in the track frame (canted). Throws std::runtime_error naming the entry and the vehicle
 // when the curving has no equilibrium or does not converge (a flange-climb equilibrium is kept:
-// its cases carry their L/V checks).
+// its cases carry their L/V checks). The curving starts from `start` (VehicleCurvingProblem) and,
+// when `solved` is given, leaves its solution there (the next step's start).
 std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index,
-                                       const Profile& high_track, const Profile& low_track);
+                                       const Profile& high_track, const Profile& low_track,
+                                       const CurvingStart* start = nullptr,
+                                       CurvingStart* solved = nullptr);
 
 }  // namespace railwear

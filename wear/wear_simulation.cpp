@@ -323,14 +323,21 @@ WearState InitialState(const WearStudy& study) {
 }
 
 std::vector<LoadCase> StepLoadCases(const WearStudy& study, const Profile& high_rail_track,
-                                    const std::optional<Profile>& low_rail_track) {
+                                    const std::optional<Profile>& low_rail_track,
+                                    const std::vector<CurvingStart>& curving_starts,
+                                    std::vector<CurvingStart>* curving_solved) {
   // Prescribed traffic and imported collectives: positions fixed in each rail's unworn track
   // frame, so the current profiles are not needed. Vehicle entries: curving on the current rails.
   std::vector<LoadCase> cases = ExpandValidTraffic(study.traffic, study.options.quadrature_points);
-  for (int t = 0; t < static_cast<int>(study.traffic.size()); ++t) {
+  const int n_traffic = static_cast<int>(study.traffic.size());
+  if (curving_solved) curving_solved->assign(n_traffic, CurvingStart{});
+  for (int t = 0; t < n_traffic; ++t) {
     std::vector<LoadCase> more;
     if (study.traffic[t].is_vehicle()) {
-      more = VehicleLoadCases(study, t, high_rail_track, *low_rail_track);
+      const CurvingStart* start =
+          t < static_cast<int>(curving_starts.size()) ? &curving_starts[t] : nullptr;
+      more = VehicleLoadCases(study, t, high_rail_track, *low_rail_track, start,
+                              curving_solved ? &(*curving_solved)[t] : nullptr);
     } else if (study.traffic[t].is_collective()) {
       more = CollectiveLoadCases(study, t);
     }
@@ -434,7 +441,9 @@ StepResult RunWearStep(const WearStudy& study, const UnwornRails& unworn, const 
 
   std::optional<Profile> low_track;
   if (low) low_track = low->track;
-  const std::vector<LoadCase> cases = internal::StepLoadCases(study, high.track, low_track);
+  std::vector<CurvingStart> curving;
+  const std::vector<LoadCase> cases =
+      internal::StepLoadCases(study, high.track, low_track, state.curving, &curving);
   const RailTarget targets[2] = {{&*high.locator, &high.grid},
                                  {low ? &*low->locator : nullptr, low ? &low->grid : nullptr}};
   for (const LoadCase& c : cases) RAILWEAR_CHECK(targets[static_cast<int>(c.rail)].locator);
@@ -463,6 +472,10 @@ StepResult RunWearStep(const WearStudy& study, const UnwornRails& unworn, const 
     next.low_rail.emplace();
     step.low_rail =
         low->Apply(step.step_passes, outcomes, cases, study, &*next.low_rail, &next.low_damage);
+  }
+  if (std::any_of(curving.begin(), curving.end(),
+                  [](const CurvingStart& c) { return c.state.size() > 0; })) {
+    next.curving = std::move(curving);
   }
   next.passes = state.passes + step.step_passes;
   next.mgt = state.mgt + step.step_passes * MgtPerPass(study.traffic);

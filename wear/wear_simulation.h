@@ -87,11 +87,10 @@ struct WearStudy : ContactSetup {
   std::vector<VehicleSpec> vehicles;
   TrackSpec track;
   CurveSpec curve;
-  // Per traffic entry, the curving solution each step starts from (CurvingResult::state); empty
-  // (or an empty entry): the centred start. RunWear fills it with each vehicle's equilibrium on
-  // the unworn rails of step 0, so every step starts near its own solution and a resumed run
-  // starts exactly where the uninterrupted one did.
-  std::vector<Eigen::VectorXd> vehicle_starts;
+  // Per traffic entry, the curving solution on the unworn rails (empty, or an empty entry: the
+  // centred start): the start of a step whose state carries none (WearState::curving). RunWear
+  // fills it with each vehicle's equilibrium on the unworn rails of step 0.
+  std::vector<CurvingStart> vehicle_starts;
   WearOptions options;
 };
 
@@ -115,6 +114,12 @@ struct WearState {
   // The low rail, as `rail` and `damage` (its own frame); absent in a single-rail study.
   std::optional<Profile> low_rail;
   std::vector<double> low_damage;
+  // Per traffic entry, the curving solution of the step that led here (vehicle entries; empty
+  // entries otherwise): the next step starts there, with its Jacobian as the first chord, so a
+  // step's curving costs a few residual evaluations instead of a solve from the unworn start.
+  // Part of the state: a resumed run reads it back and continues bit-identically. Empty (step 0,
+  // or a run stored without it): each entry starts from WearStudy::vehicle_starts.
+  std::vector<CurvingStart> curving;
 };
 
 // Step 0 of a run: the unworn rails resampled at the study's profile spacing.
@@ -219,9 +224,13 @@ namespace internal {
 // in the unworn track frame); sources that depend on the
 // current rails (vehicle curving on the worn profiles) get each rail's current profile canted
 // into its track frame: `high_rail_track`, and `low_rail_track` (absent in a single-rail study).
-// Each rail's case weights sum to 1 (over the cases on it).
+// Each rail's case weights sum to 1 (over the cases on it). Vehicle entries start from
+// `curving_starts` (per traffic entry, WearState::curving; empty: WearStudy::vehicle_starts) and,
+// when `curving_solved` is given, leave their solutions there (per traffic entry).
 std::vector<LoadCase> StepLoadCases(const WearStudy& study, const Profile& high_rail_track,
-                                    const std::optional<Profile>& low_rail_track);
+                                    const std::optional<Profile>& low_rail_track,
+                                    const std::vector<CurvingStart>& curving_starts = {},
+                                    std::vector<CurvingStart>* curving_solved = nullptr);
 }  // namespace internal
 
 // A profile resampled at uniform arc length: ceil(L / spacing) + 1 points including both ends.

@@ -66,6 +66,7 @@ struct InfluenceConstantSet {
   double c_f = 0.75;
   double c_z = 1.0;
   double c_s = 0.25;
+  bool operator==(const InfluenceConstantSet&) const = default;
 };
 
 // A convex set and a concave set (issue 5: calibration may give bodies of either curvature
@@ -73,6 +74,7 @@ struct InfluenceConstantSet {
 struct SeparateInfluenceConstants {
   InfluenceConstantSet convex;
   InfluenceConstantSet concave;
+  bool operator==(const SeparateInfluenceConstants&) const = default;
 };
 
 // Constants of the seed's eq. 4; the seed's values are the defaults. Dimensionless.
@@ -93,6 +95,7 @@ struct InfluenceConstants {
   // The set that applies to a body of curvature sign `sign` (+1 concave, -1 convex; 0, a flat
   // body, only without separate sets). With one set, that set whatever the sign.
   InfluenceConstantSet ForBody(int sign) const;
+  bool operator==(const InfluenceConstants&) const = default;
 };
 
 // The curvature sign of eq. 4 for a body with lateral curvature `curvature_per_m` (convex
@@ -123,6 +126,7 @@ struct ModelOptions {
   AccuracyPreset accuracy = AccuracyPreset::kStandard;
   // Explicit cell size (dx along rolling, ds along the lateral arc) [m]; overrides accuracy.
   std::optional<double> cell_dx_m, cell_ds_m;
+  bool operator==(const ModelOptions&) const = default;
 };
 
 // The elastic-perfectly-plastic limit on the contact pressure (issue 16): the normal solver

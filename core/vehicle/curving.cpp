@@ -259,7 +259,8 @@ class Equilibrium {
     // The Jacobian of the last phase (the predictor's) starts the next one as a chord.
     Eigen::MatrixXd& J = jacobian_;
     bool fresh = false;  // J was evaluated at the current q
-    double last_ratio = 1.0;
+    // A Jacobian given (the start's, or the last phase's) is first used as it is.
+    double last_ratio = 0.0;
     for (int it = 0; it < o.max_iterations; ++it) {
       if (Norm(*r) <= o.tolerance) return it;
       // The Jacobian is kept while it still reduces the residual fast (chord steps); a slow or
@@ -299,11 +300,14 @@ class Equilibrium {
         }
         return false;
       };
-      bool accepted = try_step(step, 3);
+      // Within the noise floor one halving: a shorter step only meets the noise sooner.
+      bool accepted = try_step(step, Norm(*r) <= kNoiseFloor * o.tolerance ? 1 : 3);
       // A fresh Jacobian whose Newton step fails (the tread's creep forces saturating, the
       // contact angle jumping): Levenberg-Marquardt steps on the scaled system, from nearly
-      // Newton's toward the scaled gradient's direction.
-      if (!accepted && fresh) {
+      // Newton's toward the scaled gradient's direction. Not within the grid's noise floor
+      // (below): there no step can reliably reduce the residual, and each trial costs a solve
+      // of every wheelset.
+      if (!accepted && fresh && Norm(*r) > kNoiseFloor * o.tolerance) {
         const Eigen::MatrixXd Js = scale_.asDiagonal() * J;
         const Eigen::VectorXd rs = scale_.cwiseProduct(*r);
         const Eigen::MatrixXd JtJ = Js.transpose() * Js;
@@ -319,6 +323,17 @@ class Equilibrium {
         }
       }
       last_ratio = accepted ? Merit(*r) / before : 1.0;
+      // Near the solution the forces' grid noise stops the line search: within kNoiseFloor x
+      // tolerance that is the solution at this grid, and said so, whether the step came from a
+      // fresh Jacobian or a chord (a fresh one would cost two solves per wheelset and find the
+      // same noise: on the wear's worn rails a warm start often begins there).
+      if (!accepted && Norm(*r) <= kNoiseFloor * o.tolerance) {
+        *message = fmt::format(
+            "stopped at the contact grid's noise: largest scaled residual {:.1e} (tolerance "
+            "{:.1e})",
+            Norm(*r), o.tolerance);
+        return it + 1;
+      }
       if (!accepted && !fresh) continue;  // an old Jacobian: evaluate it again and retry
       fresh = false;
       if (!accepted) {
@@ -328,15 +343,6 @@ class Equilibrium {
                                   "climbs the flange, no steady state",
                                   o.max_lateral_m * 1e3),
                       message);
-        }
-        // Near the solution the forces' grid noise stops the line search: within
-        // kNoiseFloor x tolerance that is the solution at this grid, and said so.
-        if (Norm(*r) <= kNoiseFloor * o.tolerance) {
-          *message = fmt::format(
-              "stopped at the contact grid's noise: largest scaled residual {:.1e} (tolerance "
-              "{:.1e})",
-              Norm(*r), o.tolerance);
-          return it + 1;
         }
         return Fail(
             fmt::format("no step reduced the residual (largest scaled residual {:.1e})", Norm(*r)),
@@ -391,11 +397,18 @@ class Equilibrium {
   }
 
   int solves() const { return solves_; }
+  const Eigen::MatrixXd& jacobian() const { return jacobian_; }
   void set_contexts(std::vector<WheelsetContext> ctx) { ctx_ = std::move(ctx); }
-  // A new start: the contexts of the first phase, no Jacobian kept.
-  void Restart(std::vector<WheelsetContext> ctx) {
+  // A new start: the contexts of the first phase and the chord to begin with (empty, or of
+  // another size: none, the first iteration evaluates it).
+  void Restart(std::vector<WheelsetContext> ctx, const Eigen::MatrixXd& jacobian) {
     ctx_ = std::move(ctx);
-    jacobian_.resize(0, 0);
+    const Eigen::Index n = l_.size();
+    if (jacobian.rows() == n && jacobian.cols() == n && jacobian.allFinite()) {
+      jacobian_ = jacobian;
+    } else {
+      jacobian_.resize(0, 0);
+    }
   }
 
  private:
@@ -492,32 +505,35 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
     const double X = layout.wheelset_x[i], Xb = layout.bogie_x[layout.bogie_of[i]];
     centred[2 * i + 1] = kappa * (X - Xb);  // rigid with a frame on its tangent
   }
-  std::vector<Eigen::VectorXd> starts;
-  if (p.options.start && p.options.start->size() == layout.size()) {
+  std::vector<CurvingStart> starts;
+  if (p.options.start && p.options.start->state.size() == layout.size()) {
     starts.push_back(*p.options.start);
   }
-  starts.push_back(centred);
+  starts.push_back({centred, {}});
   Eigen::VectorXd q;
   std::vector<CurvedWheelset> ws;
   Eigen::VectorXd r;
   bool no_equilibrium = false;
-  Equilibrium eq(p, layout, contexts(p.options.predictor ? *p.options.predictor : p.contact.model),
-                 unbalanced_N, q0);
+  // The predictor's phase, then the full model's; one phase when they are the same model.
+  const ModelOptions& first_model = p.options.predictor ? *p.options.predictor : p.contact.model;
+  const bool two_phases = p.options.predictor && !(*p.options.predictor == p.contact.model);
+  Equilibrium eq(p, layout, contexts(first_model), unbalanced_N, q0);
   int iterations = 0;
   // The best stopped attempt (smallest largest scaled residual) when no start converges: a later
   // start that goes astray does not replace a nearer one.
   struct Attempt {
     Eigen::VectorXd q, r;
     std::vector<CurvedWheelset> ws;
+    Eigen::MatrixXd jacobian;
     std::string message;
   };
   std::optional<Attempt> best;
-  for (const Eigen::VectorXd& start : starts) {
-    q = start;
+  for (const CurvingStart& start : starts) {
+    q = start.state;
     no_equilibrium = false;
-    eq.Restart(contexts(p.options.predictor ? *p.options.predictor : p.contact.model));
-    if (p.options.predictor) {
-      iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
+    eq.Restart(contexts(first_model), start.jacobian);
+    iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
+    if (two_phases) {
       out.predictor_iterations += std::max(iterations, 0);
       if (iterations >= 0) {
         eq.set_contexts(contexts(p.contact.model));
@@ -525,7 +541,6 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
         out.full_iterations += std::max(iterations, 0);
       }
     } else {
-      iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
       out.full_iterations += std::max(iterations, 0);
     }
     if (iterations >= 0 || no_equilibrium) break;
@@ -533,14 +548,16 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
         ws.size() == static_cast<size_t>(layout.wheelsets) &&
         std::all_of(ws.begin(), ws.end(), [](const CurvedWheelset& w) { return Converged(w); });
     if (contacts_converged && r.size() == q.size() && (!best || eq.Norm(r) < eq.Norm(best->r))) {
-      best = Attempt{q, r, ws, out.message};
+      best = Attempt{q, r, ws, eq.jacobian(), out.message};
     }
     if (best && eq.Norm(best->r) <= p.options.usable_multiple * p.options.tolerance) break;
   }
+  out.jacobian = eq.jacobian();
   if (iterations < 0 && !no_equilibrium && best) {
     q = best->q;
     r = best->r;
     ws = best->ws;
+    out.jacobian = best->jacobian;
     out.message = best->message;
   }
   if (r.size() == q.size()) out.largest_scaled_residual = eq.Norm(r);

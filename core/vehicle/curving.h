@@ -41,6 +41,15 @@
 
 namespace railwear {
 
+// Where a solve starts: a solution of the same vehicle at a nearby speed or cant, or on slightly
+// different rails (continuation: the wear's previous step), and the equilibrium Jacobian there.
+struct CurvingStart {
+  Eigen::VectorXd state;  // CurvingResult::state
+  // CurvingResult::jacobian at that state [N/m, N/rad, N m/m, N m/rad]: the first iterations'
+  // chord. Empty, or of another size: evaluated afresh at the start.
+  Eigen::MatrixXd jacobian;
+};
+
 struct CurvingOptions {
   // The contact model of the iterates; absent: the full model throughout (slower, no better).
   std::optional<ModelOptions> predictor = PredictorModel();
@@ -57,9 +66,8 @@ struct CurvingOptions {
   double usable_multiple = 5.0;
   // A wheelset pushed beyond this lateral displacement has no equilibrium (it climbs) [m].
   double max_lateral_m = 0.02;
-  // A solution to start from (CurvingResult::state of the same vehicle at a nearby speed, cant
-  // or on slightly different rails: continuation); the centred start is tried after it.
-  std::optional<Eigen::VectorXd> start;
+  // A solution to start from (CurvingResult::Start()); the centred start is tried after it.
+  std::optional<CurvingStart> start;
   // Workers for the wheelsets' contact solves (each iterate's wheelsets and finite differences
   // are independent): 0 = the machine's hardware threads. Results do not depend on it.
   int threads = 0;
@@ -130,6 +138,10 @@ struct CurvingResult {
   // All unknowns, [wheelsets (y, psi)..., frames (y, psi)..., body (y, psi)]: a start for
   // CurvingOptions::start.
   Eigen::VectorXd state;
+  // The equilibrium's Jacobian (d residual / d state) as the solve last had it: finite
+  // differences of the wheelsets' contact forces, secant-updated along the accepted steps, plus
+  // the suspension's exact part. Empty when the solve evaluated none.
+  Eigen::MatrixXd jacobian;
   // The largest residuals of all bodies at the solution: lateral [N], yaw [N m], and the
   // wheelsets' longitudinal (F_x minus traction) [N].
   double lateral_residual_N = 0.0;
@@ -138,10 +150,13 @@ struct CurvingResult {
   // The largest residual scaled as CurvingOptions::tolerance is (forces / Q0, moments / (Q0 l0)):
   // below the tolerance when converged; the best start's when not_converged.
   double largest_scaled_residual = 0.0;
-  int predictor_iterations = 0;
-  int full_iterations = 0;
-  int contact_solves = 0;  // wheelset contact solves, all phases
+  int predictor_iterations = 0;  // of the predictor's phase (none when it is the full model)
+  int full_iterations = 0;       // of the full model's phase
+  int contact_solves = 0;        // wheelset contact solves, all phases
   double time_s = 0.0;
+
+  // This solution as the start of a nearby solve (CurvingOptions::start).
+  CurvingStart Start() const { return {state, jacobian}; }
 };
 
 // Throws InputError for bad input (curve, vehicle, speed, friction; the contact set-up as

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "profiles_db/profile_store.h"
 #include "tests/app/cli_runner.h"
 
 namespace railwear::test {
@@ -64,6 +65,43 @@ TEST_F(CurvingCommandTest, PrintsTheEquilibriumAndWritesJson) {
   EXPECT_GT(w["Q_high_N"].get<double>(), w["Q_low_N"].get<double>());
   EXPECT_GT(w["y_mm"].get<double>(), 0.0);  // pushed toward the high rail
   EXPECT_EQ(j[0]["status"], "converged");
+}
+
+// Vehicle traffic in a wear run: each step's curving starts from the previous step's solution,
+// stored with the step (curving_starts); a run stopped after one step and resumed reads it back
+// and ends bit for bit where the uninterrupted run does.
+TEST_F(CurvingCommandTest, WearRunStoresEachStepsCurvingAndResumesFromIt) {
+  const std::string scene =
+      Replace(Replace(kScene, "high_rail = \"builtin:UIC60\"",
+                      "high_rail = \"builtin:UIC60\"\nlow_rail = \"builtin:UIC60\""),
+              "total_passes = 1e5", "total_passes = 1e5\nmax_depth_per_step_mm = 0.002");
+  std::ofstream(dir_ / "w.toml") << scene;
+  const Outcome whole = Run("wear w.toml --db a.sqlite --steps 2");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  ASSERT_EQ(Run("wear w.toml --db b.sqlite --steps 1").exit_code, 0);
+  const Outcome resumed = Run("wear w.toml --db b.sqlite --resume --steps 1");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+
+  ProfileStore a = ProfileStore::Open((dir_ / "a.sqlite").string());
+  ProfileStore b = ProfileStore::Open((dir_ / "b.sqlite").string());
+  const int64_t run_a = a.FindRun("wheelset on R1500")->id;
+  const int64_t run_b = b.FindRun("wheelset on R1500")->id;
+  ASSERT_EQ(a.LastStep(run_a), 2);
+  ASSERT_EQ(b.LastStep(run_b), 2);
+  for (int step = 1; step <= 2; ++step) {
+    const StepRecord sa = a.LoadStep(run_a, step), sb = b.LoadStep(run_b, step);
+    // One vehicle entry: its wheelset's (y, psi) and the 2 x 2 Jacobian there.
+    ASSERT_EQ(sa.curving_starts.size(), 1u) << step;
+    EXPECT_EQ(sa.curving_starts[0].traffic_index, 0);
+    EXPECT_EQ(sa.curving_starts[0].state.size(), 2u);
+    EXPECT_EQ(sa.curving_starts[0].jacobian.size(), 4u);
+    ASSERT_EQ(sb.curving_starts.size(), 1u) << step;
+    EXPECT_EQ(sb.curving_starts[0].state, sa.curving_starts[0].state) << step;
+    EXPECT_EQ(sb.curving_starts[0].jacobian, sa.curving_starts[0].jacobian) << step;
+    EXPECT_EQ(sb.profile.points(), sa.profile.points()) << step;
+    EXPECT_EQ(sb.low_rail->profile.points(), sa.low_rail->profile.points()) << step;
+  }
+  EXPECT_TRUE(a.LoadStep(run_a, 0).curving_starts.empty());
 }
 
 TEST_F(CurvingCommandTest, BadVehicleInputIsExitTwoWithFileAndKey) {

@@ -252,9 +252,9 @@ TEST(ProfileStore, CreatesSchemaInMemory) {
   std::vector<std::string> names;
   for (const auto& row : tables.rows) names.push_back(row[0]);
   EXPECT_EQ(names,
-            (std::vector<std::string>{"calibration_inputs", "calibrations", "distributions",
-                                      "load_cases", "low_rail_distributions", "low_rail_steps",
-                                      "meta", "profiles", "runs", "steps"}));
+            (std::vector<std::string>{"calibration_inputs", "calibrations", "curving_starts",
+                                      "distributions", "load_cases", "low_rail_distributions",
+                                      "low_rail_steps", "meta", "profiles", "runs", "steps"}));
   EXPECT_EQ(db.Query("PRAGMA application_id").rows[0][0],
             std::to_string(ProfileStore::kApplicationId));
 }
@@ -345,6 +345,9 @@ TEST(ProfileStore, MigratesVersion2KeepingItsDataAndAddsCalibrations) {
     for (const StepRecord& s : db.Steps(run->id)) EXPECT_FALSE(s.low_rail.has_value());
     EXPECT_FALSE(db.LoadStep(run->id, 1).low_rail.has_value());
     EXPECT_EQ(db.Query("SELECT count(*) FROM low_rail_steps").rows[0][0], "0");
+    // Version 5's curving starts: none for an old run (its steps start from the unworn rails).
+    EXPECT_EQ(db.Query("SELECT count(*) FROM curving_starts").rows[0][0], "0");
+    EXPECT_TRUE(db.LoadStep(run->id, 1).curving_starts.empty());
     const StepRecord one = db.LoadStep(run->id, 1);
     EXPECT_EQ(one.passes, 100.0);
     ASSERT_EQ(one.distributions.size(), 1u);
@@ -412,6 +415,41 @@ TEST(ProfileStore, TheLowRailRoundTripsNextToTheHighRail) {
   bad.low_rail = TestLowRail(2);
   bad.low_rail->distributions.push_back(bad.low_rail->distributions[0]);
   ExpectInputError([&] { db.AppendStep(run, bad); }, {"low-rail distribution kind"});
+  EXPECT_EQ(db.LastStep(run), 1);
+}
+
+// A vehicle entry's curving solution is the next step's start: stored bit for bit (a resumed
+// run continues from exactly it), per traffic entry, with or without its Jacobian; a malformed
+// one rolls the whole step back.
+TEST(ProfileStore, CurvingStartsRoundTripExactly) {
+  ProfileStore db = ProfileStore::Open(":memory:");
+  const int64_t run = db.CreateRun(TestRun("vehicles"));
+  db.AppendStep(run, TestStep(0));
+  StepRecord step = TestStep(1);
+  const std::vector<double> state = {1.0 / 3.0, -2e-3, 5.5e-3, 1e-300};
+  std::vector<double> jacobian(16);
+  for (size_t k = 0; k < jacobian.size(); ++k) jacobian[k] = std::ldexp(1.0 / 7.0, int(k) - 8);
+  step.curving_starts = {{0, state, jacobian}, {2, {0.25, -0.125}, {}}};
+  db.AppendStep(run, step);
+  const StepRecord back = db.LoadStep(run, 1);
+  ASSERT_EQ(back.curving_starts.size(), 2u);
+  EXPECT_EQ(back.curving_starts[0].traffic_index, 0);
+  EXPECT_EQ(back.curving_starts[0].state, state);
+  EXPECT_EQ(back.curving_starts[0].jacobian, jacobian);
+  EXPECT_EQ(back.curving_starts[1].traffic_index, 2);
+  EXPECT_EQ(back.curving_starts[1].state, (std::vector<double>{0.25, -0.125}));
+  EXPECT_TRUE(back.curving_starts[1].jacobian.empty());
+  EXPECT_TRUE(db.LoadStep(run, 0).curving_starts.empty());
+  EXPECT_TRUE(db.Steps(run)[1].curving_starts.empty());  // summaries only
+
+  StepRecord bad = TestStep(2);
+  bad.curving_starts = {{0, state, {1.0, 2.0}}};
+  ExpectInputError([&] { db.AppendStep(run, bad); },
+                   {"curving start of traffic entry 0", "4 state values and 2 Jacobian values"});
+  bad.curving_starts = {{1, state, {}}, {1, state, {}}};
+  ExpectInputError([&] { db.AppendStep(run, bad); }, {"traffic entry 1 given twice"});
+  bad.curving_starts = {{0, {std::nan("")}, {}}};
+  EXPECT_ANY_THROW(db.AppendStep(run, bad));
   EXPECT_EQ(db.LastStep(run), 1);
 }
 

@@ -113,8 +113,9 @@ TEST(VehicleTrafficTest, SpreadNodesStopAtTheFlangesOnset) {
   EXPECT_LT(std::abs(spread_high), 2.0 * std::sqrt(3.0) * 6.0e-3 - 1e-3);
 }
 
-// RunWear starts every step's curving from the equilibrium on the unworn rails: a run stopped
-// after one step and resumed from its state ends exactly where the uninterrupted run does.
+// RunWear starts the first step's curving from the equilibrium on the unworn rails and every
+// later one from the step before's (WearState::curving, with its Jacobian): a run stopped after
+// one step and resumed from its state ends exactly where the uninterrupted run does.
 TEST(VehicleTrafficTest, ResumedRunEqualsUninterrupted) {
   WearStudy study = VehicleStudy(0.0);
   study.options.max_depth_per_step_m = 1e-6;  // steps far shorter than the run
@@ -125,6 +126,9 @@ TEST(VehicleTrafficTest, ResumedRunEqualsUninterrupted) {
   const WearRunSummary rest = RunWear(study, unworn, first.state, nullptr, 1);
   ASSERT_EQ(whole.state.step, 2);
   ASSERT_EQ(rest.state.step, 2);
+  ASSERT_EQ(first.state.curving.size(), 1u);
+  EXPECT_EQ(first.state.curving[0].state.size(), 2);  // the wheelset's (y, psi)
+  EXPECT_EQ(first.state.curving[0].jacobian.rows(), 2);
   EXPECT_EQ(whole.state.passes, rest.state.passes);
   EXPECT_EQ(whole.state.rail.points(), rest.state.rail.points());
   EXPECT_EQ(whole.state.low_rail->points(), rest.state.low_rail->points());

@@ -57,6 +57,37 @@ TEST(CurvingTest, FreeWheelsetOnTangentTrackCentres) {
   EXPECT_NEAR(r.wheelsets[0].yaw_rad, 0.0, 1e-5);
 }
 
+// Continuation (the wear's step to step): a solve started from a solution and its Jacobian
+// (CurvingResult::Start) needs no finite differences. On its own problem it stops at the first
+// residual, one solve, with the same state; on a nearby curve it reaches the same equilibrium as
+// a start without the Jacobian, with fewer wheelset solves.
+TEST(CurvingTest, WarmStartWithItsJacobianSkipsTheFiniteDifferences) {
+  CurvingProblem p = BaseProblem(MakeCone(0.05), 1000.0);
+  const CurvingResult cold = SolveCurving(p);
+  ASSERT_EQ(cold.status, CurvingStatus::kConverged) << cold.message;
+  ASSERT_EQ(cold.jacobian.rows(), cold.state.size());
+  ASSERT_EQ(cold.jacobian.cols(), cold.state.size());
+
+  p.options.start = cold.Start();
+  const CurvingResult again = SolveCurving(p);
+  ASSERT_EQ(again.status, CurvingStatus::kConverged) << again.message;
+  EXPECT_EQ(again.contact_solves, 1);
+  EXPECT_EQ(again.state, cold.state);
+
+  p.curve.radius_m = 1030.0;
+  const CurvingResult with_jacobian = SolveCurving(p);
+  p.options.start->jacobian.resize(0, 0);
+  const CurvingResult without = SolveCurving(p);
+  ASSERT_EQ(with_jacobian.status, CurvingStatus::kConverged) << with_jacobian.message;
+  ASSERT_EQ(without.status, CurvingStatus::kConverged) << without.message;
+  // Both within the tolerance of the equilibrium: their lateral positions agree to the
+  // position error that tolerance allows (3e-3 Q0 over the lateral stiffness, well under 0.1 mm).
+  EXPECT_NEAR(with_jacobian.wheelsets[0].lateral_m, without.wheelsets[0].lateral_m, 1e-4);
+  EXPECT_LT(with_jacobian.contact_solves, without.contact_solves);
+  std::printf("continuation R 1000 -> 1030 m: %d solves with the Jacobian, %d without\n",
+              with_jacobian.contact_solves, without.contact_solves);
+}
+
 // Wickens (Fundamentals of Rail Vehicle Dynamics, 2003, ch. 8; also Boocock 1969): a rigid bogie
 // of semi-wheelbase a on a large radius, without cant deficiency, runs with its frame along the
 // tangent (psi = 0), its wheelsets at the angles of attack +-a/R and displaced outward to
@@ -149,13 +180,13 @@ TEST(CurvingTest, S1002BogieOnR300RunsInFlangeContactBelowNadal) {
   std::vector<double> flange_force;
   // Continuation in speed: each starts from the last. 14 m/s balances the 100 mm cant, 17 m/s
   // runs 47 mm deficient. (15.5 and 20 m/s do not converge yet: docs/curving.md.)
-  std::optional<Eigen::VectorXd> previous;
+  std::optional<CurvingStart> previous;
   for (const double speed : {14.0, 17.0}) {
     CurvingProblem p = S1002Coach(radius, 0.10, speed);
     p.options.start = previous;
     p.options.tolerance = 1e-3;
     const CurvingResult r = SolveCurving(p);
-    previous = r.state;
+    previous = r.Start();
     ASSERT_EQ(r.status, CurvingStatus::kConverged)
         << r.message << " lead y " << r.wheelsets[0].lateral_m << " psi " << r.wheelsets[0].yaw_rad
         << " trail y " << r.wheelsets[1].lateral_m << " psi " << r.wheelsets[1].yaw_rad
