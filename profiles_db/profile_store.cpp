@@ -4,6 +4,7 @@
 #include "profiles_db/profile_store.h"
 
 #include <sqlite3.h>
+#include <sys/stat.h>
 
 #include <bit>
 #include <cctype>
@@ -436,8 +437,32 @@ CREATE TABLE low_rail_distributions(
 )sql");
 }
 
+// Version 5: runs.state may be 'interrupted' (issue 17: a run stopped by SIGINT or SIGTERM,
+// its step in flight finished or rolled back). SQLite cannot change a CHECK constraint in place,
+// so the runs table is rebuilt by the documented procedure (sqlite.org/lang_altertable.html,
+// section 7): the caller has switched foreign keys off, so dropping the old table cascades to
+// nothing, and checks the foreign keys before committing.
+void MigrateTo5(const Connection& c) {
+  c.Exec(R"sql(
+CREATE TABLE runs_v5(
+  id              INTEGER PRIMARY KEY,
+  name            TEXT NOT NULL UNIQUE,
+  created_utc     TEXT NOT NULL,
+  program_version TEXT NOT NULL,
+  scene_text      TEXT NOT NULL,
+  wear_law_json   TEXT NOT NULL,
+  state           TEXT NOT NULL
+                  CHECK (state IN ('running', 'complete', 'aborted', 'interrupted')));
+INSERT INTO runs_v5(id, name, created_utc, program_version, scene_text, wear_law_json, state)
+  SELECT id, name, created_utc, program_version, scene_text, wear_law_json, state FROM runs;
+DROP TABLE runs;
+ALTER TABLE runs_v5 RENAME TO runs;
+)sql");
+}
+
 using Migration = void (*)(const Connection&);
-constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3, &MigrateTo4};
+constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3, &MigrateTo4,
+                                     &MigrateTo5};
 static_assert(std::size(kMigrations) == ProfileStore::kSchemaVersion);
 
 const char* kNowUtc = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
@@ -616,6 +641,8 @@ std::string ToString(RunState state) {
       return "complete";
     case RunState::kAborted:
       return "aborted";
+    case RunState::kInterrupted:
+      return "interrupted";
   }
   return "running";
 }
@@ -624,13 +651,37 @@ RunState RunStateFromString(const std::string& text) {
   if (text == "running") return RunState::kRunning;
   if (text == "complete") return RunState::kComplete;
   if (text == "aborted") return RunState::kAborted;
-  throw InputError(fmt::format("run state '{}': expected running, complete or aborted", text));
+  if (text == "interrupted") return RunState::kInterrupted;
+  throw InputError(
+      fmt::format("run state '{}': expected running, complete, aborted or interrupted", text));
 }
 
 struct ProfileStore::Impl {
   Connection db;
   bool in_memory = false;
   bool read_only = false;  // OpenReadOnly: db is a read-only (or immutable) connection
+  // The file's identity (st_dev, st_ino) when Open accepted it, for RequireSameFile.
+  dev_t device = 0;
+  ino_t inode = 0;
+
+  // Throws std::runtime_error (a failure: exit 1) when the path no longer names the file this
+  // connection writes: the file was deleted, or another file was renamed over it (or it was
+  // moved away). Writes would then go to a file nobody can open by its name: every step stored
+  // from then on would be lost when the program ends. Called before each commit.
+  void RequireSameFile() const {
+    if (in_memory) return;
+    int moved = 0;  // SQLite's own check of its open file against the path (inode or gone)
+    sqlite3_file_control(db.get(), "main", SQLITE_FCNTL_HAS_MOVED, &moved);
+    struct stat now {};
+    const bool exists = ::stat(db.path().c_str(), &now) == 0;
+    if (moved == 0 && exists && now.st_dev == device && now.st_ino == inode) return;
+    throw std::runtime_error(fmt::format(
+        "database '{}': the file was {} while railwear was writing to it (the path no longer "
+        "names the file railwear opened); nothing more is written to it: the write in flight "
+        "was rolled back, and what was stored before is {}",
+        db.path(), exists ? "replaced by another file (or moved away)" : "deleted",
+        exists ? "in the file wherever it went" : "lost with the deleted file"));
+  }
 };
 
 namespace internal {
@@ -712,13 +763,13 @@ ProfileStore ProfileStore::OpenReadOnly(const std::string& path) {
         "database '{}': an empty SQLite database; expected a railwear profile-history database",
         path));
   }
-  if (version < kSchemaVersion) {
+  if (version < kOldestReadOnlyVersion) {
     throw InputError(fmt::format(
         "database '{}': schema version {} (written by an older railwear); read-only commands "
-        "read version {} and never migrate a file: run a command that writes to it once "
+        "read versions {} to {} and never migrate a file: run a command that writes to it once "
         "(railwear wear SCENE --db {} --resume, or railwear calibrate CONFIG --db {}) to "
         "migrate it",
-        path, version, kSchemaVersion, path, path));
+        path, version, kOldestReadOnlyVersion, kSchemaVersion, path, path));
   }
   impl->db.Exec("PRAGMA query_only = ON");
   return ProfileStore(std::move(impl));
@@ -755,9 +806,10 @@ ProfileStore ProfileStore::Open(const std::string& path) {
     version = internal::InspectDatabase(c);
   }  // rolled back: it only read
   sqlite3_db_config(c.get(), SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 0, nullptr);
-  c.Exec("PRAGMA foreign_keys = ON");
   if (!impl->in_memory) internal::SwitchToWal(c);
   // All migrations in one transaction: a failure leaves the database at its old version.
+  // Foreign keys are off while they run (MigrateTo5 drops and rebuilds runs) and on afterwards.
+  c.Exec("PRAGMA foreign_keys = OFF");
   if (version < kSchemaVersion) {
     Transaction t(c);
     // Another process may have created or migrated the file between the inspection and this
@@ -766,7 +818,24 @@ ProfileStore ProfileStore::Open(const std::string& path) {
     version = internal::PragmaInt(c, "user_version");
     for (int v = version; v < kSchemaVersion; ++v) internal::kMigrations[v](c);
     c.Exec(fmt::format("PRAGMA user_version = {}", kSchemaVersion));
+    // MigrateTo5 rebuilt runs with foreign keys off: every reference must still resolve.
+    if (Statement check(c, "PRAGMA foreign_key_check"); check.Step()) {
+      throw std::runtime_error(fmt::format(
+          "database '{}': migrating to schema version {} left a dangling reference in table "
+          "'{}'; the file stays at version {}",
+          path, kSchemaVersion, check.Text(0), version));
+    }
     t.Commit();
+  }
+  c.Exec("PRAGMA foreign_keys = ON");  // after the migrations (a no-op inside a transaction)
+  if (!impl->in_memory) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) {
+      throw std::runtime_error(
+          fmt::format("database '{}': the file disappeared while it was being opened", path));
+    }
+    impl->device = st.st_dev;
+    impl->inode = st.st_ino;
   }
   return ProfileStore(std::move(impl));
 }
@@ -775,14 +844,18 @@ const std::string& ProfileStore::path() const { return impl_->db.path(); }
 
 int ProfileStore::SchemaVersion() const { return internal::PragmaInt(impl_->db, "user_version"); }
 
-int64_t ProfileStore::CreateRun(const RunInfo& run) {
-  const Connection& c = impl_->db;
+namespace {
+
+// Inserts the run row inside the caller's transaction and returns its id; InputError for an
+// empty or used name (the caller's transaction then rolls back).
+int64_t InsertRun(const internal::Connection& c, const RunInfo& run) {
   if (run.name.empty()) {
-    throw InputError(fmt::format("database '{}': run name is empty; expected a name", path()));
+    throw InputError(fmt::format("database '{}': run name is empty; expected a name", c.path()));
   }
-  Statement s(c, fmt::format("INSERT INTO runs(name, created_utc, program_version, scene_text, "
-                             "wear_law_json, state) VALUES (?1, coalesce(?2, {}), ?3, ?4, ?5, ?6)",
-                             internal::kNowUtc));
+  internal::Statement s(c, fmt::format("INSERT INTO runs(name, created_utc, program_version, "
+                                       "scene_text, wear_law_json, state) VALUES (?1, coalesce(?2, "
+                                       "{}), ?3, ?4, ?5, ?6)",
+                                       internal::kNowUtc));
   s.Bind(1, run.name);
   if (!run.created_utc.empty()) s.Bind(2, run.created_utc);
   s.Bind(3, run.program_version).Bind(4, run.scene_text).Bind(5, run.wear_law_json);
@@ -793,9 +866,28 @@ int64_t ProfileStore::CreateRun(const RunInfo& run) {
     throw InputError(
         fmt::format("database '{}': a run named '{}' already exists; expected a new "
                     "run name (or resume that run)",
-                    path(), run.name));
+                    c.path(), run.name));
   }
   return sqlite3_last_insert_rowid(c.get());
+}
+
+}  // namespace
+
+int64_t ProfileStore::CreateRun(const RunInfo& run) {
+  Transaction t(impl_->db);
+  const int64_t id = InsertRun(impl_->db, run);
+  impl_->RequireSameFile();
+  t.Commit();
+  return id;
+}
+
+int64_t ProfileStore::CreateRun(const RunInfo& run, const StepRecord& first_step) {
+  Transaction t(impl_->db);
+  const int64_t id = InsertRun(impl_->db, run);
+  WriteStep(id, first_step);
+  impl_->RequireSameFile();
+  t.Commit();
+  return id;
 }
 
 std::optional<RunInfo> ProfileStore::FindRun(const std::string& name) const {
@@ -813,6 +905,7 @@ std::vector<RunInfo> ProfileStore::Runs() const {
 }
 
 void ProfileStore::SetRunState(int64_t run, RunState state) {
+  impl_->RequireSameFile();
   Statement s(impl_->db, "UPDATE runs SET state = ?1 WHERE id = ?2");
   s.Bind(1, ToString(state)).Bind(2, run);
   s.Run();
@@ -862,6 +955,13 @@ std::vector<Distribution> ReadDistributions(const internal::Connection& c, const
 }  // namespace
 
 void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
+  Transaction t(impl_->db);
+  WriteStep(run, step);
+  impl_->RequireSameFile();
+  t.Commit();
+}
+
+void ProfileStore::WriteStep(int64_t run, const StepRecord& step) {
   const Connection& c = impl_->db;
   if (step.profile.size() == 0) {
     throw InputError(
@@ -895,7 +995,6 @@ void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
           path(), run, step.step, d.kind, d.s_m.size(), d.value.size()));
     }
   }
-  Transaction t(c);
   {
     Statement s(c, "SELECT 1 FROM runs WHERE id = ?1");
     s.Bind(1, run);
@@ -951,7 +1050,6 @@ void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
     s.Run();
     WriteDistributions(c, "low_rail_distributions", run, step.step, low.distributions);
   }
-  t.Commit();
 }
 
 std::vector<StepRecord> ProfileStore::Steps(int64_t run) const {
