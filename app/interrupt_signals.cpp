@@ -17,9 +17,14 @@ static_assert(std::atomic<int>::is_always_lock_free);
 
 struct sigaction g_previous_int, g_previous_term;
 
-extern "C" void RecordSignal(int signal) {
+// The first signal is recorded; a second one (Ctrl-C pressed again while a long solve finishes)
+// ends the process at once by the default action, like a kill: every committed step stays stored
+// and --resume continues from it. signal() and raise() are async-signal-safe.
+extern "C" void RecordSignal(int number) {
   int none = 0;
-  g_received.compare_exchange_strong(none, signal);  // keep the first one
+  if (g_received.compare_exchange_strong(none, number)) return;
+  signal(number, SIG_DFL);
+  raise(number);
 }
 
 }  // namespace

@@ -439,9 +439,10 @@ CREATE TABLE low_rail_distributions(
 
 // Version 5: runs.state may be 'interrupted' (issue 17: a run stopped by SIGINT or SIGTERM,
 // its step in flight finished or rolled back). SQLite cannot change a CHECK constraint in place,
-// so the runs table is rebuilt by the documented procedure (sqlite.org/lang_altertable.html,
-// section 7): the caller has switched foreign keys off, so dropping the old table cascades to
-// nothing, and checks the foreign keys before committing.
+// so the runs table is rebuilt by SQLite's documented procedure for other schema changes
+// (sqlite.org/lang_altertable.html: new table, copy, drop, rename): the caller has switched
+// foreign keys off, so dropping the old table cascades to nothing, and checks the foreign keys
+// before committing. The SQL repeats version 1's runs table on purpose: a migration is history.
 void MigrateTo5(const Connection& c) {
   c.Exec(R"sql(
 CREATE TABLE runs_v5(
