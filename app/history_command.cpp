@@ -1,6 +1,7 @@
 // `railwear history ...`: the CLI11 wiring and the six readers of a profile-history database.
 #include "app/history_command.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -68,14 +69,32 @@ std::vector<StepRecord> StepsOrThrow(const ProfileStore& db, const RunInfo& run)
   return steps;
 }
 
-void CheckStep(const ProfileStore& db, const RunInfo& run, const std::vector<StepRecord>& steps,
-               int step, const std::string& what) {
-  if (step < steps.front().step || step > steps.back().step) {
-    throw InputError(
-        fmt::format("database '{}': run '{}': {} {} is out of range; expected a step "
-                    "from {} to {}",
-                    db.path(), run.name, what, step, steps.front().step, steps.back().step));
+// "0-3, 5, 8-9": the stored step numbers as ranges.
+std::string StepRanges(const std::vector<StepRecord>& steps) {
+  std::string out;
+  for (size_t i = 0; i < steps.size();) {
+    size_t j = i;
+    while (j + 1 < steps.size() && steps[j + 1].step == steps[j].step + 1) ++j;
+    out +=
+        (out.empty() ? "" : ", ") + (j == i ? std::to_string(steps[i].step)
+                                            : fmt::format("{}-{}", steps[i].step, steps[j].step));
+    i = j + 1;
   }
+  return out;
+}
+
+// The stored step numbered `step`. Steps are addressed by their stored number, never by their
+// position in `steps` (a run's steps may have gaps: rows deleted by hand, issue 17); InputError
+// (exit 2) naming the run and the steps it has when that number is not stored.
+const StepRecord& StepOrThrow(const ProfileStore& db, const RunInfo& run,
+                              const std::vector<StepRecord>& steps, int step,
+                              const std::string& what) {
+  const auto it = std::find_if(steps.begin(), steps.end(),
+                               [step](const StepRecord& s) { return s.step == step; });
+  if (it != steps.end()) return *it;
+  throw InputError(fmt::format(
+      "database '{}': run '{}' has no step {} ({}); expected one of its stored steps: {}",
+      db.path(), run.name, step, what, StepRanges(steps)));
 }
 
 // The rail --rail names; InputError for another name.
@@ -390,8 +409,7 @@ void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) 
   const RunInfo run = FindRunOrThrow(db, p.run);
   const std::vector<StepRecord> steps = StepsOrThrow(db, run);
   const int step_number = p.step.value_or(steps.back().step);
-  CheckStep(db, run, steps, step_number, "--step");
-  const StepRecord& step = steps[static_cast<size_t>(step_number - steps.front().step)];
+  const StepRecord& step = StepOrThrow(db, run, steps, step_number, "--step");
   const RailSide rail = RailOrThrow(p);
   const Profile profile = LoadRailProfile(db, run, step_number, rail);
 
@@ -423,10 +441,8 @@ void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
   const ProfileStore db = OpenExisting(o.db);
   const RunInfo run = FindRunOrThrow(db, d.run);
   const std::vector<StepRecord> steps = StepsOrThrow(db, run);
-  CheckStep(db, run, steps, d.from_step, "step A =");
-  CheckStep(db, run, steps, d.to_step, "step B =");
-  const StepRecord& a = steps[static_cast<size_t>(d.from_step - steps.front().step)];
-  const StepRecord& b = steps[static_cast<size_t>(d.to_step - steps.front().step)];
+  const StepRecord& a = StepOrThrow(db, run, steps, d.from_step, "step A");
+  const StepRecord& b = StepOrThrow(db, run, steps, d.to_step, "step B");
   const RailSide rail = RailOrThrow(d);
   const Profile unworn = LoadRailProfile(db, run, steps.front().step, rail);
   const Profile pa = LoadRailProfile(db, run, a.step, rail);

@@ -1,5 +1,6 @@
 // railwear command-line entry point. Exit codes: 0 ok, 1 runtime or numerical failure,
-// 2 bad input or usage. Errors go to stderr as "railwear: error: MESSAGE".
+// 2 bad input or usage, 130 / 143 a `wear` run stopped by SIGINT / SIGTERM (its run marked
+// interrupted, resumable). Errors go to stderr as "railwear: error: MESSAGE".
 #include <exception>
 #include <iostream>
 
@@ -12,6 +13,7 @@
 #include "app/fem_reference_command.h"
 #include "app/history_command.h"
 #include "app/init_command.h"
+#include "app/interrupt_signals.h"
 #include "app/profile_command.h"
 #include "app/traffic_command.h"
 #include "app/wear_command.h"
@@ -52,6 +54,10 @@ int main(int argc, char** argv) {
     Fail(e.what(), kExitBadInput);
     std::cerr << "Run with --help for more information.\n";
     return kExitBadInput;
+  } catch (const railwear::app::Interrupted& e) {
+    // SIGINT / SIGTERM: the stored data is in order (app/interrupt_signals.h); 130 / 143.
+    std::cerr << "railwear: " << e.what() << "\n";
+    return e.exit_code();
   } catch (const railwear::InputError& e) {
     return Fail(e.what(), kExitBadInput);
   } catch (const std::exception& e) {

@@ -17,6 +17,7 @@
 #include "app/contact_output.h"
 #include "app/gnuplot.h"
 #include "app/history_plot.h"
+#include "app/interrupt_signals.h"
 #include "app/number_format.h"
 #include "app/scene.h"
 #include "core/numerics/input_error.h"
@@ -465,6 +466,10 @@ void RunWearCommand(const WearCommandOptions& options) {
                                                   : std::string(kDefaultDatabase);
   const std::string name = options.run.value_or(scene.name);
 
+  // From here on SIGINT and SIGTERM only set a flag: the wear loop stops between load cases
+  // (dropping the step in flight) or after a step's commit, and the run is marked interrupted.
+  const InterruptSignals signals;
+  study.options.cancel = [] { return InterruptSignals::Received() != 0; };
   ProfileStore store = ProfileStore::Open(db);
   int64_t run_id = 0;
   WearState state;
@@ -484,9 +489,16 @@ void RunWearCommand(const WearCommandOptions& options) {
           db, name, options.scene_path));
     }
     run_id = existing->id;
-    const std::optional<int> last = store.LastStep(run_id);
+    std::optional<int> last = store.LastStep(run_id);
     if (!last) {
-      throw InputError(fmt::format("{}: run '{}' has no stored step to resume from", db, name));
+      // A run whose creation and step 0 were two commits (railwear before issue 17), killed
+      // between them. Step 0 is the scene's unworn rails, and the scene text is the stored one.
+      store.AppendStep(run_id, MakeInitialRecord(internal::InitialState(study)));
+      last = 0;
+      std::cerr << fmt::format(
+          "railwear: run '{}' had no stored step (its start was interrupted): stored its step 0 "
+          "from the scene\n",
+          name);
     }
     unworn = UnwornRails::Of(StateFromStore(store, run_id, 0));
     state = StateFromStore(store, run_id, *last);
@@ -497,8 +509,10 @@ void RunWearCommand(const WearCommandOptions& options) {
           name, state.low_rail ? "two rails" : "one rail",
           study.low_rail_profile ? "two ([track])" : "one ([rail])"));
     }
-    std::cerr << fmt::format("railwear: resuming run '{}' from step {} ({:.4g} passes)\n", name,
-                             state.step, state.passes);
+    std::cerr << fmt::format(
+        "railwear: resuming run '{}' from step {} ({:.4g} passes; it was {})\n", name, state.step,
+        state.passes, ToString(existing->state));
+    store.SetRunState(run_id, RunState::kRunning);
   } else {
     if (existing) {
       throw InputError(fmt::format(
@@ -513,10 +527,9 @@ void RunWearCommand(const WearCommandOptions& options) {
     info.program_version = RAILWEAR_VERSION;
     info.scene_text = scene.text;
     info.wear_law_json = WearLawJson(study).dump();
-    run_id = store.CreateRun(info);
-    store.AppendStep(run_id, MakeInitialRecord(state));
+    // One transaction: a kill at any moment leaves either no run or a run with its step 0.
+    run_id = store.CreateRun(info, MakeInitialRecord(state));
   }
-  store.SetRunState(run_id, RunState::kRunning);
 
   const double total = TotalPasses(study);
   Progress progress(total, state.passes);
@@ -537,10 +550,28 @@ void RunWearCommand(const WearCommandOptions& options) {
         options.steps);
   } catch (...) {
     progress.Finish();
-    store.SetRunState(run_id, RunState::kAborted);
+    try {
+      store.SetRunState(run_id, RunState::kAborted);
+    } catch (const std::exception&) {
+      // The failure itself says more (e.g. the database file was deleted under the run).
+    }
     throw;
   }
   progress.Finish();
+  if (const int signal = InterruptSignals::Received()) {
+    store.SetRunState(run_id, summary.finished ? RunState::kComplete : RunState::kInterrupted);
+    throw Interrupted(
+        signal,
+        summary.finished
+            ? fmt::format("{}: run '{}' in {} is complete ({} steps); nothing to resume",
+                          SignalName(signal), name, db, summary.state.step)
+            : fmt::format(
+                  "{}: run '{}' in {} interrupted after step {} ({:.4g} passes; the step in "
+                  "flight, if any, was not stored); continue it with `railwear wear {} --db {} "
+                  "--run '{}' --resume`",
+                  SignalName(signal), name, db, summary.state.step, summary.state.passes,
+                  options.scene_path, db, name));
+  }
   store.SetRunState(run_id, summary.finished ? RunState::kComplete : RunState::kRunning);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -2,9 +2,13 @@
 // runs a worn-profile evolution study (wear/wear_simulation.h) and stores every step in the
 // profile history database (profiles_db/), one transaction per step.
 //
-// A new run stores step 0 (the unworn rail) first. --resume continues the named run from its
-// last complete step (a run killed with kill -9 loses at most the step in flight) and ends with
-// the same profile as an uninterrupted run; it refuses a scene that differs from the stored one.
+// A new run is stored with its step 0 (the unworn rail) in one transaction. --resume continues
+// the named run from its last complete step (a run killed with kill -9 loses at most the step in
+// flight; a run without steps gets its step 0 from the scene) and ends with the same profile as
+// an uninterrupted run; it refuses a scene that differs from the stored one. SIGINT and SIGTERM
+// finish the step being committed or drop the one being solved, mark the run "interrupted" and
+// end with Interrupted (exit 130 / 143; app/interrupt_signals.h). A database file deleted or
+// replaced under the run stops it with std::runtime_error (exit 1) at the next commit.
 // Progress goes to stderr: a progress bar when stderr is a terminal, one log line per step
 // otherwise. The summary table goes to stdout.
 #pragma once
@@ -31,7 +35,8 @@ struct WearCommandOptions {
 void SetupWear(CLI::App& app);
 
 // Throws InputError for a bad scene, database or option (exit 2); std::runtime_error for a
-// numerical failure (exit 1; the steps before it stay stored and the run can be resumed).
+// numerical failure (exit 1; the steps before it stay stored and the run can be resumed) or a
+// database file that vanished; Interrupted after SIGINT / SIGTERM.
 void RunWearCommand(const WearCommandOptions& options);
 
 // The database a wear or history command uses when --db is not given.

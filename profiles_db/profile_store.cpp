@@ -4,6 +4,7 @@
 #include "profiles_db/profile_store.h"
 
 #include <sqlite3.h>
+#include <sys/stat.h>
 
 #include <bit>
 #include <cctype>
@@ -436,11 +437,35 @@ CREATE TABLE low_rail_distributions(
 )sql");
 }
 
-// Version 5: each vehicle traffic entry's curving solution of a step (issue 15): the next step
+// Version 5: runs.state may be 'interrupted' (issue 17: a run stopped by SIGINT or SIGTERM,
+// its step in flight finished or rolled back). SQLite cannot change a CHECK constraint in place,
+// so the runs table is rebuilt by SQLite's documented procedure for other schema changes
+// (sqlite.org/lang_altertable.html: new table, copy, drop, rename): the caller has switched
+// foreign keys off, so dropping the old table cascades to nothing, and checks the foreign keys
+// before committing. The SQL repeats version 1's runs table on purpose: a migration is history.
+void MigrateTo5(const Connection& c) {
+  c.Exec(R"sql(
+CREATE TABLE runs_v5(
+  id              INTEGER PRIMARY KEY,
+  name            TEXT NOT NULL UNIQUE,
+  created_utc     TEXT NOT NULL,
+  program_version TEXT NOT NULL,
+  scene_text      TEXT NOT NULL,
+  wear_law_json   TEXT NOT NULL,
+  state           TEXT NOT NULL
+                  CHECK (state IN ('running', 'complete', 'aborted', 'interrupted')));
+INSERT INTO runs_v5(id, name, created_utc, program_version, scene_text, wear_law_json, state)
+  SELECT id, name, created_utc, program_version, scene_text, wear_law_json, state FROM runs;
+DROP TABLE runs;
+ALTER TABLE runs_v5 RENAME TO runs;
+)sql");
+}
+
+// Version 6: each vehicle traffic entry's curving solution of a step (issue 15): the next step
 // starts from it, so a resumed run continues exactly where it stopped. Older runs have no rows
 // here (their steps start from the unworn rails' solution). state: n float64; jacobian: n x n
 // float64 in column order, or empty.
-void MigrateTo5(const Connection& c) {
+void MigrateTo6(const Connection& c) {
   c.Exec(R"sql(
 CREATE TABLE curving_starts(
   run_id        INTEGER NOT NULL,
@@ -455,8 +480,8 @@ CREATE TABLE curving_starts(
 }
 
 using Migration = void (*)(const Connection&);
-constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3, &MigrateTo4,
-                                     &MigrateTo5};
+constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3,
+                                     &MigrateTo4, &MigrateTo5, &MigrateTo6};
 static_assert(std::size(kMigrations) == ProfileStore::kSchemaVersion);
 
 const char* kNowUtc = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
@@ -635,6 +660,8 @@ std::string ToString(RunState state) {
       return "complete";
     case RunState::kAborted:
       return "aborted";
+    case RunState::kInterrupted:
+      return "interrupted";
   }
   return "running";
 }
@@ -643,13 +670,37 @@ RunState RunStateFromString(const std::string& text) {
   if (text == "running") return RunState::kRunning;
   if (text == "complete") return RunState::kComplete;
   if (text == "aborted") return RunState::kAborted;
-  throw InputError(fmt::format("run state '{}': expected running, complete or aborted", text));
+  if (text == "interrupted") return RunState::kInterrupted;
+  throw InputError(
+      fmt::format("run state '{}': expected running, complete, aborted or interrupted", text));
 }
 
 struct ProfileStore::Impl {
   Connection db;
   bool in_memory = false;
   bool read_only = false;  // OpenReadOnly: db is a read-only (or immutable) connection
+  // The file's identity (st_dev, st_ino) when Open accepted it, for RequireSameFile.
+  dev_t device = 0;
+  ino_t inode = 0;
+
+  // Throws std::runtime_error (a failure: exit 1) when the path no longer names the file this
+  // connection writes: the file was deleted, or another file was renamed over it (or it was
+  // moved away). Writes would then go to a file nobody can open by its name: every step stored
+  // from then on would be lost when the program ends. Called before each commit.
+  void RequireSameFile() const {
+    if (in_memory) return;
+    int moved = 0;  // SQLite's own check of its open file against the path (inode or gone)
+    sqlite3_file_control(db.get(), "main", SQLITE_FCNTL_HAS_MOVED, &moved);
+    struct stat now {};
+    const bool exists = ::stat(db.path().c_str(), &now) == 0;
+    if (moved == 0 && exists && now.st_dev == device && now.st_ino == inode) return;
+    throw std::runtime_error(fmt::format(
+        "database '{}': the file was {} while railwear was writing to it (the path no longer "
+        "names the file railwear opened); nothing more is written to it: the write in flight "
+        "was rolled back, and what was stored before is {}",
+        db.path(), exists ? "replaced by another file (or moved away)" : "deleted",
+        exists ? "in the file wherever it went" : "lost with the deleted file"));
+  }
 };
 
 namespace internal {
@@ -731,13 +782,13 @@ ProfileStore ProfileStore::OpenReadOnly(const std::string& path) {
         "database '{}': an empty SQLite database; expected a railwear profile-history database",
         path));
   }
-  if (version < kSchemaVersion) {
+  if (version < kOldestReadOnlyVersion) {
     throw InputError(fmt::format(
         "database '{}': schema version {} (written by an older railwear); read-only commands "
-        "read version {} and never migrate a file: run a command that writes to it once "
+        "read versions {} to {} and never migrate a file: run a command that writes to it once "
         "(railwear wear SCENE --db {} --resume, or railwear calibrate CONFIG --db {}) to "
         "migrate it",
-        path, version, kSchemaVersion, path, path));
+        path, version, kOldestReadOnlyVersion, kSchemaVersion, path, path));
   }
   impl->db.Exec("PRAGMA query_only = ON");
   return ProfileStore(std::move(impl));
@@ -774,9 +825,10 @@ ProfileStore ProfileStore::Open(const std::string& path) {
     version = internal::InspectDatabase(c);
   }  // rolled back: it only read
   sqlite3_db_config(c.get(), SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 0, nullptr);
-  c.Exec("PRAGMA foreign_keys = ON");
   if (!impl->in_memory) internal::SwitchToWal(c);
   // All migrations in one transaction: a failure leaves the database at its old version.
+  // Foreign keys are off while they run (MigrateTo5 drops and rebuilds runs) and on afterwards.
+  c.Exec("PRAGMA foreign_keys = OFF");
   if (version < kSchemaVersion) {
     Transaction t(c);
     // Another process may have created or migrated the file between the inspection and this
@@ -785,7 +837,24 @@ ProfileStore ProfileStore::Open(const std::string& path) {
     version = internal::PragmaInt(c, "user_version");
     for (int v = version; v < kSchemaVersion; ++v) internal::kMigrations[v](c);
     c.Exec(fmt::format("PRAGMA user_version = {}", kSchemaVersion));
+    // MigrateTo5 rebuilt runs with foreign keys off: every reference must still resolve.
+    if (Statement check(c, "PRAGMA foreign_key_check"); check.Step()) {
+      throw std::runtime_error(fmt::format(
+          "database '{}': migrating to schema version {} left a dangling reference in table "
+          "'{}'; the file stays at version {}",
+          path, kSchemaVersion, check.Text(0), version));
+    }
     t.Commit();
+  }
+  c.Exec("PRAGMA foreign_keys = ON");  // after the migrations (a no-op inside a transaction)
+  if (!impl->in_memory) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) {
+      throw std::runtime_error(
+          fmt::format("database '{}': the file disappeared while it was being opened", path));
+    }
+    impl->device = st.st_dev;
+    impl->inode = st.st_ino;
   }
   return ProfileStore(std::move(impl));
 }
@@ -794,14 +863,18 @@ const std::string& ProfileStore::path() const { return impl_->db.path(); }
 
 int ProfileStore::SchemaVersion() const { return internal::PragmaInt(impl_->db, "user_version"); }
 
-int64_t ProfileStore::CreateRun(const RunInfo& run) {
-  const Connection& c = impl_->db;
+namespace {
+
+// Inserts the run row inside the caller's transaction and returns its id; InputError for an
+// empty or used name (the caller's transaction then rolls back).
+int64_t InsertRun(const internal::Connection& c, const RunInfo& run) {
   if (run.name.empty()) {
-    throw InputError(fmt::format("database '{}': run name is empty; expected a name", path()));
+    throw InputError(fmt::format("database '{}': run name is empty; expected a name", c.path()));
   }
-  Statement s(c, fmt::format("INSERT INTO runs(name, created_utc, program_version, scene_text, "
-                             "wear_law_json, state) VALUES (?1, coalesce(?2, {}), ?3, ?4, ?5, ?6)",
-                             internal::kNowUtc));
+  internal::Statement s(c, fmt::format("INSERT INTO runs(name, created_utc, program_version, "
+                                       "scene_text, wear_law_json, state) VALUES (?1, coalesce(?2, "
+                                       "{}), ?3, ?4, ?5, ?6)",
+                                       internal::kNowUtc));
   s.Bind(1, run.name);
   if (!run.created_utc.empty()) s.Bind(2, run.created_utc);
   s.Bind(3, run.program_version).Bind(4, run.scene_text).Bind(5, run.wear_law_json);
@@ -812,9 +885,28 @@ int64_t ProfileStore::CreateRun(const RunInfo& run) {
     throw InputError(
         fmt::format("database '{}': a run named '{}' already exists; expected a new "
                     "run name (or resume that run)",
-                    path(), run.name));
+                    c.path(), run.name));
   }
   return sqlite3_last_insert_rowid(c.get());
+}
+
+}  // namespace
+
+int64_t ProfileStore::CreateRun(const RunInfo& run) {
+  Transaction t(impl_->db);
+  const int64_t id = InsertRun(impl_->db, run);
+  impl_->RequireSameFile();
+  t.Commit();
+  return id;
+}
+
+int64_t ProfileStore::CreateRun(const RunInfo& run, const StepRecord& first_step) {
+  Transaction t(impl_->db);
+  const int64_t id = InsertRun(impl_->db, run);
+  WriteStep(id, first_step);
+  impl_->RequireSameFile();
+  t.Commit();
+  return id;
 }
 
 std::optional<RunInfo> ProfileStore::FindRun(const std::string& name) const {
@@ -832,6 +924,7 @@ std::vector<RunInfo> ProfileStore::Runs() const {
 }
 
 void ProfileStore::SetRunState(int64_t run, RunState state) {
+  impl_->RequireSameFile();
   Statement s(impl_->db, "UPDATE runs SET state = ?1 WHERE id = ?2");
   s.Bind(1, ToString(state)).Bind(2, run);
   s.Run();
@@ -881,6 +974,13 @@ std::vector<Distribution> ReadDistributions(const internal::Connection& c, const
 }  // namespace
 
 void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
+  Transaction t(impl_->db);
+  WriteStep(run, step);
+  impl_->RequireSameFile();
+  t.Commit();
+}
+
+void ProfileStore::WriteStep(int64_t run, const StepRecord& step) {
   const Connection& c = impl_->db;
   if (step.profile.size() == 0) {
     throw InputError(
@@ -914,7 +1014,6 @@ void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
           path(), run, step.step, d.kind, d.s_m.size(), d.value.size()));
     }
   }
-  Transaction t(c);
   {
     Statement s(c, "SELECT 1 FROM runs WHERE id = ?1");
     s.Bind(1, run);
@@ -996,7 +1095,6 @@ void ProfileStore::AppendStep(int64_t run, const StepRecord& step) {
       }
     }
   }
-  t.Commit();
 }
 
 std::vector<StepRecord> ProfileStore::Steps(int64_t run) const {

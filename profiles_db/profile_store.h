@@ -9,12 +9,13 @@
 // A study database may also hold influence-constant calibrations (`railwear calibrate`), each
 // with the text of every input it was made from.
 //
-// Schema version 5 (PRAGMA user_version = 5, PRAGMA application_id = kApplicationId), also
+// Schema version 6 (PRAGMA user_version = 6, PRAGMA application_id = kApplicationId), also
 // documented for users of the sqlite3 shell in profiles_db/SCHEMA.md:
 //
 //   meta(key TEXT PRIMARY KEY, value TEXT)          -- ('format', 'railwear-profile-history'), ...
 //   runs(id INTEGER PRIMARY KEY, name TEXT UNIQUE, created_utc TEXT, program_version TEXT,
-//        scene_text TEXT, wear_law_json TEXT, state TEXT)   -- state: running|complete|aborted
+//        scene_text TEXT, wear_law_json TEXT, state TEXT)   -- running|complete|aborted|interrupted
+//        (v5)
 //   steps(run_id, step, passes, mgt, worn_area_mm2, max_depth_mm, max_depth_y_mm,
 //         w1_mm, w2_mm, w3_mm, smoothing_area_error, created_utc, PRIMARY KEY(run_id, step))
 //   profiles(run_id, step, n_points, yz BLOB, PRIMARY KEY(run_id, step))
@@ -37,18 +38,21 @@
 //         -- the low rail of a two-rail study, as steps/profiles/distributions hold the high
 //         -- (or only) rail; no rows for single-rail runs
 //   curving_starts(run_id, step, traffic_index, state BLOB, jacobian BLOB,
-//                  PRIMARY KEY(run_id, step, traffic_index))               -- since v5
+//                  PRIMARY KEY(run_id, step, traffic_index))               -- since v6
 //         -- each vehicle traffic entry's curving solution at the step (float64; the Jacobian
 //         -- n x n in column order, or empty): the next step's start
 //
 // Migrations (applied on open, all of them in one transaction): 0 -> 1 creates the schema;
 // 1 -> 2 adds the nullable column distributions.s (rows written by version 1 keep s NULL);
 // 2 -> 3 adds the calibrations and calibration_inputs tables; 3 -> 4 adds low_rail_steps and
-// low_rail_distributions (older runs have no rows there: they are single-rail runs); 4 -> 5 adds
-// curving_starts (older runs have no rows there: their steps start from the unworn solution).
+// low_rail_distributions (older runs have no rows there: they are single-rail runs); 4 -> 5
+// rebuilds runs to allow state 'interrupted' (foreign keys off meanwhile, checked before commit);
+// 5 -> 6 adds curving_starts (older runs have no rows there: their steps start from the unworn
+// solution).
 //
 // The database runs in WAL mode with foreign keys on. Each AppendStep is one transaction: a crash
-// loses at most the step in flight. Opening never modifies a file it refuses.
+// loses at most the step in flight; CreateRun(run, first_step) stores a run with its step 0 in
+// one. Opening never modifies a file it refuses.
 //
 // Errors: bad input (a file that is not a railwear database, a duplicate run name, a step out of
 // order, a write statement given to Query) throws InputError naming the file and what was
@@ -65,8 +69,11 @@
 
 namespace railwear {
 
-enum class RunState { kRunning, kComplete, kAborted };
-// "running", "complete", "aborted"; FromString throws InputError for anything else.
+// running: started (or stopped by --steps, or killed: resumable); complete: the total reached;
+// aborted: stopped by a failure; interrupted: stopped by SIGINT or SIGTERM after its last
+// complete step (resumable; since schema version 5).
+enum class RunState { kRunning, kComplete, kAborted, kInterrupted };
+// "running", "complete", "aborted", "interrupted"; FromString throws InputError for anything else.
 std::string ToString(RunState state);
 RunState RunStateFromString(const std::string& text);
 
@@ -176,7 +183,11 @@ struct QueryResult {
 class ProfileStore {
  public:
   // Schema version written by this program (PRAGMA user_version).
-  static constexpr int kSchemaVersion = 5;
+  static constexpr int kSchemaVersion = 6;
+  // The oldest schema OpenReadOnly reads as it is: version 5 only widened runs.state's CHECK
+  // (adding 'interrupted') and version 6 only added curving_starts (read when present), so a
+  // version-4 or -5 file reads the same; older ones need migrating.
+  static constexpr int kOldestReadOnlyVersion = 4;
   // PRAGMA application_id of railwear databases: "RWDB" in ASCII.
   static constexpr int32_t kApplicationId = 0x52574442;
   // Value of meta.format in railwear databases.
@@ -209,11 +220,20 @@ class ProfileStore {
 
   // Stores a new run and returns its id. Throws InputError when the name is empty or already used.
   int64_t CreateRun(const RunInfo& run);
+  // Stores a new run and its first step (step 0, the unworn rails) in one transaction: a run
+  // exists with its step 0 or not at all, whenever the process is killed (issue 17). Throws as
+  // CreateRun and AppendStep, storing nothing.
+  int64_t CreateRun(const RunInfo& run, const StepRecord& first_step);
   std::optional<RunInfo> FindRun(const std::string& name) const;
   // All runs, in creation (id) order.
   std::vector<RunInfo> Runs() const;
   // Throws InputError for an unknown run id.
   void SetRunState(int64_t run, RunState state);
+  // Every write (CreateRun, AppendStep, SetRunState) first checks that the database's path still
+  // names the file this store opened (SQLite's SQLITE_FCNTL_HAS_MOVED and the file's st_dev and
+  // st_ino recorded at Open): when the file was deleted, or replaced by or renamed over with
+  // another one while the store was open, it rolls back and throws std::runtime_error saying so
+  // (writing on would store steps that vanish with the deleted file). Not for ":memory:".
 
   // Writes the step row, its profile, load cases and distributions, the low rail's when present
   // and the curving starts, in one transaction (all or nothing). Throws InputError when the run
@@ -252,6 +272,8 @@ class ProfileStore {
  private:
   struct Impl;
   explicit ProfileStore(std::unique_ptr<Impl> impl);
+  // AppendStep's writes inside the caller's transaction (checks included).
+  void WriteStep(int64_t run, const StepRecord& step);
   std::unique_ptr<Impl> impl_;
 };
 

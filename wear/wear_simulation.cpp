@@ -1,6 +1,7 @@
 #include "wear/wear_simulation.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -174,9 +175,16 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
 std::vector<CaseOutcome> SolveLoadCases(const WearStudy& study, const RailTarget targets[2],
                                         const std::vector<LoadCase>& cases) {
   std::vector<CaseOutcome> outcomes(cases.size());
+  const std::function<bool()>& cancel = study.options.cancel;
+  std::atomic<bool> cancelled{false};
   ParallelFor(static_cast<int>(cases.size()), study.options.threads, [&](int c) {
+    if (cancel && (cancelled || cancel())) {
+      cancelled = true;  // the remaining cases are skipped and the step dropped
+      return;
+    }
     outcomes[c] = SolveLoadCase(study, targets[static_cast<int>(cases[c].rail)], cases[c]);
   });
+  if (cancelled) throw WearCancelled();
   return outcomes;
 }
 
@@ -504,7 +512,14 @@ WearRunSummary RunWear(const WearStudy& study, const UnwornRails& unworn, WearSt
       break;
     }
     if (max_steps > 0 && summary.steps_done >= max_steps) break;
-    StepResult step = RunWearStep(run, unworn, summary.state, left);
+    StepResult step;
+    try {
+      if (run.options.cancel && run.options.cancel()) throw WearCancelled();
+      step = RunWearStep(run, unworn, summary.state, left);
+    } catch (const WearCancelled&) {
+      summary.cancelled = true;
+      break;
+    }
     ++summary.steps_done;
     summary.state = step.state;
     if (on_step && !on_step(step)) break;

@@ -31,6 +31,7 @@
 
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,19 @@ struct WearOptions {
   double damage_layer_m = 5e-4;
   // Worker threads for the load cases; 0 = std::thread::hardware_concurrency().
   int threads = 0;
+  // Cancellation (issue 17), empty: never. RunWear asks it before each step, and every step
+  // before each of its load cases (from the worker threads: it must be thread-safe, e.g. read an
+  // atomic flag). Once it returns true the step in flight is dropped, never handed to the step
+  // callback, and RunWear returns with WearRunSummary::cancelled. The library installs no
+  // signal handler: app/ sets the flag from its own.
+  std::function<bool()> cancel = {};
+};
+
+// Thrown by RunWearStep when WearOptions::cancel returned true during the step (RunWear catches
+// it and reports WearRunSummary::cancelled).
+class WearCancelled : public std::runtime_error {
+ public:
+  WearCancelled() : std::runtime_error("wear step cancelled") {}
 };
 
 // Everything a wear run needs: the contact set-up of every load case (base; rail_material needs
@@ -197,23 +211,25 @@ struct StepResult {
 using WearStepCallback = std::function<bool(const StepResult&)>;
 
 struct WearRunSummary {
-  int steps_done = 0;     // steps completed in this call
-  bool finished = false;  // the total (passes or MGT) is reached
-  WearState state;        // the last state
+  int steps_done = 0;      // steps completed in this call
+  bool finished = false;   // the total (passes or MGT) is reached
+  bool cancelled = false;  // WearOptions::cancel stopped it (a step in flight was dropped)
+  WearState state;         // the last state
 };
 
 // Runs steps from `start` until the total is reached, `max_steps` steps were done in this call
-// (<= 0: no limit) or the callback returns false. `unworn` are the step-0 profiles (the wear
-// measures are taken against them; a two-rail study needs both). `study` must have passed
-// ValidateWearStudy, once per input: ReadWearScene (app/) runs it before any database is touched,
-// MakeInitialState for library callers; neither this loop nor its steps check it again. Throws
-// std::runtime_error when a load case fails to converge (the steps before it are complete and were
-// handed out).
+// (<= 0: no limit), the callback returns false or study.options.cancel returns true. `unworn` are
+// the step-0 profiles (the wear measures are taken against them; a two-rail study needs both).
+// `study` must have passed ValidateWearStudy, once per input: ReadWearScene (app/) runs it before
+// any database is touched, MakeInitialState for library callers; neither this loop nor its steps
+// check it again. Throws std::runtime_error when a load case fails to converge (the steps before it
+// are complete and were handed out).
 WearRunSummary RunWear(const WearStudy& study, const UnwornRails& unworn, WearState start,
                        const WearStepCallback& on_step, int max_steps = 0);
 
 // One step from `state` (exposed for tests and benchmarks): solves the load cases and returns
-// the step. `passes_left` caps the step's passes.
+// the step. `passes_left` caps the step's passes. Throws WearCancelled when
+// study.options.cancel returns true before a load case.
 StepResult RunWearStep(const WearStudy& study, const UnwornRails& unworn, const WearState& state,
                        double passes_left);
 

@@ -3,8 +3,9 @@
 // distributions and load-case JSON, and a run without steps), then the built binary
 // (RAILWEAR_BINARY) runs each subcommand: tables, the profile round trip through CSV/BAN/JSON, the
 // wear between steps against hand calculations, plots, read-only SQL, and the exit code 2 cases
-// (unknown run, step out of range, write statements, a missing database that must not be created,
-// foreign files left untouched).
+// (unknown run, a step not stored (also across a gap), write statements, a missing database that
+// must not be created, foreign files left untouched).
+#include <sqlite3.h>
 #include <sys/wait.h>
 
 #include <cmath>
@@ -281,8 +282,8 @@ TEST_F(HistoryTest, ProfileBadStepAndFormatExitTwo) {
   const Outcome step = Run("history --db study.rwdb profile baseline --step 7");
   EXPECT_EQ(step.exit_code, 2);
   EXPECT_TRUE(Contains(step.err,
-                       "railwear: error: database 'study.rwdb': run 'baseline': "
-                       "--step 7 is out of range; expected a step from 0 to 2"));
+                       "railwear: error: database 'study.rwdb': run 'baseline' has no step 7 "
+                       "(--step); expected one of its stored steps: 0-2"));
   EXPECT_EQ(step.out, "");
   const Outcome format = Run("history --db study.rwdb profile baseline --format xml");
   EXPECT_EQ(format.exit_code, 2);
@@ -328,7 +329,43 @@ TEST_F(HistoryTest, DiffMatchesHandCalculationAndAddsUp) {
 
   const Outcome bad = Run("history --db study.rwdb diff baseline 0 3");
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_TRUE(Contains(bad.err, "run 'baseline': step B = 3 is out of range"));
+  EXPECT_TRUE(Contains(bad.err,
+                       "run 'baseline' has no step 3 (step B); expected one of its "
+                       "stored steps: 0-2"));
+}
+
+// Issue 17: steps are addressed by their stored number, not their position. With step 1 deleted
+// by hand (rows of another program), `diff 0 2` compares step 0 with step 2 (it read past the end
+// of the vector before), and step 1 is an error naming the steps there are.
+TEST_F(HistoryTest, StepsAreAddressedByStoredNumberAcrossAGap) {
+  sqlite3* raw = nullptr;
+  ASSERT_EQ(sqlite3_open((dir_ / "study.rwdb").c_str(), &raw), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(raw,
+                         "PRAGMA foreign_keys = ON; DELETE FROM steps WHERE step = 1 AND run_id = "
+                         "(SELECT id FROM runs WHERE name = 'baseline')",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(raw);
+
+  const Outcome diff = Run("history --db study.rwdb diff baseline 0 2 --json");
+  ASSERT_EQ(diff.exit_code, 0) << diff.err;
+  const nlohmann::json j = nlohmann::json::parse(diff.out);
+  EXPECT_EQ(j["from"]["step"], 0);
+  EXPECT_EQ(j["to"]["step"], 2);
+  EXPECT_EQ(j["to"]["mgt"].get<double>(), stored_[2].mgt);
+  EXPECT_NEAR(j["w3_mm"].get<double>(), 1.0, kSplineTol_mm);  // step 2's 1 mm bump
+
+  const Outcome profile = Run("history --db study.rwdb profile baseline --step 2 --format json");
+  ASSERT_EQ(profile.exit_code, 0) << profile.err;
+  EXPECT_EQ(nlohmann::json::parse(profile.out)["mgt"].get<double>(), stored_[2].mgt);
+
+  for (const char* args : {"diff baseline 0 1", "diff baseline 1 2", "profile baseline --step 1"}) {
+    const Outcome gap = Run(std::string("history --db study.rwdb ") + args);
+    EXPECT_EQ(gap.exit_code, 2) << args;
+    EXPECT_TRUE(Contains(gap.err, "run 'baseline' has no step 1"));
+    EXPECT_TRUE(Contains(gap.err, "expected one of its stored steps: 0, 2"));
+    EXPECT_EQ(gap.out, "");
+  }
 }
 
 TEST_F(HistoryTest, PlotWritesThreePngs) {

@@ -620,6 +620,96 @@ TEST(ProfileStore, FailedStepLeavesNothing) {
   EXPECT_EQ(db.LastStep(run), 1);
 }
 
+// Issue 17: a run and its step 0 are one transaction. A step 0 that fails leaves no run, so the
+// name is free for the next attempt (before, a kill between the two commits left a run without
+// steps that could neither be resumed nor created again).
+TEST(ProfileStore, CreateRunWithItsFirstStepIsAllOrNothing) {
+  ProfileStore db = ProfileStore::Open(":memory:");
+  StepRecord bad = TestStep(0);
+  bad.profile = Profile();
+  ExpectInputError([&] { db.CreateRun(TestRun("r"), bad); }, {"the profile is empty"});
+  EXPECT_FALSE(db.FindRun("r").has_value());
+  ExpectInputError([&] { db.CreateRun(TestRun("r"), TestStep(1)); }, {"expected step 0"});
+  EXPECT_FALSE(db.FindRun("r").has_value());
+  const int64_t run = db.CreateRun(TestRun("r"), TestStep(0));
+  EXPECT_EQ(db.LastStep(run), 0);
+  EXPECT_EQ(db.LoadProfile(run, 0).points(), TestStep(0).profile.points());
+  ExpectInputError([&] { db.CreateRun(TestRun("r"), TestStep(0)); }, {"already exists"});
+  EXPECT_EQ(db.Runs().size(), 1u);
+}
+
+// Schema 5: the state 'interrupted' (a run stopped by SIGINT/SIGTERM) round-trips; a version-1
+// file migrated to 5 keeps its runs, and its foreign keys still cascade after runs was rebuilt.
+TEST(ProfileStore, InterruptedStateRoundTripsAfterMigratingTheRunsTable) {
+  EXPECT_EQ(ToString(RunState::kInterrupted), "interrupted");
+  EXPECT_EQ(RunStateFromString("interrupted"), RunState::kInterrupted);
+  ExpectInputError([] { RunStateFromString("paused"); }, {"'paused'", "interrupted"});
+  TempDir tmp;
+  const std::string path = tmp.File("v1.rwdb");
+  RawExec(path, Version1Database());
+  ProfileStore db = ProfileStore::Open(path);
+  EXPECT_EQ(db.SchemaVersion(), 5);
+  const auto old = db.FindRun("old");
+  ASSERT_TRUE(old.has_value());
+  EXPECT_EQ(old->state, RunState::kComplete);
+  EXPECT_EQ(old->created_utc, "2024-05-01T12:00:00.000Z");
+  db.SetRunState(old->id, RunState::kInterrupted);
+  EXPECT_EQ(db.FindRun("old")->state, RunState::kInterrupted);
+  EXPECT_EQ(db.Query("PRAGMA foreign_key_check").rows.size(), 0u);
+  // The CHECK still refuses other states (written by hand, as another program would).
+  RawExec(path, "PRAGMA foreign_keys = ON; DELETE FROM runs WHERE name = 'old'");
+  EXPECT_EQ(db.Query("SELECT count(*) FROM steps").rows[0][0], "0");  // cascaded
+  sqlite3* raw = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &raw), SQLITE_OK);
+  EXPECT_NE(sqlite3_exec(raw,
+                         "INSERT INTO runs(name, created_utc, program_version, scene_text, "
+                         "wear_law_json, state) VALUES ('x', 't', 'v', 's', '{}', 'paused')",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(raw);
+}
+
+// A database file deleted, or replaced by another file, under an open store: the next write
+// rolls back and throws a failure (exit 1 in the CLI) saying which, instead of writing on into a
+// file nobody can open any more.
+TEST(ProfileStore, WritesStopWhenTheFileIsDeletedOrReplaced) {
+  TempDir tmp;
+  const std::string path = tmp.File("study.rwdb");
+  {
+    ProfileStore db = ProfileStore::Open(path);
+    const int64_t run = db.CreateRun(TestRun("r"), TestStep(0));
+    db.AppendStep(run, TestStep(1));
+    fs::remove(path);
+    try {
+      db.AppendStep(run, TestStep(2));
+      ADD_FAILURE() << "no error after the file was deleted";
+    } catch (const InputError& e) {
+      ADD_FAILURE() << "a deleted file is a failure, not bad input: " << e.what();
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("database '" + path + "': the file was deleted"),
+                std::string::npos)
+          << e.what();
+    }
+    EXPECT_EQ(db.LastStep(run), 1);  // rolled back
+    EXPECT_THROW(db.SetRunState(run, RunState::kComplete), std::runtime_error);
+    EXPECT_THROW(db.CreateRun(TestRun("s"), TestStep(0)), std::runtime_error);
+  }
+  for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(path + suffix);
+  ProfileStore db = ProfileStore::Open(path);
+  const int64_t run = db.CreateRun(TestRun("r"), TestStep(0));
+  const std::string other = tmp.File("other.bin");
+  WriteBytes(other, "not the study\n");
+  fs::rename(other, path);  // another file renamed over the study
+  try {
+    db.AppendStep(run, TestStep(1));
+    ADD_FAILURE() << "no error after the file was replaced";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("replaced by another file"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(ReadBytes(path), "not the study\n");  // the new file is never written
+}
+
 TEST(ProfileStore, NonFiniteValuesAreNeverStored) {
   // Issue 6: no NaN or infinity reaches the database, whether a scalar column, a profile point
   // or an element of a distribution; the step's transaction rolls back, the store stays usable.
@@ -955,6 +1045,22 @@ TEST(ProfileStoreReadOnly, RefusesARailwearFileWithAHotJournalUntouched) {
   const auto before = DatabaseFiles(path);
   ExpectInputError([&] { ProfileStore::OpenReadOnly(path); },
                    {path, "rollback journal", "--resume"});
+  EXPECT_EQ(DatabaseFiles(path), before);
+}
+
+// Version 4 differs from 5 only in the CHECK on runs.state: read-only commands read it as it is.
+TEST(ProfileStoreReadOnly, ReadsVersion4AsItIs) {
+  TempDir tmp;
+  const std::string path = tmp.File("v4.rwdb");
+  {
+    ProfileStore db = ProfileStore::Open(path);
+    db.CreateRun(TestRun("r"), TestStep(0));
+  }
+  RawExec(path, "PRAGMA user_version = 4");
+  const auto before = DatabaseFiles(path);
+  const ProfileStore db = ProfileStore::OpenReadOnly(path);
+  EXPECT_EQ(db.SchemaVersion(), 4);
+  EXPECT_EQ(db.LastStep(db.FindRun("r")->id), 0);
   EXPECT_EQ(DatabaseFiles(path), before);
 }
 

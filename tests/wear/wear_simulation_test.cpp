@@ -175,6 +175,42 @@ TEST(WearSimulationTest, ResumingFromAStoredStateEndsWithTheSameProfile) {
   EXPECT_GT(*std::max_element(rest.state.damage.begin(), rest.state.damage.end()), 0.0);
 }
 
+// WearOptions::cancel (issue 17; app/ sets it from SIGINT/SIGTERM): asked before each step and
+// each load case. Once it says stop in the middle of a step's load cases, that step is dropped
+// (never handed to the callback) and RunWear reports cancelled with the last complete state,
+// from which a resumed run ends exactly as the uninterrupted one.
+TEST(WearSimulationTest, CancellingDropsTheStepInFlightAndResumesExactly) {
+  WearStudy study = MakeStudy(1);
+  const RunOutcome whole = RunAll(study, 3);
+  // One question before each step and one before each of its three load cases (one thread):
+  // questions 1-4 are step 1's, 5 is before step 2, 6 its first case and 7 its second, so step 2
+  // stops with one case solved.
+  int questions = 0;
+  study.options.cancel = [&questions] { return ++questions >= 7; };
+  const RunOutcome cut = RunAll(study);
+  EXPECT_TRUE(cut.summary.cancelled);
+  EXPECT_FALSE(cut.summary.finished);
+  ASSERT_EQ(cut.steps.size(), 1u);  // step 2 was dropped mid-way
+  EXPECT_EQ(cut.summary.steps_done, 1);
+  EXPECT_EQ(cut.summary.state.step, 1);
+  EXPECT_EQ(cut.summary.state.passes, whole.steps[0].state.passes);
+  // Cancelled before a step starts: nothing is solved at all.
+  study.options.cancel = [] { return true; };
+  const RunOutcome none = RunAll(study);
+  EXPECT_TRUE(none.summary.cancelled);
+  EXPECT_TRUE(none.steps.empty());
+  // A step run on its own throws WearCancelled.
+  const WearState start = MakeInitialState(study);
+  EXPECT_THROW(RunWearStep(study, UnwornRails::Of(start), start, 1e5), WearCancelled);
+  // Resumed from the last complete state: the same profile, bit for bit.
+  study.options.cancel = nullptr;
+  const WearRunSummary rest = RunWear(study, UnwornRails::Of(start), cut.summary.state, nullptr, 2);
+  EXPECT_FALSE(rest.cancelled);
+  EXPECT_EQ(rest.state.step, 3);
+  EXPECT_EQ(MaxAbsDifference(rest.state.rail, whole.summary.state.rail), 0.0);
+  EXPECT_EQ(rest.state.passes, whole.summary.state.passes);
+}
+
 // Largest |curvature| [1/m] of a profile over the arc-length range [s0, s1], sampled every 0.05 mm.
 double MaxCurvature(const Profile& p, double s0, double s1) {
   double k = 0.0;

@@ -1,0 +1,286 @@
+// `railwear wear` under signals, kills and a vanishing database (issue 17), with the built binary
+// run as a real child process (fork + exec), real signals and no mocks:
+// - SIGTERM / SIGINT during a run: exit 143 / 130, the run shown as "interrupted" by `history`,
+//   and `--resume` ends with a database bit-identical to an uninterrupted run's (every stored
+//   step: summary, profile, load cases, distributions);
+// - a real SIGKILL at each fsync of a whole small run (run creation, every step, the closing
+//   checkpoint; tests/tools/kill_at_fsync.cpp, LD_PRELOAD): the database left behind is finished
+//   by `--resume` (or, when the kill came before the run existed, by a new run) bit-identically;
+// - a run without steps (left by an older railwear killed at its start) is resumable;
+// - the database file deleted or replaced under a running study: exit 1 with a message.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <ios>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "profiles_db/profile_store.h"
+#include "tests/app/cli_runner.h"
+#include "tests/app/wear_scenes.h"
+
+namespace railwear::test {
+namespace {
+
+// kSmallWearStudy cut to 1e5 passes: 10 steps of about 0.1 s, long enough to be signalled
+// after its first steps and short enough to run twice.
+std::string ShortStudy() {
+  std::string s = kSmallWearStudy;
+  s.replace(s.find("total_passes = 4e5"), 18, "total_passes = 1e5");
+  return s;
+}
+
+// One node per entry and 4e4 passes: 4 steps, 15 fsyncs, about 0.3 s per run.
+std::string TinyStudy() {
+  std::string s = kSmallWearStudy;
+  s.replace(s.find("total_passes = 4e5"), 18, "total_passes = 4e4");
+  s.replace(s.find("quadrature_points = 3"), 21, "quadrature_points = 1");
+  return s;
+}
+
+constexpr const char* kRun = "small study";
+
+// Everything a run stored, bit for bit (doubles as hexfloat), except the creation times: the
+// run's scene, wear law and state, and per step its summary, profile, load cases and
+// distributions (and the low rail's).
+std::string RunFingerprint(const fs::path& db) {
+  const ProfileStore store = ProfileStore::OpenReadOnly(db.string());
+  const std::optional<RunInfo> run = store.FindRun(kRun);
+  if (!run) return "no run";
+  std::ostringstream os;
+  os << std::hexfloat << run->scene_text << '\n'
+     << run->wear_law_json << '\n'
+     << ToString(run->state) << '\n';
+  const auto doubles = [&os](const char* what, const std::vector<double>& v) {
+    os << what;
+    for (const double x : v) os << ' ' << x;
+    os << '\n';
+  };
+  const auto distributions = [&](const std::vector<Distribution>& all) {
+    for (const Distribution& d : all) {
+      os << d.kind << '\n';
+      doubles("y", d.y_m);
+      doubles("value", d.value);
+      doubles("s", d.s_m);
+    }
+  };
+  for (const StepRecord& summary : store.Steps(run->id)) {
+    const StepRecord s = store.LoadStep(run->id, summary.step);
+    os << "step " << s.step << ' ' << s.passes << ' ' << s.mgt << ' ' << s.worn_area_mm2 << ' '
+       << s.max_depth_mm << ' ' << s.max_depth_y_mm << ' ' << s.w1_mm << ' ' << s.w2_mm << ' '
+       << s.w3_mm << ' ' << s.smoothing_area_error << '\n';
+    for (const auto& p : s.profile.points()) os << p.x() << ',' << p.y() << ' ';
+    os << '\n';
+    for (const std::string& j : s.load_cases_json) os << j << '\n';
+    distributions(s.distributions);
+    if (s.low_rail) {
+      os << "low rail " << s.low_rail->worn_area_mm2 << ' ' << s.low_rail->max_depth_mm << '\n';
+      for (const auto& p : s.low_rail->profile.points()) os << p.x() << ',' << p.y() << ' ';
+      distributions(s.low_rail->distributions);
+    }
+  }
+  return os.str();
+}
+
+class WearInterruptTest : public CliFixture {
+ protected:
+  // Starts `railwear ARGS` in dir_ as a child (fork + exec, no shell, so the pid is railwear's
+  // own) with `env` added, stdout and stderr to dir_/out.txt and dir_/err.txt.
+  pid_t Start(const std::vector<std::string>& args, const std::vector<std::string>& env = {}) {
+    std::vector<std::string> argv_text = {RAILWEAR_BINARY};
+    argv_text.insert(argv_text.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& a : argv_text) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const std::string out = (dir_ / "out.txt").string(), err = (dir_ / "err.txt").string();
+    Write("out.txt", "");  // emptied before the child starts: WaitForStderr reads only its lines
+    Write("err.txt", "");
+    const pid_t pid = fork();
+    if (pid == 0) {
+      for (const std::string& e : env) putenv(const_cast<char*>(e.c_str()));
+      const int o = open(out.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+      const int e = open(err.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+      if (chdir(dir_.c_str()) != 0 || o < 0 || e < 0) _exit(125);
+      dup2(o, 1);
+      dup2(e, 2);
+      execv(RAILWEAR_BINARY, argv.data());
+      _exit(126);
+    }
+    return pid;
+  }
+
+  // The child's exit code, or minus the signal that ended it.
+  static int Wait(pid_t pid) {
+    int status = 0;
+    if (waitpid(pid, &status, 0) != pid) return -1000;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+  }
+
+  // Waits (at most a minute) until the child's stderr holds `text`; false if it ended first.
+  bool WaitForStderr(pid_t pid, const std::string& text) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (ReadFile(dir_ / "err.txt").find(text) != std::string::npos) return true;
+      siginfo_t info{};  // the child ended (still to be reaped by Wait)?
+      if (waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) != 0 ||
+          info.si_pid == pid) {
+        return ReadFile(dir_ / "err.txt").find(text) != std::string::npos;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    return false;
+  }
+
+  // The fingerprint of an uninterrupted run of `scene` in dir_/name.
+  std::string Reference(const std::string& scene, const std::string& name) {
+    const Outcome whole = Run("wear " + scene + " --db " + name + " --threads 1");
+    EXPECT_EQ(whole.exit_code, 0) << whole.err;
+    return RunFingerprint(dir_ / name);
+  }
+
+  // Signals a run once its second step is stored (so the signal lands in a later step's
+  // solves or in its commit), then checks the exit code, the stored state and the message,
+  // `history`, and that --resume finishes the run bit-identically.
+  void InterruptAndResume(int signal, int expected_exit, const char* name) {
+    Write("study.toml", ShortStudy());
+    const std::string expected = Reference("study.toml", "whole.sqlite");
+    const pid_t pid = Start({"wear", "study.toml", "--db", "cut.sqlite", "--threads", "1"});
+    ASSERT_TRUE(WaitForStderr(pid, "railwear: step 2:")) << ReadFile(dir_ / "err.txt");
+    ASSERT_EQ(kill(pid, signal), 0);
+    ASSERT_EQ(Wait(pid), expected_exit) << ReadFile(dir_ / "err.txt");
+    const std::string err = ReadFile(dir_ / "err.txt");
+    EXPECT_TRUE(Contains(err, std::string("railwear: ") + name +
+                                  ": run 'small study' in cut.sqlite interrupted after step "));
+    EXPECT_TRUE(Contains(err, "--resume`"));
+    {
+      const ProfileStore store = ProfileStore::OpenReadOnly((dir_ / "cut.sqlite").string());
+      const auto run = store.FindRun(kRun);
+      ASSERT_TRUE(run.has_value());
+      EXPECT_EQ(run->state, RunState::kInterrupted);
+      const int last = *store.LastStep(run->id);
+      EXPECT_GE(last, 2);
+      EXPECT_TRUE(Contains(err, "interrupted after step " + std::to_string(last) + " "));
+    }
+    const Outcome runs = Run("history --db cut.sqlite runs");
+    ASSERT_EQ(runs.exit_code, 0) << runs.err;
+    EXPECT_TRUE(Contains(runs.out, "small study  interrupted"));
+
+    const Outcome resumed = Run("wear study.toml --db cut.sqlite --resume --threads 1");
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+    EXPECT_TRUE(Contains(resumed.err, "resuming run 'small study' from step"));
+    EXPECT_TRUE(Contains(resumed.err, "passes; it was interrupted)"));
+    EXPECT_EQ(RunFingerprint(dir_ / "cut.sqlite"), expected);  // complete, bit for bit
+  }
+};
+
+TEST_F(WearInterruptTest, SigtermMidRunExits143AndResumesBitIdentically) {
+  InterruptAndResume(SIGTERM, 143, "SIGTERM");
+}
+
+TEST_F(WearInterruptTest, SigintMidRunExits130AndResumesBitIdentically) {
+  InterruptAndResume(SIGINT, 130, "SIGINT");
+}
+
+// A real SIGKILL at the N-th fsync of a whole run, for every N the run makes (counted by a first
+// run under the shim): SQLite's journal-mode switch and schema creation, the run with its step 0,
+// each step, the final state and the closing checkpoint. After each kill the database must be
+// finished bit-identically: by --resume when the run exists (never a run without its step 0),
+// by a new run when the kill came before the run was created.
+TEST_F(WearInterruptTest, KillAtEachFsyncIsFinishedBitIdentically) {
+  Write("tiny.toml", TinyStudy());
+  const std::string expected = Reference("tiny.toml", "whole.sqlite");
+  const std::string shim = std::string("LD_PRELOAD=") + RAILWEAR_KILL_AT_FSYNC;
+  const std::string no_asan_order = "ASAN_OPTIONS=verify_asan_link_order=0";
+  const std::vector<std::string> args = {"wear", "tiny.toml", "--db", "k.sqlite", "--threads", "1"};
+  const pid_t counting = Start(args, {shim, no_asan_order, "RAILWEAR_FSYNC_LOG=fsyncs.txt"});
+  ASSERT_EQ(Wait(counting), 0) << ReadFile(dir_ / "err.txt");
+  ASSERT_EQ(RunFingerprint(dir_ / "k.sqlite"), expected);  // the shim changes nothing else
+  std::istringstream log(ReadFile(dir_ / "fsyncs.txt"));
+  int fsyncs = 0;
+  for (std::string line; std::getline(log, line);) ++fsyncs;
+  ASSERT_GE(fsyncs, 8);  // at least: creation, run + step 0, 4 steps, state, checkpoint
+
+  int resumed = 0, restarted = 0;
+  for (int n = 1; n <= fsyncs; ++n) {
+    SCOPED_TRACE("killed at fsync " + std::to_string(n) + " of " + std::to_string(fsyncs));
+    for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
+      fs::remove(dir_ / ("k.sqlite" + std::string(suffix)));
+    }
+    const pid_t pid =
+        Start(args, {shim, no_asan_order, "RAILWEAR_KILL_AT_FSYNC=" + std::to_string(n)});
+    ASSERT_EQ(Wait(pid), -SIGKILL) << ReadFile(dir_ / "err.txt");
+    Outcome finish = Run("wear tiny.toml --db k.sqlite --resume --threads 1");
+    if (finish.exit_code == 2 && Contains(finish.err, "no run 'small study' to resume")) {
+      finish = Run("wear tiny.toml --db k.sqlite --threads 1");  // killed before the run existed
+      ++restarted;
+    } else {
+      ++resumed;
+      EXPECT_FALSE(Contains(finish.err, "had no stored step"));  // never a run without step 0
+    }
+    ASSERT_EQ(finish.exit_code, 0) << finish.err;
+    EXPECT_EQ(RunFingerprint(dir_ / "k.sqlite"), expected);
+  }
+  EXPECT_GE(resumed, 5);    // the kills from the run's creation on
+  EXPECT_GE(restarted, 1);  // the kills while the database itself was being created
+  std::cerr << "[figure] " << fsyncs << " kill points: " << resumed << " resumed, " << restarted
+            << " restarted, all bit-identical\n";
+}
+
+// A run without steps (left by a railwear before issue 17, killed between the commit that
+// created the run and the one of its step 0) is resumable: --resume stores step 0 from the scene
+// (whose text is the stored one) and finishes the run as an uninterrupted one.
+TEST_F(WearInterruptTest, ARunWithoutStepsIsResumable) {
+  Write("tiny.toml", TinyStudy());
+  const std::string expected = Reference("tiny.toml", "whole.sqlite");
+  {
+    const RunInfo whole =
+        *ProfileStore::OpenReadOnly((dir_ / "whole.sqlite").string()).FindRun(kRun);
+    RunInfo stuck = whole;
+    stuck.created_utc.clear();
+    stuck.state = RunState::kRunning;
+    ProfileStore::Open((dir_ / "stuck.sqlite").string()).CreateRun(stuck);  // no step 0
+  }
+  const Outcome fresh = Run("wear tiny.toml --db stuck.sqlite");
+  EXPECT_EQ(fresh.exit_code, 2);  // the name is taken ...
+  EXPECT_TRUE(Contains(fresh.err, "run 'small study' exists already"));
+  const Outcome resumed = Run("wear tiny.toml --db stuck.sqlite --resume --threads 1");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;  // ... and resumable
+  EXPECT_TRUE(Contains(resumed.err,
+                       "run 'small study' had no stored step (its start was "
+                       "interrupted): stored its step 0 from the scene"));
+  EXPECT_EQ(RunFingerprint(dir_ / "stuck.sqlite"), expected);
+}
+
+// The database file deleted (or replaced) under a running study: the next commit notices, the
+// study stops with exit 1 and says so, instead of running on into a file nobody can open.
+TEST_F(WearInterruptTest, DeletedOrReplacedDatabaseStopsTheRunWithExitOne) {
+  Write("study.toml", ShortStudy());
+  pid_t pid = Start({"wear", "study.toml", "--db", "gone.sqlite", "--threads", "1"});
+  ASSERT_TRUE(WaitForStderr(pid, "railwear: step 1:")) << ReadFile(dir_ / "err.txt");
+  fs::remove(dir_ / "gone.sqlite");
+  ASSERT_EQ(Wait(pid), 1) << ReadFile(dir_ / "err.txt");
+  EXPECT_TRUE(Contains(ReadFile(dir_ / "err.txt"),
+                       "railwear: error: database 'gone.sqlite': the file was deleted while "
+                       "railwear was writing to it"));
+
+  const std::string other = "a file that is not the study\n";
+  Write("other.txt", other);
+  pid = Start({"wear", "study.toml", "--db", "swapped.sqlite", "--threads", "1"});
+  ASSERT_TRUE(WaitForStderr(pid, "railwear: step 1:")) << ReadFile(dir_ / "err.txt");
+  fs::rename(dir_ / "other.txt", dir_ / "swapped.sqlite");
+  ASSERT_EQ(Wait(pid), 1) << ReadFile(dir_ / "err.txt");
+  EXPECT_TRUE(Contains(ReadFile(dir_ / "err.txt"),
+                       "database 'swapped.sqlite': the file was replaced by another file"));
+  EXPECT_EQ(ReadFile(dir_ / "swapped.sqlite"), other);  // never written
+}
+
+}  // namespace
+}  // namespace railwear::test
