@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include "app/curving_accuracy.h"
 #include "app/gnuplot.h"
 #include "app/wear_accuracy.h"
 #include "core/numerics/input_error.h"
@@ -57,6 +58,10 @@ void SetupAccuracy(CLI::App& app) {
                   "Wear scenes: run every study to this many MGT instead of the scene's total");
   sub->add_option("--threads", options->threads, "Wear scenes: load-case workers (0: the scene's)")
       ->check(CLI::NonNegativeNumber);
+  sub->add_flag("--curving", options->curving,
+                "Vehicle scenes: the steady-state curving of each vehicle entry at each level "
+                "(time, solves, positions and flange force against the finest) instead of the "
+                "wear study");
   sub->callback([options, no_plot, levels, models, reference, reference_model]() {
     options->plot = !*no_plot;
     options->levels_given = levels->count() > 0;
@@ -76,6 +81,29 @@ fs::path CreateOutDir(const std::string& dir) {
                                  ec ? ec.message() : "a file of that name exists"));
   }
   return fs::path(dir);
+}
+
+void RunCurvingAccuracy(const Scene& scene, const AccuracyOptions& o) {
+  if (o.contact_options_given || o.step_limits_mm || o.total_mgt) {
+    throw InputError(fmt::format(
+        "{}: --curving takes --levels and --out; --models, --reference, --reference-model, "
+        "--step-limits and --mgt are for the other studies",
+        scene.path));
+  }
+  const std::vector<std::string> levels =
+      o.levels_given ? o.levels : std::vector<std::string>{"draft", "standard", "reference"};
+  const CurvingAccuracyStudy study = RunCurvingAccuracyStudy(
+      scene, levels,
+      [](const std::string& line) { std::cerr << "railwear accuracy: " << line << "\n"; });
+  std::cout << FormatCurvingAccuracyTable(study) << std::flush;
+  if (!o.out_dir) return;
+  const fs::path csv = CreateOutDir(*o.out_dir) / "curving_accuracy.csv";
+  {
+    std::ofstream out(csv);
+    WriteCurvingAccuracyCsv(study, out);
+    if (!out) throw InputError(fmt::format("{}: cannot write the CSV", csv.string()));
+  }
+  std::cerr << "railwear accuracy: wrote " << csv.string() << "\n";
 }
 
 void RunWearAccuracy(const Scene& scene, const AccuracyOptions& o) {
@@ -113,8 +141,13 @@ void RunWearAccuracy(const Scene& scene, const AccuracyOptions& o) {
 
 void RunAccuracy(const AccuracyOptions& o) {
   // Before the runs, so nobody waits for nothing.
-  if (o.out_dir && o.plot) RequireGnuplotFor("railwear accuracy's Pareto plot", "pass --no-plot");
+  if (o.out_dir && o.plot && !o.curving)
+    RequireGnuplotFor("railwear accuracy's Pareto plot", "pass --no-plot");
   const Scene scene = LoadScene(o.scene_path);
+  if (o.curving) {
+    RunCurvingAccuracy(scene, o);
+    return;
+  }
   if (scene.wear) {
     RunWearAccuracy(scene, o);
     return;

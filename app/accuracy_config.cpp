@@ -25,6 +25,21 @@ void CheckName(const std::string& name, const std::vector<std::string>& valid,
 
 }  // namespace
 
+std::vector<AccuracyPreset> ParseAccuracyLevels(const std::vector<std::string>& names) {
+  std::vector<AccuracyPreset> presets;
+  for (const auto& name : names) {
+    const auto p = AccuracyPresetFromString(name);
+    if (!p) {
+      throw InputError(fmt::format("--levels: level '{}': expected one of {}", name,
+                                   JoinEnumChoices(kAccuracyPresetNames)));
+    }
+    if (std::find(presets.begin(), presets.end(), *p) == presets.end()) presets.push_back(*p);
+  }
+  if (presets.empty()) throw InputError("--levels: expected at least one level");
+  std::sort(presets.begin(), presets.end());  // enum order is coarse to fine
+  return presets;
+}
+
 AccuracyPlan MakeAccuracyPlan(const AccuracyOptions& o) {
   if (o.repeats < 1) {
     throw InputError(fmt::format("--repeats {}: expected at least 1", o.repeats));

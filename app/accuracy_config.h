@@ -36,6 +36,9 @@ struct AccuracyOptions {
   std::optional<std::vector<double>> step_limits_mm;
   std::optional<double> total_mgt;
   int threads = 0;
+  // Vehicle scenes (curving_accuracy.h): the steady-state curving of each vehicle entry at each
+  // level instead of the wear study.
+  bool curving = false;
 };
 
 // The validated contact study: canonical model names without repeats in the order given,
@@ -50,6 +53,10 @@ struct AccuracyPlan {
 // Checks repeats, models, levels and the reference model, in that order. Throws InputError for
 // repeats < 1, an unknown model or level, or an empty list.
 AccuracyPlan MakeAccuracyPlan(const AccuracyOptions& options);
+
+// Accuracy presets from their names (any order, repeats dropped), coarse to fine. Throws
+// InputError naming --levels for an unknown name or an empty list.
+std::vector<AccuracyPreset> ParseAccuracyLevels(const std::vector<std::string>& names);
 
 // The contact model a name of kAccuracyModels stands for; the scene's influence constants
 // (`scene_model.constants`) stay.

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "app/accuracy_config.h"
 #include "app/gnuplot.h"
 #include "app/paths.h"
 #include "core/numerics/enum_names.h"
@@ -83,17 +84,7 @@ WearAccuracyStudy RunWearAccuracyStudy(const Scene& scene, const WearAccuracyOpt
                     "[[traffic]]); the wear-step study needs one",
                     scene.path));
   }
-  std::vector<AccuracyPreset> presets;
-  for (const auto& name : o.levels) {
-    const auto p = AccuracyPresetFromString(name);
-    if (!p) {
-      throw InputError(fmt::format("--levels: level '{}': expected one of {}", name,
-                                   JoinEnumChoices(kAccuracyPresetNames)));
-    }
-    if (std::find(presets.begin(), presets.end(), *p) == presets.end()) presets.push_back(*p);
-  }
-  if (presets.empty()) throw InputError("--levels: expected at least one level");
-  std::sort(presets.begin(), presets.end());  // enum order is coarse to fine
+  const std::vector<AccuracyPreset> presets = ParseAccuracyLevels(o.levels);
   std::vector<double> limits = o.step_limits_mm;
   for (double l : limits) {
     if (!(l > 0.0) || !std::isfinite(l)) {

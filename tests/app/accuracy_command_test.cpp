@@ -16,7 +16,9 @@
 
 #include <gtest/gtest.h>
 
+#include "app/curving_accuracy.h"
 #include "core/numerics/input_error.h"
+#include "tests/app/wear_scenes.h"
 
 namespace railwear::app {
 namespace {
@@ -153,6 +155,43 @@ TEST(AccuracyCommand, RollingSceneComparesCreepForcesAndLeavesHertzOut) {
   ASSERT_TRUE(h->q.creep_x_N.has_value());
   EXPECT_FALSE(std::isnan(h->err_creep));
   EXPECT_EQ(Find(s, "conformal+boussinesq", "draft")->err_creep, 0.0);
+}
+
+// --curving: the free wheelset of kWheelsetCurveScene at draft and standard (about a second):
+// one row per level, the finest is the reference (no error against itself), the draft grid's
+// positions within a tenth of a millimetre and a tenth of a milliradian of it (the tolerance's
+// position error plus the grid's: measured 0.03 mm, 0.03 mrad), and the table and CSV say so.
+TEST(AccuracyCommand, CurvingAtDraftAndStandard) {
+  const Scene scene = ParseScene(test::kWheelsetCurveScene, "wheelset.toml");
+  const CurvingAccuracyStudy s =
+      RunCurvingAccuracyStudy(scene, {"standard", "draft"}, nullptr);  // run coarse to fine
+  ASSERT_EQ(s.rows.size(), 2u);
+  EXPECT_EQ(s.rows[0].level, "draft");
+  EXPECT_EQ(s.rows[1].level, "standard");
+  for (const CurvingAccuracyRow& r : s.rows) {
+    EXPECT_EQ(r.status, "converged") << r.level;
+    EXPECT_GT(r.solves, 0);
+    EXPECT_GT(r.time_s, 0.0);
+    EXPECT_GT(r.lead_y_mm, 0.0);  // pushed toward the high rail
+  }
+  EXPECT_EQ(s.rows[1].err_y_mm, 0.0);
+  EXPECT_EQ(s.rows[1].err_psi_mrad, 0.0);
+  EXPECT_LT(s.rows[0].err_y_mm, 0.1);
+  EXPECT_LT(s.rows[0].err_psi_mrad, 0.1);
+  EXPECT_NEAR(s.rows[0].err_y_mm, std::abs(s.rows[0].lead_y_mm - s.rows[1].lead_y_mm), 1e-12);
+  const std::string table = FormatCurvingAccuracyTable(s);
+  EXPECT_TRUE(Contains(table, "reference: standard"));
+  EXPECT_TRUE(Contains(table, "traffic[0]               draft"));
+  std::ostringstream csv;
+  WriteCurvingAccuracyCsv(s, csv);
+  EXPECT_TRUE(Contains(csv.str(), "traffic,level,status,time_s,solves,lead_y_mm"));
+  EXPECT_TRUE(Contains(csv.str(), "\"traffic[0]\",standard,converged,"));
+
+  const Scene contact = LoadScene(kExamples + "gauge_corner.toml");
+  EXPECT_TRUE(Contains(ErrorOf([&] { RunCurvingAccuracyStudy(contact, {"draft"}, nullptr); }),
+                       "--curving needs a wear scene with [track], [[vehicle]]"));
+  EXPECT_TRUE(Contains(ErrorOf([&] { RunCurvingAccuracyStudy(scene, {"coarse"}, nullptr); }),
+                       "--levels: level 'coarse': expected one of"));
 }
 
 TEST(AccuracyCommand, BadInputNamesWhatIsWrong) {

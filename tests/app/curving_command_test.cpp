@@ -7,43 +7,14 @@
 
 #include "profiles_db/profile_store.h"
 #include "tests/app/cli_runner.h"
+#include "tests/app/wear_scenes.h"
 
 namespace railwear::test {
 namespace {
 
 using CurvingCommandTest = CliFixture;
 
-constexpr const char* kScene = R"([scene]
-name = "wheelset on R1500"
-effects = ["wear"]
-[model]
-kind = "auto"
-accuracy = "draft"
-[materials]
-wheel = { E_MPa = 210000, nu = 0.28 }
-rail = { E_MPa = 210000, nu = 0.28, hardness_MPa = 2600 }
-[track]
-high_rail = "builtin:UIC60"
-inclination = "1:40"
-radius_m = 1500
-cant_mm = 0
-[wheel]
-profile = "builtin:S1002"
-rolling_radius_mm = 460
-[wear]
-law = "archard"
-k = 1e-4
-total_passes = 1e5
-[[vehicle]]
-name = "wheelset"
-source = "a test"
-kind = "wheelset"
-axle_load_t = 16
-[[traffic]]
-vehicle = "wheelset"
-speed_m_s = 25
-friction = 0.3
-)";
+const char* const kScene = kWheelsetCurveScene;
 
 std::string Replace(std::string text, const std::string& from, const std::string& to) {
   const size_t at = text.find(from);

@@ -1,4 +1,5 @@
-// Scene texts shared by the CLI tests of wear studies (wear_command_test, wear_accuracy_test).
+// Scene texts shared by the CLI tests of wear studies (wear_command_test, wear_accuracy_test,
+// curving_command_test, accuracy_command_test).
 #pragma once
 
 namespace railwear::test {
@@ -76,6 +77,40 @@ lateral_shift_mm = -8.0
 yaw_mrad = 4.0
 friction = 0.4
 speed_m_s = 20.0
+)";
+
+// Vehicle traffic: one free S1002 wheelset (16 t) on UIC60 1:40, R 1500 m without cant, draft
+// accuracy: its curving takes about a second.
+inline const char* const kWheelsetCurveScene = R"([scene]
+name = "wheelset on R1500"
+effects = ["wear"]
+[model]
+kind = "auto"
+accuracy = "draft"
+[materials]
+wheel = { E_MPa = 210000, nu = 0.28 }
+rail = { E_MPa = 210000, nu = 0.28, hardness_MPa = 2600 }
+[track]
+high_rail = "builtin:UIC60"
+inclination = "1:40"
+radius_m = 1500
+cant_mm = 0
+[wheel]
+profile = "builtin:S1002"
+rolling_radius_mm = 460
+[wear]
+law = "archard"
+k = 1e-4
+total_passes = 1e5
+[[vehicle]]
+name = "wheelset"
+source = "a test"
+kind = "wheelset"
+axle_load_t = 16
+[[traffic]]
+vehicle = "wheelset"
+speed_m_s = 25
+friction = 0.3
 )";
 
 }  // namespace railwear::test

@@ -4,13 +4,22 @@
 //   BM_CurvingRigidBogie    a bogie vehicle of cone wheelsets with stiff primary suspension on
 //                           R 3000 m (four wheelsets, two frames, the car body), draft model;
 //   BM_CurvingFreeWheelsetStandard  the free wheelset finished with the standard-accuracy
-//                           half-space model after the draft predictor.
+//                           half-space model after the draft predictor;
+//   BM_CurvingExample/V/A   vehicle V (0: the coach, 1: the Y25 wagon) of the main job's scene
+//                           (examples/curve_r600_vehicles.toml, R 600 m, both UIC60 rails) from
+//                           the centred start, at the scene's accuracy (A = 0: draft) or the
+//                           standard one (A = 1, the draft predictor first);
+//   BM_CurvingExampleContinuation/V/A  the same vehicle 0.5 m/s faster, started from the solution
+//                           at the scene's speed and its Jacobian (CurvingResult::Start): what
+//                           each wear step's curving costs (it starts from the step before's).
 // Each reports the wheelset contact solves it needed. Run:
 //   build/tests/benchmarks/curving_bench --benchmark_repetitions=3
 //   --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include "app/scene.h"
 #include "tests/core/vehicle/curving_cases.h"
+#include "wear/vehicle_traffic.h"
 
 namespace railwear {
 namespace {
@@ -42,6 +51,43 @@ void BM_CurvingFreeWheelsetStandard(benchmark::State& state) {
   Run(state, p);
 }
 BENCHMARK(BM_CurvingFreeWheelsetStandard)->Unit(benchmark::kMillisecond);
+
+// Vehicle `v` of the main job's scene on its unworn rails, at the scene's accuracy (draft) or
+// the standard one with the draft predictor.
+CurvingProblem ExampleProblem(int v, bool standard) {
+  const app::Scene scene =
+      app::LoadScene(std::string(RAILWEAR_SOURCE_DIR) + "/examples/curve_r600_vehicles.toml");
+  const WearStudy& study = *scene.wear;
+  const WearState s0 = MakeInitialState(study);
+  CurvingProblem p = VehicleCurvingProblem(study, v, RailInTrack(study, s0.rail, s0.rail),
+                                           RailInTrack(study, *s0.low_rail, *s0.low_rail));
+  p.options.start.reset();
+  if (standard) {
+    p.contact.model.accuracy = AccuracyPreset::kStandard;
+    p.options.predictor = CurvingOptions::PredictorModel();
+  }
+  return p;
+}
+
+void BM_CurvingExample(benchmark::State& state) {
+  Run(state, ExampleProblem(static_cast<int>(state.range(0)), state.range(1) == 1));
+}
+BENCHMARK(BM_CurvingExample)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+void BM_CurvingExampleContinuation(benchmark::State& state) {
+  CurvingProblem p = ExampleProblem(static_cast<int>(state.range(0)), state.range(1) == 1);
+  const CurvingResult at_speed = SolveCurving(p);
+  p.options.start = at_speed.Start();
+  p.speed_m_s += 0.5;
+  Run(state, p);
+}
+BENCHMARK(BM_CurvingExampleContinuation)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 }  // namespace
 }  // namespace railwear

@@ -4,11 +4,20 @@
 //                         (target: under 10 s on 2 cores);
 //   BM_WearRun1e5Passes   a whole run of 10^5 passes of the default study's traffic
 //                         (examples/wear_high_rail.toml at standard accuracy), reporting the
-//                         number of profile updates (target: under 10 minutes in at most 50).
+//                         number of profile updates (target: under 10 minutes in at most 50);
+//   BM_WearStepVehicles/W a wear step of the main job's scene (examples/curve_r600_vehicles.toml:
+//                         coach and Y25 wagon, R 600 m, both rails, draft accuracy) with each
+//                         vehicle entry also at a second speed (coach 22 m/s, wagon 17 m/s): four
+//                         vehicles' curving and 96 load cases (4 wheelsets x 3 nodes x 2 rails
+//                         each), all cores (issue 15's target: 100 cases with curving under 10 s
+//                         on 2 cores). W = 0: the first step, every curving from the centred
+//                         start; W = 1: the second, each curving from the first step's solution
+//                         (WearState::curving), as every step of a run after the first.
 // Run: build/tests/benchmarks/wear_bench --benchmark_repetitions=3
 // --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include "app/scene.h"
 #include "core/profile/builtin_profiles.h"
 #include "wear/wear_simulation.h"
 
@@ -76,6 +85,33 @@ void BM_WearRun1e5Passes(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_WearRun1e5Passes)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+void BM_WearStepVehicles(benchmark::State& state) {
+  const app::Scene scene =
+      app::LoadScene(std::string(RAILWEAR_SOURCE_DIR) + "/examples/curve_r600_vehicles.toml");
+  WearStudy study = *scene.wear;
+  const double second_speed[2] = {22.0, 17.0};
+  for (int t = 0; t < 2; ++t) {
+    TrafficCase c = study.traffic[t];
+    c.name += " (second speed)";
+    c.speed_m_s = second_speed[t];
+    study.traffic.push_back(c);
+  }
+  WearState start = MakeInitialState(study);
+  const UnwornRails unworn = UnwornRails::Of(start);
+  if (state.range(0) == 1) start = RunWearStep(study, unworn, start, 1e12).state;
+  for (auto _ : state) {
+    StepResult step = RunWearStep(study, unworn, start, 1e12);
+    benchmark::DoNotOptimize(&step);
+    state.counters["load_cases"] = static_cast<double>(step.cases.size());
+  }
+}
+BENCHMARK(BM_WearStepVehicles)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace railwear

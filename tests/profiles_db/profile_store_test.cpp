@@ -648,7 +648,7 @@ TEST(ProfileStore, InterruptedStateRoundTripsAfterMigratingTheRunsTable) {
   const std::string path = tmp.File("v1.rwdb");
   RawExec(path, Version1Database());
   ProfileStore db = ProfileStore::Open(path);
-  EXPECT_EQ(db.SchemaVersion(), 5);
+  EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
   const auto old = db.FindRun("old");
   ASSERT_TRUE(old.has_value());
   EXPECT_EQ(old->state, RunState::kComplete);

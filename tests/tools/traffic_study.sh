@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Gauge-face wear against traffic (issue 15's must-show "after running-in, the W2 rate between 5
+# and 10 MGT is within a factor 2 of the rate between 1 and 5 MGT"): the main job's scene
+# (examples/curve_r600_vehicles.toml: coach and Y25 wagon, R 600 m, both rails) run to MGT
+# (default 10) instead of 1, then each rail's W2 and W3 interpolated linearly in MGT between the
+# stored steps at 1, 5 and MGT, and the rates between them. Too long for a test (minutes).
+#   usage: tests/tools/traffic_study.sh [RAILWEAR] [WORKDIR] [MGT]
+set -euo pipefail
+bin=${1:-build/app/railwear}
+work=${2:-$(mktemp -d)}
+total=${3:-10}
+here=$(cd "$(dirname "$0")/../.." && pwd)
+mkdir -p "$work"
+scene="$work/traffic.toml"
+awk -v t="$total" '/^total_MGT = / { print "total_MGT = " t; next } { print }' \
+  "$here/examples/curve_r600_vehicles.toml" > "$scene"
+db="$work/traffic.sqlite"
+rm -f "$db" "$db-wal" "$db-shm"
+start=$(date +%s)
+"$bin" wear "$scene" --db "$db" > "$work/traffic.log" 2>&1 || { tail -5 "$work/traffic.log"; exit 1; }
+echo "wear run: $(( $(date +%s) - start )) s wall ($work/traffic.log)"
+"$bin" history --db "$db" sql "SELECT s.mgt, s.w2_mm, s.w3_mm, l.w2_mm, l.w3_mm FROM steps s JOIN low_rail_steps l USING (run_id, step) ORDER BY s.step" --tsv 2>/dev/null |
+  awk -F"\t" -v t="$total" '
+    NR == 1 { next }  # the header
+    { n++; m[n] = $1; v[n, 1] = $2; v[n, 2] = $3; v[n, 3] = $4; v[n, 4] = $5 }
+    function at(x, k,   i, f) {
+      for (i = 2; i <= n; i++) if (m[i] >= x) { f = (x - m[i-1]) / (m[i] - m[i-1]); return v[i-1, k] + f * (v[i, k] - v[i-1, k]) }
+      return v[n, k]
+    }
+    END {
+      split("high W2,high W3,low W2,low W3", name, ",")
+      printf "%-8s %9s %9s %9s %14s %14s %7s\n", "measure", "at 1 MGT", "at 5", "at " t, "rate 1-5", "rate 5-" t, "ratio"
+      for (k = 1; k <= 4; k++) {
+        a = at(1, k); b = at(5, k); c = at(t, k); r1 = (b - a) / 4; r2 = (c - b) / (t - 5)
+        printf "%-8s %9.3f %9.3f %9.3f %14.4f %14.4f %7.2f\n", name[k], a, b, c, r1, r2, (r1 > 0 ? r2 / r1 : 0)
+      }
+      printf "(mm and mm/MGT; %d stored steps)\n", n
+    }'
