@@ -371,8 +371,8 @@ void PlaceFromCentre(const Fields& top, Scene* scene) {
   ws.yaw_rad = placement.yaw_rad;
   ws.roll_rad = placement.roll_rad;
   ws.rolling_radius_m = placement.rolling_radius_m;
+  ws.lateral_displacement_m = 0.0;  // the centred wheelset; lateral_mm is added below
   try {
-    ws.lateral_displacement_m = 0.0;
     c.centred_shift_m =
         PlaceWheelset(scene->problem.rail_profile, c.track, ws).right.lateral_shift_m;
   } catch (const InputError& e) {

@@ -80,7 +80,7 @@ lateral_mm = 0.0              # lateral position of the wheel toward the field s
 # gauge_height_mm = 14        # below the top of rail, where the gauge is measured
 # flange_back_distance_mm = 1360  # between the wheels' flange backs
 # flange_back_position_mm = -70   # y of the flange back in the wheel profile (S1002: -70)
-# lateral_shift_mm = -10.4    # or (not with lateral_mm) the wheel profile's origin relative to
+# lateral_shift_mm = -10.53   # or (not with lateral_mm) the wheel profile's origin relative to
                               # the rail's, toward the field side; default 0 when neither is given
 roll_rad = 0.0                # roll of the wheel, |roll_rad| < 0.5; default 0
 friction = 0.3                # in (0, 2]; needed by the "tangential" effect
