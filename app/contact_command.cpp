@@ -73,9 +73,11 @@ void CheckOptions(const ContactOptions& o) {
   if (o.plot) RequireGnuplot();  // before the solve, so nobody waits for nothing
 }
 
-// The flange-climb warning on stderr (it is also in the summary and the JSON's "warnings").
-void WarnOfFlangeClimb(const ContactResult& r, const std::string& wheel) {
-  if (r.climb.exceeded) std::cerr << "warning: " << FlangeClimbWarning(r.climb, wheel) << "\n";
+// The warnings on stderr (they are also in the summary and the JSON's "warnings").
+void Warn(const Scene& scene, const ContactResult& r, const std::string& wheel) {
+  for (const std::string& w : ContactWarnings(scene, r, wheel)) {
+    std::cerr << "warning: " << w << "\n";
+  }
 }
 
 // A wheelset on a track: both wheels, each in its rail's own frame.
@@ -94,8 +96,8 @@ void RunWheelset(const ContactOptions& o, const Scene& scene) {
   }
   if (o.json != "-" && o.csv != "-")
     std::cout << FormatWheelsetSummary(scene, result) << std::flush;
-  WarnOfFlangeClimb(result.right, "right wheel");
-  WarnOfFlangeClimb(result.left, "left wheel");
+  Warn(scene, result.right, "right wheel");
+  Warn(scene, result.left, "left wheel");
   if (o.plot) {
     ContactResult both = result.right;  // right patches first, then the left ones
     for (const auto& p : result.left.patches) both.patches.push_back(p);
@@ -146,7 +148,12 @@ void RunContact(const ContactOptions& o) {
     RunWheelset(o, scene);
     return;
   }
-  const ContactResult result = SolveContact(scene.problem);
+  ContactResult result = SolveContact(scene.problem);
+  // Normal contact has no friction of its own; a friction the scene gives still sets Nadal's
+  // limit for the flange-climb check.
+  if (!result.climb.friction && scene.friction) {
+    result.climb = CheckFlangeClimb(result, scene.friction);
+  }
 
   if (o.json) WriteOutput(*o.json, MakeContactJson(scene, result).dump(2) + "\n", "JSON");
   if (o.csv) {
@@ -155,7 +162,7 @@ void RunContact(const ContactOptions& o) {
     WriteOutput(*o.csv, csv.str(), "CSV");
   }
   if (o.json != "-" && o.csv != "-") std::cout << FormatSummary(scene, result) << std::flush;
-  WarnOfFlangeClimb(result, "");
+  Warn(scene, result, "");
   if (o.plot) PlotPressure(scene, result, *o.plot);
 
   if (result.status != SolverStatus::kConverged) {

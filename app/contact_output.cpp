@@ -340,12 +340,48 @@ std::vector<PressureSample> PressureSamples(const PatchResult& patch, int patch_
   return GridSamples(patch, patch_number);
 }
 
+std::vector<std::string> ContactWarnings(const Scene& scene, const ContactResult& r,
+                                         const std::string& wheel) {
+  std::vector<std::string> out;
+  if (r.climb.exceeded) out.push_back(FlangeClimbWarning(r.climb, wheel));
+  // The softer body of those whose hardness the scene gives.
+  const Material& rail = scene.problem.rail_material;
+  const Material& wheel_material = scene.problem.wheel_material;
+  const bool rail_softer = rail.hardness_Pa > 0 && !(wheel_material.hardness_Pa > 0 &&
+                                                     wheel_material.hardness_Pa < rail.hardness_Pa);
+  const double hardness_Pa = rail_softer ? rail.hardness_Pa : wheel_material.hardness_Pa;
+  // A pressure limit at the hardness holds p_max at it: only a clear excess is reported.
+  constexpr double kHardnessMargin = 1e-6;  // relative; far above the limit's rounding
+  if (hardness_Pa > 0 && r.p_max_Pa > hardness_Pa * (1.0 + kHardnessMargin)) {
+    out.push_back(fmt::format(
+        "{}p_max {:.0f} MPa exceeds the {}'s hardness {:.0f} MPa: the elastic solution is beyond "
+        "yield there (pressure_limit = \"hardness\" bounds it)",
+        wheel.empty() ? "" : wheel + ": ", r.p_max_Pa * kToMPa, rail_softer ? "rail" : "wheel",
+        hardness_Pa * kToMPa));
+  }
+  return out;
+}
+
+// The placement of a wheel placed from the centred wheelset ([load] lateral_mm).
+std::string CentredPlacementLine(const Scene& scene) {
+  if (!scene.centred) return {};
+  const Scene::CentredPlacement& c = *scene.centred;
+  return fmt::format(
+      "placement   lateral {:.3f} mm from the centred wheelset (gauge {:.1f} mm at {:.1f} mm "
+      "below the top of rail, flange backs {:.1f} mm apart, flange back at y = {:.1f} mm): wheel "
+      "origin at {:.3f} mm from the rail's ({:.3f} mm when centred)\n",
+      c.lateral_m * kToMm, c.track.gauge_m * kToMm, c.track.gauge_height_m * kToMm,
+      c.wheelset.flange_back_distance_m * kToMm, c.wheelset.flange_back_position_m * kToMm,
+      scene.problem.placement.lateral_shift_m * kToMm, c.centred_shift_m * kToMm);
+}
+
 std::string FormatSummary(const Scene& scene, const ContactResult& r, bool left_wheel) {
   std::string out;
   out += fmt::format("scene       {} ({})\n", scene.name, scene.path);
   out += fmt::format("model       {}\n", ModelLine(r.model));
   out += fmt::format("status      {}\n", ToString(r.status));
   if (!r.message.empty()) out += fmt::format("message     {}\n", r.message);
+  out += CentredPlacementLine(scene);
   out += fmt::format("approach    {:.5f} mm\n", r.approach_m * kToMm);
   out += fmt::format("iterations  {}\n", r.iterations);
   out += fmt::format("time        {:.1f} ms{}\n", r.time_s * kToMs, StagesLine(r));
@@ -373,9 +409,9 @@ std::string FormatSummary(const Scene& scene, const ContactResult& r, bool left_
         "balance     {} iterations: pressure and creep forces carry the load to {:.1e}\n",
         r.balance_iterations, r.balance_residual);
   }
-  if (!r.patches.empty()) {
-    out += ClimbLine(r.climb);
-    if (r.climb.exceeded) out += fmt::format("WARNING     {}\n", FlangeClimbWarning(r.climb, ""));
+  if (!r.patches.empty()) out += ClimbLine(r.climb);
+  for (const std::string& w : ContactWarnings(scene, r, "")) {
+    out += fmt::format("WARNING     {}\n", w);
   }
   if (r.coupling_iterations > 0) {
     out += fmt::format(
@@ -457,8 +493,17 @@ nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r, bool 
   j["forces"] = ForcesJson(r, left_wheel);
   j["flange_climb_check"] = ClimbJson(r.climb);
   j["flange_climb"] = r.climb.exceeded;
-  j["warnings"] = nlohmann::json::array();
-  if (r.climb.exceeded) j["warnings"].push_back(FlangeClimbWarning(r.climb, ""));
+  j["warnings"] = ContactWarnings(scene, r, "");
+  if (scene.centred && !left_wheel) {
+    const Scene::CentredPlacement& c = *scene.centred;
+    j["placement"] = {{"lateral_mm", c.lateral_m * kToMm},
+                      {"lateral_shift_mm", scene.problem.placement.lateral_shift_m * kToMm},
+                      {"centred_lateral_shift_mm", c.centred_shift_m * kToMm},
+                      {"gauge_mm", c.track.gauge_m * kToMm},
+                      {"gauge_height_mm", c.track.gauge_height_m * kToMm},
+                      {"flange_back_distance_mm", c.wheelset.flange_back_distance_m * kToMm},
+                      {"flange_back_position_mm", c.wheelset.flange_back_position_m * kToMm}};
+  }
   RequireFiniteJson(j, "contact result $");
   return j;
 }
@@ -523,7 +568,9 @@ nlohmann::json MakeWheelsetJson(const Scene& scene, const WheelsetResult& r) {
                  {"left", MakeContactJson(scene, r.left, true)}};
   j["warnings"] = nlohmann::json::array();
   for (const auto& [name, w] : {std::pair{"right wheel", &r.right}, {"left wheel", &r.left}}) {
-    if (w->climb.exceeded) j["warnings"].push_back(FlangeClimbWarning(w->climb, name));
+    for (const std::string& warning : ContactWarnings(scene, *w, name)) {
+      j["warnings"].push_back(warning);
+    }
   }
   j["flange_climb"] = r.right.climb.exceeded || r.left.climb.exceeded;
   return j;

@@ -43,10 +43,17 @@ constexpr int kHertzSamples = 41;
 // vector does not match the grid.
 std::vector<PressureSample> PressureSamples(const PatchResult& patch, int patch_number);
 
+// The warnings of a result: L/V beyond Nadal's limit (FlangeClimbWarning), and p_max beyond the
+// hardness of the softer body whose hardness the scene gives (materials.*.hardness_MPa).
+// `wheel` ("right wheel", ...) may be empty. Summary, JSON and stderr show the same strings.
+std::vector<std::string> ContactWarnings(const Scene& scene, const ContactResult& result,
+                                         const std::string& wheel);
+
 // Human summary: model, status, approach, iterations, time, totals (net forces on the rail, and
 // with rolling their pressure and creep parts), the vertical balance, L/V against Nadal's limit
-// (a WARNING line when exceeded) and tables of patches. `left_wheel`: the result is a wheelset's
-// left wheel (its track frame is its rail frame mirrored).
+// (a WARNING line per ContactWarnings), the placement when [load] lateral_mm gave it, and tables of
+// patches. `left_wheel`: the result is a wheelset's left wheel (its track frame is its rail frame
+// mirrored).
 std::string FormatSummary(const Scene& scene, const ContactResult& result, bool left_wheel = false);
 
 // The JSON object of DESIGN.md §4 (keys carry their units). Throws std::runtime_error naming

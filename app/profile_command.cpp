@@ -47,26 +47,60 @@ std::string ProfileText(const std::string& path, const ProfileFile& file) {
   return out;
 }
 
+// A fit of a measured scan: the points as read, the glitches dropped before the fit and the fit
+// of the rest (whose point indices run over the kept points).
+struct ScanFit {
+  ProfilePoints scan;
+  CleanedScan cleaned;
+  ProfileFit fit;
+  int RawIndex(int fitted) const { return cleaned.kept[fitted]; }
+};
+
+// "point 151 (line 153)": the 1-based point number in the file and its line.
+std::string PointName(const ScanFit& f, int raw) {
+  return fmt::format("point {} (line {})", raw + 1, f.scan.lines[raw]);
+}
+
+// Up to ten items, then how many more.
+std::string ListOf(const std::vector<std::string>& items) {
+  std::string list;
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    if (k == 10) {
+      list += fmt::format(", ... ({} more)", items.size() - 10);
+      break;
+    }
+    list += (k == 0 ? "" : ", ") + items[k];
+  }
+  return list;
+}
+
 // The fit report: figures in mm, point numbers 1-based as in the readers' messages.
-std::string FitText(const std::string& path, const ProfileFile& file, const ProfileFit& fit) {
-  const Profile& raw = file.profile;
+std::string FitText(const std::string& path, const ScanFit& f) {
+  const ProfileFit& fit = f.fit;
+  const std::vector<Eigen::Vector2d>& raw = f.scan.points_m;
   const SmoothingSplineSummary& s = fit.summary;
   std::string out;
   out += fmt::format("file            {}\n", path);
+  const std::string dropped =
+      f.cleaned.dropped.empty()
+          ? std::string()
+          : fmt::format("{} dropped as scan glitches, ", f.cleaned.dropped.size());
   out += fmt::format(
-      "points          {} ({} rejected as gross outliers, {} down-weighted by the "
+      "points          {} ({}{} rejected as gross outliers, {} down-weighted by the "
       "{} loss)\n",
-      raw.size(), fit.num_rejected, fit.num_downweighted, ToString(s.loss));
+      raw.size(), dropped, fit.num_rejected, fit.num_downweighted, ToString(s.loss));
+  for (const CleanedScan::Dropped& d : f.cleaned.dropped) {
+    out +=
+        fmt::format("dropped         {} (y = {:.3f}, z = {:.3f} mm): {}\n", PointName(f, d.index),
+                    raw[d.index].x() * kToMm, raw[d.index].y() * kToMm, d.reason);
+  }
   if (!fit.rejected_points.empty()) {
-    std::string list;
-    for (std::size_t k = 0; k < fit.rejected_points.size(); ++k) {
-      if (k == 10) {
-        list += fmt::format(" ... ({} more)", fit.rejected_points.size() - 10);
-        break;
-      }
-      list += fmt::format("{}{}", k == 0 ? "" : " ", fit.rejected_points[k] + 1);
+    std::vector<std::string> points, lines;
+    for (const int i : fit.rejected_points) {
+      points.push_back(std::to_string(f.RawIndex(i) + 1));
+      lines.push_back(std::to_string(f.scan.lines[f.RawIndex(i)]));
     }
-    out += fmt::format("rejected        points {}\n", list);
+    out += fmt::format("rejected        points {} (lines {})\n", ListOf(points), ListOf(lines));
   }
   out += fmt::format("smoothing       length {:.4f} mm, lambda {:.4g} m^4 ({})\n",
                      fit.smoothing_length_m * kToMm, fit.lambda_m4,
@@ -75,10 +109,10 @@ std::string FitText(const std::string& path, const ProfileFile& file, const Prof
       "RMS residual    {:.5f} mm normal distance ({:.5f} mm without rejected "
       "points)\n",
       fit.rms_distance_m * kToMm, fit.rms_inlier_distance_m * kToMm);
-  const Eigen::Vector2d& worst = raw.points()[fit.max_distance_index];
-  out += fmt::format("max residual    {:.5f} mm at point {} (y = {:.3f}, z = {:.3f} mm)\n",
-                     fit.max_distance_m * kToMm, fit.max_distance_index + 1, worst.x() * kToMm,
-                     worst.y() * kToMm);
+  const int worst = f.RawIndex(fit.max_distance_index);
+  out += fmt::format("max residual    {:.5f} mm at {} (y = {:.3f}, z = {:.3f} mm)\n",
+                     fit.max_distance_m * kToMm, PointName(f, worst), raw[worst].x() * kToMm,
+                     raw[worst].y() * kToMm);
   out += fmt::format(
       "noise           {:.5f} mm estimated from the points, {:.5f} mm implied by "
       "the fit\n",
@@ -95,6 +129,50 @@ std::string FitText(const std::string& path, const ProfileFile& file, const Prof
       ToString(s.status), s.num_coefficients, s.knot_spacing * kToMm, s.effective_dof,
       s.time_s * 1e3);
   return out;
+}
+
+// The same as one JSON object; every point named by its 1-based number and file line.
+nlohmann::json FitJson(const std::string& path, const ScanFit& f) {
+  const ProfileFit& fit = f.fit;
+  const std::vector<Eigen::Vector2d>& raw = f.scan.points_m;
+  const auto point = [&](int i) {
+    return nlohmann::json{{"point", i + 1},
+                          {"line", f.scan.lines[i]},
+                          {"y_mm", raw[i].x() * kToMm},
+                          {"z_mm", raw[i].y() * kToMm}};
+  };
+  nlohmann::json dropped = nlohmann::json::array(), rejected = nlohmann::json::array();
+  for (const CleanedScan::Dropped& d : f.cleaned.dropped) {
+    nlohmann::json j = point(d.index);
+    j["reason"] = d.reason;
+    dropped.push_back(j);
+  }
+  for (const int i : fit.rejected_points) {
+    nlohmann::json j = point(f.RawIndex(i));
+    j["distance_mm"] = fit.distance_m[i] * kToMm;
+    rejected.push_back(j);
+  }
+  nlohmann::json worst = point(f.RawIndex(fit.max_distance_index));
+  worst["distance_mm"] = fit.max_distance_m * kToMm;
+  return {{"file", path},
+          {"format", ToString(f.scan.format)},
+          {"notes", f.scan.notes},
+          {"points", raw.size()},
+          {"dropped", dropped},
+          {"rejected", rejected},
+          {"num_downweighted", fit.num_downweighted},
+          {"loss", ToString(fit.summary.loss)},
+          {"smoothing_length_mm", fit.smoothing_length_m * kToMm},
+          {"lambda_m4", fit.lambda_m4},
+          {"lambda_from_gcv", fit.summary.lambda_from_gcv},
+          {"rms_distance_mm", fit.rms_distance_m * kToMm},
+          {"rms_inlier_distance_mm", fit.rms_inlier_distance_m * kToMm},
+          {"max_distance", worst},
+          {"noise_estimate_mm", fit.noise_estimate_m * kToMm},
+          {"fit_noise_mm", fit.fit_noise_m * kToMm},
+          {"curvature_min_per_mm", fit.curvature_min_per_m / kToMm},
+          {"curvature_max_per_mm", fit.curvature_max_per_m / kToMm},
+          {"status", ToString(fit.summary.status)}};
 }
 
 }  // namespace
@@ -145,6 +223,8 @@ void SetupProfile(CLI::App& app) {
                    "AUTO (generalised cross-validation) or a smoothing length in mm: "
                    "wavelengths below 2 pi times it are damped (lambda = length^4)")
       ->default_val("auto");
+  fit_cmd->add_flag("--json", fit->json,
+                    "One JSON object on stdout (dropped and rejected points with their lines)");
   fit_cmd->add_option("--out", fit->output,
                       "Write the fitted profile, resampled every 0.1 mm (.csv or .ban)");
   fit_cmd->callback([fit]() { RunProfileFit(*fit); });
@@ -179,13 +259,20 @@ void RunProfileFit(const ProfileFitCommandOptions& o) {
           fmt::format("--out '{}': expected a file name ending in .csv or .ban", o.output));
     }
   }
-  const ProfileFile file = ReadProfileFile(o.path);
-  const ProfileFit fit = FitProfile(file.profile, options);
+  ScanFit f;
+  f.scan = ReadProfilePoints(o.path);
+  f.cleaned = CleanScan(f.scan.points_m, f.scan.lines, o.path);
+  f.fit = FitProfile(f.cleaned.profile, options);
+  const ProfileFit& fit = f.fit;
   if (fit.summary.status == SmoothingSplineStatus::kFailure) {
     throw std::runtime_error(
         fmt::format("profile fit of {} failed: {}", o.path, fit.summary.message));
   }
-  std::cout << FitText(o.path, file, fit);
+  if (o.json) {
+    std::cout << FitJson(o.path, f).dump(2) << "\n";
+  } else {
+    std::cout << FitText(o.path, f);
+  }
   if (fit.summary.status == SmoothingSplineStatus::kNoConvergence) {
     std::cerr << fmt::format(
         "railwear: warning: the fit did not converge ({}); figures are for "

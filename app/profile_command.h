@@ -1,5 +1,5 @@
 // `railwear profile show FILE [--json]`, `railwear profile convert IN OUT` and
-// `railwear profile fit FILE [--smoothing AUTO|LENGTH_MM] [--out FILE]`.
+// `railwear profile fit FILE [--smoothing AUTO|LENGTH_MM] [--out FILE] [--json]`.
 #pragma once
 
 #include <optional>
@@ -27,6 +27,7 @@ struct ProfileFitCommandOptions {
   // lambda = length^4. Parsed by ParseSmoothingLength.
   std::string smoothing = "auto";
   std::string output;  // empty: no file; else .csv or .ban by extension
+  bool json = false;   // one JSON object on stdout instead of the text report
 };
 
 // Adds `profile` with its subcommands `show`, `convert` and `fit`.

@@ -326,6 +326,62 @@ void ReadMotion(const Fields& t, Scene* scene) {
   }
 }
 
+// [load] lateral_mm (and the reference track and wheelset beside it): the wheel's lateral
+// position from the centred wheelset, the alternative to lateral_shift_mm. The wheel is placed
+// once the rail is read (PlaceFromCentre).
+void ReadCentredPlacement(const Fields& t, Scene* scene) {
+  constexpr std::string_view kReference[] = {"gauge_mm", "gauge_height_mm",
+                                             "flange_back_distance_mm", "flange_back_position_mm"};
+  if (!t.Has("lateral_mm")) {
+    for (const std::string_view key : kReference) {
+      if (t.Has(key)) {
+        t.Fail(key,
+               "no reference wheelset without 'load.lateral_mm' (it only sets where "
+               "lateral_mm = 0 lies)");
+      }
+    }
+    return;
+  }
+  if (t.Has("lateral_shift_mm")) {
+    t.Fail("lateral_shift_mm",
+           "either lateral_mm (from the centred wheelset) or lateral_shift_mm (the wheel "
+           "profile's origin from the rail's), not both");
+  }
+  Scene::CentredPlacement c;
+  c.lateral_m = t.RequiredNumber("lateral_mm", Closed(-100.0, 100.0)) * kMm;
+  c.track.gauge_m = t.Number("gauge_mm", InRange(1000.0, 1700.0)).value_or(1435.0) * kMm;
+  c.track.gauge_height_m = t.Number("gauge_height_mm", InRange(0.0, 30.0)).value_or(14.0) * kMm;
+  c.wheelset.flange_back_distance_m = t.Number("flange_back_distance_mm", InRange(900.0, 1700.0))
+                                          .value_or(c.wheelset.flange_back_distance_m / kMm) *
+                                      kMm;
+  c.wheelset.flange_back_position_m = t.Number("flange_back_position_mm", InRange(-200.0, 200.0))
+                                          .value_or(c.wheelset.flange_back_position_m / kMm) *
+                                      kMm;
+  scene->centred = c;
+}
+
+// The wheel of [load] lateral_mm placed as the right wheel of the reference wheelset displaced
+// by lateral_mm (with the wheel's yaw and roll) on the scene's rail, cant applied: the wheelset
+// code's placement (core/geometry/wheelset.h), so 0 is the centred wheelset on that gauge.
+void PlaceFromCentre(const Fields& top, Scene* scene) {
+  if (!scene->centred) return;
+  Scene::CentredPlacement& c = *scene->centred;
+  WheelPlacement& placement = scene->problem.placement;
+  WheelsetSpec ws = c.wheelset;
+  ws.yaw_rad = placement.yaw_rad;
+  ws.roll_rad = placement.roll_rad;
+  ws.rolling_radius_m = placement.rolling_radius_m;
+  ws.lateral_displacement_m = 0.0;  // the centred wheelset; lateral_mm is added below
+  try {
+    c.centred_shift_m =
+        PlaceWheelset(scene->problem.rail_profile, c.track, ws).right.lateral_shift_m;
+  } catch (const InputError& e) {
+    const Fields t = RequiredTable(top, "load", "a [load] table");
+    t.Fail("lateral_mm", fmt::format("a rail that has a gauge point: {}", e.what()));
+  }
+  placement.lateral_shift_m = c.centred_shift_m + c.lateral_m;
+}
+
 void ReadLoad(const Fields& top, Scene* scene) {
   const bool wheelset = top.Has("wheelset");
   if (wheelset) {
@@ -339,7 +395,9 @@ void ReadLoad(const Fields& top, Scene* scene) {
   }
   const Fields t = RequiredTable(top, "load", "a [load] table with vertical_N or approach_mm");
   t.AllowOnly({"vertical_N", "approach_mm", "lateral_shift_mm", "roll_rad", "friction", "speed_m_s",
-               "yaw_mrad", "pitch_velocity_rad_s", "longitudinal_force_N", "creepage"});
+               "yaw_mrad", "pitch_velocity_rad_s", "longitudinal_force_N", "creepage", "lateral_mm",
+               "gauge_mm", "gauge_height_mm", "flange_back_distance_mm",
+               "flange_back_position_mm"});
   ContactLoad& load = scene->problem.load;
   load.vertical_force_N = t.Number("vertical_N", Positive());
   if (const auto a = t.Number("approach_mm", Positive())) load.approach_m = *a * kMm;
@@ -351,6 +409,7 @@ void ReadLoad(const Fields& top, Scene* scene) {
   }
   WheelPlacement& placement = scene->problem.placement;
   placement.lateral_shift_m = t.Number("lateral_shift_mm", AnyFinite()).value_or(0.0) * kMm;
+  ReadCentredPlacement(t, scene);
   placement.roll_rad = t.Number("roll_rad", InRange(-kMaxRoll_rad, kMaxRoll_rad)).value_or(0.0);
   scene->friction = t.Number("friction", OpenClosed(0.0, 2.0));
   ReadMotion(t, scene);
@@ -931,6 +990,7 @@ Scene ParseScene(const std::string& text, const std::string& path) {
   ReadWheel(top, &scene);
   ReadRail(top, &scene);
   ReadWheelset(top, &scene);
+  PlaceFromCentre(top, &scene);
   CheckRolling(top, scene);
   if (scene.speed_m_s) scene.motion.speed_m_s = *scene.speed_m_s;
   if (scene.tangential) {

@@ -48,6 +48,17 @@ struct Scene {
   // instead of a pitch velocity: > 0 traction, < 0 braking.
   std::optional<double> longitudinal_force_N;
 
+  // A single wheel placed from the centred wheelset ([load] lateral_mm) instead of by its
+  // profile origin ([load] lateral_shift_mm): the reference track and wheelset, and where the
+  // wheel's origin then stands. problem.placement.lateral_shift_m holds the result.
+  struct CentredPlacement {
+    double lateral_m = 0.0;  // [load] lateral_mm: from the centred wheelset, toward the field side
+    TrackSpec track;         // [load] gauge_mm, gauge_height_mm (defaults 1435, 14)
+    WheelsetSpec wheelset;   // [load] flange_back_distance_mm, flange_back_position_mm
+    double centred_shift_m = 0.0;  // the wheel origin from the rail's when lateral_mm = 0
+  };
+  std::optional<CentredPlacement> centred;
+
   // A wheelset on a track ([track] + [wheelset]) instead of the single wheel of [load]; then
   // `problem` holds the right wheel's placement and the left one is its mirror image.
   std::optional<TrackSpec> track;

@@ -73,8 +73,15 @@ cant = "1:40"                 # "1:N" or "0"; default "0" (no cant)
 [load]                        # required; one wheel on one rail
 vertical_N = 100000           # give exactly one of vertical_N (> 0) ...
 # approach_mm = 0.05          # ... and approach_mm (> 0, from first contact)
-lateral_shift_mm = 0.0        # wheel profile origin relative to the rail's, toward the field
-                              # side; default 0
+lateral_mm = 0.0              # lateral position of the wheel toward the field side, from where
+                              # the right wheel of a centred wheelset stands on this rail: 0 is
+                              # a tread contact. The reference (optional; defaults shown):
+# gauge_mm = 1435             # track gauge between the gauge faces, [1000, 1700]
+# gauge_height_mm = 14        # below the top of rail, where the gauge is measured
+# flange_back_distance_mm = 1360  # between the wheels' flange backs
+# flange_back_position_mm = -70   # y of the flange back in the wheel profile (S1002: -70)
+# lateral_shift_mm = -10.53   # or (not with lateral_mm) the wheel profile's origin relative to
+                              # the rail's, toward the field side; default 0 when neither is given
 roll_rad = 0.0                # roll of the wheel, |roll_rad| < 0.5; default 0
 friction = 0.3                # in (0, 2]; needed by the "tangential" effect
 speed_m_s = 20.0              # > 0; needed by the "tangential" effect

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/numerics/input_error.h"
+#include "core/profile/profile_defects.h"
 
 namespace railwear {
 
@@ -150,7 +151,103 @@ class ArcLength {
   std::vector<double> cumulative_;
 };
 
+// A point's misfit to its neighbours for choosing which point of a defect to drop: the
+// leave-one-out deviation inside, the distance from its neighbours' chord next to an end, and
+// at an end the distance from the line through the next two points.
+double GlitchScore(const std::vector<Eigen::Vector2d>& p, int i) {
+  const int n = static_cast<int>(p.size());
+  if (i >= 2 && i + 2 < n) return LeaveOneOutDeviation(p, i);
+  if (i >= 1 && i + 1 < n) return SegmentDistance(p[i], p[i - 1], p[i + 1]);
+  const Eigen::Vector2d& q1 = i == 0 ? p[1] : p[n - 2];
+  const Eigen::Vector2d& q2 = i == 0 ? p[2] : p[n - 3];
+  const Eigen::Vector2d d = q2 - q1;
+  return std::abs(Cross(d, p[i] - q1)) / std::max(d.norm(), 1e-300);
+}
+
+// Whether dropping point c leaves no turn-back among the turns it changes and their neighbours.
+bool DropClearsTurns(const std::vector<Eigen::Vector2d>& p, int c) {
+  const int n = static_cast<int>(p.size());
+  std::vector<int> window;
+  for (int i = std::max(0, c - 3); i <= std::min(n - 1, c + 3); ++i) {
+    if (i != c) window.push_back(i);
+  }
+  const double cos_max_turn = std::cos(Profile::kMaxTurnAngle_rad);
+  for (std::size_t k = 1; k + 1 < window.size(); ++k) {
+    const Eigen::Vector2d u = p[window[k]] - p[window[k - 1]];
+    const Eigen::Vector2d v = p[window[k + 1]] - p[window[k]];
+    if (u.dot(v) < cos_max_turn * u.norm() * v.norm()) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+int MaxScanGlitches(int n) { return std::max(3, n / 100); }
+
+CleanedScan CleanScan(const std::vector<Eigen::Vector2d>& points_m, const std::vector<int>& lines,
+                      const std::string& source) {
+  const int n = static_cast<int>(points_m.size());
+  const auto name = [&](int raw) {
+    return lines.empty() ? fmt::format("point {}", raw + 1) : fmt::format("line {}", lines[raw]);
+  };
+  const auto at = [&](int raw) {
+    return fmt::format("(y = {:.4f}, z = {:.4f} mm)", points_m[raw].x() * 1e3,
+                       points_m[raw].y() * 1e3);
+  };
+  CleanedScan out;
+  std::vector<Eigen::Vector2d> p = points_m;
+  out.kept.resize(n);
+  for (int i = 0; i < n; ++i) out.kept[i] = i;
+  while (const auto defect = FindProfileDefect(p)) {
+    const int a = defect->a, b = defect->b;
+    std::string what;
+    std::vector<int> candidates;
+    switch (defect->kind) {
+      case ProfileDefect::Kind::kDuplicate:
+        what = fmt::format("repeats {}", name(out.kept[a]));
+        candidates = {b};
+        break;
+      case ProfileDefect::Kind::kTurnBack:
+        what = fmt::format("turned the scan back by {:.1f} degrees at {}",
+                           defect->turn_rad * 180.0 / 3.14159265358979323846, name(out.kept[a]));
+        candidates = {a - 1, a, a + 1};
+        break;
+      case ProfileDefect::Kind::kCrossing:
+        what = fmt::format("made the scan cross itself (segments from {} and {})",
+                           name(out.kept[a]), name(out.kept[b]));
+        candidates = {a, a + 1, b, b + 1};
+        break;
+    }
+    if (static_cast<int>(out.dropped.size()) >= MaxScanGlitches(n) ||
+        static_cast<int>(p.size()) <= 4) {
+      throw InputError(fmt::format(
+          "{}: {} {} {}, after {} point(s) dropped as scan glitches (at most {} of {} points); "
+          "expected a scan ordered along the profile (a point out of order or a spike one point "
+          "wide is dropped, but not this many)",
+          source, name(out.kept[b]), at(out.kept[b]), what, out.dropped.size(), MaxScanGlitches(n),
+          n));
+    }
+    int best = -1;
+    bool best_clears = false;
+    double best_score = -1.0;
+    for (const int c : candidates) {
+      if (c < 0 || c >= static_cast<int>(p.size())) continue;
+      const bool clears =
+          defect->kind == ProfileDefect::Kind::kTurnBack ? DropClearsTurns(p, c) : true;
+      const double score = GlitchScore(p, c);
+      if (best < 0 || (clears && !best_clears) || (clears == best_clears && score > best_score)) {
+        best = c;
+        best_clears = clears;
+        best_score = score;
+      }
+    }
+    out.dropped.push_back({out.kept[best], what});
+    p.erase(p.begin() + best);
+    out.kept.erase(out.kept.begin() + best);
+  }
+  out.profile = Profile(std::move(p), source);
+  return out;
+}
 
 ProfileFit FitProfile(const Profile& raw, const ProfileFitOptions& options) {
   std::string error;

@@ -15,6 +15,12 @@
 // at min_robust_scale) are the rejection's suspects: on very clean data GCV all but
 // interpolates, and residuals alone could not reveal a cluster of glitches.
 //
+// Measured scans may also carry glitches that make no profile at all: a spike one point wide
+// turns the polyline back on itself (a 1 mm spike at 0.1 mm spacing turns it by 168 degrees), a
+// point out of scan order steps back, a repeated point duplicates its predecessor. CleanScan
+// drops such points one at a time before the fit (see there), so FitProfile sees a valid
+// profile, and reports each with the reason; genuinely disordered input stays an error.
+//
 // Distances reported here are normal (orthogonal) distances of the raw points from the fitted
 // curve: the geometric misfit, free of the parameterisation's tangential slack.
 #pragma once
@@ -74,6 +80,33 @@ struct ProfileFit {
   // (EstimateProfileNoise).
   double noise_estimate_m = 0.0;
 };
+
+// A scan made into a profile: the points kept and those dropped as glitches, with why.
+struct CleanedScan {
+  Profile profile;        // the kept points, source as given
+  std::vector<int> kept;  // raw index (0-based) of each profile point, ascending
+  struct Dropped {
+    int index = 0;       // raw index, 0-based
+    std::string reason;  // e.g. "turned the scan back by 168.6 degrees"
+  };
+  std::vector<Dropped> dropped;  // in the order dropped
+};
+
+// The most glitch points CleanScan drops from n points before it calls the scan disordered:
+// max(3, 1 %), the budget of the MiniProf readers' glitch dropping (core/profile/profile_io.h).
+int MaxScanGlitches(int n);
+
+// Drops the points of `points_m` (shape [n][2], metres, n >= 4) that give the polyline a defect
+// (core/profile/profile_defects.h), one defect at a time, first defect first. Of the points
+// involved (a duplicate: the repeat; a turn-back at point i: i-1, i, i+1; a crossing of segments
+// [a, a+1] and [b, b+1]: their four ends) it drops the one whose removal clears the turns around
+// it and that lies farthest from the cubic through its two neighbours on either side (a
+// leave-one-out residual, as the fit's outlier suspects): the spike, not its clean neighbours.
+// `lines` (shape [n] or empty) are the points' file lines for messages (1-based point numbers
+// when empty); `source` names the file. Throws InputError, naming the first remaining defect by
+// its lines and coordinates, when more than MaxScanGlitches(n) points would have to go.
+CleanedScan CleanScan(const std::vector<Eigen::Vector2d>& points_m, const std::vector<int>& lines,
+                      const std::string& source);
 
 // Fits `raw` (n >= 4 points, metres). The resampled profile keeps raw.source() with " (fitted)"
 // appended. Throws InputError for invalid options.

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/numerics/input_error.h"
+#include "core/profile/profile_defects.h"
 
 namespace railwear {
 
@@ -56,23 +57,28 @@ Profile::Profile(std::vector<Eigen::Vector2d> points_m, std::string source)
                       kMaxCoordinate_m * 1e3, kMaxCoordinate_m * 1e3));
     }
   }
-  for (size_t i = 1; i < points_.size(); ++i) {
-    if ((points_[i] - points_[i - 1]).norm() < kDuplicateDistance_m) {
-      throw InputError(fmt::format(
-          "{}: point {} (y = {:.6f}, z = {:.6f} mm) duplicates point {}; expected distinct "
-          "consecutive points",
-          where, i + 1, points_[i].x() * 1e3, points_[i].y() * 1e3, i));
-    }
-  }
-  const double cos_max_turn = std::cos(kMaxTurnAngle_rad);
-  for (size_t i = 1; i + 1 < points_.size(); ++i) {
-    const Eigen::Vector2d a = points_[i] - points_[i - 1];
-    const Eigen::Vector2d b = points_[i + 1] - points_[i];
-    if (a.dot(b) < cos_max_turn * a.norm() * b.norm()) {
-      throw InputError(fmt::format(
-          "{}: point {} (y = {:.6f}, z = {:.6f} mm) makes the profile turn back on itself "
-          "(more than 150 degrees); expected points ordered along the profile",
-          where, i + 2, points_[i + 1].x() * 1e3, points_[i + 1].y() * 1e3));
+  if (const auto defect = FindProfileDefect(points_)) {
+    const auto mm = [&](int i) {
+      return fmt::format("(y = {:.6f}, z = {:.6f} mm)", points_[i].x() * 1e3, points_[i].y() * 1e3);
+    };
+    const int a = defect->a, b = defect->b;
+    switch (defect->kind) {
+      case ProfileDefect::Kind::kDuplicate:
+        throw InputError(
+            fmt::format("{}: point {} {} duplicates point {}; expected distinct consecutive points",
+                        where, b + 1, mm(b), a + 1));
+      case ProfileDefect::Kind::kTurnBack:
+        throw InputError(fmt::format(
+            "{}: point {} {} makes the profile turn back on itself (more than 150 degrees); "
+            "expected points ordered along the profile",
+            where, b + 1, mm(b)));
+      case ProfileDefect::Kind::kCrossing:
+        throw InputError(fmt::format(
+            "{}: the profile crosses itself: the segment from point {} {} to point {} {} "
+            "crosses the segment from point {} {} to point {} {} at (y = {:.6f}, z = {:.6f} mm); "
+            "expected a profile that does not cross itself",
+            where, a + 1, mm(a), a + 2, mm(a + 1), b + 1, mm(b), b + 2, mm(b + 1),
+            defect->crossing.x() * 1e3, defect->crossing.y() * 1e3));
     }
   }
   Build();

@@ -23,8 +23,9 @@ class Profile {
   // Throws InputError for fewer than 4 points, a non-finite coordinate or one beyond
   // kMaxCoordinate_m, a duplicate point
   // (closer than kDuplicateDistance_m to its predecessor) or a backtracking point (the curve
-  // turns back by more than kMaxTurnAngle_rad between consecutive segments). Messages name the
-  // source and the 1-based point number.
+  // turns back by more than kMaxTurnAngle_rad between consecutive segments) or a profile that
+  // crosses itself (two segments meet, core/profile/profile_defects.h). Messages name the
+  // source, the 1-based point numbers and their coordinates.
   explicit Profile(std::vector<Eigen::Vector2d> points_m, std::string source = {});
 
   static constexpr double kDuplicateDistance_m = 1e-9;

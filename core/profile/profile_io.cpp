@@ -20,6 +20,7 @@
 
 #include "core/numerics/input_error.h"
 #include "core/numerics/text.h"
+#include "core/profile/profile_defects.h"
 
 namespace railwear {
 
@@ -40,6 +41,19 @@ struct RawPoint {
   double y = 0.0, z = 0.0;  // millimetres until the final conversion
   int line = 0;             // 1-based line in the file
 };
+
+// What a reader collected: points in the profile frame (mm) with their lines, before the
+// final ordering and checks.
+struct RawRead {
+  std::vector<RawPoint> pts;
+  ProfileFormat format = ProfileFormat::kCsv;
+  std::vector<std::string> notes;
+  int last_line = 1;
+};
+
+// kProfile: a profile for use (MiniProf scan glitches dropped, every check applied).
+// kPoints: the points as measured, for `profile fit`, which rejects glitches itself.
+enum class ReadMode { kProfile, kPoints };
 
 struct Line {
   int number = 0;
@@ -146,6 +160,13 @@ void CheckCoordinateRange(const std::vector<RawPoint>& pts, const std::string& p
   }
 }
 
+std::vector<Eigen::Vector2d> MillimetrePoints(const std::vector<RawPoint>& pts) {
+  std::vector<Eigen::Vector2d> mm;
+  mm.reserve(pts.size());
+  for (const RawPoint& p : pts) mm.emplace_back(p.y, p.z);
+  return mm;
+}
+
 // The checks of the Profile constructor, on millimetre points, naming file lines.
 void ValidatePoints(const std::vector<RawPoint>& pts, const std::string& path, int last_line) {
   CheckCoordinateRange(pts, path);
@@ -154,27 +175,31 @@ void ValidatePoints(const std::vector<RawPoint>& pts, const std::string& path, i
         fmt::format("{}:{}: {} profile point(s) read by the end of the file; expected at least 4",
                     path, last_line, pts.size()));
   }
-  const double dup_mm = Profile::kDuplicateDistance_m * 1e3;
-  for (size_t i = 1; i < pts.size(); ++i) {
-    if (std::hypot(pts[i].y - pts[i - 1].y, pts[i].z - pts[i - 1].z) < dup_mm) {
+  const auto defect = FindProfileDefect(MillimetrePoints(pts), 1e3);
+  if (!defect) return;
+  const RawPoint& pa = pts[defect->a];
+  const RawPoint& pb = pts[defect->b];
+  switch (defect->kind) {
+    case ProfileDefect::Kind::kDuplicate:
       throw InputError(fmt::format(
           "{}:{}: point (y = {:.6f}, z = {:.6f} mm) duplicates the point on line {}; expected "
           "distinct consecutive points",
-          path, pts[i].line, pts[i].y, pts[i].z, pts[i - 1].line));
-    }
-  }
-  const double cos_max_turn = std::cos(Profile::kMaxTurnAngle_rad);
-  for (size_t i = 1; i + 1 < pts.size(); ++i) {
-    const double ay = pts[i].y - pts[i - 1].y, az = pts[i].z - pts[i - 1].z;
-    const double by = pts[i + 1].y - pts[i].y, bz = pts[i + 1].z - pts[i].z;
-    const double na = std::hypot(ay, az), nb = std::hypot(by, bz);
-    const double dot = ay * by + az * bz;
-    if (dot < cos_max_turn * na * nb) {
-      const double turn_deg = std::acos(std::clamp(dot / (na * nb), -1.0, 1.0)) * 180.0 / kPi;
+          path, pb.line, pb.y, pb.z, pa.line));
+    case ProfileDefect::Kind::kTurnBack:
       throw InputError(fmt::format(
           "{}:{}: point (y = {:.6f}, z = {:.6f} mm) turns the profile back by {:.1f} degrees "
           "after line {}; expected points ordered along the profile (turns up to 150 degrees)",
-          path, pts[i + 1].line, pts[i + 1].y, pts[i + 1].z, turn_deg, pts[i].line));
+          path, pb.line, pb.y, pb.z, defect->turn_rad * 180.0 / kPi, pa.line));
+    case ProfileDefect::Kind::kCrossing: {
+      const RawPoint& pa1 = pts[defect->a + 1];
+      const RawPoint& pb1 = pts[defect->b + 1];
+      throw InputError(fmt::format(
+          "{}:{}: the profile crosses itself: the segment from line {} (y = {:.6f}, z = {:.6f} "
+          "mm) to line {} (y = {:.6f}, z = {:.6f} mm) crosses the segment from line {} "
+          "(y = {:.6f}, z = {:.6f} mm) to line {} (y = {:.6f}, z = {:.6f} mm) at (y = {:.6f}, "
+          "z = {:.6f} mm); expected a profile that does not cross itself",
+          path, pb.line, pa.line, pa.y, pa.z, pa1.line, pa1.y, pa1.z, pb.line, pb.y, pb.z, pb1.line,
+          pb1.y, pb1.z, defect->crossing.x(), defect->crossing.y()));
     }
   }
 }
@@ -236,9 +261,9 @@ int LastLine(const std::vector<Line>& lines) { return lines.empty() ? 1 : lines.
 
 // ------------------------------------------------------------------------------------ CSV
 
-ProfileFile ReadCsv(const std::string& path) {
+RawRead ReadCsv(const std::string& path) {
   const auto lines = ReadLines(path);
-  ProfileFile out;
+  RawRead out;
   out.format = ProfileFormat::kCsv;
   bool header_seen = false;
   std::vector<RawPoint> pts;
@@ -277,7 +302,8 @@ ProfileFile ReadCsv(const std::string& path) {
     throw InputError(fmt::format("{}:{}: no CSV header found; expected a first line 'y_mm,z_mm'",
                                  path, LastLine(lines)));
   }
-  out.profile = Finish(std::move(pts), path, LastLine(lines), &out.notes);
+  out.pts = std::move(pts);
+  out.last_line = LastLine(lines);
   return out;
 }
 
@@ -293,9 +319,9 @@ std::string StripBangComment(const std::string& s) {
   return s;
 }
 
-ProfileFile ReadSimpack(const std::string& path, bool wheel) {
+RawRead ReadSimpack(const std::string& path, bool wheel) {
   const auto lines = ReadLines(path);
-  ProfileFile out;
+  RawRead out;
   out.format = wheel ? ProfileFormat::kSimpackPrw : ProfileFormat::kSimpackPrr;
   enum class Block { kNone, kHeader, kSpline, kPoints, kDone };
   Block block = Block::kNone;
@@ -510,7 +536,8 @@ ProfileFile ReadSimpack(const std::string& path, bool wheel) {
                       ? fmt::format("units.len.f = {}: file lengths divided by {} to metres",
                                     units_len, units_len)
                       : std::string("no units.len.f; lengths taken as millimetres"));
-  out.profile = Finish(std::move(pts), path, LastLine(lines), &notes);
+  out.pts = std::move(pts);
+  out.last_line = LastLine(lines);
   return out;
 }
 
@@ -619,7 +646,7 @@ void NoteXYPoints(const MiniProfData& d, std::vector<std::string>* notes) {
   }
 }
 
-ProfileFile ReadBan(const std::string& path) {
+RawRead ReadBan(const std::string& path, ReadMode mode) {
   const auto lines = ReadLines(path);
   for (const Line& line : lines) {
     const std::string t = Lower(Trim(line.text));
@@ -632,7 +659,7 @@ ProfileFile ReadBan(const std::string& path) {
           t[0] == 'p' || t[0] == 'h' ? "SIMPACK profile" : "MiniProf wheel (.whl)"));
     }
   }
-  ProfileFile out;
+  RawRead out;
   out.format = ProfileFormat::kMiniProfBan;
   MiniProfData d = ReadKeyValueLayout(lines, path, "MiniProf .ban");
   auto& notes = out.notes;
@@ -661,14 +688,15 @@ ProfileFile ReadBan(const std::string& path) {
   if (y_up) {
     for (auto& p : d.pts) p.z = -p.z;
   }
-  DropScanGlitches(&d.pts, path, LastLine(lines), &notes);
-  out.profile = Finish(std::move(d.pts), path, LastLine(lines), &notes);
+  if (mode == ReadMode::kProfile) DropScanGlitches(&d.pts, path, LastLine(lines), &notes);
+  out.pts = std::move(d.pts);
+  out.last_line = LastLine(lines);
   return out;
 }
 
-ProfileFile ReadWhl(const std::string& path) {
+RawRead ReadWhl(const std::string& path, ReadMode mode) {
   const auto lines = ReadLines(path);
-  ProfileFile out;
+  RawRead out;
   out.format = ProfileFormat::kMiniProfWhl;
   auto& notes = out.notes;
   for (const Line& line : lines) {
@@ -717,7 +745,7 @@ ProfileFile ReadWhl(const std::string& path) {
   }
   const int last_line = LastLine(lines);
   if (d.pts.size() < 4) ValidatePoints(d.pts, path, last_line);
-  DropScanGlitches(&d.pts, path, last_line, &notes);
+  if (mode == ReadMode::kProfile) DropScanGlitches(&d.pts, path, last_line, &notes);
   // Y at the taping line X = 70 (first crossing) and the flange (largest |Y - Y70| for X in the
   // flange window).
   std::optional<double> y70;
@@ -751,7 +779,8 @@ ProfileFile ReadWhl(const std::string& path) {
   notes.push_back(negate ? "flange pointed to negative Y: z = -Y"
                          : "flange toward positive Y: z = Y");
   notes.push_back(fmt::format("z at the taping line: {:.3f} mm", negate ? -*y70 : *y70));
-  out.profile = Finish(std::move(d.pts), path, last_line, &notes);
+  out.pts = std::move(d.pts);
+  out.last_line = last_line;
   return out;
 }
 
@@ -770,6 +799,18 @@ std::ofstream OpenForWriting(const std::string& path) {
 void CloseAfterWriting(std::ofstream& out, const std::string& path) {
   out.close();
   if (!out) throw InputError(fmt::format("{}: error while writing the profile file", path));
+}
+
+RawRead ReadRaw(const std::string& path, ReadMode mode) {
+  const std::string ext = Extension(path);
+  if (ext == ".csv") return ReadCsv(path);
+  if (ext == ".ban") return ReadBan(path, mode);
+  if (ext == ".whl") return ReadWhl(path, mode);
+  if (ext == ".prr") return ReadSimpack(path, /*wheel=*/false);
+  if (ext == ".prw") return ReadSimpack(path, /*wheel=*/true);
+  throw InputError(fmt::format(
+      "{}: unknown profile file extension '{}'; expected .csv, .ban, .whl, .prr or .prw", path,
+      ext));
 }
 
 }  // namespace
@@ -793,15 +834,30 @@ std::string_view ToString(ProfileFormat f) {
 }
 
 ProfileFile ReadProfileFile(const std::string& path) {
-  const std::string ext = Extension(path);
-  if (ext == ".csv") return ReadCsv(path);
-  if (ext == ".ban") return ReadBan(path);
-  if (ext == ".whl") return ReadWhl(path);
-  if (ext == ".prr") return ReadSimpack(path, /*wheel=*/false);
-  if (ext == ".prw") return ReadSimpack(path, /*wheel=*/true);
-  throw InputError(fmt::format(
-      "{}: unknown profile file extension '{}'; expected .csv, .ban, .whl, .prr or .prw", path,
-      ext));
+  RawRead raw = ReadRaw(path, ReadMode::kProfile);
+  ProfileFile out;
+  out.format = raw.format;
+  out.notes = std::move(raw.notes);
+  out.profile = Finish(std::move(raw.pts), path, raw.last_line, &out.notes);
+  return out;
+}
+
+ProfilePoints ReadProfilePoints(const std::string& path) {
+  RawRead raw = ReadRaw(path, ReadMode::kPoints);
+  CheckCoordinateRange(raw.pts, path);
+  if (raw.pts.size() < 4) ValidatePoints(raw.pts, path, raw.last_line);  // throws
+  ProfilePoints out;
+  out.format = raw.format;
+  out.notes = std::move(raw.notes);
+  if (raw.pts.front().y > raw.pts.back().y) {
+    std::reverse(raw.pts.begin(), raw.pts.end());
+    out.notes.push_back("point order reversed so that y increases along the profile");
+  }
+  for (const RawPoint& p : raw.pts) {
+    out.points_m.emplace_back(p.y * 1e-3, p.z * 1e-3);
+    out.lines.push_back(p.line);
+  }
+  return out;
 }
 
 void WriteProfileCsv(const Profile& profile, const std::string& path) {

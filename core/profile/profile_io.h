@@ -43,6 +43,19 @@ struct ProfileFile {
 // backtracking points, unreadable file.
 ProfileFile ReadProfileFile(const std::string& path);
 
+// The points of a profile file as measured, for fitting (`railwear profile fit`): the format's
+// conversions and point order (y increasing) applied, and the checks that make numbers of them
+// (finite, within Profile::kMaxCoordinate_m, at least 4 points), but no duplicate, turn-back or
+// crossing checks and no MiniProf scan-glitch dropping: the fit treats glitches as outliers.
+// Throws InputError as ReadProfileFile for everything else.
+struct ProfilePoints {
+  std::vector<Eigen::Vector2d> points_m;  // shape [n][2], metres, profile frame
+  std::vector<int> lines;                 // shape [n], 1-based file line of each point
+  ProfileFormat format = ProfileFormat::kCsv;
+  std::vector<std::string> notes;
+};
+ProfilePoints ReadProfilePoints(const std::string& path);
+
 // Writers (millimetres, 6 decimals). CSV: header "y_mm,z_mm". BAN: MiniProf Key=Value header and
 // X, Y columns in MiniProf's convention (the inverse of what the reader applies).
 // Throw InputError when the file cannot be written.

@@ -173,6 +173,57 @@ std::vector<CorpusCase> Corpus() {
                2,
                {"r.prr:7:", "units.len.f = '1e-300'", "[0.001, 1e6]"}});
 
+  // Geometry (point 5): a profile that crosses itself, named by both segments' lines and
+  // coordinates, as a scene's rail, a scene's wheel and in `profile show`; a scan too disordered
+  // for `profile fit` to call its faults glitches.
+  const std::string loop =
+      "y_mm,z_mm\n-30,5\n-20,2\n-10,0.5\n0,0\n10,0.5\n5,-8\n0,5\n10,6\n20,2\n30,5\n";
+  const std::vector<std::string> crossing = {
+      "r.csv:7: the profile crosses itself",
+      "from line 5 (y = 0.000000, z = 0.000000 mm) to line 6",
+      "from line 7 (y = 5.000000, z = -8.000000 mm) to line 8",
+      "at (y = 1.886792, z = 0.094340 mm)"};
+  c.push_back({"profile_self_crossing_rail",
+               {{"s.toml", csv_rail}, {"r.csv", loop}},
+               "contact s.toml",
+               2,
+               crossing});
+  c.push_back({"profile_self_crossing_wheel",
+               {{"s.toml", Replace(tread, "profile = \"builtin:S1002\"", "profile = \"r.csv\"")},
+                {"r.csv", loop}},
+               "contact s.toml",
+               2,
+               crossing});
+  c.push_back({"profile_self_crossing_show", {{"r.csv", loop}}, "profile show r.csv", 2, crossing});
+  c.push_back({"profile_fit_disordered_scan",
+               {{"r.csv", ArcCsvExact([](int i, std::string* y, std::string*) {
+                   // y of points 6, 12, 18, 24, 30 (1-based) set back behind their predecessors
+                   if (i % 6 == 5) *y = std::to_string(-35.0 + 70.0 * (i - 1.5) / 39.0);
+                 })}},
+               "profile fit r.csv",
+               2,
+               {"r.csv: line ", "dropped as scan glitches (at most 3 of 40 points)",
+                "expected a scan ordered along the profile"}});
+  // First run (point 7): the two lateral keys together, and a reference gauge without lateral_mm.
+  c.push_back({"lateral_mm_and_lateral_shift_mm",
+               {{"s.toml", Replace(tread, "\nlateral_shift_mm = -10.4",
+                                   "\nlateral_shift_mm = -10.4\nlateral_mm = 0")}},
+               "contact s.toml",
+               2,
+               {"s.toml:", "key 'load.lateral_shift_mm' = -10.4",
+                "either lateral_mm (from the centred wheelset) or lateral_shift_mm", "not both"}});
+  c.push_back({"gauge_mm_without_lateral_mm",
+               {{"s.toml", Replace(tread, "\nlateral_shift_mm = -10.4",
+                                   "\nlateral_shift_mm = -10.4\ngauge_mm = 1000")}},
+               "contact s.toml",
+               2,
+               {"s.toml:", "key 'load.gauge_mm' = 1000", "without 'load.lateral_mm'"}});
+  c.push_back({"lateral_mm_out_of_range",
+               {{"s.toml", Replace(tread, "\nlateral_shift_mm = -10.4", "\nlateral_mm = 1e308")}},
+               "contact s.toml",
+               2,
+               {"s.toml:", "key 'load.lateral_mm' = 1e+308", "[-100, 100]"}});
+
   // The step's time and memory estimate: 100 000 traffic entries (8 GB before).
   {
     const std::string entry = wear.substr(wear.find("[[traffic]]"));

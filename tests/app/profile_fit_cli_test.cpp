@@ -14,6 +14,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "app/profile_command.h"
 #include "core/numerics/input_error.h"
@@ -56,12 +57,12 @@ TEST_F(ProfileFitCliTest, ReportsResidualsOutliersLambdaAndCurvatureAndWritesBan
   const Outcome o = Run("profile fit arc.csv --out fit.ban");
   ASSERT_EQ(o.exit_code, 0) << o.err;
   EXPECT_TRUE(Contains(o.out, "points          300 (1 rejected as gross outliers"));
-  EXPECT_TRUE(Contains(o.out, "rejected        points 151\n"));
+  EXPECT_TRUE(Contains(o.out, "rejected        points 151 (lines 152)\n"));  // after the header
   EXPECT_TRUE(Contains(o.out, "(GCV)"));
   EXPECT_TRUE(Contains(o.out, "lambda"));
   EXPECT_TRUE(Contains(o.out, "mm normal distance (0.000"));  // 1 um noise without the glitch
   EXPECT_TRUE(Contains(o.out, "max residual    0.49"));       // the 0.5 mm glitch
-  EXPECT_TRUE(Contains(o.out, "at point 151"));
+  EXPECT_TRUE(Contains(o.out, "at point 151 (line 152)"));
   EXPECT_TRUE(Contains(o.out, "noise           0.00"));
   EXPECT_TRUE(Contains(o.out, "curvature       0.0"));  // around 1/50 mm = 0.02 1/mm
   EXPECT_TRUE(Contains(o.err, "wrote fit.ban"));
@@ -101,6 +102,55 @@ TEST_F(ProfileFitCliTest, BadInputExitsTwoWithAClearMessage) {
   EXPECT_TRUE(Contains(ext.err, "--out 'fit.txt': expected a file name ending in .csv or .ban"));
   EXPECT_EQ(ext.out, "");
   EXPECT_FALSE(fs::exists(dir_ / "fit.txt"));
+}
+
+// The raw scan: a 1 mm spike on one point of a scan taken every 0.1 mm turns the polyline
+// back by 168 degrees. `profile show` refuses it as a profile; `profile fit` drops it as a scan
+// glitch, names its line in the report and the JSON, and fits the rest.
+TEST_F(ProfileFitCliTest, OnePointSpikeIsDroppedAndReportedWithItsLine) {
+  std::string csv = "# a raw scan\ny_mm,z_mm\n";  // points start on line 3
+  for (int i = 0; i < 400; ++i) {
+    const double phi = (i - 200) * 0.1 / kRadius_mm;
+    const double e = i == 120 ? 1.0 : 0.0;  // point 121, line 123
+    csv += fmt::format("{:.5f},{:.5f}\n", (kRadius_mm - e) * std::sin(phi),
+                       kRadius_mm - (kRadius_mm - e) * std::cos(phi));
+  }
+  Write("spike.csv", csv);
+  const Outcome show = Run("profile show spike.csv");
+  EXPECT_EQ(show.exit_code, 2);
+  EXPECT_TRUE(Contains(show.err, "spike.csv:124:")) << show.err;
+  EXPECT_TRUE(Contains(show.err, "turns the profile back by 168.")) << show.err;
+
+  const Outcome o = Run("profile fit spike.csv");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(Contains(o.out, "points          400 (1 dropped as scan glitches, 0 rejected"))
+      << o.out;
+  EXPECT_TRUE(Contains(o.out,
+                       "dropped         point 121 (line 123) (y = -7.807, z = 1.626 mm): "
+                       "turned the scan back by 168.6 degrees at line 123"))
+      << o.out;
+  EXPECT_TRUE(Contains(o.out, "RMS residual    0.00")) << o.out;  // the clean arc fits
+
+  const Outcome j = Run("profile fit spike.csv --json");
+  ASSERT_EQ(j.exit_code, 0) << j.err;
+  const nlohmann::json fit = nlohmann::json::parse(j.out);
+  ASSERT_EQ(fit["dropped"].size(), 1u);
+  EXPECT_EQ(fit["dropped"][0]["line"], 123);
+  EXPECT_EQ(fit["dropped"][0]["point"], 121);
+  EXPECT_EQ(fit["points"], 400);
+  EXPECT_LT(fit["rms_distance_mm"].get<double>(), 1e-3);
+}
+
+// The rejected points of the robust fit carry their lines in the JSON too.
+TEST_F(ProfileFitCliTest, JsonNamesRejectedPointsByLine) {
+  const Outcome o = Run("profile fit arc.csv --json");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  const nlohmann::json fit = nlohmann::json::parse(o.out);
+  ASSERT_EQ(fit["rejected"].size(), 1u);
+  EXPECT_EQ(fit["rejected"][0]["point"], 151);
+  EXPECT_EQ(fit["rejected"][0]["line"], 152);
+  EXPECT_NEAR(fit["rejected"][0]["distance_mm"].get<double>(), 0.5, 0.01);
+  EXPECT_EQ(fit["dropped"].size(), 0u);
 }
 
 TEST(ParseSmoothingLengthTest, AutoOrMillimetres) {

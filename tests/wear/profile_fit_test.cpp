@@ -318,3 +318,89 @@ TEST(ProfileFitTest, BadOptionsThrowWithTheValue) {
 
 }  // namespace
 }  // namespace railwear
+
+namespace railwear {
+namespace {
+
+// A raw scan of the UIC60 rail every 0.1 mm of arc (some 1500 points, a MiniProf-like density)
+// with 2 um of normal noise.
+std::vector<Eigen::Vector2d> DenseScan(const Profile& rail, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 2e-6);
+  std::vector<Eigen::Vector2d> points;
+  const int n = static_cast<int>(rail.Length() / 0.1e-3);
+  for (int i = 0; i <= n; ++i) {
+    const double s = rail.Length() * i / n;
+    points.push_back(rail.Position(s) + noise(rng) * rail.LeftNormal(s));
+  }
+  return points;
+}
+
+TEST(CleanScanTest, OnePointSpikeIsDroppedAndBarelyMovesTheFit) {
+  const Profile rail = MakeUic60();
+  const std::vector<Eigen::Vector2d> clean = DenseScan(rail, 5);
+  const ProfileFit clean_fit = FitProfile(Profile(clean, "clean"), ProfileFitOptions());
+  for (const int index : {300, 700, 1100}) {
+    std::vector<Eigen::Vector2d> spiked = clean;
+    const Profile clean_profile(clean, "clean");
+    spiked[index] += 1e-3 * clean_profile.LeftNormal(clean_profile.KnotS(index));
+    // The case: the Profile itself refuses such a scan (a 168-degree turn).
+    EXPECT_THROW(Profile(spiked, "spiked"), InputError);
+    const CleanedScan cleaned = CleanScan(spiked, {}, "spiked");
+    ASSERT_EQ(cleaned.dropped.size(), 1u) << index;
+    EXPECT_EQ(cleaned.dropped[0].index, index);
+    EXPECT_NE(cleaned.dropped[0].reason.find("turned the scan back by 16"), std::string::npos)
+        << cleaned.dropped[0].reason;
+    EXPECT_EQ(cleaned.profile.size(), static_cast<int>(clean.size()) - 1);
+    const ProfileFit fit = FitProfile(cleaned.profile, ProfileFitOptions());
+    const double shift = MaxDeviation(fit, clean_fit.profile);
+    std::cout << fmt::format(
+        "[figure] 1 mm one-point spike at point {} of {} (0.1 mm spacing): dropped, the fit "
+        "moves by at most {:.5f} mm\n",
+        index + 1, clean.size(), shift * kMm);
+    EXPECT_LT(shift, kOutlierShiftTolerance_m) << index;
+  }
+}
+
+TEST(CleanScanTest, PointOutOfScanOrderIsTheOneDropped) {
+  const std::vector<Eigen::Vector2d> clean = DenseScan(MakeUic60(), 6);
+  std::vector<Eigen::Vector2d> p = clean;
+  const int k = 500;
+  // Three points back, between points k-4 and k-3: dropping its predecessor would not help.
+  p[k] = p[k - 3] - 0.5 * (p[k - 3] - p[k - 4]);
+  const CleanedScan cleaned = CleanScan(p, {}, "scan");
+  ASSERT_EQ(cleaned.dropped.size(), 1u);
+  EXPECT_EQ(cleaned.dropped[0].index, k);
+  EXPECT_EQ(cleaned.kept[k], k + 1);
+}
+
+TEST(CleanScanTest, RepeatedPointIsDropped) {
+  std::vector<Eigen::Vector2d> p = DenseScan(MakeUic60(), 7);
+  p[40] = p[39];
+  const CleanedScan cleaned = CleanScan(p, {}, "scan");
+  ASSERT_EQ(cleaned.dropped.size(), 1u);
+  EXPECT_EQ(cleaned.dropped[0].index, 40);
+  EXPECT_NE(cleaned.dropped[0].reason.find("repeats point 40"), std::string::npos);
+}
+
+TEST(CleanScanTest, DisorderedScanStaysAnErrorNamingALine) {
+  std::vector<Eigen::Vector2d> p = DenseScan(MakeUic60(), 8);
+  std::vector<int> lines(p.size());
+  for (size_t i = 0; i < p.size(); ++i) lines[i] = static_cast<int>(i) + 2;  // after a header
+  // Every 20th pair swapped: some 60 pairs out of order, far beyond max(3, 1 %) of 1324.
+  for (size_t i = 100; i + 1 < p.size(); i += 20) std::swap(p[i], p[i + 1]);
+  try {
+    CleanScan(p, lines, "scan.csv");
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("scan.csv: line "), std::string::npos) << m;
+    EXPECT_NE(m.find(fmt::format("point(s) dropped as scan glitches (at most {} of {} points)",
+                                 MaxScanGlitches(static_cast<int>(p.size())), p.size())),
+              std::string::npos)
+        << m;
+  }
+}
+
+}  // namespace
+}  // namespace railwear
