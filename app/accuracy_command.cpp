@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 
@@ -83,6 +84,21 @@ fs::path CreateOutDir(const std::string& dir) {
   return fs::path(dir);
 }
 
+// The studies' progress lines, on stderr.
+void Progress(const std::string& line) { std::cerr << "railwear accuracy: " << line << "\n"; }
+
+// Writes DIR/NAME (DIR created) with `write` and says so on stderr.
+void WriteCsv(const std::string& dir, const std::string& name,
+              const std::function<void(std::ostream&)>& write) {
+  const fs::path csv = CreateOutDir(dir) / name;
+  {
+    std::ofstream out(csv);
+    write(out);
+    if (!out) throw InputError(fmt::format("{}: cannot write the CSV", csv.string()));
+  }
+  std::cerr << "railwear accuracy: wrote " << csv.string() << "\n";
+}
+
 void RunCurvingAccuracy(const Scene& scene, const AccuracyOptions& o) {
   if (o.contact_options_given || o.step_limits_mm || o.total_mgt) {
     throw InputError(fmt::format(
@@ -92,18 +108,11 @@ void RunCurvingAccuracy(const Scene& scene, const AccuracyOptions& o) {
   }
   const std::vector<std::string> levels =
       o.levels_given ? o.levels : std::vector<std::string>{"draft", "standard", "reference"};
-  const CurvingAccuracyStudy study = RunCurvingAccuracyStudy(
-      scene, levels,
-      [](const std::string& line) { std::cerr << "railwear accuracy: " << line << "\n"; });
+  const CurvingAccuracyStudy study = RunCurvingAccuracyStudy(scene, levels, Progress);
   std::cout << FormatCurvingAccuracyTable(study) << std::flush;
   if (!o.out_dir) return;
-  const fs::path csv = CreateOutDir(*o.out_dir) / "curving_accuracy.csv";
-  {
-    std::ofstream out(csv);
-    WriteCurvingAccuracyCsv(study, out);
-    if (!out) throw InputError(fmt::format("{}: cannot write the CSV", csv.string()));
-  }
-  std::cerr << "railwear accuracy: wrote " << csv.string() << "\n";
+  WriteCsv(*o.out_dir, "curving_accuracy.csv",
+           [&](std::ostream& out) { WriteCurvingAccuracyCsv(study, out); });
 }
 
 void RunWearAccuracy(const Scene& scene, const AccuracyOptions& o) {
@@ -118,18 +127,11 @@ void RunWearAccuracy(const Scene& scene, const AccuracyOptions& o) {
   if (o.step_limits_mm) w.step_limits_mm = *o.step_limits_mm;
   w.total_mgt = o.total_mgt;
   w.threads = o.threads;
-  const WearAccuracyStudy study = RunWearAccuracyStudy(scene, w, [](const std::string& line) {
-    std::cerr << "railwear accuracy: " << line << "\n";
-  });
+  const WearAccuracyStudy study = RunWearAccuracyStudy(scene, w, Progress);
   std::cout << FormatWearAccuracyTable(study) << std::flush;
   if (!o.out_dir) return;
-  const fs::path csv = CreateOutDir(*o.out_dir) / "wear_accuracy.csv";
-  {
-    std::ofstream out(csv);
-    WriteWearAccuracyCsv(study, out);
-    if (!out) throw InputError(fmt::format("{}: cannot write the CSV", csv.string()));
-  }
-  std::cerr << "railwear accuracy: wrote " << csv.string() << "\n";
+  WriteCsv(*o.out_dir, "wear_accuracy.csv",
+           [&](std::ostream& out) { WriteWearAccuracyCsv(study, out); });
   if (o.plot) {
     const fs::path png = fs::path(*o.out_dir) / "wear_accuracy.png";
     PlotWearAccuracy(study, png.string());
@@ -158,18 +160,10 @@ void RunAccuracy(const AccuracyOptions& o) {
                     "this scene has no wear study",
                     o.scene_path));
   }
-  const AccuracyStudy study = RunAccuracyStudy(scene, o, [](const std::string& line) {
-    std::cerr << "railwear accuracy: " << line << "\n";
-  });
+  const AccuracyStudy study = RunAccuracyStudy(scene, o, Progress);
   std::cout << FormatAccuracyTable(study) << std::flush;
   if (!o.out_dir) return;
-  const fs::path csv = CreateOutDir(*o.out_dir) / "accuracy.csv";
-  {
-    std::ofstream out(csv);
-    WriteAccuracyCsv(study, out);
-    if (!out) throw InputError(fmt::format("{}: cannot write the CSV", csv.string()));
-  }
-  std::cerr << "railwear accuracy: wrote " << csv.string() << "\n";
+  WriteCsv(*o.out_dir, "accuracy.csv", [&](std::ostream& out) { WriteAccuracyCsv(study, out); });
   if (o.plot) {
     const fs::path png = fs::path(*o.out_dir) / "accuracy.png";
     PlotAccuracy(study, png.string());
