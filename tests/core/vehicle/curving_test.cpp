@@ -295,5 +295,27 @@ TEST(CurvingTest, HardCasesConvergeOrNameTheirStatus) {
   }
 }
 
+// The S1002 coach (two bogies, four wheelsets) on tangent track: no curve, no cant deficiency,
+// so every wheelset, both frames and the body settle centred and unyawed, by symmetry, from a
+// start with every wheelset 3 mm toward the right rail and yawed 1 mrad.
+TEST(CurvingTest, BogieVehicleOnTangentTrackSettlesCentred) {
+  CurvingProblem p = S1002Coach(0.0, 0.0, 30.0);
+  CurvingStart start;
+  start.state = Eigen::VectorXd::Zero(14);  // 4 wheelsets, 2 frames, the body: (y, psi) each
+  for (int i = 0; i < 4; ++i) start.state.segment<2>(2 * i) << 3e-3, 1e-3;
+  p.options.start = start;
+  const CurvingResult r = SolveCurving(p);
+  ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
+  std::printf("coach on tangent track: %d solves, %.1f s, residuals %.2g N %.2g N m\n",
+              r.contact_solves, r.time_s, r.lateral_residual_N, r.yaw_residual_Nm);
+  ASSERT_EQ(r.wheelsets.size(), 4u);
+  for (const CurvedWheelset& w : r.wheelsets) {
+    EXPECT_NEAR(w.lateral_m, 0.0, 0.5e-3);  // within the tread's play
+    EXPECT_NEAR(w.yaw_rad, 0.0, 0.5e-3);
+    EXPECT_LT(w.high_climb.l_over_v, 0.1);  // tread contact, no flange force
+  }
+  EXPECT_LE(r.largest_scaled_residual, 3.0 * p.options.tolerance);
+}
+
 }  // namespace
 }  // namespace railwear
