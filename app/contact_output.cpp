@@ -73,11 +73,13 @@ void AddRollingJson(const RollingPatch& r, nlohmann::json* j) {
   if (r.damage) {
     const PatchDamage& d = *r.damage;
     (*j)["damage"] = {{"t_gamma_J_per_m", d.t_gamma_N},
+                      {"spin_work_J_per_m", d.spin_work_N},
+                      {"spin_share", d.spin_share},
                       {"wlrm_rcf_damage_per_axle", d.wlrm_damage},
                       {"traction_coefficient", d.traction_coefficient},
                       {"fi_surf", d.fi_surf},
                       {"shakedown",
-                       {{"load_factor_p0_over_k", d.shakedown.load_factor},
+                       {{"load_factor_p_max_over_k", d.shakedown.load_factor},
                         {"elastic_limit", d.shakedown.elastic_limit},
                         {"shakedown_limit", d.shakedown.shakedown_limit},
                         {"margin", d.shakedown.margin},
@@ -102,10 +104,12 @@ std::string RollingTable(const ContactResult& r) {
     if (rp.damage) {
       const PatchDamage& d = *rp.damage;
       out += fmt::format(
-          "      damage: T-gamma {:.1f} J/m, WLRM RCF {:.3g} per axle, FI_surf "
-          "{:.3f}, p0/k {:.2f} at mu_eff {:.3f} ({}, margin {:.2f})\n",
-          d.t_gamma_N, d.wlrm_damage, d.fi_surf, d.shakedown.load_factor, d.traction_coefficient,
-          ToString(d.shakedown.regime), d.shakedown.margin);
+          "      damage: T-gamma {:.1f} J/m (spin {:.1f} J/m more, {:.0f} % of the frictional "
+          "work), WLRM RCF {:.3g} per axle, FI_surf {:.3f}, p_max/k {:.2f} at mu_eff {:.3f} ({}, "
+          "margin {:.2f})\n",
+          d.t_gamma_N, d.spin_work_N, 100.0 * d.spin_share, d.wlrm_damage, d.fi_surf,
+          d.shakedown.load_factor, d.traction_coefficient, ToString(d.shakedown.regime),
+          d.shakedown.margin);
     }
   }
   return out;

@@ -614,7 +614,9 @@ void ReadWearTable(const Fields& top, Scene* scene) {
   o.smoothing.smoothing_length_m = t.Number("smoothing_mm", OpenClosed(0.0, 20.0))
                                        .value_or(o.smoothing.smoothing_length_m / kMm) *
                                    kMm;
-  o.damage_layer_m = t.Number("damage_layer_mm", Positive()).value_or(o.damage_layer_m / kMm) * kMm;
+  if (const auto layer_mm = t.Number("damage_layer_mm", Positive())) {
+    o.damage_layer_m = *layer_mm * kMm;
+  }
   if (const auto db = t.String("db")) {
     scene->wear_db = ResolveRelativeTo(DirectoryOf(scene->path), *db);
   }

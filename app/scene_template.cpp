@@ -126,7 +126,7 @@ speed_m_s = 20.0              # > 0; needed by the "tangential" effect
 # smoothing_mm = 1.0           # smoothing length of the per-pass depth (lambda = l^4)
 # bin_mm = 0.1                 # arc-length bins the depth is collected on
 # profile_spacing_mm = 0.2     # point spacing of the updated rail profile
-# damage_layer_mm = 0.5        # wearing this depth removes all accumulated RCF damage there
+# damage_layer_mm = 0.5        # opt-in: the old removal of RCF damage by wear (counts it twice)
 # threads = 0                  # load cases in parallel; 0 = all cores
 # gauge_face_angle_deg = 15    # patches steeper than this are on the gauge face, (0, 90)
 # [wear.conditions.lubricated] # override a friction condition ("dry", "wet", "lubricated",

@@ -101,6 +101,9 @@ json LoadCaseJson(const LoadCaseSummary& c, const WearStudy& study) {
   j["nadal_limit"] = c.climb.nadal_limit ? json(*c.climb.nadal_limit) : json(nullptr);
   j["flange_climb"] = c.climb.exceeded;
   j["t_gamma_N"] = c.t_gamma_N;
+  j["spin_work_N"] = c.spin_work_N;  // spin's frictional work beside T-gamma [J/m]
+  const double work = c.t_gamma_N + c.spin_work_N;
+  j["spin_share"] = work > 0.0 ? c.spin_work_N / work : 0.0;
   j["rcf_damage_per_pass"] = c.rcf_damage_per_pass;
   j["worn_area_per_pass_mm2"] = c.worn_area_per_pass_m2 * 1e6;
   j["contact_angle_deg"] = c.contact_angle_rad * 180.0 / M_PI;

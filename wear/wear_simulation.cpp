@@ -153,6 +153,7 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
       s.creep_force_s_N += patch.rolling->tangential.force_s_N;
       if (patch.rolling->damage) {
         s.t_gamma_N += patch.rolling->damage->t_gamma_N;
+        s.spin_work_N += patch.rolling->damage->spin_work_N;
         s.rcf_damage_per_pass = std::max(s.rcf_damage_per_pass, patch.rolling->damage->wlrm_damage);
       }
     }
@@ -219,9 +220,10 @@ double AtArcLength(const WearGrid& grid, const std::vector<double>& field, doubl
   return (1.0 - t) * field[b] + t * field[b + 1];
 }
 
-// Moves every point of `rail` (own frame) along the rail's inward normal by depth(s).
-Profile MoveAlongInwardNormal(const Profile& rail, const WearGrid& grid,
-                              const std::vector<double>& depth_m) {
+// Every point of `rail` (own frame) moved along the rail's inward normal by depth(s): point i
+// of the result is point i of `rail`.
+std::vector<Eigen::Vector2d> MoveAlongInwardNormal(const Profile& rail, const WearGrid& grid,
+                                                   const std::vector<double>& depth_m) {
   const CurveLocator locator(rail, /*material_toward_plus_z=*/true);
   std::vector<Eigen::Vector2d> points = rail.points();
   for (int i = 0; i < rail.size(); ++i) {
@@ -229,7 +231,7 @@ Profile MoveAlongInwardNormal(const Profile& rail, const WearGrid& grid,
     const double dz = AtArcLength(grid, depth_m, s);
     if (dz != 0.0) points[i] -= dz * locator.OutwardNormal(s);
   }
-  return Profile(std::move(points), rail.source());
+  return points;
 }
 
 }  // namespace
@@ -293,7 +295,7 @@ void ValidateWearStudy(const WearStudy& study) {
   RequirePositive("max_depth_per_step_mm", o.max_depth_per_step_m * 1e3);
   RequirePositive("bin_mm", o.bin_m * 1e3);
   RequirePositive("profile_spacing_mm", o.profile_spacing_m * 1e3);
-  RequirePositive("damage_layer_mm", o.damage_layer_m * 1e3);
+  if (o.damage_layer_m) RequirePositive("damage_layer_mm", *o.damage_layer_m * 1e3);
   ValidateQuadraturePoints(o.quadrature_points);
   if (o.threads < 0) {
     throw InputError(fmt::format("wear: threads = {}: expected >= 0 (0: all cores)", o.threads));
@@ -408,27 +410,39 @@ struct RailWork {
     RailStepResult r;
     r.grid = grid;
     r.depth_per_pass_m = depth_per_pass_m;
+    // The material map from this profile's arc length to the next one's (damage_transport.h).
+    MaterialMap& map = r.material_map;
+    map = IdentityMaterialMap(current->Length());
     if (deepest > 0.0) {
       r.smoothing_area_error = smoothed.area_error;
       r.step_depth_m.resize(n);
       for (int b = 0; b < n; ++b) r.step_depth_m[b] = passes * deepest * smoothed.depth_m[b];
-      *next_profile = ResampleProfile(MoveAlongInwardNormal(*current, grid, r.step_depth_m),
-                                      o.profile_spacing_m);
+      const std::vector<Eigen::Vector2d> moved_points =
+          MoveAlongInwardNormal(*current, grid, r.step_depth_m);
+      const Profile moved(moved_points, current->source());
+      *next_profile = ResampleProfile(moved, o.profile_spacing_m);
+      map = MaterialMapOfStep(*current, moved_points, moved, *next_profile);
     } else {
       r.step_depth_m.assign(n, 0.0);
       *next_profile = *current;
     }
     if (study.damage) {
-      const std::vector<double> damage_per_pass =
-          WeightedSum(outcomes, cases, side, n, &CaseOutcome::damage_per_pass);
-      // Damage stays with its arc-length bin; the worn profile's bins are the same positions.
-      const int n_next = WearGrid::ForProfile(*next_profile, o.bin_m).n;
-      next_damage->assign(n_next, 0.0);
-      for (int b = 0; b < std::min(n, n_next); ++b) {
+      r.damage_per_pass = WeightedSum(outcomes, cases, side, n, &CaseOutcome::damage_per_pass);
+      const std::vector<double>& damage_per_pass = r.damage_per_pass;
+      // The step's damage adds to the accumulated damage on this profile's bins. Wear's removal
+      // of cracks is already in the WLRM damage function (its falling branch, 65-175 J/m), so by
+      // default nothing more is removed; damage_layer_m (opt-in) is the pre-issue-16 rule.
+      std::vector<double> grown(n);
+      for (int b = 0; b < n; ++b) {
         const double previous = b < static_cast<int>(damage->size()) ? (*damage)[b] : 0.0;
-        const double removed = std::min(1.0, r.step_depth_m[b] / o.damage_layer_m);
-        (*next_damage)[b] = (previous + passes * damage_per_pass[b]) * (1.0 - removed);
+        const double removed =
+            o.damage_layer_m ? std::min(1.0, r.step_depth_m[b] / *o.damage_layer_m) : 0.0;
+        grown[b] = (previous + passes * damage_per_pass[b]) * (1.0 - removed);
       }
+      // Then it moves with the material onto the next profile's bins.
+      *next_damage =
+          RemapDamage(grown, grid, current->Length(), WearGrid::ForProfile(*next_profile, o.bin_m),
+                      next_profile->Length(), map);
     }
     r.measures = CompareProfiles(*unworn, *next_profile);
     return r;
@@ -474,6 +488,8 @@ StepResult RunWearStep(const WearStudy& study, const UnwornRails& unworn, const 
   step.grid = std::move(high_step.grid);
   step.depth_per_pass_m = std::move(high_step.depth_per_pass_m);
   step.step_depth_m = std::move(high_step.step_depth_m);
+  step.damage_per_pass = std::move(high_step.damage_per_pass);
+  step.material_map = std::move(high_step.material_map);
   step.smoothing_area_error = high_step.smoothing_area_error;
   step.measures = std::move(high_step.measures);
   if (low) {

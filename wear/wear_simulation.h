@@ -20,8 +20,10 @@
 //      rail in the step equals max_depth_per_step (or the passes left, whichever is fewer);
 //      every profile point moves along its rail's inward normal by the step's depth, and the
 //      moved curve is resampled at a uniform arc-length spacing;
-//   6. accumulated damage grows by the step's damage and loses the fraction of the damaged
-//      surface layer that wear removed (D <- D * max(0, 1 - dz / damage_layer));
+//   6. accumulated damage grows by the step's damage (the WLRM's net damage: its falling branch
+//      already models wear removing cracks, so wear removes nothing more unless the opt-in
+//      damage_layer_m asks for the old rule) and moves with the material onto the next
+//      profile's bins (wear/damage_transport.h: conserved over material);
 //   7. the finished step goes to a callback (app/ stores it in the database).
 //
 // The loop knows nothing of storage. Its whole state between steps is WearState (profiles,
@@ -39,6 +41,7 @@
 #include "core/contact/contact_solver.h"
 #include "core/profile/profile.h"
 #include "core/vehicle/curving.h"
+#include "wear/damage_transport.h"
 #include "wear/depth_smoothing.h"
 #include "wear/friction_condition.h"
 #include "wear/pass_depth.h"
@@ -65,9 +68,11 @@ struct WearOptions {
   // Arc-length spacing of the rail profile's points after each update [m], > 0.
   double profile_spacing_m = 2e-4;
   DepthSmoothingOptions smoothing;
-  // Depth of the surface layer that carries RCF damage [m], > 0: removing dz of it removes the
-  // fraction dz / damage_layer of the accumulated damage (railwear's model; see README).
-  double damage_layer_m = 5e-4;
+  // The pre-issue-16 removal of damage by wear, opt-in (absent: none, the default). Given, it is
+  // the depth of a surface layer [m] > 0: wearing dz removes the fraction dz / damage_layer of
+  // the accumulated damage. That counts wear's removal twice: the WLRM damage function already
+  // falls to zero at 175 J/m because wear removes the cracks there (README "RCF damage").
+  std::optional<double> damage_layer_m;
   // Worker threads for the load cases; 0 = std::thread::hardware_concurrency().
   int threads = 0;
   // Cancellation (issue 17), empty: never. RunWear asks it before each step, and every step
@@ -176,10 +181,11 @@ struct LoadCaseSummary {
   double plastic_force_share = 0.0;  // plastic_force_N over the patches' normal force [-]
   double creep_force_x_N = 0.0, creep_force_s_N = 0.0;  // sum over patches, ON THE WHEEL
   double t_gamma_N = 0.0;                               // sum over patches
-  double rcf_damage_per_pass = 0.0;                     // largest over patches
-  double worn_area_per_pass_m2 = 0.0;                   // sum_b depth_b h
-  double contact_angle_rad = 0.0;                       // of the most loaded patch
-  double contact_y_m = 0.0;  // its pressure centre on the rail (track frame)
+  double spin_work_N = 0.0;  // |M_z phi| summed over patches [J/m]: spin's part beside T-gamma
+  double rcf_damage_per_pass = 0.0;    // largest over patches
+  double worn_area_per_pass_m2 = 0.0;  // sum_b depth_b h
+  double contact_angle_rad = 0.0;      // of the most loaded patch
+  double contact_y_m = 0.0;            // its pressure centre on the rail (track frame)
 };
 
 // What a step did to one rail (the low rail's part of StepResult; the high rail's are the fields
@@ -190,6 +196,8 @@ struct RailStepResult {
   std::vector<double> step_depth_m;      // smoothed depth removed in this step, shape [grid.n]
   double smoothing_area_error = 0.0;     // relative, before the area correction
   WearMeasures measures;                 // against step 0 (cumulative)
+  std::vector<double> damage_per_pass;   // weighted WLRM damage per pass, [grid.n]; empty: none
+  MaterialMap material_map;              // this profile's arc length -> the next one's
 };
 
 // A step. The grid, depths and measures below are the high rail's; `low_rail` holds the same for
@@ -200,6 +208,8 @@ struct StepResult {
   WearGrid grid;                           // the bins of the profile the step started from
   std::vector<double> depth_per_pass_m;    // weighted mean depth per wheel pass, shape [grid.n]
   std::vector<double> step_depth_m;        // smoothed depth removed in this step, shape [grid.n]
+  std::vector<double> damage_per_pass;     // weighted WLRM damage per pass, [grid.n]; empty: none
+  MaterialMap material_map;                // where the material went: arc length -> next's
   double smoothing_area_error = 0.0;       // relative, before the area correction
   WearMeasures measures;                   // against step 0 (cumulative)
   std::optional<RailStepResult> low_rail;  // present when the study has a low rail

@@ -24,6 +24,10 @@ double TGamma(double force_x_N, double force_y_N, double xi, double eta) {
   return std::abs(force_x_N * xi) + std::abs(force_y_N * eta);
 }
 
+double SpinWork(double spin_moment_Nm, double spin_per_m) {
+  return std::abs(spin_moment_Nm * spin_per_m);
+}
+
 double WlrmRcfDamage(double t_gamma_N) {
   if (!std::isfinite(t_gamma_N) || t_gamma_N < 0.0) {
     throw std::invalid_argument("WlrmRcfDamage: T-gamma = " + std::to_string(t_gamma_N) +
@@ -36,14 +40,18 @@ double WlrmRcfDamage(double t_gamma_N) {
   return kWlrmPeakDamage * (kWlrmWearOnly_N - t_gamma_N) / (kWlrmWearOnly_N - kWlrmPeak_N);
 }
 
-double SurfaceFatigueIndex(double traction_coefficient, double semi_axis_x_m, double semi_axis_y_m,
-                           double normal_force_N, double shear_yield_Pa) {
-  RequirePositive(semi_axis_x_m, "SurfaceFatigueIndex: semi_axis_x_m");
-  RequirePositive(semi_axis_y_m, "SurfaceFatigueIndex: semi_axis_y_m");
-  RequirePositive(normal_force_N, "SurfaceFatigueIndex: normal_force_N");
+double SurfaceFatigueIndex(double traction_coefficient, double peak_pressure_Pa,
+                           double shear_yield_Pa) {
+  RequirePositive(peak_pressure_Pa, "SurfaceFatigueIndex: peak_pressure_Pa");
   RequirePositive(shear_yield_Pa, "SurfaceFatigueIndex: shear_yield_Pa");
-  return traction_coefficient - 2.0 * std::numbers::pi * semi_axis_x_m * semi_axis_y_m *
-                                    shear_yield_Pa / (3.0 * normal_force_N);
+  return traction_coefficient - shear_yield_Pa / peak_pressure_Pa;
+}
+
+double HertzPeakPressure(double semi_axis_x_m, double semi_axis_y_m, double normal_force_N) {
+  RequirePositive(semi_axis_x_m, "HertzPeakPressure: semi_axis_x_m");
+  RequirePositive(semi_axis_y_m, "HertzPeakPressure: semi_axis_y_m");
+  RequirePositive(normal_force_N, "HertzPeakPressure: normal_force_N");
+  return 3.0 * normal_force_N / (2.0 * std::numbers::pi * semi_axis_x_m * semi_axis_y_m);
 }
 
 std::string_view ToString(ShakedownRegime v) {
@@ -90,17 +98,16 @@ ShakedownPoint CalcShakedownPoint(double p0_Pa, double shear_yield_Pa,
 
 PatchDamage CalcPatchDamage(const PatchDamageInput& in) {
   RequirePositive(in.normal_force_N, "CalcPatchDamage: normal_force_N");
-  RequirePositive(in.semi_axis_x_m, "CalcPatchDamage: semi_axis_x_m");
-  RequirePositive(in.semi_axis_y_m, "CalcPatchDamage: semi_axis_y_m");
+  RequirePositive(in.peak_pressure_Pa, "CalcPatchDamage: peak_pressure_Pa");
   PatchDamage d;
   d.t_gamma_N = TGamma(in.force_x_N, in.force_y_N, in.xi, in.eta);
   d.wlrm_damage = WlrmRcfDamage(d.t_gamma_N);
+  d.spin_work_N = SpinWork(in.spin_moment_Nm, in.spin_per_m);
+  const double work = d.t_gamma_N + d.spin_work_N;
+  d.spin_share = work > 0.0 ? d.spin_work_N / work : 0.0;
   d.traction_coefficient = std::hypot(in.force_x_N, in.force_y_N) / in.normal_force_N;
-  d.fi_surf = SurfaceFatigueIndex(d.traction_coefficient, in.semi_axis_x_m, in.semi_axis_y_m,
-                                  in.normal_force_N, in.shear_yield_Pa);
-  const double p0 =
-      3.0 * in.normal_force_N / (2.0 * std::numbers::pi * in.semi_axis_x_m * in.semi_axis_y_m);
-  d.shakedown = CalcShakedownPoint(p0, in.shear_yield_Pa, d.traction_coefficient);
+  d.fi_surf = SurfaceFatigueIndex(d.traction_coefficient, in.peak_pressure_Pa, in.shear_yield_Pa);
+  d.shakedown = CalcShakedownPoint(in.peak_pressure_Pa, in.shear_yield_Pa, d.traction_coefficient);
   return d;
 }
 

@@ -30,12 +30,18 @@ constexpr double kWlrmWearOnly_N = 175.0;
 double WlrmRcfDamage(double t_gamma_N);
 
 // Ekberg, Kabo & Andersson (2002) surface fatigue index
-//   FI_surf = mu_eff - 2 pi a b k / (3 F_n) = mu_eff - k / p0,
-// with p0 = 3 F_n/(2 pi a b) the Hertz peak pressure. FI_surf > 0 predicts surface-initiated RCF
-// (the load lies beyond the surface shakedown limit p0/k = 1/mu_eff). a, b semi-axes [m] > 0,
-// F_n > 0 [N], k > 0 [Pa]. Throws std::invalid_argument otherwise.
-double SurfaceFatigueIndex(double traction_coefficient, double semi_axis_x_m, double semi_axis_y_m,
-                           double normal_force_N, double shear_yield_Pa);
+//   FI_surf = mu_eff - k / p_max,
+// with p_max the patch's own peak pressure [Pa] > 0 (issue 16). Ekberg's form writes p0 =
+// 3 F_n/(2 pi a b), the Hertz peak; for a Hertzian patch the two agree, but a conformal or
+// non-elliptic patch (and one capped by the pressure limit) has its own peak, which is what the
+// surface layer carries, so railwear reads that. FI_surf > 0 predicts surface-initiated RCF (the
+// load lies beyond the surface shakedown limit p_max/k = 1/mu_eff). k > 0 [Pa]. Throws
+// std::invalid_argument otherwise.
+double SurfaceFatigueIndex(double traction_coefficient, double peak_pressure_Pa,
+                           double shear_yield_Pa);
+// The Hertz peak pressure p0 = 3 F_n / (2 pi a b) [Pa] of a patch with semi-axes a, b [m] > 0
+// carrying F_n > 0 [N]. Throws std::invalid_argument otherwise.
+double HertzPeakPressure(double semi_axis_x_m, double semi_axis_y_m, double normal_force_N);
 
 // Regions of Johnson's shakedown map (point contact), by increasing load factor p0/k.
 enum class ShakedownRegime { kElastic, kElasticShakedown, kPlasticShakedown, kRatchetting };
@@ -70,24 +76,34 @@ struct ShakedownPoint {
   double margin = 0.0;                // S(mu_eff) - p0/k; negative beyond shakedown
   ShakedownRegime regime = ShakedownRegime::kElastic;
 };
-// p0 > 0 [Pa] peak pressure, k > 0 [Pa] shear yield, mu_eff >= 0. Throws std::invalid_argument
-// otherwise.
+// p0 > 0 [Pa] peak pressure (the patch's own p_max, as FI_surf), k > 0 [Pa] shear yield, mu_eff >=
+// 0. Throws std::invalid_argument otherwise.
 ShakedownPoint CalcShakedownPoint(double p0_Pa, double shear_yield_Pa, double traction_coefficient);
+
+// Spin's part of the frictional work per metre rolled [N = J/m]: |M_z phi|, M_z the spin moment
+// [N m], phi the spin creepage [1/m]. T-gamma leaves it out (the WLRM is calibrated without
+// it); on a spin-dominated flange patch it can be most of the work, so it is reported next to
+// T-gamma as the share spin / (T-gamma + spin) of the total (issue 16, point 7).
+double SpinWork(double spin_moment_Nm, double spin_per_m);
 
 // All indices of one patch from its totals.
 struct PatchDamageInput {
-  double force_x_N = 0.0, force_y_N = 0.0;          // creep forces [N]
-  double normal_force_N = 0.0;                      // F_n > 0 [N]
-  double xi = 0.0, eta = 0.0;                       // patch creepages [-]
-  double semi_axis_x_m = 0.0, semi_axis_y_m = 0.0;  // a, b [m]
-  double shear_yield_Pa = 0.0;                      // k [Pa]
+  double force_x_N = 0.0, force_y_N = 0.0;  // creep forces [N]
+  double normal_force_N = 0.0;              // F_n > 0 [N]
+  double xi = 0.0, eta = 0.0;               // patch creepages [-]
+  double spin_moment_Nm = 0.0;              // M_z [N m] (either body's: only |M_z phi| enters)
+  double spin_per_m = 0.0;                  // phi [1/m]
+  double peak_pressure_Pa = 0.0;            // the patch's own p_max > 0 [Pa]
+  double shear_yield_Pa = 0.0;              // k [Pa]
 };
 struct PatchDamage {
   double t_gamma_N = 0.0;             // [N = J/m]
+  double spin_work_N = 0.0;           // |M_z phi| [N = J/m]
+  double spin_share = 0.0;            // spin_work / (t_gamma + spin_work) [-]; 0 when both are 0
   double wlrm_damage = 0.0;           // per axle pass [-]
   double traction_coefficient = 0.0;  // |F_t| / F_n
   double fi_surf = 0.0;               // Ekberg's FI_surf [-]
-  ShakedownPoint shakedown;           // with p0 = 3 F_n / (2 pi a b)
+  ShakedownPoint shakedown;           // with the patch's own p_max as p0
 };
 PatchDamage CalcPatchDamage(const PatchDamageInput& in);
 

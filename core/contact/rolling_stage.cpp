@@ -33,7 +33,7 @@ void SolveRolling(const ContactProblem& problem, const WheelRailGeometry& geom,
     rolling.creepage = AverageCreepage(patch.grid, patch.pressure_Pa, in);
     rolling.tangential = SolveTangential(problem.tangential, patch.grid, patch.pressure_Pa, in,
                                          problem.wheel_material, problem.rail_material);
-    // The patch's equivalent ellipse (the semi-axes FASTSIM uses), for the damage indices.
+    // The patch's equivalent ellipse (the semi-axes FASTSIM uses), reported with the patch.
     const ContactEllipse used = EstimateContactEllipse(patch.grid, patch.pressure_Pa);
     rolling.semi_axis_x_m = used.semi_axis_x_m;
     rolling.semi_axis_s_m = used.semi_axis_s_m;
@@ -44,8 +44,9 @@ void SolveRolling(const ContactProblem& problem, const WheelRailGeometry& geom,
       d.normal_force_N = patch.normal_force_N;
       d.xi = rolling.creepage.xi;
       d.eta = rolling.creepage.eta;
-      d.semi_axis_x_m = used.semi_axis_x_m;
-      d.semi_axis_y_m = used.semi_axis_s_m;
+      d.spin_moment_Nm = rolling.tangential.spin_moment_Nm;
+      d.spin_per_m = rolling.creepage.spin_per_m;
+      d.peak_pressure_Pa = patch.p_max_Pa;  // the patch's own peak (issue 16), not Hertz's p0
       d.shear_yield_Pa = problem.rail_material.shear_yield_Pa;
       rolling.damage = CalcPatchDamage(d);
     }

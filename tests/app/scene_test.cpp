@@ -644,6 +644,18 @@ TEST(SceneTest, WearSceneBecomesAStudyInSi) {
   EXPECT_EQ(b.share, 1.0);
 }
 
+// Issue 16: wear removes no damage beyond the WLRM function unless damage_layer_mm asks for the
+// pre-issue-16 layer rule.
+TEST(SceneTest, DamageLayerIsOptIn) {
+  EXPECT_FALSE(ParseScene(kWearScene, "dir/wear.toml").wear->options.damage_layer_m.has_value());
+  std::string scene = kWearScene;
+  const std::string key = "max_depth_per_step_mm";
+  scene.insert(scene.find(key), "damage_layer_mm = 0.5\n");
+  const Scene s = ParseScene(scene, "dir/wear.toml");
+  ASSERT_TRUE(s.wear->options.damage_layer_m.has_value());
+  EXPECT_NEAR(*s.wear->options.damage_layer_m, 0.5e-3, 1e-18);
+}
+
 TEST(SceneTest, WearSceneErrorsNameTheKey) {
   const std::string scene = kWearScene;
   const auto with = [&](const std::string& from, const std::string& to) {

@@ -175,6 +175,82 @@ TEST(WearSimulationTest, ResumingFromAStoredStateEndsWithTheSameProfile) {
   EXPECT_GT(*std::max_element(rest.state.damage.begin(), rest.state.damage.end()), 0.0);
 }
 
+// Issue 16, point 7: the removal rule. The WLRM damage function already nets out wear's removal
+// of cracks (its falling branch, 65-175 J/m), so by default a step adds passes x damage per pass
+// and wear removes nothing more: the integral of damage over material grows by exactly that,
+// although the step wears the bins that carry the damage. The opt-in damage_layer_m (the
+// pre-issue-16 rule) removes the fraction dz / layer on top, and so ends lower.
+double MaterialIntegral(const std::vector<double>& d, const WearGrid& grid, double length_m) {
+  double sum = 0.0;
+  for (int b = 0; b < grid.n && b < static_cast<int>(d.size()); ++b) {
+    sum += d[b] * (std::min((b + 1) * grid.h_m, length_m) - b * grid.h_m);
+  }
+  return sum;
+}
+
+TEST(WearSimulationTest, WearRemovesNoDamageBeyondTheWlrmFunction) {
+  WearStudy study = MakeStudy(2);
+  study.damage = true;
+  const RunOutcome run = RunAll(study, 2);
+  ASSERT_EQ(run.steps.size(), 2u);
+  WearState before = MakeInitialState(study);
+  double default_total = 0.0;
+  for (const StepResult& s : run.steps) {
+    ASSERT_EQ(static_cast<int>(s.damage_per_pass.size()), s.grid.n);
+    // The damage lies where the step wears (the rule is tested where it matters).
+    double overlap = 0.0;
+    for (int b = 0; b < s.grid.n; ++b) overlap += s.damage_per_pass[b] * s.step_depth_m[b];
+    EXPECT_GT(overlap, 0.0);
+    // Over the material of the profile the step started from: what was there plus what the
+    // step added, nothing removed.
+    const double length = before.rail.Length();
+    const double expected = MaterialIntegral(before.damage, s.grid, length) +
+                            s.step_passes * MaterialIntegral(s.damage_per_pass, s.grid, length);
+    // The state's damage lives on the worn profile's bins, each covering the material length
+    // the step's map gives it.
+    const WearGrid next_grid = WearGrid::ForProfile(s.state.rail, study.options.bin_m);
+    const std::vector<double> m =
+        MaterialBinLengths(next_grid, s.state.rail.Length(), s.material_map);
+    ASSERT_EQ(s.state.damage.size(), m.size());
+    double total = 0.0;
+    for (int c = 0; c < next_grid.n; ++c) total += s.state.damage[c] * m[c];
+    EXPECT_NEAR(total, expected, 1e-12 * expected);
+    default_total = total;
+    before = s.state;
+  }
+  // The opt-in pre-issue-16 rule removes the fraction dz / 0.5 mm of it where a step wears dz:
+  // over step 1's material, passes x sum_b d_b (1 - dz_b / layer) h. Damage does not feed back
+  // into wear, so the profiles (and bins) are those of the default run.
+  study.options.damage_layer_m = 5e-4;
+  const RunOutcome layered = RunAll(study, 2);
+  ASSERT_EQ(layered.steps.size(), 2u);
+  const StepResult& one = layered.steps[0];
+  std::vector<double> kept(one.grid.n);
+  for (int b = 0; b < one.grid.n; ++b) {
+    kept[b] = one.damage_per_pass[b] * (1.0 - one.step_depth_m[b] / 5e-4);
+  }
+  const double length0 = MakeInitialState(study).rail.Length();
+  const double expected_one = one.step_passes * MaterialIntegral(kept, one.grid, length0);
+  const WearGrid grid1 = WearGrid::ForProfile(one.state.rail, study.options.bin_m);
+  const std::vector<double> m1 =
+      MaterialBinLengths(grid1, one.state.rail.Length(), one.material_map);
+  double total_one = 0.0;
+  for (int c = 0; c < grid1.n; ++c) total_one += one.state.damage[c] * m1[c];
+  EXPECT_NEAR(total_one, expected_one, 1e-12 * expected_one);
+  // Bin by bin it never exceeds the default rule's damage, and in total it ends lower.
+  const std::vector<double>& with = layered.summary.state.damage;
+  const std::vector<double>& without = run.summary.state.damage;
+  ASSERT_EQ(with.size(), without.size());
+  double sum_with = 0.0, sum_without = 0.0;
+  for (size_t c = 0; c < with.size(); ++c) {
+    EXPECT_LE(with[c], without[c] * (1.0 + 1e-12));
+    sum_with += with[c];
+    sum_without += without[c];
+  }
+  EXPECT_LT(sum_with, (1.0 - 1e-3) * sum_without);
+  EXPECT_GT(default_total, 0.0);
+}
+
 // WearOptions::cancel (issue 17; app/ sets it from SIGINT/SIGTERM): asked before each step and
 // each load case. Once it says stop in the middle of a step's load cases, that step is dropped
 // (never handed to the callback) and RunWear reports cancelled with the last complete state,
@@ -295,8 +371,9 @@ TEST(WearSimulationTest, BothRailsWearWhereTheirCasesTouchAndTheDeeperRailSetsTh
     ASSERT_TRUE(s.low_rail.has_value() && s.state.low_rail.has_value());
     ASSERT_EQ(s.cases.size(), 2u);
     ASSERT_EQ(s.cases[1].load_case.rail, RailSide::kLow);
-    const RailStepResult high{s.grid, s.depth_per_pass_m, s.step_depth_m, s.smoothing_area_error,
-                              s.measures};
+    const RailStepResult high{
+        s.grid,     s.depth_per_pass_m, s.step_depth_m, s.smoothing_area_error,
+        s.measures, s.damage_per_pass,  s.material_map};
     const RailStepResult& low = *s.low_rail;
     const RailStepResult& crown = flange_on_low ? high : low;
     const RailStepResult& corner = flange_on_low ? low : high;

@@ -45,13 +45,37 @@ TEST(Damage, WlrmPeakThresholdAndWearRegion) {
 constexpr double kA = 8e-3, kB = 4e-3, kFn = 82e3, kK = 350e6;
 
 TEST(Damage, SurfaceFatigueIndexByHand) {
-  const double p0 = 3.0 * kFn / (2.0 * std::numbers::pi * kA * kB);
+  const double p0 = HertzPeakPressure(kA, kB, kFn);
+  EXPECT_NEAR(p0, 3.0 * kFn / (2.0 * std::numbers::pi * kA * kB), 1e-6);
   EXPECT_NEAR(p0, 1223.5e6, 0.05e6);
   // FI_surf = mu - k/p0 = 0.3 - 350/1223.5 = 0.3 - 0.28606 = 0.01394.
-  const double fi = SurfaceFatigueIndex(0.3, kA, kB, kFn, kK);
+  const double fi = SurfaceFatigueIndex(0.3, p0, kK);
   EXPECT_NEAR(fi, 0.3 - kK / p0, 1e-14);
   EXPECT_NEAR(fi, 0.01394, 1e-5);
-  EXPECT_THROW(SurfaceFatigueIndex(0.3, kA, kB, 0.0, kK), std::invalid_argument);
+  EXPECT_THROW(SurfaceFatigueIndex(0.3, 0.0, kK), std::invalid_argument);
+  EXPECT_THROW(HertzPeakPressure(kA, kB, 0.0), std::invalid_argument);
+}
+
+// Issue 16: FI_surf and the shakedown point read the patch's own peak pressure. A patch whose
+// peak is 1.5x the Hertz p0 of its ellipse (a conformal or non-elliptic patch) is judged at that
+// peak: FI_surf = mu - k/p_max, not mu - k/p0.
+TEST(Damage, PatchDamageReadsThePatchsOwnPeak) {
+  const double p0 = HertzPeakPressure(kA, kB, kFn);
+  PatchDamageInput in;
+  in.force_x_N = 0.25 * kFn;  // mu_eff = 0.25: surface shakedown limit 1/0.25 = 4
+  in.normal_force_N = kFn;
+  in.xi = 1e-3;
+  in.shear_yield_Pa = kK;
+  in.peak_pressure_Pa = 1.5 * p0;
+  const PatchDamage d = CalcPatchDamage(in);
+  EXPECT_NEAR(d.fi_surf, 0.25 - kK / (1.5 * p0), 1e-14);
+  EXPECT_GT(d.fi_surf, 0.0);  // at the Hertz p0 it would be 0.25 - 0.286 < 0
+  EXPECT_LT(SurfaceFatigueIndex(0.25, p0, kK), 0.0);
+  EXPECT_NEAR(d.shakedown.load_factor, 1.5 * p0 / kK, 1e-12);
+  EXPECT_EQ(d.shakedown.regime, ShakedownRegime::kRatchetting);  // 5.24 > 4
+  EXPECT_EQ(CalcShakedownPoint(p0, kK, 0.25).regime, ShakedownRegime::kElasticShakedown);
+  in.peak_pressure_Pa = 0.0;
+  EXPECT_THROW(CalcPatchDamage(in), std::invalid_argument);
 }
 
 TEST(Damage, ShakedownMapRegions) {
@@ -82,11 +106,14 @@ TEST(Damage, PatchDamageCombinesIndices) {
   in.normal_force_N = kFn;
   in.xi = 5e-3;
   in.eta = -1e-3;  // T-gamma = 30 + 8 = 38 J/m
-  in.semi_axis_x_m = kA;
-  in.semi_axis_y_m = kB;
+  in.spin_moment_Nm = -40.0;
+  in.spin_per_m = 0.3;  // |M_z phi| = 12 J/m: spin's share 12 / (38 + 12) = 0.24
+  in.peak_pressure_Pa = HertzPeakPressure(kA, kB, kFn);  // a Hertzian patch: p_max = p0
   in.shear_yield_Pa = kK;
   const PatchDamage d = CalcPatchDamage(in);
   EXPECT_NEAR(d.t_gamma_N, 38.0, 1e-12);
+  EXPECT_NEAR(d.spin_work_N, 12.0, 1e-12);
+  EXPECT_NEAR(d.spin_share, 0.24, 1e-15);
   EXPECT_NEAR(d.wlrm_damage, 1e-5 * (38.0 - 15.0) / 50.0, kExact);
   EXPECT_NEAR(d.traction_coefficient, 10.0 / 82.0, 1e-15);
   EXPECT_LT(d.fi_surf, 0.0);
