@@ -26,7 +26,11 @@
 // jumped by 70 kN within 4 um of y at the S1002/UIC60 flange, leaving no equilibrium), as MBS
 // codes use precomputed
 // contact functions; the solution is then finished with the problem's own contact model, so the
-// returned state and forces are those of the full contact at the scene's accuracy.
+// returned state and forces are those of the full contact at the scene's accuracy. Where the
+// contact grid's force noise stops the line search: within 3x the tolerance the solve ends there
+// (converged, said in the message); above it one retry with 4x wider finite differences; and a
+// draft solve stalled within 20x the tolerance goes on once on the standard grid (docs/curving.md).
+// A start with its Jacobian (CurvingStart) uses that Jacobian as the first chord: continuation.
 #pragma once
 
 #include <optional>
