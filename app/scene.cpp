@@ -26,6 +26,10 @@ namespace {
 constexpr double kMPa = 1e6;            // MPa -> Pa
 constexpr double kMaxRoll_rad = 0.5;    // a wheel rolls by milliradians; 0.5 rad catches typos
 constexpr double kMaxYaw_mrad = 100.0;  // angles of attack are tens of mrad (wear traffic alike)
+// Traffic shares are relative weights: a mix whose shares span more than 1e6 to 1 is a typo,
+// and sums of shares near the largest double overflow (1e308 gave "0 steps (complete)").
+constexpr double kMaxShare = 1e6;
+constexpr double kMaxSpeed_m_s = 150.0;  // 540 km/h, above any rail vehicle's
 
 const std::vector<std::string_view> kKnownEffects = {"normal", "tangential", "coupling", "wear",
                                                      "damage"};
@@ -591,8 +595,9 @@ void ReadWearTable(const Fields& top, Scene* scene) {
   o.max_depth_per_step_m = t.Number("max_depth_per_step_mm", OpenClosed(0.0, 1.0))
                                .value_or(o.max_depth_per_step_m / kMm) *
                            kMm;
-  o.total_passes = t.Number("total_passes", Positive());
-  o.total_mgt = t.Number("total_MGT", Positive());
+  // A rail's life is of the order of 1000 MGT (1e8 axle passes): ten times that is the bound.
+  o.total_passes = t.Number("total_passes", OpenClosed(0.0, 1e9));
+  o.total_mgt = t.Number("total_MGT", OpenClosed(0.0, 1e4));
   if (o.total_passes && o.total_mgt) {
     t.Fail("total_MGT", "exactly one of 'wear.total_passes' and 'wear.total_MGT' (both given)");
   }
@@ -607,10 +612,11 @@ void ReadWearTable(const Fields& top, Scene* scene) {
   };
   o.quadrature_points = whole("quadrature_points", 1, 20, o.quadrature_points);
   o.threads = whole("threads", 0, 256, o.threads);
-  o.bin_m = t.Number("bin_mm", OpenClosed(0.0, 1.0)).value_or(o.bin_m / kMm) * kMm;
+  // Bins and profile points finer than 10 um are below every contact grid (the finest preset's
+  // cells are tenths of a millimetre): the depth per bin becomes noise and the profile huge.
+  o.bin_m = t.Number("bin_mm", Closed(0.01, 1.0)).value_or(o.bin_m / kMm) * kMm;
   o.profile_spacing_m =
-      t.Number("profile_spacing_mm", OpenClosed(0.0, 2.0)).value_or(o.profile_spacing_m / kMm) *
-      kMm;
+      t.Number("profile_spacing_mm", Closed(0.01, 2.0)).value_or(o.profile_spacing_m / kMm) * kMm;
   o.smoothing.smoothing_length_m = t.Number("smoothing_mm", OpenClosed(0.0, 20.0))
                                        .value_or(o.smoothing.smoothing_length_m / kMm) *
                                    kMm;
@@ -743,10 +749,10 @@ void ReadVehicleTraffic(const Fields& t, Scene* scene, TrafficCase* c) {
   c->rolling_radius_m = v.rolling_radius_m;
   c->axle_load_t = v.axle_load_N / kGravity_m_s2 / 1000.0;
   c->vertical_force_N = 0.5 * v.axle_load_N;  // static; curving sets each wheel's load
-  c->lateral_shift_std_m = t.Number("lateral_spread_mm", AtLeast(0.0)).value_or(0.0) * kMm;
+  c->lateral_shift_std_m = t.Number("lateral_spread_mm", Closed(0.0, 20.0)).value_or(0.0) * kMm;
   ReadEntryFriction(t, scene->wear->options.conditions, /*required=*/true, c);
-  c->speed_m_s = t.RequiredNumber("speed_m_s", Positive());
-  c->share = t.Number("share", Positive()).value_or(1.0);
+  c->speed_m_s = t.RequiredNumber("speed_m_s", OpenClosed(0.0, kMaxSpeed_m_s));
+  c->share = t.Number("share", OpenClosed(0.0, kMaxShare)).value_or(1.0);
 }
 
 // The wheel of a prescribed or collective entry: its profile and rolling radius (from the
@@ -800,7 +806,7 @@ void ReadCollectiveTraffic(const Fields& t, Scene* scene, bool has_wheel, Traffi
       t.Number("flange_back_distance_mm", InRange(1000.0, 1700.0)).value_or(1360.0) * kMm;
   traffic->flange_back_position_m =
       t.Number("flange_back_position_mm", InRange(-200.0, 0.0)).value_or(-70.0) * kMm;
-  c->share = t.Number("share", Positive()).value_or(1.0);
+  c->share = t.Number("share", OpenClosed(0.0, kMaxShare)).value_or(1.0);
   const LoadCollective& lc = traffic->collective;
   const bool every_bin_has_mu =
       std::all_of(lc.entries.begin(), lc.entries.end(),
@@ -887,8 +893,8 @@ void ReadTraffic(const Fields& top, Scene* scene) {
     c.roll_rad = t.Number("roll_rad", InRange(-kMaxRoll_rad, kMaxRoll_rad)).value_or(0.0);
     c.yaw_rad = t.Number("yaw_mrad", InRange(-100.0, 100.0)).value_or(0.0) * 1e-3;
     ReadEntryFriction(t, scene->wear->options.conditions, /*required=*/true, &c);
-    c.speed_m_s = t.RequiredNumber("speed_m_s", Positive());
-    c.share = t.Number("share", Positive()).value_or(1.0);
+    c.speed_m_s = t.RequiredNumber("speed_m_s", OpenClosed(0.0, kMaxSpeed_m_s));
+    c.share = t.Number("share", OpenClosed(0.0, kMaxShare)).value_or(1.0);
     scene->wear->traffic.push_back(std::move(c));
     ++index;
   }

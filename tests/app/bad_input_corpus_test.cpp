@@ -10,6 +10,7 @@
 #include <map>
 #include <regex>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -140,6 +141,27 @@ std::vector<CorpusCase> Corpus() {
                  2,
                  {"s.toml:19:", "key 'model.cell_mm' = " + shown, "[0.01, 20]"}});
   }
+  // Wear keys that were silently wrong (issue 17): bins and profile points of 1e-9 mm, a total
+  // of 1e308 MGT ("0 steps (complete)"), a share of 1e308.
+  for (const auto& [key, from, to, range] :
+       std::vector<std::tuple<std::string, std::string, std::string, std::string>>{
+           {"bin_mm", "total_passes = 4e5", "total_passes = 4e5\nbin_mm = 1e-9", "[0.01, 1]"},
+           {"profile_spacing_mm", "total_passes = 4e5",
+            "total_passes = 4e5\nprofile_spacing_mm = 1e-9", "[0.01, 2]"},
+           {"total_MGT", "total_passes = 4e5", "total_MGT = 1e308", "(0, 10000]"},
+           {"total_passes", "total_passes = 4e5", "total_passes = 1e300", "(0, 1000000000]"}}) {
+    c.push_back({"wear_" + key,
+                 {{"s.toml", Replace(wear, from, to)}},
+                 "wear s.toml --db w.sqlite",
+                 2,
+                 {"s.toml:", "key 'wear." + key + "'", range}});
+  }
+  c.push_back(
+      {"wear_share_1e308",
+       {{"s.toml", Replace(wear, "vertical_N = 80000", "vertical_N = 80000\nshare = 1e308")}},
+       "wear s.toml --db w.sqlite",
+       2,
+       {"s.toml:", "key 'traffic[0].share' = 1e+308", "(0, 1000000]"}});
   // At the smallest cell accepted the grid's memory estimate refuses before any work (exit 1, a
   // solver status), naming the key to change.
   c.push_back({"cell_mm_smallest_refused_by_memory_estimate",

@@ -675,7 +675,7 @@ TEST(SceneTest, WearSceneErrorsNameTheKey) {
   EXPECT_TRUE(Contains(with("lateral_shift_mm = -5", "lateral_shift_mm = { mean = -5, sd = 1 }"),
                        "key 'traffic[1].lateral_shift_mm.sd'"));
   EXPECT_TRUE(Contains(with("share = 0.4", "share = -0.4"),
-                       "key 'traffic[0].share' = -0.4: expected a number > 0"));
+                       "key 'traffic[0].share' = -0.4: expected a number in (0, 1000000]"));
   EXPECT_TRUE(Contains(with("friction = 0.3\n", ""), "key 'traffic[1].friction' is missing"));
   EXPECT_TRUE(Contains(with("hardness_MPa = 2600, ", ""),
                        "key 'materials.rail.hardness_MPa' is missing: expected the rail hardness "
