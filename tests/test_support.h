@@ -6,10 +6,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "core/numerics/input_error.h"
 
 namespace railwear::test {
 
@@ -18,6 +21,16 @@ namespace fs = std::filesystem;
 inline ::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
   if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << "\n  text:  " << text << "\n  lacks: " << part;
+}
+
+// The message of the InputError `f` throws, or "(no InputError)".
+inline std::string InputErrorMessage(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
 }
 
 inline std::string ReadFile(const fs::path& file) {

@@ -16,6 +16,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/test_support.h"
+
 #include "app/curving_accuracy.h"
 #include "core/numerics/input_error.h"
 #include "tests/app/wear_scenes.h"
@@ -30,15 +32,6 @@ const std::string kExamples = std::string(RAILWEAR_SOURCE_DIR) + "/examples/";
 ::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
   if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << "\n  text:  " << text << "\n  lacks: " << part;
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
 }
 
 // The CI form of the study: draft and standard, one solve each.
@@ -188,34 +181,36 @@ TEST(AccuracyCommand, CurvingAtDraftAndStandard) {
   EXPECT_TRUE(Contains(csv.str(), "\"traffic[0]\",standard,converged,"));
 
   const Scene contact = LoadScene(kExamples + "gauge_corner.toml");
-  EXPECT_TRUE(Contains(ErrorOf([&] { RunCurvingAccuracyStudy(contact, {"draft"}, nullptr); }),
-                       "--curving needs a wear scene with [track], [[vehicle]]"));
-  EXPECT_TRUE(Contains(ErrorOf([&] { RunCurvingAccuracyStudy(scene, {"coarse"}, nullptr); }),
-                       "--levels: level 'coarse': expected one of"));
+  EXPECT_TRUE(Contains(
+      test::InputErrorMessage([&] { RunCurvingAccuracyStudy(contact, {"draft"}, nullptr); }),
+      "--curving needs a wear scene with [track], [[vehicle]]"));
+  EXPECT_TRUE(Contains(
+      test::InputErrorMessage([&] { RunCurvingAccuracyStudy(scene, {"coarse"}, nullptr); }),
+      "--levels: level 'coarse': expected one of"));
 }
 
 TEST(AccuracyCommand, BadInputNamesWhatIsWrong) {
   const Scene scene = LoadScene(kExamples + "gauge_corner.toml");
   AccuracyOptions o = Quick();
   o.models = {"halfspace", "fem"};
-  EXPECT_TRUE(Contains(ErrorOf([&] { RunAccuracyStudy(scene, o); }),
+  EXPECT_TRUE(Contains(test::InputErrorMessage([&] { RunAccuracyStudy(scene, o); }),
                        "--models: model 'fem': expected one of hertz, halfspace, "
                        "conformal+boussinesq, conformal+golubenko, auto"));
   o = Quick();
   o.levels = {"ultra"};
-  EXPECT_TRUE(Contains(ErrorOf([&] { RunAccuracyStudy(scene, o); }),
+  EXPECT_TRUE(Contains(test::InputErrorMessage([&] { RunAccuracyStudy(scene, o); }),
                        "--levels: level 'ultra': expected one of draft, standard"));
   o = Quick();
   o.repeats = 0;
-  EXPECT_TRUE(
-      Contains(ErrorOf([&] { RunAccuracyStudy(scene, o); }), "--repeats 0: expected at least 1"));
+  EXPECT_TRUE(Contains(test::InputErrorMessage([&] { RunAccuracyStudy(scene, o); }),
+                       "--repeats 0: expected at least 1"));
   o = Quick();
   o.reference_model = "kelvin";
-  EXPECT_TRUE(
-      Contains(ErrorOf([&] { RunAccuracyStudy(scene, o); }), "--reference-model: model 'kelvin'"));
+  EXPECT_TRUE(Contains(test::InputErrorMessage([&] { RunAccuracyStudy(scene, o); }),
+                       "--reference-model: model 'kelvin'"));
   o = Quick();
   o.reference = "/nonexistent/ref.json";
-  EXPECT_TRUE(Contains(ErrorOf([&] { RunAccuracyStudy(scene, o); }),
+  EXPECT_TRUE(Contains(test::InputErrorMessage([&] { RunAccuracyStudy(scene, o); }),
                        "/nonexistent/ref.json: cannot read the reference file"));
   const fs::path file = fs::temp_directory_path() / "railwear_accuracy_bad.json";
   for (const auto& [text, expected] :
@@ -227,12 +222,14 @@ TEST(AccuracyCommand, BadInputNamesWhatIsWrong) {
     std::ofstream(file) << text;
     o = Quick();
     o.reference = file.string();
-    EXPECT_TRUE(Contains(ErrorOf([&] { RunAccuracyStudy(scene, o); }), expected)) << text;
+    EXPECT_TRUE(Contains(test::InputErrorMessage([&] { RunAccuracyStudy(scene, o); }), expected))
+        << text;
   }
   fs::remove(file);
-  EXPECT_TRUE(
-      Contains(ErrorOf([&] { RunAccuracyStudy(LoadScene(kExamples + "wheelset.toml"), Quick()); }),
-               "wheelset.toml: the scene places a wheelset"));
+  EXPECT_TRUE(Contains(test::InputErrorMessage([&] {
+                         RunAccuracyStudy(LoadScene(kExamples + "wheelset.toml"), Quick());
+                       }),
+                       "wheelset.toml: the scene places a wheelset"));
 }
 
 // The binary end to end, in a temporary directory.

@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/test_support.h"
+
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
 #include "core/profile/profile.h"
@@ -30,15 +32,6 @@ std::vector<Eigen::Vector2d> LoopMm() {
 std::vector<Eigen::Vector2d> Scaled(std::vector<Eigen::Vector2d> p, double factor) {
   for (auto& q : p) q *= factor;
   return p;
-}
-
-std::string MessageOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no InputError)";
 }
 
 // The naive reference: every pair of non-adjacent segments, lowest first segment first.
@@ -72,7 +65,8 @@ TEST(ProfileDefects, FindsTheLoopsCrossing) {
 }
 
 TEST(ProfileDefects, ProfileNamesBothSegmentsWithCoordinates) {
-  const std::string m = MessageOf([] { Profile(Scaled(LoopMm(), 1e-3), "loop.csv"); });
+  const std::string m =
+      test::InputErrorMessage([] { Profile(Scaled(LoopMm(), 1e-3), "loop.csv"); });
   EXPECT_NE(m.find("loop.csv: the profile crosses itself"), std::string::npos) << m;
   EXPECT_NE(m.find("from point 4 (y = 0.000000, z = 0.000000 mm) to point 5 (y = 10.000000, "
                    "z = 0.500000 mm)"),
@@ -92,7 +86,7 @@ TEST(ProfileDefects, ReaderNamesTheFileLines) {
     out << "y_mm,z_mm\n";
     for (const auto& p : LoopMm()) out << p.x() << "," << p.y() << "\n";
   }
-  const std::string m = MessageOf([&] { ReadProfileFile(path.string()); });
+  const std::string m = test::InputErrorMessage([&] { ReadProfileFile(path.string()); });
   std::filesystem::remove(path);
   EXPECT_NE(m.find("railwear_loop_test.csv:7: the profile crosses itself: the segment from line "
                    "5 (y = 0.000000, z = 0.000000 mm) to line 6"),
