@@ -2,7 +2,6 @@
 #include "app/curving_accuracy.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <ostream>
 
@@ -26,8 +25,7 @@ CurvingAccuracyStudy RunCurvingAccuracyStudy(
   }
   const std::vector<AccuracyPreset> presets = ParseAccuracyLevels(level_names);
   const WearStudy& study = *scene.wear;
-  const Profile high = RailInTrack(study, study.rail_profile, study.rail_profile);
-  const Profile low = RailInTrack(study, *study.low_rail_profile, *study.low_rail_profile);
+  const TrackRails rails = UnwornRailsInTrack(study);
   CurvingAccuracyStudy out;
   out.scene_path = scene.path;
   for (AccuracyPreset a : presets) out.levels.emplace_back(ToString(a));
@@ -36,16 +34,15 @@ CurvingAccuracyStudy RunCurvingAccuracyStudy(
     if (!c.is_vehicle()) continue;
     std::vector<CurvingResult> results;
     for (AccuracyPreset a : presets) {
-      CurvingProblem p = VehicleCurvingProblem(study, t, high, low);
+      CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low);
       p.contact.model.accuracy = a;
-      const auto start = std::chrono::steady_clock::now();
       results.push_back(SolveCurving(p));
       const CurvingResult& r = results.back();
       CurvingAccuracyRow row;
       row.traffic = c.name;
       row.level = std::string(ToString(a));
       row.status = std::string(ToString(r.status));
-      row.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      row.time_s = r.time_s;
       row.solves = r.contact_solves;
       if (!r.wheelsets.empty()) {
         const CurvedWheelset& lead = r.wheelsets.front();

@@ -109,12 +109,11 @@ void RunCurving(const CurvingOptions& o) {
   const WearStudy& study = *scene.wear;
   nlohmann::json all = nlohmann::json::array();
   std::string failures;
-  const Profile high = RailInTrack(study, study.rail_profile, study.rail_profile);
-  const Profile low = RailInTrack(study, *study.low_rail_profile, *study.low_rail_profile);
+  const TrackRails rails = UnwornRailsInTrack(study);
   for (int t = 0; t < static_cast<int>(study.traffic.size()); ++t) {
     const TrafficCase& c = study.traffic[t];
     if (!c.is_vehicle()) continue;
-    const CurvingProblem p = VehicleCurvingProblem(study, t, high, low);
+    const CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low);
     const CurvingResult r = SolveCurving(p);
     if (!o.json || *o.json != "-") Print(c, p, r);
     if (r.status == CurvingStatus::kFlangeClimb) {

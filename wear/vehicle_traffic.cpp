@@ -94,6 +94,11 @@ Profile RailInTrack(const WearStudy& study, const Profile& unworn, const Profile
   return current.Transformed(cant.angle_rad, cant.shift_m);
 }
 
+TrackRails UnwornRailsInTrack(const WearStudy& study) {
+  return {RailInTrack(study, study.rail_profile, study.rail_profile),
+          RailInTrack(study, *study.low_rail_profile, *study.low_rail_profile)};
+}
+
 std::vector<CurvingStart> VehicleStarts(const WearStudy& study, const Profile& unworn_high,
                                         const Profile& unworn_low) {
   std::vector<CurvingStart> starts(study.traffic.size());

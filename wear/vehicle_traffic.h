@@ -37,6 +37,13 @@ CurvingProblem VehicleCurvingProblem(const WearStudy& study, int traffic_index,
 // A rail of a study in the track frame: each canted with its unworn profile's motion.
 Profile RailInTrack(const WearStudy& study, const Profile& unworn, const Profile& current);
 
+// Both unworn rails of a two-rail study (as the scene gives them) in the track frame: where
+// `railwear curving` and its accuracy study solve each vehicle.
+struct TrackRails {
+  Profile high, low;
+};
+TrackRails UnwornRailsInTrack(const WearStudy& study);
+
 // Each vehicle entry's curving solution on the unworn rails (own frames, as in a step-0 state),
 // for WearStudy::vehicle_starts: an empty vector for prescribed entries and for a vehicle whose
 // curving did not converge there (its steps then start centred).

@@ -509,11 +509,19 @@ StepResult RunWearStep(const WearStudy& study, const UnwornRails& unworn, const 
 
 WearRunSummary RunWear(const WearStudy& study, const UnwornRails& unworn, WearState start,
                        const WearStepCallback& on_step, int max_steps) {
-  // Vehicle traffic starts every step's curving from its equilibrium on the unworn rails.
+  // Vehicle traffic starts a step's curving from the step before's solution (WearState::curving)
+  // and, where the state carries none (step 0, or a run stored without them), from its
+  // equilibrium on the unworn rails: solved here only when some vehicle entry needs it.
+  const auto lacks_start = [&](int t) {
+    return study.traffic[t].is_vehicle() &&
+           (t >= static_cast<int>(start.curving.size()) || start.curving[t].state.size() == 0);
+  };
+  bool needs_starts = false;
+  for (int t = 0; t < static_cast<int>(study.traffic.size()); ++t) {
+    needs_starts = needs_starts || lacks_start(t);
+  }
   std::optional<WearStudy> prepared;
-  if (study.vehicle_starts.empty() && unworn.low &&
-      std::any_of(study.traffic.begin(), study.traffic.end(),
-                  [](const TrafficCase& c) { return c.is_vehicle(); })) {
+  if (study.vehicle_starts.empty() && unworn.low && needs_starts) {
     prepared = study;
     prepared->vehicle_starts = VehicleStarts(study, unworn.high, *unworn.low);
   }

@@ -108,7 +108,8 @@ struct WearStudy : ContactSetup {
   CurveSpec curve;
   // Per traffic entry, the curving solution on the unworn rails (empty, or an empty entry: the
   // centred start): the start of a step whose state carries none (WearState::curving). RunWear
-  // fills it with each vehicle's equilibrium on the unworn rails of step 0.
+  // fills it with each vehicle's equilibrium on the unworn rails of step 0 when its start state
+  // lacks some vehicle entry's curving.
   std::vector<CurvingStart> vehicle_starts;
   WearOptions options;
 };

@@ -189,6 +189,11 @@ bool Converged(const CurvedWheelset& w) {
          w.contact.left.status == SolverStatus::kConverged;
 }
 
+// Every one of the vehicle's `n` wheelsets evaluated, and each one's contact converged.
+bool AllConverged(const std::vector<CurvedWheelset>& ws, int n) {
+  return ws.size() == static_cast<size_t>(n) && std::all_of(ws.begin(), ws.end(), Converged);
+}
+
 // The Newton iteration of one phase (one contact model).
 class Equilibrium {
  public:
@@ -559,15 +564,21 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
       out.full_iterations += std::max(iterations, 0);
     }
     if (iterations >= 0 || no_equilibrium) break;
-    const bool contacts_converged =
-        ws.size() == static_cast<size_t>(layout.wheelsets) &&
-        std::all_of(ws.begin(), ws.end(), [](const CurvedWheelset& w) { return Converged(w); });
-    if (contacts_converged && r.size() == q.size() && (!best || eq.Norm(r) < eq.Norm(best->r))) {
+    if (AllConverged(ws, layout.wheelsets) && r.size() == q.size() &&
+        (!best || eq.Norm(r) < eq.Norm(best->r))) {
       best = Attempt{q, r, ws, eq.jacobian(), out.message};
     }
     if (best && eq.Norm(best->r) <= p.options.usable_multiple * p.options.tolerance) break;
   }
   out.jacobian = eq.jacobian();
+  // Returns attempt `a` as the result's state.
+  auto take = [&](const Attempt& a) {
+    q = a.q;
+    r = a.r;
+    ws = a.ws;
+    out.jacobian = a.jacobian;
+    out.message = a.message;
+  };
   // A solve that stalled on a draft grid above the usable residual but near an equilibrium
   // (within kNearStall x the tolerance: the draft grid's force noise grows where a worn gauge
   // corner wraps the patch): once more from the best state on the standard grid, whose forces
@@ -587,10 +598,8 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
     bool fno = false;
     eq.Restart(contexts(finer), best->jacobian);
     const int fit = eq.Solve(&fq, &fws, &fr, &fmessage, &fno);
-    const bool contacts_converged =
-        fws.size() == static_cast<size_t>(layout.wheelsets) &&
-        std::all_of(fws.begin(), fws.end(), [](const CurvedWheelset& w) { return Converged(w); });
-    if (contacts_converged && fr.size() == fq.size() && eq.Norm(fr) < eq.Norm(best->r)) {
+    if (AllConverged(fws, layout.wheelsets) && fr.size() == fq.size() &&
+        eq.Norm(fr) < eq.Norm(best->r)) {
       const std::string draft = fmt::format("the draft grid stalled at {:.1e}", eq.Norm(best->r));
       out.full_iterations += std::max(fit, 0);
       iterations = fit;
@@ -599,20 +608,10 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
                      fit >= 0 ? fmt::format("{}; finished on the standard grid{}", draft,
                                             fmessage.empty() ? "" : ": " + fmessage)
                               : fmt::format("{}; on the standard grid: {}", draft, fmessage)};
-      q = fq;
-      r = fr;
-      ws = fws;
-      out.jacobian = best->jacobian;
-      out.message = best->message;
+      take(*best);
     }
   }
-  if (iterations < 0 && !no_equilibrium && best) {
-    q = best->q;
-    r = best->r;
-    ws = best->ws;
-    out.jacobian = best->jacobian;
-    out.message = best->message;
-  }
+  if (iterations < 0 && !no_equilibrium && best) take(*best);
   if (r.size() == q.size()) out.largest_scaled_residual = eq.Norm(r);
   out.contact_solves = eq.solves();
   out.wheelsets = ws;
