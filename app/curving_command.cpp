@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/scene.h"
+#include "app/stored_study.h"
 #include "app/toml_fields.h"
 #include "core/contact/contact_forces.h"
 #include "core/numerics/input_error.h"
@@ -84,6 +85,45 @@ nlohmann::json Json(const TrafficCase& c, const CurvingProblem& p, const Curving
   return j;
 }
 
+// A stored wear step's rails in the track frame, and its state (each entry's curving solution).
+struct StoredRails {
+  TrackRails rails;
+  WearState state;
+  std::string where;  // "run 'NAME' step N (M MGT) in FILE"
+};
+
+StoredRails StoredStepRails(const CurvingOptions& o, const Scene& scene) {
+  const WearStudy& study = *scene.wear;
+  if (o.step && o.step < 0) {
+    throw InputError(fmt::format("--step {}: expected a stored step number (0 or more)", *o.step));
+  }
+  const ProfileStore db = OpenExistingStudy(*o.db);
+  const RunInfo run = FindRunOrThrow(db, o.run.value_or(scene.name));
+  if (run.scene_text != scene.text) {
+    throw InputError(fmt::format(
+        "database '{}': run '{}' was stored from a different scene than {}: expected the run's "
+        "own scene (its rails' places and vehicles come from it)",
+        db.path(), run.name, o.scene));
+  }
+  const std::optional<int> last = db.LastStep(run.id);
+  if (!last) {
+    throw InputError(fmt::format("database '{}': run '{}' has no steps yet", db.path(), run.name));
+  }
+  const int step = o.step.value_or(*last);
+  if (step > *last) {
+    throw InputError(fmt::format("--step {}: run '{}' in '{}' has steps 0 to {}", step, run.name,
+                                 db.path(), *last));
+  }
+  const WearState unworn = StateFromStore(db, run.id, 0);
+  StoredRails out;
+  out.state = StateFromStore(db, run.id, step);
+  out.rails.high = RailInTrack(study, unworn.rail, out.state.rail);
+  out.rails.low = RailInTrack(study, *unworn.low_rail, *out.state.low_rail);
+  out.where =
+      fmt::format("run '{}' step {} ({:.4g} MGT) in {}", run.name, step, out.state.mgt, db.path());
+  return out;
+}
+
 }  // namespace
 
 void SetupCurving(CLI::App& app) {
@@ -95,6 +135,11 @@ void SetupCurving(CLI::App& app) {
   cmd->add_option("scene", o->scene, "Wear scene with [track], [[vehicle]] and vehicle traffic")
       ->required();
   cmd->add_option("--json", o->json, "Write the equilibria as JSON to FILE ('-': stdout)");
+  CLI::Option* db = cmd->add_option("--db", o->db,
+                                    "A wear run's database: solve on a stored step's worn rails, "
+                                    "from its stored curving (read only)");
+  cmd->add_option("--run", o->run, "With --db: the run (default: the scene's name)")->needs(db);
+  cmd->add_option("--step", o->step, "With --db: the step (default: the run's last)")->needs(db);
   cmd->callback([o]() { RunCurving(*o); });
 }
 
@@ -109,11 +154,19 @@ void RunCurving(const CurvingOptions& o) {
   const WearStudy& study = *scene.wear;
   nlohmann::json all = nlohmann::json::array();
   std::string failures;
-  const TrackRails rails = UnwornRailsInTrack(study);
+  const StoredRails stored = o.db ? StoredStepRails(o, scene) : StoredRails{};
+  const TrackRails rails = o.db ? stored.rails : UnwornRailsInTrack(study);
+  if (o.db && (!o.json || *o.json != "-")) {
+    std::cout << "on the worn rails of " << stored.where << ", from its stored curving\n";
+  }
   for (int t = 0; t < static_cast<int>(study.traffic.size()); ++t) {
     const TrafficCase& c = study.traffic[t];
     if (!c.is_vehicle()) continue;
-    const CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low);
+    const CurvingStart* start = t < static_cast<int>(stored.state.curving.size()) &&
+                                        stored.state.curving[t].state.size() > 0
+                                    ? &stored.state.curving[t]
+                                    : nullptr;
+    const CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low, start);
     const CurvingResult r = SolveCurving(p);
     if (!o.json || *o.json != "-") Print(c, p, r);
     if (r.status == CurvingStatus::kFlangeClimb) {

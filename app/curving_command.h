@@ -3,6 +3,13 @@
 // the lateral displacement, angle of attack, wheel loads, flange force and L/V against Nadal's
 // limit, with the status, the equilibrium's residuals and the time. What the wear study will
 // start from, and the way to ask "how does this vehicle run in this curve".
+//
+// With --db FILE [--run NAME] [--step N]: on the worn rails of a stored wear step instead (both
+// rails of the run's step N, default its last, placed as the wear loop places them), each
+// vehicle starting from the step's stored curving solution (step 0 has none: from the centred
+// start), as the run's next step would: how the
+// vehicle runs after that much traffic, and the way to see why a run stopped on a curving that
+// did not converge. The database is only read.
 #pragma once
 
 #include <optional>
@@ -17,6 +24,9 @@ namespace railwear::app {
 struct CurvingOptions {
   std::string scene;
   std::optional<std::string> json;  // "-" for stdout
+  std::optional<std::string> db;    // a wear run's database: its step's worn rails
+  std::optional<std::string> run;   // default: the scene's name
+  std::optional<int> step;          // default: the run's last stored step
 };
 
 void SetupCurving(CLI::App& app);

@@ -19,6 +19,7 @@
 #include "app/history_plot.h"
 #include "app/number_format.h"
 #include "app/paths.h"
+#include "app/stored_study.h"
 #include "core/numerics/input_error.h"
 #include "core/numerics/text_file.h"
 #include "core/numerics/units.h"
@@ -33,32 +34,6 @@ namespace {
 
 // ---------------------------------------------------------------------------------------------
 // Opening the database and finding runs and steps; every failure names the file.
-
-ProfileStore OpenExisting(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) {
-    throw InputError(fmt::format(
-        "database '{}': no such file; expected an existing railwear profile-history database "
-        "(--db FILE; `railwear wear` creates one, `history` never does)",
-        path));
-  }
-  if (fs::is_regular_file(path, ec) && fs::file_size(path, ec) == 0) {
-    throw InputError(
-        fmt::format("database '{}': empty file; expected a railwear "
-                    "profile-history database",
-                    path));
-  }
-  return ProfileStore::OpenReadOnly(path);  // never writes, migrates or recovers the file
-}
-
-RunInfo FindRunOrThrow(const ProfileStore& db, const std::string& name) {
-  if (auto run = db.FindRun(name)) return *run;
-  std::string known;
-  for (const auto& r : db.Runs()) known += (known.empty() ? "" : ", ") + ("'" + r.name + "'");
-  throw InputError(
-      fmt::format("database '{}': no run named '{}'; expected {}", db.path(), name,
-                  known.empty() ? "a run name, but the database has no runs" : "one of " + known));
-}
 
 // The run's step summaries; InputError when it has none.
 std::vector<StepRecord> StepsOrThrow(const ProfileStore& db, const RunInfo& run) {
@@ -308,7 +283,7 @@ void SetupHistory(CLI::App& app) {
 }
 
 void RunHistoryRuns(const HistoryOptions& o) {
-  const ProfileStore db = OpenExisting(o.db);
+  const ProfileStore db = OpenExistingStudy(o.db);
   std::vector<std::vector<std::string>> rows;
   for (const auto& run : db.Runs()) {
     const std::vector<StepRecord> steps = db.Steps(run.id);
@@ -322,7 +297,7 @@ void RunHistoryRuns(const HistoryOptions& o) {
 }
 
 void RunHistoryCalibrations(const HistoryOptions& o) {
-  const ProfileStore db = OpenExisting(o.db);
+  const ProfileStore db = OpenExistingStudy(o.db);
   std::vector<std::vector<std::string>> rows;
   for (const auto& c : db.Calibrations()) {
     // "c_f 1.05 +- 0.001, c_z ..." from the stored constants (calibrate_command.cpp writes it).
@@ -374,7 +349,7 @@ std::vector<std::string> MeasureCells(const std::vector<StepRecord>& steps, size
 }  // namespace
 
 void RunHistorySteps(const HistoryOptions& o, const HistoryStepsOptions& s) {
-  const ProfileStore db = OpenExisting(o.db);
+  const ProfileStore db = OpenExistingStudy(o.db);
   const RunInfo run = FindRunOrThrow(db, s.run);
   const std::vector<StepRecord> steps = db.Steps(run.id);
   const std::vector<StepRecord> low = LowRailSteps(steps);
@@ -405,7 +380,7 @@ void RunHistorySteps(const HistoryOptions& o, const HistoryStepsOptions& s) {
 
 void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) {
   const HistoryProfileFormat format = ChooseFormat(p);  // before touching the database
-  const ProfileStore db = OpenExisting(o.db);
+  const ProfileStore db = OpenExistingStudy(o.db);
   const RunInfo run = FindRunOrThrow(db, p.run);
   const std::vector<StepRecord> steps = StepsOrThrow(db, run);
   const int step_number = p.step.value_or(steps.back().step);
@@ -438,7 +413,7 @@ void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) 
 }
 
 void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
-  const ProfileStore db = OpenExisting(o.db);
+  const ProfileStore db = OpenExistingStudy(o.db);
   const RunInfo run = FindRunOrThrow(db, d.run);
   const std::vector<StepRecord> steps = StepsOrThrow(db, run);
   const StepRecord& a = StepOrThrow(db, run, steps, d.from_step, "step A");
@@ -493,7 +468,7 @@ void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
 
 void RunHistoryPlot(const HistoryOptions& o, const HistoryPlotOptions& p) {
   RequireGnuplotFor("history plot", "use `history profile` / `history sql` for the numbers");
-  const ProfileStore db = OpenExisting(o.db);
+  const ProfileStore db = OpenExistingStudy(o.db);
   const RunInfo run = FindRunOrThrow(db, p.run);
   const std::vector<StepRecord> summaries = StepsOrThrow(db, run);
   std::vector<StepRecord> steps;
@@ -506,7 +481,7 @@ void RunHistoryPlot(const HistoryOptions& o, const HistoryPlotOptions& p) {
 }
 
 void RunHistorySql(const HistoryOptions& o, const HistorySqlOptions& s) {
-  const ProfileStore db = OpenExisting(o.db);
+  const ProfileStore db = OpenExistingStudy(o.db);
   const QueryResult r = db.Query(s.sql);
   std::cout << (s.tsv ? TsvTable(r.columns, r.rows) : AlignedTable(r.columns, r.rows));
   std::cerr << fmt::format("railwear: {} row(s)\n", r.rows.size());

@@ -20,6 +20,7 @@
 #include "app/interrupt_signals.h"
 #include "app/number_format.h"
 #include "app/scene.h"
+#include "app/stored_study.h"
 #include "core/numerics/input_error.h"
 #include "profiles_db/profile_store.h"
 #include "wear/vehicle_traffic.h"
@@ -244,36 +245,6 @@ StepRecord MakeInitialRecord(const WearState& state) {
     r.low_rail->profile = *state.low_rail;
   }
   return r;
-}
-
-WearState StateFromStore(const ProfileStore& store, int64_t run, int step) {
-  const StepRecord r = store.LoadStep(run, step);
-  WearState state;
-  state.step = r.step;
-  state.passes = r.passes;
-  state.mgt = r.mgt;
-  state.rail = r.profile;
-  for (const Distribution& d : r.distributions) {
-    if (d.kind == "rcf_damage") state.damage = d.value;
-  }
-  if (r.low_rail) {
-    state.low_rail = r.low_rail->profile;
-    for (const Distribution& d : r.low_rail->distributions) {
-      if (d.kind == "rcf_damage") state.low_damage = d.value;
-    }
-  }
-  // Each vehicle entry's curving solution: where the next step starts (bit-identical resume).
-  for (const CurvingStartRecord& c : r.curving_starts) {
-    if (c.traffic_index >= static_cast<int>(state.curving.size())) {
-      state.curving.resize(c.traffic_index + 1);
-    }
-    CurvingStart& start = state.curving[c.traffic_index];
-    const auto n = static_cast<Eigen::Index>(c.state.size());
-    start.state = Eigen::Map<const Eigen::VectorXd>(c.state.data(), n);
-    if (!c.jacobian.empty())
-      start.jacobian = Eigen::Map<const Eigen::MatrixXd>(c.jacobian.data(), n, n);
-  }
-  return state;
 }
 
 std::string Duration(double seconds) {

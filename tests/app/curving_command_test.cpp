@@ -1,5 +1,6 @@
 // `railwear curving` and the scene keys of vehicle traffic: [track] radius and cant, [[vehicle]]
 // tables, traffic entries naming a vehicle; a single S1002 wheelset on R 1500 m (about a second).
+#include <filesystem>
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -73,6 +74,45 @@ TEST_F(CurvingCommandTest, WearRunStoresEachStepsCurvingAndResumesFromIt) {
     EXPECT_EQ(sb.low_rail->profile.points(), sa.low_rail->profile.points()) << step;
   }
   EXPECT_TRUE(a.LoadStep(run_a, 0).curving_starts.empty());
+}
+
+// `curving --db`: on a stored step's worn rails, from its stored curving, the solve is the one the
+// run's next step makes: step 1's equilibrium is, bit for bit, what the run stored with step 2.
+TEST_F(CurvingCommandTest, OnAStoredStepIsTheRunsNextStepsSolve) {
+  const std::string scene =
+      Replace(Replace(kScene, "high_rail = \"builtin:UIC60\"",
+                      "high_rail = \"builtin:UIC60\"\nlow_rail = \"builtin:UIC60\""),
+              "total_passes = 1e5", "total_passes = 1e5\nmax_depth_per_step_mm = 0.002");
+  std::ofstream(dir_ / "w.toml") << scene;
+  ASSERT_EQ(Run("wear w.toml --db a.sqlite --steps 2").exit_code, 0);
+  const std::string before = ReadFile(dir_ / "a.sqlite");
+  const Outcome o = Run("curving w.toml --db a.sqlite --step 1 --json eq.json");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(Contains(o.out, "on the worn rails of run 'wheelset on R1500' step 1")) << o.out;
+  EXPECT_EQ(ReadFile(dir_ / "a.sqlite"), before);  // only read
+  const nlohmann::json w = nlohmann::json::parse(ReadFile(dir_ / "eq.json"))[0]["wheelsets"][0];
+  const ProfileStore db = ProfileStore::OpenReadOnly((dir_ / "a.sqlite").string());
+  const StepRecord next = db.LoadStep(db.FindRun("wheelset on R1500")->id, 2);
+  ASSERT_EQ(next.curving_starts.size(), 1u);
+  EXPECT_EQ(w["y_mm"].get<double>(), next.curving_starts[0].state[0] * 1e3);
+  EXPECT_EQ(w["yaw_mrad"].get<double>(), next.curving_starts[0].state[1] * 1e3);
+
+  // The run's last step by default; a step it does not have, another scene or a missing
+  // database: exit 2 naming what was expected.
+  EXPECT_TRUE(Contains(Run("curving w.toml --db a.sqlite").out, "step 2 ("));
+  const Outcome late = Run("curving w.toml --db a.sqlite --step 9");
+  EXPECT_EQ(late.exit_code, 2);
+  EXPECT_TRUE(Contains(late.err, "--step 9: run 'wheelset on R1500'")) << late.err;
+  EXPECT_TRUE(Contains(late.err, "has steps 0 to 2")) << late.err;
+  std::ofstream(dir_ / "other.toml") << Replace(scene, "speed_m_s = 25", "speed_m_s = 20");
+  const Outcome other = Run("curving other.toml --db a.sqlite --run \"wheelset on R1500\"");
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_TRUE(Contains(other.err, "from a different scene than other.toml")) << other.err;
+  EXPECT_EQ(Run("curving w.toml --step 1").exit_code, 2);  // --step needs --db
+  const Outcome missing = Run("curving w.toml --db none.sqlite");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_TRUE(Contains(missing.err, "database 'none.sqlite': no such file")) << missing.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "none.sqlite"));
 }
 
 TEST_F(CurvingCommandTest, BadVehicleInputIsExitTwoWithFileAndKey) {

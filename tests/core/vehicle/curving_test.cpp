@@ -238,7 +238,9 @@ TEST(CurvingTest, S1002BogieOnR300RunsInFlangeContactBelowNadal) {
     // it stopped at the contact grid's force noise (20 m/s: 60 N against 59 N).
     const double q0 = 0.5 * p.vehicle.axle_load_N;
     const double allowed = r.message.empty() ? 1e-3 : 3e-3;
-    if (!r.message.empty()) EXPECT_NE(r.message.find("contact grid's noise"), std::string::npos);
+    if (!r.message.empty()) {
+      EXPECT_NE(r.message.find("contact grid's noise"), std::string::npos);
+    }
     EXPECT_LT(r.lateral_residual_N, allowed * q0);
     EXPECT_LT(r.yaw_residual_Nm, allowed * q0 * 0.75);
     flange_force.push_back(lead.high_lateral_N);
@@ -246,6 +248,27 @@ TEST(CurvingTest, S1002BogieOnR300RunsInFlangeContactBelowNadal) {
   // The flange force rises with the cant deficiency.
   EXPECT_LT(flange_force[0], flange_force[1]);
   EXPECT_LT(flange_force[1], flange_force[2]);
+
+  // Stiff flange contact: where the forces' grid noise lies above what the force tolerance asks
+  // (2e-4 Q0 here, against the draft grid's noise of about 1e-3 Q0 at the flange: 60 N at
+  // 20 m/s), no step reduces the residual while the position is settled. From the 20 m/s
+  // solution the solve ends converged in position, said so, within the position tolerances of
+  // that solution.
+  CurvingProblem p = S1002Coach(radius, 0.10, 20.0);
+  p.options.start = previous;
+  p.options.tolerance = 2e-4;
+  const CurvingResult tight = SolveCurving(p);
+  ASSERT_EQ(tight.status, CurvingStatus::kConverged) << tight.message;
+  EXPECT_NE(tight.message.find("converged in position"), std::string::npos) << tight.message;
+  EXPECT_GT(tight.largest_scaled_residual, 3.0 * p.options.tolerance);
+  EXPECT_LE(tight.largest_scaled_residual, 20.0 * p.options.tolerance);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(tight.state[2 * i], previous->state[2 * i], p.options.position_tolerance_m) << i;
+    EXPECT_NEAR(tight.state[2 * i + 1], previous->state[2 * i + 1], p.options.yaw_tolerance_rad)
+        << i;
+  }
+  std::printf("R300 at 20 m/s to 2e-4 Q0: %s; %d solves\n", tight.message.c_str(),
+              tight.contact_solves);
 }
 
 }  // namespace
@@ -284,7 +307,10 @@ TEST(CurvingTest, HardCasesConvergeOrNameTheirStatus) {
     // The reported residual is the returned state's (the best start's when none converged).
     EXPECT_TRUE(std::isfinite(r.largest_scaled_residual)) << c.what;
     if (r.status == CurvingStatus::kConverged) {
-      EXPECT_LE(r.largest_scaled_residual, 3.0 * p.options.tolerance) << c.what;  // noise floor
+      // The noise floor; in position, within the near-stall bound.
+      const bool in_position = r.message.find("converged in position") != std::string::npos;
+      EXPECT_LE(r.largest_scaled_residual, (in_position ? 20.0 : 3.0) * p.options.tolerance)
+          << c.what;
     } else if (r.status == CurvingStatus::kNotConverged) {
       EXPECT_GT(r.largest_scaled_residual, p.options.tolerance) << c.what;
     }
