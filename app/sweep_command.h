@@ -5,7 +5,8 @@
 // ("0001-3fa2c1d0  wear.k=0.0002 track.radius_m=600"); every line's scene is read first, so a
 // value the scene rejects is reported (exit 2) before anything runs. --index N runs line N
 // (0-based); without it SLURM_ARRAY_TASK_ID is used when set (a Slurm job array), and without
-// both every line runs, one after the other.
+// both every line runs, one after the other, stopping at the first that fails (its exception
+// propagates: exit 1, or 130/143 for a signal); run again, the complete lines are skipped.
 //
 // A line runs as `railwear wear` would: into OUT_DIR/ID.sqlite, as run ID, its scene written
 // beside it as OUT_DIR/ID.toml. A finished run (state complete) is skipped; a started one

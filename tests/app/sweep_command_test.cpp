@@ -3,8 +3,6 @@
 // --index and by SLURM_ARRAY_TASK_ID, the per-run databases merged (twice: nothing changes) and
 // read by `history`; merge refusing a conflicting run, a foreign SQLite file, a file that is not
 // SQLite and a newer schema, with exit 2 and every input byte for byte as it was (-wal included).
-#include <sqlite3.h>
-
 #include <map>
 #include <regex>
 #include <string>
@@ -15,6 +13,7 @@
 #include "profiles_db/profile_store.h"
 #include "tests/app/cli_runner.h"
 #include "tests/app/wear_scenes.h"
+#include "tests/sqlite_test_support.h"
 
 namespace railwear::test {
 namespace {
@@ -46,17 +45,6 @@ std::map<std::string, std::string> DatabaseBytes(const fs::path& path) {
     if (fs::exists(p)) out[suffix] = ReadFile(p);
   }
   return out;
-}
-
-void RawExec(const fs::path& path, const std::string& sql) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-  char* err = nullptr;
-  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &err);
-  const std::string msg = err ? err : "";
-  sqlite3_free(err);
-  sqlite3_close(db);
-  ASSERT_EQ(rc, SQLITE_OK) << msg;
 }
 
 class SweepCommandTest : public CliFixture {
@@ -203,7 +191,7 @@ TEST_F(SweepCommandTest, ALineWhoseSceneChangedIsRefused) {
   const std::string new_id = Ids()[0];
   EXPECT_NE(new_id, id);  // the id follows the scene
   fs::copy_file(db, dir_ / "runs" / (new_id + ".sqlite"));
-  RawExec(dir_ / "runs" / (new_id + ".sqlite"),
+  RawExec((dir_ / "runs" / (new_id + ".sqlite")).string(),
           "UPDATE runs SET name = '" + new_id + "' WHERE name = '" + id + "'");
   const Outcome o = Run("sweep plan.toml --index 0");
   EXPECT_EQ(o.exit_code, 2);
@@ -283,10 +271,10 @@ TEST_F(MergeRefusalTest, RefusesAConflictingRun) {
 
 TEST_F(MergeRefusalTest, RefusesForeignNonSqliteAndNewerFilesBeforeWritingAnything) {
   WriteConflict();
-  RawExec(dir_ / "foreign.db", "CREATE TABLE t(x); INSERT INTO t VALUES (1);");
+  RawExec((dir_ / "foreign.db").string(), "CREATE TABLE t(x); INSERT INTO t VALUES (1);");
   Write("notes.txt", "not a database\n");
   fs::copy_file(dir_ / "a.sqlite", dir_ / "newer.sqlite");
-  RawExec(dir_ / "newer.sqlite",
+  RawExec((dir_ / "newer.sqlite").string(),
           "PRAGMA user_version = " + std::to_string(ProfileStore::kSchemaVersion + 1));
   ExpectRefused("out.sqlite a.sqlite foreign.db", {"a.sqlite", "foreign.db"},
                 "database 'foreign.db': an SQLite database of another application");

@@ -25,6 +25,7 @@
 #include <gtest/gtest.h>
 
 #include "core/numerics/input_error.h"
+#include "tests/sqlite_test_support.h"
 
 namespace railwear {
 namespace {
@@ -63,17 +64,8 @@ void WriteBytes(const std::string& path, const std::string& bytes) {
   out << bytes;
 }
 
-// Runs SQL on a file with the raw C API (to build foreign or future databases).
-void RawExec(const std::string& path, const std::string& sql) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-  char* err = nullptr;
-  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &err);
-  const std::string msg = err ? err : "";
-  sqlite3_free(err);
-  sqlite3_close(db);
-  ASSERT_EQ(rc, SQLITE_OK) << msg;
-}
+// RawExec (tests/sqlite_test_support.h) builds foreign or future databases.
+using test::RawExec;
 
 // An SQL BLOB literal X'..' of doubles as little-endian IEEE-754 float64 (SCHEMA.md layout).
 std::string BlobLiteral(const std::vector<double>& values) {
