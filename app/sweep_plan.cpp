@@ -158,8 +158,9 @@ std::vector<std::string> SplitCsv(const std::string& line) {
   return cells;
 }
 
-// A cell as a TOML value: itself when it is one (0.3, "x", true, { mean = 1, std = 2 } without
-// commas), else a string.
+// A cell as a TOML value: itself when it is one (0.3, "x", true, { std = 2 }), else a string
+// (builtin:S1002). Cells are split at every comma: a value with a comma (an inline table of
+// two keys, an array) goes into a [[axis]] values list instead.
 std::string CellValue(const std::string& cell) {
   try {
     const toml::table t = toml::parse("v = " + cell);

@@ -16,7 +16,7 @@
 //   range = { start = 300, stop = 900, step = 300 }
 //
 //   [[axis]]                     # a file of cases: a header of keys, one case per row
-//   cases = "cases.csv"
+//   cases = "cases.csv"          # cells: TOML values (0.3, "x") or plain strings, no commas
 //
 // The lines are the Cartesian product of the axes, the first axis varying slowest (a cases file
 // is one axis: its rows). A line's scene is the base scene with its overrides set (a key the base

@@ -2,7 +2,8 @@
 // small plan run serially (twice: the second run skips every finished line), one line by
 // --index and by SLURM_ARRAY_TASK_ID, the per-run databases merged (twice: nothing changes) and
 // read by `history`; merge refusing a conflicting run, a foreign SQLite file, a file that is not
-// SQLite and a newer schema, with exit 2 and every input byte for byte as it was (-wal included).
+// SQLite and a newer schema, with exit 2 and every input byte for byte as it was (-wal included,
+// also for an input read through a pending WAL).
 #include <map>
 #include <regex>
 #include <string>
@@ -283,6 +284,28 @@ TEST_F(MergeRefusalTest, RefusesForeignNonSqliteAndNewerFilesBeforeWritingAnythi
   ExpectRefused("out.sqlite newer.sqlite", {"newer.sqlite"}, "written by a newer railwear");
   ExpectRefused("a.sqlite a.sqlite", {"a.sqlite"}, "input 'a.sqlite' is the output");
   EXPECT_FALSE(fs::exists(dir_ / "out.sqlite"));  // every input is checked before the output
+}
+
+// An input being written (a line still running: its rows partly in a -wal) is read through its
+// WAL, and neither it nor its -wal changes; a conflicting input with a pending WAL neither.
+TEST_F(MergeRefusalTest, ReadsAnInputThroughItsPendingWalWithoutChangingIt) {
+  WriteConflict();
+  sqlite3* writer = nullptr;  // another process's connection, kept open: the WAL stays pending
+  ASSERT_EQ(sqlite3_open((dir_ / "b.sqlite").c_str(), &writer), SQLITE_OK);
+  ASSERT_EQ(
+      sqlite3_exec(writer, "PRAGMA wal_autocheckpoint = 0; UPDATE runs SET state = 'complete'",
+                   nullptr, nullptr, nullptr),
+      SQLITE_OK);
+  ASSERT_GT(fs::file_size(dir_ / "b.sqlite-wal"), 0u);
+  const auto before = DatabaseBytes(dir_ / "b.sqlite");
+  const Outcome o = Run("merge out.sqlite b.sqlite");
+  EXPECT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(Contains(Run("history --db out.sqlite runs").out, "complete"));  // the WAL's row
+  EXPECT_EQ(DatabaseBytes(dir_ / "b.sqlite"), before);
+  ExpectRefused("out.sqlite a.sqlite b.sqlite", {"a.sqlite", "b.sqlite"},
+                "database 'a.sqlite': run 'same' conflicts");
+  EXPECT_EQ(DatabaseBytes(dir_ / "b.sqlite"), before);
+  sqlite3_close(writer);
 }
 
 }  // namespace
