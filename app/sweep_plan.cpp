@@ -318,15 +318,31 @@ Scene SweepLineScene(const SweepPlan& plan, const SweepLine& line) {
     if (message.rfind(prefix, 0) == 0) {
       const size_t end = message.find(": ", prefix.size());
       if (end != std::string::npos &&
-          message.find_first_not_of("0123456789:", prefix.size()) == end) {
+          message.substr(prefix.size(), end - prefix.size()).find_first_not_of("0123456789:") ==
+              std::string::npos) {
         message = message.substr(end + 2);
       }
     }
-    const SweepOverride* culprit = line.overrides.empty() ? nullptr : &line.overrides.front();
+    if (line.overrides.empty()) throw;  // the base scene itself
+    // The axis the message names: its key, else the nearest table on its path ('track' for
+    // track.radius_m); none: every value of the line is named.
+    const SweepOverride* culprit = nullptr;
+    size_t best = 0;
     for (const SweepOverride& o : line.overrides) {
-      if (message.find("'" + o.key + "'") != std::string::npos) culprit = &o;
+      for (std::string key = o.key; !key.empty();) {
+        if (key.size() > best && message.find("'" + key + "'") != std::string::npos) {
+          culprit = &o;
+          best = key.size();
+        }
+        const size_t dot = key.find_last_of(".[");
+        key = dot == std::string::npos ? std::string() : key.substr(0, dot);
+      }
     }
-    if (culprit == nullptr) throw;  // the base scene itself
+    if (culprit == nullptr) {
+      throw InputError(fmt::format(
+          "{}: run {} ({}): the scene rejects its values: {} (the base scene {} with them)",
+          line.overrides.front().origin, line.id, line.Differences(), message, plan.scene_path));
+    }
     throw InputError(fmt::format(
         "{}: axis '{}' = {} (run {}): the scene rejects it: {} (the base scene {} with the run's "
         "values: {})",

@@ -331,6 +331,11 @@ std::vector<CorpusCase> Corpus() {
     plan("rejected_value", head + "[[axis]]\nkey = \"traffic[0].friction\"\nvalues = [0.3, 7.0]\n",
          {"plan.toml:5: axis 'traffic[0].friction' = 7.0 (run 0001-",
           "key 'traffic[0].friction' = 7: expected"});
+    plan("value_named_by_its_table", head + "[[axis]]\nkey = \"track.radius_m\"\nvalues = [300]\n",
+         {"plan.toml:5: axis 'track.radius_m' = 300 (run 0000-", "key 'track'", "not both"});
+    plan("values_rejected_together", head + "[[axis]]\nkey = \"wear.law\"\nvalues = [\"usfd\"]\n",
+         {"plan.toml:5: run 0000-", "(wear.law=\"usfd\"): the scene rejects its values",
+          "key 'wear.k'"});
     plan("unknown_scene_key", head + "[[axis]]\nkey = \"wear.kk\"\nvalues = [1e-4]\n",
          {"plan.toml:5: axis 'wear.kk' = 0.0001", "wear.kk"});
     plan("too_many_lines",

@@ -211,7 +211,8 @@ values = [1.0e-4, -2.0e-4]
   const Outcome o = Run("sweep bad.toml --list");
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_TRUE(Contains(o.err, "bad.toml:6: axis 'wear.k' = -0.0002 (run 0001-"));
-  EXPECT_TRUE(Contains(o.err, "key 'wear.k' = -0.0002: expected"));
+  EXPECT_TRUE(Contains(o.err, "rejects it: key 'wear.k' = -0.0002: expected"));
+  EXPECT_FALSE(Contains(o.err, "base.toml:"));  // no line of the generated scene text
   EXPECT_TRUE(o.out.empty());
   EXPECT_FALSE(fs::exists(dir_ / "bad_runs"));
 }
