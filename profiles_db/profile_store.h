@@ -7,7 +7,8 @@
 // The wear loop (wear/) knows nothing of this; app/ hands its finished steps to AppendStep.
 //
 // A study database may also hold influence-constant calibrations (`railwear calibrate`), each
-// with the text of every input it was made from.
+// with the text of every input it was made from. MergeRunsFrom copies the runs of another study
+// database into this one (`railwear merge`, issue 19), idempotently.
 //
 // Schema version 6 (PRAGMA user_version = 6, PRAGMA application_id = kApplicationId), also
 // documented for users of the sqlite3 shell in profiles_db/SCHEMA.md:
