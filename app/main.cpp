@@ -14,7 +14,9 @@
 #include "app/history_command.h"
 #include "app/init_command.h"
 #include "app/interrupt_signals.h"
+#include "app/merge_command.h"
 #include "app/profile_command.h"
+#include "app/sweep_command.h"
 #include "app/traffic_command.h"
 #include "app/wear_command.h"
 #include "core/numerics/input_error.h"
@@ -47,6 +49,8 @@ int main(int argc, char** argv) {
   railwear::app::SetupFemReference(app);
   railwear::app::SetupTraffic(app);
   railwear::app::SetupCurving(app);
+  railwear::app::SetupSweep(app);
+  railwear::app::SetupMerge(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

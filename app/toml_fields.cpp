@@ -62,20 +62,27 @@ std::string Quoted(const std::string& s) {
 }
 
 // The value as a user would write it: strings in double quotes, numbers in their shortest form.
-std::string Written(const toml::node& node) {
+// `toml`: valid TOML also for floats whose shortest form reads as an integer (300 -> 300.0).
+std::string Written(const toml::node& node, bool toml = false) {
   if (const auto s = node.value_exact<std::string>()) return Quoted(*s);
   if (const auto i = node.value_exact<int64_t>()) return fmt::format("{}", *i);
-  if (const auto d = node.value_exact<double>()) return fmt::format("{}", *d);
+  if (const auto d = node.value_exact<double>()) {
+    std::string text = fmt::format("{}", *d);
+    if (toml && text.find_first_of(".eni") == std::string::npos) text += ".0";
+    return text;
+  }
   if (const auto b = node.value_exact<bool>()) return *b ? "true" : "false";
   if (const toml::array* a = node.as_array()) {
     std::string out;
-    for (const auto& e : *a) out += fmt::format("{}{}", out.empty() ? "" : ", ", Written(e));
+    for (const auto& e : *a) {
+      out += fmt::format("{}{}", out.empty() ? "" : ", ", Written(e, toml));
+    }
     return fmt::format("[{}]", out);
   }
   if (const toml::table* t = node.as_table()) {
     std::string out;
     for (const auto& [k, v] : *t) {
-      out += fmt::format("{}{} = {}", out.empty() ? "" : ", ", k.str(), Written(v));
+      out += fmt::format("{}{} = {}", out.empty() ? "" : ", ", k.str(), Written(v, toml));
     }
     return fmt::format("{{ {} }}", out);
   }
@@ -85,6 +92,8 @@ std::string Written(const toml::node& node) {
 }
 
 }  // namespace
+
+std::string TomlValueText(const toml::node& node) { return Written(node, true); }
 
 std::string ValueText(const toml::node& node) {
   if (node.is_table() && !node.as_table()->is_inline()) return "(table)";

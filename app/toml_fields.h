@@ -89,6 +89,9 @@ std::string FieldPrefix(const std::string& file, const toml::node& node, std::st
 // The node's value as written in TOML, shortened to about 60 characters.
 std::string ValueText(const toml::node& node);
 int LineOf(const toml::node& node);
+// The value as TOML text in its shortest form, not shortened (strings in double quotes, floats
+// always as floats: 300.0), for values written into a generated file (sweep plans).
+std::string TomlValueText(const toml::node& node);
 std::string JoinQuoted(const std::vector<std::string_view>& names);
 
 // Parses TOML text; a syntax error becomes InputError "FILE:LINE:COLUMN: TOML syntax error: ...".

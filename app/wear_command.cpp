@@ -424,7 +424,10 @@ void SetupWear(CLI::App& app) {
 }
 
 void RunWearCommand(const WearCommandOptions& options) {
-  const Scene scene = LoadScene(options.scene_path);
+  RunWearScene(LoadScene(options.scene_path), options);
+}
+
+void RunWearScene(const Scene& scene, const WearCommandOptions& options) {
   if (!scene.wear) {
     throw InputError(fmt::format(
         "{}: scene.effects has no \"wear\": expected a wear scene with [wear] and [[traffic]] "
@@ -541,10 +544,12 @@ void RunWearCommand(const WearCommandOptions& options) {
                           SignalName(signal), name, db, summary.state.step)
             : fmt::format(
                   "{}: run '{}' in {} interrupted after step {} ({:.4g} passes; the step in "
-                  "flight, if any, was not stored); continue it with `railwear wear {} --db {} "
-                  "--run '{}' --resume`",
+                  "flight, if any, was not stored); continue it with `{}`",
                   SignalName(signal), name, db, summary.state.step, summary.state.passes,
-                  options.scene_path, db, name));
+                  options.resume_command.empty()
+                      ? fmt::format("railwear wear {} --db {} --run '{}' --resume",
+                                    options.scene_path, db, name)
+                      : options.resume_command));
   }
   store.SetRunState(run_id, summary.finished ? RunState::kComplete : RunState::kRunning);
   const double seconds =

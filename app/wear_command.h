@@ -22,6 +22,8 @@ class App;
 
 namespace railwear::app {
 
+struct Scene;
+
 struct WearCommandOptions {
   std::string scene_path;
   std::optional<std::string> db;   // default: [wear] db, else "wear.sqlite"
@@ -30,6 +32,9 @@ struct WearCommandOptions {
   int steps = 0;                    // > 0: stop after this many new steps (resume later)
   std::optional<int> threads;       // overrides [wear] threads
   std::optional<std::string> plot;  // PNG file prefix: history plots after the run
+  // The command that continues an interrupted run, as its message says (default: `railwear wear
+  // SCENE --db DB --run NAME --resume`; a sweep gives its own).
+  std::string resume_command;
 };
 
 void SetupWear(CLI::App& app);
@@ -38,6 +43,9 @@ void SetupWear(CLI::App& app);
 // numerical failure (exit 1; the steps before it stay stored and the run can be resumed) or a
 // database file that vanished; Interrupted after SIGINT / SIGTERM.
 void RunWearCommand(const WearCommandOptions& options);
+// The same for a scene already read (options.scene_path then only names it in messages): the
+// sweep's scenes are a base scene with a plan line's overrides (app/sweep_command.h).
+void RunWearScene(const Scene& scene, const WearCommandOptions& options);
 
 // The database a wear or history command uses when --db is not given.
 constexpr const char* kDefaultDatabase = "wear.sqlite";

@@ -6,10 +6,12 @@
 #include <sqlite3.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <bit>
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <iterator>
 #include <limits>
@@ -1266,6 +1268,268 @@ CalibrationRecord ProfileStore::LoadCalibration(int64_t id) const {
   s.Bind(1, id);
   while (s.Step()) r.inputs.push_back({s.Text(0), s.Text(1), s.Text(2)});
   return r;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Merging study databases (issue 19, `railwear merge`): runs copied between two connections
+// value by value (sqlite3_value: every type and every bit kept), run ids remapped.
+
+namespace {
+
+// The tables that hold no run data: never merged.
+constexpr const char* kNotRunDataTables[] = {"meta", "calibrations", "calibration_inputs"};
+
+// Columns ignored when two runs are compared: ids (renumbered by every merge) and the times a
+// row was written (a run recomputed bit for bit is the same run).
+bool IgnoredInComparison(const std::string& column) {
+  return column == "id" || column == "run_id" || column == "created_utc";
+}
+
+struct TableColumns {
+  std::vector<std::string> all;          // in table order
+  std::vector<std::string> primary_key;  // in key order
+  bool Has(const std::string& c) const { return std::find(all.begin(), all.end(), c) != all.end(); }
+};
+
+TableColumns ColumnsOf(const Connection& c, const std::string& table) {
+  Statement s(c, "SELECT name, pk FROM pragma_table_info(?1) ORDER BY cid");
+  s.Bind(1, table);
+  TableColumns t;
+  std::vector<std::pair<int64_t, std::string>> pk;
+  while (s.Step()) {
+    t.all.push_back(s.Text(0));
+    if (s.Int64(1) > 0) pk.emplace_back(s.Int64(1), s.Text(0));
+  }
+  std::sort(pk.begin(), pk.end());
+  for (auto& [order, name] : pk) t.primary_key.push_back(name);
+  return t;
+}
+
+std::vector<std::string> UserTables(const Connection& c) {
+  Statement s(c,
+              "SELECT name FROM sqlite_schema WHERE type = 'table' AND name NOT LIKE 'sqlite_%' "
+              "ORDER BY name");
+  std::vector<std::string> out;
+  while (s.Step()) out.push_back(s.Text(0));
+  return out;
+}
+
+std::vector<std::pair<std::string, MergeTableRole>> TableRoles(const Connection& c) {
+  std::vector<std::pair<std::string, MergeTableRole>> out;
+  for (const std::string& table : UserTables(c)) {
+    MergeTableRole role;
+    if (table == "runs") {
+      role = MergeTableRole::kRuns;
+    } else if (ColumnsOf(c, table).Has("run_id")) {
+      role = MergeTableRole::kRunRows;
+    } else if (std::find(std::begin(kNotRunDataTables), std::end(kNotRunDataTables), table) !=
+               std::end(kNotRunDataTables)) {
+      role = MergeTableRole::kNotRunData;
+    } else {
+      throw InputError(fmt::format(
+          "database '{}': table '{}' is unknown to merge (it has no run_id column and is not one "
+          "of runs, {}); expected the tables of profiles_db/SCHEMA.md (written by a newer "
+          "railwear, or changed outside railwear?); nothing of it was merged",
+          c.path(), table, "meta, calibrations, calibration_inputs"));
+    }
+    out.emplace_back(table, role);
+  }
+  return out;
+}
+
+std::string Join(const std::vector<std::string>& names, const std::string& prefix = "") {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + prefix + n;
+  return out;
+}
+
+// True when the two column values are the same type and the same bits.
+bool SameValue(sqlite3_stmt* a, sqlite3_stmt* b, int ca, int cb) {
+  const int type = sqlite3_column_type(a, ca);
+  if (type != sqlite3_column_type(b, cb)) return false;
+  switch (type) {
+    case SQLITE_NULL:
+      return true;
+    case SQLITE_INTEGER:
+      return sqlite3_column_int64(a, ca) == sqlite3_column_int64(b, cb);
+    case SQLITE_FLOAT:
+      return std::bit_cast<uint64_t>(sqlite3_column_double(a, ca)) ==
+             std::bit_cast<uint64_t>(sqlite3_column_double(b, cb));
+    default: {
+      const void* pa = type == SQLITE_TEXT ? static_cast<const void*>(sqlite3_column_text(a, ca))
+                                           : sqlite3_column_blob(a, ca);
+      const void* pb = type == SQLITE_TEXT ? static_cast<const void*>(sqlite3_column_text(b, cb))
+                                           : sqlite3_column_blob(b, cb);
+      const int na = sqlite3_column_bytes(a, ca);
+      return na == sqlite3_column_bytes(b, cb) && (na == 0 || std::memcmp(pa, pb, na) == 0);
+    }
+  }
+}
+
+// The rows of `table` that belong to run `id` (`key` the run's key column), the compared
+// columns only, in primary-key order.
+std::string RunRowsSql(const std::string& table, const TableColumns& columns,
+                       const std::vector<std::string>& compared, const char* key) {
+  std::vector<std::string> order;
+  for (const std::string& c : columns.primary_key) {
+    if (!IgnoredInComparison(c)) order.push_back(c);
+  }
+  return fmt::format("SELECT {} FROM {} WHERE {} = ?1{}", compared.empty() ? "1" : Join(compared),
+                     table, key, order.empty() ? "" : " ORDER BY " + Join(order));
+}
+
+// Why run `in_id` of `in` differs from run `out_id` of `out` (the first difference), or "" when
+// they hold the same content in every table of `tables`.
+std::string RunDifference(const Connection& in, int64_t in_id, const Connection& out,
+                          int64_t out_id, const std::vector<std::string>& tables) {
+  for (const std::string& table : tables) {
+    const bool in_has = internal::TableExists(in, table);
+    const TableColumns columns = ColumnsOf(out, table);
+    std::vector<std::string> compared;
+    const TableColumns in_columns = in_has ? ColumnsOf(in, table) : TableColumns{};
+    for (const std::string& c : columns.all) {
+      if (!IgnoredInComparison(c) && (!in_has || in_columns.Has(c))) compared.push_back(c);
+    }
+    const char* key = table == "runs" ? "id" : "run_id";
+    Statement b(out, RunRowsSql(table, columns, compared, key));
+    b.Bind(1, out_id);
+    if (!in_has) {
+      if (b.Step()) return fmt::format("table '{}' holds rows of it only in the output", table);
+      continue;
+    }
+    Statement a(in, RunRowsSql(table, columns, compared, key));
+    a.Bind(1, in_id);
+    for (int64_t row = 0;; ++row) {
+      const bool more_a = a.Step(), more_b = b.Step();
+      if (!more_a && !more_b) break;
+      if (more_a != more_b) {
+        return fmt::format("table '{}' holds more rows of it in the {} (the {} has {})", table,
+                           more_a ? "input" : "output", more_a ? "output" : "input", row);
+      }
+      for (size_t i = 0; i < compared.size(); ++i) {
+        if (!SameValue(a.get(), b.get(), static_cast<int>(i), static_cast<int>(i))) {
+          return fmt::format("table '{}', row {} (in primary-key order), column '{}' differs",
+                             table, row, compared[i]);
+        }
+      }
+    }
+  }
+  return "";
+}
+
+// Copies the rows of `table` of run `in_id` in `in` into `out` as rows of run `out_id`; every
+// REAL is checked finite (a damaged input row is refused, not copied). Returns the rows copied.
+int64_t CopyRunRows(const Connection& in, int64_t in_id, const Connection& out, int64_t out_id,
+                    const std::string& table) {
+  const TableColumns columns = ColumnsOf(in, table);
+  const TableColumns out_columns = ColumnsOf(out, table);
+  std::vector<std::string> placeholders;
+  for (size_t i = 0; i < columns.all.size(); ++i) {
+    if (!out_columns.Has(columns.all[i])) {
+      throw InputError(fmt::format(
+          "database '{}': table '{}' has a column '{}' that the output '{}' lacks; expected the "
+          "columns of profiles_db/SCHEMA.md",
+          in.path(), table, columns.all[i], out.path()));
+    }
+    placeholders.push_back(fmt::format("?{}", i + 1));
+  }
+  Statement read(in, fmt::format("SELECT {} FROM {} WHERE run_id = ?1", Join(columns.all), table));
+  read.Bind(1, in_id);
+  Statement write(out, fmt::format("INSERT INTO {}({}) VALUES ({})", table, Join(columns.all),
+                                   Join(placeholders)));
+  int64_t rows = 0;
+  while (read.Step()) {
+    sqlite3_reset(write.get());
+    for (size_t i = 0; i < columns.all.size(); ++i) {
+      const int col = static_cast<int>(i);
+      if (columns.all[i] == "run_id") {
+        write.Bind(col + 1, out_id);
+        continue;
+      }
+      if (sqlite3_column_type(read.get(), col) == SQLITE_FLOAT) read.Double(col);  // finite?
+      if (sqlite3_bind_value(write.get(), col + 1, sqlite3_column_value(read.get(), col)) !=
+          SQLITE_OK) {
+        internal::ThrowSqlite(out.get(), out.path(), "binding a merged value");
+      }
+    }
+    write.Run();
+    ++rows;
+  }
+  return rows;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, MergeTableRole>> ProfileStore::MergeTableRoles() const {
+  return TableRoles(impl_->db);
+}
+
+MergeSummary ProfileStore::MergeRunsFrom(const ProfileStore& input) {
+  const Connection& in = input.impl_->db;
+  const Connection& out = impl_->db;
+  std::vector<std::string> run_tables;  // the output's: a superset of an older input's
+  for (const auto& [table, role] : TableRoles(out)) {
+    if (role == MergeTableRole::kRunRows) run_tables.push_back(table);
+  }
+  Transaction snapshot(in, "BEGIN");  // one consistent view of the input
+  MergeSummary summary;
+  for (const auto& [table, role] : TableRoles(in)) {
+    if (role == MergeTableRole::kRunRows &&
+        std::find(run_tables.begin(), run_tables.end(), table) == run_tables.end()) {
+      throw InputError(fmt::format(
+          "database '{}': table '{}' holds run rows but the output '{}' has no such table; "
+          "expected the tables of profiles_db/SCHEMA.md",
+          in.path(), table, out.path()));
+    }
+    if (table == "calibrations") {
+      Statement s(in, "SELECT count(*) FROM calibrations");
+      if (s.Step()) summary.calibrations_left = static_cast<int>(s.Int64(0));
+    }
+  }
+  std::vector<std::string> compared_tables = {"runs"};
+  compared_tables.insert(compared_tables.end(), run_tables.begin(), run_tables.end());
+
+  Transaction t(out);
+  // Rows are inserted table by table; the references between them are checked at the commit.
+  out.Exec("PRAGMA defer_foreign_keys = ON");
+  Statement runs(in, fmt::format("SELECT {} FROM runs ORDER BY id", internal::kRunColumns));
+  while (runs.Step()) {
+    const RunInfo run = internal::ReadRun(runs);
+    if (const std::optional<RunInfo> there = FindRun(run.name)) {
+      const std::string why = RunDifference(in, run.id, out, there->id, compared_tables);
+      if (!why.empty()) {
+        throw InputError(fmt::format(
+            "database '{}': run '{}' conflicts with the run of that name in '{}' ({}); expected "
+            "the same content (a run is identified by its name: merge runs of different "
+            "studies under different names); nothing of '{}' was merged",
+            in.path(), run.name, path(), why, in.path()));
+      }
+      ++summary.runs_identical;
+      continue;
+    }
+    Statement insert(out, fmt::format("INSERT INTO runs(name, created_utc, program_version, "
+                                      "scene_text, wear_law_json, state) VALUES (?1, ?2, ?3, ?4, "
+                                      "?5, ?6)"));
+    insert.Bind(1, run.name).Bind(2, run.created_utc).Bind(3, run.program_version);
+    insert.Bind(4, run.scene_text).Bind(5, run.wear_law_json).Bind(6, ToString(run.state));
+    insert.Run();
+    const int64_t id = sqlite3_last_insert_rowid(out.get());
+    ++summary.rows_copied;
+    for (const std::string& table : run_tables) {
+      if (internal::TableExists(in, table))
+        summary.rows_copied += CopyRunRows(in, run.id, out, id, table);
+    }
+    ++summary.runs_copied;
+  }
+  if (Statement check(out, "PRAGMA foreign_key_check"); check.Step()) {
+    throw InputError(fmt::format(
+        "database '{}': its rows in table '{}' reference rows it does not have; expected a "
+        "consistent railwear database (changed outside railwear?); nothing of it was merged",
+        in.path(), check.Text(0)));
+  }
+  impl_->RequireSameFile();
+  t.Commit();
+  return summary;
 }
 
 QueryResult ProfileStore::Query(const std::string& sql) const {

@@ -7,7 +7,8 @@
 // The wear loop (wear/) knows nothing of this; app/ hands its finished steps to AppendStep.
 //
 // A study database may also hold influence-constant calibrations (`railwear calibrate`), each
-// with the text of every input it was made from.
+// with the text of every input it was made from. MergeRunsFrom copies the runs of another study
+// database into this one (`railwear merge`, issue 19), idempotently.
 //
 // Schema version 6 (PRAGMA user_version = 6, PRAGMA application_id = kApplicationId), also
 // documented for users of the sqlite3 shell in profiles_db/SCHEMA.md:
@@ -63,6 +64,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/profile/profile.h"
@@ -173,6 +175,20 @@ struct CalibrationRecord {
   std::vector<CalibrationInput> inputs;  // filled by LoadCalibration, not by Calibrations()
 };
 
+// What `ProfileStore::MergeRunsFrom` did with one input (issue 19, `railwear merge`).
+struct MergeSummary {
+  int runs_copied = 0;      // runs new to the output, copied with all their rows
+  int runs_identical = 0;   // runs the output already held with the same content (left as they are)
+  int64_t rows_copied = 0;  // rows written, the runs' own included
+  int calibrations_left = 0;  // calibrations of the input (not runs: never merged)
+};
+
+// How merge treats a table of a study database: the runs themselves; rows that belong to a run
+// (every table with a run_id column: copied with the run, run_id remapped); tables that hold no
+// run data (meta, calibrations, calibration_inputs: left out). A table in none of these is
+// refused, so a table added to the schema later can never be skipped silently.
+enum class MergeTableRole { kRuns, kRunRows, kNotRunData };
+
 // Result of Query: column names and rows, every value as text (NULL -> "NULL",
 // a BLOB -> "<blob N bytes>", numbers as SQLite prints them).
 struct QueryResult {
@@ -262,6 +278,20 @@ class ProfileStore {
   std::vector<CalibrationRecord> Calibrations() const;
   // One calibration with its inputs. Throws InputError for an unknown id.
   CalibrationRecord LoadCalibration(int64_t id) const;
+
+  // Copies every run of `input` (opened with OpenReadOnly) into this database, in one
+  // transaction: the run row and its rows in every run-rows table (MergeTableRoles), with new
+  // ids here. Runs are identified by name (unique in a study database, and the run id of a sweep
+  // line): a run this database already holds with the same content — every column of the run and
+  // of its rows except ids and the created_utc timestamps — is left as it is (merging twice
+  // changes nothing); one with different content is a conflict. Throws InputError, having
+  // written nothing of this input, for a conflict, a table merge does not know (input or output),
+  // an input table with a column the output lacks, or a non-finite REAL in the input (a damaged
+  // row). The input is only read.
+  MergeSummary MergeRunsFrom(const ProfileStore& input);
+  // The role of every table of this database (name, role) in name order; InputError naming the
+  // table for one that fits no role.
+  std::vector<std::pair<std::string, MergeTableRole>> MergeTableRoles() const;
 
   // Runs one read-only SQL statement (a SELECT, or a read-only PRAGMA) and returns all its rows.
   // File databases are queried through a separate read-only connection (SQLITE_OPEN_READONLY);

@@ -5,6 +5,7 @@
 #   [calibration]  a calibration config  -> calibrate --json -
 #   [fem]          a FEM config          -> fem-reference --report-only (skipped with the reason
 #                                           when its results are not committed)
+#   [sweep]        a sweep plan          -> sweep --list (every line's scene read)
 #   *_mbs.csv      an MBS time history   -> traffic import into a scratch collective, compared
 #                                           with the committed <stem>_collective.toml beside it
 # Other .toml files are data, not runnable (influence-constants files such as
@@ -24,6 +25,8 @@ foreach(example IN LISTS RAILWEAR_EXAMPLES)
     set(kind calibration)
   elseif("[fem]" IN_LIST tables)
     set(kind fem)
+  elseif("[sweep]" IN_LIST tables)
+    set(kind sweep)
   else()
     continue()
   endif()

@@ -292,6 +292,64 @@ std::vector<CorpusCase> Corpus() {
                  2,
                  {"synthetic_r15_convex.csv:4:", "E_MPa", "1e308", "[1, 1e7]"}});
   }
+
+  // Sweep plans (issue 19): a malformed plan is FILE:LINE and exit 2; a value the scene rejects
+  // names the plan's line, the axis and the value, then the scene's own message.
+  {
+    const std::string head = "[sweep]\nscene = \"base.toml\"\n";
+    const auto plan = [&](const std::string& name, const std::string& text,
+                          std::vector<std::string> message,
+                          std::map<std::string, std::string> extra = {}) {
+      std::map<std::string, std::string> files = {{"base.toml", wear}, {"plan.toml", text}};
+      files.insert(extra.begin(), extra.end());
+      c.push_back({"sweep_" + name, files, "sweep plan.toml --list", 2, std::move(message)});
+    };
+    plan("toml_syntax", head + "[[axis]]\nkey = wear.k\n", {"plan.toml:4:", "TOML syntax error"});
+    plan("no_sweep_table", "[[axis]]\nkey = \"wear.k\"\nvalues = [1]\n",
+         {"plan.toml:1:", "[sweep] is missing"});
+    plan("unknown_key", head + "scen = \"x\"\n", {"plan.toml:", "sweep.scen"});
+    plan("missing_scene", "[sweep]\nout_dir = \"r\"\n", {"plan.toml:", "sweep.scene"});
+    plan("no_base_scene", "[sweep]\nscene = \"absent.toml\"\n", {"absent.toml", "cannot open"});
+    plan("two_kinds",
+         head +
+             "[[axis]]\nkey = \"wear.k\"\nvalues = [1e-4]\nrange = { start = 1, "
+             "stop = 2, count = 2 }\n",
+         {"plan.toml:3:", "exactly one"});
+    plan("bad_key_path", head + "[[axis]]\nkey = \"wear..k\"\nvalues = [1e-4]\n",
+         {"plan.toml:4:", "axis key 'wear..k'", "dotted scene key"});
+    plan("empty_values", head + "[[axis]]\nkey = \"wear.k\"\nvalues = []\n",
+         {"plan.toml:", "key 'axis[0].values' = []", "non-empty array"});
+    plan("step_away_from_stop",
+         head + "[[axis]]\nkey = \"wear.k\"\nrange = { start = 1e-4, stop = 2e-4, step = -1e-5 }\n",
+         {"plan.toml:5:", "key 'axis[0].range.step' = -1e-05", "toward stop"});
+    plan(
+        "step_and_count",
+        head + "[[axis]]\nkey = \"wear.k\"\nrange = { start = 1, stop = 2, step = 1, count = 2 }\n",
+        {"plan.toml:5:", "exactly one of step and count"});
+    plan("traffic_entry_absent", head + "[[axis]]\nkey = \"traffic[3].friction\"\nvalues = [0.3]\n",
+         {"plan.toml:5:", "axis key 'traffic[3].friction'", "has 1 'traffic' entries"});
+    plan("rejected_value", head + "[[axis]]\nkey = \"traffic[0].friction\"\nvalues = [0.3, 7.0]\n",
+         {"plan.toml:5: axis 'traffic[0].friction' = 7.0 (run 0001-",
+          "key 'traffic[0].friction' = 7: expected"});
+    plan("value_named_by_its_table", head + "[[axis]]\nkey = \"track.radius_m\"\nvalues = [300]\n",
+         {"plan.toml:5: axis 'track.radius_m' = 300 (run 0000-", "key 'track'", "not both"});
+    plan("values_rejected_together", head + "[[axis]]\nkey = \"wear.law\"\nvalues = [\"usfd\"]\n",
+         {"plan.toml:5: run 0000-", "(wear.law=\"usfd\"): the scene rejects its values",
+          "key 'wear.k'"});
+    plan("unknown_scene_key", head + "[[axis]]\nkey = \"wear.kk\"\nvalues = [1e-4]\n",
+         {"plan.toml:5: axis 'wear.kk' = 0.0001", "wear.kk"});
+    plan("too_many_lines",
+         head +
+             "[[axis]]\nkey = \"wear.k\"\nrange = { start = 1, stop = 1000, count = 1000 }\n"
+             "[[axis]]\nkey = \"wear.max_depth_per_step_mm\"\nrange = { start = 1, stop = "
+             "1000, count = 1000 }\n",
+         {"plan.toml:", "1000000 runs", "at most 100000"});
+    plan("cases_columns", head + "[[axis]]\ncases = \"cases.csv\"\n",
+         {"cases.csv:3:", "2 values; expected 1"},
+         {{"cases.csv", "traffic[0].friction\n0.3\n0.4, 5\n"}});
+    plan("cases_empty", head + "[[axis]]\ncases = \"cases.csv\"\n",
+         {"plan.toml:3:", "has no cases"}, {{"cases.csv", "traffic[0].friction\n"}});
+  }
   return c;
 }
 

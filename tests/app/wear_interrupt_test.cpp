@@ -7,7 +7,9 @@
 //   checkpoint; tests/tools/kill_at_fsync.cpp, LD_PRELOAD): the database left behind is finished
 //   by `--resume` (or, when the kill came before the run existed, by a new run) bit-identically;
 // - a run without steps (left by an older railwear killed at its start) is resumable;
-// - the database file deleted or replaced under a running study: exit 1 with a message.
+// - the database file deleted or replaced under a running study: exit 1 with a message;
+// - a sweep line (issue 19) killed with SIGKILL and run again: complete, and its merge holds the
+//   same run as an uninterrupted one, nothing lost or doubled.
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -51,9 +53,9 @@ constexpr const char* kRun = "small study";
 // Everything a run stored, bit for bit (doubles as hexfloat), except the creation times: the
 // run's scene, wear law and state, and per step its summary, profile, load cases and
 // distributions (and the low rail's).
-std::string RunFingerprint(const fs::path& db) {
+std::string RunFingerprint(const fs::path& db, const std::string& name = kRun) {
   const ProfileStore store = ProfileStore::OpenReadOnly(db.string());
-  const std::optional<RunInfo> run = store.FindRun(kRun);
+  const std::optional<RunInfo> run = store.FindRun(name);
   if (!run) return "no run";
   std::ostringstream os;
   os << std::hexfloat << run->scene_text << '\n'
@@ -280,6 +282,47 @@ TEST_F(WearInterruptTest, DeletedOrReplacedDatabaseStopsTheRunWithExitOne) {
   EXPECT_TRUE(Contains(ReadFile(dir_ / "err.txt"),
                        "database 'swapped.sqlite': the file was replaced by another file"));
   EXPECT_EQ(ReadFile(dir_ / "swapped.sqlite"), other);  // never written
+}
+
+// A Slurm task killed and resubmitted (issue 19): `sweep --index 0` killed with SIGKILL after its
+// second step, run again by index, continues the run (the wear --resume path); the line's
+// database and the merge of it hold exactly what an uninterrupted run of the line's scene stores.
+TEST_F(WearInterruptTest, KilledSweepLineRunAgainMergesWithNothingLostOrDoubled) {
+  Write("base.toml", ShortStudy());
+  Write("plan.toml",
+        "[sweep]\nscene = \"base.toml\"\nout_dir = \"runs\"\n[[axis]]\nkey = \"wear.k\"\n"
+        "values = [2.0e-4]\n");
+  const Outcome list = Run("sweep plan.toml --list");
+  ASSERT_EQ(list.exit_code, 0) << list.err;
+  const std::string id = list.out.substr(0, 13);
+  const fs::path db = dir_ / "runs" / (id + ".sqlite");
+
+  const pid_t pid = Start({"sweep", "plan.toml", "--index", "0", "--threads", "1"});
+  ASSERT_TRUE(WaitForStderr(pid, "railwear: step 2:")) << ReadFile(dir_ / "err.txt");
+  ASSERT_EQ(kill(pid, SIGKILL), 0);
+  ASSERT_EQ(Wait(pid), -SIGKILL);
+  {
+    const ProfileStore cut = ProfileStore::OpenReadOnly(db.string());
+    EXPECT_EQ(cut.FindRun(id)->state, RunState::kRunning);  // killed: no state written
+  }
+  const Outcome again = Run("sweep plan.toml --index 0 --threads 1");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_TRUE(Contains(again.err, "sweep line 0 (" + id + "): wear.k=0.0002 (continued)"));
+  EXPECT_TRUE(Contains(again.err, "resuming run '" + id + "' from step "));
+
+  // The uninterrupted run of the same scene (the line's scene file) as the reference.
+  const Outcome whole =
+      Run("wear runs/" + id + ".toml --db whole.sqlite --run " + id + " --threads 1");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const std::string expected = RunFingerprint(dir_ / "whole.sqlite", id);
+  ASSERT_NE(expected, "no run");
+  EXPECT_EQ(RunFingerprint(db, id), expected);
+  ASSERT_EQ(Run("merge study.sqlite runs/" + id + ".sqlite").exit_code, 0);
+  EXPECT_EQ(RunFingerprint(dir_ / "study.sqlite", id), expected);
+  ASSERT_EQ(Run("merge study.sqlite runs/" + id + ".sqlite whole.sqlite").exit_code, 0);
+  EXPECT_EQ(RunFingerprint(dir_ / "study.sqlite", id), expected);  // the same run: kept once
+  const ProfileStore merged = ProfileStore::OpenReadOnly((dir_ / "study.sqlite").string());
+  EXPECT_EQ(merged.Runs().size(), 1u);
 }
 
 }  // namespace

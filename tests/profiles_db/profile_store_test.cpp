@@ -25,6 +25,7 @@
 #include <gtest/gtest.h>
 
 #include "core/numerics/input_error.h"
+#include "tests/sqlite_test_support.h"
 
 namespace railwear {
 namespace {
@@ -63,17 +64,8 @@ void WriteBytes(const std::string& path, const std::string& bytes) {
   out << bytes;
 }
 
-// Runs SQL on a file with the raw C API (to build foreign or future databases).
-void RawExec(const std::string& path, const std::string& sql) {
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-  char* err = nullptr;
-  const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &err);
-  const std::string msg = err ? err : "";
-  sqlite3_free(err);
-  sqlite3_close(db);
-  ASSERT_EQ(rc, SQLITE_OK) << msg;
-}
+// RawExec (tests/sqlite_test_support.h) builds foreign or future databases.
+using test::RawExec;
 
 // An SQL BLOB literal X'..' of doubles as little-endian IEEE-754 float64 (SCHEMA.md layout).
 std::string BlobLiteral(const std::vector<double>& values) {
@@ -1077,6 +1069,146 @@ TEST(ProfileStoreReadOnly, RefusesAnOlderSchemaWithoutMigratingIt) {
   EXPECT_EQ(ReadBytes(path)[18], 1);  // still rollback-journal mode (WAL would be 2)
   ExpectInputError([&] { ProfileStore::OpenReadOnly(tmp.File("missing.rwdb")); }, {"no such file"});
   EXPECT_FALSE(fs::exists(tmp.File("missing.rwdb")));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Merging study databases (issue 19, `railwear merge`).
+
+// A study file with runs `names`, each with two steps of both rails and a curving start (every
+// run-rows table gets rows), and one calibration (not run data).
+void WriteStudy(const std::string& path, const std::vector<std::string>& names) {
+  ProfileStore db = ProfileStore::Open(path);
+  for (const std::string& name : names) {
+    StepRecord first = TestStep(0);
+    first.low_rail = TestLowRail(0);
+    const int64_t run = db.CreateRun(TestRun(name), first);
+    StepRecord second = TestStep(1);
+    second.low_rail = TestLowRail(1);
+    second.curving_starts = {{0, {0.25, -1.0 / 3.0}, {1.0, 2.0, 3.0, 4.0}}};
+    db.AppendStep(run, second);
+    db.SetRunState(run, RunState::kComplete);
+  }
+  db.AddCalibration(TestCalibration());
+}
+
+// Every row of every run-rows table of `db`, by run name and without ids or timestamps, as text
+// (the rows of run `except` left out).
+std::string RunContent(const ProfileStore& db, const std::string& except = "") {
+  std::string out;
+  for (const auto& [table, role] : db.MergeTableRoles()) {
+    if (role != MergeTableRole::kRunRows) continue;
+    const QueryResult columns = db.Query("SELECT name FROM pragma_table_info('" + table +
+                                         "') WHERE name NOT IN "
+                                         "('run_id', 'created_utc')");
+    std::string select = "r.name";
+    for (const auto& c : columns.rows) select += ", quote(t." + c[0] + ")";
+    const QueryResult rows = db.Query("SELECT " + select + " FROM " + table +
+                                      " t JOIN runs r ON r.id = t.run_id WHERE r.name != '" +
+                                      except + "' ORDER BY 1, 2, 3, 4");
+    out += table + ":\n";
+    for (const auto& row : rows.rows) {
+      for (const auto& v : row) out += v + "|";
+      out += "\n";
+    }
+  }
+  return out;
+}
+
+// Every table of the schema has a merge role, and every table whose rows belong to runs is
+// copied: a table added later without a role is refused, never skipped.
+TEST(ProfileStoreMerge, EveryTableHasARoleAndARunTableIsNeverSkipped) {
+  TempDir tmp;
+  const std::string path = tmp.File("study.rwdb");
+  ProfileStore db = ProfileStore::Open(path);
+  const QueryResult tables = db.Query(
+      "SELECT name FROM sqlite_schema WHERE type = 'table' AND name NOT LIKE 'sqlite_%' "
+      "ORDER BY name");
+  const auto roles = db.MergeTableRoles();
+  ASSERT_EQ(roles.size(), tables.rows.size());
+  std::vector<std::string> run_rows;
+  for (size_t i = 0; i < roles.size(); ++i) {
+    EXPECT_EQ(roles[i].first, tables.rows[i][0]);
+    if (roles[i].second == MergeTableRole::kRunRows) run_rows.push_back(roles[i].first);
+  }
+  EXPECT_EQ(run_rows, (std::vector<std::string>{"curving_starts", "distributions", "load_cases",
+                                                "low_rail_distributions", "low_rail_steps",
+                                                "profiles", "steps"}));
+  // A table merge does not know (no run_id, not one of the known others) is refused by name.
+  RawExec(path, "CREATE TABLE run_notes(note TEXT)");
+  ExpectInputError([&] { db.MergeTableRoles(); }, {path, "table 'run_notes' is unknown to merge"});
+}
+
+TEST(ProfileStoreMerge, CopiesEveryRowOfEveryRunWithNewIdsBitForBit) {
+  TempDir tmp;
+  const std::string a = tmp.File("a.rwdb"), out_path = tmp.File("out.rwdb");
+  WriteStudy(a, {"r1", "r2"});
+  ProfileStore out = ProfileStore::Open(out_path);
+  out.CreateRun(TestRun("already there"), TestStep(0));  // so the copied runs get other ids
+  const auto before = DatabaseFiles(a);
+  const ProfileStore in = ProfileStore::OpenReadOnly(a);
+  const MergeSummary s = out.MergeRunsFrom(in);
+  EXPECT_EQ(s.runs_copied, 2);
+  EXPECT_EQ(s.runs_identical, 0);
+  EXPECT_EQ(s.calibrations_left, 1);
+  // Every run row of the input is in the output, under the run's name.
+  EXPECT_EQ(RunContent(out, "already there"), RunContent(in));
+  EXPECT_NE(RunContent(in).find("r1|"), std::string::npos);
+  const std::optional<RunInfo> r2 = out.FindRun("r2");
+  ASSERT_TRUE(r2.has_value());
+  EXPECT_EQ(r2->id, 3);
+  EXPECT_EQ(r2->state, RunState::kComplete);
+  EXPECT_EQ(r2->scene_text, TestRun("r2").scene_text);
+  const StepRecord step = out.LoadStep(r2->id, 1);
+  EXPECT_EQ(step.profile.points(), TestStep(1).profile.points());
+  ASSERT_TRUE(step.low_rail.has_value());
+  EXPECT_EQ(step.low_rail->profile.points(), TestLowRail(1).profile.points());
+  ASSERT_EQ(step.curving_starts.size(), 1u);
+  EXPECT_EQ(step.curving_starts[0].state, (std::vector<double>{0.25, -1.0 / 3.0}));
+  EXPECT_TRUE(out.Calibrations().empty());  // not run data
+  EXPECT_EQ(DatabaseFiles(a), before);      // the input only read
+}
+
+TEST(ProfileStoreMerge, MergingTheSameRunsTwiceChangesNothing) {
+  TempDir tmp;
+  const std::string a = tmp.File("a.rwdb"), b = tmp.File("b.rwdb");
+  WriteStudy(a, {"r1", "r2"});
+  WriteStudy(b, {"r2"});  // the same run r2, written again (other timestamps)
+  ProfileStore out = ProfileStore::Open(tmp.File("out.rwdb"));
+  EXPECT_EQ(out.MergeRunsFrom(ProfileStore::OpenReadOnly(a)).runs_copied, 2);
+  const std::string once = RunContent(out);
+  const QueryResult ids_once = out.Query("SELECT id, name, created_utc FROM runs ORDER BY id");
+  for (const std::string& input : {a, b, a}) {
+    const MergeSummary s = out.MergeRunsFrom(ProfileStore::OpenReadOnly(input));
+    EXPECT_EQ(s.runs_copied, 0);
+    EXPECT_EQ(s.rows_copied, 0);
+    EXPECT_EQ(s.runs_identical, input == a ? 2 : 1);
+  }
+  EXPECT_EQ(RunContent(out), once);
+  EXPECT_EQ(out.Query("SELECT id, name, created_utc FROM runs ORDER BY id").rows, ids_once.rows);
+}
+
+TEST(ProfileStoreMerge, RefusesAConflictingRunMergingNothingOfItsInput) {
+  TempDir tmp;
+  const std::string a = tmp.File("a.rwdb"), b = tmp.File("b.rwdb");
+  WriteStudy(a, {"r1"});
+  WriteStudy(b, {"new", "r1"});
+  {
+    ProfileStore db = ProfileStore::Open(b);  // r1 of b: one value of one step differs
+    StepRecord third = TestStep(2);
+    third.low_rail = TestLowRail(2);
+    db.AppendStep(db.FindRun("r1")->id, third);
+  }
+  ProfileStore out = ProfileStore::Open(tmp.File("out.rwdb"));
+  out.MergeRunsFrom(ProfileStore::OpenReadOnly(a));
+  const std::string before = RunContent(out);
+  const auto files_before = DatabaseFiles(b);
+  ExpectInputError([&] { out.MergeRunsFrom(ProfileStore::OpenReadOnly(b)); },
+                   {b, "run 'r1' conflicts",
+                    "table 'distributions' holds more rows of it in the input (the output has 4)",
+                    "nothing of"});
+  EXPECT_EQ(RunContent(out), before);  // "new" was not merged either
+  EXPECT_FALSE(out.FindRun("new").has_value());
+  EXPECT_EQ(DatabaseFiles(b), files_before);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 # Runs one example as a test (registered by tests/examples.cmake, one ctest per file):
-#   cmake -DRAILWEAR=<binary> -DEXAMPLE=<file> -DKIND=contact|wear|calibration|fem|mbs
+#   cmake -DRAILWEAR=<binary> -DEXAMPLE=<file> -DKIND=contact|wear|calibration|fem|sweep|mbs
 #         -DWORK_DIR=<scratch dir> -P run_example.cmake
 # with small arguments, and checks the exit code and a key line of the output:
 #   contact      `contact FILE --accuracy draft --json -`: exit 0, one JSON object, status
@@ -12,6 +12,7 @@
 #                reference/ folder: the tables of the committed results (exit 0, "read from");
 #                a config whose results are not committed is skipped with the reason (running
 #                it needs gmsh + CalculiX for minutes)
+#   sweep        `sweep FILE --list`: exit 0, one manifest line "NNNN-HHHHHHHH  ..." per run
 #   mbs          `traffic import FILE --out WORK_DIR/collective.toml`: exit 0, "wrote" on stdout,
 #                and the file equals the committed NAME_collective.toml beside NAME_mbs.csv from
 #                its [collective] table on, the source line aside (the path differs)
@@ -133,6 +134,14 @@ elseif(KIND STREQUAL "fem")
   endif()
   set(err "${errors}")
   fail("fem-reference --report-only failed with both output folders")
+elseif(KIND STREQUAL "sweep")
+  run(sweep "${EXAMPLE}" --list --out-dir "${WORK_DIR}/runs")
+  if(NOT code EQUAL 0)
+    fail("exit ${code}, expected 0")
+  endif()
+  if(NOT out MATCHES "^[0-9][0-9][0-9][0-9]-[0-9a-f]+  ")
+    fail("no manifest line 'NNNN-HHHHHHHH  ...' on stdout")
+  endif()
 elseif(KIND STREQUAL "mbs")
   run(traffic import "${EXAMPLE}" --out "${WORK_DIR}/collective.toml")
   if(NOT code EQUAL 0)
