@@ -15,14 +15,13 @@
 // a monotone response between the nodes, mass_i |a_i+1 - a_i|; when its midpoint is added, the
 // change that made to the integral, |d|, split half to each new interval (at least the monotone
 // bound while the interval is wider than kSpreadBoundWidth: a midpoint on the chord must not
-// hide a switch). Each round bisects, in
-// all units of the step at once (their contact solves run in parallel), the intervals with the
-// largest estimates until they hold half of each unconverged rail's estimates (Doerfler
-// marking). The step stops when the estimates left are within tolerance x the step's worn area
+// hide a switch). Each round bisects, in all units of the step at once (their contact solves
+// run in parallel), the intervals with the largest estimates until they hold half of each
+// unconverged rail's estimates (Doerfler marking). The step stops when the estimates left are within tolerance x the step's worn area
 // per pass on every rail, or when the worn area per pass of every rail changed by at most that in
 // two successive rounds (the estimates sum the contact grid's noise between neighbouring
-// positions, which the integral averages out: measured on the default study, the estimates stay
-// at about 3 % while the integral is within 0.2 % of a 257-node reference). Intervals narrower
+// positions, which the integral averages out: on the default study at draft the estimates stay
+// at about 6 % while the integral is within 0.4 % of a 128-node reference). Intervals narrower
 // than kMinSpreadInterval and units with kMaxSpreadNodes are not bisected; a step that runs out of
 // intervals before either test is not converged.
 //
