@@ -583,6 +583,7 @@ void ReadWearTable(const Fields& top, Scene* scene) {
                "total_passes",
                "total_MGT",
                "quadrature_points",
+               "integration_tolerance",
                "bin_mm",
                "profile_spacing_mm",
                "smoothing_mm",
@@ -611,6 +612,18 @@ void ReadWearTable(const Fields& top, Scene* scene) {
     return static_cast<int>(*v);
   };
   o.quadrature_points = whole("quadrature_points", 1, 20, o.quadrature_points);
+  // The spread rule: fixed Gauss-Hermite nodes when the scene gives quadrature_points, else the
+  // adaptive rule at its tolerance (default kDefaultIntegrationTolerance).
+  const std::optional<double> tolerance =
+      t.Number("integration_tolerance", Closed(kMinIntegrationTolerance, kMaxIntegrationTolerance));
+  if (tolerance && t.Has("quadrature_points")) {
+    t.Fail("integration_tolerance",
+           "either 'wear.quadrature_points' (the fixed Gauss-Hermite rule) or "
+           "'wear.integration_tolerance' (the adaptive rule), not both");
+  }
+  if (!t.Has("quadrature_points")) {
+    o.integration_tolerance = tolerance.value_or(kDefaultIntegrationTolerance);
+  }
   o.threads = whole("threads", 0, 256, o.threads);
   // Bins and profile points finer than 10 um are below every contact grid (the finest preset's
   // cells are tenths of a millimetre): the depth per bin becomes noise and the profile huge.
@@ -838,14 +851,19 @@ void ReadTraffic(const Fields& top, Scene* scene) {
   // The time and memory estimate of a step, before any entry is read (each loads its wheel):
   // every entry is at least one contact solve per step and a spread entry one per quadrature
   // node. 100 000 entries once ran out of memory at 8 GB.
-  const int nodes = scene->wear->options.quadrature_points;
+  // The adaptive rule counts its most nodes per spread (kMaxSpreadNodes).
+  const bool adaptive = scene->wear->options.integration_tolerance.has_value();
+  const int nodes = adaptive ? kMaxSpreadNodes : scene->wear->options.quadrature_points;
   const auto refuse = [&](size_t cases) {
     throw InputError(fmt::format(
         "{}: {} [[traffic]] entries give up to {} load cases per wear step (each a contact "
         "solve, stored per step); expected at most {}: merge similar entries (their shares add) "
-        "or lower 'wear.quadrature_points' (now {})",
+        "or {}",
         FieldPrefix(top.file(), *node, "traffic"), entries.size(), cases, kMaxLoadCasesPerStep,
-        nodes));
+        adaptive ? fmt::format("give 'wear.quadrature_points' (the fixed rule; the adaptive "
+                               "rule takes up to {} nodes per spread)",
+                               kMaxSpreadNodes)
+                 : fmt::format("lower 'wear.quadrature_points' (now {})", nodes)));
   };
   if (entries.size() > kMaxLoadCasesPerStep) refuse(entries.size());
   size_t cases = 0;

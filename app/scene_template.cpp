@@ -122,7 +122,9 @@ speed_m_s = 20.0              # > 0; needed by the "tangential" effect
 # # density_kg_m3 = 7850                                             (law "usfd")
 # max_depth_per_step_mm = 0.1  # step control: the deepest wear of one step, in (0, 1]
 # total_MGT = 10.0             # or total_passes = 1e6 (exactly one)
-# quadrature_points = 5        # Gauss-Hermite nodes over each lateral-position spread, 1-20
+# integration_tolerance = 0.005  # spreads: adaptive nodes until the step's worn area is within
+#                              # this relative tolerance, [0.0001, 0.1] (the default rule)
+# quadrature_points = 5        # or fixed Gauss-Hermite nodes per spread, 1-20 (not both)
 # smoothing_mm = 1.0           # smoothing length of the per-pass depth (lambda = l^4)
 # bin_mm = 0.1                 # arc-length bins the depth is collected on
 # profile_spacing_mm = 0.2     # point spacing of the updated rail profile

@@ -60,15 +60,51 @@ json WearLawJson(const WearStudy& study) {
   j["hardness_MPa"] = study.rail_material.hardness_Pa * 1e-6;
   j["max_depth_per_step_mm"] = study.options.max_depth_per_step_m * 1e3;
   j["smoothing_mm"] = study.options.smoothing.smoothing_length_m * 1e3;
-  j["quadrature_points"] = study.options.quadrature_points;
+  // The spread rule (issue 16): "quadrature_points" stays for the fixed rule's readers.
+  if (study.options.integration_tolerance) {
+    j["integration"] = {{"rule", "adaptive"},
+                        {"tolerance", *study.options.integration_tolerance},
+                        {"first_nodes", kSpreadInitialNodes},
+                        {"max_nodes", kMaxSpreadNodes}};
+  } else {
+    j["quadrature_points"] = study.options.quadrature_points;
+    j["integration"] = {{"rule", "gauss-hermite"},
+                        {"quadrature_points", study.options.quadrature_points}};
+  }
   return j;
 }
 
-json LoadCaseJson(const LoadCaseSummary& c, const WearStudy& study) {
+// A step's spread integration, one line: each spread entry's nodes (summed over a vehicle's
+// wheelsets) and, for the adaptive rule, the estimated error per rail.
+std::string IntegrationLine(const StepResult& step, const WearStudy& study) {
+  const SpreadIntegrationSummary& g = step.integration;
+  std::vector<std::string> entries;
+  for (size_t t = 0; t < g.nodes.size(); ++t) {
+    if (g.nodes[t] > 0) entries.push_back(fmt::format("{} {}", study.traffic[t].name, g.nodes[t]));
+  }
+  if (entries.empty()) return {};
+  std::string line = fmt::format("spread nodes: {}", fmt::join(entries, ", "));
+  if (!g.adaptive) return line + " (fixed Gauss-Hermite)";
+  line += fmt::format(" (adaptive, {} rounds, last change of the worn area {:.2g} %", g.rounds,
+                      100.0 * g.last_change[0]);
+  if (study.low_rail_profile) line += fmt::format(" high, {:.2g} % low", 100.0 * g.last_change[1]);
+  return line + fmt::format(" against {:.2g} %{})", 100.0 * g.tolerance,
+                            g.converged ? "" : ", NOT converged: no interval left to bisect");
+}
+
+json LoadCaseJson(const LoadCaseSummary& c, const WearStudy& study,
+                  const SpreadIntegrationSummary& integration) {
   json j;
-  j["traffic"] = study.traffic[c.load_case.traffic_index].name;
+  const int t = c.load_case.traffic_index;
+  j["traffic"] = study.traffic[t].name;
   j["rail"] = std::string(ToString(c.load_case.rail));
   j["node"] = c.load_case.node;
+  if (study.traffic[t].lateral_shift_std_m > 0.0 && !study.traffic[t].is_collective()) {
+    // The spread node (standard-normal units) and the nodes its entry used in this step.
+    j["spread_x"] = c.load_case.spread_x;
+    if (t < static_cast<int>(integration.nodes.size())) j["entry_nodes"] = integration.nodes[t];
+  }
+  if (study.traffic[t].is_vehicle()) j["wheelset"] = c.load_case.wheelset;
   j["lateral_shift_mm"] = c.load_case.placement.lateral_shift_m * 1e3;
   j["weight"] = c.load_case.weight;
   if (study.traffic[c.load_case.traffic_index].is_vehicle()) {
@@ -201,7 +237,7 @@ StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const 
   r.smoothing_area_error = step.smoothing_area_error;
   r.profile = step.state.rail;
   for (const LoadCaseSummary& c : step.cases) {
-    const nlohmann::json j = LoadCaseJson(c, study);
+    const nlohmann::json j = LoadCaseJson(c, study, step.integration);
     RequireFiniteJson(j, fmt::format("wear step {} load case", step.state.step));
     r.load_cases_json.push_back(j.dump());
   }
@@ -263,7 +299,7 @@ class Progress {
         tty_(isatty(fileno(stderr)) != 0),
         start_(std::chrono::steady_clock::now()) {}
 
-  void Step(const StepResult& step) {
+  void Step(const StepResult& step, const WearStudy& study) {
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const double done = step.state.passes - start_passes_;
@@ -289,10 +325,25 @@ class Progress {
                                       step.low_rail->measures.max_depth_y_m * 1e3)
                         : std::string(),
           step.seconds);
+      const std::string nodes = IntegrationLine(step, study);
+      if (!nodes.empty())
+        std::cerr << fmt::format("railwear: step {}: {}\n", step.state.step, nodes);
     }
   }
   void Finish() {
     if (tty_) std::cerr << "\n";
+  }
+
+  // One line per step whose adaptive spread rule stopped at the node limit above its tolerance.
+  void WarnOfIntegration(const StepResult& step) {
+    const SpreadIntegrationSummary& g = step.integration;
+    if (!g.adaptive || g.converged) return;
+    std::cerr << fmt::format(
+        "{}warning: step {}: the spread integration ran out of intervals to bisect (at most {} "
+        "nodes per spread, none narrower than {:.3g} std) before its tolerance of {:.2g} %: last "
+        "change of the worn area {:.2g} % (high rail), {:.2g} % (low rail)\n",
+        tty_ ? "\n" : "", step.state.step, kMaxSpreadNodes, kMinSpreadInterval, 100.0 * g.tolerance,
+        100.0 * g.last_change[0], 100.0 * g.last_change[1]);
   }
 
   // One line per step whose vehicle equilibria stopped above their tolerance (but within
@@ -339,6 +390,55 @@ class Progress {
   double total_, start_passes_;
   bool tty_;
   std::chrono::steady_clock::time_point start_;
+};
+
+// The spread nodes of the steps of this call: per traffic entry the fewest and most, and the
+// largest last change of the worn area (adaptive rule), for the summary.
+class IntegrationTally {
+ public:
+  void Add(const SpreadIntegrationSummary& g) {
+    if (steps_ == 0) {
+      first_ = g;
+      fewest_ = most_ = g.nodes;
+    }
+    for (size_t t = 0; t < g.nodes.size() && t < fewest_.size(); ++t) {
+      fewest_[t] = std::min(fewest_[t], g.nodes[t]);
+      most_[t] = std::max(most_[t], g.nodes[t]);
+    }
+    for (int r = 0; r < 2; ++r) largest_change_[r] = std::max(largest_change_[r], g.last_change[r]);
+    all_converged_ = all_converged_ && g.converged;
+    ++steps_;
+  }
+
+  // "spread integration ..." line, empty without steps or spreads.
+  std::string Line(const WearStudy& study) const {
+    std::vector<std::string> entries;
+    for (size_t t = 0; t < most_.size(); ++t) {
+      if (most_[t] == 0) continue;
+      entries.push_back(fewest_[t] == most_[t]
+                            ? fmt::format("{} {}", study.traffic[t].name, most_[t])
+                            : fmt::format("{} {}-{}", study.traffic[t].name, fewest_[t], most_[t]));
+    }
+    if (steps_ == 0 || entries.empty()) return {};
+    if (!first_.adaptive) {
+      return fmt::format("spread integration: fixed Gauss-Hermite rule, nodes per step: {}\n",
+                         fmt::join(entries, ", "));
+    }
+    return fmt::format(
+        "spread integration: adaptive to {:.2g} % of the step's worn area, nodes per step: {}; "
+        "largest last change {:.2g} % (high rail){}{}\n",
+        100.0 * first_.tolerance, fmt::join(entries, ", "), 100.0 * largest_change_[0],
+        study.low_rail_profile ? fmt::format(", {:.2g} % (low rail)", 100.0 * largest_change_[1])
+                               : std::string(),
+        all_converged_ ? "" : "; NOT converged in every step (see the warnings)");
+  }
+
+ private:
+  int steps_ = 0;
+  SpreadIntegrationSummary first_;
+  std::vector<int> fewest_, most_;
+  std::array<double, 2> largest_change_ = {0.0, 0.0};
+  bool all_converged_ = true;
 };
 
 // One rail's step table: the first, every k-th and the last step, at most about 25 lines.
@@ -513,13 +613,16 @@ void RunWearScene(const Scene& scene, const WearCommandOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   PreviousProfiles previous{state.rail, state.low_rail};
   WearRunSummary summary;
+  IntegrationTally integration;
   try {
     summary = railwear::RunWear(
         study, unworn, state,
         [&](const StepResult& step) {
           store.AppendStep(run_id, MakeStepRecord(step, study, unworn, previous));
           previous = {step.state.rail, step.state.low_rail};
-          progress.Step(step);
+          progress.Step(step, study);
+          progress.WarnOfIntegration(step);
+          integration.Add(step.integration);
           progress.WarnOfFlangeClimb(step, study);
           progress.WarnOfEquilibria(step, study);
           return true;
@@ -555,6 +658,7 @@ void RunWearScene(const Scene& scene, const WearCommandOptions& options) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   PrintSummary(store, run_id, name, summary.finished, seconds, summary.steps_done);
+  std::cout << integration.Line(study);
   if (options.plot) {
     std::vector<StepRecord> steps;
     for (const StepRecord& s : store.Steps(run_id)) steps.push_back(store.LoadStep(run_id, s.step));

@@ -101,9 +101,30 @@ std::vector<LoadCase> ExpandTraffic(const std::vector<TrafficCase>& traffic,
 
 namespace internal {
 
+LoadCase PrescribedNodeCase(const std::vector<TrafficCase>& traffic, int t,
+                            const std::array<double, 2>& rail_share_totals, double x, int node,
+                            double node_weight) {
+  const TrafficCase& c = traffic[t];
+  LoadCase lc;
+  lc.traffic_index = t;
+  lc.node = node;
+  lc.spread_x = x;
+  lc.rail = c.rail;
+  lc.placement.lateral_shift_m =
+      x == 0.0 ? c.lateral_shift_mean_m : c.lateral_shift_mean_m + c.lateral_shift_std_m * x;
+  lc.placement.roll_rad = c.roll_rad;
+  lc.placement.rolling_radius_m = c.rolling_radius_m;
+  lc.placement.yaw_rad = c.yaw_rad;
+  lc.vertical_force_N = c.vertical_force_N;
+  lc.motion.speed_m_s = c.speed_m_s;  // pure rolling at r0: no pitch velocity
+  lc.friction = c.friction;
+  // Shares are normalised per rail: each rail's case weights sum to 1.
+  lc.weight = c.share / rail_share_totals[static_cast<int>(c.rail)] * node_weight;
+  return lc;
+}
+
 std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic,
                                          int quadrature_points) {
-  // Shares are normalised per rail: each rail's case weights sum to 1.
   const std::array<double, 2> total_share = RailShareTotals(traffic);
   std::vector<double> nodes, weights;
   GaussHermiteProbabilists(quadrature_points, &nodes, &weights);
@@ -111,28 +132,12 @@ std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic
   for (int t = 0; t < static_cast<int>(traffic.size()); ++t) {
     const TrafficCase& c = traffic[t];
     if (c.is_vehicle() || c.is_collective()) continue;
-    const double share = c.share / total_share[static_cast<int>(c.rail)];
-    LoadCase base;
-    base.traffic_index = t;
-    base.rail = c.rail;
-    base.placement.lateral_shift_m = c.lateral_shift_mean_m;
-    base.placement.roll_rad = c.roll_rad;
-    base.placement.rolling_radius_m = c.rolling_radius_m;
-    base.placement.yaw_rad = c.yaw_rad;
-    base.vertical_force_N = c.vertical_force_N;
-    base.motion.speed_m_s = c.speed_m_s;  // pure rolling at r0: no pitch velocity
-    base.friction = c.friction;
     if (c.lateral_shift_std_m == 0.0) {
-      base.weight = share;
-      cases.push_back(base);
+      cases.push_back(PrescribedNodeCase(traffic, t, total_share, 0.0, 0, 1.0));
       continue;
     }
     for (int k = 0; k < quadrature_points; ++k) {
-      LoadCase node = base;
-      node.node = k;
-      node.placement.lateral_shift_m = c.lateral_shift_mean_m + c.lateral_shift_std_m * nodes[k];
-      node.weight = share * weights[k];
-      cases.push_back(node);
+      cases.push_back(PrescribedNodeCase(traffic, t, total_share, nodes[k], k, weights[k]));
     }
   }
   return cases;

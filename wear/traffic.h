@@ -90,7 +90,9 @@ struct TrafficCase {
 // imported collectives and vehicle curving all produce these.
 struct LoadCase {
   int traffic_index = 0;            // the entry it comes from (name, wheel profile, axle load)
-  int node = 0;                     // quadrature node (0 without spread)
+  int node = 0;                     // quadrature node (0 without spread), in order of spread_x
+  int wheelset = 0;                 // vehicle entries: the wheelset of the vehicle; else 0
+  double spread_x = 0.0;            // the node in standard-normal units (0 without spread)
   RailSide rail = RailSide::kHigh;  // which rail it loads
   // In that rail's own frame (mirrored for the low rail): lateral shift [m], roll, yaw [rad] and
   // the rolling radius at the wheel profile's z = 0 [m].
@@ -129,6 +131,13 @@ namespace internal {
 // entry (ValidateWearStudy): the traffic is not checked again at every step.
 std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic,
                                          int quadrature_points);
+
+// The load case of prescribed entry traffic[t] at the spread node x [standard-normal units]:
+// lateral shift mean + std x, numbered `node`, weighted by the entry's share over its rail's
+// total (rail_share_totals, RailShareTotals) x node_weight.
+LoadCase PrescribedNodeCase(const std::vector<TrafficCase>& traffic, int t,
+                            const std::array<double, 2>& rail_share_totals, double x, int node,
+                            double node_weight);
 }  // namespace internal
 
 // Million gross tonnes per axle pass of the mix: sum_c share_c axle_load_t_c / (1e6 sum share)

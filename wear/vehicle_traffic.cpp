@@ -115,69 +115,98 @@ std::vector<CurvingStart> VehicleStarts(const WearStudy& study, const Profile& u
   return starts;
 }
 
-std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index,
-                                       const Profile& high_track, const Profile& low_track,
-                                       const CurvingStart* start, CurvingStart* solved) {
+VehicleEquilibrium SolveVehicleEquilibrium(const WearStudy& study, int traffic_index,
+                                           const Profile& high_track, const Profile& low_track,
+                                           const CurvingStart* start) {
   const TrafficCase& c = study.traffic[traffic_index];
   const VehicleSpec& v = study.vehicles[c.vehicle];
-  const CurvingProblem p =
-      VehicleCurvingProblem(study, traffic_index, high_track, low_track, start);
-  const CurvingResult r = SolveCurving(p);
+  VehicleEquilibrium eq;
+  eq.problem = VehicleCurvingProblem(study, traffic_index, high_track, low_track, start);
+  eq.result = SolveCurving(eq.problem);
+  const CurvingProblem& p = eq.problem;
+  const CurvingResult& r = eq.result;
   // An equilibrium stopped just above the tolerance (the contact grid's force noise in flange
   // contact on a worn rail: measured 1.1e-2 Q0 against 3e-3) still gives the wear its loads: it
   // is used, and its cases say so (LoadCase::equilibrium_converged, the step's warning).
-  const bool usable = r.status == CurvingStatus::kNotConverged &&
-                      r.largest_scaled_residual <= p.options.usable_multiple * p.options.tolerance;
-  if (r.status != CurvingStatus::kConverged && r.status != CurvingStatus::kFlangeClimb && !usable) {
+  eq.usable = r.status == CurvingStatus::kNotConverged &&
+              r.largest_scaled_residual <= p.options.usable_multiple * p.options.tolerance;
+  if (r.status != CurvingStatus::kConverged && r.status != CurvingStatus::kFlangeClimb &&
+      !eq.usable) {
     throw std::runtime_error(fmt::format(
         "wear: {}: steady-state curving of vehicle \"{}\" at {} m/s on the current rails: {}: {}",
         c.name, v.name, c.speed_m_s, ToString(r.status), r.message));
   }
-  if (solved) *solved = r.Start();
+  return eq;
+}
+
+std::vector<LoadCase> VehicleNodeCases(const WearStudy& study, int traffic_index,
+                                       const VehicleEquilibrium& eq, int wheelset, double x,
+                                       int node, double node_weight) {
+  const TrafficCase& c = study.traffic[traffic_index];
+  const VehicleSpec& v = study.vehicles[c.vehicle];
+  const CurvingProblem& p = eq.problem;
+  const CurvingResult& r = eq.result;
+  const CurvedWheelset& w = r.wheelsets[wheelset];
+  const std::array<double, 2> totals = RailShareTotals(study.traffic);
+  const double kappa = study.curve.curvature_per_m();
+  const int n_ws = static_cast<int>(r.wheelsets.size());
+  const bool high_flange = w.high_climb.contact_angle_rad > kFlangeContactAngle_rad;
+  const bool low_flange = w.low_climb.contact_angle_rad > kFlangeContactAngle_rad;
+  WheelsetSpec ws = v.WheelsetAt(w.lateral_m, w.yaw_rad, w.roll_rad);
+  const WheelsetSpec at_equilibrium = ws;
+  double offset = c.lateral_shift_std_m * x;
+  // A node pushing a wheel toward its rail's flange stops where flange contact begins (at
+  // the equilibrium when that wheel is in flange contact already).
+  if ((offset > 0.0 && high_flange) || (offset < 0.0 && low_flange)) offset = 0.0;
+  if (offset != 0.0) {
+    offset = OffsetBeforeFlange(at_equilibrium, offset,
+                                offset > 0.0 ? RailSide::kHigh : RailSide::kLow, p);
+  }
+  ws.lateral_displacement_m = w.lateral_m + offset;
+  const WheelsetPlacement placed = PlaceWheelsetAt(*p.gauge_points, p.track, ws);
+  WheelMotion axle;
+  axle.speed_m_s = c.speed_m_s;
+  axle.pitch_velocity_rad_s = w.pitch_velocity_rad_s;
+  const WheelMotions motions = CurveWheelMotions(axle, placed, kappa, v.rolling_radius_m);
+  std::vector<LoadCase> cases;
+  for (const RailSide side : {RailSide::kHigh, RailSide::kLow}) {
+    const bool high = side == RailSide::kHigh;
+    const WheelPose& pose = high ? placed.right : placed.left;
+    LoadCase lc;
+    lc.traffic_index = traffic_index;
+    lc.node = node;
+    lc.wheelset = wheelset;
+    lc.spread_x = x;
+    lc.rail = side;
+    lc.placement = {pose.lateral_shift_m, pose.roll_rad, pose.rolling_radius_m, pose.yaw_rad};
+    lc.vertical_force_N = high ? w.high_load_N : w.low_load_N;
+    lc.motion = high ? motions.right : motions.left;
+    lc.friction = c.friction;
+    lc.weight = c.share / totals[static_cast<int>(side)] * node_weight / n_ws;
+    lc.equilibrium_residual = r.largest_scaled_residual;
+    lc.equilibrium_converged = !eq.usable;
+    cases.push_back(lc);
+  }
+  return cases;
+}
+
+std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index,
+                                       const Profile& high_track, const Profile& low_track,
+                                       const CurvingStart* start, CurvingStart* solved) {
+  const TrafficCase& c = study.traffic[traffic_index];
+  const VehicleEquilibrium eq =
+      SolveVehicleEquilibrium(study, traffic_index, high_track, low_track, start);
+  if (solved) *solved = eq.result.Start();
   std::vector<double> nodes = {0.0}, weights = {1.0};
   if (c.lateral_shift_std_m > 0.0) {
     GaussHermiteProbabilists(study.options.quadrature_points, &nodes, &weights);
   }
-  const std::array<double, 2> totals = RailShareTotals(study.traffic);
-  const double kappa = study.curve.curvature_per_m();
-  const int n_ws = static_cast<int>(r.wheelsets.size());
   std::vector<LoadCase> cases;
-  for (const CurvedWheelset& w : r.wheelsets) {
-    const bool high_flange = w.high_climb.contact_angle_rad > kFlangeContactAngle_rad;
-    const bool low_flange = w.low_climb.contact_angle_rad > kFlangeContactAngle_rad;
-    WheelsetSpec ws = v.WheelsetAt(w.lateral_m, w.yaw_rad, w.roll_rad);
-    const WheelsetSpec at_equilibrium = ws;
+  for (int w = 0; w < static_cast<int>(eq.result.wheelsets.size()); ++w) {
     for (int k = 0; k < static_cast<int>(nodes.size()); ++k) {
-      double offset = c.lateral_shift_std_m * nodes[k];
-      // A node pushing a wheel toward its rail's flange stops where flange contact begins (at
-      // the equilibrium when that wheel is in flange contact already).
-      if ((offset > 0.0 && high_flange) || (offset < 0.0 && low_flange)) offset = 0.0;
-      if (offset != 0.0) {
-        offset = OffsetBeforeFlange(at_equilibrium, offset,
-                                    offset > 0.0 ? RailSide::kHigh : RailSide::kLow, p);
-      }
-      ws.lateral_displacement_m = w.lateral_m + offset;
-      const WheelsetPlacement placed = PlaceWheelsetAt(*p.gauge_points, p.track, ws);
-      WheelMotion axle;
-      axle.speed_m_s = c.speed_m_s;
-      axle.pitch_velocity_rad_s = w.pitch_velocity_rad_s;
-      const WheelMotions motions = CurveWheelMotions(axle, placed, kappa, v.rolling_radius_m);
-      for (const RailSide side : {RailSide::kHigh, RailSide::kLow}) {
-        const bool high = side == RailSide::kHigh;
-        const WheelPose& pose = high ? placed.right : placed.left;
-        LoadCase lc;
-        lc.traffic_index = traffic_index;
-        lc.node = k;
-        lc.rail = side;
-        lc.placement = {pose.lateral_shift_m, pose.roll_rad, pose.rolling_radius_m, pose.yaw_rad};
-        lc.vertical_force_N = high ? w.high_load_N : w.low_load_N;
-        lc.motion = high ? motions.right : motions.left;
-        lc.friction = c.friction;
-        lc.weight = c.share / totals[static_cast<int>(side)] * weights[k] / n_ws;
-        lc.equilibrium_residual = r.largest_scaled_residual;
-        lc.equilibrium_converged = !usable;
-        cases.push_back(lc);
-      }
+      const std::vector<LoadCase> more =
+          VehicleNodeCases(study, traffic_index, eq, w, nodes[k], k, weights[k]);
+      cases.insert(cases.end(), more.begin(), more.end());
     }
   }
   return cases;

@@ -50,11 +50,34 @@ TrackRails UnwornRailsInTrack(const WearStudy& study);
 std::vector<CurvingStart> VehicleStarts(const WearStudy& study, const Profile& unworn_high,
                                         const Profile& unworn_low);
 
+// A vehicle entry's curving on the rails of a step (both in the track frame, canted): the problem
+// it solved and its solution, and whether that solution is only usable (stopped above its
+// tolerance but within CurvingOptions::usable_multiple of it). Throws std::runtime_error naming
+// the entry and the vehicle when the curving has no usable equilibrium (a flange-climb
+// equilibrium is kept: its cases carry their L/V checks). The curving starts from `start`.
+struct VehicleEquilibrium {
+  CurvingProblem problem;
+  CurvingResult result;
+  bool usable = false;
+};
+VehicleEquilibrium SolveVehicleEquilibrium(const WearStudy& study, int traffic_index,
+                                           const Profile& high_track, const Profile& low_track,
+                                           const CurvingStart* start = nullptr);
+
+// The two load cases (high rail, then low) of one wheelset of a vehicle entry at the spread
+// node x [standard-normal units]: the wheelset displaced by lateral_shift_std_m x from its
+// equilibrium (stopped at the flange's onset, see above), numbered `node`, weighted by the
+// entry's share over its rail's total x node_weight / wheelsets.
+std::vector<LoadCase> VehicleNodeCases(const WearStudy& study, int traffic_index,
+                                       const VehicleEquilibrium& eq, int wheelset, double x,
+                                       int node, double node_weight);
+
 // The load cases of study.traffic[traffic_index] (a vehicle entry) on the rails of this step,
 // both in the track frame (canted). Throws std::runtime_error naming the entry and the vehicle
 // when the curving has no equilibrium or does not converge (a flange-climb equilibrium is kept:
 // its cases carry their L/V checks). The curving starts from `start` (VehicleCurvingProblem) and,
-// when `solved` is given, leaves its solution there (the next step's start).
+// when `solved` is given, leaves its solution there (the next step's start). Each wheelset at
+// the fixed rule's Gauss-Hermite nodes (WearOptions::quadrature_points), one node without spread.
 std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index,
                                        const Profile& high_track, const Profile& low_track,
                                        const CurvingStart* start = nullptr,

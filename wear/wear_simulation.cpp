@@ -17,6 +17,7 @@
 #include "core/numerics/parallel.h"
 #include "core/profile/builtin_profiles.h"
 #include "wear/collective_traffic.h"
+#include "wear/spread_step.h"
 #include "wear/vehicle_traffic.h"
 
 namespace railwear {
@@ -172,9 +173,13 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
 }
 
 // Solves every case on the study's workers, each against its rail (targets[RailSide]), each
-// result in its own slot (core/numerics/parallel.h).
+// result in its own slot (core/numerics/parallel.h). With `failed` (one flag per case), a case
+// whose contact does not converge is flagged there instead of failing the step (the adaptive
+// rule's refinement nodes: it leaves such a node out).
 std::vector<CaseOutcome> SolveLoadCases(const WearStudy& study, const RailTarget targets[2],
-                                        const std::vector<LoadCase>& cases) {
+                                        const std::vector<LoadCase>& cases,
+                                        std::vector<char>* failed = nullptr) {
+  if (failed) failed->assign(cases.size(), 0);
   std::vector<CaseOutcome> outcomes(cases.size());
   const std::function<bool()>& cancel = study.options.cancel;
   std::atomic<bool> cancelled{false};
@@ -183,10 +188,32 @@ std::vector<CaseOutcome> SolveLoadCases(const WearStudy& study, const RailTarget
       cancelled = true;  // the remaining cases are skipped and the step dropped
       return;
     }
-    outcomes[c] = SolveLoadCase(study, targets[static_cast<int>(cases[c].rail)], cases[c]);
+    if (!failed) {
+      outcomes[c] = SolveLoadCase(study, targets[static_cast<int>(cases[c].rail)], cases[c]);
+      return;
+    }
+    try {
+      outcomes[c] = SolveLoadCase(study, targets[static_cast<int>(cases[c].rail)], cases[c]);
+    } catch (const std::runtime_error&) {
+      (*failed)[c] = 1;
+    }
   });
   if (cancelled) throw WearCancelled();
   return outcomes;
+}
+
+// The fixed rule's nodes per traffic entry: one per node of a spread (each of a vehicle's
+// wheelsets counted; the high rail's case of each node), 0 without spread.
+SpreadIntegrationSummary FixedRuleSummary(const WearStudy& study,
+                                          const std::vector<LoadCase>& cases) {
+  SpreadIntegrationSummary s;
+  s.nodes.assign(study.traffic.size(), 0);
+  for (const LoadCase& c : cases) {
+    const TrafficCase& t = study.traffic[c.traffic_index];
+    if (t.is_collective() || !(t.lateral_shift_std_m > 0.0)) continue;
+    if (!t.is_vehicle() || c.rail == RailSide::kHigh) ++s.nodes[c.traffic_index];
+  }
+  return s;
 }
 
 // sum_c weight_c * field_c[b] per bin over the cases on `rail`, adding the terms of each bin in
@@ -297,6 +324,12 @@ void ValidateWearStudy(const WearStudy& study) {
   RequirePositive("profile_spacing_mm", o.profile_spacing_m * 1e3);
   if (o.damage_layer_m) RequirePositive("damage_layer_mm", *o.damage_layer_m * 1e3);
   ValidateQuadraturePoints(o.quadrature_points);
+  if (o.integration_tolerance && !(*o.integration_tolerance >= kMinIntegrationTolerance &&
+                                   *o.integration_tolerance <= kMaxIntegrationTolerance)) {
+    throw InputError(fmt::format("wear: integration_tolerance = {}: expected {} to {}",
+                                 *o.integration_tolerance, kMinIntegrationTolerance,
+                                 kMaxIntegrationTolerance));
+  }
   if (o.threads < 0) {
     throw InputError(fmt::format("wear: threads = {}: expected >= 0 (0: all cores)", o.threads));
   }
@@ -464,14 +497,43 @@ StepResult RunWearStep(const WearStudy& study, const UnwornRails& unworn, const 
   std::optional<Profile> low_track;
   if (low) low_track = low->track;
   std::vector<CurvingStart> curving;
-  const std::vector<LoadCase> cases =
-      internal::StepLoadCases(study, high.track, low_track, state.curving, &curving);
   const RailTarget targets[2] = {{&*high.locator, &high.grid},
                                  {low ? &*low->locator : nullptr, low ? &low->grid : nullptr}};
-  for (const LoadCase& c : cases) RAILWEAR_CHECK(targets[static_cast<int>(c.rail)].locator);
-  const std::vector<CaseOutcome> outcomes = SolveLoadCases(study, targets, cases);
-
   StepResult step;
+  std::vector<LoadCase> cases;
+  std::vector<CaseOutcome> outcomes;
+  if (o.integration_tolerance) {
+    // The adaptive rule: rounds of cases, each solved on the workers; kept in solving order,
+    // then put in StepLoadCases order with their final weights.
+    std::vector<CaseOutcome> solved;
+    SpreadStep spread = IntegrateSpreads(
+        study, high.track, low_track, state.curving, &curving, *o.integration_tolerance,
+        [&](const std::vector<LoadCase>& batch, bool refinement) {
+          for (const LoadCase& c : batch) RAILWEAR_CHECK(targets[static_cast<int>(c.rail)].locator);
+          std::vector<char> failed;
+          std::vector<CaseOutcome> more =
+              SolveLoadCases(study, targets, batch, refinement ? &failed : nullptr);
+          std::vector<double> areas;
+          for (size_t i = 0; i < more.size(); ++i) {
+            areas.push_back(refinement && failed[i] ? std::nan("")
+                                                    : more[i].summary.worn_area_per_pass_m2);
+            solved.push_back(std::move(more[i]));
+          }
+          return areas;
+        });
+    for (const int i : spread.order) {
+      cases.push_back(spread.cases[i]);
+      outcomes.push_back(std::move(solved[i]));
+      outcomes.back().summary.load_case = spread.cases[i];
+    }
+    step.integration = std::move(spread.summary);
+  } else {
+    cases = internal::StepLoadCases(study, high.track, low_track, state.curving, &curving);
+    for (const LoadCase& c : cases) RAILWEAR_CHECK(targets[static_cast<int>(c.rail)].locator);
+    outcomes = SolveLoadCases(study, targets, cases);
+    step.integration = FixedRuleSummary(study, cases);
+  }
+
   for (const CaseOutcome& c : outcomes) step.cases.push_back(c.summary);
   high.Collect(outcomes, cases, o.smoothing);
   if (low) low->Collect(outcomes, cases, o.smoothing);

@@ -7,7 +7,9 @@
 //   2. the step's load cases (internal::StepLoadCases: the prescribed traffic mix,
 //      wear/traffic.h; vehicle curving, wear/vehicle_traffic.h; imported load collectives,
 //      wear/collective_traffic.h) are solved as rolling contacts (normal + tangential, and damage
-//      when asked) against the rail each case loads, in parallel threads;
+//      when asked) against the rail each case loads, in parallel threads; with the adaptive
+//      spread rule (WearOptions::integration_tolerance, wear/spread_step.h) in rounds, each
+//      adding nodes to the spreads until the step's worn area per pass is converged;
 //   3. each case's per-pass wear depth (times its friction condition's wear factor, per patch
 //      by the patch's zone: top of rail or gauge face, wear/friction_condition.h) and RCF damage
 //      are binned along its rail's arc length (wear/pass_depth.h) and summed per rail with the
@@ -45,6 +47,7 @@
 #include "wear/depth_smoothing.h"
 #include "wear/friction_condition.h"
 #include "wear/pass_depth.h"
+#include "wear/spread_integration.h"
 #include "wear/traffic.h"
 #include "wear/wear_law.h"
 #include "wear/wear_measures.h"
@@ -61,7 +64,13 @@ struct WearOptions {
   // Length of the run: exactly one of the two, > 0.
   std::optional<double> total_passes;
   std::optional<double> total_mgt;
-  // Gauss-Hermite nodes per traffic entry with a lateral spread, 1..20.
+  // Integration over each traffic entry's lateral spread (a prescribed entry's, or each
+  // wheelset's of a vehicle entry). Absent: the fixed rule, `quadrature_points` Gauss-Hermite
+  // nodes per spread. Given: the adaptive rule (wear/spread_integration.h), which adds nodes
+  // where the response changes until the step's worn area per pass of every rail is converged
+  // to this relative tolerance, in [1e-4, 0.1] (scenes: 0.005 unless they give quadrature_points).
+  std::optional<double> integration_tolerance;
+  // Gauss-Hermite nodes per traffic entry with a lateral spread, 1..20 (the fixed rule).
   int quadrature_points = 5;
   // Width of the arc-length bins the wear depth is collected on [m], > 0.
   double bin_m = 1e-4;
@@ -215,6 +224,7 @@ struct StepResult {
   WearMeasures measures;                   // against step 0 (cumulative)
   std::optional<RailStepResult> low_rail;  // present when the study has a low rail
   std::vector<LoadCaseSummary> cases;      // both rails' cases, in StepLoadCases order
+  SpreadIntegrationSummary integration;    // the spread rule's nodes per entry and its error
   double seconds = 0.0;                    // wall time of the step
 };
 

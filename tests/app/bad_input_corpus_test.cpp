@@ -95,6 +95,20 @@ std::vector<CorpusCase> Corpus() {
                "wear s.toml --db s.sqlite",
                2,
                {"s.toml:", "key 'wear.kth_v2_m_s' is missing", "above kth_v1_m_s = 0.8"}});
+  // The adaptive spread rule's tolerance (issue 16 point 5): its range, and not with the fixed
+  // rule's quadrature_points.
+  c.push_back(
+      {"integration_tolerance_out_of_range",
+       {{"s.toml", Replace(wear, "quadrature_points = 3\n", "integration_tolerance = 0.5\n")}},
+       "wear s.toml --db s.sqlite",
+       2,
+       {"s.toml:", "key 'wear.integration_tolerance' = 0.5", "[0.0001, 0.1]"}});
+  c.push_back({"integration_tolerance_and_quadrature_points",
+               {{"s.toml", Replace(wear, "quadrature_points = 3\n",
+                                   "quadrature_points = 3\nintegration_tolerance = 0.01\n")}},
+               "wear s.toml --db s.sqlite",
+               2,
+               {"s.toml:", "key 'wear.integration_tolerance'", "not both"}});
   c.push_back({"empty_track_in_contact_scene",
                {{"s.toml", tread + "\n[track]\n"}},
                "contact s.toml",

@@ -59,6 +59,35 @@ TEST_F(WearCommandTest, RunStoresEveryStepAndPrintsASummary) {
   EXPECT_EQ(ProfileStore::Open((dir_ / "a.sqlite").string()).Steps(run->id).size(), 4u);
 }
 
+// Without quadrature_points a scene integrates its spreads by the adaptive rule (issue 16
+// point 5): the log names each step's nodes per entry, the summary their range over the run,
+// the run's parameters the rule, and every stored load case its node and its entry's nodes.
+TEST_F(WearCommandTest, AdaptiveSpreadNodesAreLoggedSummarisedAndStored) {
+  std::string scene = kStudy;
+  scene.erase(scene.find("quadrature_points = 3\n"), std::string("quadrature_points = 3\n").size());
+  Write("study.toml", scene);
+  const Outcome o = Run("wear study.toml --db a.sqlite --steps 2");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(Contains(o.err, "railwear: step 1: spread nodes: traffic[0] ")) << o.err;
+  EXPECT_TRUE(Contains(o.err, "(adaptive, ")) << o.err;
+  EXPECT_TRUE(Contains(o.out,
+                       "spread integration: adaptive to 0.5 % of the step's worn area, "
+                       "nodes per step: traffic[0] "))
+      << o.out;
+  ProfileStore store = ProfileStore::Open((dir_ / "a.sqlite").string());
+  const auto run = store.FindRun("small study");
+  ASSERT_TRUE(run.has_value());
+  EXPECT_TRUE(Contains(run->wear_law_json, R"("rule":"adaptive")")) << run->wear_law_json;
+  EXPECT_TRUE(Contains(run->wear_law_json, R"("tolerance":0.005)")) << run->wear_law_json;
+  const StepRecord step = store.LoadStep(run->id, 1);
+  ASSERT_GE(step.load_cases_json.size(), 5u);  // at least the first five nodes
+  const std::string nodes = "\"entry_nodes\":" + std::to_string(step.load_cases_json.size());
+  for (const std::string& j : step.load_cases_json) {
+    EXPECT_TRUE(Contains(j, nodes)) << j;
+    EXPECT_TRUE(Contains(j, R"("spread_x":)")) << j;
+  }
+}
+
 TEST_F(WearCommandTest, KilledRunResumesToTheSameProfile) {
   Write("study.toml", kStudy);
   const Outcome whole = Run("wear study.toml --db whole.sqlite --threads 1");

