@@ -265,7 +265,10 @@ class CurvedFftOperator final : public InfluenceOperator {
   }
 
   // out = crop_x(IFFT_x(B_k FFT_x(pad_x(in)))) with B_k = K_k (inverse = false) or
-  // (sym K_k)^-1 (inverse = true) per x frequency k.
+  // (sym K_k)^-1 (inverse = true) per x frequency k. Each constant block is applied to the real
+  // and the imaginary column separately, as matrix-vector products and triangular solves with a
+  // vector: Eigen would treat a 2-column right-hand side as a matrix product (GEMM, TRSM) and
+  // repack the whole block on every call (gemm_pack_lhs, issue 18).
   void Convolve(const Eigen::VectorXd& p, bool inverse, Eigen::VectorXd* u) const {
     RAILWEAR_CHECK(p.size() == size());
     for (int j = 0; j < ns_; ++j) {
@@ -281,14 +284,17 @@ class CurvedFftOperator final : public InfluenceOperator {
       u_hat = p_hat * (1.0 / lx_);
       for (int k = 0; k < hx_; ++k) {
         const Eigen::Map<const Eigen::MatrixXd> l_k(factor_.col(k).data(), ns_, ns_);
-        auto z_k = u_hat.middleCols<2>(2 * k);
-        l_k.triangularView<Eigen::Lower>().solveInPlace(z_k);
-        l_k.transpose().triangularView<Eigen::Upper>().solveInPlace(z_k);
+        for (int c = 2 * k; c < 2 * k + 2; ++c) {
+          auto z = u_hat.col(c);
+          l_k.triangularView<Eigen::Lower>().solveInPlace(z);
+          l_k.transpose().triangularView<Eigen::Upper>().solveInPlace(z);
+        }
       }
     } else {
       for (int k = 0; k < hx_; ++k) {
         const Eigen::Map<const Eigen::MatrixXd> k_k(kernel_.col(k).data(), ns_, ns_);
-        u_hat.middleCols<2>(2 * k).noalias() = k_k * p_hat.middleCols<2>(2 * k);
+        u_hat.col(2 * k).noalias() = k_k * p_hat.col(2 * k);
+        u_hat.col(2 * k + 1).noalias() = k_k * p_hat.col(2 * k + 1);
       }
     }
     fftw_execute(inverse_.get());  // overwrites u_hat_
