@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(
   cmake g++ make
-  libeigen3-dev libgsl-dev libceres-dev libsqlite3-dev sqlite3
+  libeigen3-dev libgsl-dev libfftw3-dev pkg-config libceres-dev libsqlite3-dev sqlite3
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libbenchmark-dev gnuplot-nox
   calculix-ccx gmsh

@@ -4,9 +4,10 @@
 // Both operators embed the Toeplitz matrix in a circulant one of length L >= 2n - 1 per
 // Toeplitz direction (zero padding), so the products are exact linear convolutions, not
 // periodic ones. The kernels are even in their Toeplitz offsets, so their spectra are real.
-// FFTs use Eigen's unsupported FFT module (kissfft backend): real-input transforms with the
-// half spectrum, and lengths 2^a 3^b 5^c (kissfft's radices), multiples of 4 for the real
-// transforms (that selects kissfft's packed real FFT).
+// FFTs use FFTW (core/numerics/fftw.h): plans made once per operator with FFTW_ESTIMATE (bit-
+// reproducible run to run) and executed on the operator's own buffers, real-input transforms
+// with the half spectrum, lengths 2^a 3^b 5^c 7^d (core/numerics/fft_size.h), even for the
+// real transforms.
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -15,30 +16,19 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-#include <unsupported/Eigen/FFT>
 
 #include "core/contact/influence_kernels.h"
 #include "core/numerics/check.h"
 #include "core/numerics/fft_size.h"
+#include "core/numerics/fftw.h"
 
 namespace railwear {
+
+const int kDenseProductMaxCells = 121;
+
 namespace {
 
-using Complex = std::complex<double>;
-
-using internal::NextFftSize;
-// Lengths of the real (x) and complex (s) transforms for a Toeplitz direction of n cells.
-int RealFftSize(int n) { return NextFftSize(2 * n - 1, 4); }
-int ComplexFftSize(int n) { return NextFftSize(2 * n - 1, 1); }
-
-// An unscaled, half-spectrum FFT object. Its plans are built on first use of each length;
-// Warm() does that in the constructors so Apply never allocates.
-Eigen::FFT<double> MakeFft() {
-  Eigen::FFT<double> fft;
-  fft.SetFlag(Eigen::FFT<double>::Unscaled);
-  fft.SetFlag(Eigen::FFT<double>::HalfSpectrum);
-  return fft;
-}
+using Complex = internal::FftwComplex;
 
 // The planar grid's promise: a straight cross-section with uniform spacing ds and one normal.
 // Relative tolerance on positions (in units of ds) and on unit vectors; far above rounding of a
@@ -55,6 +45,12 @@ constexpr double kPlanarGridTolerance = 1e-9;
 // every genuine value untouched and keeps M positive definite with a bounded norm.
 constexpr double kSpectrumFloor = 0.1;
 
+// u = C p with the dense matrix C [N x N] (OperatorProducts::kDense).
+void DenseProduct(const Eigen::MatrixXd& c, const Eigen::VectorXd& p, Eigen::VectorXd* u) {
+  RAILWEAR_CHECK(p.size() == c.cols());
+  u->noalias() = c * p;
+}
+
 void CheckPlanarGrid(const PatchGrid& grid) {
   for (int j = 0; j < grid.ns; ++j) {
     const Eigen::Vector2d expected = grid.point_yz_m[0] + (j * grid.ds_m) * grid.tangent_yz[0];
@@ -65,51 +61,32 @@ void CheckPlanarGrid(const PatchGrid& grid) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Planar grid: C depends on (i_x - j_x, i_s - j_s). 2-D linear convolution by FFT.
-//
-// Layout: the x direction (cell index fastest) is transformed with real FFTs of length lx_ to
-// hx_ = lx_/2 + 1 bins; the s direction with complex FFTs of length ls_. The 2-D spectrum is
-// stored bin-major: rows_[kx * ls_ + ks].
+// Planar grid: C depends on (i_x - j_x, i_s - j_s). 2-D linear convolution by FFT (PaddedFft2d:
+// real FFTs along x, complex along s, half spectrum stored s-major [ks * hx + kx]).
 class PlanarFftOperator final : public InfluenceOperator {
  public:
-  PlanarFftOperator(const PatchGrid& grid, const internal::KernelCoefficients& coefficients)
-      : nx_(grid.nx),
-        ns_(grid.ns),
-        lx_(RealFftSize(grid.nx)),
-        hx_(lx_ / 2 + 1),
-        ls_(ComplexFftSize(grid.ns)),
-        fft_(MakeFft()),
-        x_real_(lx_, 0.0),
-        x_out_(lx_, 0.0),
-        x_half_(hx_),
-        rows_(static_cast<size_t>(hx_) * ls_, Complex(0.0, 0.0)),
-        s_line_(ls_),
-        s_out_(ls_),
-        cropped_(static_cast<size_t>(hx_) * ns_) {
+  PlanarFftOperator(const PatchGrid& grid, const internal::KernelCoefficients& coefficients,
+                    bool dense_products)
+      : nx_(grid.nx), ns_(grid.ns), fft_(grid.nx, grid.ns), work_(fft_.NewSpectrum()) {
     CheckPlanarGrid(grid);
+    const int lx = fft_.lx(), ls = fft_.ls();
     // Kernel on offsets d >= 0, e >= 0 (nx * ns evaluations), even extension into an
-    // lx_ by ls_ circulant generator (x fastest).
-    std::vector<double> generator(static_cast<size_t>(lx_) * ls_, 0.0);
+    // lx by ls circulant generator (x fastest).
+    std::vector<double> generator(static_cast<size_t>(lx) * ls, 0.0);
     for (int e = 0; e < ns_; ++e) {
       for (int d = 0; d < nx_; ++d) {
         const double c = internal::CellInfluence(grid, coefficients, d, e, 0, 0);
         if (d == 0 && e == 0) diagonal_ = c;
-        for (int ee : {e, (ls_ - e) % ls_}) {
-          for (int dd : {d, (lx_ - d) % lx_}) {
-            generator[static_cast<size_t>(ee) * lx_ + dd] = c;
-          }
+        for (int ee : {e, (ls - e) % ls}) {
+          for (int dd : {d, (lx - d) % lx}) generator[static_cast<size_t>(ee) * lx + dd] = c;
         }
       }
     }
-    TransformX(generator.data(), ls_, lx_);
     // Even generator -> real spectrum; the inverse FFTs are unscaled, so fold in 1/(lx ls).
-    spectrum_.resize(static_cast<size_t>(hx_) * ls_);
-    const double scale = 1.0 / (static_cast<double>(lx_) * ls_);
-    for (int kx = 0; kx < hx_; ++kx) {
-      const size_t row = static_cast<size_t>(kx) * ls_;
-      fft_.fwd(s_line_.data(), rows_.data() + row, ls_);
-      for (int ks = 0; ks < ls_; ++ks) spectrum_[row + ks] = s_line_[ks].real() * scale;
-    }
+    fft_.ForwardGenerator(generator.data(), work_.data());
+    const double scale = 1.0 / (static_cast<double>(lx) * ls);
+    spectrum_.resize(fft_.spectrum_size());
+    for (size_t k = 0; k < spectrum_.size(); ++k) spectrum_[k] = work_[k].real() * scale;
     // The preconditioner's multiplier: 1 / symbol, the symbol raised to the floor first, times
     // 1/(lx ls) for the unscaled inverse FFT.
     const double floor = kSpectrumFloor * diagonal_;
@@ -118,19 +95,26 @@ class PlanarFftOperator final : public InfluenceOperator {
       const double symbol = spectrum_[k] / scale;  // the circulant's eigenvalue [m/Pa]
       inverse_spectrum_[k] = scale / std::max(symbol, floor);
     }
-    // TransformX() filled all ls_ columns of rows_ and all of x_real_; Apply relies on columns
-    // >= ns_ and entries >= nx_ being zero.
-    std::fill(rows_.begin(), rows_.end(), Complex(0.0, 0.0));
-    std::fill(x_real_.begin(), x_real_.end(), 0.0);
-    // One product builds the inverse FFT plans, so Apply does not allocate.
-    Eigen::VectorXd u;
-    Apply(Eigen::VectorXd::Zero(size()), &u);
+    if (dense_products) {
+      dense_.resize(size(), size());
+      for (int js = 0; js < ns_; ++js) {
+        for (int jx = 0; jx < nx_; ++jx) {
+          for (int is = 0; is < ns_; ++is) {
+            const double* c = generator.data() + static_cast<size_t>(std::abs(is - js)) * lx;
+            for (int ix = 0; ix < nx_; ++ix) {
+              dense_(is * nx_ + ix, js * nx_ + jx) = c[std::abs(ix - jx)];
+            }
+          }
+        }
+      }
+    }
   }
 
   int size() const override { return nx_ * ns_; }
   double Diagonal(int) const override { return diagonal_; }
 
   void Apply(const Eigen::VectorXd& p, Eigen::VectorXd* u) const override {
+    if (dense_.size() > 0) return DenseProduct(dense_, p, u);
     Convolve(p, spectrum_, u);
   }
 
@@ -143,72 +127,50 @@ class PlanarFftOperator final : public InfluenceOperator {
   }
 
  private:
-  // out = crop(IFFT2(FFT2(pad(in)) * multiplier)); multiplier [hx_ * ls_], bin-major, with the
+  // out = crop(IFFT2(FFT2(pad(in)) * multiplier)); multiplier [hx * ls], s-major, with the
   // inverse FFTs' scaling folded in.
   void Convolve(const Eigen::VectorXd& in, const std::vector<double>& multiplier,
                 Eigen::VectorXd* out) const {
     RAILWEAR_CHECK(in.size() == size());
-    TransformX(in.data(), ns_, nx_);
-    for (int kx = 0; kx < hx_; ++kx) {
-      const size_t row = static_cast<size_t>(kx) * ls_;
-      fft_.fwd(s_line_.data(), rows_.data() + row, ls_);
-      for (int ks = 0; ks < ls_; ++ks) s_line_[ks] *= multiplier[row + ks];
-      fft_.inv(s_out_.data(), s_line_.data(), ls_);
-      for (int j = 0; j < ns_; ++j) cropped_[static_cast<size_t>(j) * hx_ + kx] = s_out_[j];
-    }
+    fft_.Forward(in.data(), work_.data());
+    for (size_t k = 0; k < multiplier.size(); ++k) work_[k] *= multiplier[k];
     if (out->size() != size()) out->resize(size());
-    for (int j = 0; j < ns_; ++j) {
-      fft_.inv(x_out_.data(), cropped_.data() + static_cast<size_t>(j) * hx_, lx_);
-      std::copy(x_out_.begin(), x_out_.begin() + nx_, out->data() + static_cast<size_t>(j) * nx_);
-    }
+    fft_.Inverse(work_.data(), out->data());
   }
 
-  // Real FFTs along x of n_rows s-rows of row_length values each (x fastest; the rest is zero
-  // padding) into columns 0 .. n_rows-1 of rows_. The other columns must hold zeros (they do
-  // after the constructor; nothing else writes them).
-  void TransformX(const double* data, int n_rows, int row_length) const {
-    for (int j = 0; j < n_rows; ++j) {
-      std::copy(data + static_cast<size_t>(j) * row_length,
-                data + static_cast<size_t>(j + 1) * row_length, x_real_.begin());
-      fft_.fwd(x_half_.data(), x_real_.data(), lx_);
-      for (int kx = 0; kx < hx_; ++kx) rows_[static_cast<size_t>(kx) * ls_ + j] = x_half_[kx];
-    }
-  }
-
-  int nx_, ns_, lx_, hx_, ls_;
+  int nx_, ns_;
   double diagonal_ = 0.0;
-  std::vector<double> spectrum_;          // [hx_ * ls_], bin-major, scaled by 1/(lx_ ls_)
-  std::vector<double> inverse_spectrum_;  // [hx_ * ls_], 1 / max(spectrum, floor), scaled
+  std::vector<double> spectrum_;          // [hx * ls], s-major, scaled by 1/(lx ls)
+  std::vector<double> inverse_spectrum_;  // [hx * ls], 1 / max(spectrum, floor), scaled
+  Eigen::MatrixXd dense_;                 // [N x N] for dense products, else empty [m/Pa]
 
   // Scratch reused by every Apply (hence mutable): the operator is not safe for concurrent
   // Apply calls from several threads; give each thread its own operator.
-  mutable Eigen::FFT<double> fft_;
-  mutable std::vector<double> x_real_;    // [lx_], entries >= row length stay zero
-  mutable std::vector<double> x_out_;     // [lx_]
-  mutable std::vector<Complex> x_half_;   // [hx_]
-  mutable std::vector<Complex> rows_;     // [hx_ * ls_]
-  mutable std::vector<Complex> s_line_;   // [ls_]
-  mutable std::vector<Complex> s_out_;    // [ls_]
-  mutable std::vector<Complex> cropped_;  // [ns_ * hx_], s-major for the inverse x FFTs
+  internal::PaddedFft2d fft_;
+  mutable internal::FftwBuffer<Complex> work_;  // [hx * ls]
 };
 
 // ---------------------------------------------------------------------------------------------
 // Curved grid: C depends on (i_x - j_x, i_s, j_s), even in the x offset. FFT along x, one real
 // ns x ns matrix per x frequency k = 0 .. lx/2.
+//
+// The x transforms are batched over the ns rows and write (read) their spectra straight into
+// (from) the ns x 2 hx matrices the per-frequency blocks multiply: FFTW's split-complex guru
+// interface puts bin k's real parts in column 2k and its imaginary parts in column 2k + 1, so
+// there is no transpose and no copy between transforms and products.
 class CurvedFftOperator final : public InfluenceOperator {
  public:
-  CurvedFftOperator(const PatchGrid& grid, const internal::KernelCoefficients& coefficients)
+  CurvedFftOperator(const PatchGrid& grid, const internal::KernelCoefficients& coefficients,
+                    bool dense_products)
       : nx_(grid.nx),
         ns_(grid.ns),
-        lx_(RealFftSize(grid.nx)),
+        lx_(internal::RealFftSize(grid.nx)),
         hx_(lx_ / 2 + 1),
         diagonal_(grid.ns),
-        fft_(MakeFft()),
-        x_real_(lx_, 0.0),
-        x_out_(lx_, 0.0),
-        x_half_(hx_),
-        p_hat_(grid.ns, 2 * hx_),
-        u_hat_(grid.ns, 2 * hx_) {
+        padded_in_(static_cast<size_t>(ns_) * lx_),
+        padded_out_(static_cast<size_t>(ns_) * lx_),
+        p_hat_(static_cast<size_t>(ns_) * 2 * hx_),
+        u_hat_(static_cast<size_t>(ns_) * 2 * hx_) {
     // Kernel on x offsets d >= 0 (nx * ns^2 evaluations): values(js * ns + is, d).
     const int pairs = ns_ * ns_;
     Eigen::MatrixXd values(pairs, nx_);
@@ -220,6 +182,18 @@ class CurvedFftOperator final : public InfluenceOperator {
       }
     }
     for (int j = 0; j < ns_; ++j) diagonal_[j] = values(j * ns_ + j, 0);
+    if (dense_products) {
+      dense_.resize(size(), size());
+      for (int js = 0; js < ns_; ++js) {
+        for (int jx = 0; jx < nx_; ++jx) {
+          for (int is = 0; is < ns_; ++is) {
+            for (int ix = 0; ix < nx_; ++ix) {
+              dense_(is * nx_ + ix, js * nx_ + jx) = values(js * ns_ + is, std::abs(ix - jx));
+            }
+          }
+        }
+      }
+    }
     // Spectrum of the even extension: K_k = sum_d w_d c(d) cos(2 pi k d / lx), w_0 = 1 and
     // w_d = 2, with the unscaled inverse FFT's 1/lx folded in. One product for all pairs;
     // column k of kernel_ is K_k stored column-major (ns x ns).
@@ -233,15 +207,25 @@ class CurvedFftOperator final : public InfluenceOperator {
     }
     kernel_.noalias() = values * cosines;
     MakeInverseBlocks();
-    // Build the FFT plans now, so Apply does not allocate.
-    fft_.fwd(x_half_.data(), x_real_.data(), lx_);
-    fft_.inv(x_out_.data(), x_half_.data(), lx_);
+    // Row j of the padded field (x fastest, stride lx) <-> bin k of row j at (j, 2k) and
+    // (j, 2k + 1) of the column-major ns x 2 hx spectrum matrices.
+    const fftw_iodim forward_dims{lx_, 1, 2 * ns_}, forward_rows{ns_, lx_, 1};
+    const fftw_iodim inverse_dims{lx_, 2 * ns_, 1}, inverse_rows{ns_, 1, lx_};
+    forward_ = internal::FftwPlan::Make([&] {
+      return fftw_plan_guru_split_dft_r2c(1, &forward_dims, 1, &forward_rows, padded_in_.data(),
+                                          p_hat_.data(), p_hat_.data() + ns_, FFTW_ESTIMATE);
+    });
+    inverse_ = internal::FftwPlan::Make([&] {
+      return fftw_plan_guru_split_dft_c2r(1, &inverse_dims, 1, &inverse_rows, u_hat_.data(),
+                                          u_hat_.data() + ns_, padded_out_.data(), FFTW_ESTIMATE);
+    });
   }
 
   int size() const override { return nx_ * ns_; }
   double Diagonal(int k) const override { return diagonal_[k / nx_]; }
 
   void Apply(const Eigen::VectorXd& p, Eigen::VectorXd* u) const override {
+    if (dense_.size() > 0) return DenseProduct(dense_, p, u);
     Convolve(p, /*inverse=*/false, u);
   }
 
@@ -281,38 +265,43 @@ class CurvedFftOperator final : public InfluenceOperator {
   }
 
   // out = crop_x(IFFT_x(B_k FFT_x(pad_x(in)))) with B_k = K_k (inverse = false) or
-  // (sym K_k)^-1 (inverse = true) per x frequency k.
+  // (sym K_k)^-1 (inverse = true) per x frequency k. Apply multiplies each constant block with
+  // the real and the imaginary column separately (two matrix-vector products): Eigen treats a
+  // 2-column right-hand side as a matrix product (GEMM) and repacks the whole block on every
+  // call (gemm_pack_lhs, issue 18). The preconditioner's triangular solves keep the 2-column
+  // form: per-column solves were no faster in the solve benchmarks and move the rounding of the
+  // calibration fit's rank-deficient test case (InfluenceFit, condition number 400 -> 94).
   void Convolve(const Eigen::VectorXd& p, bool inverse, Eigen::VectorXd* u) const {
     RAILWEAR_CHECK(p.size() == size());
     for (int j = 0; j < ns_; ++j) {
       std::copy(p.data() + static_cast<size_t>(j) * nx_,
-                p.data() + static_cast<size_t>(j + 1) * nx_, x_real_.begin());
-      fft_.fwd(x_half_.data(), x_real_.data(), lx_);
-      for (int k = 0; k < hx_; ++k) {
-        p_hat_(j, 2 * k) = x_half_[k].real();
-        p_hat_(j, 2 * k + 1) = x_half_[k].imag();
-      }
+                p.data() + static_cast<size_t>(j + 1) * nx_,
+                padded_in_.data() + static_cast<size_t>(j) * lx_);
     }
+    fftw_execute(forward_.get());
+    const Eigen::Map<const Eigen::MatrixXd> p_hat(p_hat_.data(), ns_, 2 * hx_);
+    Eigen::Map<Eigen::MatrixXd> u_hat(u_hat_.data(), ns_, 2 * hx_);
     if (inverse) {
       // L L^T z = p / lx (the unscaled inverse FFT's factor), both columns at once.
-      u_hat_ = p_hat_ * (1.0 / lx_);
+      u_hat = p_hat * (1.0 / lx_);
       for (int k = 0; k < hx_; ++k) {
         const Eigen::Map<const Eigen::MatrixXd> l_k(factor_.col(k).data(), ns_, ns_);
-        auto z_k = u_hat_.middleCols<2>(2 * k);
+        auto z_k = u_hat.middleCols<2>(2 * k);
         l_k.triangularView<Eigen::Lower>().solveInPlace(z_k);
         l_k.transpose().triangularView<Eigen::Upper>().solveInPlace(z_k);
       }
     } else {
       for (int k = 0; k < hx_; ++k) {
         const Eigen::Map<const Eigen::MatrixXd> k_k(kernel_.col(k).data(), ns_, ns_);
-        u_hat_.middleCols<2>(2 * k).noalias() = k_k * p_hat_.middleCols<2>(2 * k);
+        u_hat.col(2 * k).noalias() = k_k * p_hat.col(2 * k);
+        u_hat.col(2 * k + 1).noalias() = k_k * p_hat.col(2 * k + 1);
       }
     }
+    fftw_execute(inverse_.get());  // overwrites u_hat_
     if (u->size() != size()) u->resize(size());
     for (int j = 0; j < ns_; ++j) {
-      for (int k = 0; k < hx_; ++k) x_half_[k] = Complex(u_hat_(j, 2 * k), u_hat_(j, 2 * k + 1));
-      fft_.inv(x_out_.data(), x_half_.data(), lx_);
-      std::copy(x_out_.begin(), x_out_.begin() + nx_, u->data() + static_cast<size_t>(j) * nx_);
+      const double* row = padded_out_.data() + static_cast<size_t>(j) * lx_;
+      std::copy(row, row + nx_, u->data() + static_cast<size_t>(j) * nx_);
     }
   }
 
@@ -320,29 +309,34 @@ class CurvedFftOperator final : public InfluenceOperator {
   Eigen::VectorXd diagonal_;  // [ns], C_kk depends on the s index only
   Eigen::MatrixXd kernel_;    // [ns^2 x hx_]: column k is K_k (ns x ns, column-major)
   Eigen::MatrixXd factor_;    // [ns^2 x hx_]: column k is L_k, sym K_k = L_k L_k^T [m/Pa]
+  Eigen::MatrixXd dense_;     // [N x N] for dense products, else empty [m/Pa]
 
   // Scratch reused by every Apply (hence mutable): not safe for concurrent Apply calls.
-  mutable Eigen::FFT<double> fft_;
-  mutable std::vector<double> x_real_;   // [lx_], entries >= nx_ stay zero
-  mutable std::vector<double> x_out_;    // [lx_]
-  mutable std::vector<Complex> x_half_;  // [hx_]
-  mutable Eigen::MatrixXd p_hat_;        // [ns x 2 hx_]: (real, imag) column pair per bin
-  mutable Eigen::MatrixXd u_hat_;        // [ns x 2 hx_]
+  mutable internal::FftwBuffer<double> padded_in_;   // [ns * lx], x entries >= nx stay zero
+  mutable internal::FftwBuffer<double> padded_out_;  // [ns * lx]
+  mutable internal::FftwBuffer<double> p_hat_;  // [ns x 2 hx_] column-major: (real, imag) per bin
+  mutable internal::FftwBuffer<double> u_hat_;  // [ns x 2 hx_]
+  internal::FftwPlan forward_;                  // padded_in_ -> p_hat_
+  internal::FftwPlan inverse_;                  // u_hat_ -> padded_out_ (overwrites u_hat_)
 };
 
 }  // namespace
 
 std::unique_ptr<InfluenceOperator> MakeInfluenceOperator(const PatchGrid& grid,
-                                                         const InfluenceSettings& settings) {
+                                                         const InfluenceSettings& settings,
+                                                         OperatorProducts products) {
   internal::CheckGrid(grid);
   const internal::KernelCoefficients coefficients = internal::MakeKernelCoefficients(settings);
-  if (grid.planar) return std::make_unique<PlanarFftOperator>(grid, coefficients);
-  return std::make_unique<CurvedFftOperator>(grid, coefficients);
+  const bool dense = products == OperatorProducts::kDense ||
+                     (products == OperatorProducts::kAuto && grid.cells() <= kDenseProductMaxCells);
+  if (grid.planar) return std::make_unique<PlanarFftOperator>(grid, coefficients, dense);
+  return std::make_unique<CurvedFftOperator>(grid, coefficients, dense);
 }
 
 double EstimateOperatorBytes(int nx, int ns, bool planar) {
   const double n_x = nx, n_s = ns;
-  const double doubles = planar ? 8.0 * (2.0 * n_x) * (2.0 * n_s) : 2.0 * (n_x + 1.0) * n_s * n_s;
+  double doubles = planar ? 8.0 * (2.0 * n_x) * (2.0 * n_s) : 2.0 * (n_x + 1.0) * n_s * n_s;
+  if (nx * ns <= kDenseProductMaxCells) doubles += (n_x * n_s) * (n_x * n_s);  // kAuto's matrix
   return doubles * sizeof(double);
 }
 

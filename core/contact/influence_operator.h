@@ -23,8 +23,11 @@
 // cross-section (FFT along x, a dense ns x ns block per frequency: memory (L/2 + 1) ns^2
 // doubles, L >= 2 nx - 1; construction nx ns^2 kernel evaluations), Toeplitz in x and s for a
 // planar one (2-D FFT; nx ns kernel evaluations). Both embed the Toeplitz matrix in a circulant
-// one with zero padding, so they reproduce the dense matrix to rounding (~1e-15 relative). A
-// dense matrix serves as the naive reference on small grids.
+// one with zero padding, so they reproduce the dense matrix to rounding (~1e-15 relative). The
+// FFTs are FFTW's, planned once per operator (FFTW_ESTIMATE: bit-reproducible from run to run).
+// On tiny grids (at most kDenseProductMaxCells cells) the products use the full matrix expanded
+// from the same coefficients instead, which beats the FFTs' fixed costs (OperatorProducts). A
+// dense matrix assembled cell by cell serves as the naive reference on small grids.
 //
 // Approximate inverses (ApplyPreconditioner), the same structure run backwards: the planar
 // operator divides by the circulant embedding's spectrum (2-D FFT, the cost of one Apply), the
@@ -38,7 +41,8 @@
 // Comput. Phys. 2014).
 //
 // Threads: the FFT operators keep scratch buffers for Apply (no allocation per call), so one
-// operator must not be applied from several threads at once; build one per thread.
+// operator must not be applied from several threads at once; build one per thread (building
+// them in several threads at once is safe: FFTW's planner runs under a mutex).
 #pragma once
 
 #include <memory>
@@ -81,13 +85,29 @@ struct InfluenceSettings {
   int rail_curvature_sign = 0;
 };
 
+// How the operator's products C p are formed.
+//   kAuto:  kDense on grids of at most kDenseProductMaxCells cells, kFft above.
+//   kFft:   the FFT convolution (O(N log N) per product on planar grids, N^1.5 on curved ones).
+//   kDense: the full matrix expanded from the same Toeplitz coefficients (N^2 doubles, N^2
+//           multiply-adds per product): faster than the FFTs' fixed costs on tiny grids.
+// Either way the coefficients, Diagonal() and the FFT-based preconditioner are the same; the
+// products agree to rounding (~1e-15 relative).
+enum class OperatorProducts { kAuto, kFft, kDense };
+
+// The crossover of OperatorProducts::kAuto [cells]: 121 (the 11 x 11 grids of a creep table).
+// Measured with influence_bench's Apply families (docs/speed.md): dense products are ~15 %
+// faster at 11 x 11, the FFTs from 12 x 12 on, on planar and curved grids alike. Defined in the
+// .cpp so that re-tuning it rebuilds one file.
+extern const int kDenseProductMaxCells;
+
 // Chooses the fastest exact-structure implementation for the grid (2-D FFT when grid.planar,
-// x-Toeplitz FFT otherwise). grid.planar promises a straight cross-section with points at
-// uniform spacing ds_m along one tangent and one normal (to 1e-9 relative); a grid that breaks
-// the promise is a bug and aborts. Throws InputError for a material with E <= 0 or nu outside
-// [0, 0.5).
-std::unique_ptr<InfluenceOperator> MakeInfluenceOperator(const PatchGrid& grid,
-                                                         const InfluenceSettings& settings);
+// x-Toeplitz FFT otherwise; products as `products` says). grid.planar promises a straight
+// cross-section with points at uniform spacing ds_m along one tangent and one normal (to 1e-9
+// relative); a grid that breaks the promise is a bug and aborts. Throws InputError for a
+// material with E <= 0 or nu outside [0, 0.5).
+std::unique_ptr<InfluenceOperator> MakeInfluenceOperator(
+    const PatchGrid& grid, const InfluenceSettings& settings,
+    OperatorProducts products = OperatorProducts::kAuto);
 
 // Memory the operator MakeInfluenceOperator builds for a grid of this shape would hold [bytes]
 // (an estimate within a factor of about 2: the curved operator's per-frequency blocks and their

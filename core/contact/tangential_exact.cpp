@@ -12,11 +12,11 @@
 #include <vector>
 
 #include <Eigen/Cholesky>
-#include <unsupported/Eigen/FFT>
 
 #include "core/contact/influence_operator.h"
 #include "core/numerics/check.h"
 #include "core/numerics/fft_size.h"
+#include "core/numerics/fftw.h"
 #include "core/numerics/input_error.h"
 
 namespace railwear {
@@ -130,8 +130,6 @@ class RollingKernel {
   double dx_, ds_;
 };
 
-using internal::NextFftSize;
-
 // Columns per block of the sweep (see the header): balances the direct refreshes inside a block
 // (about cells_loaded * (block / 2) * mean loaded column length multiply-adds per sweep) against
 // the FFT products between blocks (nx / block per sweep, each about lx ls log2(lx ls) work for
@@ -139,7 +137,7 @@ using internal::NextFftSize;
 // 70 x 80, best block 16 to 24 columns), converts the FFT work to refresh units.
 constexpr double kBlockCostRatio = 2.0;
 int FftBlockColumns(int nx, int ns, int cells_loaded, double mean_column_length) {
-  const double lx = NextFftSize(2 * nx - 1, 4), ls = NextFftSize(2 * ns - 1, 1);
+  const double lx = internal::RealFftSize(nx), ls = internal::ComplexFftSize(ns);
   const double product = lx * ls * std::log2(lx * ls);
   const double refresh = std::max(1.0, 0.5 * cells_loaded * mean_column_length);
   const double k = std::sqrt(kBlockCostRatio * nx * product / refresh);
@@ -189,109 +187,64 @@ class DenseRollingOperator final : public RollingOperator {
 
 // 2-D Toeplitz products by FFT: each block's generator on offsets d in (-nx, nx), e in (-ns, ns)
 // is wrapped into an lx by ls circulant (lx >= 2 nx - 1, ls >= 2 ns - 1: linear, not periodic,
-// convolution). B is not even in d, so the spectra are complex. Real FFTs along x (half
-// spectrum, hx = lx/2 + 1 bins), complex FFTs along s; spectra stored bin-major [kx * ls + ks].
+// convolution). B is not even in d, so the spectra are complex. internal::PaddedFft2d (FFTW):
+// real FFTs along x (half spectrum, hx = lx/2 + 1 bins), complex FFTs along s; spectra stored
+// s-major [ks * hx + kx].
 class FftRollingOperator final : public RollingOperator {
  public:
   FftRollingOperator(const PatchGrid& grid, const RollingKernel& kernel)
       : nx_(grid.nx),
         ns_(grid.ns),
-        lx_(NextFftSize(2 * grid.nx - 1, 4)),
-        hx_(lx_ / 2 + 1),
-        ls_(NextFftSize(2 * grid.ns - 1, 1)),
-        x_real_(lx_, 0.0),
-        x_half_(hx_),
-        s_line_(ls_),
-        s_out_(ls_),
-        qx_hat_(static_cast<size_t>(hx_) * ls_),
-        qs_hat_(static_cast<size_t>(hx_) * ls_),
-        out_hat_(static_cast<size_t>(hx_) * ls_) {
-    fft_.SetFlag(Eigen::FFT<double>::Unscaled);
-    fft_.SetFlag(Eigen::FFT<double>::HalfSpectrum);
-    const size_t size = static_cast<size_t>(lx_) * ls_;
+        fft_(grid.nx, grid.ns),
+        spec_xx_(fft_.NewSpectrum()),
+        spec_xs_(fft_.NewSpectrum()),
+        spec_ss_(fft_.NewSpectrum()),
+        qx_hat_(fft_.NewSpectrum()),
+        qs_hat_(fft_.NewSpectrum()),
+        out_hat_(fft_.NewSpectrum()) {
+    const int lx = fft_.lx(), ls = fft_.ls();
+    const size_t size = static_cast<size_t>(lx) * ls;
     std::vector<double> gxx(size, 0.0), gxs(size, 0.0), gss(size, 0.0);
     for (int e = -(ns_ - 1); e <= ns_ - 1; ++e) {
       for (int d = -(nx_ - 1); d <= nx_ - 1; ++d) {
         const TangentialBlock b = kernel(d, e);
         const size_t k =
-            static_cast<size_t>((e + ls_) % ls_) * lx_ + static_cast<size_t>((d + lx_) % lx_);
+            static_cast<size_t>((e + ls) % ls) * lx + static_cast<size_t>((d + lx) % lx);
         gxx[k] = b.xx;
         gxs[k] = b.xs;
         gss[k] = b.ss;
       }
     }
     // The unscaled inverse transforms need 1 / (lx ls); fold it into the spectra.
-    const double scale = 1.0 / (static_cast<double>(lx_) * ls_);
-    spec_xx_ = Forward(gxx.data(), ls_, lx_, scale);
-    spec_xs_ = Forward(gxs.data(), ls_, lx_, scale);
-    spec_ss_ = Forward(gss.data(), ls_, lx_, scale);
-    // Warm the plans so that Apply does not allocate.
-    Eigen::VectorXd z = Eigen::VectorXd::Zero(nx_ * ns_), a, b;
-    Apply(z, z, &a, &b);
+    const double scale = 1.0 / (static_cast<double>(lx) * ls);
+    for (auto [g, spec] : {std::pair{&gxx, &spec_xx_}, {&gxs, &spec_xs_}, {&gss, &spec_ss_}}) {
+      fft_.ForwardGenerator(g->data(), spec->data());
+      for (size_t k = 0; k < spec->size(); ++k) (*spec)[k] *= scale;
+    }
   }
 
   void Apply(const Eigen::VectorXd& qx, const Eigen::VectorXd& qs, Eigen::VectorXd* sx,
              Eigen::VectorXd* ss) const override {
-    ForwardInto(qx.data(), ns_, nx_, &qx_hat_);
-    ForwardInto(qs.data(), ns_, nx_, &qs_hat_);
-    for (size_t k = 0; k < out_hat_.size(); ++k) {
+    fft_.Forward(qx.data(), qx_hat_.data());
+    fft_.Forward(qs.data(), qs_hat_.data());
+    const size_t n = out_hat_.size();
+    for (size_t k = 0; k < n; ++k)
       out_hat_[k] = spec_xx_[k] * qx_hat_[k] + spec_xs_[k] * qs_hat_[k];
-    }
-    Inverse(sx);
-    for (size_t k = 0; k < out_hat_.size(); ++k) {
+    if (sx->size() != nx_ * ns_) sx->resize(nx_ * ns_);
+    fft_.Inverse(out_hat_.data(), sx->data());
+    for (size_t k = 0; k < n; ++k)
       out_hat_[k] = spec_xs_[k] * qx_hat_[k] + spec_ss_[k] * qs_hat_[k];
-    }
-    Inverse(ss);
+    if (ss->size() != nx_ * ns_) ss->resize(nx_ * ns_);
+    fft_.Inverse(out_hat_.data(), ss->data());
   }
 
  private:
-  std::vector<Complex> Forward(const double* data, int n_rows, int row_length, double scale) const {
-    std::vector<Complex> out(static_cast<size_t>(hx_) * ls_);
-    ForwardInto(data, n_rows, row_length, &out);
-    for (Complex& c : out) c *= scale;
-    return out;
-  }
-
-  // 2-D FFT of n_rows s-rows of row_length x-values (the rest zero padding) into out.
-  void ForwardInto(const double* data, int n_rows, int row_length,
-                   std::vector<Complex>* out) const {
-    std::fill(out->begin(), out->end(), Complex(0.0, 0.0));
-    std::fill(x_real_.begin(), x_real_.end(), 0.0);
-    for (int j = 0; j < n_rows; ++j) {
-      std::copy(data + static_cast<size_t>(j) * row_length,
-                data + static_cast<size_t>(j + 1) * row_length, x_real_.begin());
-      fft_.fwd(x_half_.data(), x_real_.data(), lx_);
-      for (int kx = 0; kx < hx_; ++kx) (*out)[static_cast<size_t>(kx) * ls_ + j] = x_half_[kx];
-    }
-    for (int kx = 0; kx < hx_; ++kx) {
-      Complex* row = out->data() + static_cast<size_t>(kx) * ls_;
-      fft_.fwd(s_line_.data(), row, ls_);
-      std::copy(s_line_.begin(), s_line_.end(), row);
-    }
-  }
-
-  // out = crop(IFFT2(out_hat_)).
-  void Inverse(Eigen::VectorXd* out) const {
-    for (int kx = 0; kx < hx_; ++kx) {
-      Complex* row = out_hat_.data() + static_cast<size_t>(kx) * ls_;
-      fft_.inv(s_out_.data(), row, ls_);
-      std::copy(s_out_.begin(), s_out_.end(), row);
-    }
-    if (out->size() != nx_ * ns_) out->resize(nx_ * ns_);
-    for (int j = 0; j < ns_; ++j) {
-      for (int kx = 0; kx < hx_; ++kx) x_half_[kx] = out_hat_[static_cast<size_t>(kx) * ls_ + j];
-      fft_.inv(x_real_.data(), x_half_.data(), lx_);
-      std::copy(x_real_.begin(), x_real_.begin() + nx_, out->data() + static_cast<size_t>(j) * nx_);
-    }
-  }
-
-  int nx_, ns_, lx_, hx_, ls_;
-  std::vector<Complex> spec_xx_, spec_xs_, spec_ss_;  // [hx_ * ls_], scaled by 1/(lx ls)
+  using Spectrum = internal::FftwBuffer<internal::FftwComplex>;
+  int nx_, ns_;
+  internal::PaddedFft2d fft_;
+  Spectrum spec_xx_, spec_xs_, spec_ss_;  // [hx * ls], scaled by 1/(lx ls)
   // Scratch (hence mutable; not for concurrent use).
-  mutable Eigen::FFT<double> fft_;
-  mutable std::vector<double> x_real_;
-  mutable std::vector<Complex> x_half_, s_line_, s_out_;
-  mutable std::vector<Complex> qx_hat_, qs_hat_, out_hat_;
+  mutable Spectrum qx_hat_, qs_hat_, out_hat_;
 };
 
 // Anderson acceleration (type II, Walker & Ni 2011) of the fixed-point map x -> G(x) of one

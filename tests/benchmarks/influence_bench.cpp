@@ -5,10 +5,13 @@
 // Grids are built directly (uniform line / arc, 0.1 mm cells, zero gap); E = 210 GPa,
 // nu = 0.28 for both bodies.
 //
+// Apply families: the last argument picks the products (0 FFT, 1 dense; OperatorProducts).
+//
 // Run: build/tests/benchmarks/influence_bench --benchmark_repetitions=3
 //        --benchmark_report_aggregates_only=true
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include <benchmark/benchmark.h>
 
@@ -43,10 +46,17 @@ void BM_PlanarBoussinesqConstruct(benchmark::State& state) {
   SetCounters(state, grid);
 }
 
+// The products' last argument: 0 FFT, 1 dense (OperatorProducts; kAuto picks dense up to
+// kDenseProductMaxCells cells, the crossover these two measure).
+OperatorProducts ProductsArg(int64_t arg) {
+  return arg == 0 ? OperatorProducts::kFft : OperatorProducts::kDense;
+}
+
 void BM_PlanarBoussinesqApply(benchmark::State& state) {
   const PatchGrid grid =
       MakeGrid(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)), true);
-  const auto op = MakeInfluenceOperator(grid, MakeSettings(KernelModel::kBoussinesq));
+  const auto op = MakeInfluenceOperator(grid, MakeSettings(KernelModel::kBoussinesq),
+                                        ProductsArg(state.range(2)));
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> pressure(0.0, 1e9);
   Eigen::VectorXd p(grid.cells()), u;
@@ -72,7 +82,8 @@ void BM_CurvedGolubenkoConstruct(benchmark::State& state) {
 void BM_CurvedGolubenkoApply(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const PatchGrid grid = MakeGrid(n, n, false);
-  const auto op = MakeInfluenceOperator(grid, MakeSettings(KernelModel::kGolubenko));
+  const auto op = MakeInfluenceOperator(grid, MakeSettings(KernelModel::kGolubenko),
+                                        ProductsArg(state.range(1)));
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> pressure(0.0, 1e9);
   Eigen::VectorXd p(grid.cells()), u;
@@ -105,13 +116,21 @@ BENCHMARK(BM_PlanarBoussinesqConstruct)
     ->Arg(512)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PlanarBoussinesqApply)
-    ->Args({32, 32})
-    ->Args({64, 64})
-    ->Args({71, 81})
-    ->Args({128, 128})
-    ->Args({256, 256})
-    ->Args({512, 512})
-    ->Args({575, 647})
+    ->Apply([](benchmark::internal::Benchmark* b) {
+      for (auto [nx, ns] : {std::pair{32, 32},
+                            {64, 64},
+                            {71, 81},
+                            {128, 128},
+                            {256, 256},
+                            {512, 512},
+                            {575, 647}}) {
+        b->Args({nx, ns, 0});
+      }
+      // The dense-product crossover.
+      for (int n : {6, 8, 10, 11, 12, 13, 14, 16, 20, 25}) {
+        for (int dense : {0, 1}) b->Args({n, n, dense});
+      }
+    })
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CurvedGolubenkoConstruct)
     ->Arg(20)
@@ -121,11 +140,11 @@ BENCHMARK(BM_CurvedGolubenkoConstruct)
     ->Arg(100)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CurvedGolubenkoApply)
-    ->Arg(20)
-    ->Arg(45)
-    ->Arg(60)
-    ->Arg(80)
-    ->Arg(100)
+    ->Apply([](benchmark::internal::Benchmark* b) {
+      for (int n : {20, 45, 60, 80, 100}) b->Args({n, 0});
+      for (int n : {6, 8, 10, 11, 12, 13, 14, 16, 20, 25}) b->Args({n, 1});
+      for (int n : {6, 8, 10, 11, 12, 13, 14, 16, 25}) b->Args({n, 0});
+    })
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CurvedGolubenkoDenseApply)->Arg(20)->Arg(45)->Unit(benchmark::kMillisecond);
 

@@ -418,10 +418,13 @@ TEST(CellKernel, RejectsBadMaterialWithMessage) {
 
 // ----- fast operators versus dense -----------------------------------------------------------
 
-void ExpectFastEqualsDense(const PatchGrid& grid, const InfluenceSettings& settings) {
-  SCOPED_TRACE(::testing::Message() << "nx=" << grid.nx << " ns=" << grid.ns << " planar="
-                                    << grid.planar << " " << ToString(settings.kernel));
-  const auto fast = MakeInfluenceOperator(grid, settings);
+void ExpectFastEqualsDense(const PatchGrid& grid, const InfluenceSettings& settings,
+                           OperatorProducts products) {
+  SCOPED_TRACE(::testing::Message()
+               << "nx=" << grid.nx << " ns=" << grid.ns << " planar=" << grid.planar << " "
+               << ToString(settings.kernel)
+               << " dense products=" << (products == OperatorProducts::kDense));
+  const auto fast = MakeInfluenceOperator(grid, settings, products);
   const auto dense = MakeDenseInfluenceOperator(grid, settings);
   ASSERT_EQ(fast->size(), grid.cells());
   ASSERT_EQ(dense->size(), grid.cells());
@@ -445,6 +448,46 @@ void ExpectFastEqualsDense(const PatchGrid& grid, const InfluenceSettings& setti
   for (int k = 0; k < grid.cells(); ++k) {
     EXPECT_NEAR(fast->Diagonal(k), dense->Diagonal(k),
                 kFastVersusDenseTolerance * dense->Diagonal(k));
+  }
+}
+
+// Both product paths of the fast operators (FFT, and the dense matrix expanded from the same
+// Toeplitz coefficients) against the dense reference assembled cell by cell.
+void ExpectFastEqualsDense(const PatchGrid& grid, const InfluenceSettings& settings) {
+  for (OperatorProducts products : {OperatorProducts::kFft, OperatorProducts::kDense}) {
+    ExpectFastEqualsDense(grid, settings, products);
+  }
+}
+
+TEST(InfluenceOperator, AutoProductsAreDenseOnTinyGridsAndFftAbove) {
+  // The paths agree only to rounding, so which one ran shows in the last bits. On either path
+  // the preconditioner is the same FFT-based inverse, bit for bit.
+  const InfluenceSettings settings = MakeDissimilarSettings(KernelModel::kGolubenko);
+  for (bool planar : {true, false}) {
+    for (int n : {11, 20}) {
+      SCOPED_TRACE(::testing::Message() << "planar=" << planar << " n=" << n);
+      const PatchGrid grid = planar ? MakePlanarGrid(n, n, 2e-4, 3e-4, 0.3, {1e-3, -2e-3})
+                                    : MakeArcGrid(n, n, 2e-4, 4e-4, 10e-3);
+      const bool tiny = grid.cells() <= kDenseProductMaxCells;
+      ASSERT_EQ(tiny, n == 11);
+      const auto automatic = MakeInfluenceOperator(grid, settings);
+      const auto fft = MakeInfluenceOperator(grid, settings, OperatorProducts::kFft);
+      const auto dense = MakeInfluenceOperator(grid, settings, OperatorProducts::kDense);
+      std::mt19937 rng(7);
+      std::uniform_real_distribution<double> pressure(0.0, 2e9);
+      Eigen::VectorXd p(grid.cells());
+      for (int k = 0; k < p.size(); ++k) p[k] = pressure(rng);
+      Eigen::VectorXd u_auto, u_fft, u_dense;
+      automatic->Apply(p, &u_auto);
+      fft->Apply(p, &u_fft);
+      dense->Apply(p, &u_dense);
+      EXPECT_NE(u_fft, u_dense);  // rounding differs somewhere
+      EXPECT_EQ(u_auto, tiny ? u_dense : u_fft);
+      Eigen::VectorXd z_fft, z_dense;
+      ASSERT_TRUE(fft->ApplyPreconditioner(u_fft, &z_fft));
+      ASSERT_TRUE(dense->ApplyPreconditioner(u_fft, &z_dense));
+      EXPECT_EQ(z_fft, z_dense);
+    }
   }
 }
 

@@ -1,0 +1,144 @@
+// FFTW wrapper (core/numerics/fftw.h) and FFT lengths (core/numerics/fft_size.h): the padded
+// transforms against a naive linear convolution, bit-reproducible plans, plans made from several
+// threads at once, and the lengths' properties against a naive search.
+#include "core/numerics/fftw.h"
+
+#include <cmath>
+#include <random>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/numerics/fft_size.h"
+
+namespace railwear::internal {
+namespace {
+
+// Relative error of an FFT convolution against the direct sum: a few ulps times log2(lx ls)
+// growth, far above double rounding (1e-16) and far below any indexing or padding error (O(1)).
+constexpr double kConvolutionTolerance = 1e-13;
+
+std::vector<double> RandomField(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::vector<double> f(n);
+  for (double& v : f) v = value(rng);
+  return f;
+}
+
+// out = crop(IFFT2(FFT2(generator) * FFT2(pad(in)))) / (lx ls) with the kernel k(d, e) wrapped
+// into the generator, against sum_j k(ix - jx, is - js) in_j.
+void ExpectLinearConvolution(int nx, int ns) {
+  const PaddedFft2d fft(nx, ns);
+  const int lx = fft.lx(), ls = fft.ls();
+  ASSERT_GE(lx, 2 * nx - 1);
+  ASSERT_GE(ls, 2 * ns - 1);
+  const std::vector<double> kernel = RandomField((2 * nx - 1) * (2 * ns - 1), 3);
+  auto k = [&](int d, int e) { return kernel[(e + ns - 1) * (2 * nx - 1) + d + nx - 1]; };
+  std::vector<double> generator(static_cast<size_t>(lx) * ls, 0.0);
+  for (int e = -(ns - 1); e < ns; ++e) {
+    for (int d = -(nx - 1); d < nx; ++d) generator[((e + ls) % ls) * lx + (d + lx) % lx] = k(d, e);
+  }
+  FftwBuffer<FftwComplex> g_hat = fft.NewSpectrum(), f_hat = fft.NewSpectrum();
+  fft.ForwardGenerator(generator.data(), g_hat.data());
+  const std::vector<double> in = RandomField(nx * ns, 5);
+  fft.Forward(in.data(), f_hat.data());
+  for (size_t b = 0; b < f_hat.size(); ++b) f_hat[b] *= g_hat[b] / (static_cast<double>(lx) * ls);
+  std::vector<double> out(nx * ns);
+  fft.Inverse(f_hat.data(), out.data());
+  double scale = 0.0, error = 0.0;
+  for (int is = 0; is < ns; ++is) {
+    for (int ix = 0; ix < nx; ++ix) {
+      double direct = 0.0;
+      for (int js = 0; js < ns; ++js) {
+        for (int jx = 0; jx < nx; ++jx) direct += k(ix - jx, is - js) * in[js * nx + jx];
+      }
+      scale = std::max(scale, std::abs(direct));
+      error = std::max(error, std::abs(direct - out[is * nx + ix]));
+    }
+  }
+  EXPECT_LE(error, kConvolutionTolerance * scale) << nx << " x " << ns;
+}
+
+TEST(PaddedFft2d, IsALinearConvolution) {
+  for (auto [nx, ns] : {std::pair{1, 1}, {1, 6}, {6, 1}, {7, 5}, {11, 11}, {16, 9}}) {
+    ExpectLinearConvolution(nx, ns);
+  }
+}
+
+TEST(PaddedFft2d, ReusedAndRebuiltTransformsAreBitIdentical) {
+  const int nx = 23, ns = 17;
+  const std::vector<double> in = RandomField(nx * ns, 7);
+  auto round_trip = [&](const PaddedFft2d& fft) {
+    FftwBuffer<FftwComplex> hat = fft.NewSpectrum();
+    fft.Forward(in.data(), hat.data());
+    std::vector<double> out(nx * ns);
+    fft.Inverse(hat.data(), out.data());
+    return out;
+  };
+  const PaddedFft2d fft(nx, ns);
+  const std::vector<double> first = round_trip(fft);
+  EXPECT_EQ(round_trip(fft), first);                  // reused plans and buffers
+  EXPECT_EQ(round_trip(PaddedFft2d(nx, ns)), first);  // plans made again
+  for (int k = 0; k < nx * ns; ++k) {
+    EXPECT_NEAR(first[k], fft.lx() * fft.ls() * in[k], 1e-12 * fft.lx() * fft.ls());
+  }
+}
+
+TEST(PaddedFft2d, PlansMadeInSeveralThreadsAtOnceGiveTheSameResults) {
+  // Four threads each plan and run their own transforms of several sizes at the same time
+  // (planning goes through the planner mutex; execution is concurrent).
+  const std::vector<double> in = RandomField(40 * 30, 11);
+  auto run = [&](int nx, int ns) {
+    const PaddedFft2d fft(nx, ns);
+    FftwBuffer<FftwComplex> hat = fft.NewSpectrum();
+    fft.Forward(in.data(), hat.data());
+    std::vector<double> out(nx * ns);
+    fft.Inverse(hat.data(), out.data());
+    return out;
+  };
+  const std::vector<std::pair<int, int>> sizes = {{40, 30}, {13, 29}, {32, 8}, {21, 21}};
+  std::vector<std::vector<double>> expected;
+  for (auto [nx, ns] : sizes) expected.push_back(run(nx, ns));
+  std::vector<std::vector<std::vector<double>>> got(4);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      for (int repeat = 0; repeat < 5; ++repeat) {
+        for (auto [nx, ns] : sizes) got[t].push_back(run(nx, ns));
+      }
+    });
+  }
+  for (std::thread& th : threads) th.join();
+  for (int t = 0; t < 4; ++t) {
+    ASSERT_EQ(got[t].size(), 5 * sizes.size());
+    for (size_t k = 0; k < got[t].size(); ++k) EXPECT_EQ(got[t][k], expected[k % sizes.size()]);
+  }
+}
+
+bool IsSevenSmooth(int l) {
+  for (int p : {2, 3, 5, 7}) {
+    while (l % p == 0) l /= p;
+  }
+  return l == 1;
+}
+
+TEST(FftSize, IsTheSmallestSevenSmoothLengthThatFits) {
+  for (int cells = 1; cells <= 700; ++cells) {
+    const int real = RealFftSize(cells), complex = ComplexFftSize(cells);
+    EXPECT_TRUE(IsSevenSmooth(real) && real % 2 == 0 && real >= 2 * cells - 1) << cells;
+    EXPECT_TRUE(IsSevenSmooth(complex) && complex >= std::max(2, 2 * cells - 1)) << cells;
+    for (int l = std::max(2, 2 * cells - 1); l < real; ++l) {
+      EXPECT_FALSE(IsSevenSmooth(l) && l % 2 == 0) << cells << ": " << l << " < " << real;
+    }
+    for (int l = std::max(2, 2 * cells - 1); l < complex; ++l) {
+      EXPECT_FALSE(IsSevenSmooth(l)) << cells << ": " << l << " < " << complex;
+    }
+  }
+  EXPECT_EQ(RealFftSize(70), 140);     // 139 -> 2^2 5 7 (kissfft's old length: 144)
+  EXPECT_EQ(ComplexFftSize(81), 162);  // 161 = 7 23 -> 2 3^4
+}
+
+}  // namespace
+}  // namespace railwear::internal
