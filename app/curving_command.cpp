@@ -94,7 +94,7 @@ struct StoredRails {
 
 StoredRails StoredStepRails(const CurvingOptions& o, const Scene& scene) {
   const WearStudy& study = *scene.wear;
-  if (o.step && o.step < 0) {
+  if (o.step && *o.step < 0) {
     throw InputError(fmt::format("--step {}: expected a stored step number (0 or more)", *o.step));
   }
   const ProfileStore db = OpenExistingStudy(*o.db);
@@ -130,8 +130,8 @@ void SetupCurving(CLI::App& app) {
   auto o = std::make_shared<CurvingOptions>();
   CLI::App* cmd = app.add_subcommand(
       "curving",
-      "Steady-state curving of a wear scene's vehicle traffic on its unworn rails "
-      "(docs/curving.md)");
+      "Steady-state curving of a wear scene's vehicle traffic on its unworn rails, or with --db "
+      "on a stored wear step's worn rails (docs/curving.md)");
   cmd->add_option("scene", o->scene, "Wear scene with [track], [[vehicle]] and vehicle traffic")
       ->required();
   cmd->add_option("--json", o->json, "Write the equilibria as JSON to FILE ('-': stdout)");
@@ -162,10 +162,9 @@ void RunCurving(const CurvingOptions& o) {
   for (int t = 0; t < static_cast<int>(study.traffic.size()); ++t) {
     const TrafficCase& c = study.traffic[t];
     if (!c.is_vehicle()) continue;
-    const CurvingStart* start = t < static_cast<int>(stored.state.curving.size()) &&
-                                        stored.state.curving[t].state.size() > 0
-                                    ? &stored.state.curving[t]
-                                    : nullptr;
+    // An entry without a stored solution (state empty) starts centred (VehicleCurvingProblem).
+    const CurvingStart* start =
+        t < static_cast<int>(stored.state.curving.size()) ? &stored.state.curving[t] : nullptr;
     const CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low, start);
     const CurvingResult r = SolveCurving(p);
     if (!o.json || *o.json != "-") Print(c, p, r);

@@ -23,6 +23,13 @@ std::string Replace(std::string text, const std::string& from, const std::string
   return text.replace(at, from.size(), to);
 }
 
+// The scene with both rails named and steps of 0.002 mm: a wear run of a few short steps.
+std::string TwoRailWearScene() {
+  return Replace(Replace(kScene, "high_rail = \"builtin:UIC60\"",
+                         "high_rail = \"builtin:UIC60\"\nlow_rail = \"builtin:UIC60\""),
+                 "total_passes = 1e5", "total_passes = 1e5\nmax_depth_per_step_mm = 0.002");
+}
+
 TEST_F(CurvingCommandTest, PrintsTheEquilibriumAndWritesJson) {
   std::ofstream(dir_ / "s.toml") << kScene;
   const Outcome o = Run("curving s.toml --json eq.json");
@@ -43,10 +50,7 @@ TEST_F(CurvingCommandTest, PrintsTheEquilibriumAndWritesJson) {
 // stored with the step (curving_starts); a run stopped after one step and resumed reads it back
 // and ends bit for bit where the uninterrupted run does.
 TEST_F(CurvingCommandTest, WearRunStoresEachStepsCurvingAndResumesFromIt) {
-  const std::string scene =
-      Replace(Replace(kScene, "high_rail = \"builtin:UIC60\"",
-                      "high_rail = \"builtin:UIC60\"\nlow_rail = \"builtin:UIC60\""),
-              "total_passes = 1e5", "total_passes = 1e5\nmax_depth_per_step_mm = 0.002");
+  const std::string scene = TwoRailWearScene();
   std::ofstream(dir_ / "w.toml") << scene;
   const Outcome whole = Run("wear w.toml --db a.sqlite --steps 2");
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
@@ -79,10 +83,7 @@ TEST_F(CurvingCommandTest, WearRunStoresEachStepsCurvingAndResumesFromIt) {
 // `curving --db`: on a stored step's worn rails, from its stored curving, the solve is the one the
 // run's next step makes: step 1's equilibrium is, bit for bit, what the run stored with step 2.
 TEST_F(CurvingCommandTest, OnAStoredStepIsTheRunsNextStepsSolve) {
-  const std::string scene =
-      Replace(Replace(kScene, "high_rail = \"builtin:UIC60\"",
-                      "high_rail = \"builtin:UIC60\"\nlow_rail = \"builtin:UIC60\""),
-              "total_passes = 1e5", "total_passes = 1e5\nmax_depth_per_step_mm = 0.002");
+  const std::string scene = TwoRailWearScene();
   std::ofstream(dir_ / "w.toml") << scene;
   ASSERT_EQ(Run("wear w.toml --db a.sqlite --steps 2").exit_code, 0);
   const std::string before = ReadFile(dir_ / "a.sqlite");
