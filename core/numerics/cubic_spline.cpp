@@ -2,6 +2,7 @@
 #include "core/numerics/cubic_spline.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/numerics/check.h"
 
@@ -12,6 +13,18 @@ CubicSpline::CubicSpline(std::vector<double> t, std::vector<double> v)
   const int n = static_cast<int>(t_.size());
   RAILWEAR_CHECK(n >= 2 && static_cast<int>(v_.size()) == n);
   m_.assign(n, 0.0);
+  // The interval index: one bucket per interval on average, each starting where a sweep over
+  // the knots says (the same interval a binary search gives at the bucket's start).
+  const int buckets = n - 1;
+  bucket_scale_ = buckets / (t_[n - 1] - t_[0]);
+  RAILWEAR_CHECK(std::isfinite(bucket_scale_) && bucket_scale_ > 0.0);
+  bucket_first_.resize(buckets);
+  int i = 0;
+  for (int k = 0; k < buckets; ++k) {
+    const double start = t_[0] + k / bucket_scale_;
+    while (i + 1 < n - 1 && t_[i + 1] <= start) ++i;
+    bucket_first_[k] = i;
+  }
   if (n == 2) return;
   // Thomas algorithm for h_{i-1} m_{i-1} + 2(h_{i-1}+h_i) m_i + h_i m_{i+1} = 6 (d_i - d_{i-1}).
   std::vector<double> c(n, 0.0), d(n, 0.0);
@@ -28,9 +41,16 @@ CubicSpline::CubicSpline(std::vector<double> t, std::vector<double> v)
 }
 
 int CubicSpline::Interval(double t) const {
-  const auto it = std::upper_bound(t_.begin(), t_.end(), t);
-  int i = static_cast<int>(it - t_.begin()) - 1;
-  return std::clamp(i, 0, static_cast<int>(t_.size()) - 2);
+  const int last = static_cast<int>(t_.size()) - 2;  // the last interval
+  if (!(t >= t_[0])) return std::isnan(t) ? last : 0;
+  if (t >= t_[last + 1]) return last;
+  const int k = std::min(static_cast<int>((t - t_[0]) * bucket_scale_),
+                         static_cast<int>(bucket_first_.size()) - 1);
+  int i = bucket_first_[k];
+  // The bucket's start is rounded: step back or on to the last knot at or below t.
+  while (i > 0 && t_[i] > t) --i;
+  while (i < last && t_[i + 1] <= t) ++i;
+  return i;
 }
 
 void CubicSpline::Evaluate(double t, double* value, double* d1, double* d2) const {

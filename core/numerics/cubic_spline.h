@@ -23,10 +23,18 @@ class CubicSpline {
   const std::vector<double>& values() const { return v_; }
 
  private:
+  // The interval [t_i, t_i+1] holding t: the last knot i with t_i <= t, clamped to the first
+  // and last interval (what a binary search over the knots gives), found in O(1) through
+  // bucket_first_.
   int Interval(double t) const;
   std::vector<double> t_;
   std::vector<double> v_;
   std::vector<double> m_;  // second derivatives at the knots
+  // Equal buckets of [t_0, t_n-1): bucket k covers from t_0 + k / bucket_scale_, and
+  // bucket_first_[k] is Interval() at that start. Profiles' knots are nearly equally spaced, so
+  // a lookup walks at most a knot or two from there.
+  double bucket_scale_ = 0.0;
+  std::vector<int> bucket_first_;
 };
 
 }  // namespace railwear
