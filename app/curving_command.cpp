@@ -64,6 +64,8 @@ nlohmann::json Json(const TrafficCase& c, const CurvingProblem& p, const Curving
                        {{"lateral_N", r.lateral_residual_N},
                         {"yaw_Nm", r.yaw_residual_Nm},
                         {"longitudinal_N", r.longitudinal_residual_N}}},
+                      {"largest_scaled_residual", r.largest_scaled_residual},
+                      {"contact_solves", r.contact_solves},
                       {"time_s", r.time_s}};
   for (const CurvedWheelset& w : r.wheelsets) {
     j["wheelsets"].push_back(

@@ -29,7 +29,10 @@
 // returned state and forces are those of the full contact at the scene's accuracy. Where the
 // contact grid's force noise stops the line search: within 3x the tolerance the solve ends there
 // (converged, said in the message); up to 20x the tolerance it ends there too when the Newton
-// correction is within the position tolerances (stiff flange contact: converged in position);
+// correction is within the position tolerances (stiff flange contact: converged in position),
+// or when a probe within the position tolerances along the Newton direction reverses the sign of
+// every residual above the tolerance (a step in the contact forces, as the worn gauge corner's
+// contact switches between one and two patches: converged in position at the step);
 // otherwise one retry with 4x wider finite differences; and a draft solve stalled within 20x the
 // tolerance goes on once on the standard grid (docs/curving.md).
 // A start with its Jacobian (CurvingStart) uses that Jacobian as the first chord: continuation.
