@@ -1,0 +1,277 @@
+// `railwear sweep` past one machine on real engines (issue 19): the same plan gives the same
+// study database, bit for bit (every stored value of every run: RunFingerprint), when run
+// - serially (`sweep` then `sweep --merge`), the reference;
+// - under `mpirun -n 2 --oversubscribe ... --mpi` (Open MPI; both ranks run lines, largest
+//   expected cost first, rank 0 merges);
+// - as the generated Slurm job array's lines, run with SLURM_ARRAY_TASK_ID set, then its merge
+//   job's line (everywhere);
+// - as a real job array and dependent merge job on a single-node Slurm (munged, slurmctld and
+//   slurmd on localhost, started and stopped here; skipped, with the daemons' error, where
+//   Slurm cannot start).
+// Also: a rank killed with SIGKILL, then the sweep run again (nothing lost or doubled); the
+// scripts' resources, array range and index line; the merge job refusing incomplete lines.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <optional>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "profiles_db/profile_store.h"
+#include "tests/app/cli_runner.h"
+#include "tests/app/run_fingerprint.h"
+#include "tests/app/single_node_slurm.h"
+#include "tests/app/wear_scenes.h"
+
+namespace railwear::test {
+namespace {
+
+// The small study of wear_scenes.h cut to 5e4 passes: a few steps, about a second a run.
+std::string ShortStudy() {
+  std::string s = kSmallWearStudy;
+  const std::string from = "total_passes = 4e5";
+  s.replace(s.find(from), from.size(), "total_passes = 5e4");
+  return s;
+}
+
+// Four lines: two wear coefficients x one or three spread nodes. The three-node lines cost
+// three times as much (SweepLineCost): lines 1 and 3 go first.
+const char* const kPlan = R"([sweep]
+scene = "base.toml"
+out_dir = "runs"
+
+[[axis]]
+key = "wear.k"
+values = [1.0e-4, 2.0e-4]
+
+[[axis]]
+key = "wear.quadrature_points"
+values = [1, 3]
+)";
+
+// Open MPI refuses root unless told (CI runs as root).
+constexpr const char* kMpiEnv = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1";
+
+class SweepClusterTest : public CliFixture {
+ protected:
+  void SetUp() override {
+    CliFixture::SetUp();
+    Write("base.toml", ShortStudy());
+    Write("plan.toml", kPlan);
+  }
+  // The manifest's run ids, in order.
+  std::vector<std::string> Ids() const {
+    const Outcome o = Run("sweep plan.toml --list");
+    EXPECT_EQ(o.exit_code, 0) << o.err;
+    std::vector<std::string> ids;
+    std::istringstream in(o.out);
+    for (std::string line; std::getline(in, line);) ids.push_back(line.substr(0, 13));
+    return ids;
+  }
+  // Every run of the study database `db` (relative to dir_), bit for bit, in manifest order,
+  // and how many runs it holds.
+  std::string StudyFingerprint(const std::string& db) const {
+    std::string out;
+    for (const std::string& id : Ids()) out += id + "\n" + RunFingerprint(dir_ / db, id);
+    const ProfileStore store = ProfileStore::OpenReadOnly((dir_ / db).string());
+    return out + "runs: " + std::to_string(store.Runs().size()) + "\n";
+  }
+  // The serial sweep's study, computed once for the suite (in the first test's folder).
+  const std::string& Reference() {
+    static std::optional<std::string> reference;
+    if (!reference) {
+      const Outcome run = Run("sweep plan.toml --out-dir serial --threads 1");
+      EXPECT_EQ(run.exit_code, 0) << run.err;
+      const Outcome merge = Run("sweep plan.toml --out-dir serial --merge");
+      EXPECT_EQ(merge.exit_code, 0) << merge.err;
+      reference = StudyFingerprint("serial.sqlite");
+      EXPECT_EQ(std::count(reference->begin(), reference->end(), '\n') > 20, true);
+      EXPECT_TRUE(Contains(*reference, "runs: 4\n"));
+      EXPECT_EQ(reference->find("no run"), std::string::npos);
+    }
+    return *reference;
+  }
+};
+
+TEST_F(SweepClusterTest, MpirunTwoRanksGivesTheSerialStudyBitForBit) {
+  const std::string& reference = Reference();
+  const Outcome o =
+      Run("sweep plan.toml --mpi", std::string(kMpiEnv) + " mpirun -n 2 --oversubscribe");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(Contains(o.err, "4 line(s) of plan.toml on 2 rank(s), largest expected cost first"))
+      << o.err;
+  // Dispatched largest expected cost first: the three-node lines (1, 3) before the others.
+  const std::regex dispatch(R"(line (\d) \([0-9a-f-]+, expected cost [^)]*\) to rank (\d))");
+  std::vector<int> lines;
+  std::vector<int> ranks;
+  for (std::sregex_iterator it(o.err.begin(), o.err.end(), dispatch), end; it != end; ++it) {
+    lines.push_back(std::stoi((*it)[1].str()));
+    ranks.push_back(std::stoi((*it)[2].str()));
+  }
+  ASSERT_EQ(lines.size(), 4u) << o.err;
+  EXPECT_EQ(lines, (std::vector<int>{1, 3, 0, 2})) << o.err;
+  EXPECT_NE(std::find(ranks.begin(), ranks.end(), 0), ranks.end()) << o.err;  // both ranks ran
+  EXPECT_NE(std::find(ranks.begin(), ranks.end(), 1), ranks.end()) << o.err;
+  EXPECT_EQ(StudyFingerprint("runs.sqlite"), reference);
+
+  // Run again: every line complete and skipped, the merge changes nothing.
+  const Outcome again =
+      Run("sweep plan.toml --mpi", std::string(kMpiEnv) + " mpirun -n 2 --oversubscribe");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_TRUE(Contains(again.err, "complete in runs/")) << again.err;
+  EXPECT_TRUE(Contains(again.out, "0 run(s) copied, 1 already in runs.sqlite")) << again.out;
+  EXPECT_EQ(StudyFingerprint("runs.sqlite"), reference);
+}
+
+// A rank killed with SIGKILL mid-sweep (mpirun then ends the job), and the sweep run again under
+// mpirun: the lines complete before are skipped, the started ones continue, and the merged study
+// is the serial one, nothing lost or doubled.
+TEST_F(SweepClusterTest, MpiRankKilledThenRunAgainGivesTheSerialStudy) {
+  const std::string& reference = Reference();
+  Write("err.txt", "");
+  const std::string err = (dir_ / "err.txt").string();
+  const pid_t mpirun = fork();
+  if (mpirun == 0) {
+    setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+    setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+    const int fd = open(err.c_str(), O_WRONLY | O_APPEND);
+    if (chdir(dir_.c_str()) != 0 || fd < 0) _exit(125);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    execlp("mpirun", "mpirun", "-n", "2", "--oversubscribe", RAILWEAR_BINARY, "sweep", "plan.toml",
+           "--mpi", static_cast<char*>(nullptr));
+    _exit(126);
+  }
+  ASSERT_GT(mpirun, 0);
+  // Once a run has stored its second step, SIGKILL a rank (a child of mpirun).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!Contains(ReadFile(err), "railwear: step 2:") &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const Outcome ranks = Shell("pgrep -P " + std::to_string(mpirun));
+  ASSERT_FALSE(ranks.out.empty()) << ReadFile(err);
+  const pid_t rank = std::stoi(ranks.out);
+  ASSERT_EQ(kill(rank, SIGKILL), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(mpirun, &status, 0), mpirun);
+  EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << ReadFile(err);
+  int complete = 0;
+  for (const std::string& id : Ids()) {
+    const fs::path db = dir_ / "runs" / (id + ".sqlite");
+    if (!fs::exists(db)) continue;
+    const std::optional<RunInfo> run = ProfileStore::OpenReadOnly(db.string()).FindRun(id);
+    complete += run && run->state == RunState::kComplete;
+  }
+  EXPECT_LT(complete, 4) << ReadFile(err);  // the kill cut the sweep short
+  EXPECT_FALSE(fs::exists(dir_ / "runs.sqlite"));
+
+  const Outcome again =
+      Run("sweep plan.toml --mpi", std::string(kMpiEnv) + " mpirun -n 2 --oversubscribe");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(StudyFingerprint("runs.sqlite"), reference);
+}
+
+TEST_F(SweepClusterTest, SlurmScriptsHoldTheArrayResourcesIndexLineAndDependentMerge) {
+  const Outcome o = Run(
+      "sweep plan.toml --slurm --cpus-per-task 2 --time 00:10:00 --mem 1500M --partition debug");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  const std::string runs = fs::weakly_canonical(dir_ / "runs").string();
+  const std::string array = ReadFile(dir_ / "runs/sweep.sbatch");
+  for (const std::string& line :
+       {std::string("#SBATCH --array=0-3\n"), std::string("#SBATCH --cpus-per-task=2\n"),
+        std::string("#SBATCH --time=00:10:00\n"), std::string("#SBATCH --mem=1500M\n"),
+        std::string("#SBATCH --partition=debug\n"),
+        "#SBATCH --output=" + runs + "/logs/sweep_%A_%a.log\n",
+        "sweep '" + fs::weakly_canonical(dir_ / "plan.toml").string() + "' --out-dir '" + runs +
+            "' --threads \"${SLURM_CPUS_PER_TASK:-2}\" --index \"$SLURM_ARRAY_TASK_ID\"\n"}) {
+    EXPECT_TRUE(Contains(array, line)) << line << " in\n" << array;
+  }
+  EXPECT_TRUE(
+      Contains(ReadFile(dir_ / "runs/merge.sbatch"), "--merge --db '" + runs + ".sqlite'\n"));
+  const std::string submit = ReadFile(dir_ / "runs/submit.sh");
+  EXPECT_TRUE(Contains(submit, "array=$(sbatch --parsable \"$@\" '" + runs + "/sweep.sbatch')"));
+  EXPECT_TRUE(Contains(
+      submit, "sbatch --parsable --dependency=afterok:\"$array\" '" + runs + "/merge.sbatch'"));
+  EXPECT_TRUE(fs::is_directory(dir_ / "runs/logs"));
+  EXPECT_TRUE((fs::status(dir_ / "runs/submit.sh").permissions() & fs::perms::owner_exec) !=
+              fs::perms::none);
+  EXPECT_EQ(Run("sweep plan.toml --slurm").exit_code, 0);  // the defaults
+  const std::string defaults = ReadFile(dir_ / "runs/sweep.sbatch");
+  EXPECT_TRUE(Contains(defaults, "--cpus-per-task=1\n#SBATCH --time=01:00:00\n#SBATCH --mem=2G\n"))
+      << defaults;
+  EXPECT_FALSE(Contains(defaults, "--partition"));
+
+  const Outcome time = Run("sweep plan.toml --slurm --time 1h");
+  EXPECT_EQ(time.exit_code, 2);
+  EXPECT_TRUE(Contains(time.err, "--time '1h': expected a Slurm time limit")) << time.err;
+  const Outcome mem = Run("sweep plan.toml --slurm --mem 2GB");
+  EXPECT_EQ(mem.exit_code, 2);
+  EXPECT_TRUE(Contains(mem.err, "--mem '2GB': expected the memory of a task")) << mem.err;
+  EXPECT_EQ(Run("sweep plan.toml --cpus-per-task 2").exit_code, 2);  // needs --slurm
+  EXPECT_EQ(Run("sweep plan.toml --slurm --mpi").exit_code, 2);
+  const Outcome db = Run("sweep plan.toml --db x.sqlite");
+  EXPECT_EQ(db.exit_code, 2);
+  EXPECT_TRUE(Contains(db.err, "expected one of them")) << db.err;
+}
+
+// Where Slurm is not at hand: the generated scripts' lines, run as Slurm would run them.
+TEST_F(SweepClusterTest, SlurmArrayScriptLinesRunWithTaskIdGiveTheSerialStudyBitForBit) {
+  const std::string& reference = Reference();
+  ASSERT_EQ(Run("sweep plan.toml --slurm").exit_code, 0);
+  for (const int task : {3, 0, 2}) {
+    const Outcome o =
+        Shell("SLURM_ARRAY_TASK_ID=" + std::to_string(task) + " bash runs/sweep.sbatch");
+    ASSERT_EQ(o.exit_code, 0) << o.err;
+  }
+  // Line 1 missing: the merge job refuses, names it and how to resubmit it, and writes nothing.
+  const Outcome refused = Shell("bash runs/merge.sbatch");
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_TRUE(Contains(refused.err, "1 of 4 line(s) not complete")) << refused.err;
+  EXPECT_TRUE(Contains(refused.err, "(not run: 1; started, not complete: none)"));
+  EXPECT_TRUE(Contains(refused.err, "sbatch --array=1 "));
+  EXPECT_FALSE(fs::exists(dir_ / "runs.sqlite"));
+  const Outcome one = Shell("SLURM_ARRAY_TASK_ID=1 bash runs/sweep.sbatch");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const Outcome merged = Shell("bash runs/merge.sbatch");
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  EXPECT_EQ(StudyFingerprint("runs.sqlite"), reference);
+}
+
+TEST_F(SweepClusterTest, RealSingleNodeSlurmJobArrayGivesTheSerialStudyBitForBit) {
+  SingleNodeSlurm slurm;
+  const std::string why_not = slurm.Start();
+  if (!why_not.empty()) {
+    GTEST_SKIP() << "a single-node Slurm (munged, slurmctld, slurmd on localhost) cannot start "
+                    "here, so the job array is tested by its script's lines alone "
+                    "(SlurmArrayScriptLinesRunWithTaskId...): "
+                 << why_not;
+  }
+  const std::string& reference = Reference();
+  ASSERT_EQ(Run("sweep plan.toml --slurm --mem 200M --time 5").exit_code, 0);
+  const Outcome submit = Shell(slurm.Env() + " runs/submit.sh");
+  ASSERT_EQ(submit.exit_code, 0) << submit.err;
+  std::smatch m;
+  ASSERT_TRUE(
+      std::regex_search(submit.out, m, std::regex(R"(job array (\d+) .* merge job (\d+) into)")))
+      << submit.out;
+  ASSERT_TRUE(slurm.WaitForEmptyQueue(std::chrono::seconds(180))) << slurm.Logs();
+  EXPECT_EQ(slurm.JobState(m[2].str()), "COMPLETED") << slurm.Logs();
+  for (int task = 0; task < 4; ++task) {
+    const std::string log = "runs/logs/sweep_" + m[1].str() + "_" + std::to_string(task) + ".log";
+    EXPECT_TRUE(Contains(ReadFile(dir_ / log), "railwear: sweep line " + std::to_string(task)))
+        << log;
+  }
+  EXPECT_EQ(StudyFingerprint("runs.sqlite"), reference);
+}
+
+}  // namespace
+}  // namespace railwear::test
