@@ -273,5 +273,84 @@ TEST_F(SweepClusterTest, RealSingleNodeSlurmJobArrayGivesTheSerialStudyBitForBit
   EXPECT_EQ(StudyFingerprint("runs.sqlite"), reference);
 }
 
+// A Slurm array task killed with SIGKILL mid-run (its processes, from scontrol listpids), its
+// merge job left
+// pending (afterok never satisfied), the line resubmitted by index with submit.sh --array=0:
+// the run continues, the new merge job runs, and the study holds exactly the run an
+// uninterrupted `wear` of the line's scene stores, once.
+TEST_F(SweepClusterTest, RealSlurmTaskKilledThenResubmittedByIndexMergesNothingLostOrDoubled) {
+  SingleNodeSlurm slurm;
+  const std::string why_not = slurm.Start();
+  if (!why_not.empty()) {
+    GTEST_SKIP() << "a single-node Slurm (munged, slurmctld, slurmd on localhost) cannot start "
+                    "here: "
+                 << why_not;
+  }
+  // One line of 1e5 passes: 10 steps, long enough to be killed after its second.
+  std::string longer = kSmallWearStudy;
+  longer.replace(longer.find("total_passes = 4e5"), 18, "total_passes = 1e5");
+  Write("long.toml", longer);
+  Write("one.toml",
+        "[sweep]\nscene = \"long.toml\"\nout_dir = \"one\"\n[[axis]]\nkey = \"wear.k\"\n"
+        "values = [2.0e-4]\n");
+  ASSERT_EQ(Run("sweep one.toml --slurm --mem 200M --time 5").exit_code, 0);
+  const std::string id = Run("sweep one.toml --list").out.substr(0, 13);
+  const Outcome submit = Shell(slurm.Env() + " one/submit.sh");
+  ASSERT_EQ(submit.exit_code, 0) << submit.err;
+  std::smatch m;
+  ASSERT_TRUE(
+      std::regex_search(submit.out, m, std::regex(R"(job array (\d+) .* merge job (\d+) into)")))
+      << submit.out;
+  const std::string task = m[1].str() + "_0";
+  const std::string merge_job = m[2].str();
+  const fs::path log = dir_ / "one/logs" / ("sweep_" + task + ".log");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (!Contains(ReadFile(log), "railwear: step 2:") &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(Contains(ReadFile(log), "railwear: step 2:")) << slurm.Logs();
+  // SIGKILL to the task's processes themselves (`scancel --signal=KILL` would cancel the job:
+  // SIGTERM first, SIGKILL only after KillWait).
+  const std::string job_id = Shell(slurm.Env() + " squeue -h -j " + task + " -o %A").out;
+  const Outcome pids =
+      Shell(slurm.Env() + " scontrol listpids " + job_id.substr(0, job_id.find('\n')) +
+            " | awk 'NR > 1 && $1 ~ /^[0-9]+$/ { print $1 }'");
+  ASSERT_FALSE(pids.out.empty()) << pids.err << slurm.Logs();
+  std::istringstream pid_list(pids.out);
+  for (std::string pid; pid_list >> pid;) EXPECT_EQ(kill(std::stoi(pid), SIGKILL), 0) << pid;
+  // The task ends; the merge job waits for a dependency that can no longer be satisfied.
+  const auto never = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  std::string reason;
+  while (std::chrono::steady_clock::now() < never) {
+    reason = Shell(slurm.Env() + " squeue -h -j " + merge_job + " -o %r").out;
+    if (Contains(reason, "DependencyNeverSatisfied")) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));
+  }
+  ASSERT_TRUE(Contains(reason, "DependencyNeverSatisfied")) << reason << slurm.Logs();
+  {
+    const ProfileStore cut = ProfileStore::OpenReadOnly((dir_ / "one" / (id + ".sqlite")).string());
+    EXPECT_EQ(cut.FindRun(id)->state, RunState::kRunning);  // killed: no state written
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "one.sqlite"));
+
+  ASSERT_EQ(Shell(slurm.Env() + " scancel " + merge_job).exit_code, 0);
+  const Outcome again = Shell(slurm.Env() + " one/submit.sh --array=0");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  ASSERT_TRUE(slurm.WaitForEmptyQueue(std::chrono::seconds(180))) << slurm.Logs();
+  std::smatch n;
+  ASSERT_TRUE(std::regex_search(again.out, n, std::regex(R"(job array (\d+) )"))) << again.out;
+  const std::string resumed = ReadFile(dir_ / "one/logs" / ("sweep_" + n[1].str() + "_0.log"));
+  EXPECT_TRUE(Contains(resumed, "sweep line 0 (" + id + "): wear.k=0.0002 (continued)")) << resumed;
+
+  const Outcome whole =
+      Run("wear one/" + id + ".toml --db whole.sqlite --run " + id + " --threads 1");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const std::string expected = RunFingerprint(dir_ / "whole.sqlite", id);
+  ASSERT_NE(expected, "no run");
+  EXPECT_EQ(RunFingerprint(dir_ / "one.sqlite", id), expected);
+  EXPECT_EQ(ProfileStore::OpenReadOnly((dir_ / "one.sqlite").string()).Runs().size(), 1u);
+}
+
 }  // namespace
 }  // namespace railwear::test
