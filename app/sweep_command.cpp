@@ -54,7 +54,7 @@ std::string Absolute(const std::string& path) {
   return fs::weakly_canonical(fs::absolute(path)).string();
 }
 
-// "0, 3-5, 9" for sorted indices.
+// "0,3-5,9" for sorted indices (the form of sbatch --array).
 std::string Ranges(const std::vector<int>& v) {
   std::string out;
   for (size_t i = 0; i < v.size();) {

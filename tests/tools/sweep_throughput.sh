@@ -3,7 +3,10 @@
 # example sweep's base scene, examples/sweep/small_wear.toml, at 8 wear coefficients; 1 thread
 # per run) run under `mpirun -n 1` and `mpirun -n 2`, each into a fresh folder and merged by
 # rank 0, REPEATS times (default 3) in turn; prints every wall time, the medians and their
-# ratio (target >= 1.8 on 2 idle cores). Not a test: a figure for the README.
+# ratio (target >= 1.8 on 2 idle cores), with the CPU time of each sweep (mpirun and its ranks:
+# what dispatching costs) and the load average at its end. Not a test: a figure for the README.
+# Only meaningful on idle cores: with Linux's autogroup scheduling every process of one session
+# shares one slice of a busy machine, so a second rank gains nothing while others compute.
 #   bash tests/tools/sweep_throughput.sh build/app/railwear /tmp/sweep_throughput [REPEATS=3]
 set -euo pipefail
 railwear=$(realpath "$1")
@@ -26,13 +29,12 @@ declare -A times
 for r in $(seq 1 "$repeats"); do
   for ranks in 1 2; do
     rm -rf runs runs.sqlite
-    start=$(date +%s.%N)
-    mpirun -n "$ranks" --oversubscribe --bind-to none "$railwear" sweep plan.toml --mpi \
+    /usr/bin/time -o "time_${ranks}_$r.txt" -f "%e %U %S" \
+      mpirun -n "$ranks" --oversubscribe --bind-to none "$railwear" sweep plan.toml --mpi \
       > "run_${ranks}_$r.out" 2> "run_${ranks}_$r.err"
-    end=$(date +%s.%N)
-    t=$(echo "$start $end" | awk '{ printf "%.2f", $2 - $1 }')
+    read -r t user sys < "time_${ranks}_$r.txt"
     times[$ranks]="${times[$ranks]:-} $t"
-    echo "repeat $r, $ranks rank(s): 8 runs and their merge in $t s"
+    echo "repeat $r, $ranks rank(s): 8 runs and their merge in $t s wall, $(echo "$user $sys" | awk '{ printf "%.2f", $1 + $2 }') s CPU (load $(cut -d' ' -f1 /proc/loadavg))"
   done
 done
 median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
