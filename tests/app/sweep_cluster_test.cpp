@@ -180,6 +180,37 @@ TEST_F(SweepClusterTest, MpiRankKilledThenRunAgainGivesTheSerialStudy) {
   EXPECT_EQ(StudyFingerprint("runs.sqlite"), reference);
 }
 
+// A line that fails under MPI (its database file is not SQLite) does not stop the others: rank 0
+// names it with its rank and exit code, merges nothing and exits 1; with the file removed,
+// mpirun again runs only that line and merges the serial study.
+TEST_F(SweepClusterTest, MpiFailedLineLeavesTheOthersCompleteAndIsRunAgain) {
+  const std::string& reference = Reference();
+  const std::string bad = Ids()[2];
+  fs::create_directories(dir_ / "runs");
+  Write("runs/" + bad + ".sqlite", "not a database\n");
+  const Outcome o =
+      Run("sweep plan.toml --mpi", std::string(kMpiEnv) + " mpirun -n 2 --oversubscribe");
+  EXPECT_EQ(o.exit_code, 1) << o.err;
+  EXPECT_TRUE(Contains(o.err, "sweep line 2 (" + bad + "): database 'runs/" + bad +
+                                  ".sqlite': not an SQLite database"))
+      << o.err;
+  EXPECT_TRUE(
+      std::regex_search(o.err, std::regex(R"(1 of 4 line\(s\) failed: 2 \(rank [01], exit 2\))")))
+      << o.err;
+  EXPECT_FALSE(fs::exists(dir_ / "runs.sqlite"));
+  for (const std::string& id : Ids()) {
+    if (id == bad) continue;
+    const ProfileStore store =
+        ProfileStore::OpenReadOnly((dir_ / "runs" / (id + ".sqlite")).string());
+    EXPECT_EQ(store.FindRun(id)->state, RunState::kComplete) << id;
+  }
+  fs::remove(dir_ / "runs" / (bad + ".sqlite"));
+  const Outcome again =
+      Run("sweep plan.toml --mpi", std::string(kMpiEnv) + " mpirun -n 2 --oversubscribe");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(StudyFingerprint("runs.sqlite"), reference);
+}
+
 TEST_F(SweepClusterTest, SlurmScriptsHoldTheArrayResourcesIndexLineAndDependentMerge) {
   const Outcome o = Run(
       "sweep plan.toml --slurm --cpus-per-task 2 --time 00:10:00 --mem 1500M --partition debug");
