@@ -29,9 +29,9 @@ declare -A times
 for r in $(seq 1 "$repeats"); do
   for ranks in 1 2; do
     rm -rf runs runs.sqlite
-    /usr/bin/time -o "time_${ranks}_$r.txt" -f "%e %U %S" \
-      mpirun -n "$ranks" --oversubscribe --bind-to none "$railwear" sweep plan.toml --mpi \
-      > "run_${ranks}_$r.out" 2> "run_${ranks}_$r.err"
+    TIMEFORMAT='%R %U %S'  # bash's time: wall, then the CPU time of mpirun and its ranks
+    { time mpirun -n "$ranks" --oversubscribe --bind-to none "$railwear" sweep plan.toml --mpi \
+      > "run_${ranks}_$r.out" 2> "run_${ranks}_$r.err"; } 2> "time_${ranks}_$r.txt"
     read -r t user sys < "time_${ranks}_$r.txt"
     times[$ranks]="${times[$ranks]:-} $t"
     echo "repeat $r, $ranks rank(s): 8 runs and their merge in $t s wall, $(echo "$user $sys" | awk '{ printf "%.2f", $1 + $2 }') s CPU (load $(cut -d' ' -f1 /proc/loadavg))"
