@@ -21,6 +21,7 @@
 #include <regex>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -29,18 +30,10 @@
 #include "tests/app/cli_runner.h"
 #include "tests/app/run_fingerprint.h"
 #include "tests/app/single_node_slurm.h"
-#include "tests/app/wear_scenes.h"
+#include "tests/app/sweep_test_support.h"
 
 namespace railwear::test {
 namespace {
-
-// The small study of wear_scenes.h cut to 3e4 passes: 3 to 5 steps, well under a second a run.
-std::string ShortStudy() {
-  std::string s = kSmallWearStudy;
-  const std::string from = "total_passes = 4e5";
-  s.replace(s.find(from), from.size(), "total_passes = 3e4");
-  return s;
-}
 
 // Four lines: two wear coefficients x one or two spread nodes. The two-node lines cost twice
 // as much (SweepLineCost): lines 1 and 3 go first.
@@ -64,17 +57,15 @@ class SweepClusterTest : public CliFixture {
  protected:
   void SetUp() override {
     CliFixture::SetUp();
-    Write("base.toml", ShortStudy());
+    // The small study cut to 3e4 passes: 3 to 5 steps, well under a second a run.
+    Write("base.toml", SmallStudyOfPasses("3e4"));
     Write("plan.toml", kPlan);
   }
   // The manifest's run ids, in order.
   std::vector<std::string> Ids() const {
     const Outcome o = Run("sweep plan.toml --list");
     EXPECT_EQ(o.exit_code, 0) << o.err;
-    std::vector<std::string> ids;
-    std::istringstream in(o.out);
-    for (std::string line; std::getline(in, line);) ids.push_back(line.substr(0, 13));
-    return ids;
+    return ManifestIds(o.out);
   }
   // Every run of the study database `db` (relative to dir_), bit for bit, in manifest order,
   // and how many runs it holds.
@@ -83,6 +74,28 @@ class SweepClusterTest : public CliFixture {
     for (const std::string& id : Ids()) out += id + "\n" + RunFingerprint(dir_ / db, id);
     const ProfileStore store = ProfileStore::OpenReadOnly((dir_ / db).string());
     return out + "runs: " + std::to_string(store.Runs().size()) + "\n";
+  }
+  // Starts `slurm`; "" when it is up, else the reason to skip the test.
+  static std::string StartOrWhyNot(SingleNodeSlurm* slurm) {
+    const std::string why_not = slurm->Start();
+    if (why_not.empty()) return "";
+    return "a single-node Slurm (munged, slurmctld, slurmd on localhost) cannot start here, so "
+           "the job array is tested by its script's lines alone "
+           "(SlurmArrayScriptLinesRunWithTaskId...): " +
+           why_not;
+  }
+  // Runs `DIR/submit.sh ARGS` on `slurm`; the ids of the job array and of the merge job.
+  std::pair<std::string, std::string> Submit(const SingleNodeSlurm& slurm, const std::string& dir,
+                                             const std::string& args = "") const {
+    const Outcome submit = Shell(slurm.Env() + " " + dir + "/submit.sh " + args);
+    EXPECT_EQ(submit.exit_code, 0) << submit.err;
+    std::smatch m;
+    const std::regex ids(R"(job array (\d+) .* merge job (\d+) into)");
+    if (!std::regex_search(submit.out, m, ids)) {
+      ADD_FAILURE() << "no job ids in: " << submit.out << submit.err;
+      return {};
+    }
+    return {m[1].str(), m[2].str()};
   }
   // The serial sweep's study, computed once per test program (in the first test's folder).
   const std::string& Reference() {
@@ -279,25 +292,15 @@ TEST_F(SweepClusterTest, SlurmArrayScriptLinesRunWithTaskIdGiveTheSerialStudyBit
 
 TEST_F(SweepClusterTest, RealSingleNodeSlurmJobArrayGivesTheSerialStudyBitForBit) {
   SingleNodeSlurm slurm;
-  const std::string why_not = slurm.Start();
-  if (!why_not.empty()) {
-    GTEST_SKIP() << "a single-node Slurm (munged, slurmctld, slurmd on localhost) cannot start "
-                    "here, so the job array is tested by its script's lines alone "
-                    "(SlurmArrayScriptLinesRunWithTaskId...): "
-                 << why_not;
-  }
+  if (const std::string why_not = StartOrWhyNot(&slurm); !why_not.empty()) GTEST_SKIP() << why_not;
   const std::string& reference = Reference();
   ASSERT_EQ(Run("sweep plan.toml --slurm --mem 200M --time 5").exit_code, 0);
-  const Outcome submit = Shell(slurm.Env() + " runs/submit.sh");
-  ASSERT_EQ(submit.exit_code, 0) << submit.err;
-  std::smatch m;
-  ASSERT_TRUE(
-      std::regex_search(submit.out, m, std::regex(R"(job array (\d+) .* merge job (\d+) into)")))
-      << submit.out;
+  const auto [array, merge] = Submit(slurm, "runs");
+  ASSERT_FALSE(array.empty());
   ASSERT_TRUE(slurm.WaitForEmptyQueue(std::chrono::seconds(180))) << slurm.Logs();
-  EXPECT_EQ(slurm.JobState(m[2].str()), "COMPLETED") << slurm.Logs();
+  EXPECT_EQ(slurm.JobState(merge), "COMPLETED") << slurm.Logs();
   for (int task = 0; task < 4; ++task) {
-    const std::string log = "runs/logs/sweep_" + m[1].str() + "_" + std::to_string(task) + ".log";
+    const std::string log = "runs/logs/sweep_" + array + "_" + std::to_string(task) + ".log";
     EXPECT_TRUE(Contains(ReadFile(dir_ / log), "railwear: sweep line " + std::to_string(task)))
         << log;
   }
@@ -305,35 +308,22 @@ TEST_F(SweepClusterTest, RealSingleNodeSlurmJobArrayGivesTheSerialStudyBitForBit
 }
 
 // A Slurm array task killed with SIGKILL mid-run (its processes, from scontrol listpids), its
-// merge job left
-// pending (afterok never satisfied), the line resubmitted by index with submit.sh --array=0:
-// the run continues, the new merge job runs, and the study holds exactly the run an
-// uninterrupted `wear` of the line's scene stores, once.
+// merge job left pending (afterok never satisfied), the line resubmitted by index with
+// submit.sh --array=0: the run continues, the new merge job runs, and the study holds exactly
+// the run an uninterrupted `wear` of the line's scene stores, once.
 TEST_F(SweepClusterTest, RealSlurmTaskKilledThenResubmittedByIndexMergesNothingLostOrDoubled) {
   SingleNodeSlurm slurm;
-  const std::string why_not = slurm.Start();
-  if (!why_not.empty()) {
-    GTEST_SKIP() << "a single-node Slurm (munged, slurmctld, slurmd on localhost) cannot start "
-                    "here: "
-                 << why_not;
-  }
+  if (const std::string why_not = StartOrWhyNot(&slurm); !why_not.empty()) GTEST_SKIP() << why_not;
   // One line of 1e5 passes: 10 steps, long enough to be killed after its second.
-  std::string longer = kSmallWearStudy;
-  longer.replace(longer.find("total_passes = 4e5"), 18, "total_passes = 1e5");
-  Write("long.toml", longer);
+  Write("long.toml", SmallStudyOfPasses("1e5"));
   Write("one.toml",
         "[sweep]\nscene = \"long.toml\"\nout_dir = \"one\"\n[[axis]]\nkey = \"wear.k\"\n"
         "values = [2.0e-4]\n");
   ASSERT_EQ(Run("sweep one.toml --slurm --mem 200M --time 5").exit_code, 0);
   const std::string id = Run("sweep one.toml --list").out.substr(0, 13);
-  const Outcome submit = Shell(slurm.Env() + " one/submit.sh");
-  ASSERT_EQ(submit.exit_code, 0) << submit.err;
-  std::smatch m;
-  ASSERT_TRUE(
-      std::regex_search(submit.out, m, std::regex(R"(job array (\d+) .* merge job (\d+) into)")))
-      << submit.out;
-  const std::string task = m[1].str() + "_0";
-  const std::string merge_job = m[2].str();
+  const auto [array, merge_job] = Submit(slurm, "one");
+  ASSERT_FALSE(array.empty());
+  const std::string task = array + "_0";
   const fs::path log = dir_ / "one/logs" / ("sweep_" + task + ".log");
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (!Contains(ReadFile(log), "railwear: step 2:") &&
@@ -366,12 +356,10 @@ TEST_F(SweepClusterTest, RealSlurmTaskKilledThenResubmittedByIndexMergesNothingL
   EXPECT_FALSE(fs::exists(dir_ / "one.sqlite"));
 
   ASSERT_EQ(Shell(slurm.Env() + " scancel " + merge_job).exit_code, 0);
-  const Outcome again = Shell(slurm.Env() + " one/submit.sh --array=0");
-  ASSERT_EQ(again.exit_code, 0) << again.err;
+  const std::string again = Submit(slurm, "one", "--array=0").first;
+  ASSERT_FALSE(again.empty());
   ASSERT_TRUE(slurm.WaitForEmptyQueue(std::chrono::seconds(180))) << slurm.Logs();
-  std::smatch n;
-  ASSERT_TRUE(std::regex_search(again.out, n, std::regex(R"(job array (\d+) )"))) << again.out;
-  const std::string resumed = ReadFile(dir_ / "one/logs" / ("sweep_" + n[1].str() + "_0.log"));
+  const std::string resumed = ReadFile(dir_ / "one/logs" / ("sweep_" + again + "_0.log"));
   EXPECT_TRUE(Contains(resumed, "sweep line 0 (" + id + "): wear.k=0.0002 (continued)")) << resumed;
 
   const Outcome whole =
