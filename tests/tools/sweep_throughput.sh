@@ -6,7 +6,10 @@
 # ratio (target >= 1.8 on 2 idle cores), with the CPU time of each sweep (mpirun and its ranks:
 # what dispatching costs) and the load average at its end. Not a test: a figure for the README.
 # Only meaningful on idle cores: with Linux's autogroup scheduling every process of one session
-# shares one slice of a busy machine, so a second rank gains nothing while others compute.
+# shares one slice of a busy machine, so a second rank gains nothing while others compute. On a
+# shared machine (as root), give the benchmark's own session the cores for its minute or two:
+#   setsid -w bash -c 'echo -20 > /proc/self/autogroup &&
+#     bash tests/tools/sweep_throughput.sh build/app/railwear /tmp/sweep_throughput 5'
 #   bash tests/tools/sweep_throughput.sh build/app/railwear /tmp/sweep_throughput [REPEATS=3]
 set -euo pipefail
 railwear=$(realpath "$1")
