@@ -25,6 +25,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "tests/test_support.h"
@@ -63,11 +64,12 @@ class SingleNodeSlurm {
     const std::string user = Output("id -un");
     const std::string d = dir_.string();
     const unsigned cpus = std::max(1u, std::thread::hardware_concurrency());
+    const std::pair<int, int> ports = FreePorts();
     std::ostringstream conf;
     conf << "ClusterName=railwear-test\n"
          << "SlurmctldHost=localhost\n"
          << "SlurmUser=" << user << "\nSlurmdUser=" << user << "\n"
-         << "SlurmctldPort=" << FreePort() << "\nSlurmdPort=" << FreePort() << "\n"
+         << "SlurmctldPort=" << ports.first << "\nSlurmdPort=" << ports.second << "\n"
          << "AuthType=auth/munge\nCredType=cred/munge\n"
          << "AuthInfo=socket=" << d << "/munge/munge.socket\n"
          << "StateSaveLocation=" << d << "/state\nSlurmdSpoolDir=" << d << "/spool\n"
@@ -180,18 +182,24 @@ class SingleNodeSlurm {
     return out;
   }
 
-  // A TCP port free now on localhost (the kernel's pick for port 0).
-  static int FreePort() {
-    const int s = socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    a.sin_port = 0;
-    socklen_t len = sizeof a;
-    bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a);
-    getsockname(s, reinterpret_cast<sockaddr*>(&a), &len);
-    close(s);
-    return ntohs(a.sin_port);
+  // Two TCP ports free now on localhost (the kernel's picks for port 0, both sockets open at
+  // once so that the two differ).
+  static std::pair<int, int> FreePorts() {
+    int ports[2] = {0, 0};
+    int sockets[2] = {-1, -1};
+    for (int i = 0; i < 2; ++i) {
+      sockets[i] = socket(AF_INET, SOCK_STREAM, 0);
+      sockaddr_in a{};
+      a.sin_family = AF_INET;
+      a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+      a.sin_port = 0;
+      socklen_t len = sizeof a;
+      bind(sockets[i], reinterpret_cast<sockaddr*>(&a), sizeof a);
+      getsockname(sockets[i], reinterpret_cast<sockaddr*>(&a), &len);
+      ports[i] = ntohs(a.sin_port);
+    }
+    for (const int s : sockets) close(s);
+    return {ports[0], ports[1]};
   }
 
   template <class Ready>
