@@ -7,6 +7,8 @@ packages=(
   libeigen3-dev libgsl-dev libfftw3-dev pkg-config libceres-dev libsqlite3-dev sqlite3
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libbenchmark-dev gnuplot-nox
+  libopenmpi-dev openmpi-bin
+  slurmctld slurmd slurm-client munge
   calculix-ccx gmsh
 )
 SUDO=""

@@ -17,6 +17,7 @@
 #include "app/merge_command.h"
 #include "app/profile_command.h"
 #include "app/sweep_command.h"
+#include "app/sweep_mpi.h"
 #include "app/traffic_command.h"
 #include "app/wear_command.h"
 #include "core/numerics/input_error.h"
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
   railwear::app::SetupFemReference(app);
   railwear::app::SetupTraffic(app);
   railwear::app::SetupCurving(app);
-  railwear::app::SetupSweep(app);
+  railwear::app::SetupSweep(app, &railwear::app::RunSweepMpi);
   railwear::app::SetupMerge(app);
   try {
     app.parse(argc, argv);

@@ -1,15 +1,19 @@
 // `railwear sweep`: a plan's manifest, and its lines run as wear studies, one database each.
 #include "app/sweep_command.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <numeric>
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include "app/merge_command.h"
 #include "app/scene.h"
 #include "app/sweep_plan.h"
+#include "app/sweep_slurm.h"
 #include "app/toml_fields.h"
 #include "app/wear_command.h"
 #include "core/numerics/input_error.h"
@@ -45,8 +49,51 @@ std::optional<int> LineToRun(const SweepCommandOptions& options, int lines) {
   return index;
 }
 
-// Runs one line: skipped when its run is complete, continued when started, else started.
-void RunLine(const SweepPlan& plan, const SweepLine& line, const SweepCommandOptions& options) {
+// Absolute, without . and .. (the Slurm scripts run from any folder).
+std::string Absolute(const std::string& path) {
+  return fs::weakly_canonical(fs::absolute(path)).string();
+}
+
+// "0,3-5,9" for sorted indices (the form of sbatch --array).
+std::string Ranges(const std::vector<int>& v) {
+  std::string out;
+  for (size_t i = 0; i < v.size();) {
+    size_t j = i;
+    while (j + 1 < v.size() && v[j + 1] == v[j] + 1) ++j;
+    out += fmt::format("{}{}", out.empty() ? "" : ",",
+                       j == i ? fmt::format("{}", v[i]) : fmt::format("{}-{}", v[i], v[j]));
+    i = j + 1;
+  }
+  return out;
+}
+
+// Writes the Slurm scripts of the plan (--slurm) and says how to submit them.
+void WriteSlurm(const SweepPlan& plan, const SweepCommandOptions& options) {
+  SlurmSweepJob job;
+  job.railwear = fs::read_symlink("/proc/self/exe").string();
+  job.plan = Absolute(plan.path);
+  job.out_dir = Absolute(plan.out_dir);
+  job.study_db = Absolute(SweepStudyPath(plan, options));
+  job.lines = static_cast<int>(plan.lines.size());
+  job.name = fs::path(plan.path).stem().string();
+  job.resources = options.slurm_resources;
+  const std::string submit = WriteSlurmScripts(job);
+  std::cout << fmt::format(
+      "{}/sweep.sbatch: job array of {} task(s) (--array=0-{}, {} CPU(s), {}, {} each)\n"
+      "{}/merge.sbatch: merges the runs into {}\n"
+      "{}: submits the array, then the merge job after it (afterok)\n",
+      plan.out_dir, job.lines, job.lines - 1, job.resources.cpus_per_task, job.resources.time,
+      job.resources.mem, plan.out_dir, job.study_db, submit);
+  std::cerr << fmt::format(
+      "railwear: submit with `{}`; resubmit killed or failed lines by index with `{} "
+      "--array=3,7` (complete lines are skipped)\n",
+      submit, submit);
+}
+
+}  // namespace
+
+void RunSweepLine(const SweepPlan& plan, const SweepLine& line,
+                  const SweepCommandOptions& options) {
   const Scene scene = SweepLineScene(plan, line);
   fs::create_directories(plan.out_dir);
   const std::string base = (fs::path(plan.out_dir) / line.id).string();
@@ -81,29 +128,131 @@ void RunLine(const SweepPlan& plan, const SweepLine& line, const SweepCommandOpt
   RunWearScene(scene, wear);
 }
 
-}  // namespace
+std::string SweepStudyPath(const SweepPlan& plan, const SweepCommandOptions& options) {
+  if (options.db) return *options.db;
+  std::string dir = plan.out_dir;
+  while (dir.size() > 1 && (dir.back() == '/' || dir.back() == '\\')) dir.pop_back();
+  return dir + ".sqlite";
+}
 
-void SetupSweep(CLI::App& app) {
+void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db) {
+  std::vector<int> missing, unfinished;
+  MergeCommandOptions merge;
+  merge.out = study_db;
+  for (const SweepLine& line : plan.lines) {
+    const std::string db = (fs::path(plan.out_dir) / (line.id + ".sqlite")).string();
+    std::optional<RunInfo> run;
+    if (fs::exists(db)) run = ProfileStore::OpenReadOnly(db).FindRun(line.id);
+    if (!run) {
+      missing.push_back(line.index);
+    } else if (run->state != RunState::kComplete) {
+      unfinished.push_back(line.index);
+    }
+    merge.inputs.push_back(db);
+  }
+  if (!missing.empty() || !unfinished.empty()) {
+    std::vector<int> all = missing;
+    all.insert(all.end(), unfinished.begin(), unfinished.end());
+    std::sort(all.begin(), all.end());
+    throw InputError(fmt::format(
+        "sweep {}: {} of {} line(s) not complete in {} (not run: {}; started, not complete: "
+        "{}); expected every line complete before the merge: run them with `railwear sweep {} "
+        "--index N`, or resubmit them with `sbatch --array={} {}/sweep.sbatch`; complete lines "
+        "are skipped",
+        plan.path, all.size(), plan.lines.size(), plan.out_dir,
+        missing.empty() ? "none" : Ranges(missing),
+        unfinished.empty() ? "none" : Ranges(unfinished), plan.path, Ranges(all), plan.out_dir));
+  }
+  RunMergeCommand(merge);
+}
+
+void SetupSweep(CLI::App& app, SweepMpiRunner mpi) {
   auto options = std::make_shared<SweepCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
       "sweep",
       "Run the wear studies of a sweep plan (a base scene and axes of values), one database per "
-      "run; --list prints the manifest, --index N (or SLURM_ARRAY_TASK_ID) runs one line");
+      "run; --list prints the manifest, --index N (or SLURM_ARRAY_TASK_ID) runs one line, --mpi "
+      "runs them under mpirun, --slurm writes a Slurm job array and merge job");
   cmd->add_option("plan", options->plan_path, "Sweep plan (TOML)")->required();
-  cmd->add_flag("--list", options->list, "Print the manifest: run id and values per line");
-  cmd->add_option("--index", options->index, "Run line N only (0-based)")
-      ->check(CLI::NonNegativeNumber);
+  CLI::Option* list =
+      cmd->add_flag("--list", options->list, "Print the manifest: run id and values per line");
+  CLI::Option* index = cmd->add_option("--index", options->index, "Run line N only (0-based)")
+                           ->check(CLI::NonNegativeNumber);
   cmd->add_option("--out-dir", options->out_dir,
                   "Folder of the runs' databases (default: the plan's out_dir)");
-  cmd->add_option("--threads", options->threads, "Each run's worker threads (0: all cores)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->callback([options]() { RunSweepCommand(*options); });
+  CLI::Option* threads =
+      cmd->add_option("--threads", options->threads,
+                      "Each run's worker threads (0: all cores; default: all, 1 with --mpi)")
+          ->check(CLI::NonNegativeNumber);
+  CLI::Option* merge = cmd->add_flag(
+      "--merge", options->merge,
+      "Run nothing: merge every line's run (all complete) into the study database --db");
+  cmd->add_option("--db", options->db,
+                  "The merged study database of --merge, --mpi and --slurm (default: the runs' "
+                  "folder with .sqlite)");
+  CLI::Option* with_mpi = cmd->add_flag(
+      "--mpi", options->mpi,
+      "Under mpirun: rank 0 hands out the lines, largest expected cost first, and merges");
+  CLI::Option* slurm =
+      cmd->add_flag("--slurm", options->slurm,
+                    "Write a Slurm job array (sweep.sbatch), its merge job (merge.sbatch) and "
+                    "submit.sh into the runs' folder; run nothing");
+  SlurmResources& r = options->slurm_resources;
+  cmd->add_option("--cpus-per-task", r.cpus_per_task,
+                  "--slurm: CPUs of each array task, and its run's threads (default 1)")
+      ->check(CLI::PositiveNumber)
+      ->needs(slurm);
+  cmd->add_option("--time", r.time, "--slurm: time limit of each task (default 01:00:00)")
+      ->needs(slurm);
+  cmd->add_option("--mem", r.mem, "--slurm: memory of each task (default 2G)")->needs(slurm);
+  cmd->add_option("--partition", r.partition, "--slurm: the partition (default: Slurm's)")
+      ->needs(slurm);
+  list->excludes(index, merge, with_mpi, slurm);
+  index->excludes(merge, with_mpi, slurm);
+  merge->excludes(with_mpi, slurm);
+  with_mpi->excludes(slurm);
+  threads->excludes(merge, slurm);
+  cmd->callback([options, mpi]() { RunSweepCommand(*options, mpi); });
 }
 
-void RunSweepCommand(const SweepCommandOptions& options) {
+void RunSweepCommand(const SweepCommandOptions& options, SweepMpiRunner mpi) {
   SweepPlan plan = LoadSweepPlan(options.plan_path);
   if (options.out_dir) plan.out_dir = *options.out_dir;
   const int lines = static_cast<int>(plan.lines.size());
+  if (options.db && !options.merge && !options.mpi && !options.slurm) {
+    throw InputError(fmt::format(
+        "--db {}: the merged study database of --merge, --mpi or --slurm; expected one of them "
+        "(a line's own database is OUT_DIR/ID.sqlite)",
+        *options.db));
+  }
+  if (options.merge) {
+    MergeSweepRuns(plan, SweepStudyPath(plan, options));
+    return;
+  }
+  if (options.slurm) {
+    ValidateSlurmResources(options.slurm_resources);
+    for (const SweepLine& line : plan.lines) SweepLineScene(plan, line);  // every value checked
+    WriteSlurm(plan, options);
+    return;
+  }
+  if (options.mpi) {
+    if (mpi == nullptr) {
+      throw InputError(
+          "--mpi: this railwear was built without MPI; expected a build with Open "
+          "MPI (libopenmpi-dev)");
+    }
+    // Every line's scene is read (and checked) by every rank before MPI starts: a bad value
+    // stops all of them with exit 2, before anything runs.
+    std::vector<double> costs;
+    for (const SweepLine& line : plan.lines)
+      costs.push_back(SweepLineCost(SweepLineScene(plan, line)));
+    std::vector<int> order(plan.lines.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&costs](int a, int b) { return costs[a] > costs[b]; });
+    mpi(plan, order, costs, SweepStudyPath(plan, options), options);
+    return;
+  }
   if (options.list) {
     for (const SweepLine& line : plan.lines) SweepLineScene(plan, line);  // every value checked
     for (const SweepLine& line : plan.lines) {
@@ -115,15 +264,15 @@ void RunSweepCommand(const SweepCommandOptions& options) {
     return;
   }
   if (const std::optional<int> index = LineToRun(options, lines)) {
-    RunLine(plan, plan.lines[*index], options);
+    RunSweepLine(plan, plan.lines[*index], options);
     return;
   }
   for (const SweepLine& line : plan.lines) SweepLineScene(plan, line);  // all before the first
-  for (const SweepLine& line : plan.lines) RunLine(plan, line, options);
+  for (const SweepLine& line : plan.lines) RunSweepLine(plan, line, options);
   std::cerr << fmt::format(
-      "railwear: sweep {}: {} run(s) done in {}; merge them with `railwear "
-      "merge STUDY.sqlite {}/*.sqlite`\n",
-      options.plan_path, lines, plan.out_dir, plan.out_dir);
+      "railwear: sweep {}: {} run(s) done in {}; merge them into {} with `railwear sweep {} "
+      "--merge`\n",
+      options.plan_path, lines, plan.out_dir, SweepStudyPath(plan, options), options.plan_path);
 }
 
 }  // namespace railwear::app

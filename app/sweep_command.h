@@ -1,5 +1,7 @@
-// `railwear sweep PLAN.toml [--list] [--index N] [--out-dir DIR] [--threads N]`: the runs of a
-// sweep plan (app/sweep_plan.h), each a wear study in its own database (issue 19).
+// `railwear sweep PLAN.toml [--list] [--index N] [--out-dir DIR] [--threads N] [--merge]
+//                  [--db FILE] [--mpi] [--slurm [--cpus-per-task N] [--time T] [--mem M]
+//                  [--partition P]]`:
+// the runs of a sweep plan (app/sweep_plan.h), each a wear study in its own database (issue 19).
 //
 // --list prints the manifest (stdout): one line per run, its id and the values it sets
 // ("0001-3fa2c1d0  wear.k=0.0002 track.radius_m=600"); every line's scene is read first, so a
@@ -14,10 +16,24 @@
 // holds run ID of another scene (the plan or the base scene changed) is refused (exit 2). SQLite
 // is never shared: each line writes its own file, so lines may run at once on any machines that
 // see OUT_DIR. `railwear merge` then combines the files.
+//
+// Past one machine (every way gives the same study database, bit for bit):
+// - --merge: runs nothing; merges every line's run, in manifest order, into the study database
+//   --db (default OUT_DIR.sqlite, beside the folder), as `railwear merge` does. Refused (exit 2,
+//   naming the lines and how to run them) unless every line's run is complete.
+// - --mpi, under `mpirun -n K` (app/sweep_mpi.h): rank 0 hands the lines to the ranks (itself
+//   included) one at a time, largest expected cost first (SweepLineCost); each run writes its
+//   own database; rank 0 merges them into --db at the end when every line is complete.
+// - --slurm (app/sweep_slurm.h): writes OUT_DIR/sweep.sbatch (a job array, one task per line),
+//   OUT_DIR/merge.sbatch (the --merge above) and OUT_DIR/submit.sh (the array, then the merge
+//   job with --dependency=afterok), and runs nothing.
 #pragma once
 
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "app/sweep_slurm.h"
 
 namespace CLI {
 class App;
@@ -31,12 +47,38 @@ struct SweepCommandOptions {
   std::optional<int> index;            // default: SLURM_ARRAY_TASK_ID, else every line
   std::optional<std::string> out_dir;  // overrides the plan's out_dir
   std::optional<int> threads;          // each run's worker threads (wear --threads)
+  bool merge = false;                  // merge the complete runs into `db`, run nothing
+  std::optional<std::string> db;       // the merged study database (default: OUT_DIR.sqlite)
+  bool mpi = false;                    // under mpirun: dynamic dispatch, rank 0 merges
+  bool slurm = false;                  // write the Slurm scripts, run nothing
+  SlurmResources slurm_resources;      // of each array task (--slurm)
 };
 
-void SetupSweep(CLI::App& app);
+struct SweepPlan;
+struct SweepLine;
+
+// Runs the lines of `plan` over MPI (app/sweep_mpi.h), in `order` (line indices, largest expected
+// cost first), then merges them into `study_db`. Linked into the railwear executable only.
+using SweepMpiRunner = void (*)(const SweepPlan& plan, const std::vector<int>& order,
+                                const std::vector<double>& costs, const std::string& study_db,
+                                const SweepCommandOptions& options);
+
+// `mpi`: what --mpi calls (null: --mpi is refused, this railwear has no MPI).
+void SetupSweep(CLI::App& app, SweepMpiRunner mpi = nullptr);
 
 // Throws InputError for a malformed plan, a rejected value, an index out of range or a bad
 // SLURM_ARRAY_TASK_ID (exit 2); what `wear` throws for a run (exit 1, Interrupted).
-void RunSweepCommand(const SweepCommandOptions& options);
+void RunSweepCommand(const SweepCommandOptions& options, SweepMpiRunner mpi = nullptr);
+
+// One line: skipped when its run is complete, continued when started, else started (the
+// progress lines on stderr). What `wear` throws.
+void RunSweepLine(const SweepPlan& plan, const SweepLine& line, const SweepCommandOptions& options);
+
+// The merged study database of a sweep: options.db, else OUT_DIR.sqlite (beside the folder).
+std::string SweepStudyPath(const SweepPlan& plan, const SweepCommandOptions& options);
+
+// Merges every line's run into `study_db` in manifest order (RunMergeCommand). Throws InputError
+// naming the lines whose run is missing or not complete, and nothing is merged.
+void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db);
 
 }  // namespace railwear::app

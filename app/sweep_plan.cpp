@@ -13,7 +13,11 @@
 
 #include "app/paths.h"
 #include "app/toml_fields.h"
+#include "core/contact/grid_resolution.h"
 #include "core/numerics/input_error.h"
+#include "wear/collective_traffic.h"
+#include "wear/load_collective.h"
+#include "wear/traffic.h"
 
 namespace railwear::app {
 namespace {
@@ -356,6 +360,33 @@ Scene SweepLineScene(const SweepPlan& plan, const SweepLine& line) {
         plan.path, plan.scene_path));
   }
   return scene;
+}
+
+double SweepLineCost(const Scene& scene) {
+  if (!scene.wear) return 0.0;
+  const WearStudy& study = *scene.wear;
+  const WearOptions& o = study.options;
+  // Nodes per spread: the fixed rule's, or the adaptive rule's typical count (5 to start, a few
+  // midpoints added).
+  constexpr double kAdaptiveNodes = 9.0;
+  const double nodes = o.integration_tolerance ? kAdaptiveNodes : o.quadrature_points;
+  double cases = 0.0;
+  for (const TrafficCase& t : study.traffic) {
+    const double spread = t.lateral_shift_std_m > 0.0 ? nodes : 1.0;
+    if (t.is_collective()) {
+      cases += static_cast<double>(t.collective->collective.entries.size());
+    } else if (t.is_vehicle()) {
+      cases += 2.0 * study.vehicles[static_cast<size_t>(t.vehicle)].wheelsets() * spread;
+    } else {
+      cases += spread;
+    }
+  }
+  const bool explicit_cells =
+      study.model.cell_dx_m.has_value() || study.model.cell_ds_m.has_value();
+  const double per_axis =
+      CellsPerSemiAxis(explicit_cells ? AccuracyPreset::kStandard : study.model.accuracy);
+  const double mgt = TotalPasses(study) * MgtPerPass(study.traffic);
+  return mgt * cases * per_axis * per_axis;
 }
 
 }  // namespace railwear::app

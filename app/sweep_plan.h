@@ -71,6 +71,17 @@ SweepPlan LoadSweepPlan(const std::string& path);
 // a wear scene.
 Scene SweepLineScene(const SweepPlan& plan, const SweepLine& line);
 
+// The expected cost of a line's run, in arbitrary units, for ordering the runs (largest first;
+// `sweep --mpi`): total MGT x load cases per step x grid cells per contact patch, where
+// - load cases per step: per traffic entry, its spread's nodes (quadrature_points; 9 under the
+//   adaptive rule, its typical count, 5 to start and a few refinements; 1 without spread), times
+//   the wheelsets of a vehicle entry (4 for a bogie vehicle, 1 for a wheelset) on both rails, or
+//   an imported collective's bins;
+// - grid cells: CellsPerSemiAxis(accuracy)^2 (the standard preset's for explicit cell sizes).
+// A relative estimate only: it ignores the wear rate (the number of steps follows the deepest
+// wear per step, so a larger wear coefficient costs more than this says) and the curving solves.
+double SweepLineCost(const Scene& scene);
+
 // A plan expands to at most this many lines (a typo in a range is refused, not run).
 constexpr int kMaxSweepLines = 100000;
 

@@ -2,7 +2,8 @@
 # wear, calibration and profiles_db never include each other; core includes none of them.
 # Inside core: vehicle -> contact -> geometry -> profile -> numerics, never back.
 # SQLite only in profiles_db/*.cpp; CLI11 only in app/; toml++ only in app/; Ceres and GSL never
-# in headers. Run as: cmake -DSOURCE_DIR=<repo> -P tests/layering_test.cmake
+# in headers; MPI only in app/sweep_mpi.cpp (linked into the railwear executable alone).
+# Run as: cmake -DSOURCE_DIR=<repo> -P tests/layering_test.cmake
 set(violations "")
 function(check_dir dir pattern why)
   file(GLOB_RECURSE files "${SOURCE_DIR}/${dir}/*.h" "${SOURCE_DIR}/${dir}/*.cpp")
@@ -61,6 +62,24 @@ foreach(f ${all_sources})
     if(line MATCHES "[<\"]sqlite3\\.h")
       file(RELATIVE_PATH rel "${SOURCE_DIR}" "${f}")
       set(violations "${violations}\n  ${rel}: ${line}   (SQLite only in profiles_db/*.cpp)")
+    endif()
+  endforeach()
+endforeach()
+
+# MPI only in app/sweep_mpi.cpp: the libraries and railwear_app (the test programs) never see it.
+file(GLOB_RECURSE every_source "${SOURCE_DIR}/app/*.h" "${SOURCE_DIR}/app/*.cpp"
+     "${SOURCE_DIR}/core/*.h" "${SOURCE_DIR}/core/*.cpp" "${SOURCE_DIR}/wear/*.h"
+     "${SOURCE_DIR}/wear/*.cpp" "${SOURCE_DIR}/calibration/*.h" "${SOURCE_DIR}/calibration/*.cpp"
+     "${SOURCE_DIR}/profiles_db/*.h" "${SOURCE_DIR}/profiles_db/*.cpp")
+foreach(f ${every_source})
+  file(RELATIVE_PATH rel "${SOURCE_DIR}" "${f}")
+  if(rel STREQUAL "app/sweep_mpi.cpp")
+    continue()
+  endif()
+  file(STRINGS "${f}" lines REGEX "^[ \t]*#[ \t]*include")
+  foreach(line ${lines})
+    if(line MATCHES "[<\"]mpi\\.h")
+      set(violations "${violations}\n  ${rel}: ${line}   (MPI only in app/sweep_mpi.cpp)")
     endif()
   endforeach()
 endforeach()

@@ -32,8 +32,13 @@ class CliFixture : public TempDirTest {
   }
   // Runs `ENV railwear ARGS` in dir_ with stdout and stderr captured.
   Outcome Run(const std::string& args, const std::string& env = "") const {
-    const std::string command = Command(args, env) + " > stdout.txt 2> stderr.txt";
-    const int status = std::system(command.c_str());
+    return Shell(env + " '" RAILWEAR_BINARY "' " + args);
+  }
+  // Runs the shell command `command` in dir_ with stdout and stderr captured.
+  Outcome Shell(const std::string& command) const {
+    const std::string full =
+        "cd '" + dir_.string() + "' && " + command + " > stdout.txt 2> stderr.txt";
+    const int status = std::system(full.c_str());
     Outcome o;
     o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     o.out = ReadFile(dir_ / "stdout.txt");

@@ -13,6 +13,7 @@
 
 #include "profiles_db/profile_store.h"
 #include "tests/app/cli_runner.h"
+#include "tests/app/sweep_test_support.h"
 #include "tests/app/wear_scenes.h"
 #include "tests/sqlite_test_support.h"
 
@@ -20,12 +21,7 @@ namespace railwear::test {
 namespace {
 
 // The small study of wear_scenes.h, shortened to a few steps (a run takes about a second).
-std::string ShortStudy() {
-  std::string s = kSmallWearStudy;
-  const std::string from = "total_passes = 4e5";
-  s.replace(s.find(from), from.size(), "total_passes = 5e4");
-  return s;
-}
+std::string ShortStudy() { return SmallStudyOfPasses("5e4"); }
 
 // Two lines: the Archard coefficient at two values.
 const char* const kPlan = R"(# a sweep of the wear coefficient
@@ -59,10 +55,7 @@ class SweepCommandTest : public CliFixture {
   std::vector<std::string> Ids() const {
     const Outcome o = Run("sweep plan.toml --list");
     EXPECT_EQ(o.exit_code, 0) << o.err;
-    std::vector<std::string> ids;
-    std::istringstream in(o.out);
-    for (std::string line; std::getline(in, line);) ids.push_back(line.substr(0, 13));
-    return ids;
+    return ManifestIds(o.out);
   }
 };
 

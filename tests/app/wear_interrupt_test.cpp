@@ -27,6 +27,7 @@
 
 #include "profiles_db/profile_store.h"
 #include "tests/app/cli_runner.h"
+#include "tests/app/run_fingerprint.h"
 #include "tests/app/wear_scenes.h"
 
 namespace railwear::test {
@@ -49,48 +50,6 @@ std::string TinyStudy() {
 }
 
 constexpr const char* kRun = "small study";
-
-// Everything a run stored, bit for bit (doubles as hexfloat), except the creation times: the
-// run's scene, wear law and state, and per step its summary, profile, load cases and
-// distributions (and the low rail's).
-std::string RunFingerprint(const fs::path& db, const std::string& name = kRun) {
-  const ProfileStore store = ProfileStore::OpenReadOnly(db.string());
-  const std::optional<RunInfo> run = store.FindRun(name);
-  if (!run) return "no run";
-  std::ostringstream os;
-  os << std::hexfloat << run->scene_text << '\n'
-     << run->wear_law_json << '\n'
-     << ToString(run->state) << '\n';
-  const auto doubles = [&os](const char* what, const std::vector<double>& v) {
-    os << what;
-    for (const double x : v) os << ' ' << x;
-    os << '\n';
-  };
-  const auto distributions = [&](const std::vector<Distribution>& all) {
-    for (const Distribution& d : all) {
-      os << d.kind << '\n';
-      doubles("y", d.y_m);
-      doubles("value", d.value);
-      doubles("s", d.s_m);
-    }
-  };
-  for (const StepRecord& summary : store.Steps(run->id)) {
-    const StepRecord s = store.LoadStep(run->id, summary.step);
-    os << "step " << s.step << ' ' << s.passes << ' ' << s.mgt << ' ' << s.worn_area_mm2 << ' '
-       << s.max_depth_mm << ' ' << s.max_depth_y_mm << ' ' << s.w1_mm << ' ' << s.w2_mm << ' '
-       << s.w3_mm << ' ' << s.smoothing_area_error << '\n';
-    for (const auto& p : s.profile.points()) os << p.x() << ',' << p.y() << ' ';
-    os << '\n';
-    for (const std::string& j : s.load_cases_json) os << j << '\n';
-    distributions(s.distributions);
-    if (s.low_rail) {
-      os << "low rail " << s.low_rail->worn_area_mm2 << ' ' << s.low_rail->max_depth_mm << '\n';
-      for (const auto& p : s.low_rail->profile.points()) os << p.x() << ',' << p.y() << ' ';
-      distributions(s.low_rail->distributions);
-    }
-  }
-  return os.str();
-}
 
 class WearInterruptTest : public CliFixture {
  protected:
@@ -145,7 +104,7 @@ class WearInterruptTest : public CliFixture {
   std::string Reference(const std::string& scene, const std::string& name) {
     const Outcome whole = Run("wear " + scene + " --db " + name + " --threads 1");
     EXPECT_EQ(whole.exit_code, 0) << whole.err;
-    return RunFingerprint(dir_ / name);
+    return RunFingerprint(dir_ / name, kRun);
   }
 
   // Signals a run once its second step is stored (so the signal lands in a later step's
@@ -179,7 +138,7 @@ class WearInterruptTest : public CliFixture {
     ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
     EXPECT_TRUE(Contains(resumed.err, "resuming run 'small study' from step"));
     EXPECT_TRUE(Contains(resumed.err, "passes; it was interrupted)"));
-    EXPECT_EQ(RunFingerprint(dir_ / "cut.sqlite"), expected);  // complete, bit for bit
+    EXPECT_EQ(RunFingerprint(dir_ / "cut.sqlite", kRun), expected);  // complete, bit for bit
   }
 };
 
@@ -204,7 +163,7 @@ TEST_F(WearInterruptTest, KillAtEachFsyncIsFinishedBitIdentically) {
   const std::vector<std::string> args = {"wear", "tiny.toml", "--db", "k.sqlite", "--threads", "1"};
   const pid_t counting = Start(args, {shim, no_asan_order, "RAILWEAR_FSYNC_LOG=fsyncs.txt"});
   ASSERT_EQ(Wait(counting), 0) << ReadFile(dir_ / "err.txt");
-  ASSERT_EQ(RunFingerprint(dir_ / "k.sqlite"), expected);  // the shim changes nothing else
+  ASSERT_EQ(RunFingerprint(dir_ / "k.sqlite", kRun), expected);  // the shim changes nothing else
   std::istringstream log(ReadFile(dir_ / "fsyncs.txt"));
   int fsyncs = 0;
   for (std::string line; std::getline(log, line);) ++fsyncs;
@@ -228,7 +187,7 @@ TEST_F(WearInterruptTest, KillAtEachFsyncIsFinishedBitIdentically) {
       EXPECT_FALSE(Contains(finish.err, "had no stored step"));  // never a run without step 0
     }
     ASSERT_EQ(finish.exit_code, 0) << finish.err;
-    EXPECT_EQ(RunFingerprint(dir_ / "k.sqlite"), expected);
+    EXPECT_EQ(RunFingerprint(dir_ / "k.sqlite", kRun), expected);
   }
   EXPECT_GE(resumed, 5);    // the kills from the run's creation on
   EXPECT_GE(restarted, 1);  // the kills while the database itself was being created
@@ -258,7 +217,7 @@ TEST_F(WearInterruptTest, ARunWithoutStepsIsResumable) {
   EXPECT_TRUE(Contains(resumed.err,
                        "run 'small study' had no stored step (its start was "
                        "interrupted): stored its step 0 from the scene"));
-  EXPECT_EQ(RunFingerprint(dir_ / "stuck.sqlite"), expected);
+  EXPECT_EQ(RunFingerprint(dir_ / "stuck.sqlite", kRun), expected);
 }
 
 // The database file deleted (or replaced) under a running study: the next commit notices, the
