@@ -129,16 +129,14 @@ WearGauge MakeWearGauge(const Profile& unworn, double side_wear_depth_m) {
   return g;
 }
 
-WearMeasures CompareProfiles(const Profile& original, const Profile& worn,
-                             const WearMeasureOptions& options) {
-  std::string error;
-  if (!options.IsValid(&error)) throw InputError(error);
-  const WearGauge gauge =
-      options.gauge ? *options.gauge : MakeWearGauge(original, options.side_wear_depth_m);
-  const CurveLocator orig_locator(original, /*material_toward_plus_z=*/true, kScanStep_m);
-  const CurveLocator worn_locator(worn, /*material_toward_plus_z=*/true, kScanStep_m);
-  const double max_distance = options.max_normal_distance_m;
+namespace {
 
+// The normal-depth scan, the worn area and the largest depth of `worn` against `original`
+// (WearMeasures' fields but W1/W2/W3), material on the side `orig_locator` and `worn_locator`
+// were built with.
+WearMeasures NormalDepthScan(const Profile& original, const CurveLocator& orig_locator,
+                             const CurveLocator& worn_locator, const WearMeasureOptions& options) {
+  const double max_distance = options.max_normal_distance_m;
   WearMeasures m;
   // Normal depth at the centres of n equal cells of the original's arc length.
   const double length = original.Length();
@@ -171,6 +169,21 @@ WearMeasures CompareProfiles(const Profile& original, const Profile& worn,
     }
   }
   if (!any) m.max_depth_m = m.max_depth_s_m = m.max_depth_y_m = m.max_depth_z_m = kNaN;
+  return m;
+}
+
+}  // namespace
+
+WearMeasures CompareProfiles(const Profile& original, const Profile& worn,
+                             const WearMeasureOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError(error);
+  const WearGauge gauge =
+      options.gauge ? *options.gauge : MakeWearGauge(original, options.side_wear_depth_m);
+  const CurveLocator orig_locator(original, /*material_toward_plus_z=*/true, kScanStep_m);
+  const CurveLocator worn_locator(worn, /*material_toward_plus_z=*/true, kScanStep_m);
+  const double max_distance = options.max_normal_distance_m;
+  WearMeasures m = NormalDepthScan(original, orig_locator, worn_locator, options);
 
   // W1/W2/W3: worn minus original position along each fixed line.
   auto measure = [&](const MeasuringLine& line) {
@@ -180,6 +193,17 @@ WearMeasures CompareProfiles(const Profile& original, const Profile& worn,
   m.vertical_wear_m = measure(gauge.vertical);
   m.side_wear_m = measure(gauge.side);
   m.wear_45_m = measure(gauge.corner45);
+  return m;
+}
+
+WearMeasures CompareWheelProfiles(const Profile& original, const Profile& worn,
+                                  const WearMeasureOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError(error);
+  const CurveLocator orig_locator(original, /*material_toward_plus_z=*/false, kScanStep_m);
+  const CurveLocator worn_locator(worn, /*material_toward_plus_z=*/false, kScanStep_m);
+  WearMeasures m = NormalDepthScan(original, orig_locator, worn_locator, options);
+  m.vertical_wear_m = m.side_wear_m = m.wear_45_m = kNaN;
   return m;
 }
 

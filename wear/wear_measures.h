@@ -111,4 +111,11 @@ struct WearMeasures {
 WearMeasures CompareProfiles(const Profile& original, const Profile& worn,
                              const WearMeasureOptions& options = {});
 
+// The same for a wheel (issue 16, co-evolution): both profiles in the wheel profile frame
+// (material toward -z), the normal depth along the original wheel profile, the worn area and the
+// largest depth (removed material positive); W1/W2/W3 are rail measures and NaN here, and
+// options.gauge is not used. Throws InputError for invalid options.
+WearMeasures CompareWheelProfiles(const Profile& original, const Profile& worn,
+                                  const WearMeasureOptions& options = {});
+
 }  // namespace railwear
