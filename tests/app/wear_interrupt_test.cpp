@@ -27,6 +27,7 @@
 
 #include "profiles_db/profile_store.h"
 #include "tests/app/cli_runner.h"
+#include "tests/app/run_fingerprint.h"
 #include "tests/app/wear_scenes.h"
 
 namespace railwear::test {
@@ -48,49 +49,16 @@ std::string TinyStudy() {
   return s;
 }
 
-constexpr const char* kRun = "small study";
-
-// Everything a run stored, bit for bit (doubles as hexfloat), except the creation times: the
-// run's scene, wear law and state, and per step its summary, profile, load cases and
-// distributions (and the low rail's).
-std::string RunFingerprint(const fs::path& db, const std::string& name = kRun) {
-  const ProfileStore store = ProfileStore::OpenReadOnly(db.string());
-  const std::optional<RunInfo> run = store.FindRun(name);
-  if (!run) return "no run";
-  std::ostringstream os;
-  os << std::hexfloat << run->scene_text << '\n'
-     << run->wear_law_json << '\n'
-     << ToString(run->state) << '\n';
-  const auto doubles = [&os](const char* what, const std::vector<double>& v) {
-    os << what;
-    for (const double x : v) os << ' ' << x;
-    os << '\n';
-  };
-  const auto distributions = [&](const std::vector<Distribution>& all) {
-    for (const Distribution& d : all) {
-      os << d.kind << '\n';
-      doubles("y", d.y_m);
-      doubles("value", d.value);
-      doubles("s", d.s_m);
-    }
-  };
-  for (const StepRecord& summary : store.Steps(run->id)) {
-    const StepRecord s = store.LoadStep(run->id, summary.step);
-    os << "step " << s.step << ' ' << s.passes << ' ' << s.mgt << ' ' << s.worn_area_mm2 << ' '
-       << s.max_depth_mm << ' ' << s.max_depth_y_mm << ' ' << s.w1_mm << ' ' << s.w2_mm << ' '
-       << s.w3_mm << ' ' << s.smoothing_area_error << '\n';
-    for (const auto& p : s.profile.points()) os << p.x() << ',' << p.y() << ' ';
-    os << '\n';
-    for (const std::string& j : s.load_cases_json) os << j << '\n';
-    distributions(s.distributions);
-    if (s.low_rail) {
-      os << "low rail " << s.low_rail->worn_area_mm2 << ' ' << s.low_rail->max_depth_mm << '\n';
-      for (const auto& p : s.low_rail->profile.points()) os << p.x() << ',' << p.y() << ' ';
-      distributions(s.low_rail->distributions);
-    }
-  }
-  return os.str();
+// TinyStudy with co-evolution (issue 16): the entry's wheel (R8) wears over 3 m per pass (about
+// one revolution: the wheel and the rail wear alike, both set steps).
+std::string TinyCoEvolutionStudy() {
+  std::string s = TinyStudy();
+  const std::string elastic = "wheel = { E_MPa = 210000, nu = 0.28 }";
+  s.replace(s.find(elastic), elastic.size(), "wheel = { grade = \"R8\" }");
+  return s + "wheel_wear = { distance_per_pass_m = 3.0 }\n";
 }
+
+constexpr const char* kRun = "small study";
 
 class WearInterruptTest : public CliFixture {
  protected:
@@ -181,6 +149,48 @@ class WearInterruptTest : public CliFixture {
     EXPECT_TRUE(Contains(resumed.err, "passes; it was interrupted)"));
     EXPECT_EQ(RunFingerprint(dir_ / "cut.sqlite"), expected);  // complete, bit for bit
   }
+
+  // Kills a run of `scene` at each of its fsyncs in turn and finishes it (see the tests below).
+  void KillAtEachFsync(const std::string& scene) {
+    Write("tiny.toml", scene);
+    const std::string expected = Reference("tiny.toml", "whole.sqlite");
+    const std::string shim = std::string("LD_PRELOAD=") + RAILWEAR_KILL_AT_FSYNC;
+    const std::string no_asan_order = "ASAN_OPTIONS=verify_asan_link_order=0";
+    const std::vector<std::string> args = {"wear",     "tiny.toml", "--db",
+                                           "k.sqlite", "--threads", "1"};
+    const pid_t counting = Start(args, {shim, no_asan_order, "RAILWEAR_FSYNC_LOG=fsyncs.txt"});
+    ASSERT_EQ(Wait(counting), 0) << ReadFile(dir_ / "err.txt");
+    ASSERT_EQ(RunFingerprint(dir_ / "k.sqlite"), expected);  // the shim changes nothing else
+    std::istringstream log(ReadFile(dir_ / "fsyncs.txt"));
+    int fsyncs = 0;
+    for (std::string line; std::getline(log, line);) ++fsyncs;
+    ASSERT_GE(fsyncs, 8);  // at least: creation, run + step 0, 4 steps, state, checkpoint
+
+    int resumed = 0, restarted = 0;
+    for (int n = 1; n <= fsyncs; ++n) {
+      SCOPED_TRACE("killed at fsync " + std::to_string(n) + " of " + std::to_string(fsyncs));
+      for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
+        fs::remove(dir_ / ("k.sqlite" + std::string(suffix)));
+      }
+      const pid_t pid =
+          Start(args, {shim, no_asan_order, "RAILWEAR_KILL_AT_FSYNC=" + std::to_string(n)});
+      ASSERT_EQ(Wait(pid), -SIGKILL) << ReadFile(dir_ / "err.txt");
+      Outcome finish = Run("wear tiny.toml --db k.sqlite --resume --threads 1");
+      if (finish.exit_code == 2 && Contains(finish.err, "no run 'small study' to resume")) {
+        finish = Run("wear tiny.toml --db k.sqlite --threads 1");  // killed before the run existed
+        ++restarted;
+      } else {
+        ++resumed;
+        EXPECT_FALSE(Contains(finish.err, "had no stored step"));  // never a run without step 0
+      }
+      ASSERT_EQ(finish.exit_code, 0) << finish.err;
+      EXPECT_EQ(RunFingerprint(dir_ / "k.sqlite"), expected);
+    }
+    EXPECT_GE(resumed, 5);    // the kills from the run's creation on
+    EXPECT_GE(restarted, 1);  // the kills while the database itself was being created
+    std::cerr << "[figure] " << fsyncs << " kill points: " << resumed << " resumed, " << restarted
+              << " restarted, all bit-identical\n";
+  }
 };
 
 TEST_F(WearInterruptTest, SigtermMidRunExits143AndResumesBitIdentically) {
@@ -197,43 +207,13 @@ TEST_F(WearInterruptTest, SigintMidRunExits130AndResumesBitIdentically) {
 // finished bit-identically: by --resume when the run exists (never a run without its step 0),
 // by a new run when the kill came before the run was created.
 TEST_F(WearInterruptTest, KillAtEachFsyncIsFinishedBitIdentically) {
-  Write("tiny.toml", TinyStudy());
-  const std::string expected = Reference("tiny.toml", "whole.sqlite");
-  const std::string shim = std::string("LD_PRELOAD=") + RAILWEAR_KILL_AT_FSYNC;
-  const std::string no_asan_order = "ASAN_OPTIONS=verify_asan_link_order=0";
-  const std::vector<std::string> args = {"wear", "tiny.toml", "--db", "k.sqlite", "--threads", "1"};
-  const pid_t counting = Start(args, {shim, no_asan_order, "RAILWEAR_FSYNC_LOG=fsyncs.txt"});
-  ASSERT_EQ(Wait(counting), 0) << ReadFile(dir_ / "err.txt");
-  ASSERT_EQ(RunFingerprint(dir_ / "k.sqlite"), expected);  // the shim changes nothing else
-  std::istringstream log(ReadFile(dir_ / "fsyncs.txt"));
-  int fsyncs = 0;
-  for (std::string line; std::getline(log, line);) ++fsyncs;
-  ASSERT_GE(fsyncs, 8);  // at least: creation, run + step 0, 4 steps, state, checkpoint
+  KillAtEachFsync(TinyStudy());
+}
 
-  int resumed = 0, restarted = 0;
-  for (int n = 1; n <= fsyncs; ++n) {
-    SCOPED_TRACE("killed at fsync " + std::to_string(n) + " of " + std::to_string(fsyncs));
-    for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
-      fs::remove(dir_ / ("k.sqlite" + std::string(suffix)));
-    }
-    const pid_t pid =
-        Start(args, {shim, no_asan_order, "RAILWEAR_KILL_AT_FSYNC=" + std::to_string(n)});
-    ASSERT_EQ(Wait(pid), -SIGKILL) << ReadFile(dir_ / "err.txt");
-    Outcome finish = Run("wear tiny.toml --db k.sqlite --resume --threads 1");
-    if (finish.exit_code == 2 && Contains(finish.err, "no run 'small study' to resume")) {
-      finish = Run("wear tiny.toml --db k.sqlite --threads 1");  // killed before the run existed
-      ++restarted;
-    } else {
-      ++resumed;
-      EXPECT_FALSE(Contains(finish.err, "had no stored step"));  // never a run without step 0
-    }
-    ASSERT_EQ(finish.exit_code, 0) << finish.err;
-    EXPECT_EQ(RunFingerprint(dir_ / "k.sqlite"), expected);
-  }
-  EXPECT_GE(resumed, 5);    // the kills from the run's creation on
-  EXPECT_GE(restarted, 1);  // the kills while the database itself was being created
-  std::cerr << "[figure] " << fsyncs << " kill points: " << resumed << " resumed, " << restarted
-            << " restarted, all bit-identical\n";
+// The same with co-evolution (issue 16 point 6): the entry's wheel wears and is stored per step
+// (wheel_steps), and a killed run resumes with its wheel bit for bit.
+TEST_F(WearInterruptTest, KillAtEachFsyncWithAWearingWheelIsFinishedBitIdentically) {
+  KillAtEachFsync(TinyCoEvolutionStudy());
 }
 
 // A run without steps (left by a railwear before issue 17, killed between the commit that
