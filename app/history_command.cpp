@@ -402,14 +402,18 @@ void PrintWheelSteps(const ProfileStore& db, const RunInfo& run, const std::stri
     const auto st = std::find_if(steps.begin(), steps.end(),
                                  [&](const StepRecord& r) { return r.step == w.step; });
     if (st == steps.end()) continue;
+    const auto flange = [](const std::optional<double>& mm) {
+      return mm ? FixedNoNegativeZero(*mm, 3) : std::string("NULL");
+    };
     rows.push_back({std::to_string(w.step), fmt::format("{:.6g}", st->passes),
                     FixedNoNegativeZero(st->mgt, 4), FixedNoNegativeZero(w.worn_area_mm2, 4),
                     FixedNoNegativeZero(w.max_depth_mm, 4),
-                    FixedNoNegativeZero(w.max_depth_y_mm, 3),
+                    FixedNoNegativeZero(w.max_depth_y_mm, 3), flange(w.flange_height_mm),
+                    flange(w.flange_thickness_mm), flange(w.flange_slope_mm),
                     fmt::format("{:.3e}", w.smoothing_area_error + 0.0)});
   }
   std::cout << AlignedTable({"step", "passes", "MGT", "worn_area_mm2", "max_depth_mm", "at_y_mm",
-                             "smoothing_area_error"},
+                             "Sh_mm", "Sd_mm", "qR_mm", "smoothing_area_error"},
                             rows);
   std::cerr << fmt::format(
       "railwear: run '{}' ({}), {} step(s), wheel of traffic entry {} ('{}'; wheel profile frame), "

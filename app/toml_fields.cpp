@@ -165,7 +165,7 @@ Material ReadMaterial(const Fields& parent, std::string_view key, MaterialKeys k
   if (keys == MaterialKeys::kWithDamage) {
     t->AllowOnly({"grade", "E_MPa", "nu", "hardness_MPa", "shear_yield_MPa"});
   } else if (keys == MaterialKeys::kWithHardness) {
-    t->AllowOnly({"grade", "E_MPa", "nu", "hardness_MPa"});
+    t->AllowOnly({"E_MPa", "nu", "hardness_MPa", "grade"});
   } else {
     t->AllowOnly({"E_MPa", "nu"});
   }

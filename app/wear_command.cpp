@@ -235,6 +235,17 @@ struct PreviousProfiles {
   std::optional<Profile> low;
 };
 
+// A flange measure [m] as stored [mm]: absent where the profile has none (NaN).
+std::optional<double> FlangeMm(double metres) {
+  return std::isfinite(metres) ? std::optional<double>(metres * 1e3) : std::nullopt;
+}
+
+void SetFlange(const WheelFlangeMeasures& f, WheelStepRecord* w) {
+  w->flange_height_mm = FlangeMm(f.flange_height_m);
+  w->flange_thickness_mm = FlangeMm(f.flange_thickness_m);
+  w->flange_slope_mm = FlangeMm(f.flange_slope_m);
+}
+
 StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const UnwornRails& unworn,
                           const PreviousProfiles& previous) {
   RequireFinite(step.measures, step, step.low_rail ? "high rail" : "rail");
@@ -297,6 +308,7 @@ StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const 
     rec.max_depth_y_mm = wm.max_depth_y_m * 1e3;
     rec.smoothing_area_error = w.smoothing_area_error;
     rec.profile = step.state.wheels[w.traffic_index];
+    SetFlange(w.flange, &rec);
     r.wheels.push_back(std::move(rec));
   }
   for (size_t t = 0; t < step.state.curving.size(); ++t) {
@@ -323,6 +335,7 @@ StepRecord MakeInitialRecord(const WearState& state, const WearStudy& study) {
     w.traffic_index = static_cast<int>(t);
     w.name = study.traffic[t].name;
     w.profile = state.wheels[t];
+    SetFlange(MeasureWheelFlange(w.profile), &w);
     r.wheels.push_back(std::move(w));
   }
   return r;
@@ -531,7 +544,11 @@ void PrintRates(const std::vector<StepRecord>& high, const std::vector<StepRecor
   if (!low.empty()) line("low rail", low);
 }
 
-// Each wearing wheel's last stored step (co-evolution): worn area and max depth.
+std::string FlangeText(const std::optional<double>& mm) {
+  return mm ? FixedNoNegativeZero(*mm, 2) : std::string("n/a");
+}
+
+// Each wearing wheel's last stored step (co-evolution): worn area, max depth, Sh, Sd, qR.
 void PrintWheels(const ProfileStore& store, int64_t run) {
   const std::vector<WheelStepRecord> wheels = store.WheelSteps(run);
   for (size_t i = 0; i < wheels.size(); ++i) {
@@ -539,10 +556,11 @@ void PrintWheels(const ProfileStore& store, int64_t run) {
     const WheelStepRecord& w = wheels[i];
     std::cout << fmt::format(
         "wheel of '{}' (traffic entry {}) at step {}: worn area {} mm2, max depth {} mm at y = {} "
-        "mm (history steps/profile/diff --wheel {})\n",
+        "mm, Sh {} Sd {} qR {} mm (history steps/profile/diff --wheel {})\n",
         w.name, w.traffic_index, w.step, FixedNoNegativeZero(w.worn_area_mm2, 4),
         FixedNoNegativeZero(w.max_depth_mm, 4), FixedNoNegativeZero(w.max_depth_y_mm, 2),
-        w.traffic_index);
+        FlangeText(w.flange_height_mm), FlangeText(w.flange_thickness_mm),
+        FlangeText(w.flange_slope_mm), w.traffic_index);
   }
 }
 

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -170,6 +171,10 @@ class Statement {
   Statement& BindBlob(int i, const std::string& bytes) {
     return Check(sqlite3_bind_blob64(stmt_, i, bytes.data(), bytes.size(), SQLITE_TRANSIENT));
   }
+  // A nullable REAL: NULL when absent.
+  Statement& Bind(int i, const std::optional<double>& v) {
+    return v ? Bind(i, *v) : Check(sqlite3_bind_null(stmt_, i));
+  }
 
   // True while there is a row; throws on error. A constraint failure is returned to the caller
   // through *constraint (when given) instead of throwing.
@@ -195,6 +200,11 @@ class Statement {
     const double v = sqlite3_column_double(stmt_, col);
     if (!std::isfinite(v)) ThrowDamaged(col, fmt::format("{}", v));
     return v;
+  }
+  // A nullable REAL column: nullopt for NULL.
+  std::optional<double> OptionalDouble(int col) const {
+    if (sqlite3_column_type(stmt_, col) == SQLITE_NULL) return std::nullopt;
+    return Double(col);
   }
   std::string Text(int col) const {
     const auto* p = sqlite3_column_text(stmt_, col);
@@ -482,8 +492,9 @@ CREATE TABLE curving_starts(
 }
 
 // Version 7: the wheel of each traffic entry that wears its own (co-evolution, issue 16 point 6),
-// per step: its measures against its unworn profile and its profile after the step (wheel
-// profile frame, coded as profiles.yz). Older runs have no rows here (no wheel of theirs wore).
+// per step: its measures against its unworn profile, its flange measures Sh, Sd, qR (NULL where
+// the profile has no flange to measure) and its profile after the step (wheel profile frame,
+// coded as profiles.yz). Older runs have no rows here (no wheel of theirs wore).
 void MigrateTo7(const Connection& c) {
   c.Exec(R"sql(
 CREATE TABLE wheel_steps(
@@ -495,6 +506,9 @@ CREATE TABLE wheel_steps(
   max_depth_mm         REAL NOT NULL,
   max_depth_y_mm       REAL NOT NULL,
   smoothing_area_error REAL NOT NULL,
+  sh_mm                REAL,
+  sd_mm                REAL,
+  qr_mm                REAL,
   n_points             INTEGER NOT NULL,
   yz                   BLOB NOT NULL CHECK (length(yz) = 16 * n_points),
   PRIMARY KEY (run_id, step, traffic_index),
@@ -616,7 +630,7 @@ RailStepRecord ReadLowRail(const Statement& s, int first) {
 }
 
 // A wheel's summary from the columns traffic_index, name, worn_area_mm2, max_depth_mm,
-// max_depth_y_mm, smoothing_area_error (0 to 5).
+// max_depth_y_mm, smoothing_area_error, sh_mm, sd_mm, qr_mm (0 to 8).
 WheelStepRecord ReadWheelStep(const Statement& s) {
   WheelStepRecord w;
   w.traffic_index = static_cast<int>(s.Int64(0));
@@ -625,6 +639,9 @@ WheelStepRecord ReadWheelStep(const Statement& s) {
   w.max_depth_mm = s.Double(3);
   w.max_depth_y_mm = s.Double(4);
   w.smoothing_area_error = s.Double(5);
+  w.flange_height_mm = s.OptionalDouble(6);
+  w.flange_thickness_mm = s.OptionalDouble(7);
+  w.flange_slope_mm = s.OptionalDouble(8);
   return w;
 }
 
@@ -1116,14 +1133,16 @@ void ProfileStore::WriteStep(int64_t run, const StepRecord& step) {
   if (!step.wheels.empty()) {
     Statement s(c,
                 "INSERT INTO wheel_steps(run_id, step, traffic_index, name, worn_area_mm2, "
-                "max_depth_mm, max_depth_y_mm, smoothing_area_error, n_points, yz) "
-                "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)");
+                "max_depth_mm, max_depth_y_mm, smoothing_area_error, sh_mm, sd_mm, qr_mm, "
+                "n_points, yz) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)");
     for (const WheelStepRecord& w : step.wheels) {
       sqlite3_reset(s.get());
       s.Bind(1, run).Bind(2, step.step).Bind(3, w.traffic_index).Bind(4, w.name);
       s.Bind(5, w.worn_area_mm2).Bind(6, w.max_depth_mm).Bind(7, w.max_depth_y_mm);
-      s.Bind(8, w.smoothing_area_error).Bind(9, w.profile.size());
-      s.BindBlob(10, internal::EncodePoints(w.profile.points()));
+      s.Bind(8, w.smoothing_area_error);
+      s.Bind(9, w.flange_height_mm).Bind(10, w.flange_thickness_mm).Bind(11, w.flange_slope_mm);
+      s.Bind(12, w.profile.size());
+      s.BindBlob(13, internal::EncodePoints(w.profile.points()));
       int constraint = 0;
       s.Step(&constraint);
       if (constraint != 0) {
@@ -1250,14 +1269,14 @@ StepRecord ProfileStore::LoadStep(int64_t run, int step) const {
   if (internal::TableExists(c, "wheel_steps")) {
     Statement s(c,
                 "SELECT traffic_index, name, worn_area_mm2, max_depth_mm, max_depth_y_mm, "
-                "smoothing_area_error, n_points, yz FROM wheel_steps WHERE run_id = ?1 AND "
-                "step = ?2 ORDER BY traffic_index");
+                "smoothing_area_error, sh_mm, sd_mm, qr_mm, n_points, yz FROM wheel_steps "
+                "WHERE run_id = ?1 AND step = ?2 ORDER BY traffic_index");
     s.Bind(1, run).Bind(2, step);
     while (s.Step()) {
       WheelStepRecord w = internal::ReadWheelStep(s);
       w.step = step;
       w.profile = internal::DecodeProfile(
-          s, 6, 7, path(), fmt::format("run {} step {} wheel of traffic entry {}", run, step,
+          s, 9, 10, path(), fmt::format("run {} step {} wheel of traffic entry {}", run, step,
                                        w.traffic_index));
       r.wheels.push_back(std::move(w));
     }
@@ -1270,12 +1289,12 @@ std::vector<WheelStepRecord> ProfileStore::WheelSteps(int64_t run) const {
   if (!internal::TableExists(impl_->db, "wheel_steps")) return out;
   Statement s(impl_->db,
               "SELECT traffic_index, name, worn_area_mm2, max_depth_mm, max_depth_y_mm, "
-              "smoothing_area_error, step FROM wheel_steps WHERE run_id = ?1 "
-              "ORDER BY traffic_index, step");
+              "smoothing_area_error, sh_mm, sd_mm, qr_mm, step FROM wheel_steps "
+              "WHERE run_id = ?1 ORDER BY traffic_index, step");
   s.Bind(1, run);
   while (s.Step()) {
     WheelStepRecord w = internal::ReadWheelStep(s);
-    w.step = static_cast<int>(s.Int64(6));
+    w.step = static_cast<int>(s.Int64(9));
     out.push_back(std::move(w));
   }
   return out;

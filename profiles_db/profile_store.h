@@ -43,7 +43,8 @@
 //         -- each vehicle traffic entry's curving solution at the step (float64; the Jacobian
 //         -- n x n in column order, or empty): the next step's start
 //   wheel_steps(run_id, step, traffic_index, name TEXT, worn_area_mm2, max_depth_mm,
-//               max_depth_y_mm, smoothing_area_error, n_points, yz BLOB,
+//               max_depth_y_mm, smoothing_area_error, sh_mm NULL, sd_mm NULL, qr_mm NULL,
+//               n_points, yz BLOB,
 //               PRIMARY KEY(run_id, step, traffic_index))                 -- since v7
 //         -- the wheel of each traffic entry that wears its own (co-evolution, issue 16) after
 //         -- the step, in the wheel profile frame, coded as profiles.yz; no rows otherwise
@@ -140,6 +141,9 @@ struct WheelStepRecord {
   double max_depth_mm = 0.0;
   double max_depth_y_mm = 0.0;  // wheel profile frame
   double smoothing_area_error = 0.0;
+  // The flange measures of the profile after the step (EN 15313 Sh, Sd, qR; wear/wear_measures.h
+  // MeasureWheelFlange) [mm]; absent (NULL) where the profile has no flange to measure.
+  std::optional<double> flange_height_mm, flange_thickness_mm, flange_slope_mm;
   Profile profile;  // not filled by WheelSteps()
 };
 

@@ -593,6 +593,7 @@ struct WheelWork {
       *next_profile = *current;
     }
     r.measures = CompareWheelProfiles(*unworn, *next_profile);
+    r.flange = MeasureWheelFlange(*next_profile);
     return r;
   }
 };

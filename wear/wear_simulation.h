@@ -233,6 +233,7 @@ struct WheelStepResult {
   double smoothing_area_error = 0.0;     // relative, before the area correction
   // Against the entry's unworn wheel (cumulative; worn area and max depth, W1-W3 NaN).
   WearMeasures measures;
+  WheelFlangeMeasures flange;  // Sh, Sd, qR of the wheel after the step (NaN: not measurable)
 };
 
 // A step. The grid, depths and measures below are the high rail's; `low_rail` holds the same for

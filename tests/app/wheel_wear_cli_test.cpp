@@ -6,6 +6,7 @@
 // - a traffic entry drawing from the measured wheels in ../shared (skipped without them), inline
 //   or from a population file: one load case per wheel, weighted by its share.
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -46,16 +47,25 @@ TEST_F(WheelWearCliTest, CoEvolutionRunStoresBothProfilesPerStep) {
   const int last = *store.LastStep(info.id);
   ASSERT_GE(last, 2);
   EXPECT_TRUE(Contains(info.wear_law_json, "\"wheel_wear\""));
+  const auto before_sd = [&](int k) {
+    return store.LoadStep(info.id, k - 1).wheels.at(0).flange_thickness_mm;
+  };
   for (int k = 0; k <= last; ++k) {
     SCOPED_TRACE(k);
     const StepRecord step = store.LoadStep(info.id, k);
     ASSERT_EQ(step.wheels.size(), 1u);  // both profiles, every step
     EXPECT_EQ(step.wheels[0].name, "freight");
     EXPECT_GT(step.profile.size(), 0);
+    ASSERT_TRUE(step.wheels[0].flange_thickness_mm.has_value());
     if (k == 0) {
       EXPECT_EQ(step.wheels[0].worn_area_mm2, 0.0);
+      EXPECT_NEAR(*step.wheels[0].flange_thickness_mm, 32.5, 0.05);  // the new S1002's Sd
+      EXPECT_NEAR(*step.wheels[0].flange_height_mm, 28.0, 0.05);
       continue;
     }
+    // Stored at every step (the library test checks that flank wear thins the flange; here the
+    // wheel wears on its flange root below the Sd height, which stays within 0.1 mm).
+    EXPECT_NEAR(*step.wheels[0].flange_thickness_mm, *before_sd(k), 0.1);
     const StepRecord before = store.LoadStep(info.id, k - 1);
     EXPECT_NE(step.profile.points(), before.profile.points());
     EXPECT_NE(step.wheels[0].profile.points(), before.wheels[0].profile.points());
@@ -68,6 +78,7 @@ TEST_F(WheelWearCliTest, CoEvolutionRunStoresBothProfilesPerStep) {
   const Outcome steps = Run("history --db w.sqlite steps 'small study' --wheel freight");
   ASSERT_EQ(steps.exit_code, 0) << steps.err;
   EXPECT_TRUE(Contains(steps.out, "worn_area_mm2"));
+  EXPECT_TRUE(Contains(steps.out, "Sd_mm"));
   EXPECT_TRUE(Contains(steps.err, "wheel of traffic entry 0 ('freight'"));
   const Outcome rail_steps = Run("history --db w.sqlite steps 'small study'");
   ASSERT_EQ(rail_steps.exit_code, 0) << rail_steps.err;
@@ -87,6 +98,15 @@ TEST_F(WheelWearCliTest, CoEvolutionRunStoresBothProfilesPerStep) {
   ASSERT_EQ(diff.exit_code, 0) << diff.err;
   EXPECT_TRUE(Contains(diff.out, "wheel         of 'freight'"));
   EXPECT_TRUE(Contains(diff.out, "worn area"));
+
+  // The plots: a fourth PNG, each wearing wheel's depth (gnuplot is optional).
+  if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
+    const Outcome plot = Run("history --db w.sqlite plot 'small study' --out p");
+    ASSERT_EQ(plot.exit_code, 0) << plot.err;
+    for (const char* png : {"p_profiles.png", "p_depth.png", "p_measures.png", "p_wheels.png"}) {
+      EXPECT_TRUE(fs::exists(dir_ / png)) << png;
+    }
+  }
 
   // Bad --wheel uses: exit 2 naming the run and what there is.
   const Outcome unknown = Run("history --db w.sqlite steps 'small study' --wheel 7");

@@ -448,17 +448,36 @@ TEST(ProfileStore, CurvingStartsRoundTripExactly) {
 
 // A wearing wheel (co-evolution, schema 7): its measures and profile per step and traffic entry,
 // bit for bit; summaries by entry then step; a malformed one rolls the whole step back.
+WheelStepRecord TestWheel(int traffic_index, const std::string& name, double area_mm2,
+                          double depth_mm, double y_mm, double smoothing, const Profile& profile,
+                          std::optional<double> sd_mm = std::nullopt) {
+  WheelStepRecord w;
+  w.traffic_index = traffic_index;
+  w.name = name;
+  w.worn_area_mm2 = area_mm2;
+  w.max_depth_mm = depth_mm;
+  w.max_depth_y_mm = y_mm;
+  w.smoothing_area_error = smoothing;
+  w.flange_thickness_mm = sd_mm;
+  if (sd_mm) {
+    w.flange_height_mm = 28.0;
+    w.flange_slope_mm = 1.0 / 3.0;
+  }
+  w.profile = profile;
+  return w;
+}
+
 TEST(ProfileStore, WheelStepsRoundTripExactly) {
   ProfileStore db = ProfileStore::Open(":memory:");
   const int64_t run = db.CreateRun(TestRun("wheels"));
   const Profile wheel({{-0.07, 0.0}, {-0.02, 1e-3}, {0.0, 1.0 / 3.0 * 1e-3}, {0.05, 2e-300}}, "w");
   StepRecord zero = TestStep(0);
-  zero.wheels = {{2, "freight", 0, 0.0, 0.0, 0.0, 0.0, wheel}};
+  zero.wheels = {TestWheel(2, "freight", 0.0, 0.0, 0.0, 0.0, wheel, 32.5)};
   db.AppendStep(run, zero);
   StepRecord one = TestStep(1);
   const Profile worn({{-0.07, -1e-6}, {-0.02, 1e-3}, {0.0, 1.0 / 7.0 * 1e-3}, {0.05, 0.0}}, "w");
-  one.wheels = {{2, "freight", 0, 0.125, 1.0 / 3.0, -0.5, 1e-9, worn},
-                {0, "passenger", 0, 0.5, 0.25, 1.5, 0.0, wheel}};
+  one.wheels = {TestWheel(2, "freight", 0.125, 1.0 / 3.0, -0.5, 1e-9, worn, 32.25),
+                TestWheel(0, "passenger", 0.5, 0.25, 1.5, 0.0, wheel)};
   db.AppendStep(run, one);
   const StepRecord back = db.LoadStep(run, 1);
   ASSERT_EQ(back.wheels.size(), 2u);
@@ -468,6 +487,10 @@ TEST(ProfileStore, WheelStepsRoundTripExactly) {
   EXPECT_EQ(back.wheels[1].max_depth_mm, 1.0 / 3.0);
   EXPECT_EQ(back.wheels[1].smoothing_area_error, 1e-9);
   EXPECT_EQ(back.wheels[1].profile.points(), worn.points());
+  EXPECT_EQ(back.wheels[1].flange_thickness_mm, 32.25);
+  EXPECT_EQ(back.wheels[1].flange_height_mm, 28.0);
+  EXPECT_EQ(back.wheels[1].flange_slope_mm, 1.0 / 3.0);
+  EXPECT_FALSE(back.wheels[0].flange_thickness_mm.has_value());  // NULL: no flange measured
   EXPECT_EQ(db.LoadWheelProfile(run, 0, 2).points(), wheel.points());
   const std::vector<WheelStepRecord> summaries = db.WheelSteps(run);
   ASSERT_EQ(summaries.size(), 3u);
@@ -475,17 +498,19 @@ TEST(ProfileStore, WheelStepsRoundTripExactly) {
   EXPECT_EQ(summaries[1].step, 0);
   EXPECT_EQ(summaries[2].step, 1);
   EXPECT_EQ(summaries[2].worn_area_mm2, 0.125);
+  EXPECT_EQ(summaries[1].flange_thickness_mm, 32.5);
   EXPECT_EQ(summaries[2].profile.size(), 0);  // summaries only
   EXPECT_TRUE(db.Steps(run)[1].wheels.empty());
   ExpectInputError([&] { db.LoadWheelProfile(run, 1, 1); },
                    {"wheel of traffic entry 1", "not stored"});
 
   StepRecord bad = TestStep(2);
-  bad.wheels = {{1, "a", 0, 0.0, 0.0, 0.0, 0.0, wheel}, {1, "b", 0, 0.0, 0.0, 0.0, 0.0, wheel}};
+  bad.wheels = {TestWheel(1, "a", 0.0, 0.0, 0.0, 0.0, wheel),
+                TestWheel(1, "b", 0.0, 0.0, 0.0, 0.0, wheel)};
   ExpectInputError([&] { db.AppendStep(run, bad); }, {"wheel of traffic entry 1 given twice"});
-  bad.wheels = {{1, "a", 0, 0.0, 0.0, 0.0, 0.0, Profile()}};
+  bad.wheels = {TestWheel(1, "a", 0.0, 0.0, 0.0, 0.0, Profile())};
   ExpectInputError([&] { db.AppendStep(run, bad); }, {"traffic entry 1 ('a') has 0 profile"});
-  bad.wheels = {{1, "a", 0, std::nan(""), 0.0, 0.0, 0.0, wheel}};
+  bad.wheels = {TestWheel(1, "a", std::nan(""), 0.0, 0.0, 0.0, wheel)};
   EXPECT_ANY_THROW(db.AppendStep(run, bad));
   EXPECT_EQ(db.LastStep(run), 1);
 }
@@ -518,7 +543,7 @@ TEST(ProfileStore, MigratesVersion6AndReadsItUnmigrated) {
   EXPECT_EQ(db.LastStep(run->id), 1);
   EXPECT_EQ(db.Query("SELECT count(*) FROM wheel_steps").rows[0][0], "0");
   StepRecord two = TestStep(2);
-  two.wheels = {{0, "w", 0, 0.0, 0.0, 0.0, 0.0, TestStep(2).profile}};
+  two.wheels = {TestWheel(0, "w", 0.0, 0.0, 0.0, 0.0, TestStep(2).profile)};
   db.AppendStep(run->id, two);
   EXPECT_EQ(db.WheelSteps(run->id).size(), 1u);
 }

@@ -223,6 +223,26 @@ TEST(WheelWearTest, WheelGradePresets) {
   EXPECT_GT(RailGradeOf(RailGrade::kR260).hardness_Pa, WheelGradeOf(WheelGrade::kR8).hardness_Pa);
 }
 
+// EN 15313 flange measures on the new S1002 (EN 13715's design values: flange height 28 mm,
+// thickness 32.5 mm, qR 10.8 mm). Tolerance 0.05 mm: the quoted values are rounded to 0.1 mm
+// (qR) and the profile is sampled every 0.1 mm of S.
+TEST(WheelWearTest, FlangeMeasuresOfTheNewS1002) {
+  const WheelFlangeMeasures m = MeasureWheelFlange(MakeS1002());
+  EXPECT_NEAR(m.flange_height_m * 1e3, 28.0, 0.05);
+  EXPECT_NEAR(m.flange_thickness_m * 1e3, 32.5, 0.05);
+  EXPECT_NEAR(m.flange_slope_m * 1e3, 10.8, 0.05);
+  std::cerr << "[figure] S1002: Sh " << m.flange_height_m * 1e3 << " Sd "
+            << m.flange_thickness_m * 1e3 << " qR " << m.flange_slope_m * 1e3 << " mm\n";
+  // Flange-root wear thins the flange: Sd falls, Sh stays (the tread is untouched).
+  std::vector<Eigen::Vector2d> worn = MakeS1002().points();
+  for (Eigen::Vector2d& p : worn) {
+    if (p.x() > -0.045 && p.x() < -0.030) p.x() -= 0.5e-3 * std::sin((p.x() + 0.045) / 0.015 * std::numbers::pi);
+  }
+  const WheelFlangeMeasures w = MeasureWheelFlange(Profile(worn, "worn"));
+  EXPECT_LT(w.flange_thickness_m, m.flange_thickness_m - 0.2e-3);
+  EXPECT_NEAR(w.flange_height_m, m.flange_height_m, 1e-6);
+}
+
 // A population: one entry per wheel, shares share x weight / sum, total and MGT per pass kept.
 TEST(WheelPopulationTest, EachWheelIsAnEntryWeightedByItsShare) {
   TrafficCase entry = MakeStudy(WearLawKind::kArchard, 2.4e9).traffic[0];
