@@ -92,6 +92,42 @@ Profile LoadRailProfile(const ProfileStore& db, const RunInfo& run, int step, Ra
   return db.LoadLowRailProfile(run.id, step);
 }
 
+// A wearing wheel of a run (co-evolution): its traffic entry and that entry's name.
+struct WheelRef {
+  int traffic_index = 0;
+  std::string name;
+};
+
+// The wheel --wheel names (a traffic entry's index or name); InputError naming the run's wheels.
+WheelRef WheelOrThrow(const ProfileStore& db, const RunInfo& run, const std::string& wheel) {
+  std::vector<WheelRef> wheels;
+  for (const WheelStepRecord& w : db.WheelSteps(run.id)) {
+    if (wheels.empty() || wheels.back().traffic_index != w.traffic_index) {
+      wheels.push_back({w.traffic_index, w.name});
+    }
+  }
+  for (const WheelRef& w : wheels) {
+    if (w.name == wheel || std::to_string(w.traffic_index) == wheel) return w;
+  }
+  std::string known;
+  for (const WheelRef& w : wheels) {
+    known += fmt::format("{}{} ('{}')", known.empty() ? "" : ", ", w.traffic_index, w.name);
+  }
+  throw InputError(fmt::format(
+      "database '{}': run '{}' has no wearing wheel '{}'; expected {}", db.path(), run.name, wheel,
+      wheels.empty() ? std::string("no --wheel: the run's wheels do not wear (a [[traffic]] entry's "
+                                   "wheel_wear makes them)")
+                     : "a traffic entry index or name of its wearing wheels: " + known));
+}
+
+// --rail and --wheel name different bodies: not both.
+void RequireRailOrWheel(const HistoryRailOption& r, const HistoryWheelOption& w) {
+  if (!w.wheel.empty() && r.rail != "high") {
+    throw InputError(fmt::format("--rail '{}' and --wheel '{}': expected one of the two", r.rail,
+                                 w.wheel));
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Tables.
 
@@ -240,6 +276,8 @@ void SetupHistory(CLI::App& app) {
   CLI::App* steps_cmd = history->add_subcommand(
       "steps", "Table of a run's steps: passes, MGT, worn area, max depth, W1 W2 W3, smoothing");
   steps_cmd->add_option("run", steps->run, "Run name")->required();
+  steps_cmd->add_option("--wheel", steps->wheel,
+                        "A wearing wheel's steps instead (its traffic entry's index or name)");
   steps_cmd->callback([common, steps]() { RunHistorySteps(*common, *steps); });
 
   auto profile = std::make_shared<HistoryProfileOptions>();
@@ -252,6 +290,8 @@ void SetupHistory(CLI::App& app) {
   profile_cmd->add_option("--out", profile->out, "File to write (default: stdout)");
   profile_cmd->add_option("--rail", profile->rail, "high or low: the rail of a two-rail run")
       ->capture_default_str();
+  profile_cmd->add_option("--wheel", profile->wheel,
+                          "A wearing wheel's profile instead (its traffic entry's index or name)");
   profile_cmd->callback([common, profile]() { RunHistoryProfile(*common, *profile); });
 
   auto diff = std::make_shared<HistoryDiffOptions>();
@@ -263,6 +303,8 @@ void SetupHistory(CLI::App& app) {
   diff_cmd->add_flag("--json", diff->json, "One JSON object on stdout");
   diff_cmd->add_option("--rail", diff->rail, "high or low: the rail of a two-rail run")
       ->capture_default_str();
+  diff_cmd->add_option("--wheel", diff->wheel,
+                       "A wearing wheel's wear instead (its traffic entry's index or name)");
   diff_cmd->callback([common, diff]() { RunHistoryDiff(*common, *diff); });
 
   auto plot = std::make_shared<HistoryPlotOptions>();
@@ -348,9 +390,43 @@ std::vector<std::string> MeasureCells(const std::vector<StepRecord>& steps, size
 
 }  // namespace
 
+namespace {
+
+// `history steps RUN --wheel ENTRY`: the wheel's measures per stored step.
+void PrintWheelSteps(const ProfileStore& db, const RunInfo& run, const std::string& wheel) {
+  const WheelRef ref = WheelOrThrow(db, run, wheel);
+  const std::vector<StepRecord> steps = db.Steps(run.id);
+  std::vector<std::vector<std::string>> rows;
+  for (const WheelStepRecord& w : db.WheelSteps(run.id)) {
+    if (w.traffic_index != ref.traffic_index) continue;
+    const auto st = std::find_if(steps.begin(), steps.end(),
+                                 [&](const StepRecord& r) { return r.step == w.step; });
+    if (st == steps.end()) continue;
+    const auto flange = [](const std::optional<double>& mm) {
+      return mm ? FixedNoNegativeZero(*mm, 3) : std::string("NULL");
+    };
+    rows.push_back({std::to_string(w.step), fmt::format("{:.6g}", st->passes),
+                    FixedNoNegativeZero(st->mgt, 4), FixedNoNegativeZero(w.worn_area_mm2, 4),
+                    FixedNoNegativeZero(w.max_depth_mm, 4),
+                    FixedNoNegativeZero(w.max_depth_y_mm, 3), flange(w.flange_height_mm),
+                    flange(w.flange_thickness_mm), flange(w.flange_slope_mm),
+                    fmt::format("{:.3e}", w.smoothing_area_error + 0.0)});
+  }
+  std::cout << AlignedTable({"step", "passes", "MGT", "worn_area_mm2", "max_depth_mm", "at_y_mm",
+                             "Sh_mm", "Sd_mm", "qR_mm", "smoothing_area_error"},
+                            rows);
+  std::cerr << fmt::format(
+      "railwear: run '{}' ({}), {} step(s), wheel of traffic entry {} ('{}'; wheel profile frame), "
+      "in {}\n",
+      run.name, ToString(run.state), rows.size(), ref.traffic_index, ref.name, db.path());
+}
+
+}  // namespace
+
 void RunHistorySteps(const HistoryOptions& o, const HistoryStepsOptions& s) {
   const ProfileStore db = OpenExistingStudy(o.db);
   const RunInfo run = FindRunOrThrow(db, s.run);
+  if (!s.wheel.empty()) return PrintWheelSteps(db, run, s.wheel);
   const std::vector<StepRecord> steps = db.Steps(run.id);
   const std::vector<StepRecord> low = LowRailSteps(steps);
   std::vector<std::string> columns = {
@@ -376,6 +452,18 @@ void RunHistorySteps(const HistoryOptions& o, const HistoryStepsOptions& s) {
   std::cerr << fmt::format("railwear: run '{}' ({}), {} step(s){}, in {}\n", run.name,
                            ToString(run.state), rows.size(),
                            low.empty() ? "" : ", high and low rail (low_*)", db.path());
+  const std::vector<WheelStepRecord> wheels = db.WheelSteps(run.id);
+  if (!wheels.empty()) {
+    std::cerr << fmt::format("railwear: its wheels wear too: `history steps '{}' --wheel ENTRY`",
+                             run.name);
+    int last = -1;
+    for (const WheelStepRecord& w : wheels) {
+      if (w.traffic_index == last) continue;
+      std::cerr << fmt::format("{} {} ('{}')", last < 0 ? ", ENTRY:" : ",", w.traffic_index, w.name);
+      last = w.traffic_index;
+    }
+    std::cerr << "\n";
+  }
 }
 
 void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) {
@@ -385,11 +473,29 @@ void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) 
   const std::vector<StepRecord> steps = StepsOrThrow(db, run);
   const int step_number = p.step.value_or(steps.back().step);
   const StepRecord& step = StepOrThrow(db, run, steps, step_number, "--step");
+  RequireRailOrWheel(p, p);
   const RailSide rail = RailOrThrow(p);
-  const Profile profile = LoadRailProfile(db, run, step_number, rail);
+  std::optional<WheelRef> wheel;
+  if (!p.wheel.empty()) {
+    wheel = WheelOrThrow(db, run, p.wheel);
+    if (format == HistoryProfileFormat::kBan) {
+      throw InputError(fmt::format(
+          "--wheel '{}' with the BAN format: expected csv or json (MiniProf .ban is a rail "
+          "profile format)",
+          p.wheel));
+    }
+  }
+  const Profile profile = wheel ? db.LoadWheelProfile(run.id, step_number, wheel->traffic_index)
+                                : LoadRailProfile(db, run, step_number, rail);
 
   if (format == HistoryProfileFormat::kJson) {
-    const std::string text = ProfileJson(db, run, step, profile, rail).dump(1) + "\n";
+    nlohmann::json j = ProfileJson(db, run, step, profile, rail);
+    if (wheel) {
+      j.erase("rail");
+      j["wheel"] = {{"traffic_index", wheel->traffic_index}, {"traffic", wheel->name}};
+      j["frame"] = "wheel profile frame: y lateral (as the rail's), z toward the rail, mm";
+    }
+    const std::string text = j.dump(1) + "\n";
     if (p.out.empty()) {
       std::cout << text;
     } else {
@@ -408,7 +514,10 @@ void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) 
     std::cout << ReadTextFile(file.string()).value_or("");
   }
   std::cerr << fmt::format("railwear: run '{}' step {}{} ({:.4f} MGT), {} points{}\n", run.name,
-                           step_number, rail == RailSide::kLow ? " low rail" : "", step.mgt,
+                           step_number,
+                           wheel ? fmt::format(" wheel of '{}'", wheel->name)
+                                 : std::string(rail == RailSide::kLow ? " low rail" : ""),
+                           step.mgt,
                            profile.size(), p.out.empty() ? std::string() : ", written to " + p.out);
 }
 
@@ -418,44 +527,65 @@ void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
   const std::vector<StepRecord> steps = StepsOrThrow(db, run);
   const StepRecord& a = StepOrThrow(db, run, steps, d.from_step, "step A");
   const StepRecord& b = StepOrThrow(db, run, steps, d.to_step, "step B");
+  RequireRailOrWheel(d, d);
   const RailSide rail = RailOrThrow(d);
-  const Profile unworn = LoadRailProfile(db, run, steps.front().step, rail);
-  const Profile pa = LoadRailProfile(db, run, a.step, rail);
-  const Profile pb = LoadRailProfile(db, run, b.step, rail);
+  // A wearing wheel (co-evolution): worn area and max depth along its profile, no W1/W2/W3.
+  std::optional<WheelRef> wheel;
+  if (!d.wheel.empty()) wheel = WheelOrThrow(db, run, d.wheel);
   WearMeasureOptions options;
-  options.gauge = MakeWearGauge(unworn, options.side_wear_depth_m);
-  const WearMeasures m = CompareProfiles(pa, pb, options);
+  WearMeasures m;
+  if (wheel) {
+    m = CompareWheelProfiles(db.LoadWheelProfile(run.id, a.step, wheel->traffic_index),
+                             db.LoadWheelProfile(run.id, b.step, wheel->traffic_index), options);
+  } else {
+    const Profile unworn = LoadRailProfile(db, run, steps.front().step, rail);
+    const Profile pa = LoadRailProfile(db, run, a.step, rail);
+    const Profile pb = LoadRailProfile(db, run, b.step, rail);
+    options.gauge = MakeWearGauge(unworn, options.side_wear_depth_m);
+    m = CompareProfiles(pa, pb, options);
+  }
 
   if (d.json) {
     // NaN (a line that misses a profile) is written as null.
-    const nlohmann::json j = {{"database", db.path()},
-                              {"run", run.name},
-                              {"rail", std::string(ToString(rail))},
-                              {"from", {{"step", a.step}, {"passes", a.passes}, {"mgt", a.mgt}}},
-                              {"to", {{"step", b.step}, {"passes", b.passes}, {"mgt", b.mgt}}},
-                              {"worn_area_mm2", m.worn_area_m2 * kToMm2},
-                              {"max_depth_mm", m.max_depth_m * kToMm},
-                              {"max_depth_s_mm", m.max_depth_s_m * kToMm},
-                              {"max_depth_y_mm", m.max_depth_y_m * kToMm},
-                              {"max_depth_z_mm", m.max_depth_z_m * kToMm},
-                              {"w1_mm", m.vertical_wear_m * kToMm},
-                              {"w2_mm", m.side_wear_m * kToMm},
-                              {"w3_mm", m.wear_45_m * kToMm},
-                              {"unmatched_samples", m.unmatched_samples}};
+    nlohmann::json j = {{"database", db.path()},
+                        {"run", run.name},
+                        {"from", {{"step", a.step}, {"passes", a.passes}, {"mgt", a.mgt}}},
+                        {"to", {{"step", b.step}, {"passes", b.passes}, {"mgt", b.mgt}}},
+                        {"worn_area_mm2", m.worn_area_m2 * kToMm2},
+                        {"max_depth_mm", m.max_depth_m * kToMm},
+                        {"max_depth_s_mm", m.max_depth_s_m * kToMm},
+                        {"max_depth_y_mm", m.max_depth_y_m * kToMm},
+                        {"max_depth_z_mm", m.max_depth_z_m * kToMm},
+                        {"unmatched_samples", m.unmatched_samples}};
+    if (wheel) {
+      j["wheel"] = {{"traffic_index", wheel->traffic_index}, {"traffic", wheel->name}};
+    } else {
+      j["rail"] = std::string(ToString(rail));
+      j["w1_mm"] = m.vertical_wear_m * kToMm;
+      j["w2_mm"] = m.side_wear_m * kToMm;
+      j["w3_mm"] = m.wear_45_m * kToMm;
+    }
     std::cout << j.dump(2) << "\n";
   } else {
     std::string out;
     out += fmt::format("run           {}\n", run.name);
-    if (rail == RailSide::kLow) out += "rail          low\n";
+    if (wheel) {
+      out += fmt::format("wheel         of '{}' (traffic entry {}), wheel profile frame\n",
+                         wheel->name, wheel->traffic_index);
+    } else if (rail == RailSide::kLow) {
+      out += "rail          low\n";
+    }
     out += fmt::format("from step     {} ({:.4f} MGT, {:.6g} passes)\n", a.step, a.mgt, a.passes);
     out += fmt::format("to step       {} ({:.4f} MGT, {:.6g} passes)\n", b.step, b.mgt, b.passes);
     out += fmt::format("worn area     {:.4f} mm^2\n", m.worn_area_m2 * kToMm2);
     out += fmt::format("max depth     {} mm at s = {} mm (y = {}, z = {} mm) on step {}\n",
                        Mm(m.max_depth_m), Mm(m.max_depth_s_m, 2), Mm(m.max_depth_y_m, 2),
                        Mm(m.max_depth_z_m, 2), a.step);
-    out += fmt::format("W1 vertical   {} mm (centre line)\n", Mm(m.vertical_wear_m));
-    out += fmt::format("W2 side       {} mm (14 mm below the top of rail)\n", Mm(m.side_wear_m));
-    out += fmt::format("W3 45 deg     {} mm (gauge corner)\n", Mm(m.wear_45_m));
+    if (!wheel) {
+      out += fmt::format("W1 vertical   {} mm (centre line)\n", Mm(m.vertical_wear_m));
+      out += fmt::format("W2 side       {} mm (14 mm below the top of rail)\n", Mm(m.side_wear_m));
+      out += fmt::format("W3 45 deg     {} mm (gauge corner)\n", Mm(m.wear_45_m));
+    }
     std::cout << out;
   }
   if (m.unmatched_samples > 0) {

@@ -27,7 +27,13 @@ struct HistoryOptions {
   std::string db = "wear.sqlite";  // the study database (the scene template's [wear] db default)
 };
 
-struct HistoryStepsOptions {
+// Co-evolution (issue 16): a wearing wheel of the run, by its traffic entry's index or name
+// (`history steps/profile/diff --wheel`); empty: the rail.
+struct HistoryWheelOption {
+  std::string wheel;
+};
+
+struct HistoryStepsOptions : HistoryWheelOption {
   std::string run;
 };
 
@@ -47,14 +53,14 @@ struct HistoryRailOption {
   std::string rail = "high";
 };
 
-struct HistoryProfileOptions : HistoryRailOption {
+struct HistoryProfileOptions : HistoryRailOption, HistoryWheelOption {
   std::string run;
   std::optional<int> step;  // default: the run's last step
   std::string format;       // "csv", "ban" or "json"; default: by --out's extension, else csv
   std::string out;          // file to write; empty: stdout
 };
 
-struct HistoryDiffOptions : HistoryRailOption {
+struct HistoryDiffOptions : HistoryRailOption, HistoryWheelOption {
   std::string run;
   int from_step = 0;  // A
   int to_step = 0;    // B
@@ -82,14 +88,17 @@ void RunHistoryRuns(const HistoryOptions& options);
 void RunHistoryCalibrations(const HistoryOptions& options);
 // steps: table step, passes, MGT, worn area, max depth and its y, W1 W2 W3, smoothing error, the
 // W2 and W3 rates [mm/MGT] since the previous stored step; for a two-rail run the same measures
-// and rates of the low rail in columns low_*.
+// and rates of the low rail in columns low_*. --wheel ENTRY: that wearing wheel's table instead
+// (step, passes, MGT, worn area, max depth and its y in the wheel frame, smoothing error).
 void RunHistorySteps(const HistoryOptions& options, const HistoryStepsOptions& steps);
 // profile: the step's rail profile (mm) as CSV or MiniProf BAN (core/profile/profile_io.h), or
-// JSON {run, step, passes, mgt, points, y_mm[], z_mm[]}; --rail low: the low rail's (own frame).
+// JSON {run, step, passes, mgt, points, y_mm[], z_mm[]}; --rail low: the low rail's (own frame);
+// --wheel ENTRY: that wearing wheel's (wheel profile frame; CSV or JSON, not BAN).
 void RunHistoryProfile(const HistoryOptions& options, const HistoryProfileOptions& profile);
 // diff: CompareProfiles(step A, step B) with the wear gauge of the run's step 0, so W1/W2/W3
 // between A and B are the differences of their values against step 0 (wear/wear_measures.h);
-// --rail low: of the low rail.
+// --rail low: of the low rail; --wheel ENTRY: of that wearing wheel (CompareWheelProfiles: worn
+// area and max depth, no W1/W2/W3).
 void RunHistoryDiff(const HistoryOptions& options, const HistoryDiffOptions& diff);
 // plot: three PNGs via gnuplot (app/history_plot.h); std::runtime_error when gnuplot is missing.
 void RunHistoryPlot(const HistoryOptions& options, const HistoryPlotOptions& plot);

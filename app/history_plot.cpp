@@ -163,6 +163,30 @@ std::string DepthScript(const std::string& run, const std::vector<StepRecord>& s
   return g.str();
 }
 
+// The wearing wheels' depth (co-evolution): one panel per wheel, its curves written to files in
+// `dir`.
+std::string WheelsScript(const std::string& run, const std::vector<StepRecord>& steps,
+                         const std::vector<WheelDepthCurves>& wheels, const fs::path& dir,
+                         const std::string& png) {
+  std::ostringstream g;
+  const int n = static_cast<int>(wheels.size());
+  g << GnuplotPngTerminal(1000, 400 + 400 * n) << "set output " << GnuplotQuote(png) << "\n";
+  g << fmt::format("set multiplot layout {},1\n", n);
+  g << "set xlabel 's [mm] along the unworn wheel profile (from its first point)'\n";
+  g << "set ylabel 'wear depth [mm]'\nset cblabel 'MGT'\nset palette rgb 33,13,10\nset grid\n";
+  g << CbRange(steps);
+  for (int k = 0; k < n; ++k) {
+    const fs::path file = dir / fmt::format("wheel{}.dat", k);
+    WriteDepthData(wheels[k].curves, file);
+    DepthPanel(g,
+               fmt::format("run {}: wheel of '{}' (traffic entry {}), normal depth against step 0",
+                           run, wheels[k].name, wheels[k].traffic_index),
+               wheels[k].curves.empty(), file);
+  }
+  g << "unset multiplot\n";
+  return g.str();
+}
+
 std::string MeasuresScript(const std::string& run, const std::vector<StepRecord>& steps,
                            const std::vector<StepRecord>& low_steps, const fs::path& dir,
                            const std::string& png) {
@@ -288,6 +312,32 @@ std::vector<DepthCurve> WearDepthCurves(const std::vector<StepRecord>& steps) {
   return curves;
 }
 
+std::vector<WheelDepthCurves> WheelDepthCurvesOf(const std::vector<StepRecord>& steps) {
+  std::vector<WheelDepthCurves> out;
+  if (steps.empty()) return out;
+  for (const WheelStepRecord& unworn : steps.front().wheels) {
+    WheelDepthCurves w;
+    w.traffic_index = unworn.traffic_index;
+    w.name = unworn.name;
+    for (size_t k = 1; k < steps.size(); ++k) {
+      for (const WheelStepRecord& now : steps[k].wheels) {
+        if (now.traffic_index != unworn.traffic_index) continue;
+        const WearMeasures m = CompareWheelProfiles(unworn.profile, now.profile);
+        DepthCurve c;
+        c.step = steps[k].step;
+        c.mgt = steps[k].mgt;
+        for (size_t i = 0; i < m.s_m.size(); ++i) {
+          c.s_mm.push_back(m.s_m[i] * kToMm);
+          c.depth_mm.push_back(m.depth_m[i] * kToMm);
+        }
+        w.curves.push_back(std::move(c));
+      }
+    }
+    out.push_back(std::move(w));
+  }
+  return out;
+}
+
 std::vector<std::string> PlotHistory(const std::string& run_name,
                                      const std::vector<StepRecord>& steps,
                                      const std::string& prefix) {
@@ -309,8 +359,17 @@ std::vector<std::string> PlotHistory(const std::string& run_name,
       "reset\n" + DepthScript(run_name, steps, curves, low_steps.empty() ? nullptr : &low_curves,
                               tmp.path(), outputs[1]);
   script += "reset\n" + MeasuresScript(run_name, steps, low_steps, tmp.path(), outputs[2]);
-  RunGnuplot(script, tmp, outputs);
-  return {prefix + "_profiles.png", prefix + "_depth.png", prefix + "_measures.png"};
+  std::vector<std::string> written = {prefix + "_profiles.png", prefix + "_depth.png",
+                                      prefix + "_measures.png"};
+  std::vector<std::string> expected = outputs;
+  const std::vector<WheelDepthCurves> wheels = WheelDepthCurvesOf(steps);
+  if (!wheels.empty()) {  // co-evolution: a fourth PNG, the wheels' depth
+    expected.push_back(fs::absolute(prefix + "_wheels.png").string());
+    script += "reset\n" + WheelsScript(run_name, steps, wheels, tmp.path(), expected.back());
+    written.push_back(prefix + "_wheels.png");
+  }
+  RunGnuplot(script, tmp, expected);
+  return written;
 }
 
 }  // namespace railwear::app

@@ -3,7 +3,9 @@
 //                        corner (equal axes, z downward as in the rail frame);
 //   PREFIX_depth.png     wear depth against the arc length s along the step-0 profile, one curve
 //                        per step coloured by MGT;
-//   PREFIX_measures.png  W1, W2, W3 (wear/wear_measures.h) against MGT.
+//   PREFIX_measures.png  W1, W2, W3 (wear/wear_measures.h) against MGT;
+//   PREFIX_wheels.png    only for a run whose wheels wear (co-evolution, issue 16): each
+//                        wearing wheel's depth against the arc length of its unworn profile.
 // A two-rail run (issue 15) gets the low rail next to the high one in the depth plot (a second
 // panel) and the measures plot (dashed curves); the profile plot shows the high rail.
 //
@@ -54,7 +56,18 @@ struct DepthCurve {
 // steps[0] is not a rail head CompareProfiles can measure (wear/wear_measures.h).
 std::vector<DepthCurve> WearDepthCurves(const std::vector<StepRecord>& steps);
 
-// Writes the three PNGs for the run and returns their paths. Throws std::runtime_error when gnuplot
+// Co-evolution: each wearing wheel's depth curves, the normal depth of its profile at every step
+// after step 0 against its step-0 profile (CompareWheelProfiles), s along that profile.
+struct WheelDepthCurves {
+  int traffic_index = 0;
+  std::string name;
+  std::vector<DepthCurve> curves;
+};
+// One per wheel of steps[0] (LoadStep results, in step order); empty for a run without them.
+std::vector<WheelDepthCurves> WheelDepthCurvesOf(const std::vector<StepRecord>& steps);
+
+// Writes the three PNGs for the run (and PREFIX_wheels.png, one depth panel per wearing wheel,
+// when the run's wheels wear) and returns their paths. Throws std::runtime_error when gnuplot
 // is missing (checked first) or fails; InputError when steps[0] is not a rail head on which
 // MakeWearGauge can find the gauge corner (the profile plot is zoomed on it).
 std::vector<std::string> PlotHistory(const std::string& run_name,

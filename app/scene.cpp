@@ -19,6 +19,7 @@
 #include "core/numerics/units.h"
 #include "core/profile/builtin_profiles.h"
 #include "wear/collective_traffic.h"
+#include "wear/rail_grade.h"
 
 namespace railwear::app {
 namespace {
@@ -744,6 +745,14 @@ void ReadEntryFriction(const Fields& t, const FrictionConditions& conditions, bo
 
 // A [[traffic]] entry that names a vehicle: its wheels and positions come from curving.
 void ReadVehicleTraffic(const Fields& t, Scene* scene, TrafficCase* c) {
+  for (const std::string_view key : {"wheel_wear", "wheel_population"}) {
+    if (t.Has(key)) {
+      t.Fail(key,
+             "no wheel wear or wheel population on a vehicle entry (a vehicle's wheels are its "
+             "own, [[vehicle]] wheel_profile, and do not wear): use a prescribed or collective "
+             "entry");
+    }
+  }
   t.AllowOnly({"name", "vehicle", "speed_m_s", "friction", "condition", "gauge_face_condition",
                "share", "lateral_spread_mm"});
   const std::string name = t.RequiredString("vehicle", "the name of a [[vehicle]]");
@@ -771,6 +780,14 @@ void ReadVehicleTraffic(const Fields& t, Scene* scene, TrafficCase* c) {
 // The wheel of a prescribed or collective entry: its profile and rolling radius (from the
 // entry, else from the scene's [wheel]).
 void ReadTrafficWheel(const Fields& t, Scene* scene, bool has_wheel, TrafficCase* c) {
+  if (t.Has("wheel_population")) {
+    // The wheels come from the population (ReadWheelPopulation), each with its own radius or
+    // the entry's.
+    if (t.Has("wheel_profile")) {
+      t.Fail("wheel_population", "either wheel_profile or wheel_population, not both");
+    }
+    return;
+  }
   if (const auto spec = t.String("wheel_profile")) {
     Profile p = LoadProfileFor(t, "wheel_profile", BodyRole::kWheel, *spec, scene->path);
     if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
@@ -790,12 +807,144 @@ void ReadTrafficWheel(const Fields& t, Scene* scene, bool has_wheel, TrafficCase
   }
 }
 
+// [[traffic]] wheel_wear = { distance_per_pass_m, grade or hardness_MPa }: the entry's wheel wears
+// with the rail (co-evolution, wear/wheel_wear.h). After ReadMaterials and ReadWearTable.
+void ReadWheelWear(const Fields& t, const Scene& scene, TrafficCase* c) {
+  const auto w = t.Table("wheel_wear",
+                         "an inline table { distance_per_pass_m, grade or hardness_MPa }");
+  if (!w) return;
+  w->AllowOnly({"distance_per_pass_m", "grade", "hardness_MPa"});
+  WheelWear wear;
+  // Up to 1e7 m (10 000 km) per pass.
+  wear.distance_per_pass_m =
+      w->RequiredNumber("distance_per_pass_m", Positive(), OpenClosed(0.0, 1e7));
+  if (w->Has("grade") && w->Has("hardness_MPa")) {
+    w->Fail("hardness_MPa", "either grade or hardness_MPa, not both");
+  }
+  if (const auto grade = w->Choice("grade", EnumChoices(kWheelGradeNames))) {
+    wear.hardness_Pa = WheelGradeOf(*WheelGradeFromString(*grade)).hardness_Pa;
+  }
+  if (const auto h = w->Number("hardness_MPa", Positive(), Closed(1.0, 1e6))) {
+    wear.hardness_Pa = *h * kMPa;
+  }
+  const WearLawKind law = scene.wear->options.law.kind;
+  if (!wear.hardness_Pa && law != WearLawKind::kUsfd &&
+      !(scene.problem.wheel_material.hardness_Pa > 0.0)) {
+    w->FailMissing("hardness_MPa",
+                   fmt::format("the wheel's hardness for the {} law: materials.wheel.hardness_MPa "
+                               "or grade (\"R7\", \"R8\"), or wheel_wear.grade or hardness_MPa",
+                               ToString(law)));
+  }
+  c->wheel_wear = wear;
+}
+
+// One wheel of a population: { name, profile, weight, rolling_radius_mm, mirror_y }; profile
+// paths relative to `base_path`'s directory (the scene, or the population file).
+PopulationWheel ReadPopulationWheel(const Fields& w, const std::string& base_path,
+                                    std::optional<double> default_radius_m, bool mirror) {
+  w.AllowOnly({"name", "profile", "weight", "rolling_radius_mm", "mirror_y"});
+  PopulationWheel wheel;
+  const std::string spec = w.RequiredString("profile", kProfileExpected);
+  wheel.profile = LoadProfileFor(w, "profile", BodyRole::kWheel, spec, base_path);
+  if (w.Bool("mirror_y").value_or(mirror)) wheel.profile = wheel.profile.Mirrored();
+  wheel.name = w.String("name").value_or(spec);
+  // A share of the entry's passes, relative to the other wheels': counts or fractions alike.
+  wheel.weight = w.RequiredNumber("weight", Positive(), OpenClosed(0.0, 1e9));
+  if (const auto r = w.Number("rolling_radius_mm", Positive(), OpenClosed(0.0, 2000.0))) {
+    wheel.rolling_radius_m = *r * kMm;
+  } else if (default_radius_m) {
+    wheel.rolling_radius_m = *default_radius_m;
+  } else {
+    w.FailMissing("rolling_radius_mm",
+                  "the wheel radius at the profile's z = 0 in mm (or the entry's "
+                  "rolling_radius_mm, or a [wheel] table)");
+  }
+  return wheel;
+}
+
+// [[traffic]] wheel_population: a measured wheel population (issue 16 point 6), inline
+//   wheel_population = [ { profile = "...", weight = 3 }, ... ]
+// or a TOML file of [[wheel]] tables with the same keys (profiles relative to that file):
+//   wheel_population = "fleet.toml"
+// Empty when the entry has none.
+std::vector<PopulationWheel> ReadWheelPopulation(const Fields& t, const Scene& scene,
+                                                 bool has_wheel) {
+  std::vector<PopulationWheel> wheels;
+  const toml::node* node = t.Node("wheel_population");
+  if (node == nullptr) return wheels;
+  std::optional<double> radius;
+  if (const auto r = t.Number("rolling_radius_mm", Positive())) {
+    radius = *r * kMm;
+  } else if (has_wheel) {
+    radius = scene.problem.placement.rolling_radius_m;
+  }
+  const bool mirror = t.Bool("mirror_y").value_or(false);
+  const std::string expected =
+      "a non-empty array of wheels [{ profile, weight, name, rolling_radius_mm, mirror_y }, ...], "
+      "or the path of a TOML file of [[wheel]] tables with those keys";
+  std::vector<std::string> names;
+  const auto add = [&](const Fields& w, const std::string& base_path) {
+    PopulationWheel wheel = ReadPopulationWheel(w, base_path, radius, mirror);
+    if (std::find(names.begin(), names.end(), wheel.name) != names.end()) {
+      if (w.Has("name")) w.Fail("name", "a name no other wheel of the population has");
+      w.Fail("profile", "a profile no other unnamed wheel has (or give each a name)");
+    }
+    names.push_back(wheel.name);
+    wheels.push_back(std::move(wheel));
+  };
+  if (const auto file = node->value_exact<std::string>()) {
+    const std::string path = ResolveRelativeTo(DirectoryOf(scene.path), *file);
+    std::string text;
+    try {
+      text = ReadInputFile(path, "the wheel population file");
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", FieldPrefix(t.file(), *node, t.KeyName("wheel_population")),
+                                   e.what()));
+    }
+    const toml::table root = ParseToml(text, path);
+    const Fields top(root, "", path);
+    top.AllowOnly({"wheel"});
+    const std::vector<Fields> tables =
+        ArrayOfTables(top, "wheel", "[[wheel]] tables { profile, weight, name, rolling_radius_mm, "
+                                    "mirror_y }");
+    if (tables.empty()) top.FailMissing("wheel", "at least one [[wheel]] table");
+    for (const Fields& w : tables) add(w, path);
+    return wheels;
+  }
+  const toml::array* array = node->as_array();
+  if (array == nullptr || array->empty() || !array->is_array_of_tables()) {
+    t.Fail("wheel_population", expected);
+  }
+  int index = 0;
+  for (const toml::node& entry : *array) {
+    add(Fields(*entry.as_table(), t.KeyName(fmt::format("wheel_population[{}]", index++)),
+               t.file()),
+        scene.path);
+  }
+  return wheels;
+}
+
+// Adds a prescribed or collective entry to the study: with its wheel wear, and once per wheel of
+// its population when it has one (ExpandWheelPopulation).
+void AddTrafficEntry(const Fields& t, Scene* scene, bool has_wheel, TrafficCase c) {
+  ReadWheelWear(t, *scene, &c);
+  const std::vector<PopulationWheel> population = ReadWheelPopulation(t, *scene, has_wheel);
+  if (population.empty()) {
+    scene->wear->traffic.push_back(std::move(c));
+    return;
+  }
+  for (TrafficCase& e : ExpandWheelPopulation(c, population)) {
+    scene->wear->traffic.push_back(std::move(e));
+  }
+}
+
 // A [[traffic]] entry that names an imported load collective (`railwear traffic import`): each
 // bin is one load case at its wheelset state on the unworn rails (wear/collective_traffic.h).
 void ReadCollectiveTraffic(const Fields& t, Scene* scene, bool has_wheel, TrafficCase* c) {
   t.AllowOnly({"name", "collective", "share", "friction", "condition", "gauge_face_condition",
                "axle_load_t", "wheel_profile", "mirror_y", "rolling_radius_mm",
-               "flange_back_distance_mm", "flange_back_position_mm"});
+               "flange_back_distance_mm", "flange_back_position_mm", "wheel_wear",
+               "wheel_population"});
   const std::string file =
       t.RequiredString("collective",
                        "the path of a load-collective TOML file (railwear traffic import), "
@@ -886,13 +1035,14 @@ void ReadTraffic(const Fields& top, Scene* scene) {
       TrafficCase c;
       c.name = t.String("name").value_or(fmt::format("traffic[{}]", index));
       ReadCollectiveTraffic(t, scene, has_wheel, &c);
-      scene->wear->traffic.push_back(std::move(c));
+      AddTrafficEntry(t, scene, has_wheel, std::move(c));
       ++index;
       continue;
     }
     t.AllowOnly({"name", "wheel_profile", "mirror_y", "rolling_radius_mm", "vertical_N",
                  "axle_load_t", "lateral_shift_mm", "roll_rad", "yaw_mrad", "friction", "condition",
-                 "gauge_face_condition", "speed_m_s", "share", "rail"});
+                 "gauge_face_condition", "speed_m_s", "share", "rail", "wheel_wear",
+                 "wheel_population"});
     TrafficCase c;
     c.name = t.String("name").value_or(fmt::format("traffic[{}]", index));
     if (const auto rail = t.Choice("rail", EnumChoices(kRailSideNames))) {
@@ -913,9 +1063,15 @@ void ReadTraffic(const Fields& top, Scene* scene) {
     ReadEntryFriction(t, scene->wear->options.conditions, /*required=*/true, &c);
     c.speed_m_s = t.RequiredNumber("speed_m_s", OpenClosed(0.0, kMaxSpeed_m_s));
     c.share = t.Number("share", OpenClosed(0.0, kMaxShare)).value_or(1.0);
-    scene->wear->traffic.push_back(std::move(c));
+    AddTrafficEntry(t, scene, has_wheel, std::move(c));
     ++index;
   }
+  // A wheel population makes one entry per wheel: count the load cases again.
+  size_t expanded = 0;
+  for (const TrafficCase& c : scene->wear->traffic) {
+    expanded += (c.is_vehicle() || (!c.is_collective() && c.lateral_shift_std_m > 0.0)) ? nodes : 1;
+  }
+  if (expanded > kMaxLoadCasesPerStep) refuse(expanded);
 }
 
 // A wear scene: model, materials, rail or track, optional default wheel, [wear] and [[traffic]].

@@ -58,6 +58,8 @@ rail = { E_MPa = 210000, nu = 0.28, hardness_MPa = 2600, shear_yield_MPa = 350 }
                               # the wheel may give hardness_MPa too (for pressure_limit)
 # rail = { grade = "R260" }   # or a rail grade: "R200" | "R260" | "R350HT" (EN 13674-1) presets
                               # E, nu, hardness and shear yield; keys beside it override them
+# wheel = { grade = "R8" }    # or a wheel grade: "R7" | "R8" (EN 13262) presets E, nu and the
+                              # rim's minimum hardness (the wheel's, when its wheel wears)
 
 [wheel]                       # required
 profile = "builtin:S1002"     # "builtin:S1002", "circle:R_mm", or a file (.csv, .whl, .prw,
@@ -152,6 +154,16 @@ speed_m_s = 20.0              # > 0; needed by the "tangential" effect
 # gauge_face_condition = "lubricated"  # gauge corner and face (default: the top of rail's)
 # speed_m_s = 22.0             # required, > 0
 # share = 0.4                  # relative share of passes, > 0
+# wheel_wear = { distance_per_pass_m = 500 }  # co-evolution: this entry's wheel wears too;
+#                              # the distance it rolls on track like this one per pass of the
+#                              # entry, (0, 1e7] m; grade = "R7" | "R8" or hardness_MPa set its
+#                              # hardness (default: materials.wheel's); not on vehicle entries
+# wheel_population = [ { profile = "worn.whl", weight = 3, name = "worn" },
+#                      { profile = "builtin:S1002", weight = 1 } ]
+#                              # or a TOML file of [[wheel]] tables with these keys: one load
+#                              # case per wheel, weighted by share x weight / sum of weights
+#                              # (instead of wheel_profile; rolling_radius_mm per wheel or the
+#                              # entry's; not on vehicle entries)
 )toml";
 }
 

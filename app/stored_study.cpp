@@ -64,6 +64,13 @@ WearState StateFromStore(const ProfileStore& store, int64_t run, int step) {
     if (!c.jacobian.empty())
       start.jacobian = Eigen::Map<const Eigen::MatrixXd>(c.jacobian.data(), n, n);
   }
+  // Each wearing wheel's profile (co-evolution): the next step's contacts run it.
+  for (const WheelStepRecord& w : r.wheels) {
+    if (w.traffic_index >= static_cast<int>(state.wheels.size())) {
+      state.wheels.resize(w.traffic_index + 1);
+    }
+    state.wheels[w.traffic_index] = w.profile;
+  }
   return state;
 }
 

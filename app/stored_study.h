@@ -1,9 +1,9 @@
 // Reading a study database that already exists (profiles_db -> the commands): opening it without
 // ever writing it, finding a run by name, and a run's stored step read back as the wear loop's
-// state (the rails, their damage and each vehicle entry's curving solution, bit for bit as the
-// step stored them). `railwear history` reads through the first two, `railwear wear --resume`
-// continues from the third, and `railwear curving --db` solves a vehicle on a stored step's
-// rails from its stored curving.
+// state (the rails, their damage, each vehicle entry's curving solution and each wearing wheel,
+// bit for bit as the step stored them). `railwear history` reads through the first two,
+// `railwear wear --resume` continues from the third, and `railwear curving --db` solves a vehicle
+// on a stored step's rails from its stored curving.
 #pragma once
 
 #include <cstdint>

@@ -165,28 +165,39 @@ Material ReadMaterial(const Fields& parent, std::string_view key, MaterialKeys k
   if (keys == MaterialKeys::kWithDamage) {
     t->AllowOnly({"grade", "E_MPa", "nu", "hardness_MPa", "shear_yield_MPa"});
   } else if (keys == MaterialKeys::kWithHardness) {
-    t->AllowOnly({"E_MPa", "nu", "hardness_MPa"});
+    t->AllowOnly({"E_MPa", "nu", "hardness_MPa", "grade"});
   } else {
     t->AllowOnly({"E_MPa", "nu"});
   }
   Material m;
-  // A rail grade (wear/rail_grade.h) presets every value; the keys given beside it override.
-  std::optional<RailGradeProperties> grade;
+  // A rail or wheel grade (wear/rail_grade.h) presets every value; the keys given beside it
+  // override.
+  bool preset = false;
   if (keys == MaterialKeys::kWithDamage) {
     if (const auto name = t->Choice("grade", EnumChoices(kRailGradeNames))) {
-      grade = RailGradeOf(*RailGradeFromString(*name));
-      m.youngs_modulus_Pa = grade->youngs_modulus_Pa;
-      m.poisson_ratio = grade->poisson_ratio;
-      m.hardness_Pa = grade->hardness_Pa;
-      m.shear_yield_Pa = grade->shear_yield_Pa;
+      const RailGradeProperties grade = RailGradeOf(*RailGradeFromString(*name));
+      preset = true;
+      m.youngs_modulus_Pa = grade.youngs_modulus_Pa;
+      m.poisson_ratio = grade.poisson_ratio;
+      m.hardness_Pa = grade.hardness_Pa;
+      m.shear_yield_Pa = grade.shear_yield_Pa;
+    }
+  } else if (keys == MaterialKeys::kWithHardness) {
+    // A wheel grade (EN 13262): E, nu and the rim's minimum hardness.
+    if (const auto name = t->Choice("grade", EnumChoices(kWheelGradeNames))) {
+      const WheelGradeProperties grade = WheelGradeOf(*WheelGradeFromString(*name));
+      preset = true;
+      m.youngs_modulus_Pa = grade.youngs_modulus_Pa;
+      m.poisson_ratio = grade.poisson_ratio;
+      m.hardness_Pa = grade.hardness_Pa;
     }
   }
   // Moduli from soft rubber (1 MPa) to beyond diamond (1e7 MPa): the contact modulus and the
   // approach of the solvers are bounded there (1e-308 MPa aborted the normal solver).
-  if (!grade || t->Has("E_MPa")) {
+  if (!preset || t->Has("E_MPa")) {
     m.youngs_modulus_Pa = t->RequiredNumber("E_MPa", Positive(), Closed(1.0, 1e7)) * kMPa;
   }
-  if (!grade || t->Has("nu")) m.poisson_ratio = t->RequiredNumber("nu", InRange(0.0, 0.5));
+  if (!preset || t->Has("nu")) m.poisson_ratio = t->RequiredNumber("nu", InRange(0.0, 0.5));
   if (const auto h = t->Number("hardness_MPa", Positive(), Closed(1.0, 1e6))) {
     m.hardness_Pa = *h * kMPa;
   }

@@ -133,7 +133,9 @@ std::vector<Enum> EnumArray(const Fields& t, std::string_view key, FromString fr
 enum class MaterialKeys {
   kElastic,       // { E_MPa, nu }
   kWithDamage,    // { E_MPa, nu, hardness_MPa, shear_yield_MPa } (the rail of a scene)
-  kWithHardness,  // { E_MPa, nu, hardness_MPa } (the wheel of a scene: its pressure limit)
+  // { grade, E_MPa, nu, hardness_MPa } (the wheel of a scene: its pressure limit and, for wear
+  // with co-evolution, its hardness; grade "R7" | "R8", wear/rail_grade.h, presets the others)
+  kWithHardness,
 };
 // The material table at `key` of `parent` (inline or not; required): E_MPa in [1, 1e7] and nu
 // in [0, 0.5) required, hardness_MPa and shear_yield_MPa (in [1, 1e6], optional) when `keys` allows

@@ -60,6 +60,19 @@ json WearLawJson(const WearStudy& study) {
   j["hardness_MPa"] = study.rail_material.hardness_Pa * 1e-6;
   j["max_depth_per_step_mm"] = study.options.max_depth_per_step_m * 1e3;
   j["smoothing_mm"] = study.options.smoothing.smoothing_length_m * 1e3;
+  // Co-evolution (issue 16): the wearing wheels, only when there are (older runs' JSON unchanged).
+  json wheels = json::array();
+  for (size_t t = 0; t < study.traffic.size(); ++t) {
+    const TrafficCase& c = study.traffic[t];
+    if (!c.wears_wheel()) continue;
+    wheels.push_back({{"traffic_index", t},
+                      {"traffic", c.name},
+                      {"distance_per_pass_m", c.wheel_wear->distance_per_pass_m},
+                      {"hardness_MPa",
+                       c.wheel_wear->hardness_Pa.value_or(study.wheel_material.hardness_Pa) *
+                           1e-6}});
+  }
+  if (!wheels.empty()) j["wheel_wear"] = wheels;
   // The spread rule (issue 16): "quadrature_points" stays for the fixed rule's readers.
   if (study.options.integration_tolerance) {
     j["integration"] = {{"rule", "adaptive"},
@@ -143,6 +156,9 @@ json LoadCaseJson(const LoadCaseSummary& c, const WearStudy& study,
   j["spin_share"] = work > 0.0 ? c.spin_work_N / work : 0.0;
   j["rcf_damage_per_pass"] = c.rcf_damage_per_pass;
   j["worn_area_per_pass_mm2"] = c.worn_area_per_pass_m2 * 1e6;
+  if (study.traffic[t].wears_wheel()) {  // co-evolution only: older runs' JSON unchanged
+    j["wheel_worn_area_per_pass_mm2"] = c.wheel_worn_area_per_pass_m2 * 1e6;
+  }
   j["contact_angle_deg"] = c.contact_angle_rad * 180.0 / M_PI;
   j["contact_y_mm"] = c.contact_y_m * 1e3;
   return j;
@@ -219,6 +235,17 @@ struct PreviousProfiles {
   std::optional<Profile> low;
 };
 
+// A flange measure [m] as stored [mm]: absent where the profile has none (NaN).
+std::optional<double> FlangeMm(double metres) {
+  return std::isfinite(metres) ? std::optional<double>(metres * 1e3) : std::nullopt;
+}
+
+void SetFlange(const WheelFlangeMeasures& f, WheelStepRecord* w) {
+  w->flange_height_mm = FlangeMm(f.flange_height_m);
+  w->flange_thickness_mm = FlangeMm(f.flange_thickness_m);
+  w->flange_slope_mm = FlangeMm(f.flange_slope_m);
+}
+
 StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const UnwornRails& unworn,
                           const PreviousProfiles& previous) {
   RequireFinite(step.measures, step, step.low_rail ? "high rail" : "rail");
@@ -262,6 +289,28 @@ StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const 
                           .distributions;
     r.low_rail = std::move(l);
   }
+  for (const WheelStepResult& w : step.wheels) {
+    const WearMeasures& wm = w.measures;
+    const std::string& name = study.traffic[w.traffic_index].name;
+    for (const double v : {wm.worn_area_m2, wm.max_depth_m, wm.max_depth_y_m, w.smoothing_area_error}) {
+      if (!std::isfinite(v)) {
+        throw std::runtime_error(fmt::format(
+            "wear step {}: a wear measure of the wheel of '{}' is not finite (the worn wheel "
+            "profile degenerated); the run stops before storing it",
+            step.state.step, name));
+      }
+    }
+    WheelStepRecord rec;
+    rec.traffic_index = w.traffic_index;
+    rec.name = name;
+    rec.worn_area_mm2 = wm.worn_area_m2 * 1e6;
+    rec.max_depth_mm = wm.max_depth_m * 1e3;
+    rec.max_depth_y_mm = wm.max_depth_y_m * 1e3;
+    rec.smoothing_area_error = w.smoothing_area_error;
+    rec.profile = step.state.wheels[w.traffic_index];
+    SetFlange(w.flange, &rec);
+    r.wheels.push_back(std::move(rec));
+  }
   for (size_t t = 0; t < step.state.curving.size(); ++t) {
     const CurvingStart& c = step.state.curving[t];
     if (c.state.size() == 0) continue;
@@ -272,13 +321,22 @@ StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const 
   return r;
 }
 
-StepRecord MakeInitialRecord(const WearState& state) {
+StepRecord MakeInitialRecord(const WearState& state, const WearStudy& study) {
   StepRecord r;
   r.step = 0;
   r.profile = state.rail;
   if (state.low_rail) {
     r.low_rail.emplace();
     r.low_rail->profile = *state.low_rail;
+  }
+  for (size_t t = 0; t < state.wheels.size(); ++t) {
+    if (state.wheels[t].size() == 0) continue;
+    WheelStepRecord w;
+    w.traffic_index = static_cast<int>(t);
+    w.name = study.traffic[t].name;
+    w.profile = state.wheels[t];
+    SetFlange(MeasureWheelFlange(w.profile), &w);
+    r.wheels.push_back(std::move(w));
   }
   return r;
 }
@@ -328,6 +386,11 @@ class Progress {
       const std::string nodes = IntegrationLine(step, study);
       if (!nodes.empty())
         std::cerr << fmt::format("railwear: step {}: {}\n", step.state.step, nodes);
+      for (const WheelStepResult& w : step.wheels) {
+        std::cerr << fmt::format("railwear: step {}: wheel of '{}': max depth {:.3f} mm at y = {:.2f} mm\n",
+                                 step.state.step, study.traffic[w.traffic_index].name,
+                                 w.measures.max_depth_m * 1e3, w.measures.max_depth_y_m * 1e3);
+      }
     }
   }
   void Finish() {
@@ -481,6 +544,26 @@ void PrintRates(const std::vector<StepRecord>& high, const std::vector<StepRecor
   if (!low.empty()) line("low rail", low);
 }
 
+std::string FlangeText(const std::optional<double>& mm) {
+  return mm ? FixedNoNegativeZero(*mm, 2) : std::string("n/a");
+}
+
+// Each wearing wheel's last stored step (co-evolution): worn area, max depth, Sh, Sd, qR.
+void PrintWheels(const ProfileStore& store, int64_t run) {
+  const std::vector<WheelStepRecord> wheels = store.WheelSteps(run);
+  for (size_t i = 0; i < wheels.size(); ++i) {
+    if (i + 1 < wheels.size() && wheels[i + 1].traffic_index == wheels[i].traffic_index) continue;
+    const WheelStepRecord& w = wheels[i];
+    std::cout << fmt::format(
+        "wheel of '{}' (traffic entry {}) at step {}: worn area {} mm2, max depth {} mm at y = {} "
+        "mm, Sh {} Sd {} qR {} mm (history steps/profile/diff --wheel {})\n",
+        w.name, w.traffic_index, w.step, FixedNoNegativeZero(w.worn_area_mm2, 4),
+        FixedNoNegativeZero(w.max_depth_mm, 4), FixedNoNegativeZero(w.max_depth_y_mm, 2),
+        FlangeText(w.flange_height_mm), FlangeText(w.flange_thickness_mm),
+        FlangeText(w.flange_slope_mm), w.traffic_index);
+  }
+}
+
 void PrintSummary(const ProfileStore& store, int64_t run, const std::string& name, bool finished,
                   double seconds, int new_steps) {
   const std::vector<StepRecord> steps = store.Steps(run);
@@ -495,6 +578,7 @@ void PrintSummary(const ProfileStore& store, int64_t run, const std::string& nam
     PrintStepTable(low);
   }
   PrintRates(steps, low);
+  PrintWheels(store, run);
 }
 
 }  // namespace
@@ -570,7 +654,7 @@ void RunWearScene(const Scene& scene, const WearCommandOptions& options) {
     if (!last) {
       // A run whose creation and step 0 were two commits (railwear before issue 17), killed
       // between them. Step 0 is the scene's unworn rails, and the scene text is the stored one.
-      store.AppendStep(run_id, MakeInitialRecord(internal::InitialState(study)));
+      store.AppendStep(run_id, MakeInitialRecord(internal::InitialState(study), study));
       last = 0;
       std::cerr << fmt::format(
           "railwear: run '{}' had no stored step (its start was interrupted): stored its step 0 "
@@ -585,6 +669,15 @@ void RunWearScene(const Scene& scene, const WearCommandOptions& options) {
           "{}: run '{}' stored {} but the scene has {}: expected the same rails to resume", db,
           name, state.low_rail ? "two rails" : "one rail",
           study.low_rail_profile ? "two ([track])" : "one ([rail])"));
+    }
+    for (size_t t = 0; t < study.traffic.size(); ++t) {
+      if (study.traffic[t].wears_wheel() &&
+          (t >= state.wheels.size() || state.wheels[t].size() == 0)) {
+        throw InputError(fmt::format(
+            "{}: run '{}' step {} stored no wheel of traffic entry '{}', whose wheel wears in the "
+            "scene: expected the run's wheels to resume (start a new run with --run NAME)",
+            db, name, state.step, study.traffic[t].name));
+      }
     }
     std::cerr << fmt::format(
         "railwear: resuming run '{}' from step {} ({:.4g} passes; it was {})\n", name, state.step,
@@ -605,7 +698,7 @@ void RunWearScene(const Scene& scene, const WearCommandOptions& options) {
     info.scene_text = scene.text;
     info.wear_law_json = WearLawJson(study).dump();
     // One transaction: a kill at any moment leaves either no run or a run with its step 0.
-    run_id = store.CreateRun(info, MakeInitialRecord(state));
+    run_id = store.CreateRun(info, MakeInitialRecord(state, study));
   }
 
   const double total = TotalPasses(study);

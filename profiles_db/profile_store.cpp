@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -170,6 +171,10 @@ class Statement {
   Statement& BindBlob(int i, const std::string& bytes) {
     return Check(sqlite3_bind_blob64(stmt_, i, bytes.data(), bytes.size(), SQLITE_TRANSIENT));
   }
+  // A nullable REAL: NULL when absent.
+  Statement& Bind(int i, const std::optional<double>& v) {
+    return v ? Bind(i, *v) : Check(sqlite3_bind_null(stmt_, i));
+  }
 
   // True while there is a row; throws on error. A constraint failure is returned to the caller
   // through *constraint (when given) instead of throwing.
@@ -195,6 +200,11 @@ class Statement {
     const double v = sqlite3_column_double(stmt_, col);
     if (!std::isfinite(v)) ThrowDamaged(col, fmt::format("{}", v));
     return v;
+  }
+  // A nullable REAL column: nullopt for NULL.
+  std::optional<double> OptionalDouble(int col) const {
+    if (sqlite3_column_type(stmt_, col) == SQLITE_NULL) return std::nullopt;
+    return Double(col);
   }
   std::string Text(int col) const {
     const auto* p = sqlite3_column_text(stmt_, col);
@@ -481,9 +491,34 @@ CREATE TABLE curving_starts(
 )sql");
 }
 
+// Version 7: the wheel of each traffic entry that wears its own (co-evolution, issue 16 point 6),
+// per step: its measures against its unworn profile, its flange measures Sh, Sd, qR (NULL where
+// the profile has no flange to measure) and its profile after the step (wheel profile frame,
+// coded as profiles.yz). Older runs have no rows here (no wheel of theirs wore).
+void MigrateTo7(const Connection& c) {
+  c.Exec(R"sql(
+CREATE TABLE wheel_steps(
+  run_id               INTEGER NOT NULL,
+  step                 INTEGER NOT NULL,
+  traffic_index        INTEGER NOT NULL CHECK (traffic_index >= 0),
+  name                 TEXT NOT NULL,
+  worn_area_mm2        REAL NOT NULL,
+  max_depth_mm         REAL NOT NULL,
+  max_depth_y_mm       REAL NOT NULL,
+  smoothing_area_error REAL NOT NULL,
+  sh_mm                REAL,
+  sd_mm                REAL,
+  qr_mm                REAL,
+  n_points             INTEGER NOT NULL,
+  yz                   BLOB NOT NULL CHECK (length(yz) = 16 * n_points),
+  PRIMARY KEY (run_id, step, traffic_index),
+  FOREIGN KEY (run_id, step) REFERENCES steps(run_id, step) ON DELETE CASCADE);
+)sql");
+}
+
 using Migration = void (*)(const Connection&);
-constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3,
-                                     &MigrateTo4, &MigrateTo5, &MigrateTo6};
+constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3, &MigrateTo4,
+                                     &MigrateTo5, &MigrateTo6, &MigrateTo7};
 static_assert(std::size(kMigrations) == ProfileStore::kSchemaVersion);
 
 const char* kNowUtc = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
@@ -592,6 +627,22 @@ RailStepRecord ReadLowRail(const Statement& s, int first) {
   r.w3_mm = s.Double(first + 5);
   r.smoothing_area_error = s.Double(first + 6);
   return r;
+}
+
+// A wheel's summary from the columns traffic_index, name, worn_area_mm2, max_depth_mm,
+// max_depth_y_mm, smoothing_area_error, sh_mm, sd_mm, qr_mm (0 to 8).
+WheelStepRecord ReadWheelStep(const Statement& s) {
+  WheelStepRecord w;
+  w.traffic_index = static_cast<int>(s.Int64(0));
+  w.name = s.Text(1);
+  w.worn_area_mm2 = s.Double(2);
+  w.max_depth_mm = s.Double(3);
+  w.max_depth_y_mm = s.Double(4);
+  w.smoothing_area_error = s.Double(5);
+  w.flange_height_mm = s.OptionalDouble(6);
+  w.flange_thickness_mm = s.OptionalDouble(7);
+  w.flange_slope_mm = s.OptionalDouble(8);
+  return w;
 }
 
 // A profile from its point count and (y, z) BLOB; InputError naming `what` when they disagree.
@@ -990,6 +1041,14 @@ void ProfileStore::WriteStep(int64_t run, const StepRecord& step) {
                     "the rail profile after the step",
                     path(), run, step.step));
   }
+  for (const WheelStepRecord& w : step.wheels) {
+    if (w.profile.size() == 0 || w.traffic_index < 0) {
+      throw InputError(fmt::format(
+          "database '{}': run {} step {}: the wheel of traffic entry {} ('{}') has {} profile "
+          "points; expected an entry index >= 0 and the wheel's profile after the step",
+          path(), run, step.step, w.traffic_index, w.name, w.profile.size()));
+    }
+  }
   if (step.low_rail && step.low_rail->profile.size() == 0) {
     throw InputError(
         fmt::format("database '{}': run {} step {}: the low rail's profile is empty; expected "
@@ -1070,6 +1129,29 @@ void ProfileStore::WriteStep(int64_t run, const StepRecord& step) {
     s.BindBlob(11, internal::EncodePoints(low.profile.points()));
     s.Run();
     WriteDistributions(c, "low_rail_distributions", run, step.step, low.distributions);
+  }
+  if (!step.wheels.empty()) {
+    Statement s(c,
+                "INSERT INTO wheel_steps(run_id, step, traffic_index, name, worn_area_mm2, "
+                "max_depth_mm, max_depth_y_mm, smoothing_area_error, sh_mm, sd_mm, qr_mm, "
+                "n_points, yz) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)");
+    for (const WheelStepRecord& w : step.wheels) {
+      sqlite3_reset(s.get());
+      s.Bind(1, run).Bind(2, step.step).Bind(3, w.traffic_index).Bind(4, w.name);
+      s.Bind(5, w.worn_area_mm2).Bind(6, w.max_depth_mm).Bind(7, w.max_depth_y_mm);
+      s.Bind(8, w.smoothing_area_error);
+      s.Bind(9, w.flange_height_mm).Bind(10, w.flange_thickness_mm).Bind(11, w.flange_slope_mm);
+      s.Bind(12, w.profile.size());
+      s.BindBlob(13, internal::EncodePoints(w.profile.points()));
+      int constraint = 0;
+      s.Step(&constraint);
+      if (constraint != 0) {
+        throw InputError(fmt::format(
+            "database '{}': run {} step {}: the wheel of traffic entry {} given twice; expected "
+            "each entry once",
+            path(), run, step.step, w.traffic_index));
+      }
+    }
   }
   if (!step.curving_starts.empty()) {
     Statement s(c,
@@ -1184,7 +1266,54 @@ StepRecord ProfileStore::LoadStep(int64_t run, int step) const {
       r.curving_starts.push_back({static_cast<int>(s.Int64(0)), s.Doubles(1), s.Doubles(2)});
     }
   }
+  if (internal::TableExists(c, "wheel_steps")) {
+    Statement s(c,
+                "SELECT traffic_index, name, worn_area_mm2, max_depth_mm, max_depth_y_mm, "
+                "smoothing_area_error, sh_mm, sd_mm, qr_mm, n_points, yz FROM wheel_steps "
+                "WHERE run_id = ?1 AND step = ?2 ORDER BY traffic_index");
+    s.Bind(1, run).Bind(2, step);
+    while (s.Step()) {
+      WheelStepRecord w = internal::ReadWheelStep(s);
+      w.step = step;
+      w.profile = internal::DecodeProfile(
+          s, 9, 10, path(), fmt::format("run {} step {} wheel of traffic entry {}", run, step,
+                                       w.traffic_index));
+      r.wheels.push_back(std::move(w));
+    }
+  }
   return r;
+}
+
+std::vector<WheelStepRecord> ProfileStore::WheelSteps(int64_t run) const {
+  std::vector<WheelStepRecord> out;
+  if (!internal::TableExists(impl_->db, "wheel_steps")) return out;
+  Statement s(impl_->db,
+              "SELECT traffic_index, name, worn_area_mm2, max_depth_mm, max_depth_y_mm, "
+              "smoothing_area_error, sh_mm, sd_mm, qr_mm, step FROM wheel_steps "
+              "WHERE run_id = ?1 ORDER BY traffic_index, step");
+  s.Bind(1, run);
+  while (s.Step()) {
+    WheelStepRecord w = internal::ReadWheelStep(s);
+    w.step = static_cast<int>(s.Int64(9));
+    out.push_back(std::move(w));
+  }
+  return out;
+}
+
+Profile ProfileStore::LoadWheelProfile(int64_t run, int step, int traffic_index) const {
+  const std::string what =
+      fmt::format("run {} step {} wheel of traffic entry {}", run, step, traffic_index);
+  if (internal::TableExists(impl_->db, "wheel_steps")) {
+    Statement s(impl_->db,
+                "SELECT n_points, yz FROM wheel_steps WHERE run_id = ?1 AND step = ?2 AND "
+                "traffic_index = ?3");
+    s.Bind(1, run).Bind(2, step).Bind(3, traffic_index);
+    if (s.Step()) return internal::DecodeProfile(s, 0, 1, path(), what);
+  }
+  throw InputError(fmt::format(
+      "database '{}': {}: not stored; expected a step of a run whose entry's wheel wears "
+      "(wheel_wear)",
+      path(), what));
 }
 
 std::optional<int> ProfileStore::LastStep(int64_t run) const {

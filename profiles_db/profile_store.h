@@ -10,7 +10,7 @@
 // with the text of every input it was made from. MergeRunsFrom copies the runs of another study
 // database into this one (`railwear merge`, issue 19), idempotently.
 //
-// Schema version 6 (PRAGMA user_version = 6, PRAGMA application_id = kApplicationId), also
+// Schema version 7 (PRAGMA user_version = 7, PRAGMA application_id = kApplicationId), also
 // documented for users of the sqlite3 shell in profiles_db/SCHEMA.md:
 //
 //   meta(key TEXT PRIMARY KEY, value TEXT)          -- ('format', 'railwear-profile-history'), ...
@@ -42,6 +42,12 @@
 //                  PRIMARY KEY(run_id, step, traffic_index))               -- since v6
 //         -- each vehicle traffic entry's curving solution at the step (float64; the Jacobian
 //         -- n x n in column order, or empty): the next step's start
+//   wheel_steps(run_id, step, traffic_index, name TEXT, worn_area_mm2, max_depth_mm,
+//               max_depth_y_mm, smoothing_area_error, sh_mm NULL, sd_mm NULL, qr_mm NULL,
+//               n_points, yz BLOB,
+//               PRIMARY KEY(run_id, step, traffic_index))                 -- since v7
+//         -- the wheel of each traffic entry that wears its own (co-evolution, issue 16) after
+//         -- the step, in the wheel profile frame, coded as profiles.yz; no rows otherwise
 //
 // Migrations (applied on open, all of them in one transaction): 0 -> 1 creates the schema;
 // 1 -> 2 adds the nullable column distributions.s (rows written by version 1 keep s NULL);
@@ -49,7 +55,7 @@
 // low_rail_distributions (older runs have no rows there: they are single-rail runs); 4 -> 5
 // rebuilds runs to allow state 'interrupted' (foreign keys off meanwhile, checked before commit);
 // 5 -> 6 adds curving_starts (older runs have no rows there: their steps start from the unworn
-// solution).
+// solution); 6 -> 7 adds wheel_steps (older runs have no rows there: no wheel of theirs wore).
 //
 // The database runs in WAL mode with foreign keys on. Each AppendStep is one transaction: a crash
 // loses at most the step in flight; CreateRun(run, first_step) stores a run with its step 0 in
@@ -125,6 +131,22 @@ struct CurvingStartRecord {
   std::vector<double> jacobian;
 };
 
+// The wheel of a traffic entry that wears its own (co-evolution, schema 7) at a step: its measures
+// against its unworn profile (step 0) and its profile after the step, wheel profile frame.
+struct WheelStepRecord {
+  int traffic_index = 0;  // the study's traffic entry (0-based)
+  std::string name;       // that entry's name
+  int step = 0;           // filled by WheelSteps(); AppendStep takes the StepRecord's
+  double worn_area_mm2 = 0.0;
+  double max_depth_mm = 0.0;
+  double max_depth_y_mm = 0.0;  // wheel profile frame
+  double smoothing_area_error = 0.0;
+  // The flange measures of the profile after the step (EN 15313 Sh, Sd, qR; wear/wear_measures.h
+  // MeasureWheelFlange) [mm]; absent (NULL) where the profile has no flange to measure.
+  std::optional<double> flange_height_mm, flange_thickness_mm, flange_slope_mm;
+  Profile profile;  // not filled by WheelSteps()
+};
+
 // One wear step. Step 0 is conventionally the unworn profile (passes = 0). The summary, profile
 // and distributions are the high (or only) rail's; `low_rail` the low rail's in a two-rail study.
 struct StepRecord {
@@ -146,6 +168,8 @@ struct StepRecord {
   std::optional<RailStepRecord> low_rail = std::nullopt;
   // The vehicle entries' curving solutions of the step (not filled by Steps()).
   std::vector<CurvingStartRecord> curving_starts;
+  // The wearing wheels (co-evolution), by traffic entry (not filled by Steps(); WheelSteps()).
+  std::vector<WheelStepRecord> wheels = {};
 };
 
 // One input of a calibration, verbatim: kind "config", "displacement_curves", "scene" or
@@ -199,10 +223,10 @@ struct QueryResult {
 class ProfileStore {
  public:
   // Schema version written by this program (PRAGMA user_version).
-  static constexpr int kSchemaVersion = 6;
+  static constexpr int kSchemaVersion = 7;
   // The oldest schema OpenReadOnly reads as it is: version 5 only widened runs.state's CHECK
-  // (adding 'interrupted') and version 6 only added curving_starts (read when present), so a
-  // version-4 or -5 file reads the same; older ones need migrating.
+  // (adding 'interrupted'), version 6 only added curving_starts and version 7 wheel_steps (both
+  // read when present), so a version-4, -5 or -6 file reads the same; older ones need migrating.
   static constexpr int kOldestReadOnlyVersion = 4;
   // PRAGMA application_id of railwear databases: "RWDB" in ASCII.
   static constexpr int32_t kApplicationId = 0x52574442;
@@ -252,11 +276,12 @@ class ProfileStore {
   // (writing on would store steps that vanish with the deleted file). Not for ":memory:".
 
   // Writes the step row, its profile, load cases and distributions, the low rail's when present
-  // and the curving starts, in one transaction (all or nothing). Throws InputError when the run
-  // does not exist, step.step is not LastStep()+1 (0 for a run without steps), a profile is
-  // empty, a distribution is malformed (empty or duplicate kind, y and value of different
-  // lengths, s neither empty nor as long as value) or a curving start is (an empty state, a
-  // Jacobian neither empty nor n x n, a traffic entry given twice).
+  // the curving starts and the wheels, in one transaction (all or nothing). Throws InputError when
+  // the run does not exist, step.step is not LastStep()+1 (0 for a run without steps), a profile
+  // (a wheel's too) is empty, a distribution is malformed (empty or duplicate kind, y and value of
+  // different lengths, s neither empty nor as long as value), a curving start is (an empty state,
+  // a Jacobian neither empty nor n x n, a traffic entry given twice) or a wheel's traffic entry is
+  // negative or given twice.
   void AppendStep(int64_t run, const StepRecord& step);
   // The steps of a run in order, summary columns only, with the low rail's summary when stored
   // (profiles, load cases and distributions are left empty; see LoadProfile / LoadStep).
@@ -268,6 +293,12 @@ class ProfileStore {
   Profile LoadProfile(int64_t run, int step) const;
   // The low rail's profile stored for a step; InputError when the step has no low rail.
   Profile LoadLowRailProfile(int64_t run, int step) const;
+  // The wearing wheels' summaries of a run (co-evolution), by traffic entry then step, profiles
+  // left empty; none for a run without them or a file older than schema 7.
+  std::vector<WheelStepRecord> WheelSteps(int64_t run) const;
+  // The profile of traffic entry `traffic_index`'s wheel stored for a step; InputError when the
+  // step has none.
+  Profile LoadWheelProfile(int64_t run, int step, int traffic_index) const;
   // The last stored step of a run, nullopt when it has none.
   std::optional<int> LastStep(int64_t run) const;
 

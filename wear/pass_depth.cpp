@@ -73,25 +73,24 @@ void SpreadArea(double lo, double hi, double area, const WearGrid& g, std::vecto
   }
 }
 
-// Maps per-column extensive values (value_j per unit reference arc, so that value_j ds is the
-// column's amount) onto the bins, conserving the amount.
-std::vector<double> MapColumns(const PatchGrid& grid, const std::vector<double>& per_column,
-                               const CurveLocator& rail, const WearGrid& g) {
+void RequireWearGrid(const WearGrid& g) { RAILWEAR_CHECK(g.n > 0 && g.h_m > 0.0); }
+
+}  // namespace
+
+std::vector<double> MapColumnAmounts(const PatchGrid& grid, const std::vector<double>& per_column,
+                                     const CurveLocator& body, const WearGrid& g) {
+  RAILWEAR_CHECK(static_cast<int>(per_column.size()) == grid.ns);
   std::vector<double> bins(g.n, 0.0);
   bool any = false;
   for (double v : per_column) any = any || v != 0.0;
   if (!any) return bins;
-  const std::vector<double> edges = CalcColumnEdgesOnRail(grid, rail);
+  const std::vector<double> edges = CalcColumnEdgesOnRail(grid, body);
   for (int j = 0; j < grid.ns; ++j) {
     const double a = edges[j], b = edges[j + 1];
     SpreadArea(std::min(a, b), std::max(a, b), per_column[j] * grid.ds_m, g, &bins);
   }
   return bins;
 }
-
-void RequireWearGrid(const WearGrid& g) { RAILWEAR_CHECK(g.n > 0 && g.h_m > 0.0); }
-
-}  // namespace
 
 WearGrid WearGrid::ForProfile(const Profile& rail, double h_m) {
   if (!(h_m > 0.0) || !std::isfinite(h_m)) {
@@ -149,7 +148,7 @@ std::vector<double> CalcPatchPassDepth(const PatchResult& patch, const CurveLoca
                                        const WearGrid& wear_grid) {
   RequireWearGrid(wear_grid);
   const std::vector<double> dz = CalcColumnPassDepth(patch, law, hardness_Pa, speed_m_s);
-  return MapColumns(patch.grid, dz, rail, wear_grid);
+  return MapColumnAmounts(patch.grid, dz, rail, wear_grid);
 }
 
 std::vector<double> CalcPatchPassDepth(const PatchResult& patch, const Profile& rail,
@@ -219,7 +218,7 @@ std::vector<double> CalcPatchPassEnergy(const PatchResult& patch, const CurveLoc
     }
     e[j] = sum * grid.dx_m / speed_m_s;
   }
-  return MapColumns(grid, e, rail, wear_grid);
+  return MapColumnAmounts(grid, e, rail, wear_grid);
 }
 
 std::vector<double> CalcPatchPassEnergy(const PatchResult& patch, const Profile& rail,

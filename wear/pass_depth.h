@@ -74,6 +74,13 @@ std::vector<double> CalcColumnPassDepth(const PatchResult& patch, const WearLaw&
 // order). `rail` locates the rail profile (material toward +z).
 std::vector<double> CalcColumnEdgesOnRail(const PatchGrid& grid, const CurveLocator& rail);
 
+// Per-column amounts (per_column[j] per unit reference arc, so per_column[j] * grid.ds_m is column
+// j's amount, e.g. a worn area) spread over the bins of the profile `body` locates (rail or
+// wheel, placed in the frame the patch was solved in), as amount per unit arc length: each column
+// over the interval its edges project onto (section 2 above), conserving every column's amount.
+std::vector<double> MapColumnAmounts(const PatchGrid& grid, const std::vector<double>& per_column,
+                                     const CurveLocator& body, const WearGrid& wear_grid);
+
 // Per-pass wear depth [m] of one patch on the bins, size wear_grid.n, area-conserving:
 // sum_b depth_b h == sum_j dz_j ds (to rounding). Arguments as CalcColumnPassDepth; `rail` is
 // the rail profile the patch was solved on. Throws as CalcColumnPassDepth.

@@ -2,6 +2,8 @@
 // values railwear derives from them (rail_grade.h).
 #include "wear/rail_grade.h"
 
+#include <cmath>
+
 namespace railwear {
 
 std::string_view ToString(RailGrade v) { return EnumToString(kRailGradeNames, v); }
@@ -36,6 +38,38 @@ RailGradeProperties RailGradeOf(RailGrade grade) {
       return Make(260.0, 300.0, 880.0);
     case RailGrade::kR350HT:
       return Make(350.0, 390.0, 1175.0);
+  }
+  return {};
+}
+
+std::string_view ToString(WheelGrade v) { return EnumToString(kWheelGradeNames, v); }
+
+std::optional<WheelGrade> WheelGradeFromString(std::string_view s) {
+  return EnumFromString(kWheelGradeNames, s);
+}
+
+namespace {
+
+WheelGradeProperties MakeWheel(double hb_min, double rm_min_MPa, double rm_max_MPa,
+                               double reh_min_MPa) {
+  WheelGradeProperties p;
+  p.hardness_min_HB = hb_min;
+  p.tensile_strength_min_Pa = rm_min_MPa * 1e6;
+  p.tensile_strength_max_Pa = rm_max_MPa * 1e6;
+  p.yield_strength_min_Pa = reh_min_MPa * 1e6;
+  p.hardness_Pa = hb_min * kBrinellToPa;
+  p.shear_yield_Pa = p.yield_strength_min_Pa / std::sqrt(3.0);
+  return p;
+}
+
+}  // namespace
+
+WheelGradeProperties WheelGradeOf(WheelGrade grade) {
+  switch (grade) {
+    case WheelGrade::kR7:
+      return MakeWheel(235.0, 820.0, 940.0, 520.0);
+    case WheelGrade::kR8:
+      return MakeWheel(245.0, 860.0, 980.0, 540.0);
   }
   return {};
 }

@@ -69,6 +69,21 @@ void ValidateTraffic(const std::vector<TrafficCase>& traffic) {
     Require(c.axle_load_t > 0.0, c, "axle_load_t", c.axle_load_t, "> 0");
     Require(c.lateral_shift_std_m >= 0.0, c, "lateral_shift_mm.std", c.lateral_shift_std_m * 1e3,
             ">= 0");
+    if (c.wheel_wear) {
+      if (c.is_vehicle()) {
+        throw InputError(fmt::format(
+            "{}: wheel_wear on a vehicle entry: expected a prescribed or collective entry (a "
+            "vehicle's wheels are its own and do not wear)",
+            c.name));
+      }
+      Require(c.wheel_wear->distance_per_pass_m > 0.0 && c.wheel_wear->distance_per_pass_m <= 1e7,
+              c, "wheel_wear.distance_per_pass_m", c.wheel_wear->distance_per_pass_m,
+              "a distance in (0, 1e7] m");
+      if (c.wheel_wear->hardness_Pa) {
+        Require(*c.wheel_wear->hardness_Pa > 0.0, c, "wheel_wear.hardness_MPa",
+                *c.wheel_wear->hardness_Pa * 1e-6, "> 0");
+      }
+    }
     if (c.is_vehicle()) continue;  // its wheels and positions come from the vehicle
     if (c.is_collective()) {       // its positions, loads and speeds come from its bins
       Require(c.rolling_radius_m > 0.0, c, "rolling_radius_mm", c.rolling_radius_m * 1e3, "> 0");
@@ -160,6 +175,53 @@ bool HasTrafficOn(const std::vector<TrafficCase>& traffic, RailSide side) {
     if (c.RunsOn(side)) return true;
   }
   return false;
+}
+
+std::vector<TrafficCase> ExpandWheelPopulation(const TrafficCase& entry,
+                                               const std::vector<PopulationWheel>& wheels) {
+  if (entry.is_vehicle()) {
+    throw InputError(fmt::format(
+        "{}: a wheel population on a vehicle entry: expected a prescribed or collective entry (a "
+        "vehicle's wheels are its own)",
+        entry.name));
+  }
+  if (wheels.empty()) {
+    throw InputError(
+        fmt::format("{}: wheel population: no wheels: expected at least one wheel", entry.name));
+  }
+  double total = 0.0;
+  for (size_t i = 0; i < wheels.size(); ++i) {
+    const PopulationWheel& w = wheels[i];
+    const std::string where = fmt::format("{}: wheel population: wheel {} ('{}')", entry.name,
+                                          i, w.name);
+    if (w.name.empty()) throw InputError(where + ": no name: expected a name");
+    if (!(w.weight > 0.0) || !std::isfinite(w.weight)) {
+      throw InputError(fmt::format("{}: weight = {}: expected a finite number > 0", where,
+                                   w.weight));
+    }
+    if (!(w.rolling_radius_m > 0.0) || !std::isfinite(w.rolling_radius_m)) {
+      throw InputError(fmt::format("{}: rolling_radius_mm = {}: expected > 0", where,
+                                   w.rolling_radius_m * 1e3));
+    }
+    if (w.profile.size() < 2) throw InputError(where + ": empty profile: expected a wheel profile");
+    for (size_t j = 0; j < i; ++j) {
+      if (wheels[j].name == w.name) {
+        throw InputError(fmt::format("{}: the name is wheel {}'s too: expected unique names", where,
+                                     j));
+      }
+    }
+    total += w.weight;
+  }
+  std::vector<TrafficCase> out;
+  for (const PopulationWheel& w : wheels) {
+    TrafficCase c = entry;
+    c.name = fmt::format("{} / {}", entry.name, w.name);
+    c.wheel_profile = w.profile;
+    c.rolling_radius_m = w.rolling_radius_m;
+    c.share = entry.share * (w.weight / total);
+    out.push_back(std::move(c));
+  }
+  return out;
 }
 
 double MgtPerPass(const std::vector<TrafficCase>& traffic) {

@@ -46,6 +46,19 @@ std::optional<RailSide> RailSideFromString(std::string_view name);
 
 struct CollectiveTraffic;  // wear/collective_traffic.h
 
+// Co-evolution (issue 16 point 6, wear/wheel_wear.h): the wheel of a traffic entry wears with the
+// rail, from the same contact solutions, and its profile is updated every step.
+struct WheelWear {
+  // The distance the entry's wheel rolls, on track with this section's contact conditions, each
+  // time the entry passes the section [m], > 0. Each wheel point passes the patch once per
+  // revolution, so per pass a wheel point at radius r meets the patch L / (2 pi r) times
+  // (wear/wheel_wear.h). E.g. a vehicle on a loop whose curves are like this one: their length
+  // per lap; a fleet of N wheels sharing the entry's passes: that length over N.
+  double distance_per_pass_m = 0.0;
+  // The wheel's hardness [Pa] for Archard and KTH; absent: the study's wheel_material's.
+  std::optional<double> hardness_Pa;
+};
+
 struct TrafficCase {
   std::string name;                   // for messages and reports, e.g. "traffic[0]"
   Profile wheel_profile;              // wheel profile frame (core/notation.md)
@@ -80,6 +93,11 @@ struct TrafficCase {
   // axle_load_t (one axle pass: CollectiveAxleLoad_t unless the scene gives it).
   std::shared_ptr<const CollectiveTraffic> collective;
   bool is_collective() const { return collective != nullptr; }
+  // Co-evolution (issue 16): present when this entry's wheel wears (prescribed and collective
+  // entries; a vehicle's wheels belong to its VehicleSpec and do not wear). The wheel's current
+  // profile is then WearState::wheels[index of this entry]; wheel_profile stays the unworn one.
+  std::optional<WheelWear> wheel_wear;
+  bool wears_wheel() const { return wheel_wear.has_value(); }
   // Whether this entry's wheels load `side`: a vehicle both rails, a collective the rails it has
   // bins on, a prescribed entry its `rail`.
   bool RunsOn(RailSide side) const;
@@ -113,7 +131,8 @@ struct LoadCase {
 // polynomials up to degree 2n - 1. n in [1, 20].
 void GaussHermiteProbabilists(int n, std::vector<double>* nodes, std::vector<double>* weights);
 
-// Checks every entry (positive loads, radii, speeds, friction, shares; std >= 0; finite values)
+// Checks every entry (positive loads, radii, speeds, friction, shares; std >= 0; finite values;
+// wheel wear only on prescribed and collective entries, with a positive distance and hardness)
 // and throws InputError naming the entry and the value.
 void ValidateTraffic(const std::vector<TrafficCase>& traffic);
 
@@ -139,6 +158,25 @@ LoadCase PrescribedNodeCase(const std::vector<TrafficCase>& traffic, int t,
                             const std::array<double, 2>& rail_share_totals, double x, int node,
                             double node_weight);
 }  // namespace internal
+
+// A measured wheel population (issue 16 point 6): one wheel of a traffic entry's population,
+// e.g. a measured worn profile, with its weight (its share of the entry's passes, relative).
+struct PopulationWheel {
+  std::string name;                // for messages and the traffic entry's name, not empty
+  Profile profile;                 // wheel profile frame
+  double rolling_radius_m = 0.46;  // at the profile's z = 0, > 0
+  double weight = 1.0;             // relative, > 0 and finite
+};
+
+// The entry `entry` drawing its wheel from `wheels`: one traffic entry per wheel, each a copy of
+// `entry` with that wheel's profile and rolling radius, named "ENTRY / WHEEL", and share
+// entry.share * weight / sum of the weights, so each wheel's load cases carry its share of the
+// entry's passes and the entry's total share (and MGT per pass: every wheel has the entry's axle
+// load) is unchanged. Throws InputError naming the entry and the wheel for an empty population, a
+// weight that is not finite and > 0, an empty profile or name, a non-positive radius, two wheels
+// of one name, or a vehicle entry (its wheels are the vehicle's).
+std::vector<TrafficCase> ExpandWheelPopulation(const TrafficCase& entry,
+                                               const std::vector<PopulationWheel>& wheels);
 
 // Million gross tonnes per axle pass of the mix: sum_c share_c axle_load_t_c / (1e6 sum share)
 // over the high rail's entries, or over the low rail's when no entry is on the high rail.

@@ -3,6 +3,7 @@
 #include "wear/wear_measures.h"
 
 #include <cmath>
+#include <optional>
 #include <limits>
 
 #include <fmt/format.h>
@@ -14,6 +15,7 @@ namespace railwear {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
 // How far outside the profile's bounding box the W1/W2 search lines start [m]: any margin > 0
 // works, the crossing nearest to the start is the surface facing it.
 constexpr double kLineMargin_m = 1e-3;
@@ -129,16 +131,14 @@ WearGauge MakeWearGauge(const Profile& unworn, double side_wear_depth_m) {
   return g;
 }
 
-WearMeasures CompareProfiles(const Profile& original, const Profile& worn,
-                             const WearMeasureOptions& options) {
-  std::string error;
-  if (!options.IsValid(&error)) throw InputError(error);
-  const WearGauge gauge =
-      options.gauge ? *options.gauge : MakeWearGauge(original, options.side_wear_depth_m);
-  const CurveLocator orig_locator(original, /*material_toward_plus_z=*/true, kScanStep_m);
-  const CurveLocator worn_locator(worn, /*material_toward_plus_z=*/true, kScanStep_m);
-  const double max_distance = options.max_normal_distance_m;
+namespace {
 
+// The normal-depth scan, the worn area and the largest depth of `worn` against `original`
+// (WearMeasures' fields but W1/W2/W3), material on the side `orig_locator` and `worn_locator`
+// were built with.
+WearMeasures NormalDepthScan(const Profile& original, const CurveLocator& orig_locator,
+                             const CurveLocator& worn_locator, const WearMeasureOptions& options) {
+  const double max_distance = options.max_normal_distance_m;
   WearMeasures m;
   // Normal depth at the centres of n equal cells of the original's arc length.
   const double length = original.Length();
@@ -171,6 +171,21 @@ WearMeasures CompareProfiles(const Profile& original, const Profile& worn,
     }
   }
   if (!any) m.max_depth_m = m.max_depth_s_m = m.max_depth_y_m = m.max_depth_z_m = kNaN;
+  return m;
+}
+
+}  // namespace
+
+WearMeasures CompareProfiles(const Profile& original, const Profile& worn,
+                             const WearMeasureOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError(error);
+  const WearGauge gauge =
+      options.gauge ? *options.gauge : MakeWearGauge(original, options.side_wear_depth_m);
+  const CurveLocator orig_locator(original, /*material_toward_plus_z=*/true, kScanStep_m);
+  const CurveLocator worn_locator(worn, /*material_toward_plus_z=*/true, kScanStep_m);
+  const double max_distance = options.max_normal_distance_m;
+  WearMeasures m = NormalDepthScan(original, orig_locator, worn_locator, options);
 
   // W1/W2/W3: worn minus original position along each fixed line.
   auto measure = [&](const MeasuringLine& line) {
@@ -180,6 +195,69 @@ WearMeasures CompareProfiles(const Profile& original, const Profile& worn,
   m.vertical_wear_m = measure(gauge.vertical);
   m.side_wear_m = measure(gauge.side);
   m.wear_45_m = measure(gauge.corner45);
+  return m;
+}
+
+WearMeasures CompareWheelProfiles(const Profile& original, const Profile& worn,
+                                  const WearMeasureOptions& options) {
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError(error);
+  const CurveLocator orig_locator(original, /*material_toward_plus_z=*/false, kScanStep_m);
+  const CurveLocator worn_locator(worn, /*material_toward_plus_z=*/false, kScanStep_m);
+  WearMeasures m = NormalDepthScan(original, orig_locator, worn_locator, options);
+  m.vertical_wear_m = m.side_wear_m = m.wear_45_m = kNaN;
+  return m;
+}
+
+namespace {
+
+// The profile sampled every `step` of arc length (both ends included).
+std::vector<Eigen::Vector2d> Sampled(const Profile& p, double step) {
+  const int n = std::max(2, static_cast<int>(std::ceil(p.Length() / step)));
+  std::vector<Eigen::Vector2d> out(n + 1);
+  for (int k = 0; k <= n; ++k) out[k] = p.Position(p.Length() * k / n);
+  return out;
+}
+
+}  // namespace
+
+WheelFlangeMeasures MeasureWheelFlange(const Profile& wheel, double flange_back_y_m) {
+  constexpr double kStep_m = 1e-5;      // sampling of the profile: 10 um
+  constexpr double kSdHeight_m = 10e-3;  // Sd: 10 mm above the running circle
+  constexpr double kQrDepth_m = 2e-3;    // qR: 2 mm below the flange tip
+  const std::vector<Eigen::Vector2d> pts = Sampled(wheel, kStep_m);
+  WheelFlangeMeasures m{kNaN, kNaN, kNaN};
+  // The tread at the taping line y = 0, and the flange tip: the largest z at y < 0.
+  std::optional<double> z0;
+  double z_tip = -kInf, y_tip = 0.0;
+  for (size_t k = 0; k + 1 < pts.size(); ++k) {
+    const Eigen::Vector2d& a = pts[k];
+    const Eigen::Vector2d& b = pts[k + 1];
+    if (!z0 && (a.x() - 0.0) * (b.x() - 0.0) <= 0.0 && a.x() != b.x()) {
+      z0 = a.y() + (b.y() - a.y()) * (0.0 - a.x()) / (b.x() - a.x());
+    }
+    if (a.x() < 0.0 && a.y() > z_tip) {
+      z_tip = a.y();
+      y_tip = a.x();
+    }
+  }
+  if (!z0 || !(z_tip > -kInf)) return m;
+  // The tread-side flank at height z: the first crossing from the tip toward the taping line.
+  const auto flank_y = [&](double z) -> double {
+    double best = kNaN;
+    for (size_t k = 0; k + 1 < pts.size(); ++k) {
+      const Eigen::Vector2d& a = pts[k];
+      const Eigen::Vector2d& b = pts[k + 1];
+      if ((a.y() - z) * (b.y() - z) > 0.0 || a.y() == b.y()) continue;
+      const double y = a.x() + (b.x() - a.x()) * (z - a.y()) / (b.y() - a.y());
+      if (y > y_tip && y <= 0.0 && !(y >= best)) best = y;
+    }
+    return best;
+  };
+  m.flange_height_m = z_tip - *z0;
+  const double y_sd = flank_y(*z0 + kSdHeight_m);
+  m.flange_thickness_m = y_sd - flange_back_y_m;
+  m.flange_slope_m = y_sd - flank_y(z_tip - kQrDepth_m);
   return m;
 }
 

@@ -111,4 +111,30 @@ struct WearMeasures {
 WearMeasures CompareProfiles(const Profile& original, const Profile& worn,
                              const WearMeasureOptions& options = {});
 
+// The same for a wheel (issue 16, co-evolution): both profiles in the wheel profile frame
+// (material toward -z), the normal depth along the original wheel profile, the worn area and the
+// largest depth (removed material positive); W1/W2/W3 are rail measures and NaN here, and
+// options.gauge is not used. Throws InputError for invalid options.
+WearMeasures CompareWheelProfiles(const Profile& original, const Profile& worn,
+                                  const WearMeasureOptions& options = {});
+
+// The flange measures of a wheel profile (EN 15313 / UIC 510-2 practice, railwear's statement):
+// in the wheel profile frame (core/notation.md: origin on the taping line, 70 mm from the flange
+// back; y toward the field side, the flange at negative y; z toward the rail, so the flange tip
+// has the largest z), metres:
+//   Sh, flange height    z of the flange tip (the largest z at y < 0) minus z of the tread at
+//                        y = 0 (the taping line);
+//   Sd, flange thickness y of the flange's tread-side flank where z = z(0) + 10 mm, minus y of
+//                        the flange back (flange_back_y_m, -70 mm);
+//   qR, flange slope     y of that flank point minus y of the flank where z = z_tip - 2 mm.
+// Measured on the profile itself, so a worn tread (z(0) moving up) raises Sh as the standard's
+// measure does. New S1002: Sh 28, Sd 32.5, qR 10.8 mm (tested). NaN where a line misses the
+// profile (no tread at y = 0, no flank at a height).
+struct WheelFlangeMeasures {
+  double flange_height_m = 0.0;     // Sh
+  double flange_thickness_m = 0.0;  // Sd
+  double flange_slope_m = 0.0;      // qR
+};
+WheelFlangeMeasures MeasureWheelFlange(const Profile& wheel, double flange_back_y_m = -70e-3);
+
 }  // namespace railwear

@@ -19,6 +19,7 @@
 #include "wear/collective_traffic.h"
 #include "wear/spread_step.h"
 #include "wear/vehicle_traffic.h"
+#include "wear/wheel_wear.h"
 
 namespace railwear {
 
@@ -35,7 +36,14 @@ struct CaseOutcome {
   LoadCaseSummary summary;
   std::vector<double> depth_per_pass_m;  // [grid.n]
   std::vector<double> damage_per_pass;   // [grid.n], empty without the damage effect
+  // Co-evolution: the depth per pass on the entry's wheel's bins; empty when it does not wear.
+  std::vector<double> wheel_depth_per_pass_m;
 };
+
+// The hardness the wheel of `traffic` wears with [Pa]: its own, else the study's wheel's.
+double WheelHardness(const WearStudy& study, const TrafficCase& traffic) {
+  return traffic.wheel_wear->hardness_Pa.value_or(study.wheel_material.hardness_Pa);
+}
 
 // The rail a case loads, canted into its track frame, and the bins of its current profile.
 struct RailTarget {
@@ -117,6 +125,13 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
   CaseOutcome out;
   out.depth_per_pass_m.assign(grid.n, 0.0);
   if (study.damage) out.damage_per_pass.assign(grid.n, 0.0);
+  // Co-evolution: the entry's current wheel (the stepped study's wheel_profile) and its bins.
+  std::optional<PlacedWheel> wheel;
+  WearGrid wheel_grid;
+  if (traffic.wears_wheel()) {
+    wheel_grid = WearGrid::ForProfile(traffic.wheel_profile, study.options.bin_m);
+    out.wheel_depth_per_pass_m.assign(wheel_grid.n, 0.0);
+  }
   LoadCaseSummary& s = out.summary;
   s.load_case = load_case;
   s.status = result.status;
@@ -129,6 +144,9 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
         result.message));
   }
   if (result.status == SolverStatus::kNoContact) return out;
+  if (traffic.wears_wheel()) {
+    wheel = PlaceWheelProfile(problem.wheel_profile, rail_track, load_case.placement);
+  }
   s.patches = static_cast<int>(result.patches.size());
   s.vertical_force_N = result.vertical_force_N;
   s.lateral_force_N = result.lateral_force_N;
@@ -149,6 +167,14 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
                            load_case.motion.speed_m_s, grid);
     const double factor = factors[&patch - result.patches.data()];
     for (int b = 0; b < grid.n; ++b) out.depth_per_pass_m[b] += factor * depth[b];
+    if (wheel) {
+      // The same patch on the wheel (wear/wheel_wear.h), with the wheel's hardness and the
+      // zone's friction-condition factor, which scales the law for both bodies.
+      const std::vector<double> on_wheel = CalcPatchWheelPassDepth(
+          patch, *wheel, study.options.law, WheelHardness(study, traffic),
+          load_case.motion.speed_m_s, traffic.wheel_wear->distance_per_pass_m, wheel_grid);
+      for (int b = 0; b < wheel_grid.n; ++b) out.wheel_depth_per_pass_m[b] += factor * on_wheel[b];
+    }
     if (patch.rolling) {
       s.creep_force_x_N += patch.rolling->tangential.force_x_N;
       s.creep_force_s_N += patch.rolling->tangential.force_s_N;
@@ -169,6 +195,9 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
     }
   }
   for (int b = 0; b < grid.n; ++b) s.worn_area_per_pass_m2 += out.depth_per_pass_m[b] * grid.h_m;
+  for (int b = 0; b < wheel_grid.n && wheel; ++b) {
+    s.wheel_worn_area_per_pass_m2 += out.wheel_depth_per_pass_m[b] * wheel_grid.h_m;
+  }
   return out;
 }
 
@@ -216,16 +245,17 @@ SpreadIntegrationSummary FixedRuleSummary(const WearStudy& study,
   return s;
 }
 
-// sum_c weight_c * field_c[b] per bin over the cases on `rail`, adding the terms of each bin in
-// increasing order so the sum does not depend on the order of the cases.
+// sum_c weight_c * field_c[b] per bin over the cases `take` accepts, adding the terms of each bin
+// in increasing order so the sum does not depend on the order of the cases.
+template <typename Take>
 std::vector<double> WeightedSum(const std::vector<CaseOutcome>& outcomes,
-                                const std::vector<LoadCase>& cases, RailSide rail, int n,
+                                const std::vector<LoadCase>& cases, const Take& take, int n,
                                 std::vector<double> CaseOutcome::*field) {
   std::vector<double> sum(n, 0.0), terms(outcomes.size());
   for (int b = 0; b < n; ++b) {
     int count = 0;
     for (size_t c = 0; c < outcomes.size(); ++c) {
-      if (cases[c].rail != rail) continue;
+      if (!take(cases[c])) continue;
       const std::vector<double>& f = outcomes[c].*field;
       if (!f.empty() && f[b] != 0.0) terms[count++] = cases[c].weight * f[b];
     }
@@ -247,14 +277,15 @@ double AtArcLength(const WearGrid& grid, const std::vector<double>& field, doubl
   return (1.0 - t) * field[b] + t * field[b + 1];
 }
 
-// Every point of `rail` (own frame) moved along the rail's inward normal by depth(s): point i
-// of the result is point i of `rail`.
-std::vector<Eigen::Vector2d> MoveAlongInwardNormal(const Profile& rail, const WearGrid& grid,
-                                                   const std::vector<double>& depth_m) {
-  const CurveLocator locator(rail, /*material_toward_plus_z=*/true);
-  std::vector<Eigen::Vector2d> points = rail.points();
-  for (int i = 0; i < rail.size(); ++i) {
-    const double s = rail.KnotS(i);
+// Every point of `body` (a rail or a wheel, own frame) moved along the body's inward normal by
+// depth(s): point i of the result is point i of `body`.
+std::vector<Eigen::Vector2d> MoveAlongInwardNormal(const Profile& body, const WearGrid& grid,
+                                                   const std::vector<double>& depth_m,
+                                                   bool material_toward_plus_z) {
+  const CurveLocator locator(body, material_toward_plus_z);
+  std::vector<Eigen::Vector2d> points = body.points();
+  for (int i = 0; i < body.size(); ++i) {
+    const double s = body.KnotS(i);
     const double dz = AtArcLength(grid, depth_m, s);
     if (dz != 0.0) points[i] -= dz * locator.OutwardNormal(s);
   }
@@ -310,6 +341,17 @@ void ValidateWearStudy(const WearStudy& study) {
                     " hardness for the {} law",
                     ToString(o.law.kind)));
   }
+  if (o.law.kind != WearLawKind::kUsfd) {
+    for (const TrafficCase& c : study.traffic) {
+      if (c.wears_wheel() && !(c.wheel_wear->hardness_Pa || study.wheel_material.hardness_Pa > 0.0)) {
+        throw InputError(fmt::format(
+            "{}: wheel_wear: the wheel's hardness is missing: expected materials.wheel."
+            "hardness_MPa (or a wheel grade), or the entry's wheel_wear.hardness_MPa, for the {} "
+            "law",
+            c.name, ToString(o.law.kind)));
+      }
+    }
+  }
   if (study.damage && !(study.rail_material.shear_yield_Pa > 0.0)) {
     throw InputError(fmt::format("wear: materials.rail.shear_yield_MPa is missing: expected {}",
                                  kShearYieldExpected));
@@ -362,6 +404,12 @@ WearState InitialState(const WearStudy& study) {
   if (study.low_rail_profile) {
     state.low_rail = ResampleProfile(*study.low_rail_profile, study.options.profile_spacing_m);
   }
+  const int n_traffic = static_cast<int>(study.traffic.size());
+  for (int t = 0; t < n_traffic; ++t) {
+    if (!study.traffic[t].wears_wheel()) continue;
+    state.wheels.resize(n_traffic);
+    state.wheels[t] = study.traffic[t].wheel_profile;
+  }
   return state;
 }
 
@@ -393,6 +441,33 @@ std::vector<LoadCase> StepLoadCases(const WearStudy& study, const Profile& high_
 
 namespace {
 
+// A body's per-pass depth field summed over its cases, and the field smoothed (scaled to a unit
+// maximum: the smoothing is homogeneous in the field). Shared by the rails and the wheels.
+struct SmoothedPerPass {
+  std::vector<double> depth_per_pass_m;  // the weighted sum over the body's cases
+  double deepest = 0.0;                  // max of depth_per_pass_m
+  DepthSmoothing smoothed;               // of depth_per_pass_m / deepest
+  double peak = 0.0;                     // max of smoothed.depth_m
+
+  void Smooth(double h_m, const DepthSmoothingOptions& options) {
+    deepest = *std::max_element(depth_per_pass_m.begin(), depth_per_pass_m.end());
+    if (deepest <= 0.0) return;
+    std::vector<double> unit(depth_per_pass_m.size());
+    for (size_t b = 0; b < unit.size(); ++b) unit[b] = depth_per_pass_m[b] / deepest;
+    smoothed = SmoothDepthField(unit, h_m, options);
+    peak = *std::max_element(smoothed.depth_m.begin(), smoothed.depth_m.end());
+  }
+  // The deepest smoothed wear of one pass [m] (0 when nothing wears the body).
+  double SmoothedDeepest() const { return deepest > 0.0 ? deepest * peak : 0.0; }
+  // The smoothed depth of `passes` passes, per bin [m].
+  std::vector<double> StepDepth(double passes) const {
+    std::vector<double> step(depth_per_pass_m.size(), 0.0);
+    if (deepest <= 0.0) return step;
+    for (size_t b = 0; b < step.size(); ++b) step[b] = passes * deepest * smoothed.depth_m[b];
+    return step;
+  }
+};
+
 // One rail through a step: its current profile in the track frame, its bins, and its summed and
 // smoothed per-pass depth.
 struct RailWork {
@@ -403,10 +478,7 @@ struct RailWork {
   Profile track;                                // `current` canted into the track frame
   std::optional<CurveLocator> locator;          // on `track`
   WearGrid grid;                                // bins of `current`
-  std::vector<double> depth_per_pass_m;         // weighted sum over the rail's cases
-  double deepest = 0.0;                         // max of depth_per_pass_m
-  DepthSmoothing smoothed;                      // of depth_per_pass_m / deepest
-  double peak = 0.0;                            // max of smoothed.depth_m
+  SmoothedPerPass field;                        // summed over the rail's cases, and smoothed
 
   RailWork(RailSide s, const Profile& now, const Profile& step0, const std::vector<double>& d,
            const WearStudy& study)
@@ -418,21 +490,19 @@ struct RailWork {
     grid = WearGrid::ForProfile(now, study.options.bin_m);
   }
 
-  // Sums the cases on this rail and smooths the field (scaled to a unit maximum: the smoothing
-  // is homogeneous in the field).
+  bool OnThisRail(const LoadCase& c) const { return c.rail == side; }
+
+  // Sums the cases on this rail and smooths the field.
   void Collect(const std::vector<CaseOutcome>& outcomes, const std::vector<LoadCase>& cases,
                const DepthSmoothingOptions& options) {
-    depth_per_pass_m = WeightedSum(outcomes, cases, side, grid.n, &CaseOutcome::depth_per_pass_m);
-    deepest = *std::max_element(depth_per_pass_m.begin(), depth_per_pass_m.end());
-    if (deepest <= 0.0) return;
-    std::vector<double> unit(grid.n);
-    for (int b = 0; b < grid.n; ++b) unit[b] = depth_per_pass_m[b] / deepest;
-    smoothed = SmoothDepthField(unit, grid.h_m, options);
-    peak = *std::max_element(smoothed.depth_m.begin(), smoothed.depth_m.end());
+    field.depth_per_pass_m =
+        WeightedSum(outcomes, cases, [this](const LoadCase& c) { return OnThisRail(c); }, grid.n,
+                    &CaseOutcome::depth_per_pass_m);
+    field.Smooth(grid.h_m, options);
   }
 
   // The deepest smoothed wear of one pass [m] (0 when nothing wears this rail).
-  double SmoothedDeepest() const { return deepest > 0.0 ? deepest * peak : 0.0; }
+  double SmoothedDeepest() const { return field.SmoothedDeepest(); }
 
   // Applies `passes` of wear: the rail's part of the step, its next profile and damage.
   RailStepResult Apply(double passes, const std::vector<CaseOutcome>& outcomes,
@@ -442,16 +512,15 @@ struct RailWork {
     const int n = grid.n;
     RailStepResult r;
     r.grid = grid;
-    r.depth_per_pass_m = depth_per_pass_m;
+    r.depth_per_pass_m = field.depth_per_pass_m;
     // The material map from this profile's arc length to the next one's (damage_transport.h).
     MaterialMap& map = r.material_map;
     map = IdentityMaterialMap(current->Length());
-    if (deepest > 0.0) {
-      r.smoothing_area_error = smoothed.area_error;
-      r.step_depth_m.resize(n);
-      for (int b = 0; b < n; ++b) r.step_depth_m[b] = passes * deepest * smoothed.depth_m[b];
+    if (field.deepest > 0.0) {
+      r.smoothing_area_error = field.smoothed.area_error;
+      r.step_depth_m = field.StepDepth(passes);
       const std::vector<Eigen::Vector2d> moved_points =
-          MoveAlongInwardNormal(*current, grid, r.step_depth_m);
+          MoveAlongInwardNormal(*current, grid, r.step_depth_m, /*material_toward_plus_z=*/true);
       const Profile moved(moved_points, current->source());
       *next_profile = ResampleProfile(moved, o.profile_spacing_m);
       map = MaterialMapOfStep(*current, moved_points, moved, *next_profile);
@@ -460,7 +529,9 @@ struct RailWork {
       *next_profile = *current;
     }
     if (study.damage) {
-      r.damage_per_pass = WeightedSum(outcomes, cases, side, n, &CaseOutcome::damage_per_pass);
+      r.damage_per_pass =
+          WeightedSum(outcomes, cases, [this](const LoadCase& c) { return OnThisRail(c); }, n,
+                      &CaseOutcome::damage_per_pass);
       const std::vector<double>& damage_per_pass = r.damage_per_pass;
       // The step's damage adds to the accumulated damage on this profile's bins. Wear's removal
       // of cracks is already in the WLRM damage function (its falling branch, 65-175 J/m), so by
@@ -482,11 +553,68 @@ struct RailWork {
   }
 };
 
+// The wheel of an entry that wears its own (co-evolution) through a step: its current profile,
+// its bins, and its per-pass depth summed over the entry's cases (their weights: the wheel's
+// depth per axle pass of the mix) and smoothed like a rail's.
+struct WheelWork {
+  int traffic_index = 0;
+  const Profile* current = nullptr;  // wheel profile frame
+  const Profile* unworn = nullptr;   // the entry's wheel_profile as given
+  WearGrid grid;
+  SmoothedPerPass field;
+
+  WheelWork(int t, const Profile& now, const Profile& step0, double bin_m)
+      : traffic_index(t), current(&now), unworn(&step0), grid(WearGrid::ForProfile(now, bin_m)) {}
+
+  void Collect(const std::vector<CaseOutcome>& outcomes, const std::vector<LoadCase>& cases,
+               const DepthSmoothingOptions& options) {
+    const int t = traffic_index;
+    field.depth_per_pass_m =
+        WeightedSum(outcomes, cases, [t](const LoadCase& c) { return c.traffic_index == t; },
+                    grid.n, &CaseOutcome::wheel_depth_per_pass_m);
+    field.Smooth(grid.h_m, options);
+  }
+
+  // The wheel's part of the step and its next profile (moved along its inward normal, then
+  // resampled at the study's profile spacing; unchanged when nothing wore it).
+  WheelStepResult Apply(double passes, const WearOptions& o, Profile* next_profile) const {
+    WheelStepResult r;
+    r.traffic_index = traffic_index;
+    r.grid = grid;
+    r.depth_per_pass_m = field.depth_per_pass_m;
+    r.step_depth_m = field.StepDepth(passes);
+    if (field.deepest > 0.0) {
+      r.smoothing_area_error = field.smoothed.area_error;
+      const Profile moved(
+          MoveAlongInwardNormal(*current, grid, r.step_depth_m, /*material_toward_plus_z=*/false),
+          current->source());
+      *next_profile = ResampleProfile(moved, o.profile_spacing_m);
+    } else {
+      *next_profile = *current;
+    }
+    r.measures = CompareWheelProfiles(*unworn, *next_profile);
+    r.flange = MeasureWheelFlange(*next_profile);
+    return r;
+  }
+};
+
 }  // namespace
 
-StepResult RunWearStep(const WearStudy& study, const UnwornRails& unworn, const WearState& state,
+StepResult RunWearStep(const WearStudy& given, const UnwornRails& unworn, const WearState& state,
                        double passes_left) {
   const auto start = std::chrono::steady_clock::now();
+  // Co-evolution: the step's contacts run the entries' current wheels. `given` keeps the unworn
+  // ones (each wheel's measures are taken against them).
+  std::optional<WearStudy> stepped;
+  std::vector<WheelWork> wheels;
+  for (int t = 0; t < static_cast<int>(given.traffic.size()); ++t) {
+    if (!given.traffic[t].wears_wheel()) continue;
+    RAILWEAR_CHECK(t < static_cast<int>(state.wheels.size()) && state.wheels[t].size() > 0);
+    if (!stepped) stepped = given;
+    stepped->traffic[t].wheel_profile = state.wheels[t];
+    wheels.emplace_back(t, state.wheels[t], given.traffic[t].wheel_profile, given.options.bin_m);
+  }
+  const WearStudy& study = stepped ? *stepped : given;
   const WearOptions& o = study.options;
   RAILWEAR_CHECK(state.low_rail.has_value() == unworn.low.has_value());
   RailWork high(RailSide::kHigh, state.rail, unworn.high, state.damage, study);
@@ -537,10 +665,12 @@ StepResult RunWearStep(const WearStudy& study, const UnwornRails& unworn, const 
   for (const CaseOutcome& c : outcomes) step.cases.push_back(c.summary);
   high.Collect(outcomes, cases, o.smoothing);
   if (low) low->Collect(outcomes, cases, o.smoothing);
+  for (WheelWork& w : wheels) w.Collect(outcomes, cases, o.smoothing);
 
-  // Step control: the deepest smoothed wear of either rail in the step equals
-  // max_depth_per_step, or the passes left when they are fewer.
-  const double deepest = std::max(high.SmoothedDeepest(), low ? low->SmoothedDeepest() : 0.0);
+  // Step control: the deepest smoothed wear of either rail and of every wearing wheel in the step
+  // equals max_depth_per_step, or the passes left when they are fewer.
+  double deepest = std::max(high.SmoothedDeepest(), low ? low->SmoothedDeepest() : 0.0);
+  for (const WheelWork& w : wheels) deepest = std::max(deepest, w.field.SmoothedDeepest());
   step.step_passes = deepest > 0.0 ? std::min(passes_left, o.max_depth_per_step_m / deepest)
                                    : passes_left;  // nothing wears: the rest in one step
   WearState& next = step.state;
@@ -558,6 +688,12 @@ StepResult RunWearStep(const WearStudy& study, const UnwornRails& unworn, const 
     next.low_rail.emplace();
     step.low_rail =
         low->Apply(step.step_passes, outcomes, cases, study, &*next.low_rail, &next.low_damage);
+  }
+  if (!wheels.empty()) {
+    next.wheels.resize(study.traffic.size());
+    for (const WheelWork& w : wheels) {
+      step.wheels.push_back(w.Apply(step.step_passes, o, &next.wheels[w.traffic_index]));
+    }
   }
   if (std::any_of(curving.begin(), curving.end(),
                   [](const CurvingStart& c) { return c.state.size() > 0; })) {

@@ -26,7 +26,13 @@
 //      already models wear removing cracks, so wear removes nothing more unless the opt-in
 //      damage_layer_m asks for the old rule) and moves with the material onto the next
 //      profile's bins (wear/damage_transport.h: conserved over material);
-//   7. the finished step goes to a callback (app/ stores it in the database).
+//   7. the wheels of the entries that wear their own (TrafficCase::wheel_wear, co-evolution,
+//      issue 16) wear from the same solutions (wear/wheel_wear.h): each such wheel's per-pass
+//      depth is summed over its entry's cases with the cases' weights, smoothed as a rail's, and
+//      its profile moves along its inward normal by the step's passes times that depth and is
+//      resampled, every step; the step's passes (step 5) take the deepest smoothed wear of every
+//      rail AND every wearing wheel, so no profile moves more than max_depth_per_step in a step;
+//   8. the finished step goes to a callback (app/ stores it in the database).
 //
 // The loop knows nothing of storage. Its whole state between steps is WearState (profiles,
 // passes, MGT, damage per position of each rail), so a run resumed from a stored state continues
@@ -149,6 +155,11 @@ struct WearState {
   // Part of the state: a resumed run reads it back and continues bit-identically. Empty (step 0,
   // or a run stored without it): each entry starts from WearStudy::vehicle_starts.
   std::vector<CurvingStart> curving;
+  // Co-evolution (issue 16): per traffic entry, the current profile of an entry whose wheel wears
+  // (TrafficCase::wheel_wear; wheel profile frame), an empty profile for the others; empty when
+  // no entry's wheel wears. At step 0 each is the entry's wheel_profile as given (not
+  // resampled: the first step's contacts are those of the same study without wheel wear).
+  std::vector<Profile> wheels;
 };
 
 // Step 0 of a run: the unworn rails resampled at the study's profile spacing.
@@ -194,6 +205,9 @@ struct LoadCaseSummary {
   double spin_work_N = 0.0;  // |M_z phi| summed over patches [J/m]: spin's part beside T-gamma
   double rcf_damage_per_pass = 0.0;    // largest over patches
   double worn_area_per_pass_m2 = 0.0;  // sum_b depth_b h
+  // Co-evolution: the case's wheel's worn area per pass on its profile [m^2] (sum_b depth_b h on
+  // the wheel's bins, wear/wheel_wear.h), 0 when the entry's wheel does not wear.
+  double wheel_worn_area_per_pass_m2 = 0.0;
   double contact_angle_rad = 0.0;      // of the most loaded patch
   double contact_y_m = 0.0;            // its pressure centre on the rail (track frame)
 };
@@ -210,6 +224,18 @@ struct RailStepResult {
   MaterialMap material_map;              // this profile's arc length -> the next one's
 };
 
+// What a step did to the wheel of one entry that wears its own (co-evolution).
+struct WheelStepResult {
+  int traffic_index = 0;                 // the entry (WearStudy::traffic)
+  WearGrid grid;                         // the bins of the wheel profile the step started from
+  std::vector<double> depth_per_pass_m;  // weighted depth per axle pass of the mix, [grid.n]
+  std::vector<double> step_depth_m;      // smoothed depth removed in this step, [grid.n]
+  double smoothing_area_error = 0.0;     // relative, before the area correction
+  // Against the entry's unworn wheel (cumulative; worn area and max depth, W1-W3 NaN).
+  WearMeasures measures;
+  WheelFlangeMeasures flange;  // Sh, Sd, qR of the wheel after the step (NaN: not measurable)
+};
+
 // A step. The grid, depths and measures below are the high rail's; `low_rail` holds the same for
 // the low rail in a two-rail study.
 struct StepResult {
@@ -223,6 +249,7 @@ struct StepResult {
   double smoothing_area_error = 0.0;       // relative, before the area correction
   WearMeasures measures;                   // against step 0 (cumulative)
   std::optional<RailStepResult> low_rail;  // present when the study has a low rail
+  std::vector<WheelStepResult> wheels;     // the wearing wheels, in entry order
   std::vector<LoadCaseSummary> cases;      // both rails' cases, in StepLoadCases order
   SpreadIntegrationSummary integration;    // the spread rule's nodes per entry and its error
   double seconds = 0.0;                    // wall time of the step

@@ -170,6 +170,82 @@ std::vector<CorpusCase> Corpus() {
                  2,
                  {"s.toml:", "key 'wear." + key + "'", range}});
   }
+  // Wheel wear and wheel populations (issue 16 point 6): unknown keys, bad weights, missing
+  // files, and where they do not apply. Appended keys land on the traffic entry's line 30.
+  const std::string wheel_hardness =
+      Replace(wear, "wheel = { E_MPa = 210000, nu = 0.28 }", "wheel = { grade = \"R8\" }");
+  c.push_back({"wheel_wear_unknown_key",
+               {{"s.toml", wheel_hardness + "wheel_wear = { distance_per_pass_m = 100, colour = 1 }\n"}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"s.toml:30:", "key 'traffic[0].wheel_wear.colour' = 1", "'distance_per_pass_m'"}});
+  c.push_back({"wheel_wear_negative_distance",
+               {{"s.toml", wheel_hardness + "wheel_wear = { distance_per_pass_m = -5 }\n"}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"s.toml:30:", "key 'traffic[0].wheel_wear.distance_per_pass_m' = -5", "> 0"}});
+  c.push_back({"wheel_wear_without_hardness",
+               {{"s.toml", wear + "wheel_wear = { distance_per_pass_m = 100 }\n"}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"s.toml:30:", "key 'traffic[0].wheel_wear.hardness_MPa' is missing", "archard"}});
+  c.push_back({"wheel_wear_on_a_vehicle",
+               {{"s.toml", std::string(kWheelsetCurveScene) +
+                               "wheel_wear = { distance_per_pass_m = 100, grade = \"R7\" }\n"}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"s.toml:31:", "key 'traffic[0].wheel_wear'", "vehicle entry"}});
+  c.push_back({"wheel_grade_unknown",
+               {{"s.toml", Replace(wear, "wheel = { E_MPa = 210000, nu = 0.28 }",
+                                   "wheel = { grade = \"R9\" }")}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"s.toml:9:", "key 'materials.wheel.grade' = \"R9\"", "R8"}});
+  c.push_back({"wheel_population_bad_weight",
+               {{"s.toml", wear + "wheel_population = [ { profile = \"builtin:S1002\", weight = 2 },"
+                                  " { profile = \"circle:400\", weight = -1 } ]\n"}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"s.toml:30:", "key 'traffic[0].wheel_population[1].weight' = -1", "> 0"}});
+  c.push_back({"wheel_population_missing_profile_file",
+               {{"s.toml", wear + "wheel_population = [ { profile = \"nope.whl\", weight = 1 } ]\n"}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"s.toml:30:", "key 'traffic[0].wheel_population[0].profile' = \"nope.whl\""}});
+  c.push_back({"wheel_population_missing_file",
+               {{"s.toml", wear + "wheel_population = \"fleet.toml\"\n"}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"s.toml:30:", "key 'traffic[0].wheel_population' = \"fleet.toml\"", "cannot open"}});
+  c.push_back({"wheel_population_file_unknown_key",
+               {{"s.toml", wear + "wheel_population = \"fleet.toml\"\n"},
+                {"fleet.toml", "[[wheel]]\nprofile = \"builtin:S1002\"\nweight = 1\ncolour = 2\n"}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"fleet.toml:4:", "key 'wheel[0].colour' = 2", "'weight'"}});
+  c.push_back({"wheel_population_file_bad_weight",
+               {{"s.toml", wear + "wheel_population = \"fleet.toml\"\n"},
+                {"fleet.toml", "[[wheel]]\nprofile = \"builtin:S1002\"\nweight = 0\n"}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"fleet.toml:3:", "key 'wheel[0].weight' = 0", "> 0"}});
+  c.push_back({"wheel_population_empty",
+               {{"s.toml", wear + "wheel_population = []\n"}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"s.toml:30:", "key 'traffic[0].wheel_population' = []", "non-empty array"}});
+  c.push_back({"wheel_population_and_wheel_profile",
+               {{"s.toml", wear + "wheel_profile = \"builtin:S1002\"\n"
+                                  "wheel_population = [ { profile = \"builtin:S1002\", weight = 1 } ]\n"}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"s.toml:31:", "key 'traffic[0].wheel_population'", "not both"}});
+  c.push_back({"wheel_population_repeated_name",
+               {{"s.toml", wear + "wheel_population = [ { name = \"a\", profile = \"builtin:S1002\", "
+                                  "weight = 1 }, { name = \"a\", profile = \"circle:400\", weight = 1 } ]\n"}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"s.toml:30:", "key 'traffic[0].wheel_population[1].name' = \"a\"", "no other wheel"}});
   c.push_back(
       {"wear_share_1e308",
        {{"s.toml", Replace(wear, "vertical_N = 80000", "vertical_N = 80000\nshare = 1e308")}},

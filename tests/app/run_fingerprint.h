@@ -1,21 +1,23 @@
-// Test helper: everything a stored wear run holds, bit for bit, as text (the kill and resume
-// tests of `wear`, the serial / MPI / Slurm sweeps' merges).
+// Everything a wear run stored in a study database, as text, bit for bit: shared by the tests
+// that interrupt, kill and resume runs (wear_interrupt_test.cpp, wheel_wear_cli_test.cpp) and the
+// serial / MPI / Slurm sweeps' merges (sweep_cluster_test.cpp).
 #pragma once
 
+#include <ios>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "profiles_db/profile_store.h"
-#include "tests/app/cli_runner.h"
+#include "tests/test_support.h"
 
 namespace railwear::test {
 
 // Everything a run stored, bit for bit (doubles as hexfloat), except the creation times: the
 // run's scene, wear law and state, and per step its summary, profile, load cases and
-// distributions (and the low rail's).
-inline std::string RunFingerprint(const fs::path& db, const std::string& name) {
+// distributions (and the low rail's, and the wearing wheels').
+inline std::string RunFingerprint(const fs::path& db, const std::string& name = "small study") {
   const ProfileStore store = ProfileStore::OpenReadOnly(db.string());
   const std::optional<RunInfo> run = store.FindRun(name);
   if (!run) return "no run";
@@ -49,6 +51,14 @@ inline std::string RunFingerprint(const fs::path& db, const std::string& name) {
       os << "low rail " << s.low_rail->worn_area_mm2 << ' ' << s.low_rail->max_depth_mm << '\n';
       for (const auto& p : s.low_rail->profile.points()) os << p.x() << ',' << p.y() << ' ';
       distributions(s.low_rail->distributions);
+    }
+    for (const WheelStepRecord& w : s.wheels) {  // co-evolution (issue 16)
+      os << "wheel " << w.traffic_index << ' ' << w.name << ' ' << w.worn_area_mm2 << ' '
+         << w.max_depth_mm << ' ' << w.max_depth_y_mm << ' ' << w.smoothing_area_error << ' '
+         << w.flange_height_mm.value_or(-1.0) << ' ' << w.flange_thickness_mm.value_or(-1.0) << ' '
+         << w.flange_slope_mm.value_or(-1.0) << '\n';
+      for (const auto& p : w.profile.points()) os << p.x() << ',' << p.y() << ' ';
+      os << '\n';
     }
   }
   return os.str();

@@ -705,5 +705,61 @@ TEST(SceneTest, YawBeyondAnglesOfAttackIsRefused) {
               1e-15);
 }
 
+// Wheel wear keys (issue 16 point 6): a wheel grade presets the wheel's hardness, wheel_wear
+// makes the entry's wheel wear (its own grade overriding), and a population makes one entry per
+// wheel with the entry's share split by weight.
+TEST(SceneTest, WheelGradeWheelWearAndPopulationAreRead) {
+  const std::string base = R"([scene]
+effects = ["wear"]
+[materials]
+wheel = { grade = "R7" }
+rail = { grade = "R260" }
+[rail]
+profile = "builtin:UIC60"
+[wheel]
+profile = "builtin:S1002"
+rolling_radius_mm = 460
+[wear]
+law = "archard"
+total_passes = 1e4
+[[traffic]]
+name = "a"
+vertical_N = 80000
+lateral_shift_mm = -4.5
+friction = 0.4
+speed_m_s = 20
+share = 2
+wheel_wear = { distance_per_pass_m = 250, grade = "R8" }
+[[traffic]]
+name = "b"
+vertical_N = 80000
+lateral_shift_mm = -4.5
+friction = 0.4
+speed_m_s = 20
+wheel_population = [ { name = "new", profile = "builtin:S1002", weight = 3 },
+                     { name = "small", profile = "builtin:S1002", weight = 1, rolling_radius_mm = 420 } ]
+)";
+  const Scene s = ParseScene(base, "w.toml");
+  EXPECT_DOUBLE_EQ(s.problem.wheel_material.hardness_Pa, 235.0 * 9.80665e6);
+  EXPECT_DOUBLE_EQ(s.problem.wheel_material.youngs_modulus_Pa, 210e9);
+  const std::vector<TrafficCase>& traffic = s.wear->traffic;
+  ASSERT_EQ(traffic.size(), 3u);
+  ASSERT_TRUE(traffic[0].wheel_wear.has_value());
+  EXPECT_DOUBLE_EQ(traffic[0].wheel_wear->distance_per_pass_m, 250.0);
+  EXPECT_DOUBLE_EQ(*traffic[0].wheel_wear->hardness_Pa, 245.0 * 9.80665e6);
+  EXPECT_EQ(traffic[1].name, "b / new");
+  EXPECT_EQ(traffic[2].name, "b / small");
+  EXPECT_DOUBLE_EQ(traffic[1].share, 0.75);
+  EXPECT_DOUBLE_EQ(traffic[2].share, 0.25);
+  EXPECT_DOUBLE_EQ(traffic[1].rolling_radius_m, 0.46);
+  EXPECT_DOUBLE_EQ(traffic[2].rolling_radius_m, 0.42);
+  EXPECT_FALSE(traffic[1].wheel_wear.has_value());
+  // The initial state carries the wearing wheel as given.
+  const WearState start = MakeInitialState(*s.wear);
+  ASSERT_EQ(start.wheels.size(), 3u);
+  EXPECT_EQ(start.wheels[0].points(), traffic[0].wheel_profile.points());
+  EXPECT_EQ(start.wheels[1].size(), 0);
+}
+
 }  // namespace
 }  // namespace railwear::app

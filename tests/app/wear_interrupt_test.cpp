@@ -49,6 +49,15 @@ std::string TinyStudy() {
   return s;
 }
 
+// TinyStudy with co-evolution (issue 16): the entry's wheel (R8) wears over 3 m per pass (about
+// one revolution: the wheel and the rail wear alike, both set steps).
+std::string TinyCoEvolutionStudy() {
+  std::string s = TinyStudy();
+  const std::string elastic = "wheel = { E_MPa = 210000, nu = 0.28 }";
+  s.replace(s.find(elastic), elastic.size(), "wheel = { grade = \"R8\" }");
+  return s + "wheel_wear = { distance_per_pass_m = 3.0 }\n";
+}
+
 constexpr const char* kRun = "small study";
 
 class WearInterruptTest : public CliFixture {
@@ -104,7 +113,7 @@ class WearInterruptTest : public CliFixture {
   std::string Reference(const std::string& scene, const std::string& name) {
     const Outcome whole = Run("wear " + scene + " --db " + name + " --threads 1");
     EXPECT_EQ(whole.exit_code, 0) << whole.err;
-    return RunFingerprint(dir_ / name, kRun);
+    return RunFingerprint(dir_ / name);
   }
 
   // Signals a run once its second step is stored (so the signal lands in a later step's
@@ -138,7 +147,49 @@ class WearInterruptTest : public CliFixture {
     ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
     EXPECT_TRUE(Contains(resumed.err, "resuming run 'small study' from step"));
     EXPECT_TRUE(Contains(resumed.err, "passes; it was interrupted)"));
-    EXPECT_EQ(RunFingerprint(dir_ / "cut.sqlite", kRun), expected);  // complete, bit for bit
+    EXPECT_EQ(RunFingerprint(dir_ / "cut.sqlite"), expected);  // complete, bit for bit
+  }
+
+  // Kills a run of `scene` at each of its fsyncs in turn and finishes it (see the tests below).
+  void KillAtEachFsync(const std::string& scene) {
+    Write("tiny.toml", scene);
+    const std::string expected = Reference("tiny.toml", "whole.sqlite");
+    const std::string shim = std::string("LD_PRELOAD=") + RAILWEAR_KILL_AT_FSYNC;
+    const std::string no_asan_order = "ASAN_OPTIONS=verify_asan_link_order=0";
+    const std::vector<std::string> args = {"wear",     "tiny.toml", "--db",
+                                           "k.sqlite", "--threads", "1"};
+    const pid_t counting = Start(args, {shim, no_asan_order, "RAILWEAR_FSYNC_LOG=fsyncs.txt"});
+    ASSERT_EQ(Wait(counting), 0) << ReadFile(dir_ / "err.txt");
+    ASSERT_EQ(RunFingerprint(dir_ / "k.sqlite"), expected);  // the shim changes nothing else
+    std::istringstream log(ReadFile(dir_ / "fsyncs.txt"));
+    int fsyncs = 0;
+    for (std::string line; std::getline(log, line);) ++fsyncs;
+    ASSERT_GE(fsyncs, 8);  // at least: creation, run + step 0, 4 steps, state, checkpoint
+
+    int resumed = 0, restarted = 0;
+    for (int n = 1; n <= fsyncs; ++n) {
+      SCOPED_TRACE("killed at fsync " + std::to_string(n) + " of " + std::to_string(fsyncs));
+      for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
+        fs::remove(dir_ / ("k.sqlite" + std::string(suffix)));
+      }
+      const pid_t pid =
+          Start(args, {shim, no_asan_order, "RAILWEAR_KILL_AT_FSYNC=" + std::to_string(n)});
+      ASSERT_EQ(Wait(pid), -SIGKILL) << ReadFile(dir_ / "err.txt");
+      Outcome finish = Run("wear tiny.toml --db k.sqlite --resume --threads 1");
+      if (finish.exit_code == 2 && Contains(finish.err, "no run 'small study' to resume")) {
+        finish = Run("wear tiny.toml --db k.sqlite --threads 1");  // killed before the run existed
+        ++restarted;
+      } else {
+        ++resumed;
+        EXPECT_FALSE(Contains(finish.err, "had no stored step"));  // never a run without step 0
+      }
+      ASSERT_EQ(finish.exit_code, 0) << finish.err;
+      EXPECT_EQ(RunFingerprint(dir_ / "k.sqlite"), expected);
+    }
+    EXPECT_GE(resumed, 5);    // the kills from the run's creation on
+    EXPECT_GE(restarted, 1);  // the kills while the database itself was being created
+    std::cerr << "[figure] " << fsyncs << " kill points: " << resumed << " resumed, " << restarted
+              << " restarted, all bit-identical\n";
   }
 };
 
@@ -156,43 +207,13 @@ TEST_F(WearInterruptTest, SigintMidRunExits130AndResumesBitIdentically) {
 // finished bit-identically: by --resume when the run exists (never a run without its step 0),
 // by a new run when the kill came before the run was created.
 TEST_F(WearInterruptTest, KillAtEachFsyncIsFinishedBitIdentically) {
-  Write("tiny.toml", TinyStudy());
-  const std::string expected = Reference("tiny.toml", "whole.sqlite");
-  const std::string shim = std::string("LD_PRELOAD=") + RAILWEAR_KILL_AT_FSYNC;
-  const std::string no_asan_order = "ASAN_OPTIONS=verify_asan_link_order=0";
-  const std::vector<std::string> args = {"wear", "tiny.toml", "--db", "k.sqlite", "--threads", "1"};
-  const pid_t counting = Start(args, {shim, no_asan_order, "RAILWEAR_FSYNC_LOG=fsyncs.txt"});
-  ASSERT_EQ(Wait(counting), 0) << ReadFile(dir_ / "err.txt");
-  ASSERT_EQ(RunFingerprint(dir_ / "k.sqlite", kRun), expected);  // the shim changes nothing else
-  std::istringstream log(ReadFile(dir_ / "fsyncs.txt"));
-  int fsyncs = 0;
-  for (std::string line; std::getline(log, line);) ++fsyncs;
-  ASSERT_GE(fsyncs, 8);  // at least: creation, run + step 0, 4 steps, state, checkpoint
+  KillAtEachFsync(TinyStudy());
+}
 
-  int resumed = 0, restarted = 0;
-  for (int n = 1; n <= fsyncs; ++n) {
-    SCOPED_TRACE("killed at fsync " + std::to_string(n) + " of " + std::to_string(fsyncs));
-    for (const char* suffix : {"", "-wal", "-shm", "-journal"}) {
-      fs::remove(dir_ / ("k.sqlite" + std::string(suffix)));
-    }
-    const pid_t pid =
-        Start(args, {shim, no_asan_order, "RAILWEAR_KILL_AT_FSYNC=" + std::to_string(n)});
-    ASSERT_EQ(Wait(pid), -SIGKILL) << ReadFile(dir_ / "err.txt");
-    Outcome finish = Run("wear tiny.toml --db k.sqlite --resume --threads 1");
-    if (finish.exit_code == 2 && Contains(finish.err, "no run 'small study' to resume")) {
-      finish = Run("wear tiny.toml --db k.sqlite --threads 1");  // killed before the run existed
-      ++restarted;
-    } else {
-      ++resumed;
-      EXPECT_FALSE(Contains(finish.err, "had no stored step"));  // never a run without step 0
-    }
-    ASSERT_EQ(finish.exit_code, 0) << finish.err;
-    EXPECT_EQ(RunFingerprint(dir_ / "k.sqlite", kRun), expected);
-  }
-  EXPECT_GE(resumed, 5);    // the kills from the run's creation on
-  EXPECT_GE(restarted, 1);  // the kills while the database itself was being created
-  std::cerr << "[figure] " << fsyncs << " kill points: " << resumed << " resumed, " << restarted
-            << " restarted, all bit-identical\n";
+// The same with co-evolution (issue 16 point 6): the entry's wheel wears and is stored per step
+// (wheel_steps), and a killed run resumes with its wheel bit for bit.
+TEST_F(WearInterruptTest, KillAtEachFsyncWithAWearingWheelIsFinishedBitIdentically) {
+  KillAtEachFsync(TinyCoEvolutionStudy());
 }
 
 // A run without steps (left by a railwear before issue 17, killed between the commit that
@@ -217,7 +238,7 @@ TEST_F(WearInterruptTest, ARunWithoutStepsIsResumable) {
   EXPECT_TRUE(Contains(resumed.err,
                        "run 'small study' had no stored step (its start was "
                        "interrupted): stored its step 0 from the scene"));
-  EXPECT_EQ(RunFingerprint(dir_ / "stuck.sqlite", kRun), expected);
+  EXPECT_EQ(RunFingerprint(dir_ / "stuck.sqlite"), expected);
 }
 
 // The database file deleted (or replaced) under a running study: the next commit notices, the

@@ -246,7 +246,8 @@ TEST(ProfileStore, CreatesSchemaInMemory) {
   EXPECT_EQ(names,
             (std::vector<std::string>{"calibration_inputs", "calibrations", "curving_starts",
                                       "distributions", "load_cases", "low_rail_distributions",
-                                      "low_rail_steps", "meta", "profiles", "runs", "steps"}));
+                                      "low_rail_steps", "meta", "profiles", "runs", "steps",
+                                      "wheel_steps"}));
   EXPECT_EQ(db.Query("PRAGMA application_id").rows[0][0],
             std::to_string(ProfileStore::kApplicationId));
 }
@@ -443,6 +444,108 @@ TEST(ProfileStore, CurvingStartsRoundTripExactly) {
   bad.curving_starts = {{0, {std::nan("")}, {}}};
   EXPECT_ANY_THROW(db.AppendStep(run, bad));
   EXPECT_EQ(db.LastStep(run), 1);
+}
+
+// A wearing wheel (co-evolution, schema 7): its measures and profile per step and traffic entry,
+// bit for bit; summaries by entry then step; a malformed one rolls the whole step back.
+WheelStepRecord TestWheel(int traffic_index, const std::string& name, double area_mm2,
+                          double depth_mm, double y_mm, double smoothing, const Profile& profile,
+                          std::optional<double> sd_mm = std::nullopt) {
+  WheelStepRecord w;
+  w.traffic_index = traffic_index;
+  w.name = name;
+  w.worn_area_mm2 = area_mm2;
+  w.max_depth_mm = depth_mm;
+  w.max_depth_y_mm = y_mm;
+  w.smoothing_area_error = smoothing;
+  w.flange_thickness_mm = sd_mm;
+  if (sd_mm) {
+    w.flange_height_mm = 28.0;
+    w.flange_slope_mm = 1.0 / 3.0;
+  }
+  w.profile = profile;
+  return w;
+}
+
+TEST(ProfileStore, WheelStepsRoundTripExactly) {
+  ProfileStore db = ProfileStore::Open(":memory:");
+  const int64_t run = db.CreateRun(TestRun("wheels"));
+  const Profile wheel({{-0.07, 0.0}, {-0.02, 1e-3}, {0.0, 1.0 / 3.0 * 1e-3}, {0.05, 2e-300}}, "w");
+  StepRecord zero = TestStep(0);
+  zero.wheels = {TestWheel(2, "freight", 0.0, 0.0, 0.0, 0.0, wheel, 32.5)};
+  db.AppendStep(run, zero);
+  StepRecord one = TestStep(1);
+  const Profile worn({{-0.07, -1e-6}, {-0.02, 1e-3}, {0.0, 1.0 / 7.0 * 1e-3}, {0.05, 0.0}}, "w");
+  one.wheels = {TestWheel(2, "freight", 0.125, 1.0 / 3.0, -0.5, 1e-9, worn, 32.25),
+                TestWheel(0, "passenger", 0.5, 0.25, 1.5, 0.0, wheel)};
+  db.AppendStep(run, one);
+  const StepRecord back = db.LoadStep(run, 1);
+  ASSERT_EQ(back.wheels.size(), 2u);
+  EXPECT_EQ(back.wheels[0].traffic_index, 0);  // by traffic entry
+  EXPECT_EQ(back.wheels[1].traffic_index, 2);
+  EXPECT_EQ(back.wheels[1].name, "freight");
+  EXPECT_EQ(back.wheels[1].max_depth_mm, 1.0 / 3.0);
+  EXPECT_EQ(back.wheels[1].smoothing_area_error, 1e-9);
+  EXPECT_EQ(back.wheels[1].profile.points(), worn.points());
+  EXPECT_EQ(back.wheels[1].flange_thickness_mm, 32.25);
+  EXPECT_EQ(back.wheels[1].flange_height_mm, 28.0);
+  EXPECT_EQ(back.wheels[1].flange_slope_mm, 1.0 / 3.0);
+  EXPECT_FALSE(back.wheels[0].flange_thickness_mm.has_value());  // NULL: no flange measured
+  EXPECT_EQ(db.LoadWheelProfile(run, 0, 2).points(), wheel.points());
+  const std::vector<WheelStepRecord> summaries = db.WheelSteps(run);
+  ASSERT_EQ(summaries.size(), 3u);
+  EXPECT_EQ(summaries[0].traffic_index, 0);
+  EXPECT_EQ(summaries[1].step, 0);
+  EXPECT_EQ(summaries[2].step, 1);
+  EXPECT_EQ(summaries[2].worn_area_mm2, 0.125);
+  EXPECT_EQ(summaries[1].flange_thickness_mm, 32.5);
+  EXPECT_EQ(summaries[2].profile.size(), 0);  // summaries only
+  EXPECT_TRUE(db.Steps(run)[1].wheels.empty());
+  ExpectInputError([&] { db.LoadWheelProfile(run, 1, 1); },
+                   {"wheel of traffic entry 1", "not stored"});
+
+  StepRecord bad = TestStep(2);
+  bad.wheels = {TestWheel(1, "a", 0.0, 0.0, 0.0, 0.0, wheel),
+                TestWheel(1, "b", 0.0, 0.0, 0.0, 0.0, wheel)};
+  ExpectInputError([&] { db.AppendStep(run, bad); }, {"wheel of traffic entry 1 given twice"});
+  bad.wheels = {TestWheel(1, "a", 0.0, 0.0, 0.0, 0.0, Profile())};
+  ExpectInputError([&] { db.AppendStep(run, bad); }, {"traffic entry 1 ('a') has 0 profile"});
+  bad.wheels = {TestWheel(1, "a", std::nan(""), 0.0, 0.0, 0.0, wheel)};
+  EXPECT_ANY_THROW(db.AppendStep(run, bad));
+  EXPECT_EQ(db.LastStep(run), 1);
+}
+
+// A version-6 file (before wheel_steps): read-only commands read it as it is (no wheels), and a
+// writing open migrates it to 7 keeping its data, its runs without wheels.
+TEST(ProfileStore, MigratesVersion6AndReadsItUnmigrated) {
+  TempDir tmp;
+  const std::string path = tmp.File("v6.rwdb");
+  {
+    ProfileStore db = ProfileStore::Open(path);
+    const int64_t run = db.CreateRun(TestRun("old"), TestStep(0));
+    db.AppendStep(run, TestStep(1));
+  }
+  RawExec(path, "DROP TABLE wheel_steps; PRAGMA user_version = 6;");
+  {
+    const ProfileStore ro = ProfileStore::OpenReadOnly(path);
+    EXPECT_EQ(ro.SchemaVersion(), 6);
+    const auto run = ro.FindRun("old");
+    ASSERT_TRUE(run.has_value());
+    EXPECT_TRUE(ro.WheelSteps(run->id).empty());
+    EXPECT_TRUE(ro.LoadStep(run->id, 1).wheels.empty());
+    EXPECT_EQ(ro.LoadStep(run->id, 1).passes, TestStep(1).passes);
+    ExpectInputError([&] { ro.LoadWheelProfile(run->id, 1, 0); }, {"not stored"});
+  }
+  ProfileStore db = ProfileStore::Open(path);
+  EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
+  const auto run = db.FindRun("old");
+  ASSERT_TRUE(run.has_value());
+  EXPECT_EQ(db.LastStep(run->id), 1);
+  EXPECT_EQ(db.Query("SELECT count(*) FROM wheel_steps").rows[0][0], "0");
+  StepRecord two = TestStep(2);
+  two.wheels = {TestWheel(0, "w", 0.0, 0.0, 0.0, 0.0, TestStep(2).profile)};
+  db.AppendStep(run->id, two);
+  EXPECT_EQ(db.WheelSteps(run->id).size(), 1u);
 }
 
 TEST(ProfileStore, CalibrationsRoundTripWithTheirInputs) {
@@ -1132,7 +1235,7 @@ TEST(ProfileStoreMerge, EveryTableHasARoleAndARunTableIsNeverSkipped) {
   }
   EXPECT_EQ(run_rows, (std::vector<std::string>{"curving_starts", "distributions", "load_cases",
                                                 "low_rail_distributions", "low_rail_steps",
-                                                "profiles", "steps"}));
+                                                "profiles", "steps", "wheel_steps"}));
   // A table merge does not know (no run_id, not one of the known others) is refused by name.
   RawExec(path, "CREATE TABLE run_notes(note TEXT)");
   ExpectInputError([&] { db.MergeTableRoles(); }, {path, "table 'run_notes' is unknown to merge"});
