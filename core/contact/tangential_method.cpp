@@ -142,6 +142,7 @@ TangentialChoice ChooseTangentialMethod(const TangentialIndicators& ind, Accurac
   c.automatic = true;
   c.spin_share = ind.spin_share;
   c.a_over_b = ind.a_over_b;
+  c.creepage_residual = ind.creepage_residual;
   if (lim.max_spin_share < 0.0) {
     c.method = TangentialMethod::kExact;
     c.reason = fmt::format("exact: every patch at {} (FASTSIM's error exceeds its creep-force "

@@ -64,6 +64,7 @@ struct TangentialChoice {
   bool automatic = false;                                // chosen by `auto`
   double spin_share = 0.0;                               // the indicators (auto only)
   double a_over_b = 0.0;
+  double creepage_residual = 0.0;  // reported, not in the rule (docs/rolling_contact.md)
   std::string reason;                                    // auto only: the rule that decided
 };
 
