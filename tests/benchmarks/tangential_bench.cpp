@@ -1,12 +1,22 @@
 // FASTSIM timing on a Hertz patch (the README §4 check case: a = 8, b = 4 mm, Fn = 82 kN,
-// eta = -6.25e-4, phi = 0.625 /m) on a 70 x 80 grid covering the ellipse.
+// eta = -6.25e-4, phi = 0.625 /m) on a 70 x 80 grid covering the ellipse; and the tangential
+// stage of each method on the spin-dominated flange patch of issue 16 (BM_FlangeTangential).
 // Run: build/tests/benchmarks/tangential_bench --benchmark_repetitions=5
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <tuple>
 #include <numbers>
 
+#include "core/contact/contact_solver.h"
 #include "core/contact/fastsim.h"
+#include "core/contact/kinematics.h"
+#include "core/contact/placement_stage.h"
+#include "core/contact/tangential_method.h"
+#include "core/geometry/wheel_rail_geometry.h"
+#include "core/profile/builtin_profiles.h"
 #include "tests/core/contact/hertz_grid.h"
 
 namespace railwear {
@@ -38,6 +48,57 @@ void BM_Fastsim(benchmark::State& state) {
   state.counters["cells"] = g.cells();
 }
 BENCHMARK(BM_Fastsim)->Args({70, 80})->Args({200, 200})->Unit(benchmark::kMicrosecond);
+
+// The tangential stage alone (the method's solve on the patch's grid, pressure and rigid slip)
+// on the S1002 flange at -3 mm on UIC60 1:40, 80 kN, mu 0.35, yaw -5 mrad, conformal geometry
+// with the Boussinesq kernel at standard (tests/core/contact/tangential_method_test.cpp,
+// SpinDominatedFlangeIsWithinTheToleranceOfExact): the normal solution is computed once with
+// FASTSIM's creep forces, then each iteration solves its tangential problem. Arg: 0 fastsim,
+// 1 exact, 2 auto (which chooses exact here: FASTSIM's 1 sweep plus the exact solve).
+void BM_FlangeTangential(benchmark::State& state) {
+  static const auto setup = [] {
+    ContactProblem p;
+    p.wheel_profile = MakeS1002();
+    p.rail_profile = ApplyCant(MakeUic60(), 1.0 / 40.0);
+    p.wheel_material = p.rail_material = {210e9, 0.28};
+    p.placement.lateral_shift_m = -3e-3;
+    p.placement.rolling_radius_m = 0.46;
+    p.placement.yaw_rad = -5e-3;
+    p.load.vertical_force_N = 80e3;
+    p.model = MakeModelOptions(ModelKind::kConformal);
+    p.model.kind = ModelKind::kCustom;
+    p.model.kernel = KernelModel::kBoussinesq;
+    p.model.accuracy = AccuracyPreset::kStandard;
+    RollingOptions r;
+    r.friction = 0.35;
+    r.motion.speed_m_s = 20.0;
+    p.rolling = r;
+    const ContactResult res = SolveContact(p);
+    const PatchResult& patch = *std::max_element(
+        res.patches.begin(), res.patches.end(),
+        [](const PatchResult& a, const PatchResult& b) { return a.normal_force_N < b.normal_force_N; });
+    const WheelRailGeometry geom = internal::PlaceWheel(p);  // as SolveContact places it
+    const RollingInput in = RigidSlipFromMotion(geom, patch.grid, p.rolling->motion, r.friction);
+    return std::make_tuple(p, patch, in);
+  }();
+  const auto& [problem, patch, input] = setup;
+  const TangentialMethod method = state.range(0) == 0   ? TangentialMethod::kFastsim
+                                  : state.range(0) == 1 ? TangentialMethod::kExact
+                                                        : TangentialMethod::kAuto;
+  TangentialChoice choice;
+  for (auto _ : state) {
+    const TangentialSolution s =
+        SolveTangential(method, AccuracyPreset::kStandard, patch.grid, patch.pressure_Pa, input,
+                        problem.wheel_material, problem.rail_material, &choice);
+    benchmark::DoNotOptimize(s.force_s_N);
+    state.counters["Fx_N"] = s.force_x_N;
+    state.counters["Fy_N"] = s.force_s_N;
+  }
+  state.counters["exact"] = choice.method == TangentialMethod::kExact ? 1 : 0;
+  state.counters["cells_in_contact"] = patch.cells_in_contact;
+  state.SetLabel(std::string(ToString(method)));
+}
+BENCHMARK(BM_FlangeTangential)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace railwear
