@@ -16,7 +16,7 @@
 #include "core/contact/placement_stage.h"
 #include "core/contact/tangential_method.h"
 #include "core/geometry/wheel_rail_geometry.h"
-#include "core/profile/builtin_profiles.h"
+#include "tests/core/contact/flange_case.h"
 #include "tests/core/contact/hertz_grid.h"
 
 namespace railwear {
@@ -57,28 +57,16 @@ BENCHMARK(BM_Fastsim)->Args({70, 80})->Args({200, 200})->Unit(benchmark::kMicros
 // 1 exact, 2 auto (which chooses exact here: FASTSIM's 1 sweep plus the exact solve).
 void BM_FlangeTangential(benchmark::State& state) {
   static const auto setup = [] {
-    ContactProblem p;
-    p.wheel_profile = MakeS1002();
-    p.rail_profile = ApplyCant(MakeUic60(), 1.0 / 40.0);
-    p.wheel_material = p.rail_material = {210e9, 0.28};
-    p.placement.lateral_shift_m = -3e-3;
-    p.placement.rolling_radius_m = 0.46;
-    p.placement.yaw_rad = -5e-3;
-    p.load.vertical_force_N = 80e3;
-    p.model = MakeModelOptions(ModelKind::kConformal);
-    p.model.kind = ModelKind::kCustom;
-    p.model.kernel = KernelModel::kBoussinesq;
-    p.model.accuracy = AccuracyPreset::kStandard;
-    RollingOptions r;
-    r.friction = 0.35;
-    r.motion.speed_m_s = 20.0;
-    p.rolling = r;
+    const ContactProblem p = testing::SpinDominatedFlangeProblem(TangentialMethod::kFastsim);
     const ContactResult res = SolveContact(p);
     const PatchResult& patch = *std::max_element(
         res.patches.begin(), res.patches.end(),
-        [](const PatchResult& a, const PatchResult& b) { return a.normal_force_N < b.normal_force_N; });
+        [](const PatchResult& a, const PatchResult& b) {
+          return a.normal_force_N < b.normal_force_N;
+        });
     const WheelRailGeometry geom = internal::PlaceWheel(p);  // as SolveContact places it
-    const RollingInput in = RigidSlipFromMotion(geom, patch.grid, p.rolling->motion, r.friction);
+    const RollingInput in =
+        RigidSlipFromMotion(geom, patch.grid, p.rolling->motion, p.rolling->friction);
     return std::make_tuple(p, patch, in);
   }();
   const auto& [problem, patch, input] = setup;

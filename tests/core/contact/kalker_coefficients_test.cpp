@@ -154,14 +154,7 @@ constexpr double kRatioTolerance = 0.005;
 CreepCoefficients ExactSolverCoefficients(double a_over_b, double nu, int cells_per_semi_axis) {
   const double c = 5e-3, a = c * std::sqrt(a_over_b), b = c / std::sqrt(a_over_b);
   const PatchGrid g = testing::MakeHertzGrid(a, b, 2 * cells_per_semi_axis, 2 * cells_per_semi_axis);
-  Eigen::VectorXd p(g.cells());
-  for (int j = 0; j < g.ns; ++j) {
-    for (int i = 0; i < g.nx; ++i) {
-      p[g.Index(i, j)] =
-          std::sqrt(std::max(0.0, 1.0 - std::pow(g.X(i) / a, 2) - std::pow(g.S(j) / b, 2)));
-    }
-  }
-  p *= 1e5 / (p.sum() * g.CellArea());
+  const Eigen::VectorXd p = testing::HertzPressure(g, a, b, 1e5);
   const double shear = 80e9;
   const Material m{2.0 * shear * (1.0 + nu), nu};
   constexpr double kCreep = 1e-7;  // full stick: linear theory

@@ -18,7 +18,7 @@
 #include "core/contact/hertz.h"
 #include "core/contact/kalker_coefficients.h"
 #include "core/contact/tangential_exact.h"
-#include "core/profile/builtin_profiles.h"
+#include "tests/core/contact/flange_case.h"
 #include "tests/core/contact/hertz_grid.h"
 #include "tests/core/geometry/geometry_test_util.h"
 
@@ -39,17 +39,7 @@ double CreepForceError(double fx, double fy, double fx_exact, double fy_exact, d
          std::max(std::hypot(fx_exact, fy_exact), 0.1 * mu_fn);
 }
 
-// Hertz pressure on the grid, scaled so that sum p dA = fn.
-Eigen::VectorXd HertzPressure(const PatchGrid& g, double a, double b, double fn) {
-  Eigen::VectorXd p(g.cells());
-  for (int j = 0; j < g.ns; ++j) {
-    for (int i = 0; i < g.nx; ++i) {
-      const double x = g.X(i) / a, s = g.S(j) / b;
-      p[g.Index(i, j)] = std::sqrt(std::max(0.0, 1.0 - x * x - s * s));
-    }
-  }
-  return p * (fn / (p.sum() * g.CellArea()));
-}
+using testing::HertzPressure;
 
 TEST(TangentialMethodNames, AutoIsAMethod) {
   EXPECT_EQ(ToString(TangentialMethod::kAuto), "auto");
@@ -183,28 +173,9 @@ TEST(TangentialAuto, WhereFastsimIsKeptItIsWithinTheBoundOnHertzPatches) {
   EXPECT_GT(worst_fastsim_overall, tol);  // the sweep does reach FASTSIM's misses
 }
 
-// The S1002 flange on UIC60 1:40 (wheel at -3 mm: flange contact at 69 degrees, a patch of about
-// 40 x 2.3 mm), 80 kN, mu 0.35, 20 m/s, yaw -5 mrad, conformal geometry with the Boussinesq
-// kernel (the wear study's model) at standard: a spin-dominated flange patch (spin share 0.28).
+// The spin-dominated flange case (tests/core/contact/flange_case.h) with `method`.
 ContactProblem FlangeProblem(TangentialMethod method) {
-  ContactProblem p;
-  p.wheel_profile = MakeS1002();
-  p.rail_profile = ApplyCant(MakeUic60(), 1.0 / 40.0);
-  p.wheel_material = p.rail_material = {210e9, 0.28};
-  p.placement.lateral_shift_m = -3e-3;
-  p.placement.rolling_radius_m = 0.46;
-  p.placement.yaw_rad = -5e-3;
-  p.load.vertical_force_N = 80e3;
-  p.model = MakeModelOptions(ModelKind::kConformal);
-  p.model.kind = ModelKind::kCustom;
-  p.model.kernel = KernelModel::kBoussinesq;
-  p.model.accuracy = AccuracyPreset::kStandard;
-  RollingOptions r;
-  r.friction = 0.35;
-  r.motion.speed_m_s = 20.0;
-  p.rolling = r;
-  p.tangential = method;
-  return p;
+  return testing::SpinDominatedFlangeProblem(method);
 }
 
 // The largest patch's rolling results.
