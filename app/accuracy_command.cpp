@@ -59,15 +59,21 @@ void SetupAccuracy(CLI::App& app) {
                   "Wear scenes: run every study to this many MGT instead of the scene's total");
   sub->add_option("--threads", options->threads, "Wear scenes: load-case workers (0: the scene's)")
       ->check(CLI::NonNegativeNumber);
+  CLI::Option* tangential =
+      sub->add_option("--tangential", options->tangential,
+                      "Rolling scenes: tangential methods to compare, comma-separated: fastsim, "
+                      "exact, auto (default: the scene's); adds each method's creep-force error "
+                      "against the exact solver on the same model and level")
+          ->delimiter(',');
   sub->add_flag("--curving", options->curving,
                 "Vehicle scenes: the steady-state curving of each vehicle entry at each level "
                 "(time, solves, positions and flange force against the finest) instead of the "
                 "wear study");
-  sub->callback([options, no_plot, levels, models, reference, reference_model]() {
+  sub->callback([options, no_plot, levels, models, reference, reference_model, tangential]() {
     options->plot = !*no_plot;
     options->levels_given = levels->count() > 0;
     options->contact_options_given =
-        models->count() + reference->count() + reference_model->count() > 0;
+        models->count() + reference->count() + reference_model->count() + tangential->count() > 0;
     RunAccuracy(*options);
   });
 }
@@ -103,7 +109,7 @@ void RunCurvingAccuracy(const Scene& scene, const AccuracyOptions& o) {
   if (o.contact_options_given || o.step_limits_mm || o.total_mgt) {
     throw InputError(fmt::format(
         "{}: --curving takes --levels and --out; --models, --reference, --reference-model, "
-        "--step-limits and --mgt are for the other studies",
+        "--tangential, --step-limits and --mgt are for the other studies",
         scene.path));
   }
   const std::vector<std::string> levels =
@@ -118,8 +124,8 @@ void RunCurvingAccuracy(const Scene& scene, const AccuracyOptions& o) {
 void RunWearAccuracy(const Scene& scene, const AccuracyOptions& o) {
   if (o.contact_options_given) {
     throw InputError(
-        fmt::format("{}: a wear scene runs with its own [model]; --models, "
-                    "--reference and --reference-model are for contact scenes",
+        fmt::format("{}: a wear scene runs with its own [model]; --models, --reference, "
+                    "--reference-model and --tangential are for contact scenes",
                     o.scene_path));
   }
   WearAccuracyOptions w;

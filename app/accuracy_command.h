@@ -2,7 +2,8 @@
 // wear-step study of wear_accuracy.h instead of what follows. The scene's contact
 // problem is solved with each model at each accuracy level; per run the median time per solve,
 // the peak memory the solve adds, and the errors of contact area, peak pressure, total force
-// and (when rolling) creep force against a reference: the finest solution of the reference model
+// and (when rolling) creep force against a reference (with --tangential, per tangential method,
+// against the exact solver's): the finest solution of the reference model
 // (conformal geometry + Boussinesq kernel unless --reference-model says otherwise), Richardson-
 // extrapolated where the levels allow, or a JSON file given with --reference. Prints a table;
 // with --out DIR writes DIR/accuracy.csv and the Pareto plot DIR/accuracy.png (error against

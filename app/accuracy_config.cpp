@@ -60,6 +60,16 @@ AccuracyPlan MakeAccuracyPlan(const AccuracyOptions& o) {
   if (plan.levels.empty()) throw InputError("--levels: expected at least one level");
   plan.reference_model = CanonicalModel(o.reference_model);
   CheckName(plan.reference_model, kAccuracyModels, "--reference-model: model");
+  for (const auto& name : o.tangential) {
+    const auto m = TangentialMethodFromString(name);
+    if (!m) {
+      throw InputError(fmt::format("--tangential: method '{}': expected one of {}", name,
+                                   JoinEnumChoices(kTangentialMethodNames)));
+    }
+    if (std::find(plan.tangential.begin(), plan.tangential.end(), *m) == plan.tangential.end()) {
+      plan.tangential.push_back(*m);
+    }
+  }
   return plan;
 }
 

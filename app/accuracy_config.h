@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/contact/contact_solver.h"
+#include "core/contact/tangential_method.h"
 #include "core/numerics/enum_names.h"
 
 namespace railwear::app {
@@ -32,13 +33,18 @@ struct AccuracyOptions {
   // Wear scenes only (wear_accuracy.h): step limits [mm], a shorter total [MGT], threads.
   // levels_given: --levels was on the command line (a wear study's default omits "fine").
   bool levels_given = false;
-  bool contact_options_given = false;  // --models, --reference or --reference-model given
+  bool contact_options_given = false;  // --models, --reference, --reference-model or --tangential
   std::optional<std::vector<double>> step_limits_mm;
   std::optional<double> total_mgt;
   int threads = 0;
   // Vehicle scenes (curving_accuracy.h): the steady-state curving of each vehicle entry at each
   // level instead of the wear study.
   bool curving = false;
+  // Rolling contact scenes: the tangential methods to compare (names of kTangentialMethodNames);
+  // empty: the scene's own. With more than one, each model and level runs with each method,
+  // the creep-force reference is the exact solver's, and every row reports its creep-force
+  // error against the exact solver on the same model and level.
+  std::vector<std::string> tangential;
 };
 
 // The validated contact study: canonical model names without repeats in the order given,
@@ -48,10 +54,13 @@ struct AccuracyPlan {
   std::vector<std::string> models;
   std::vector<std::string> levels;
   std::string reference_model;
+  // The tangential methods in the order given, without repeats; empty: the scene's own.
+  std::vector<TangentialMethod> tangential;
 };
 
-// Checks repeats, models, levels and the reference model, in that order. Throws InputError for
-// repeats < 1, an unknown model or level, or an empty list.
+// Checks repeats, models, levels, the reference model and the tangential methods, in that order.
+// Throws InputError for repeats < 1, an unknown model, level or tangential method, or an empty
+// list.
 AccuracyPlan MakeAccuracyPlan(const AccuracyOptions& options);
 
 // Accuracy presets from their names (any order, repeats dropped), coarse to fine. Throws

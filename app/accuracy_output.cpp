@@ -61,11 +61,15 @@ std::string FormatAccuracyTable(const AccuracyStudy& s) {
   out += fmt::format("            {}\n", values);
   for (const auto& n : s.notes) out += fmt::format("note        {}\n", n);
   out += "\n";
-  out += fmt::format("{:<21} {:<9} {:>4} {:>9} {:>8} {:>15} {:>9} {:>9} {:>9} {:>8} {:>8} {:>8}",
-                     "model", "level", "n/b", "time_ms", "mem_MiB", "cells(contact)", "area_mm2",
-                     "p_max_MPa", "lateral_N", "e_area%", "e_pmax%", "e_force%");
+  const bool tan = s.compare_tangential;
+  out += fmt::format("{:<21} {:<9}", "model", "level");
+  if (tan) out += fmt::format(" {:<10}", "tangential");
+  out += fmt::format(" {:>4} {:>9} {:>8} {:>15} {:>9} {:>9} {:>9} {:>8} {:>8} {:>8}", "n/b",
+                     "time_ms", "mem_MiB", "cells(contact)", "area_mm2", "p_max_MPa", "lateral_N",
+                     "e_area%", "e_pmax%", "e_force%");
   out += s.rolling ? fmt::format(" {:>8}", "e_creep%") : std::string();
-  out += "  patches\n";
+  if (tan) out += fmt::format(" {:>10}", "vs_exact%");
+  out += tan ? "  patches (solvers)\n" : "  patches\n";
   for (const auto& row : s.rows) {
     const std::string n =
         row.cells_per_semi_axis > 0 ? fmt::format("{:.0f}", row.cells_per_semi_axis) : "-";
@@ -73,14 +77,16 @@ std::string FormatAccuracyTable(const AccuracyStudy& s) {
         std::isnan(row.memory_bytes) ? "-" : fmt::format("{:.1f}", row.memory_bytes * kToMiB);
     const std::string cells =
         row.cells > 0 ? fmt::format("{}({})", row.cells, row.cells_in_contact) : "analytic";
+    out += fmt::format("{:<21} {:<9}", row.model, row.level);
+    if (tan) out += fmt::format(" {:<10}", row.tangential);
     out += fmt::format(
-        "{:<21} {:<9} {:>4} {:>9.2f} {:>8} {:>15} {:>9.2f} {:>9.1f} {:>9.1f} {:>8} "
-        "{:>8} {:>8}",
-        row.model, row.level, n, row.time_median_s * kToMs, mem, cells, row.q.area_m2 * kToMm2,
-        row.q.p_max_Pa * kToMPa, row.q.lateral_force_N, Pct(row.err_area), Pct(row.err_p_max),
-        Pct(row.err_force));
+        " {:>4} {:>9.2f} {:>8} {:>15} {:>9.2f} {:>9.1f} {:>9.1f} {:>8} {:>8} {:>8}", n,
+        row.time_median_s * kToMs, mem, cells, row.q.area_m2 * kToMm2, row.q.p_max_Pa * kToMPa,
+        row.q.lateral_force_N, Pct(row.err_area), Pct(row.err_p_max), Pct(row.err_force));
     if (s.rolling) out += fmt::format(" {:>8}", Pct(row.err_creep));
+    if (tan) out += fmt::format(" {:>10}", Pct(row.err_creep_vs_exact));
     out += fmt::format("  {}", row.patch_models);
+    if (tan) out += fmt::format(" ({})", row.tangential_choices);
     if (row.status != SolverStatus::kConverged) {
       out += fmt::format("  [{}: {}]", ToString(row.status), row.message);
     }
@@ -93,11 +99,11 @@ void WriteAccuracyCsv(const AccuracyStudy& s, std::ostream& out) {
   out << "model,level,cells_per_semi_axis,status,repeats,time_ms_median,time_ms_min,time_ms_max,"
          "memory_MiB,patches,cells,cells_in_contact,iterations,area_mm2,p_max_MPa,vertical_N,"
          "lateral_N,creep_x_N,creep_y_N,err_area_pct,err_p_max_pct,err_force_pct,err_creep_pct,"
-         "patch_models\n";
+         "patch_models,tangential,tangential_solvers,err_creep_vs_exact_pct\n";
   auto opt = [](const std::optional<double>& v) { return v ? CsvNumber(*v) : std::string(); };
   for (const auto& r : s.rows) {
     out << fmt::format(
-        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
         CsvField(r.model), CsvField(r.level), CsvNumber(r.cells_per_semi_axis), ToString(r.status),
         r.repeats, CsvNumber(r.time_median_s * kToMs), CsvNumber(r.time_min_s * kToMs),
         CsvNumber(r.time_max_s * kToMs), CsvNumber(r.memory_bytes * kToMiB), r.patches, r.cells,
@@ -106,12 +112,13 @@ void WriteAccuracyCsv(const AccuracyStudy& s, std::ostream& out) {
         CsvNumber(r.q.lateral_force_N, "{:.9g}"), opt(r.q.creep_x_N), opt(r.q.creep_y_N),
         CsvNumber(r.err_area * kToPercent), CsvNumber(r.err_p_max * kToPercent),
         CsvNumber(r.err_force * kToPercent), CsvNumber(r.err_creep * kToPercent),
-        CsvField(r.patch_models));
+        CsvField(r.patch_models), CsvField(r.tangential), CsvField(r.tangential_choices),
+        CsvNumber(r.err_creep_vs_exact * kToPercent));
   }
   const AccuracyReference& ref = s.reference;
   auto if_has = [](bool has, double v) { return has ? CsvNumber(v, "{:.9g}") : std::string(); };
   out << fmt::format(
-      "reference,{},,,,,,,,,,,,{},{},{},{},{},{},,,,,\n", CsvField(ref.source),
+      "reference,{},,,,,,,,,,,,{},{},{},{},{},{},,,,,,,,\n", CsvField(ref.source),
       if_has(ref.has_area, ref.q.area_m2 * kToMm2), if_has(ref.has_p_max, ref.q.p_max_Pa * kToMPa),
       if_has(ref.has_force, ref.q.vertical_force_N), if_has(ref.has_force, ref.q.lateral_force_N),
       ref.has_creep ? opt(ref.q.creep_x_N) : std::string(),

@@ -95,12 +95,14 @@ AccuracyQuantities QuantitiesOf(const ContactResult& r) {
 }
 
 AccuracyRow RunOne(const ContactProblem& base, const std::string& model, const std::string& level,
-                   int repeats) {
+                   TangentialMethod tangential, int repeats) {
   ContactProblem p = base;
   p.model = AccuracyModelOptions(model, base.model);
+  p.tangential = tangential;
   AccuracyRow row;
   row.model = model;
   row.level = level;
+  if (base.rolling) row.tangential = std::string(ToString(tangential));
   if (model != "hertz") {
     p.model.accuracy = *AccuracyPresetFromString(level);
     row.cells_per_semi_axis = CellsPerSemiAxis(p.model.accuracy);
@@ -127,24 +129,29 @@ AccuracyRow RunOne(const ContactProblem& base, const std::string& model, const s
   row.message = r.message;
   row.iterations = r.iterations;
   row.patches = static_cast<int>(r.patches.size());
-  std::vector<std::string> labels;
+  std::vector<std::string> labels, solvers;
   for (const auto& patch : r.patches) {
     row.cells += patch.cells;
     row.cells_in_contact += patch.cells_in_contact;
     labels.push_back(patch.model);
+    if (patch.rolling) solvers.emplace_back(ToString(patch.rolling->choice.method));
   }
   row.patch_models = fmt::format("{}", fmt::join(labels, ";"));
+  row.tangential_choices = fmt::format("{}", fmt::join(solvers, ";"));
   row.q = QuantitiesOf(r);
   return row;
 }
 
 // ---------------------------------------------------------------------------------------------
 // The reference from the reference model's runs.
+// `tangential`: the rows of that tangential method only ("" for a scene that does not roll).
 AccuracyReference ReferenceFromRuns(const std::vector<AccuracyRow>& rows, const std::string& model,
-                                    bool rolling) {
+                                    const std::string& tangential, bool rolling) {
   std::vector<const AccuracyRow*> runs;
   for (const auto& r : rows) {
-    if (r.model == model && r.status == SolverStatus::kConverged) runs.push_back(&r);
+    if (r.model == model && r.tangential == tangential && r.status == SolverStatus::kConverged) {
+      runs.push_back(&r);
+    }
   }
   if (runs.empty()) {
     throw std::runtime_error(
@@ -193,7 +200,9 @@ AccuracyReference ReferenceFromRuns(const std::vector<AccuracyRow>& rows, const 
     ref.q.creep_x_N = settle("creep x", [](const AccuracyRow& r) { return *r.q.creep_x_N; });
     ref.q.creep_y_N = settle("creep y", [](const AccuracyRow& r) { return *r.q.creep_y_N; });
   }
-  ref.source = fmt::format("{} at {}", model, fmt::join(levels, ", "));
+  ref.source = tangential.empty() ? fmt::format("{} at {}", model, fmt::join(levels, ", "))
+                                  : fmt::format("{} ({} tangential) at {}", model, tangential,
+                                                fmt::join(levels, ", "));
   return ref;
 }
 
@@ -300,6 +309,27 @@ void SetErrors(const AccuracyReference& ref, AccuracyRow* row) {
   }
 }
 
+// The creep-force error of each row against the exact solver's row of the same model and level
+// (only when the study compares tangential methods and ran the exact one).
+void SetErrorsAgainstExact(std::vector<AccuracyRow>* rows) {
+  const std::string exact(ToString(TangentialMethod::kExact));
+  for (auto& row : *rows) {
+    row.err_creep_vs_exact = kNaN;
+    if (row.status != SolverStatus::kConverged || !row.q.creep_x_N) continue;
+    for (const auto& e : *rows) {
+      if (e.model != row.model || e.level != row.level || e.tangential != exact) continue;
+      if (e.status != SolverStatus::kConverged || !e.q.creep_x_N) break;
+      const double norm = std::hypot(*e.q.creep_x_N, *e.q.creep_y_N);
+      if (norm > 0) {
+        row.err_creep_vs_exact =
+            std::hypot(*row.q.creep_x_N - *e.q.creep_x_N, *row.q.creep_y_N - *e.q.creep_y_N) /
+            norm;
+      }
+      break;
+    }
+  }
+}
+
 }  // namespace
 
 std::optional<Richardson> ExtrapolateRichardson(double h1, double f1, double h2, double f2,
@@ -341,6 +371,21 @@ AccuracyStudy RunAccuracyStudy(const Scene& scene, const AccuracyOptions& o,
   study.scene_name = scene.name;
   study.scene_path = scene.path;
   study.rolling = scene.problem.rolling.has_value();
+  if (!plan.tangential.empty() && !study.rolling) {
+    throw InputError(fmt::format(
+        "{}: --tangential: the scene does not roll; expected a scene with the \"tangential\" "
+        "effect (rolling contact) to compare tangential methods on",
+        scene.path));
+  }
+  const std::vector<TangentialMethod> methods =
+      plan.tangential.empty() ? std::vector<TangentialMethod>{scene.problem.tangential}
+                              : plan.tangential;
+  study.compare_tangential = study.rolling && methods.size() > 1;
+  // The creep forces' reference: the exact solver's when it runs, else the first method's.
+  const TangentialMethod reference_tangential =
+      std::find(methods.begin(), methods.end(), TangentialMethod::kExact) != methods.end()
+          ? TangentialMethod::kExact
+          : methods.front();
   // The reference is read before the runs, so a bad file fails at once.
   std::optional<AccuracyReference> file_reference;
   if (o.reference) file_reference = ReferenceFromFile(*o.reference, study.rolling);
@@ -364,15 +409,33 @@ AccuracyStudy RunAccuracyStudy(const Scene& scene, const AccuracyOptions& o,
     const std::vector<std::string> model_levels =
         model == "hertz" ? std::vector<std::string>{"analytic"} : levels;
     for (const auto& level : model_levels) {
-      if (progress)
-        progress(
-            fmt::format("{} {} ({} solve{})", model, level, o.repeats, o.repeats == 1 ? "" : "s"));
-      study.rows.push_back(RunOne(scene.problem, model, level, o.repeats));
+      for (const TangentialMethod method : methods) {
+        if (progress) {
+          progress(fmt::format("{} {}{} ({} solve{})", model, level,
+                               study.compare_tangential
+                                   ? fmt::format(" {} tangential", ToString(method))
+                                   : std::string(),
+                               o.repeats, o.repeats == 1 ? "" : "s"));
+        }
+        study.rows.push_back(RunOne(scene.problem, model, level, method, o.repeats));
+      }
     }
   }
+  const std::string ref_tangential =
+      study.rolling ? std::string(ToString(reference_tangential)) : std::string();
   study.reference = file_reference ? *file_reference
-                                   : ReferenceFromRuns(study.rows, reference_model, study.rolling);
+                                   : ReferenceFromRuns(study.rows, reference_model,
+                                                       ref_tangential, study.rolling);
+  if (study.compare_tangential && !file_reference) {
+    // Only the reference method's rows were used; say so.
+    study.reference.source += "; other tangential methods' rows are compared with it";
+  }
   for (auto& row : study.rows) SetErrors(study.reference, &row);
+  for (auto& row : study.rows) row.err_creep_vs_exact = kNaN;
+  if (study.compare_tangential &&
+      std::find(methods.begin(), methods.end(), TangentialMethod::kExact) != methods.end()) {
+    SetErrorsAgainstExact(&study.rows);
+  }
   return study;
 }
 

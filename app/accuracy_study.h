@@ -32,6 +32,8 @@ struct AccuracyQuantities {
 struct AccuracyRow {
   std::string model;                 // as in kAccuracyModels
   std::string level;                 // preset name, "analytic" for Hertz
+  std::string tangential;            // rolling: the tangential method asked for; else ""
+  std::string tangential_choices;    // rolling: the solver each patch ran, ";"-joined
   double cells_per_semi_axis = 0.0;  // 0 for Hertz
   SolverStatus status = SolverStatus::kNotConverged;
   std::string message;
@@ -45,6 +47,9 @@ struct AccuracyRow {
   std::string patch_models;  // the patches' models, ";"-joined (tells what auto chose)
   // Relative errors against the reference; NaN where the reference lacks the quantity.
   double err_area = 0.0, err_p_max = 0.0, err_force = 0.0, err_creep = 0.0;
+  // With more than one tangential method: |F - F_exact| / |F_exact| of the creep force (x, y)
+  // against the exact solver's on the same model and level; NaN otherwise.
+  double err_creep_vs_exact = 0.0;
 };
 
 struct AccuracyReference {
@@ -58,7 +63,9 @@ struct AccuracyReference {
 struct AccuracyStudy {
   std::string scene_name, scene_path;
   bool rolling = false;
-  std::vector<AccuracyRow> rows;  // per model in the order asked, levels coarse to fine
+  bool compare_tangential = false;  // rolling, and more than one tangential method asked for
+  // per model in the order asked, levels coarse to fine, tangential methods in the order asked
+  std::vector<AccuracyRow> rows;
   AccuracyReference reference;
   std::vector<std::string> notes;  // e.g. models left out and why
 };

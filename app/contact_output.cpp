@@ -61,6 +61,14 @@ std::vector<PressureSample> HertzSamples(const PatchResult& patch, int patch_num
 void AddRollingJson(const RollingPatch& r, nlohmann::json* j) {
   const TangentialSolution& t = r.tangential;
   (*j)["tangential_status"] = ToString(t.status);
+  if (r.choice.automatic) {
+    // tangential = "auto": the solver it chose for this patch, its indicators and the rule.
+    (*j)["tangential_method"] = ToString(r.choice.method);
+    (*j)["tangential_reason"] = r.choice.reason;
+    (*j)["tangential_spin_share"] = r.choice.spin_share;
+    (*j)["tangential_a_over_b"] = r.choice.a_over_b;
+    (*j)["tangential_creepage_residual"] = r.choice.creepage_residual;
+  }
   (*j)["creep_force_N"] = {{"x", t.force_x_N}, {"y", t.force_s_N}};
   (*j)[contact_json::kCreepForceYzN] = {{"y", t.force_s_yz_N.x()}, {"z", t.force_s_yz_N.y()}};
   (*j)["spin_moment_Nmm"] = t.spin_moment_Nm * 1e3;
@@ -101,6 +109,7 @@ std::string RollingTable(const ContactResult& r) {
         k + 1, t.force_x_N, t.force_s_N, t.spin_moment_Nm * 1e3, rp.creepage.xi, rp.creepage.eta,
         rp.creepage.spin_per_m * 1e-3, t.stick_area_m2 * kToMm2, t.slip_area_m2 * kToMm2,
         t.frictional_power_W);
+    if (rp.choice.automatic) out += fmt::format("      tangential auto: {}\n", rp.choice.reason);
     if (rp.damage) {
       const PatchDamage& d = *rp.damage;
       out += fmt::format(

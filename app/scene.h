@@ -28,7 +28,8 @@ struct Scene {
   std::string low_rail_profile_spec;  // [track] low_rail (default high_rail); empty with [rail]
   std::string cant = "0";             // [rail] cant or [track] inclination, as written ("1:40")
   double cant_ratio = 0.0;            // 1:40 -> 0.025
-  // [model] tangential as written ("fastsim" | "exact"); the solver uses problem.tangential.
+  // [model] tangential as written ("fastsim" | "exact" | "auto"); the solver uses
+  // problem.tangential.
   std::string tangential_method = "fastsim";
   // Where the influence constants came from: "default", "inline" or the resolved file path.
   std::string influence_constants_source = "default";

@@ -43,8 +43,11 @@ kind = "conformal"            # "hertz" | "halfspace" (planar + boussinesq)
                               # `railwear calibrate` writes.
 accuracy = "standard"         # "draft" | "standard" | "reference" | "fine"; default "standard"
 # cell_mm = [0.2, 0.2]        # explicit cell size [dx, ds] in mm (> 0); overrides accuracy
-tangential = "fastsim"        # "fastsim" | "exact"; default "fastsim": the tangential solver
-                              # of the "tangential" effect (not with kind = "hertz")
+tangential = "fastsim"        # "fastsim" | "exact" | "auto"; default "fastsim": the tangential
+                              # solver of the "tangential" effect (not with kind = "hertz");
+                              # "auto": per patch exact where spin or the patch's shape takes
+                              # FASTSIM beyond the accuracy's creep-force tolerance
+                              # (docs/rolling_contact.md)
 # pressure_limit = "hardness" # "none" | "hardness"; default "none" (elastic). "hardness":
                               # elastic-perfectly-plastic contact, p <= the softer body's
                               # hardness_MPa (docs/contact_plasticity.md; not with "hertz")

@@ -13,6 +13,7 @@
 #include "core/contact/hertz.h"
 #include "core/contact/kinematics.h"
 #include "core/contact/normal_solver.h"
+#include "core/contact/tangential_method.h"
 #include "core/contact/tangential_types.h"
 #include "core/geometry/patch_grid.h"
 
@@ -22,6 +23,7 @@ namespace railwear {
 struct RollingPatch {
   Creepage creepage;  // pressure-weighted patch average of the rigid creepage (kinematics.h)
   TangentialSolution tangential;
+  TangentialChoice choice;  // the solver that ran (for tangential = "auto": chosen, and why)
   double semi_axis_x_m = 0.0, semi_axis_s_m = 0.0;  // of the contact, as the solver used them
   std::optional<PatchDamage> damage;                // when the damage effect was asked for
 };

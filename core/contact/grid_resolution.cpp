@@ -17,6 +17,20 @@ double CellsPerSemiAxis(AccuracyPreset preset) {
   return 10.0;
 }
 
+double CreepForceTolerance(AccuracyPreset preset) {
+  switch (preset) {
+    case AccuracyPreset::kDraft:
+      return 0.15;
+    case AccuracyPreset::kStandard:
+      return 0.10;
+    case AccuracyPreset::kReference:
+      return 0.04;
+    case AccuracyPreset::kFine:
+      return 0.02;
+  }
+  return 0.10;
+}
+
 CellSize ChooseCellSize(const ModelOptions& options, double semi_axis_x_m, double semi_axis_s_m) {
   const double n = CellsPerSemiAxis(options.accuracy);
   CellSize c{semi_axis_x_m / n, semi_axis_s_m / n};

@@ -18,15 +18,21 @@ struct CreepCoefficients {
 
 // Interpolates Kalker's table at the axis ratio a/b (a along x, b lateral) and Poisson's ratio
 // nu (the combined nu of the two bodies).
-//   a_over_b_along_x > 0, finite. The table covers a/b in [0.1, 10] (its second half is
-//     tabulated against b/a = 0.9 ... 0.1). Outside it the ratio is CLAMPED to the nearest end
-//     (0.1 or 10): the coefficients of thinner ellipses grow without bound (Kalker's asymptotic
-//     formulas), so a clamped value underestimates them; wheel-rail patches lie well inside.
+//   a_over_b_along_x > 0, finite. Kalker's table covers a/b in [0.1, 10] (its second half is
+//     tabulated against b/a = 0.9 ... 0.1). Beyond it (issue 16: flange patches reach a/b ~ 20
+//     and below 0.1) the coefficients are EXTENDED, not clamped: rows down to min(a/b, b/a) =
+//     0.02 computed with railwear's exact solver in linear theory, scaled to meet Kalker's end
+//     rows (kalker_coefficients.cpp says how), ln C linear in ln(a/b) between them; below 0.02
+//     C23 follows Kalker's asymptotic expression scaled to the last row, C11 and C22 the line
+//     through the last two rows. Checked against Kalker's asymptotic
+//     expressions for slender ellipses (C23 on both sides, C11 and C22 for a/b -> 0) in
+//     kalker_coefficients_test.cpp.
 //   nu in [0, 0.5]; throws std::invalid_argument otherwise (and for a/b <= 0 or non-finite).
-// Interpolation: the abscissa u = a/b - 1 for a/b <= 1 and u = 1 - b/a for a/b > 1 puts the 19
-// table rows at equal steps of 0.1 in u in [-0.9, 0.9]; each column is interpolated by a
-// monotone piecewise cubic (Fritsch-Carlson) in u, and the three nu columns by the quadratic
-// through nu = 0, 0.25, 0.5 (all columns are smooth and convex in nu). Table nodes are exact.
+// Interpolation inside the table: the abscissa u = a/b - 1 for a/b <= 1 and u = 1 - b/a for
+// a/b > 1 puts the 19 table rows at equal steps of 0.1 in u in [-0.9, 0.9]; each column is
+// interpolated by a monotone piecewise cubic (Fritsch-Carlson) in u, and the three nu columns by
+// the quadratic through nu = 0, 0.25, 0.5 (all columns are smooth and convex in nu). Table nodes
+// are exact.
 CreepCoefficients KalkerCoefficients(double a_over_b_along_x, double nu);
 
 struct LinearCreepForces {

@@ -31,8 +31,9 @@ void SolveRolling(const ContactProblem& problem, const WheelRailGeometry& geom,
                                 : RigidSlipFromMotion(geom, patch.grid, o.motion, o.friction);
     RollingPatch rolling;
     rolling.creepage = AverageCreepage(patch.grid, patch.pressure_Pa, in);
-    rolling.tangential = SolveTangential(problem.tangential, patch.grid, patch.pressure_Pa, in,
-                                         problem.wheel_material, problem.rail_material);
+    rolling.tangential =
+        SolveTangential(problem.tangential, problem.model.accuracy, patch.grid, patch.pressure_Pa,
+                        in, problem.wheel_material, problem.rail_material, &rolling.choice);
     // The patch's equivalent ellipse (the semi-axes FASTSIM uses), reported with the patch.
     const ContactEllipse used = EstimateContactEllipse(patch.grid, patch.pressure_Pa);
     rolling.semi_axis_x_m = used.semi_axis_x_m;

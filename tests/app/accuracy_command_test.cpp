@@ -104,12 +104,12 @@ TEST(AccuracyCommand, GaugeCornerAtDraftAndStandard) {
   int rows = 0;
   while (std::getline(lines_in, line)) {
     ++rows;
-    // 24 columns; the reference's source is quoted (it holds commas).
+    // 27 columns; the reference's source is quoted (it holds commas).
     if (line.rfind("reference,", 0) == 0) {
       EXPECT_TRUE(Contains(line, "\"conformal+boussinesq at draft, standard\""));
       continue;
     }
-    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 23) << line;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 26) << line;
   }
   EXPECT_EQ(rows, 1 + 9 + 1);
 }
@@ -148,6 +148,59 @@ TEST(AccuracyCommand, RollingSceneComparesCreepForcesAndLeavesHertzOut) {
   ASSERT_TRUE(h->q.creep_x_N.has_value());
   EXPECT_FALSE(std::isnan(h->err_creep));
   EXPECT_EQ(Find(s, "conformal+boussinesq", "draft")->err_creep, 0.0);
+}
+
+// --tangential (issue 16): each method per model and level; the exact solver's rows are the
+// creep-force reference and every row's error against the exact row of its model and level is
+// reported; auto says what it chose per patch. The rolling gauge-corner example at draft with
+// the conformal + Boussinesq model only (the reference model), about a second.
+TEST(AccuracyCommand, TangentialMethodsShowTheirCostAndCreepForceError) {
+  AccuracyOptions o = Quick();
+  o.levels = {"draft"};
+  o.models = {"conformal+boussinesq"};
+  o.tangential = {"fastsim", "exact", "auto"};
+  const AccuracyStudy s = RunAccuracyStudy(LoadScene(kExamples + "rolling_gauge_corner.toml"), o);
+  EXPECT_TRUE(s.compare_tangential);
+  ASSERT_EQ(s.rows.size(), 3u);
+  auto row = [&](const std::string& tangential) -> const AccuracyRow& {
+    for (const auto& r : s.rows) {
+      if (r.tangential == tangential) return r;
+    }
+    ADD_FAILURE() << "no row " << tangential;
+    return s.rows[0];
+  };
+  const AccuracyRow &f = row("fastsim"), &e = row("exact"), &a = row("auto");
+  EXPECT_TRUE(Contains(s.reference.source, "(exact tangential)"));
+  EXPECT_EQ(e.err_creep_vs_exact, 0.0);
+  EXPECT_EQ(e.err_creep, 0.0);  // the one level is the reference
+  EXPECT_GT(f.err_creep_vs_exact, 0.0);
+  EXPECT_EQ(f.err_creep_vs_exact, f.err_creep);  // the same reference at one level
+  EXPECT_EQ(f.tangential_choices, "fastsim");
+  EXPECT_EQ(e.tangential_choices, "exact");
+  // Auto ran one of the two, and its error is that solver's.
+  ASSERT_TRUE(a.tangential_choices == "fastsim" || a.tangential_choices == "exact")
+      << a.tangential_choices;
+  EXPECT_EQ(a.err_creep_vs_exact,
+            a.tangential_choices == "exact" ? 0.0 : f.err_creep_vs_exact);
+  const std::string table = FormatAccuracyTable(s);
+  EXPECT_TRUE(Contains(table, "tangential"));
+  EXPECT_TRUE(Contains(table, "vs_exact%"));
+  EXPECT_TRUE(Contains(table, "conformal+boussinesq  draft     fastsim"));
+  std::ostringstream csv;
+  WriteAccuracyCsv(s, csv);
+  EXPECT_TRUE(Contains(csv.str(), "tangential,tangential_solvers,err_creep_vs_exact_pct"));
+  EXPECT_TRUE(Contains(csv.str(), ",exact,exact,0\n"));
+
+  // Bad input: an unknown method, and methods for a scene that does not roll.
+  o.tangential = {"kalker"};
+  EXPECT_TRUE(Contains(
+      test::InputErrorMessage(
+          [&] { RunAccuracyStudy(LoadScene(kExamples + "rolling_gauge_corner.toml"), o); }),
+      "--tangential: method 'kalker': expected one of fastsim, exact, auto"));
+  o.tangential = {"exact"};
+  EXPECT_TRUE(Contains(
+      test::InputErrorMessage([&] { RunAccuracyStudy(LoadScene(kExamples + "tread.toml"), o); }),
+      "tread.toml: --tangential: the scene does not roll"));
 }
 
 // --curving: the free wheelset of kWheelsetCurveScene at draft and standard (about a second):
@@ -283,6 +336,9 @@ TEST_F(AccuracyCliTest, BadInputExitsTwo) {
   EXPECT_TRUE(Contains(o.err, "railwear: error: --models: model 'fem'"));
   o = Run("'" + kExamples + "gauge_corner.toml' --repeats 0");
   EXPECT_EQ(o.exit_code, 2);
+  o = Run("'" + kExamples + "rolling_gauge_corner.toml' --tangential fastsim,kalker --repeats 1");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_TRUE(Contains(o.err, "--tangential: method 'kalker': expected one of fastsim, exact, auto"));
   o = Run("missing.toml");
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_TRUE(Contains(o.err, "missing.toml"));

@@ -109,6 +109,14 @@ std::vector<CorpusCase> Corpus() {
                "wear s.toml --db s.sqlite",
                2,
                {"s.toml:", "key 'wear.integration_tolerance'", "not both"}});
+  // [model] tangential (issue 16 point 4: "auto" joined the choices).
+  c.push_back({"tangential_unknown",
+               {{"s.toml", Replace(tread, "accuracy = \"standard\"",
+                                   "accuracy = \"standard\"\ntangential = \"kalker\"")}},
+               "contact s.toml",
+               2,
+               {"s.toml:", "key 'model.tangential' = \"kalker\"",
+                "expected one of 'fastsim', 'exact', 'auto'"}});
   c.push_back({"empty_track_in_contact_scene",
                {{"s.toml", tread + "\n[track]\n"}},
                "contact s.toml",

@@ -65,6 +65,31 @@ TEST(ContactOutputTest, JsonCarriesUnitsInKeyNames) {
   EXPECT_EQ(p["cells_in_contact"], 5);
 }
 
+// tangential = "auto" (issue 16): the solver it chose per patch, its indicators and the rule in
+// the JSON and the summary; a fixed method's outputs carry none of it (unchanged).
+TEST(ContactOutputTest, AutoTangentialReportsItsChoice) {
+  ContactResult r = GridResult();
+  RollingPatch rolling;
+  rolling.tangential = EmptyTangentialSolution(6);
+  rolling.tangential.status = SolverStatus::kConverged;
+  rolling.choice.method = TangentialMethod::kFastsim;
+  r.patches[0].rolling = rolling;
+  nlohmann::json j = MakeContactJson(NamedScene(), r);
+  EXPECT_FALSE(j["patches"][0].contains("tangential_method"));
+  EXPECT_EQ(FormatSummary(NamedScene(), r).find("tangential auto"), std::string::npos);
+  r.patches[0].rolling->choice =
+      ChooseTangentialMethod({0.276, 18.0, 0.0}, AccuracyPreset::kStandard);
+  j = MakeContactJson(NamedScene(), r);
+  const auto& p = j["patches"][0];
+  EXPECT_EQ(p["tangential_method"], "exact");
+  EXPECT_DOUBLE_EQ(p["tangential_spin_share"].get<double>(), 0.276);
+  EXPECT_DOUBLE_EQ(p["tangential_a_over_b"].get<double>(), 18.0);
+  EXPECT_EQ(p["tangential_reason"], "exact: spin share 0.276 > 0.100 (the limit 0.10 at standard)");
+  EXPECT_NE(FormatSummary(NamedScene(), r)
+                .find("tangential auto: exact: spin share 0.276 > 0.100 (the limit 0.10 at standard)"),
+            std::string::npos);
+}
+
 TEST(ContactOutputTest, NonFiniteNumbersNeverReachJson) {
   ContactResult r = GridResult();
   r.patches[0].lateral_force_N = std::numeric_limits<double>::quiet_NaN();

@@ -268,9 +268,19 @@ TEST(SceneTest, OutOfRangeValues) {
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\nkernel = \"kelvin\"\n"),
                        "expected one of 'boussinesq', 'golubenko'"));
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\ntangential = \"kalker\"\n"),
-                       "expected one of 'fastsim', 'exact'"));
+                       "scene.toml:12: key 'model.tangential' = \"kalker\": expected one of "
+                       "'fastsim', 'exact', 'auto'"));
   EXPECT_TRUE(Contains(ErrorOf(m + "[model]\ninfluence_constants = { c_f = 0 }\n"),
                        "key 'model.influence_constants.c_f' = 0: expected a number > 0"));
+}
+
+// [model] tangential = "auto" (issue 16): read into the problem; the exact solver and FASTSIM
+// are chosen per patch by the rolling stage (core/contact/tangential_method.h).
+TEST(SceneTest, TangentialAutoIsAMethod) {
+  const Scene s = ParseScene(std::string(kMinimal) + "[model]\ntangential = \"auto\"\n", "a.toml");
+  EXPECT_EQ(s.tangential_method, "auto");
+  EXPECT_EQ(s.problem.tangential, TangentialMethod::kAuto);
+  EXPECT_EQ(ParseScene(kMinimal, "a.toml").problem.tangential, TangentialMethod::kFastsim);
 }
 
 TEST(SceneTest, RollingRadiusAndLoadMustBePositive) {

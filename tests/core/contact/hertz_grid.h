@@ -3,6 +3,9 @@
 // benchmarks put a Hertz pressure and creepages on.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/contact/tangential_types.h"
 #include "core/geometry/patch_grid.h"
 
@@ -24,6 +27,18 @@ inline PatchGrid MakeHertzGrid(double a_m, double b_m, int nx, int ns) {
   }
   g.gap_m = Eigen::VectorXd::Zero(g.cells());
   return g;
+}
+
+// Hertz pressure p0 sqrt(1 - x^2/a^2 - s^2/b^2) on the grid, scaled so that sum p dA = fn.
+inline Eigen::VectorXd HertzPressure(const PatchGrid& g, double a_m, double b_m, double fn_N) {
+  Eigen::VectorXd p(g.cells());
+  for (int j = 0; j < g.ns; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      const double x = g.X(i) / a_m, s = g.S(j) / b_m;
+      p[g.Index(i, j)] = std::sqrt(std::max(0.0, 1.0 - x * x - s * s));
+    }
+  }
+  return p * (fn_N / (p.sum() * g.CellArea()));
 }
 
 // Kalker's planar creepage field about the grid origin, w_x = xi - phi s, w_s = eta + phi x

@@ -36,17 +36,7 @@ Material SteelG() {
 
 using testing::MakeHertzGrid;
 
-// Hertz pressure p0 sqrt(1 - x^2/a^2 - s^2/b^2), scaled so that sum p dA = Fn on the grid.
-Eigen::VectorXd HertzPressure(const PatchGrid& g, double a, double b, double fn) {
-  Eigen::VectorXd p(g.cells());
-  for (int j = 0; j < g.ns; ++j) {
-    for (int i = 0; i < g.nx; ++i) {
-      const double x = g.X(i) / a, s = g.S(j) / b;
-      p[g.Index(i, j)] = std::sqrt(std::max(0.0, 1.0 - x * x - s * s));
-    }
-  }
-  return p * (fn / (p.sum() * g.CellArea()));
-}
+using testing::HertzPressure;
 
 // Kalker's w_x = xi - phi s, w_s = eta + phi x (phi in 1/m).
 RollingInput Creepage(const PatchGrid& g, double xi, double eta, double phi) {
