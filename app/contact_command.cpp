@@ -48,6 +48,9 @@ void ApplyOverrides(const ContactOptions& o, ModelOptions* model) {
       }
     }
   }
+  if (o.constants) {
+    model->constants = NamedInfluenceConstants(*InfluenceConstantsNameFromString(*o.constants));
+  }
   if (o.accuracy) {
     model->accuracy = *AccuracyPresetFromString(*o.accuracy);
     model->cell_dx_m.reset();  // the command line wins over the scene's cell_mm
@@ -98,10 +101,14 @@ void RunWheelset(const ContactOptions& o, const Scene& scene) {
     std::cout << FormatWheelsetSummary(scene, result) << std::flush;
   Warn(scene, result.right, "right wheel");
   Warn(scene, result.left, "left wheel");
-  if (o.plot) {
-    ContactResult both = result.right;  // right patches first, then the left ones
-    for (const auto& p : result.left.patches) both.patches.push_back(p);
-    PlotPressure(scene, both, *o.plot);
+  if (o.plot) {  // a row per wheel, each in its own rail's frame
+    const Profile& wheel = problem.wheel_rail.wheel_profile;
+    const Profile& rail = problem.wheel_rail.rail_profile;
+    PlotContact(scene,
+                {{"right wheel", &result.right, result.placement.right, &wheel, &rail},
+                 {"left wheel", &result.left, result.placement.left, &wheel,
+                  problem.left_rail_profile ? &*problem.left_rail_profile : &rail}},
+                *o.plot);
   }
   for (const ContactResult* r : {&result.right, &result.left}) {
     if (r->status != SolverStatus::kConverged) {
@@ -128,6 +135,10 @@ void SetupContact(CLI::App& app) {
   sub->add_option("--kernel", options->kernel,
                   "Replace the influence kernel (after --model), keeping the geometry")
       ->check(CLI::IsMember(EnumChoiceStrings(kKernelModelNames)));
+  sub->add_option("--constants", options->constants,
+                  "Replace the scene's influence constants by a named set (fem: FEM-calibrated, "
+                  "the default; paper: the seed's)")
+      ->check(CLI::IsMember(EnumChoiceStrings(kInfluenceConstantsNames)));
   sub->add_option("--json", options->json, "Write the result as JSON to FILE ('-' = stdout)");
   sub->add_option("--csv", options->csv, "Write the pressure field as CSV to FILE ('-' = stdout)");
   sub->add_option("--plot", options->plot, "Draw the pressure map to PNG (needs gnuplot)");
@@ -163,7 +174,14 @@ void RunContact(const ContactOptions& o) {
   }
   if (o.json != "-" && o.csv != "-") std::cout << FormatSummary(scene, result) << std::flush;
   Warn(scene, result, "");
-  if (o.plot) PlotPressure(scene, result, *o.plot);
+  if (o.plot) {
+    const WheelPlacement& pl = scene.problem.placement;
+    PlotContact(scene,
+                {{"wheel", &result,
+                  WheelPose{pl.lateral_shift_m, pl.roll_rad, pl.rolling_radius_m, pl.yaw_rad},
+                  &scene.problem.wheel_profile, &scene.problem.rail_profile}},
+                *o.plot);
+  }
 
   if (result.status != SolverStatus::kConverged) {
     throw std::runtime_error(fmt::format("contact solve ended with status '{}': {}",

@@ -17,6 +17,8 @@ struct ContactOptions {
   // --kernel boussinesq|golubenko: replaces the influence kernel (after --model), keeping the
   // geometry; e.g. conformal geometry + boussinesq, the half-space kernel on the curved grid.
   std::optional<std::string> kernel;
+  // --constants fem|paper: replaces the scene's influence constants by a named set.
+  std::optional<std::string> constants;
   std::optional<std::string> json;  // --json FILE, "-" = stdout (then nothing else there)
   std::optional<std::string> csv;   // --csv FILE, "-" = stdout: pressure field per cell
   std::optional<std::string> plot;  // --plot PNG (needs gnuplot)

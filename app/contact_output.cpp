@@ -14,8 +14,6 @@
 namespace railwear::app {
 namespace {
 
-constexpr double kToDeg = 180.0 / std::numbers::pi;
-
 std::vector<PressureSample> GridSamples(const PatchResult& patch, int patch_number) {
   const PatchGrid& g = patch.grid;
   if (patch.pressure_Pa.size() != g.cells() || static_cast<int>(g.point_yz_m.size()) != g.ns) {
@@ -151,33 +149,6 @@ nlohmann::json PatchJson(const PatchResult& p) {
   }
   if (p.rolling) AddRollingJson(*p.rolling, &j);
   return j;
-}
-
-nlohmann::json ModelJson(const ModelOptions& m) {
-  nlohmann::json j;
-  j["kind"] = ToString(m.kind);
-  const bool hertz = m.kind == ModelKind::kHertz;
-  // auto: the geometry is chosen per patch (patches[].model); kernel is that of its conformal
-  // patches.
-  const bool per_patch = hertz || m.kind == ModelKind::kAuto;
-  j["geometry"] = per_patch ? nlohmann::json(nullptr) : nlohmann::json(ToString(m.geometry));
-  j["kernel"] = hertz ? nlohmann::json(nullptr) : nlohmann::json(ToString(m.kernel));
-  j["accuracy"] = ToString(m.accuracy);
-  j["influence_constants"] = InfluenceConstantsJson(m.constants);
-  return j;
-}
-
-std::string ModelLine(const ModelOptions& m) {
-  if (m.kind == ModelKind::kHertz) {
-    return fmt::format("hertz (analytic), accuracy {}", ToString(m.accuracy));
-  }
-  if (m.kind == ModelKind::kAuto) {
-    return fmt::format("auto (per patch: hertz, halfspace or conformal+{}), accuracy {}",
-                       ToString(m.kernel), ToString(m.accuracy));
-  }
-  return fmt::format("{} (geometry {}, kernel {}), accuracy {}, {}", ToString(m.kind),
-                     ToString(m.geometry), ToString(m.kernel), ToString(m.accuracy),
-                     InfluenceConstantsText(m.constants));
 }
 
 std::string StagesLine(const ContactResult& r) {
@@ -348,29 +319,64 @@ std::string ForceTable(const ContactResult& r) {
 
 }  // namespace
 
+nlohmann::json ModelJson(const ModelOptions& m) {
+  nlohmann::json j;
+  j["kind"] = ToString(m.kind);
+  const bool hertz = m.kind == ModelKind::kHertz;
+  // auto: the geometry is chosen per patch (patches[].model); kernel is that of its conformal
+  // patches.
+  const bool per_patch = hertz || m.kind == ModelKind::kAuto;
+  j["geometry"] = per_patch ? nlohmann::json(nullptr) : nlohmann::json(ToString(m.geometry));
+  j["kernel"] = hertz ? nlohmann::json(nullptr) : nlohmann::json(ToString(m.kernel));
+  j["accuracy"] = ToString(m.accuracy);
+  j["influence_constants"] = InfluenceConstantsJson(m.constants);
+  // Which set (issue 17): "fem" (the default), "paper" or "custom"; Hertz uses none.
+  j["constants"] = hertz ? nlohmann::json(nullptr) : nlohmann::json(ConstantsSetName(m.constants));
+  return j;
+}
+
+std::string ModelLine(const ModelOptions& m) {
+  if (m.kind == ModelKind::kHertz) {
+    return fmt::format("hertz (analytic), accuracy {}", ToString(m.accuracy));
+  }
+  if (m.kind == ModelKind::kAuto) {
+    return fmt::format("auto (per patch: hertz, halfspace or conformal+{}), accuracy {}, {}",
+                       ToString(m.kernel), ToString(m.accuracy),
+                       InfluenceConstantsLine(m.constants));
+  }
+  return fmt::format("{} (geometry {}, kernel {}), accuracy {}, {}", ToString(m.kind),
+                     ToString(m.geometry), ToString(m.kernel), ToString(m.accuracy),
+                     InfluenceConstantsLine(m.constants));
+}
+
 std::vector<PressureSample> PressureSamples(const PatchResult& patch, int patch_number) {
   if (patch.grid.cells() == 0 && patch.hertz) return HertzSamples(patch, patch_number);
   return GridSamples(patch, patch_number);
+}
+
+std::optional<std::string> HardnessWarning(const Material& wheel_material, const Material& rail,
+                                           double p_max_Pa, const std::string& wheel) {
+  // The softer body of those whose hardness is given.
+  const bool rail_softer = rail.hardness_Pa > 0 && !(wheel_material.hardness_Pa > 0 &&
+                                                     wheel_material.hardness_Pa < rail.hardness_Pa);
+  const double hardness_Pa = rail_softer ? rail.hardness_Pa : wheel_material.hardness_Pa;
+  // A pressure limit at the hardness holds p_max at it: only a clear excess is reported.
+  constexpr double kHardnessMargin = 1e-6;  // relative; far above the limit's rounding
+  if (!(hardness_Pa > 0 && p_max_Pa > hardness_Pa * (1.0 + kHardnessMargin))) return std::nullopt;
+  return fmt::format(
+      "{}p_max {:.0f} MPa exceeds the {}'s hardness {:.0f} MPa: the elastic solution is beyond "
+      "yield there (pressure_limit = \"hardness\" bounds it)",
+      wheel.empty() ? "" : wheel + ": ", p_max_Pa * kToMPa, rail_softer ? "rail" : "wheel",
+      hardness_Pa * kToMPa);
 }
 
 std::vector<std::string> ContactWarnings(const Scene& scene, const ContactResult& r,
                                          const std::string& wheel) {
   std::vector<std::string> out;
   if (r.climb.exceeded) out.push_back(FlangeClimbWarning(r.climb, wheel));
-  // The softer body of those whose hardness the scene gives.
-  const Material& rail = scene.problem.rail_material;
-  const Material& wheel_material = scene.problem.wheel_material;
-  const bool rail_softer = rail.hardness_Pa > 0 && !(wheel_material.hardness_Pa > 0 &&
-                                                     wheel_material.hardness_Pa < rail.hardness_Pa);
-  const double hardness_Pa = rail_softer ? rail.hardness_Pa : wheel_material.hardness_Pa;
-  // A pressure limit at the hardness holds p_max at it: only a clear excess is reported.
-  constexpr double kHardnessMargin = 1e-6;  // relative; far above the limit's rounding
-  if (hardness_Pa > 0 && r.p_max_Pa > hardness_Pa * (1.0 + kHardnessMargin)) {
-    out.push_back(fmt::format(
-        "{}p_max {:.0f} MPa exceeds the {}'s hardness {:.0f} MPa: the elastic solution is beyond "
-        "yield there (pressure_limit = \"hardness\" bounds it)",
-        wheel.empty() ? "" : wheel + ": ", r.p_max_Pa * kToMPa, rail_softer ? "rail" : "wheel",
-        hardness_Pa * kToMPa));
+  if (auto w = HardnessWarning(scene.problem.wheel_material, scene.problem.rail_material,
+                               r.p_max_Pa, wheel)) {
+    out.push_back(std::move(*w));
   }
   return out;
 }

@@ -2,6 +2,8 @@
 // the pressure samples the CSV and the plot share. Units of files: mm, N, MPa, ms, degrees.
 #pragma once
 
+#include <numbers>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -13,6 +15,9 @@
 #include "core/contact/wheelset_contact.h"
 
 namespace railwear::app {
+
+// rad -> degrees, for the angles of summaries, JSON and plots.
+inline constexpr double kToDeg = 180.0 / std::numbers::pi;
 
 // Keys of the contact JSON (MakeContactJson) that `railwear accuracy --reference` reads back
 // (accuracy_study.cpp): the writer and the reader share this one spelling.
@@ -42,6 +47,18 @@ constexpr int kHertzSamples = 41;
 // Samples of one patch; `patch_number` is 1-based. Throws std::runtime_error when the pressure
 // vector does not match the grid.
 std::vector<PressureSample> PressureSamples(const PatchResult& patch, int patch_number);
+
+// The model as JSON (kind, geometry, kernel, accuracy, influence_constants and the name of their
+// set, "constants": fem, paper or custom) and as the summary's one line; shared by the contact
+// and wear commands.
+nlohmann::json ModelJson(const ModelOptions& m);
+std::string ModelLine(const ModelOptions& m);
+
+// "p_max ... exceeds the rail's (wheel's) hardness ...": when p_max passes the hardness of the
+// softer body of those whose hardness_Pa is given (by more than rounding: a pressure limit at the
+// hardness holds it there); `wheel` ("right wheel", ...) may be empty. Contact and wear warnings.
+std::optional<std::string> HardnessWarning(const Material& wheel_material, const Material& rail,
+                                           double p_max_Pa, const std::string& wheel);
 
 // The warnings of a result: L/V beyond Nadal's limit (FlangeClimbWarning), and p_max beyond the
 // hardness of the softer body whose hardness the scene gives (materials.*.hardness_MPa).

@@ -278,6 +278,8 @@ void SetupHistory(CLI::App& app) {
   steps_cmd->add_option("run", steps->run, "Run name")->required();
   steps_cmd->add_option("--wheel", steps->wheel,
                         "A wearing wheel's steps instead (its traffic entry's index or name)");
+  steps_cmd->add_flag("--json", steps->json,
+                      "One JSON object on stdout: every step's measures and its warnings");
   steps_cmd->callback([common, steps]() { RunHistorySteps(*common, *steps); });
 
   auto profile = std::make_shared<HistoryProfileOptions>();
@@ -388,6 +390,45 @@ std::vector<std::string> MeasureCells(const std::vector<StepRecord>& steps, size
           RateCell(rate.w3_mm_per_mgt)};
 }
 
+// `history steps RUN --json`: the measures of each step (high or only rail; the low rail's under
+// "low_rail"), the W2/W3 rates from the previous step (null for step 0 and where MGT did not
+// grow), and the step's stored warnings.
+nlohmann::json StepsJson(const ProfileStore& db, const RunInfo& run,
+                         const std::vector<StepRecord>& steps, const std::vector<StepRecord>& low) {
+  auto rate = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  auto measures = [&](const std::vector<StepRecord>& rail, size_t k) {
+    const StepRecord& st = rail[k];
+    const WearRates r =
+        k == 0 ? WearRates{std::nan(""), std::nan("")} : RatesBetween(rail[k - 1], st);
+    return nlohmann::json{{"worn_area_mm2", st.worn_area_mm2 + 0.0},
+                          {"max_depth_mm", st.max_depth_mm + 0.0},
+                          {"max_depth_y_mm", st.max_depth_y_mm + 0.0},
+                          {"w1_mm", st.w1_mm + 0.0},
+                          {"w2_mm", st.w2_mm + 0.0},
+                          {"w3_mm", st.w3_mm + 0.0},
+                          {"smoothing_area_error", st.smoothing_area_error + 0.0},
+                          {"w2_mm_per_mgt", rate(r.w2_mm_per_mgt)},
+                          {"w3_mm_per_mgt", rate(r.w3_mm_per_mgt)}};
+  };
+  nlohmann::json out = {{"database", db.path()},
+                        {"run", run.name},
+                        {"state", ToString(run.state)},
+                        {"schema_version", db.SchemaVersion()},
+                        {"steps", nlohmann::json::array()}};
+  for (size_t k = 0; k < steps.size(); ++k) {
+    nlohmann::json j = {{"step", steps[k].step}, {"passes", steps[k].passes},
+                        {"mgt", steps[k].mgt + 0.0}};
+    j.update(measures(steps, k));
+    if (!low.empty()) j["low_rail"] = measures(low, k);
+    j["warnings"] = nlohmann::json::array();
+    for (const StepWarningRecord& w : steps[k].warnings) {
+      j["warnings"].push_back({{"kind", w.kind}, {"message", w.message}});
+    }
+    out["steps"].push_back(std::move(j));
+  }
+  return out;
+}
+
 }  // namespace
 
 namespace {
@@ -426,9 +467,18 @@ void PrintWheelSteps(const ProfileStore& db, const RunInfo& run, const std::stri
 void RunHistorySteps(const HistoryOptions& o, const HistoryStepsOptions& s) {
   const ProfileStore db = OpenExistingStudy(o.db);
   const RunInfo run = FindRunOrThrow(db, s.run);
+  if (!s.wheel.empty() && s.json) {
+    throw InputError(
+        "history steps: --json with --wheel: expected one of them (the JSON holds the rail's "
+        "steps; a wheel's are the table of --wheel)");
+  }
   if (!s.wheel.empty()) return PrintWheelSteps(db, run, s.wheel);
   const std::vector<StepRecord> steps = db.Steps(run.id);
   const std::vector<StepRecord> low = LowRailSteps(steps);
+  if (s.json) {
+    std::cout << StepsJson(db, run, steps, low).dump(2) << "\n";
+    return;
+  }
   std::vector<std::string> columns = {
       "step",  "passes", "MGT",   "worn_area_mm2",        "max_depth_mm",  "at_y_mm",
       "W1_mm", "W2_mm",  "W3_mm", "smoothing_area_error", "W2_mm_per_MGT", "W3_mm_per_MGT"};
@@ -449,6 +499,12 @@ void RunHistorySteps(const HistoryOptions& o, const HistoryStepsOptions& s) {
     rows.push_back(std::move(row));
   }
   std::cout << AlignedTable(columns, rows);
+  // The steps' stored warnings (schema 8), after the table: "step N warning KIND: MESSAGE".
+  for (const StepRecord& st : steps) {
+    for (const StepWarningRecord& w : st.warnings) {
+      std::cout << fmt::format("step {} warning {}: {}\n", st.step, w.kind, w.message);
+    }
+  }
   std::cerr << fmt::format("railwear: run '{}' ({}), {} step(s){}, in {}\n", run.name,
                            ToString(run.state), rows.size(),
                            low.empty() ? "" : ", high and low rail (low_*)", db.path());

@@ -35,6 +35,7 @@ struct HistoryWheelOption {
 
 struct HistoryStepsOptions : HistoryWheelOption {
   std::string run;
+  bool json = false;  // --json: one JSON object on stdout (the rail's steps with their warnings)
 };
 
 enum class HistoryProfileFormat { kCsv, kBan, kJson };

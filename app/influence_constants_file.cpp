@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "app/toml_fields.h"
+#include "core/contact/influence_constant_sets.h"
 
 namespace railwear::app {
 
@@ -113,6 +114,22 @@ std::string InfluenceConstantsText(const InfluenceConstants& c) {
   };
   if (!c.separate) return set({c.c_f, c.c_z, c.c_s});
   return fmt::format("convex {}, concave {}", set(c.separate->convex), set(c.separate->concave));
+}
+
+std::string ConstantsSetName(const InfluenceConstants& c) {
+  const auto name = NameOf(c);
+  return name ? std::string(ToString(*name)) : std::string("custom");
+}
+
+std::string InfluenceConstantsLine(const InfluenceConstants& c) {
+  auto set = [](const InfluenceConstantSet& s) {
+    return fmt::format("c_f {:.4g} c_z {:.4g} c_s {:.4g}", s.c_f, s.c_z, s.c_s);
+  };
+  const std::string values =
+      c.separate ? fmt::format("convex {}, concave {}", set(c.separate->convex),
+                               set(c.separate->concave))
+                 : set({c.c_f, c.c_z, c.c_s});
+  return fmt::format("constants {} ({})", ConstantsSetName(c), values);
 }
 
 }  // namespace railwear::app

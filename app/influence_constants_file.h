@@ -53,4 +53,10 @@ nlohmann::json InfluenceConstantsJson(const InfluenceConstants& c);
 // ... and as text, "c_f 0.75 c_z 1 c_s 0.25" or "convex c_f ... c_s ..., concave c_f ...".
 std::string InfluenceConstantsText(const InfluenceConstants& c);
 
+// The name of a named set ("fem", "paper": core's kInfluenceConstantsNames) equal to `c`, else
+// "custom" (a file or an inline table with other values).
+std::string ConstantsSetName(const InfluenceConstants& c);
+// "constants NAME (c_f .. c_z .. c_s .., 4 digits)": the summaries' account of the constants.
+std::string InfluenceConstantsLine(const InfluenceConstants& c);
+
 }  // namespace railwear::app

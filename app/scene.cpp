@@ -82,7 +82,20 @@ void ReadSceneTable(const Fields& top, Scene* scene) {
   scene->problem.damage = scene->damage;
 }
 
+// [model] constants = "fem" | "paper" (a named set; default "fem", issue 17) or
+// influence_constants = { ... } | "FILE" (the constants themselves), not both.
 void ReadInfluenceConstants(const Fields& model, const std::string& scene_path, Scene* scene) {
+  if (model.Has("constants") && model.Has("influence_constants")) {
+    model.Fail("influence_constants",
+               "either constants (a named set: \"fem\" or \"paper\") or influence_constants "
+               "(a table or file), not both");
+  }
+  if (const auto name = model.Choice("constants", EnumChoices(kInfluenceConstantsNames))) {
+    scene->influence_constants_source = *name;
+    scene->problem.model.constants =
+        NamedInfluenceConstants(*InfluenceConstantsNameFromString(*name));
+    return;
+  }
   const toml::node* node = model.Node("influence_constants");
   if (node == nullptr) return;
   const std::string expected = std::string("an inline table ") + kInfluenceConstantsExpected +
@@ -154,12 +167,17 @@ void ReadCellSize(const Fields& t, ModelOptions* model) {
 void ReadModel(const Fields& top, Scene* scene) {
   ModelOptions& model = scene->problem.model;
   model = MakeModelOptions(ModelKind::kConformal);
+  // The evidence-backed constants unless the scene names others (issue 17, docs/models.md).
+  model.constants = NamedInfluenceConstants(kDefaultInfluenceConstants);
+  scene->influence_constants_source = std::string(ToString(kDefaultInfluenceConstants));
   const auto t = top.Table("model", "a table");
   if (!t) return;
-  t->AllowOnly({"kind", "geometry", "kernel", "influence_constants", "accuracy", "cell_mm",
-                "tangential", "pressure_limit", "pressure_limit_MPa"});
+  t->AllowOnly({"kind", "geometry", "kernel", "constants", "influence_constants", "accuracy",
+                "cell_mm", "tangential", "pressure_limit", "pressure_limit_MPa"});
   if (const auto kind = t->Choice("kind", EnumChoices(kModelKindNames))) {
+    const InfluenceConstants constants = model.constants;
     model = MakeModelOptions(*ModelKindFromString(*kind));
+    model.constants = constants;
   }
   ReadGeometryAndKernel(*t, &model);
   if (const auto a = t->Choice("accuracy", EnumChoices(kAccuracyPresetNames))) {

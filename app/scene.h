@@ -11,11 +11,16 @@
 #include <vector>
 
 #include "core/contact/contact_solver.h"
+#include "core/contact/influence_constant_sets.h"
 #include "core/contact/kinematics.h"
 #include "core/geometry/wheelset.h"
 #include "wear/wear_simulation.h"
 
 namespace railwear::app {
+
+// The constants a scene uses unless it names others ([model] constants or influence_constants):
+// the FEM-calibrated set, which the project's FEM contact cases support (docs/models.md).
+inline constexpr InfluenceConstantsName kDefaultInfluenceConstants = InfluenceConstantsName::kFem;
 
 struct Scene {
   std::string path;                  // as given ("<text>" for ParseScene without a file)
@@ -31,8 +36,9 @@ struct Scene {
   // [model] tangential as written ("fastsim" | "exact" | "auto"); the solver uses
   // problem.tangential.
   std::string tangential_method = "fastsim";
-  // Where the influence constants came from: "default", "inline" or the resolved file path.
-  std::string influence_constants_source = "default";
+  // Where the influence constants came from: a named set ("fem", the default, or "paper"),
+  // "inline" or the resolved file path.
+  std::string influence_constants_source = "fem";
 
   std::optional<double> friction;   // [load] friction, in (0, 2]; used by rolling contact
   std::optional<double> speed_m_s;  // [load] or [wheelset] speed_m_s; used by rolling contact

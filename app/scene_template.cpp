@@ -31,8 +31,13 @@ kind = "conformal"            # "hertz" | "halfspace" (planar + boussinesq)
                               #   the choice and its reason are reported per patch)
 # geometry = "conformal"      # "planar" | "conformal"; overrides kind (not with "hertz")
 # kernel = "golubenko"        # "boussinesq" | "golubenko"; overrides kind (not with "hertz")
+constants = "fem"             # the named set of seed eq. 4's constants: "fem" (fitted to
+                              # CalculiX, within 2 % of the FEM contact cases; default) |
+                              # "paper" (the seed's c_f 0.75, c_z 1, c_s 0.25: ~29 % high
+                              # on peak pressure against FEM; docs/models.md)
 # influence_constants = { c_f = 0.75, c_z = 1.0, c_s = 0.25 }
-                              # seed eq. 4 constants; each optional (defaults shown);
+                              # instead of constants: the constants themselves, seed eq. 4;
+                              # each optional (the paper's values shown);
                               # c_f, c_z > 0, c_s any finite number. One set for both
                               # bodies, or a set for each curvature sign (each body of a
                               # patch uses the set of its lateral curvature there):

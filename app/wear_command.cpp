@@ -58,6 +58,7 @@ json WearLawJson(const WearStudy& study) {
       break;
   }
   j["hardness_MPa"] = study.rail_material.hardness_Pa * 1e-6;
+  j["model"] = ModelJson(study.model);  // kernel and the named constants set (issue 17)
   j["max_depth_per_step_mm"] = study.options.max_depth_per_step_m * 1e3;
   j["smoothing_mm"] = study.options.smoothing.smoothing_length_m * 1e3;
   // Co-evolution (issue 16): the wearing wheels, only when there are (older runs' JSON unchanged).
@@ -246,6 +247,54 @@ void SetFlange(const WheelFlangeMeasures& f, WheelStepRecord* w) {
   w->flange_slope_mm = FlangeMm(f.flange_slope_m);
 }
 
+// " on the high rail" for a two-rail study, else nothing.
+std::string RailOf(const LoadCaseSummary& c, const WearStudy& study) {
+  return study.low_rail_profile ? fmt::format(" on the {} rail", ToString(c.load_case.rail))
+                                : std::string();
+}
+
+// The step's warnings (issue 17), stored with it (schema 8) and printed: one per kind, how many
+// load cases and the worst. flange_climb: L/V beyond Nadal's limit; hardness: p_max beyond the
+// hardness of the softer body (HardnessWarning, as `railwear contact` warns).
+std::vector<StepWarningRecord> StepWarnings(const StepResult& step, const WearStudy& study) {
+  std::vector<StepWarningRecord> out;
+  int climbs = 0, overloads = 0;
+  const LoadCaseSummary *worst_climb = nullptr, *worst_p = nullptr;
+  for (const LoadCaseSummary& c : step.cases) {
+    if (c.climb.exceeded) {
+      ++climbs;
+      const double margin = c.climb.l_over_v - *c.climb.nadal_limit;
+      if (!worst_climb || margin > worst_climb->climb.l_over_v - *worst_climb->climb.nadal_limit)
+        worst_climb = &c;
+    }
+    if (HardnessWarning(study.wheel_material, study.rail_material, c.p_max_Pa, "")) {
+      ++overloads;
+      if (!worst_p || c.p_max_Pa > worst_p->p_max_Pa) worst_p = &c;
+    }
+  }
+  const size_t n = step.cases.size();
+  if (worst_climb) {
+    out.push_back({"flange_climb",
+                   fmt::format("flange climb possible in {} of {} load cases (worst: {}{} at "
+                               "lateral shift {:.2f} mm: {})",
+                               climbs, n, study.traffic[worst_climb->load_case.traffic_index].name,
+                               RailOf(*worst_climb, study),
+                               worst_climb->load_case.placement.lateral_shift_m * 1e3,
+                               FlangeClimbWarning(worst_climb->climb, ""))});
+  }
+  if (worst_p) {
+    out.push_back({"hardness",
+                   fmt::format("p_max beyond the hardness in {} of {} load cases (worst: {}{} at "
+                               "lateral shift {:.2f} mm: {})",
+                               overloads, n, study.traffic[worst_p->load_case.traffic_index].name,
+                               RailOf(*worst_p, study),
+                               worst_p->load_case.placement.lateral_shift_m * 1e3,
+                               *HardnessWarning(study.wheel_material, study.rail_material,
+                                                worst_p->p_max_Pa, ""))});
+  }
+  return out;
+}
+
 StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const UnwornRails& unworn,
                           const PreviousProfiles& previous) {
   RequireFinite(step.measures, step, step.low_rail ? "high rail" : "rail");
@@ -263,6 +312,7 @@ StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const 
   r.w3_mm = m.wear_45_m * 1e3;
   r.smoothing_area_error = step.smoothing_area_error;
   r.profile = step.state.rail;
+  r.warnings = StepWarnings(step, study);
   for (const LoadCaseSummary& c : step.cases) {
     const nlohmann::json j = LoadCaseJson(c, study, step.integration);
     RequireFiniteJson(j, fmt::format("wear step {} load case", step.state.step));
@@ -428,25 +478,12 @@ class Progress {
         CurvingOptions().usable_multiple);
   }
 
-  // One line per step whose load cases exceed Nadal's limit: how many, and the worst.
-  void WarnOfFlangeClimb(const StepResult& step, const WearStudy& study) {
-    int count = 0;
-    const LoadCaseSummary* worst = nullptr;
-    for (const LoadCaseSummary& c : step.cases) {
-      if (!c.climb.exceeded) continue;
-      ++count;
-      const double margin = c.climb.l_over_v - *c.climb.nadal_limit;
-      if (!worst || margin > worst->climb.l_over_v - *worst->climb.nadal_limit) worst = &c;
+  // One line per warning of the step (StepWarnings: flange climb, p_max beyond the hardness).
+  void WarnOf(const StepRecord& record) {
+    for (const StepWarningRecord& w : record.warnings) {
+      std::cerr << fmt::format("{}warning: step {}: {}\n", tty_ ? "\n" : "", record.step,
+                               w.message);
     }
-    if (count == 0) return;
-    std::cerr << fmt::format(
-        "{}warning: step {}: flange climb possible in {} of {} load cases (worst: {}{} at lateral "
-        "shift {:.2f} mm: {})\n",
-        tty_ ? "\n" : "", step.state.step, count, step.cases.size(),
-        study.traffic[worst->load_case.traffic_index].name,
-        study.low_rail_profile ? fmt::format(" on the {} rail", ToString(worst->load_case.rail))
-                               : std::string(),
-        worst->load_case.placement.lateral_shift_m * 1e3, FlangeClimbWarning(worst->climb, ""));
   }
 
  private:
@@ -711,12 +748,13 @@ void RunWearScene(const Scene& scene, const WearCommandOptions& options) {
     summary = railwear::RunWear(
         study, unworn, state,
         [&](const StepResult& step) {
-          store.AppendStep(run_id, MakeStepRecord(step, study, unworn, previous));
+          const StepRecord record = MakeStepRecord(step, study, unworn, previous);
+          store.AppendStep(run_id, record);
           previous = {step.state.rail, step.state.low_rail};
           progress.Step(step, study);
           progress.WarnOfIntegration(step);
           integration.Add(step.integration);
-          progress.WarnOfFlangeClimb(step, study);
+          progress.WarnOf(record);
           progress.WarnOfEquilibria(step, study);
           return true;
         },
@@ -750,6 +788,7 @@ void RunWearScene(const Scene& scene, const WearCommandOptions& options) {
   store.SetRunState(run_id, summary.finished ? RunState::kComplete : RunState::kRunning);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << fmt::format("model {}\n", ModelLine(study.model));
   PrintSummary(store, run_id, name, summary.finished, seconds, summary.steps_done);
   std::cout << integration.Line(study);
   if (options.plot) {

@@ -516,9 +516,24 @@ CREATE TABLE wheel_steps(
 )sql");
 }
 
+// Version 8: the warnings of each step (issue 17: p_max beyond the hardness, L/V beyond Nadal's
+// limit), in order. Older runs have no rows here (their warnings went to stderr only).
+void MigrateTo8(const Connection& c) {
+  c.Exec(R"sql(
+CREATE TABLE step_warnings(
+  run_id        INTEGER NOT NULL,
+  step          INTEGER NOT NULL,
+  warning_index INTEGER NOT NULL CHECK (warning_index >= 0),
+  kind          TEXT NOT NULL CHECK (kind IN ('flange_climb', 'hardness')),
+  message       TEXT NOT NULL,
+  PRIMARY KEY (run_id, step, warning_index),
+  FOREIGN KEY (run_id, step) REFERENCES steps(run_id, step) ON DELETE CASCADE);
+)sql");
+}
+
 using Migration = void (*)(const Connection&);
 constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3, &MigrateTo4,
-                                     &MigrateTo5, &MigrateTo6, &MigrateTo7};
+                                     &MigrateTo5, &MigrateTo6, &MigrateTo7, &MigrateTo8};
 static_assert(std::size(kMigrations) == ProfileStore::kSchemaVersion);
 
 const char* kNowUtc = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
@@ -1153,6 +1168,24 @@ void ProfileStore::WriteStep(int64_t run, const StepRecord& step) {
       }
     }
   }
+  if (!step.warnings.empty()) {
+    Statement s(c,
+                "INSERT INTO step_warnings(run_id, step, warning_index, kind, message) "
+                "VALUES (?1, ?2, ?3, ?4, ?5)");
+    for (size_t i = 0; i < step.warnings.size(); ++i) {
+      const StepWarningRecord& w = step.warnings[i];
+      if (w.kind != "flange_climb" && w.kind != "hardness") {
+        throw InputError(fmt::format(
+            "database '{}': run {} step {}: warning kind '{}'; expected 'flange_climb' or "
+            "'hardness'",
+            path(), run, step.step, w.kind));
+      }
+      sqlite3_reset(s.get());
+      s.Bind(1, run).Bind(2, step.step).Bind(3, static_cast<int>(i)).Bind(4, w.kind);
+      s.Bind(5, w.message);
+      s.Run();
+    }
+  }
   if (!step.curving_starts.empty()) {
     Statement s(c,
                 "INSERT INTO curving_starts(run_id, step, traffic_index, state, jacobian) "
@@ -1197,6 +1230,20 @@ std::vector<StepRecord> ProfileStore::Steps(int64_t run) const {
     while (i < steps.size() && steps[i].step < step) ++i;
     if (i < steps.size() && steps[i].step == step)
       steps[i].low_rail = internal::ReadLowRail(low, 1);
+  }
+  // A file opened read-only may predate the table (schema 7 or older): no warnings stored.
+  if (internal::TableExists(impl_->db, "step_warnings")) {
+    Statement w(impl_->db,
+                "SELECT step, kind, message FROM step_warnings WHERE run_id = ?1 "
+                "ORDER BY step, warning_index");
+    w.Bind(1, run);
+    i = 0;
+    while (w.Step()) {
+      const int step = static_cast<int>(w.Int64(0));
+      while (i < steps.size() && steps[i].step < step) ++i;
+      if (i < steps.size() && steps[i].step == step)
+        steps[i].warnings.push_back({w.Text(1), w.Text(2)});
+    }
   }
   return steps;
 }
@@ -1265,6 +1312,13 @@ StepRecord ProfileStore::LoadStep(int64_t run, int step) const {
     while (s.Step()) {
       r.curving_starts.push_back({static_cast<int>(s.Int64(0)), s.Doubles(1), s.Doubles(2)});
     }
+  }
+  if (internal::TableExists(c, "step_warnings")) {
+    Statement s(c,
+                "SELECT kind, message FROM step_warnings WHERE run_id = ?1 AND step = ?2 "
+                "ORDER BY warning_index");
+    s.Bind(1, run).Bind(2, step);
+    while (s.Step()) r.warnings.push_back({s.Text(0), s.Text(1)});
   }
   if (internal::TableExists(c, "wheel_steps")) {
     Statement s(c,

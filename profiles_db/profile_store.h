@@ -149,6 +149,15 @@ struct WheelStepRecord {
 
 // One wear step. Step 0 is conventionally the unworn profile (passes = 0). The summary, profile
 // and distributions are the high (or only) rail's; `low_rail` the low rail's in a two-rail study.
+// A warning of a wear step (schema 8, issue 17): `kind` "flange_climb" (L/V beyond Nadal's limit
+// in some load case) or "hardness" (p_max beyond the hardness of the softer body), and the
+// message the wear command printed for it.
+struct StepWarningRecord {
+  std::string kind;
+  std::string message;
+  bool operator==(const StepWarningRecord&) const = default;
+};
+
 struct StepRecord {
   int step = 0;
   double passes = 0.0;          // cumulative wheel passes up to the end of this step
@@ -170,6 +179,9 @@ struct StepRecord {
   std::vector<CurvingStartRecord> curving_starts;
   // The wearing wheels (co-evolution), by traffic entry (not filled by Steps(); WheelSteps()).
   std::vector<WheelStepRecord> wheels = {};
+  // The step's warnings, in order (filled by Steps() and LoadStep(); none in a file of schema 7
+  // or older, which had no place for them).
+  std::vector<StepWarningRecord> warnings = {};
 };
 
 // One input of a calibration, verbatim: kind "config", "displacement_curves", "scene" or
@@ -223,7 +235,7 @@ struct QueryResult {
 class ProfileStore {
  public:
   // Schema version written by this program (PRAGMA user_version).
-  static constexpr int kSchemaVersion = 7;
+  static constexpr int kSchemaVersion = 8;
   // The oldest schema OpenReadOnly reads as it is: version 5 only widened runs.state's CHECK
   // (adding 'interrupted'), version 6 only added curving_starts and version 7 wheel_steps (both
   // read when present), so a version-4, -5 or -6 file reads the same; older ones need migrating.
