@@ -525,7 +525,7 @@ TEST(ProfileStore, MigratesVersion6AndReadsItUnmigrated) {
     const int64_t run = db.CreateRun(TestRun("old"), TestStep(0));
     db.AppendStep(run, TestStep(1));
   }
-  RawExec(path, "DROP TABLE wheel_steps; PRAGMA user_version = 6;");
+  RawExec(path, "DROP TABLE wheel_steps; DROP TABLE step_warnings; PRAGMA user_version = 6;");
   {
     const ProfileStore ro = ProfileStore::OpenReadOnly(path);
     EXPECT_EQ(ro.SchemaVersion(), 6);
@@ -546,6 +546,45 @@ TEST(ProfileStore, MigratesVersion6AndReadsItUnmigrated) {
   two.wheels = {TestWheel(0, "w", 0.0, 0.0, 0.0, 0.0, TestStep(2).profile)};
   db.AppendStep(run->id, two);
   EXPECT_EQ(db.WheelSteps(run->id).size(), 1u);
+}
+
+// Schema 8 (issue 17): a step's warnings round-trip in order through Steps() and LoadStep(); a
+// kind outside the schema's is refused with the step rolled back; a schema-7 file is read as it
+// is (no warnings) and migrated by the next read-write open.
+TEST(ProfileStore, StepWarningsRoundTripAndVersion7ReadsUnmigrated) {
+  TempDir tmp;
+  const std::string path = tmp.File("v7.rwdb");
+  {
+    ProfileStore db = ProfileStore::Open(path);
+    const int64_t run = db.CreateRun(TestRun("old"), TestStep(0));
+    db.AppendStep(run, TestStep(1));
+  }
+  RawExec(path, "DROP TABLE step_warnings; PRAGMA user_version = 7;");
+  {
+    const ProfileStore ro = ProfileStore::OpenReadOnly(path);
+    EXPECT_EQ(ro.SchemaVersion(), 7);
+    const auto run = ro.FindRun("old");
+    ASSERT_TRUE(run.has_value());
+    EXPECT_TRUE(ro.LoadStep(run->id, 1).warnings.empty());
+    EXPECT_TRUE(ro.Steps(run->id)[1].warnings.empty());
+  }
+  ProfileStore db = ProfileStore::Open(path);
+  EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
+  EXPECT_EQ(ProfileStore::kSchemaVersion, 8);
+  const int64_t run = db.FindRun("old")->id;
+  StepRecord two = TestStep(2);
+  two.warnings = {{"hardness", "p_max beyond the hardness in 2 of 3 load cases"},
+                  {"flange_climb", "flange climb possible in 1 of 3 load cases"}};
+  db.AppendStep(run, two);
+  EXPECT_EQ(db.LoadStep(run, 2).warnings, two.warnings);
+  const std::vector<StepRecord> steps = db.Steps(run);
+  ASSERT_EQ(steps.size(), 3u);
+  EXPECT_TRUE(steps[1].warnings.empty());
+  EXPECT_EQ(steps[2].warnings, two.warnings);
+  StepRecord bad = TestStep(3);
+  bad.warnings = {{"noise", "?"}};
+  ExpectInputError([&] { db.AppendStep(run, bad); }, {"warning kind 'noise'", "'hardness'"});
+  EXPECT_EQ(db.LastStep(run), 2);  // rolled back
 }
 
 TEST(ProfileStore, CalibrationsRoundTripWithTheirInputs) {
