@@ -247,17 +247,10 @@ void SetFlange(const WheelFlangeMeasures& f, WheelStepRecord* w) {
   w->flange_slope_mm = FlangeMm(f.flange_slope_m);
 }
 
-// " on the high rail" for a two-rail study, else nothing.
-std::string RailOf(const LoadCaseSummary& c, const WearStudy& study) {
-  return study.low_rail_profile ? fmt::format(" on the {} rail", ToString(c.load_case.rail))
-                                : std::string();
-}
-
 // The step's warnings (issue 17), stored with it (schema 8) and printed: one per kind, how many
 // load cases and the worst. flange_climb: L/V beyond Nadal's limit; hardness: p_max beyond the
 // hardness of the softer body (HardnessWarning, as `railwear contact` warns).
 std::vector<StepWarningRecord> StepWarnings(const StepResult& step, const WearStudy& study) {
-  std::vector<StepWarningRecord> out;
   int climbs = 0, overloads = 0;
   const LoadCaseSummary *worst_climb = nullptr, *worst_p = nullptr;
   for (const LoadCaseSummary& c : step.cases) {
@@ -272,25 +265,26 @@ std::vector<StepWarningRecord> StepWarnings(const StepResult& step, const WearSt
       if (!worst_p || c.p_max_Pa > worst_p->p_max_Pa) worst_p = &c;
     }
   }
-  const size_t n = step.cases.size();
+  // "WHAT in K of N load cases (worst: ENTRY[ on the R rail] at lateral shift Y mm: DETAIL)"
+  auto line = [&](const char* what, int count, const LoadCaseSummary& worst,
+                  const std::string& detail) {
+    return fmt::format("{} in {} of {} load cases (worst: {}{} at lateral shift {:.2f} mm: {})",
+                       what, count, step.cases.size(),
+                       study.traffic[worst.load_case.traffic_index].name,
+                       study.low_rail_profile
+                           ? fmt::format(" on the {} rail", ToString(worst.load_case.rail))
+                           : std::string(),
+                       worst.load_case.placement.lateral_shift_m * 1e3, detail);
+  };
+  std::vector<StepWarningRecord> out;
   if (worst_climb) {
-    out.push_back({"flange_climb",
-                   fmt::format("flange climb possible in {} of {} load cases (worst: {}{} at "
-                               "lateral shift {:.2f} mm: {})",
-                               climbs, n, study.traffic[worst_climb->load_case.traffic_index].name,
-                               RailOf(*worst_climb, study),
-                               worst_climb->load_case.placement.lateral_shift_m * 1e3,
-                               FlangeClimbWarning(worst_climb->climb, ""))});
+    out.push_back({"flange_climb", line("flange climb possible", climbs, *worst_climb,
+                                        FlangeClimbWarning(worst_climb->climb, ""))});
   }
   if (worst_p) {
-    out.push_back({"hardness",
-                   fmt::format("p_max beyond the hardness in {} of {} load cases (worst: {}{} at "
-                               "lateral shift {:.2f} mm: {})",
-                               overloads, n, study.traffic[worst_p->load_case.traffic_index].name,
-                               RailOf(*worst_p, study),
-                               worst_p->load_case.placement.lateral_shift_m * 1e3,
-                               *HardnessWarning(study.wheel_material, study.rail_material,
-                                                worst_p->p_max_Pa, ""))});
+    out.push_back({"hardness", line("p_max beyond the hardness", overloads, *worst_p,
+                                    *HardnessWarning(study.wheel_material, study.rail_material,
+                                                     worst_p->p_max_Pa, ""))});
   }
   return out;
 }

@@ -246,8 +246,8 @@ TEST(ProfileStore, CreatesSchemaInMemory) {
   EXPECT_EQ(names,
             (std::vector<std::string>{"calibration_inputs", "calibrations", "curving_starts",
                                       "distributions", "load_cases", "low_rail_distributions",
-                                      "low_rail_steps", "meta", "profiles", "runs", "steps",
-                                      "wheel_steps"}));
+                                      "low_rail_steps", "meta", "profiles", "runs",
+                                      "step_warnings", "steps", "wheel_steps"}));
   EXPECT_EQ(db.Query("PRAGMA application_id").rows[0][0],
             std::to_string(ProfileStore::kApplicationId));
 }
@@ -1274,7 +1274,8 @@ TEST(ProfileStoreMerge, EveryTableHasARoleAndARunTableIsNeverSkipped) {
   }
   EXPECT_EQ(run_rows, (std::vector<std::string>{"curving_starts", "distributions", "load_cases",
                                                 "low_rail_distributions", "low_rail_steps",
-                                                "profiles", "steps", "wheel_steps"}));
+                                                "profiles", "step_warnings", "steps",
+                                                "wheel_steps"}));
   // A table merge does not know (no run_id, not one of the known others) is refused by name.
   RawExec(path, "CREATE TABLE run_notes(note TEXT)");
   ExpectInputError([&] { db.MergeTableRoles(); }, {path, "table 'run_notes' is unknown to merge"});
