@@ -499,15 +499,16 @@ void RunHistorySteps(const HistoryOptions& o, const HistoryStepsOptions& s) {
     rows.push_back(std::move(row));
   }
   std::cout << AlignedTable(columns, rows);
-  // The steps' stored warnings (schema 8), after the table: "step N warning KIND: MESSAGE".
-  for (const StepRecord& st : steps) {
-    for (const StepWarningRecord& w : st.warnings) {
-      std::cout << fmt::format("step {} warning {}: {}\n", st.step, w.kind, w.message);
-    }
-  }
   std::cerr << fmt::format("railwear: run '{}' ({}), {} step(s){}, in {}\n", run.name,
                            ToString(run.state), rows.size(),
                            low.empty() ? "" : ", high and low rail (low_*)", db.path());
+  // The steps' stored warnings (schema 8) on stderr, so that stdout stays the table:
+  // "railwear: step N warning KIND: MESSAGE" (--json has them on stdout).
+  for (const StepRecord& st : steps) {
+    for (const StepWarningRecord& w : st.warnings) {
+      std::cerr << fmt::format("railwear: step {} warning {}: {}\n", st.step, w.kind, w.message);
+    }
+  }
   const std::vector<WheelStepRecord> wheels = db.WheelSteps(run.id);
   if (!wheels.empty()) {
     std::cerr << fmt::format("railwear: its wheels wear too: `history steps '{}' --wheel ENTRY`",

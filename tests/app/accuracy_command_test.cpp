@@ -19,6 +19,7 @@
 #include "tests/test_support.h"
 
 #include "app/curving_accuracy.h"
+#include "core/contact/influence_constant_sets.h"
 #include "core/numerics/input_error.h"
 #include "tests/app/wear_scenes.h"
 
@@ -66,7 +67,10 @@ TEST(AccuracyCommand, RichardsonRecoversAPowerLaw) {
 }
 
 TEST(AccuracyCommand, GaugeCornerAtDraftAndStandard) {
-  const Scene scene = LoadScene(kExamples + "gauge_corner.toml");
+  Scene scene = LoadScene(kExamples + "gauge_corner.toml");
+  // The seed's kernel with the paper's constants (issue 17: the scenes' default is the
+  // FEM-calibrated set, within 0.2 % of the reference model here, tested below).
+  scene.problem.model.constants = NamedInfluenceConstants(InfluenceConstantsName::kPaper);
   int lines = 0;
   const AccuracyStudy s = RunAccuracyStudy(scene, Quick(), [&](const std::string&) { ++lines; });
   // Hertz once, four grid models at two levels.
@@ -88,6 +92,15 @@ TEST(AccuracyCommand, GaugeCornerAtDraftAndStandard) {
   // model here.
   EXPECT_GT(Find(s, "halfspace", "standard")->err_area, 0.20);
   EXPECT_GT(Find(s, "conformal+golubenko", "standard")->err_area, 0.20);
+  // With the default, FEM-calibrated constants the seed's kernel is the reference model to 0.5 %
+  // on area and peak pressure (docs/accuracy.md: 0.32 % and 0.18 % at standard).
+  Scene fem = LoadScene(kExamples + "gauge_corner.toml");
+  AccuracyOptions golubenko = Quick();
+  golubenko.models = {"conformal+boussinesq", "conformal+golubenko"};
+  const AccuracyStudy f = RunAccuracyStudy(fem, golubenko, [](const std::string&) {});
+  constexpr double kCalibratedToBoussinesq = 0.005;  // measured 0.0032 / 0.0018
+  EXPECT_LT(Find(f, "conformal+golubenko", "standard")->err_area, kCalibratedToBoussinesq);
+  EXPECT_LT(Find(f, "conformal+golubenko", "standard")->err_p_max, kCalibratedToBoussinesq);
   const AccuracyRow* automatic = Find(s, "auto", "standard");
   EXPECT_EQ(automatic->patch_models, "conformal+boussinesq");
   EXPECT_EQ(automatic->err_area, 0.0);

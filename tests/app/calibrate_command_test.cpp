@@ -98,7 +98,9 @@ TEST_F(CalibrateCli, CalibratedConstantsMatchTheFemContactCases) {
     const size_t at = scene.find("accuracy = \"reference\"");
     ASSERT_NE(at, std::string::npos);
     scene.replace(at, 22, "accuracy = \"standard\"");
-    Write("seed.toml", scene);
+    std::string paper = scene;  // the seed's constants, by name (issue 17: not the default)
+    paper.insert(paper.find("accuracy = \"standard\""), "constants = \"paper\"\n");
+    Write("seed.toml", paper);
     std::string with = scene;
     with.insert(with.find("accuracy = \"standard\""),
                 "influence_constants = \"" + kExampleDir + "calibrated_paper.toml\"\n");
@@ -176,7 +178,7 @@ TEST_F(CalibrateCli, ExampleCalibratesAndASceneUsesTheConstants) {
   EXPECT_TRUE(Contains(toml, "# calibration: synthetic: eq. 4 with c_f 1.05"));
   EXPECT_TRUE(Contains(toml, "synthetic_r15_convex.csv (weight 1, 0.5 to 20 mm)"));
   EXPECT_TRUE(Contains(toml, "[influence_constants]\nc_f = "));
-  WriteGroove("default.toml");
+  WriteGroove("default.toml", "constants = \"paper\"\n");  // the seed's, by name (issue 17)
   WriteGroove("calibrated.toml", "influence_constants = \"cal.toml\"\n");
   const nlohmann::json base = ContactTotals("default.toml");
   const nlohmann::json fitted = ContactTotals("calibrated.toml");

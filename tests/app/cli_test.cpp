@@ -119,8 +119,12 @@ TEST_F(CliTest, JsonOnStdoutIsOneObjectWithTheRequiredKeys) {
   for (const char* key : {"kind", "geometry", "kernel", "accuracy", "influence_constants"}) {
     EXPECT_TRUE(j["model"].contains(key)) << key;
   }
-  for (const char* key : {"c_f", "c_z", "c_s"}) {
-    EXPECT_TRUE(j["model"]["influence_constants"].contains(key)) << key;
+  // The default set (issue 17): FEM-calibrated, a convex and a concave set.
+  EXPECT_EQ(j["model"]["constants"], "fem");
+  for (const char* body : {"convex", "concave"}) {
+    for (const char* key : {"c_f", "c_z", "c_s"}) {
+      EXPECT_TRUE(j["model"]["influence_constants"][body].contains(key)) << body << key;
+    }
   }
   for (const char* key : {"area_mm2", "p_max_MPa", "vertical_force_N", "lateral_force_N"}) {
     EXPECT_TRUE(j["total"].contains(key)) << key;

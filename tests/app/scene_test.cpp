@@ -526,8 +526,14 @@ TEST(SceneTest, SeparateInfluenceConstantsInlineAndFromFile) {
   ASSERT_TRUE(f.IsSeparate());
   EXPECT_DOUBLE_EQ(f.separate->convex.c_z, 0.7);
   EXPECT_DOUBLE_EQ(f.separate->concave.c_s, 0.4);
-  // One set stays one set.
-  EXPECT_FALSE(ParseScene(kMinimal, "scene.toml").problem.model.constants.IsSeparate());
+  // One set stays one set; without constants the default is the FEM-calibrated pair of sets
+  // (issue 17), and the paper's set is one set.
+  EXPECT_FALSE(ParseScene(std::string(kMinimal) + "[model]\ninfluence_constants = { c_f = 0.8 }\n",
+                          "scene.toml")
+                   .problem.model.constants.IsSeparate());
+  EXPECT_TRUE(ParseScene(kMinimal, "scene.toml").problem.model.constants.IsSeparate());
+  EXPECT_FALSE(ParseScene(std::string(kMinimal) + "[model]\nconstants = \"paper\"\n", "scene.toml")
+                   .problem.model.constants.IsSeparate());
 }
 
 TEST(SceneTest, SeparateInfluenceConstantsErrors) {
