@@ -13,6 +13,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/numerics/enum_names.h"
 
@@ -77,7 +78,13 @@ struct HistorySqlOptions {
   bool tsv = false;  // tab-separated instead of aligned columns
 };
 
-// Adds `history` with its subcommands runs, steps, profile, diff, plot and sql.
+// Columns padded to their widest cell, two spaces apart; numbers right-aligned, text left-aligned;
+// a rule of dashes under the header (every history table).
+std::string AlignedTable(const std::vector<std::string>& columns,
+                         const std::vector<std::vector<std::string>>& rows);
+
+// Adds `history` with its subcommands runs, steps, profile, diff, plot, sql, bands and life
+// (app/history_ensemble.h).
 void SetupHistory(CLI::App& app);
 
 // Each opens options.db (InputError when missing, empty or not a railwear database).

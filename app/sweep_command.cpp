@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <CLI/CLI.hpp>
 
 #include "app/merge_command.h"
@@ -261,6 +262,12 @@ void RunSweepCommand(const SweepCommandOptions& options, SweepMpiRunner mpi) {
     }
     std::cerr << fmt::format("railwear: {} run(s) in {}; databases in {}\n", lines,
                              options.plan_path, plan.out_dir);
+    if (plan.ensemble) {
+      std::cerr << fmt::format(
+          "railwear: an ensemble of {} sample(s) per curve class ({}, seed {}) of {}\n",
+          plan.ensemble->samples, ToString(plan.ensemble->method), plan.ensemble->seed,
+          fmt::join(plan.ensemble->keys, ", "));
+    }
     return;
   }
   if (const std::optional<int> index = LineToRun(options, lines)) {
