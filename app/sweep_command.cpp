@@ -79,11 +79,18 @@ void WriteSlurm(const SweepPlan& plan, const SweepCommandOptions& options) {
   job.name = fs::path(plan.path).stem().string();
   job.resources = options.slurm_resources;
   const std::string submit = WriteSlurmScripts(job);
+  const int slice = std::min(job.lines, job.resources.max_array_size);
+  if (slice < job.lines) {
+    std::cout << fmt::format(
+        "{}/sweep.sbatch: {} lines in {} slices of at most {} task(s) (Slurm's MaxArraySize); "
+        "task I of the slice from line K runs line K + I (RAILWEAR_SWEEP_OFFSET=K)\n",
+        plan.out_dir, job.lines, (job.lines + slice - 1) / slice, slice);
+  }
   std::cout << fmt::format(
       "{}/sweep.sbatch: job array of {} task(s) (--array=0-{}, {} CPU(s), {}, {} each)\n"
       "{}/merge.sbatch: merges the runs into {}\n"
       "{}: submits the array, then the merge job after it (afterok)\n",
-      plan.out_dir, job.lines, job.lines - 1, job.resources.cpus_per_task, job.resources.time,
+      plan.out_dir, slice, slice - 1, job.resources.cpus_per_task, job.resources.time,
       job.resources.mem, plan.out_dir, job.study_db, submit);
   std::cerr << fmt::format(
       "railwear: submit with `{}`; resubmit killed or failed lines by index with `{} "
@@ -207,6 +214,10 @@ void SetupSweep(CLI::App& app, SweepMpiRunner mpi) {
       ->needs(slurm);
   cmd->add_option("--mem", r.mem, "--slurm: memory of each task (default 2G)")->needs(slurm);
   cmd->add_option("--partition", r.partition, "--slurm: the partition (default: Slurm's)")
+      ->needs(slurm);
+  cmd->add_option("--max-array-size", r.max_array_size,
+                  "--slurm: the cluster's MaxArraySize (default 1001); a plan of more lines is "
+                  "submitted in slices of this many tasks")
       ->needs(slurm);
   list->excludes(index, merge, with_mpi, slurm);
   index->excludes(merge, with_mpi, slurm);

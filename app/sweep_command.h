@@ -1,6 +1,6 @@
 // `railwear sweep PLAN.toml [--list] [--index N] [--out-dir DIR] [--threads N] [--merge]
 //                  [--db FILE] [--mpi] [--slurm [--cpus-per-task N] [--time T] [--mem M]
-//                  [--partition P]]`:
+//                  [--partition P] [--max-array-size N]]`:
 // the runs of a sweep plan (app/sweep_plan.h), each a wear study in its own database (issue 19).
 //
 // --list prints the manifest (stdout): one line per run, its id and the values it sets
@@ -24,7 +24,8 @@
 // - --mpi, under `mpirun -n K` (app/sweep_mpi.h): rank 0 hands the lines to the ranks (itself
 //   included) one at a time, largest expected cost first (SweepLineCost); each run writes its
 //   own database; rank 0 merges them into --db at the end when every line is complete.
-// - --slurm (app/sweep_slurm.h): writes OUT_DIR/sweep.sbatch (a job array, one task per line),
+// - --slurm (app/sweep_slurm.h): writes OUT_DIR/sweep.sbatch (a job array, one task per line;
+//   slices of --max-array-size tasks, Slurm's MaxArraySize, for a plan of more lines),
 //   OUT_DIR/merge.sbatch (the --merge above) and OUT_DIR/submit.sh (the array, then the merge
 //   job with --dependency=afterok), and runs nothing.
 #pragma once
