@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -374,6 +375,35 @@ distribution = { kind = "lognormal" }
     EXPECT_GE(m["p50"][k].get<double>(), m["p50"][k - 1].get<double>());
   }
   EXPECT_GT(m["p50"].back().get<double>(), 0.0);  // the runs did wear
+
+  // RCF damage (the scene has effect "damage"): the largest value of each step's rcf_damage
+  // distribution, read here through ProfileStore.
+  std::vector<double> damage;
+  {
+    const ProfileStore db = ProfileStore::OpenReadOnly((dir_ / "small_runs.sqlite").string());
+    for (const RunInfo& run : db.Runs()) {
+      const StepRecord last = db.LoadStep(run.id, db.Steps(run.id).back().step);
+      for (const Distribution& d : last.distributions) {
+        if (d.kind == "rcf_damage") damage.push_back(*std::max_element(d.value.begin(), d.value.end()));
+      }
+    }
+  }
+  ASSERT_EQ(damage.size(), 3u);
+  const Outcome rcf = Run(
+      "history --db small_runs.sqlite bands --plan small.toml --measures rcf_damage --format json");
+  ASSERT_EQ(rcf.exit_code, 0) << rcf.err;
+  const nlohmann::json d = nlohmann::json::parse(rcf.out)["classes"][0]["measures"]["rcf_damage"];
+  EXPECT_NEAR(d["p50"].back().get<double>(), HandPercentile(damage, 50.0),
+              kUlps * HandPercentile(damage, 50.0));
+  // Life to the median run's final damage: that run reaches it (at its last step at the latest).
+  const Outcome life = Run(fmt::format(
+      "history --db small_runs.sqlite life --plan small.toml --limit rcf_damage={} --json",
+      HandPercentile(damage, 50.0)));
+  ASSERT_EQ(life.exit_code, 0) << life.err;
+  int reached = 0;
+  const nlohmann::json lives = nlohmann::json::parse(life.out);
+  for (const auto& run : lives["runs"]) reached += !run["mgt"][0].is_null();
+  EXPECT_GE(reached, 2);
 }
 
 }  // namespace
