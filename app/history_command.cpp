@@ -257,7 +257,9 @@ HistoryProfileFormat HistoryProfileFormatFromString(const std::string& text) {
 void SetupHistory(CLI::App& app) {
   auto common = std::make_shared<HistoryOptions>();
   CLI::App* history = app.add_subcommand(
-      "history", "Read a profile-history database: runs, steps, profiles, wear, plots, SQL");
+      "history",
+      "Read a profile-history database: runs, steps, profiles, wear, plots, SQL, ensemble bands "
+      "and life to wear limits");
   history->require_subcommand(1);
   history->fallthrough();  // --db also after the subcommand
   history->add_option("--db", common->db, "Profile-history database (SQLite)")

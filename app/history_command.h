@@ -1,7 +1,8 @@
 // `railwear history [--db FILE] runs | calibrations | steps RUN | profile RUN | diff RUN A B |
-// plot RUN | sql Q`: reading a study's profile-history database (profiles_db/SCHEMA.md) — runs,
-// influence-constant calibrations, the steps of a run,
-// a step's profile as CSV/BAN/JSON, the wear between two steps, plots, and read-only SQL.
+// plot RUN | sql Q | bands | life`: reading a study's profile-history database
+// (profiles_db/SCHEMA.md) — runs, influence-constant calibrations, the steps of a run,
+// a step's profile as CSV/BAN/JSON, the wear between two steps, plots, read-only SQL, and an
+// ensemble's percentile bands and traffic to wear limits (app/history_ensemble.h).
 //
 // Data goes to stdout, messages to stderr. The database must exist and be a railwear profile-
 // history database: history never creates one (a missing or empty file is InputError, exit 2),

@@ -25,7 +25,8 @@
 // annual_mgt or --annual-mgt); per class the percentiles over its runs (a percentile that needs
 // a run that never reached the limit is "not reached", i.e. beyond that run's final MGT); and,
 // when the plan gives [[life.class]] lengths, the line summary: each run weighted by its class's
-// length / the class's runs, the weighted quantile (wear/ensemble.h WeightedQuantile) = the
+// length / the class's runs (a class without a [[life.class]] length weighs nothing there), the
+// weighted quantile (wear/ensemble.h WeightedQuantile) = the
 // traffic by which that share of the line's curve length reaches the limit.
 #pragma once
 
