@@ -143,7 +143,7 @@ std::string SweepStudyPath(const SweepPlan& plan, const SweepCommandOptions& opt
   return dir + ".sqlite";
 }
 
-void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db) {
+void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db, int max_array_size) {
   std::vector<int> missing, unfinished;
   MergeCommandOptions merge;
   merge.out = study_db;
@@ -162,14 +162,27 @@ void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db) {
     std::vector<int> all = missing;
     all.insert(all.end(), unfinished.begin(), unfinished.end());
     std::sort(all.begin(), all.end());
+    // Slurm: one array, or (past MaxArraySize) the slices' task ids with their offsets.
+    std::string resubmit;
+    const int lines = static_cast<int>(plan.lines.size());
+    if (lines <= max_array_size) {
+      resubmit = fmt::format("`sbatch --array={} {}/sweep.sbatch`", Ranges(all), plan.out_dir);
+    } else {
+      for (size_t i = 0; i < all.size();) {
+        const int first = all[i] / max_array_size * max_array_size;
+        std::vector<int> tasks;
+        for (; i < all.size() && all[i] < first + max_array_size; ++i) tasks.push_back(all[i] - first);
+        resubmit += fmt::format("{}`RAILWEAR_SWEEP_OFFSET={} {}/submit.sh --array={}`",
+                                resubmit.empty() ? "" : ", ", first, plan.out_dir, Ranges(tasks));
+      }
+    }
     throw InputError(fmt::format(
         "sweep {}: {} of {} line(s) not complete in {} (not run: {}; started, not complete: "
         "{}); expected every line complete before the merge: run them with `railwear sweep {} "
-        "--index N`, or resubmit them with `sbatch --array={} {}/sweep.sbatch`; complete lines "
-        "are skipped",
+        "--index N`, or resubmit them with {}; complete lines are skipped",
         plan.path, all.size(), plan.lines.size(), plan.out_dir,
         missing.empty() ? "none" : Ranges(missing),
-        unfinished.empty() ? "none" : Ranges(unfinished), plan.path, Ranges(all), plan.out_dir));
+        unfinished.empty() ? "none" : Ranges(unfinished), plan.path, resubmit));
   }
   RunMergeCommand(merge);
 }
@@ -215,16 +228,24 @@ void SetupSweep(CLI::App& app, SweepMpiRunner mpi) {
   cmd->add_option("--mem", r.mem, "--slurm: memory of each task (default 2G)")->needs(slurm);
   cmd->add_option("--partition", r.partition, "--slurm: the partition (default: Slurm's)")
       ->needs(slurm);
-  cmd->add_option("--max-array-size", r.max_array_size,
-                  "--slurm: the cluster's MaxArraySize (default 1001); a plan of more lines is "
-                  "submitted in slices of this many tasks")
-      ->needs(slurm);
+  CLI::Option* max_array = cmd->add_option(
+      "--max-array-size", r.max_array_size,
+      "--slurm: the cluster's MaxArraySize (default 1001); a plan of more lines is submitted in "
+      "slices of this many tasks (--merge: how to resubmit a line of a slice)");
   list->excludes(index, merge, with_mpi, slurm);
   index->excludes(merge, with_mpi, slurm);
   merge->excludes(with_mpi, slurm);
   with_mpi->excludes(slurm);
   threads->excludes(merge, slurm);
-  cmd->callback([options, mpi]() { RunSweepCommand(*options, mpi); });
+  cmd->callback([options, mpi, max_array]() {
+    if (max_array->count() > 0 && !options->slurm && !options->merge) {
+      throw InputError(fmt::format(
+          "--max-array-size {}: the Slurm array size of --slurm (or of --merge's resubmit hint); "
+          "expected --slurm or --merge",
+          options->slurm_resources.max_array_size));
+    }
+    RunSweepCommand(*options, mpi);
+  });
 }
 
 void RunSweepCommand(const SweepCommandOptions& options, SweepMpiRunner mpi) {
@@ -238,7 +259,7 @@ void RunSweepCommand(const SweepCommandOptions& options, SweepMpiRunner mpi) {
         *options.db));
   }
   if (options.merge) {
-    MergeSweepRuns(plan, SweepStudyPath(plan, options));
+    MergeSweepRuns(plan, SweepStudyPath(plan, options), options.slurm_resources.max_array_size);
     return;
   }
   if (options.slurm) {

@@ -20,7 +20,8 @@
 // Past one machine (every way gives the same study database, bit for bit):
 // - --merge: runs nothing; merges every line's run, in manifest order, into the study database
 //   --db (default OUT_DIR.sqlite, beside the folder), as `railwear merge` does. Refused (exit 2,
-//   naming the lines and how to run them) unless every line's run is complete.
+//   naming the lines and how to run them) unless every line's run is complete. With
+//   --max-array-size (a sliced Slurm sweep's merge job passes it) the resubmit hint is per slice.
 // - --mpi, under `mpirun -n K` (app/sweep_mpi.h): rank 0 hands the lines to the ranks (itself
 //   included) one at a time, largest expected cost first (SweepLineCost); each run writes its
 //   own database; rank 0 merges them into --db at the end when every line is complete.
@@ -79,7 +80,9 @@ void RunSweepLine(const SweepPlan& plan, const SweepLine& line, const SweepComma
 std::string SweepStudyPath(const SweepPlan& plan, const SweepCommandOptions& options);
 
 // Merges every line's run into `study_db` in manifest order (RunMergeCommand). Throws InputError
-// naming the lines whose run is missing or not complete, and nothing is merged.
-void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db);
+// naming the lines whose run is missing or not complete, and how to resubmit them (for a plan of
+// more lines than `max_array_size`, submitted in slices: per slice, `RAILWEAR_SWEEP_OFFSET=K
+// submit.sh --array=I,J`), and nothing is merged.
+void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db, int max_array_size = 1001);
 
 }  // namespace railwear::app

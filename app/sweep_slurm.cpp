@@ -120,10 +120,11 @@ SlurmScripts MakeSlurmScripts(const SlurmSweepJob& job) {
       "{shared}"
       "#SBATCH --output={logs}/merge_%j.log\n"
       "set -euo pipefail\n"
-      "exec {sweep} --merge --db {qdb}\n",
+      "exec {sweep} --merge --db {qdb}{max_array}\n",
       fmt::arg("plan", job.plan), fmt::arg("out", job.out_dir), fmt::arg("db", job.study_db),
       fmt::arg("name", job.name), fmt::arg("shared", SharedDirectives(r)), fmt::arg("logs", logs),
-      fmt::arg("sweep", sweep), fmt::arg("qdb", Quote(job.study_db)));
+      fmt::arg("sweep", sweep), fmt::arg("qdb", Quote(job.study_db)),
+      fmt::arg("max_array", sliced ? fmt::format(" --max-array-size {}", slice) : std::string()));
   if (sliced) {
     std::string slices;
     for (int first = 0; first < job.lines; first += slice) {

@@ -92,6 +92,15 @@ TEST_F(SweepSlurmSliceTest, APlanPastMaxArraySizeIsSubmittedInSlicesWithTheirOff
   for (size_t i = 0; i < manifest.size(); ++i) {
     EXPECT_EQ(fs::exists(dir_ / "runs" / (manifest[i] + ".sqlite")), i == 4) << i;
   }
+  // The merge job refuses and says how to resubmit the missing lines, slice by slice.
+  EXPECT_TRUE(Contains(ReadFile(dir_ / "runs/merge.sbatch"), " --max-array-size 2\n"));
+  const Outcome merge = Shell("bash runs/merge.sbatch");
+  EXPECT_EQ(merge.exit_code, 2) << merge.err;
+  EXPECT_TRUE(Contains(merge.err, "(not run: 0-3; started, not complete: none)")) << merge.err;
+  EXPECT_TRUE(Contains(merge.err, "`RAILWEAR_SWEEP_OFFSET=0 " + runs +
+                                      "/submit.sh --array=0-1`, `RAILWEAR_SWEEP_OFFSET=2 " + runs +
+                                      "/submit.sh --array=0-1`"))
+      << merge.err;
 }
 
 TEST_F(SweepSlurmSliceTest, APlanThatFitsOneArrayHasNoOffsetAndBadSizesAreRefused) {
@@ -104,7 +113,9 @@ TEST_F(SweepSlurmSliceTest, APlanThatFitsOneArrayHasNoOffsetAndBadSizesAreRefuse
   EXPECT_EQ(zero.exit_code, 2);
   EXPECT_TRUE(Contains(zero.err, "--max-array-size 0: expected the cluster's MaxArraySize"))
       << zero.err;
-  EXPECT_EQ(Run("sweep plan.toml --max-array-size 2").exit_code, 2);  // needs --slurm
+  const Outcome alone = Run("sweep plan.toml --max-array-size 2");  // needs --slurm or --merge
+  EXPECT_EQ(alone.exit_code, 2);
+  EXPECT_TRUE(Contains(alone.err, "expected --slurm or --merge")) << alone.err;
 }
 
 }  // namespace
