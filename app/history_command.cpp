@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/gnuplot.h"
+#include "app/history_ensemble.h"
 #include "app/history_plot.h"
 #include "app/number_format.h"
 #include "app/paths.h"
@@ -138,8 +139,8 @@ bool IsNumber(const std::string& s) {
   return end == s.c_str() + s.size();
 }
 
-// Columns padded to their widest cell, two spaces apart; numbers right-aligned, text left-aligned;
-// a rule of dashes under the header.
+}  // namespace
+
 std::string AlignedTable(const std::vector<std::string>& columns,
                          const std::vector<std::vector<std::string>>& rows) {
   std::vector<size_t> width(columns.size());
@@ -168,6 +169,8 @@ std::string AlignedTable(const std::vector<std::string>& columns,
   for (const auto& row : rows) out += line(row);
   return out;
 }
+
+namespace {
 
 // Tab-separated: header line, then one line per row (tabs and newlines in cells become spaces).
 std::string TsvTable(const std::vector<std::string>& columns,
@@ -254,7 +257,9 @@ HistoryProfileFormat HistoryProfileFormatFromString(const std::string& text) {
 void SetupHistory(CLI::App& app) {
   auto common = std::make_shared<HistoryOptions>();
   CLI::App* history = app.add_subcommand(
-      "history", "Read a profile-history database: runs, steps, profiles, wear, plots, SQL");
+      "history",
+      "Read a profile-history database: runs, steps, profiles, wear, plots, SQL, ensemble bands "
+      "and life to wear limits");
   history->require_subcommand(1);
   history->fallthrough();  // --db also after the subcommand
   history->add_option("--db", common->db, "Profile-history database (SQLite)")
@@ -324,6 +329,8 @@ void SetupHistory(CLI::App& app) {
   sql_cmd->add_option("query", sql->sql, "e.g. \"SELECT step, mgt FROM steps\"")->required();
   sql_cmd->add_flag("--tsv", sql->tsv, "Tab-separated output instead of aligned columns");
   sql_cmd->callback([common, sql]() { RunHistorySql(*common, *sql); });
+
+  SetupHistoryEnsemble(history, common);
 }
 
 void RunHistoryRuns(const HistoryOptions& o) {

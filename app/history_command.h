@@ -1,7 +1,8 @@
 // `railwear history [--db FILE] runs | calibrations | steps RUN | profile RUN | diff RUN A B |
-// plot RUN | sql Q`: reading a study's profile-history database (profiles_db/SCHEMA.md) — runs,
-// influence-constant calibrations, the steps of a run,
-// a step's profile as CSV/BAN/JSON, the wear between two steps, plots, and read-only SQL.
+// plot RUN | sql Q | bands | life`: reading a study's profile-history database
+// (profiles_db/SCHEMA.md) — runs, influence-constant calibrations, the steps of a run,
+// a step's profile as CSV/BAN/JSON, the wear between two steps, plots, read-only SQL, and an
+// ensemble's percentile bands and traffic to wear limits (app/history_ensemble.h).
 //
 // Data goes to stdout, messages to stderr. The database must exist and be a railwear profile-
 // history database: history never creates one (a missing or empty file is InputError, exit 2),
@@ -13,6 +14,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/numerics/enum_names.h"
 
@@ -78,7 +80,13 @@ struct HistorySqlOptions {
   bool tsv = false;  // tab-separated instead of aligned columns
 };
 
-// Adds `history` with its subcommands runs, steps, profile, diff, plot and sql.
+// Columns padded to their widest cell, two spaces apart; numbers right-aligned, text left-aligned;
+// a rule of dashes under the header (every history table).
+std::string AlignedTable(const std::vector<std::string>& columns,
+                         const std::vector<std::vector<std::string>>& rows);
+
+// Adds `history` with its subcommands runs, steps, profile, diff, plot, sql, bands and life
+// (app/history_ensemble.h).
 void SetupHistory(CLI::App& app);
 
 // Each opens options.db (InputError when missing, empty or not a railwear database).

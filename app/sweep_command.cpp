@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <CLI/CLI.hpp>
 
 #include "app/merge_command.h"
@@ -78,11 +79,18 @@ void WriteSlurm(const SweepPlan& plan, const SweepCommandOptions& options) {
   job.name = fs::path(plan.path).stem().string();
   job.resources = options.slurm_resources;
   const std::string submit = WriteSlurmScripts(job);
+  const int slice = std::min(job.lines, job.resources.max_array_size);
+  if (slice < job.lines) {
+    std::cout << fmt::format(
+        "{}/sweep.sbatch: {} lines in {} slices of at most {} task(s) (Slurm's MaxArraySize); "
+        "task I of the slice from line K runs line K + I (RAILWEAR_SWEEP_OFFSET=K)\n",
+        plan.out_dir, job.lines, (job.lines + slice - 1) / slice, slice);
+  }
   std::cout << fmt::format(
       "{}/sweep.sbatch: job array of {} task(s) (--array=0-{}, {} CPU(s), {}, {} each)\n"
       "{}/merge.sbatch: merges the runs into {}\n"
       "{}: submits the array, then the merge job after it (afterok)\n",
-      plan.out_dir, job.lines, job.lines - 1, job.resources.cpus_per_task, job.resources.time,
+      plan.out_dir, slice, slice - 1, job.resources.cpus_per_task, job.resources.time,
       job.resources.mem, plan.out_dir, job.study_db, submit);
   std::cerr << fmt::format(
       "railwear: submit with `{}`; resubmit killed or failed lines by index with `{} "
@@ -135,7 +143,7 @@ std::string SweepStudyPath(const SweepPlan& plan, const SweepCommandOptions& opt
   return dir + ".sqlite";
 }
 
-void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db) {
+void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db, int max_array_size) {
   std::vector<int> missing, unfinished;
   MergeCommandOptions merge;
   merge.out = study_db;
@@ -154,14 +162,27 @@ void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db) {
     std::vector<int> all = missing;
     all.insert(all.end(), unfinished.begin(), unfinished.end());
     std::sort(all.begin(), all.end());
+    // Slurm: one array, or (past MaxArraySize) the slices' task ids with their offsets.
+    std::string resubmit;
+    const int lines = static_cast<int>(plan.lines.size());
+    if (lines <= max_array_size) {
+      resubmit = fmt::format("`sbatch --array={} {}/sweep.sbatch`", Ranges(all), plan.out_dir);
+    } else {
+      for (size_t i = 0; i < all.size();) {
+        const int first = all[i] / max_array_size * max_array_size;
+        std::vector<int> tasks;
+        for (; i < all.size() && all[i] < first + max_array_size; ++i) tasks.push_back(all[i] - first);
+        resubmit += fmt::format("{}`RAILWEAR_SWEEP_OFFSET={} {}/submit.sh --array={}`",
+                                resubmit.empty() ? "" : ", ", first, plan.out_dir, Ranges(tasks));
+      }
+    }
     throw InputError(fmt::format(
         "sweep {}: {} of {} line(s) not complete in {} (not run: {}; started, not complete: "
         "{}); expected every line complete before the merge: run them with `railwear sweep {} "
-        "--index N`, or resubmit them with `sbatch --array={} {}/sweep.sbatch`; complete lines "
-        "are skipped",
+        "--index N`, or resubmit them with {}; complete lines are skipped",
         plan.path, all.size(), plan.lines.size(), plan.out_dir,
         missing.empty() ? "none" : Ranges(missing),
-        unfinished.empty() ? "none" : Ranges(unfinished), plan.path, Ranges(all), plan.out_dir));
+        unfinished.empty() ? "none" : Ranges(unfinished), plan.path, resubmit));
   }
   RunMergeCommand(merge);
 }
@@ -207,12 +228,24 @@ void SetupSweep(CLI::App& app, SweepMpiRunner mpi) {
   cmd->add_option("--mem", r.mem, "--slurm: memory of each task (default 2G)")->needs(slurm);
   cmd->add_option("--partition", r.partition, "--slurm: the partition (default: Slurm's)")
       ->needs(slurm);
+  CLI::Option* max_array = cmd->add_option(
+      "--max-array-size", r.max_array_size,
+      "--slurm: the cluster's MaxArraySize (default 1001); a plan of more lines is submitted in "
+      "slices of this many tasks (--merge: how to resubmit a line of a slice)");
   list->excludes(index, merge, with_mpi, slurm);
   index->excludes(merge, with_mpi, slurm);
   merge->excludes(with_mpi, slurm);
   with_mpi->excludes(slurm);
   threads->excludes(merge, slurm);
-  cmd->callback([options, mpi]() { RunSweepCommand(*options, mpi); });
+  cmd->callback([options, mpi, max_array]() {
+    if (max_array->count() > 0 && !options->slurm && !options->merge) {
+      throw InputError(fmt::format(
+          "--max-array-size {}: the Slurm array size of --slurm (or of --merge's resubmit hint); "
+          "expected --slurm or --merge",
+          options->slurm_resources.max_array_size));
+    }
+    RunSweepCommand(*options, mpi);
+  });
 }
 
 void RunSweepCommand(const SweepCommandOptions& options, SweepMpiRunner mpi) {
@@ -226,7 +259,7 @@ void RunSweepCommand(const SweepCommandOptions& options, SweepMpiRunner mpi) {
         *options.db));
   }
   if (options.merge) {
-    MergeSweepRuns(plan, SweepStudyPath(plan, options));
+    MergeSweepRuns(plan, SweepStudyPath(plan, options), options.slurm_resources.max_array_size);
     return;
   }
   if (options.slurm) {
@@ -261,6 +294,12 @@ void RunSweepCommand(const SweepCommandOptions& options, SweepMpiRunner mpi) {
     }
     std::cerr << fmt::format("railwear: {} run(s) in {}; databases in {}\n", lines,
                              options.plan_path, plan.out_dir);
+    if (plan.ensemble) {
+      std::cerr << fmt::format(
+          "railwear: an ensemble of {} sample(s) per curve class ({}, seed {}) of {}\n",
+          plan.ensemble->samples, ToString(plan.ensemble->method), plan.ensemble->seed,
+          fmt::join(plan.ensemble->keys, ", "));
+    }
     return;
   }
   if (const std::optional<int> index = LineToRun(options, lines)) {

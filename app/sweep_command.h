@@ -1,6 +1,6 @@
 // `railwear sweep PLAN.toml [--list] [--index N] [--out-dir DIR] [--threads N] [--merge]
 //                  [--db FILE] [--mpi] [--slurm [--cpus-per-task N] [--time T] [--mem M]
-//                  [--partition P]]`:
+//                  [--partition P] [--max-array-size N]]`:
 // the runs of a sweep plan (app/sweep_plan.h), each a wear study in its own database (issue 19).
 //
 // --list prints the manifest (stdout): one line per run, its id and the values it sets
@@ -20,11 +20,13 @@
 // Past one machine (every way gives the same study database, bit for bit):
 // - --merge: runs nothing; merges every line's run, in manifest order, into the study database
 //   --db (default OUT_DIR.sqlite, beside the folder), as `railwear merge` does. Refused (exit 2,
-//   naming the lines and how to run them) unless every line's run is complete.
+//   naming the lines and how to run them) unless every line's run is complete. With
+//   --max-array-size (a sliced Slurm sweep's merge job passes it) the resubmit hint is per slice.
 // - --mpi, under `mpirun -n K` (app/sweep_mpi.h): rank 0 hands the lines to the ranks (itself
 //   included) one at a time, largest expected cost first (SweepLineCost); each run writes its
 //   own database; rank 0 merges them into --db at the end when every line is complete.
-// - --slurm (app/sweep_slurm.h): writes OUT_DIR/sweep.sbatch (a job array, one task per line),
+// - --slurm (app/sweep_slurm.h): writes OUT_DIR/sweep.sbatch (a job array, one task per line;
+//   slices of --max-array-size tasks, Slurm's MaxArraySize, for a plan of more lines),
 //   OUT_DIR/merge.sbatch (the --merge above) and OUT_DIR/submit.sh (the array, then the merge
 //   job with --dependency=afterok), and runs nothing.
 #pragma once
@@ -78,7 +80,9 @@ void RunSweepLine(const SweepPlan& plan, const SweepLine& line, const SweepComma
 std::string SweepStudyPath(const SweepPlan& plan, const SweepCommandOptions& options);
 
 // Merges every line's run into `study_db` in manifest order (RunMergeCommand). Throws InputError
-// naming the lines whose run is missing or not complete, and nothing is merged.
-void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db);
+// naming the lines whose run is missing or not complete, and how to resubmit them (for a plan of
+// more lines than `max_array_size`, submitted in slices: per slice, `RAILWEAR_SWEEP_OFFSET=K
+// submit.sh --array=I,J`), and nothing is merged.
+void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db, int max_array_size = 1001);
 
 }  // namespace railwear::app

@@ -216,13 +216,14 @@ Axis CasesAxis(const std::string& file, const std::string& plan_origin) {
 }
 
 Axis ReadAxis(const Fields& axis, const std::string& plan_dir) {
-  axis.AllowOnly({"key", "values", "range", "cases"});
+  axis.AllowOnly({"key", "values", "range", "cases", "distribution"});
   const std::string origin = fmt::format("{}:{}", axis.file(), axis.Line());
-  const int kinds = axis.Has("values") + axis.Has("range") + axis.Has("cases");
+  const int kinds =
+      axis.Has("values") + axis.Has("range") + axis.Has("cases") + axis.Has("distribution");
   if (kinds != 1) {
-    throw InputError(
-        fmt::format("{}: [[axis]] table with {} of values, range and cases; expected exactly one",
-                    origin, kinds));
+    throw InputError(fmt::format(
+        "{}: [[axis]] table with {} of values, range, cases and distribution; expected exactly one",
+        origin, kinds));
   }
   if (axis.Has("cases")) {
     if (axis.Has("key")) axis.Fail("key", "no key with cases (the cases file's header names them)");
@@ -241,7 +242,121 @@ Axis ReadAxis(const Fields& axis, const std::string& plan_dir) {
   return out;
 }
 
+// The number at `key` in the base scene (the default median of a log-normal axis); nullopt when
+// the base scene has no number there.
+std::optional<double> BaseNumber(const toml::table& base, const std::string& key,
+                                 const std::string& origin) {
+  const toml::node* node = &base;
+  for (const Segment& s : ParseKeyPath(key, origin)) {
+    const toml::table* t = node->as_table();
+    if (t == nullptr) return std::nullopt;
+    node = t->get(s.name);
+    if (node == nullptr) return std::nullopt;
+    if (s.index >= 0) {
+      const toml::array* a = node->as_array();
+      if (a == nullptr || static_cast<size_t>(s.index) >= a->size()) return std::nullopt;
+      node = a->get(static_cast<size_t>(s.index));
+    }
+  }
+  return node->value<double>();
+}
+
+struct DistributionAxis {
+  std::string key;
+  SampleDistribution distribution;
+  std::string origin;
+};
+
+// `distribution = { kind, ... }` of an [[axis]] (ensemble.h's kinds and parameters).
+DistributionAxis ReadDistributionAxis(const Fields& axis, const toml::table& base,
+                                      const std::string& base_path) {
+  DistributionAxis out;
+  out.key = axis.RequiredString("key", "a dotted scene key such as wear.k");
+  out.origin = fmt::format("{}:{}", axis.file(), LineOf(*axis.Node("distribution")));
+  ParseKeyPath(out.key, out.origin);
+  const std::optional<Fields> d = axis.Table(
+      "distribution", "a table { kind = \"uniform\" | \"normal\" | \"lognormal\", ... }");
+  const std::optional<std::string> kind = d->Choice("kind", {"uniform", "normal", "lognormal"});
+  if (!kind) d->FailMissing("kind", "\"uniform\", \"normal\" or \"lognormal\"");
+  SampleDistribution& s = out.distribution;
+  if (*kind == "uniform") {
+    d->AllowOnly({"kind", "min", "max"});
+    s.kind = SampleDistributionKind::kUniform;
+    s.a = d->RequiredNumber("min", AnyFinite());
+    s.b = d->RequiredNumber("max", AnyFinite());
+  } else {
+    if (*kind == "normal") {
+      d->AllowOnly({"kind", "mean", "std", "min", "max"});
+      s.kind = SampleDistributionKind::kNormal;
+      s.a = d->RequiredNumber("mean", AnyFinite());
+      s.b = d->RequiredNumber("std", Positive());
+    } else {
+      d->AllowOnly({"kind", "median", "sigma_ln", "min", "max"});
+      s.kind = SampleDistributionKind::kLognormal;
+      if (d->Has("median")) {
+        s.a = *d->Number("median", Positive());
+      } else {
+        const std::optional<double> v = BaseNumber(base, out.key, out.origin);
+        if (!v || !(*v > 0.0)) {
+          d->FailMissing("median", fmt::format("a number > 0 (the default, the base scene {}'s "
+                                               "'{}', is {})",
+                                               base_path, out.key,
+                                               v ? fmt::format("{}", *v) : "not there"));
+        }
+        s.a = *v;
+      }
+      s.b = d->Number("sigma_ln", Positive()).value_or(kWearCoefficientSigmaLn);
+    }
+    s.lower = d->Number("min", AnyFinite()).value_or(-INFINITY);
+    s.upper = d->Number("max", AnyFinite()).value_or(INFINITY);
+  }
+  ValidateSampleDistribution(s, fmt::format("{}: axis '{}' distribution", out.origin, out.key));
+  return out;
+}
+
+// A drawn value as TOML: its shortest round-trip form, always a float (1.0, 2.5e-05).
+std::string SampleValue(double v) {
+  std::string text = fmt::format("{}", v);
+  if (text.find_first_of(".en") == std::string::npos) text += ".0";
+  return text;
+}
+
+// [life]: limits, annual tonnage, curve-class lengths.
+SweepLife ReadLife(const Fields& top) {
+  SweepLife life;
+  const std::optional<Fields> t = top.Table("life", "a table [life] with [[life.limit]] tables");
+  if (!t) return life;
+  t->AllowOnly({"annual_mgt", "limit", "class"});
+  life.annual_mgt = t->Number("annual_mgt", Positive());
+  std::vector<std::string_view> measures(kEnsembleMeasures.begin(), kEnsembleMeasures.end());
+  for (const Fields& l : ArrayOfTables(*t, "limit", "[[life.limit]] tables")) {
+    l.AllowOnly({"name", "measure", "value"});
+    LifeLimit limit;
+    const std::optional<std::string> m = l.Choice("measure", measures);
+    if (!m) l.FailMissing("measure", JoinQuoted(measures));
+    limit.measure = *m;
+    limit.value = l.RequiredNumber("value", Positive());
+    limit.name = l.String("name").value_or(fmt::format("{} {}", limit.measure, limit.value));
+    limit.origin = fmt::format("{}:{}", l.file(), l.Line());
+    life.limits.push_back(std::move(limit));
+  }
+  for (const Fields& c : ArrayOfTables(*t, "class", "[[life.class]] tables")) {
+    c.AllowOnly({"match", "length_km"});
+    LifeClassLength length;
+    length.match = c.RequiredString("match", "a curve class label of the manifest, e.g. "
+                                             "\"track.radius_m=600\"");
+    length.length_km = c.RequiredNumber("length_km", Positive());
+    length.origin = fmt::format("{}:{}", c.file(), LineOf(*c.Node("match")));
+    life.classes.push_back(std::move(length));
+  }
+  return life;
+}
+
 }  // namespace
+
+std::string ToString(SamplingMethod method) {
+  return method == SamplingMethod::kSobol ? "sobol" : "latin-hypercube";
+}
 
 std::string SweepLine::Differences() const {
   std::string out;
@@ -254,7 +369,7 @@ std::string SweepLine::Differences() const {
 SweepPlan LoadSweepPlan(const std::string& path) {
   const toml::table root = ParseToml(ReadInputFile(path, "sweep plan"), path);
   const Fields top(root, "", path);
-  top.AllowOnly({"sweep", "axis"});
+  top.AllowOnly({"sweep", "axis", "life"});
   const std::optional<Fields> sweep = top.Table("sweep", "a table [sweep] with scene");
   if (!sweep) {
     throw InputError(fmt::format(
@@ -262,7 +377,7 @@ SweepPlan LoadSweepPlan(const std::string& path) {
         "wear scene)",
         path));
   }
-  sweep->AllowOnly({"scene", "out_dir"});
+  sweep->AllowOnly({"scene", "out_dir", "samples", "seed", "sampling"});
   SweepPlan plan;
   plan.path = path;
   const std::string dir = DirectoryOf(path);
@@ -271,9 +386,63 @@ SweepPlan LoadSweepPlan(const std::string& path) {
   plan.out_dir = ResolveRelativeTo(dir, sweep->String("out_dir").value_or(
                                             std::filesystem::path(path).stem().string() + "_runs"));
 
+  const std::string base_text = ReadInputFile(plan.scene_path, "base scene of a sweep plan");
+  const toml::table base = ParseToml(base_text, plan.scene_path);
+
   std::vector<Axis> axes;
+  std::vector<DistributionAxis> distributions;
+  size_t ensemble_axis = 0;  // where the ensemble's axis goes among `axes`
   for (const Fields& axis : ArrayOfTables(top, "axis", "[[axis]] tables")) {
+    if (axis.Has("distribution")) {
+      axis.AllowOnly({"key", "distribution"});
+      if (distributions.empty()) ensemble_axis = axes.size();
+      distributions.push_back(ReadDistributionAxis(axis, base, plan.scene_path));
+      continue;
+    }
     axes.push_back(ReadAxis(axis, dir));
+  }
+  plan.life = ReadLife(top);
+  if (distributions.empty()) {
+    for (const char* key : {"samples", "seed", "sampling"}) {
+      if (sweep->Has(key)) {
+        sweep->Fail(key, "no such key without a distribution axis ([[axis]] with distribution "
+                         "= { kind = ... })");
+      }
+    }
+  } else {
+    SweepEnsemble e;
+    if (!sweep->Has("samples")) {
+      sweep->FailMissing("samples", "the ensemble's size, an integer >= 1 (the plan has "
+                                    "distribution axes)");
+    }
+    e.samples = *sweep->Integer("samples", IntegerInRange(1, kMaxSweepLines));
+    e.seed = static_cast<uint64_t>(
+        sweep->Integer("seed", IntegerInRange(0, 2147483647)).value_or(1));
+    e.method = sweep->Choice("sampling", {"latin-hypercube", "sobol"}).value_or("") == "sobol"
+                   ? SamplingMethod::kSobol
+                   : SamplingMethod::kLatinHypercube;
+    if (e.method == SamplingMethod::kSobol &&
+        distributions.size() > static_cast<size_t>(kMaxSobolDimensions)) {
+      sweep->Fail("sampling", fmt::format("latin-hypercube with {} distribution axes (sobol "
+                                          "draws at most {})",
+                                          distributions.size(), kMaxSobolDimensions));
+    }
+    for (const DistributionAxis& d : distributions) {
+      e.keys.push_back(d.key);
+      e.distributions.push_back(d.distribution);
+    }
+    e.values = DrawSamples(e.distributions, e.samples, e.method, e.seed);
+    Axis samples;
+    for (const std::vector<double>& row : e.values) {
+      std::vector<SweepOverride> overrides;
+      for (size_t k = 0; k < row.size(); ++k) {
+        overrides.push_back({distributions[k].key, SampleValue(row[k]), distributions[k].origin,
+                             true});
+      }
+      samples.push_back(std::move(overrides));
+    }
+    axes.insert(axes.begin() + static_cast<std::ptrdiff_t>(ensemble_axis), std::move(samples));
+    plan.ensemble = std::move(e);
   }
   double count = 1.0;
   for (const Axis& a : axes) count *= static_cast<double>(a.size());
@@ -282,8 +451,6 @@ SweepPlan LoadSweepPlan(const std::string& path) {
                                  kMaxSweepLines));
   }
 
-  const std::string base_text = ReadInputFile(plan.scene_path, "base scene of a sweep plan");
-  const toml::table base = ParseToml(base_text, plan.scene_path);
   const int n = static_cast<int>(count);
   for (int index = 0; index < n; ++index) {
     SweepLine line;
@@ -296,14 +463,24 @@ SweepPlan LoadSweepPlan(const std::string& path) {
     }
     for (size_t a = 0; a < axes.size(); ++a) {
       for (const SweepOverride& o : axes[a][pick[a]]) line.overrides.push_back(o);
+      if (plan.ensemble && a == ensemble_axis) line.sample = static_cast<int>(pick[a]);
     }
+    for (const SweepOverride& o : line.overrides) {
+      if (!o.sampled) line.group += fmt::format("{}{}={}", line.group.empty() ? "" : " ", o.key, o.value);
+    }
+    if (line.group.empty()) line.group = "(base scene)";
     toml::table scene = base;
     for (const SweepOverride& o : line.overrides) Apply(o, plan.scene_path, &scene);
     std::ostringstream text;
     // No paths here: the text (and so the run id) is the same from any folder.
     text << fmt::format("# railwear sweep line {}: the base scene with {}\n", index,
-                        line.overrides.empty() ? "no changes" : line.Differences())
-         << scene << "\n";
+                        line.overrides.empty() ? "no changes" : line.Differences());
+    if (plan.ensemble) {
+      text << fmt::format("# railwear ensemble sample {} of {} ({}, seed {})\n", line.sample,
+                          plan.ensemble->samples, ToString(plan.ensemble->method),
+                          plan.ensemble->seed);
+    }
+    text << scene << "\n";
     line.scene_text = text.str();
     line.id = fmt::format("{:04}-{:08x}", index, Fnv1a32(line.scene_text));
     plan.lines.push_back(std::move(line));

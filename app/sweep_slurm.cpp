@@ -1,6 +1,7 @@
 // The Slurm job array, merge job and submit script of a sweep plan (app/sweep_slurm.h).
 #include "app/sweep_slurm.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <regex>
 
@@ -42,6 +43,12 @@ void ValidateSlurmResources(const SlurmResources& r) {
         fmt::format("--cpus-per-task {}: expected 1 or more CPUs per array task", r.cpus_per_task));
   }
   // sbatch --time: minutes, MM:SS, HH:MM:SS, D-HH, D-HH:MM or D-HH:MM:SS.
+  if (r.max_array_size < 1) {
+    throw InputError(fmt::format(
+        "--max-array-size {}: expected the cluster's MaxArraySize, 1 or more (Slurm's default "
+        "1001; `scontrol show config | grep MaxArraySize`)",
+        r.max_array_size));
+  }
   static const std::regex kTime(R"(\d+(:\d+){0,2}|\d+-\d+(:\d+){0,2})");
   if (!std::regex_match(r.time, kTime)) {
     throw InputError(fmt::format(
@@ -70,6 +77,9 @@ SlurmScripts MakeSlurmScripts(const SlurmSweepJob& job) {
   const std::string logs = (fs::path(job.out_dir) / "logs").string();
   const std::string sweep = fmt::format("{} sweep {} --out-dir {}", Quote(job.railwear),
                                         Quote(job.plan), Quote(job.out_dir));
+  // More lines than one array takes: slices of `slice` tasks, each with its first line's offset.
+  const int slice = r.max_array_size;
+  const bool sliced = job.lines > slice;
   SlurmScripts s;
   s.array = fmt::format(
       "#!/bin/bash\n"
@@ -86,11 +96,17 @@ SlurmScripts MakeSlurmScripts(const SlurmSweepJob& job) {
       "{shared}"
       "#SBATCH --output={logs}/sweep_%A_%a.log\n"
       "set -euo pipefail\n"
-      "exec {sweep} --threads \"${{SLURM_CPUS_PER_TASK:-{cpus}}}\" --index "
-      "\"$SLURM_ARRAY_TASK_ID\"\n",
+      "{slices}"
+      "exec {sweep} --threads \"${{SLURM_CPUS_PER_TASK:-{cpus}}}\" --index {index}\n",
       fmt::arg("plan", job.plan), fmt::arg("out", job.out_dir),
       fmt::arg("array_file", (fs::path(job.out_dir) / "sweep.sbatch").string()),
-      fmt::arg("name", job.name), fmt::arg("last", job.lines - 1),
+      fmt::arg("name", job.name), fmt::arg("last", std::min(job.lines, slice) - 1),
+      fmt::arg("slices", sliced ? fmt::format("# {} lines in slices of {} (MaxArraySize): this task runs line "
+                                              "RAILWEAR_SWEEP_OFFSET + SLURM_ARRAY_TASK_ID\n",
+                                              job.lines, slice)
+                                : std::string()),
+      fmt::arg("index", sliced ? "\"$((${RAILWEAR_SWEEP_OFFSET:-0} + SLURM_ARRAY_TASK_ID))\""
+                               : "\"$SLURM_ARRAY_TASK_ID\""),
       fmt::arg("cpus", r.cpus_per_task), fmt::arg("shared", SharedDirectives(r)),
       fmt::arg("logs", logs), fmt::arg("sweep", sweep));
   s.merge = fmt::format(
@@ -104,10 +120,47 @@ SlurmScripts MakeSlurmScripts(const SlurmSweepJob& job) {
       "{shared}"
       "#SBATCH --output={logs}/merge_%j.log\n"
       "set -euo pipefail\n"
-      "exec {sweep} --merge --db {qdb}\n",
+      "exec {sweep} --merge --db {qdb}{max_array}\n",
       fmt::arg("plan", job.plan), fmt::arg("out", job.out_dir), fmt::arg("db", job.study_db),
       fmt::arg("name", job.name), fmt::arg("shared", SharedDirectives(r)), fmt::arg("logs", logs),
-      fmt::arg("sweep", sweep), fmt::arg("qdb", Quote(job.study_db)));
+      fmt::arg("sweep", sweep), fmt::arg("qdb", Quote(job.study_db)),
+      fmt::arg("max_array", sliced ? fmt::format(" --max-array-size {}", slice) : std::string()));
+  if (sliced) {
+    std::string slices;
+    for (int first = 0; first < job.lines; first += slice) {
+      slices += fmt::format(" \"{} 0-{}\"", first, std::min(slice, job.lines - first) - 1);
+    }
+    s.submit = fmt::format(
+        "#!/bin/bash\n"
+        "# Submits the sweep {plan} ({lines} lines) as job arrays of at most {slice} tasks\n"
+        "# (Slurm's MaxArraySize), task I of the slice from line K running line K + I\n"
+        "# (RAILWEAR_SWEEP_OFFSET=K), then merge.sbatch with --dependency=afterok on all of them.\n"
+        "# With arguments one slice is submitted: `RAILWEAR_SWEEP_OFFSET=K submit.sh --array=I,J`\n"
+        "# resubmits lines K+I and K+J and a new merge job (scancel a pending one first).\n"
+        "set -euo pipefail\n"
+        "ids=\"\"\n"
+        "if [ $# -gt 0 ]; then\n"
+        "  array=$(sbatch --parsable --export=ALL,RAILWEAR_SWEEP_OFFSET=\"${{RAILWEAR_SWEEP_OFFSET:-0}}\" "
+        "\"$@\" {array})\n"
+        "  ids=\":${{array%%;*}}\"\n"
+        "else\n"
+        "  for slice in{slices}; do\n"
+        "    set -- $slice\n"
+        "    array=$(sbatch --parsable --export=ALL,RAILWEAR_SWEEP_OFFSET=\"$1\" --array=\"$2\" {array})\n"
+        "    ids=\"$ids:${{array%%;*}}\"\n"
+        "  done\n"
+        "fi\n"
+        "merge=$(sbatch --parsable --dependency=afterok\"$ids\" {merge})\n"
+        "merge=${{merge%%;*}}\n"
+        "echo \"railwear sweep: job array(s) ${{ids#:}} ({lines} line(s) of {plan}), merge job $merge "
+        "into {db}\"\n",
+        fmt::arg("plan", job.plan), fmt::arg("lines", job.lines), fmt::arg("slice", slice),
+        fmt::arg("slices", slices),
+        fmt::arg("array", Quote((fs::path(job.out_dir) / "sweep.sbatch").string())),
+        fmt::arg("merge", Quote((fs::path(job.out_dir) / "merge.sbatch").string())),
+        fmt::arg("db", job.study_db));
+    return s;
+  }
   s.submit = fmt::format(
       "#!/bin/bash\n"
       "# Submits the sweep {plan}: the job array sweep.sbatch, then merge.sbatch with\n"

@@ -13,6 +13,14 @@
 //                         resubmits lines 3 and 7 (killed or failed) and a new merge job; a
 //                         complete line is skipped, a started one continues (`wear --resume`).
 //
+// A plan of more lines than Slurm's MaxArraySize (task ids 0..MaxArraySize-1; 1001 by default,
+// `--max-array-size` when the cluster's differs) is submitted in slices: sweep.sbatch's task runs
+// line RAILWEAR_SWEEP_OFFSET + SLURM_ARRAY_TASK_ID, and submit.sh submits the array once per
+// slice (--array=0-(size-1) with --export=ALL,RAILWEAR_SWEEP_OFFSET=first line of the slice),
+// the merge job after all of them (afterok:A1:A2:...). `RAILWEAR_SWEEP_OFFSET=K submit.sh
+// --array=I,J` resubmits lines K+I and K+J. A plan that fits one array gets the scripts without
+// the offset.
+//
 // Every path in the scripts is absolute (the railwear executable as running now, the plan, the
 // runs' folder, the study database): the jobs run from any folder of any node that sees them.
 #pragma once
@@ -28,6 +36,7 @@ struct SlurmResources {
   std::string time = "01:00:00";  // sbatch --time: [D-]HH:MM:SS, MM:SS or minutes
   std::string mem = "2G";         // sbatch --mem: a number with an optional K, M, G or T
   std::optional<std::string> partition;
+  int max_array_size = 1001;  // the cluster's MaxArraySize: an array's task ids stay below it
 };
 
 // What the scripts run, every path absolute.
@@ -48,7 +57,7 @@ struct SlurmScripts {
 };
 
 // Throws InputError naming the option and the value for a resource Slurm would not take
-// (cpus_per_task < 1, a malformed time or memory, a partition name with spaces or quotes).
+// (cpus_per_task < 1, max_array_size < 1, a malformed time or memory, a partition name with spaces or quotes).
 void ValidateSlurmResources(const SlurmResources& resources);
 
 // The three scripts' text (validates the resources).

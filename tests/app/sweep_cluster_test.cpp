@@ -307,6 +307,30 @@ TEST_F(SweepClusterTest, RealSingleNodeSlurmJobArrayGivesTheSerialStudyBitForBit
   EXPECT_EQ(StudyFingerprint("runs.sqlite"), reference);
 }
 
+// Past MaxArraySize: --max-array-size 3 cuts the 4 lines into two arrays (lines 0-2 and line
+// 3, the second with RAILWEAR_SWEEP_OFFSET=3); the merge job waits for both.
+TEST_F(SweepClusterTest, RealSingleNodeSlurmSlicedArraysGiveTheSerialStudyBitForBit) {
+  SingleNodeSlurm slurm;
+  if (const std::string why_not = StartOrWhyNot(&slurm); !why_not.empty()) GTEST_SKIP() << why_not;
+  const std::string& reference = Reference();
+  ASSERT_EQ(Run("sweep plan.toml --slurm --mem 200M --time 5 --max-array-size 3").exit_code, 0);
+  const Outcome submit = Shell(slurm.Env() + " runs/submit.sh");
+  ASSERT_EQ(submit.exit_code, 0) << submit.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(submit.out, m,
+                                std::regex(R"(job array\(s\) (\d+):(\d+) .* merge job (\d+) into)")))
+      << submit.out;
+  const std::string first = m[1].str(), second = m[2].str(), merge = m[3].str();
+  ASSERT_TRUE(slurm.WaitForEmptyQueue(std::chrono::seconds(180))) << slurm.Logs();
+  EXPECT_EQ(slurm.JobState(merge), "COMPLETED") << slurm.Logs();
+  // Task 0 of the second array ran line 3.
+  EXPECT_TRUE(Contains(ReadFile(dir_ / ("runs/logs/sweep_" + second + "_0.log")),
+                       "railwear: sweep line 3 "));
+  EXPECT_TRUE(Contains(ReadFile(dir_ / ("runs/logs/sweep_" + first + "_2.log")),
+                       "railwear: sweep line 2 "));
+  EXPECT_EQ(StudyFingerprint("runs.sqlite"), reference);
+}
+
 // A Slurm array task killed with SIGKILL mid-run (its processes, from scontrol listpids), its
 // merge job left pending (afterok never satisfied), the line resubmitted by index with
 // submit.sh --array=0: the run continues, the new merge job runs, and the study holds exactly
