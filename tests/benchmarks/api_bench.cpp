@@ -1,0 +1,75 @@
+// Per-call time of the C API (include/railwear/railwear.h) as a vehicle-dynamics code calls it
+// per time step: rw_set_state + rw_calculate on a handle set up once (issue 20).
+//   BM_GaugeCornerWheel/<accuracy>: S1002 on UIC60 1:40 with the flange root on the gauge
+//     corner (lateral -5 mm: a gauge-corner and a tread patch), 100 kN, rolling at 20 m/s with
+//     5 mrad of yaw, FASTSIM tractions, conformal model; accuracy 0 draft .. 3 fine.
+//   BM_TreadFastsim/<model>: the same wheel on its tread (-10.4 mm), the cheapest rolling call:
+//     draft accuracy, model 1 halfspace (planar Boussinesq grid), 4 auto.
+// Run: build/tests/benchmarks/api_bench --benchmark_repetitions=5
+//      --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include "railwear/railwear.h"
+
+namespace {
+
+rw_problem* MakeWheel(int model_kind, int accuracy) {
+  rw_problem* p = nullptr;
+  rw_create(RW_PROBLEM_WHEEL, &p);
+  rw_set_profile_file(p, RW_BODY_WHEEL, "builtin:S1002");
+  rw_set_profile_file(p, RW_BODY_RAIL, "builtin:UIC60");
+  rw_geometry g{};
+  g.struct_size = sizeof g;
+  rw_init_geometry(&g);
+  g.rail_cant = 1.0 / 40.0;
+  rw_set_geometry(p, &g);
+  rw_model m{};
+  m.struct_size = sizeof m;
+  rw_init_model(&m);
+  m.kind = model_kind;
+  m.accuracy = accuracy;
+  m.effects = RW_EFFECT_TANGENTIAL;
+  rw_set_model(p, &m);
+  rw_set_friction(p, 0.3);
+  return p;
+}
+
+rw_state State(double lateral_m) {
+  rw_state s{};
+  s.struct_size = sizeof s;
+  rw_init_state(&s);
+  s.lateral_m = lateral_m;
+  s.yaw_rad = 5e-3;
+  s.vertical_force_N = 100e3;
+  s.speed_m_s = 20.0;
+  return s;
+}
+
+void RunSteps(benchmark::State& state, rw_problem* p, const rw_state& s) {
+  int patches = 0;
+  for (auto _ : state) {
+    rw_set_state(p, &s);
+    if (rw_calculate(p) != RW_OK) {
+      state.SkipWithError(rw_last_error(p));
+      break;
+    }
+    rw_get_patch_count(p, &patches);
+    benchmark::DoNotOptimize(patches);
+  }
+  state.counters["patches"] = patches;
+  rw_destroy(p);
+}
+
+void BM_GaugeCornerWheel(benchmark::State& state) {
+  RunSteps(state, MakeWheel(RW_MODEL_CONFORMAL, static_cast<int>(state.range(0))), State(-5e-3));
+}
+BENCHMARK(BM_GaugeCornerWheel)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+
+void BM_TreadFastsim(benchmark::State& state) {
+  RunSteps(state, MakeWheel(static_cast<int>(state.range(0)), RW_ACCURACY_DRAFT), State(-10.4e-3));
+}
+BENCHMARK(BM_TreadFastsim)->Arg(RW_MODEL_HALFSPACE)->Arg(RW_MODEL_AUTO)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
