@@ -63,7 +63,7 @@ if(PKG_CONFIG AND CC)
   string(STRIP "${run_output}" all_flags)
   separate_arguments(all_flags UNIX_COMMAND "${all_flags}")
   run("cc with pkg-config's flags" ${CC} -std=c99 ${SOURCE_DIR}/examples/embedding/c/gauge_corner.c
-      ${all_flags} -lm -Wl,-rpath,${libdir} -o ${WORK_DIR}/gauge_corner_pc)
+      ${all_flags} -Wl,-rpath,${libdir} -o ${WORK_DIR}/gauge_corner_pc)
   run("the pkg-config build" ${WORK_DIR}/gauge_corner_pc)
   message(STATUS "pkg-config build ran")
 else()
