@@ -20,6 +20,7 @@
 #include "core/contact/contact_forces.h"
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
+#include "wear/pass_depth.h"
 
 using railwear::AccuracyPreset;
 using railwear::ContactCase;
@@ -73,6 +74,13 @@ struct rw_problem {
   std::optional<double> friction;
   rw_geometry geometry{};
   std::optional<rw_state> state;
+
+  // Wear for co-simulation (rw_accumulate): the law, the bins and the accumulated depth per bin
+  // of each rail (0 single or right, 1 left), on the canted rails' arc length.
+  railwear::WearLaw wear_law;
+  double wear_bin_m = 1e-4;
+  railwear::WearGrid wear_grid[2];
+  std::vector<double> depth_m[2];
 
   std::optional<ContactCaseResult> result;
   struct PatchRef {
@@ -212,6 +220,23 @@ void Invalidate(rw_problem* p) {
   p->patches.clear();
 }
 
+// The canted rail each wheel of the handle runs on: rail 0 (single or right), 1 (left: its own
+// profile when set, else the right one's); null before the rail is set.
+const Profile* CantedRail(const rw_problem* p, int rail) {
+  if (rail == 1 && p->canted_left_rail) return &*p->canted_left_rail;
+  return p->canted_rail ? &*p->canted_rail : nullptr;
+}
+
+// The depth fields start again at zero, on bins of the current rails.
+void ResetDepth(rw_problem* p) {
+  for (int rail = 0; rail < 2; ++rail) {
+    const Profile* profile = CantedRail(p, rail);
+    p->wear_grid[rail] =
+        profile ? railwear::WearGrid::ForProfile(*profile, p->wear_bin_m) : railwear::WearGrid{};
+    p->depth_m[rail].assign(static_cast<size_t>(p->wear_grid[rail].n), 0.0);
+  }
+}
+
 void ApplyCant(rw_problem* p) {
   p->canted_rail.reset();
   p->canted_left_rail.reset();
@@ -220,6 +245,7 @@ void ApplyCant(rw_problem* p) {
                           std::pair{&p->left_rail_profile, &p->canted_left_rail}}) {
     if (*from) *to = cant != 0.0 ? railwear::ApplyCant(**from, cant) : **from;
   }
+  ResetDepth(p);
 }
 
 void SetProfile(rw_problem* p, rw_body body, Profile profile) {
@@ -873,6 +899,112 @@ rw_status rw_get_cells(rw_problem* problem, int index, size_t capacity, double* 
         if (slip_s_m_s) slip_s_m_s[k] = t ? t->slip_s_m_s[k] : 0.0;
       }
     }
+    return RW_OK;
+  });
+}
+
+rw_status rw_init_wear(rw_wear* wear) {
+  return Guard(nullptr, [&] {
+    RequireSize(wear, "rw_wear");
+    const railwear::WearLaw law;
+    wear->law = RW_WEAR_ARCHARD;
+    wear->archard_k = law.archard_k;
+    wear->bin_m = 1e-4;  // WearOptions::bin_m, the wear scene's default
+    return RW_OK;
+  });
+}
+
+rw_status rw_set_wear(rw_problem* problem, const rw_wear* wear) {
+  return Guard(problem, [&] {
+    RequireHandle(problem);
+    RequireSize(wear, "rw_wear");
+    RequireEnum(wear->law, RW_WEAR_ARCHARD, RW_WEAR_USFD, "rw_wear.law");
+    RequirePositive(wear->archard_k, "rw_wear.archard_k");
+    // Bins from 1 micrometre to 10 mm (a profile spans some 0.2 m).
+    RequireInRange(wear->bin_m, 1e-6, 1e-2, "rw_wear.bin_m");
+    railwear::WearLaw law;
+    law.kind = static_cast<railwear::WearLawKind>(wear->law);
+    law.archard_k = wear->archard_k;
+    railwear::ValidateWearLaw(law);
+    problem->wear_law = law;
+    problem->wear_bin_m = wear->bin_m;
+    ResetDepth(problem);
+    return RW_OK;
+  });
+}
+
+rw_status rw_accumulate(rw_problem* problem, double passes) {
+  return Guard(problem, [&] {
+    RequireHandle(problem);
+    if (!(std::isfinite(passes) && passes >= 0.0)) {
+      Fail(RW_ERROR_INVALID_VALUE,
+           fmt::format("passes = {}: expected a finite weight >= 0 (V dt / L)", passes));
+    }
+    RequireResult(problem);
+    std::string message;
+    if (WorstStatus(problem, &message) != RW_OK) {
+      Fail(RW_ERROR_CALL_ORDER, "rw_accumulate needs a converged rw_calculate: " + message);
+    }
+    if (!(problem->effects & RW_EFFECT_TANGENTIAL)) {
+      Fail(RW_ERROR_CALL_ORDER, "rw_accumulate needs rolling contact: set RW_EFFECT_TANGENTIAL "
+                                "with rw_set_model (the wear laws use slip and traction)");
+    }
+    const railwear::WearLawKind kind = problem->wear_law.kind;
+    const double hardness = problem->rail_material.hardness_Pa;
+    if (kind != railwear::WearLawKind::kUsfd && !(hardness > 0.0)) {
+      Fail(RW_ERROR_CALL_ORDER, "the Archard and KTH wear laws need the rail's hardness_Pa: set "
+                                "it with rw_set_materials");
+    }
+    // All of a step's depth first, then the sum: a failure leaves the field as it was.
+    const double speed = problem->state->speed_m_s;
+    std::vector<double> step[2];
+    for (int rail = 0; rail < 2; ++rail) step[rail].assign(problem->depth_m[rail].size(), 0.0);
+    for (const rw_problem::PatchRef& ref : problem->patches) {
+      const std::vector<double> depth = railwear::CalcPatchPassDepth(
+          *ref.patch, *CantedRail(problem, ref.wheel), problem->wear_law, hardness, speed,
+          problem->wear_grid[ref.wheel]);
+      for (size_t b = 0; b < depth.size(); ++b) step[ref.wheel][b] += depth[b];
+    }
+    for (int rail = 0; rail < 2; ++rail) {
+      for (size_t b = 0; b < step[rail].size(); ++b) problem->depth_m[rail][b] += passes * step[rail][b];
+    }
+    return RW_OK;
+  });
+}
+
+rw_status rw_get_depth_count(rw_problem* problem, int rail, size_t* count) {
+  return Guard(problem, [&] {
+    RequireHandle(problem);
+    RequireNonNull(count, "count");
+    RequireEnum(rail, 0, 1, "rail");
+    *count = problem->depth_m[rail].size();
+    return RW_OK;
+  });
+}
+
+rw_status rw_get_depth(rw_problem* problem, int rail, size_t capacity, double* s_m,
+                       double* depth_m) {
+  return Guard(problem, [&] {
+    RequireHandle(problem);
+    RequireEnum(rail, 0, 1, "rail");
+    const std::vector<double>& d = problem->depth_m[rail];
+    if (capacity < d.size()) {
+      Fail(RW_ERROR_BUFFER_TOO_SMALL,
+           fmt::format("capacity = {}: rail {} has {} bins (rw_get_depth_count)", capacity, rail,
+                       d.size()));
+    }
+    for (size_t b = 0; b < d.size(); ++b) {
+      if (s_m) s_m[b] = problem->wear_grid[rail].Centre(static_cast<int>(b));
+      if (depth_m) depth_m[b] = d[b];
+    }
+    return RW_OK;
+  });
+}
+
+rw_status rw_reset_depth(rw_problem* problem) {
+  return Guard(problem, [&] {
+    RequireHandle(problem);
+    ResetDepth(problem);
     return RW_OK;
   });
 }

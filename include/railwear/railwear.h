@@ -14,7 +14,8 @@
  *
  * Call sequence (docs/library.md):
  *   rw_create -> setup (profiles required; materials, model, influence constants, friction,
- *   geometry optional) -> per step: rw_set_state, rw_calculate, queries -> rw_destroy.
+ *   geometry, wear optional) -> per step: rw_set_state, rw_calculate, queries (and
+ *   rw_accumulate for wear) -> rw_destroy.
  *
  * Frames (core/notation.md): rail frame R: x forward (rolling direction), y lateral toward the
  * rail's field side, z down. Track frame: x forward, Y to the right, z down. A wheelset's left
@@ -290,6 +291,40 @@ RW_API rw_status rw_get_cell_count(rw_problem* problem, int index, size_t* count
 RW_API rw_status rw_get_cells(rw_problem* problem, int index, size_t capacity, double* x_m,
                               double* s_m, double* pressure_Pa, double* traction_x_Pa,
                               double* traction_s_Pa, double* slip_x_m_s, double* slip_s_m_s);
+
+/* ---- Wear for co-simulation -------------------------------------------------------------- */
+
+/* The wear law of rw_accumulate (wear/wear_law.h): Archard with a constant coefficient, the KTH
+ * map (Jendel 2002) with its published coefficients, its continuous variant, or the USFD law. */
+typedef int rw_wear_law;
+enum { RW_WEAR_ARCHARD = 0, RW_WEAR_KTH = 1, RW_WEAR_KTH_CONTINUOUS = 2, RW_WEAR_USFD = 3 };
+
+typedef struct rw_wear {
+  size_t struct_size;
+  rw_wear_law law;  /* default RW_WEAR_ARCHARD */
+  double archard_k; /* Archard's coefficient [-] > 0; default 1e-4 */
+  double bin_m;     /* width of the depth field's bins of rail arc length [m] > 0; default 1e-4 */
+} rw_wear;
+
+RW_API rw_status rw_init_wear(rw_wear* wear);
+/* Sets the law and the bins; clears the accumulated depth. Archard and KTH need the rail's
+ * hardness_Pa (rw_set_materials). */
+RW_API rw_status rw_set_wear(rw_problem* problem, const rw_wear* wear);
+/* Adds the last rw_calculate's wear, `passes` times its per-pass depth, to the handle's rail
+ * depth field: the depth one wheel pass removes, per bin of rail-profile arc length, computed as
+ * `railwear wear` computes it (wear/pass_depth.h), summed over the patches. `passes` >= 0 weights
+ * the step: for a time step dt at speed V on a rail section of length L, passes = V dt / L.
+ * Needs RW_EFFECT_TANGENTIAL and a converged calculate; rail 0 is the single or right rail, 1 the
+ * left rail (its own frame). A new rail profile, cant or rw_set_wear clears the field. */
+RW_API rw_status rw_accumulate(rw_problem* problem, double passes);
+/* The depth field of rail 0 (single or right) or 1 (left): bin count, then the bins' centres
+ * (arc length from the rail profile's first point [m]) and depths [m]; either buffer may be
+ * NULL. */
+RW_API rw_status rw_get_depth_count(rw_problem* problem, int rail, size_t* count);
+RW_API rw_status rw_get_depth(rw_problem* problem, int rail, size_t capacity, double* s_m,
+                              double* depth_m);
+/* Sets the depth field to zero. */
+RW_API rw_status rw_reset_depth(rw_problem* problem);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -15,6 +15,7 @@ size_t rw_test_c_sizeof(int which) {
     case 4: return sizeof(rw_state);
     case 5: return sizeof(rw_summary);
     case 6: return sizeof(rw_patch);
+    case 7: return sizeof(rw_wear);
     default: return 0;
   }
 }

@@ -26,9 +26,9 @@ TEST(ApiAbi, StructSizesArePinnedAndEqualInCAndCpp) {
   static_assert(sizeof(void*) == 8, "the pinned sizes are those of an LP64 platform");
   const size_t cpp[] = {sizeof(rw_material), sizeof(rw_model), sizeof(rw_influence_constants),
                         sizeof(rw_geometry), sizeof(rw_state), sizeof(rw_summary),
-                        sizeof(rw_patch)};
-  const size_t pinned[] = {40, 48, 88, 56, 136, 104, 184};
-  for (int i = 0; i < 7; ++i) {
+                        sizeof(rw_patch), sizeof(rw_wear)};
+  const size_t pinned[] = {40, 48, 88, 56, 136, 104, 184, 32};
+  for (int i = 0; i < 8; ++i) {
     EXPECT_EQ(rw_test_c_sizeof(i), cpp[i]) << "struct " << i;
     EXPECT_EQ(cpp[i], pinned[i]) << "struct " << i;
   }
@@ -40,6 +40,7 @@ TEST(ApiAbi, StructSizesArePinnedAndEqualInCAndCpp) {
   EXPECT_EQ(offsetof(rw_state, struct_size), 0u);
   EXPECT_EQ(offsetof(rw_summary, struct_size), 0u);
   EXPECT_EQ(offsetof(rw_patch, struct_size), 0u);
+  EXPECT_EQ(offsetof(rw_wear, struct_size), 0u);
 }
 
 TEST(ApiAbi, EnumValuesArePinned) {
@@ -51,6 +52,7 @@ TEST(ApiAbi, EnumValuesArePinned) {
   EXPECT_EQ(RW_TANGENTIAL_AUTO, 2);
   EXPECT_EQ(RW_EFFECT_COUPLING, 0x4u);
   EXPECT_EQ(RW_STATE_CREEPAGE, 0x1u);
+  EXPECT_EQ(RW_WEAR_USFD, 3);
 }
 
 TEST(ApiAbi, ACProgramSolvesAsCppDoes) {

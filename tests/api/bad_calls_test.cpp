@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -698,6 +699,102 @@ std::vector<BadCall> Table() {
           });
     }
   }
+  // --- Wear for co-simulation.
+  add("null handle: set_wear", RW_ERROR_NULL_ARGUMENT, [](rw_problem*) {
+    rw_wear w{};
+    w.struct_size = sizeof w;
+    rw_init_wear(&w);
+    return rw_set_wear(nullptr, &w);
+  });
+  add("null handle: accumulate", RW_ERROR_NULL_ARGUMENT,
+      [](rw_problem*) { return rw_accumulate(nullptr, 1.0); });
+  add("null handle: get_depth_count", RW_ERROR_NULL_ARGUMENT, [](rw_problem*) {
+    size_t n = 0;
+    return rw_get_depth_count(nullptr, 0, &n);
+  });
+  add("null handle: get_depth", RW_ERROR_NULL_ARGUMENT, [](rw_problem*) {
+    double b[1];
+    return rw_get_depth(nullptr, 0, 1, b, b);
+  });
+  add("null handle: reset_depth", RW_ERROR_NULL_ARGUMENT,
+      [](rw_problem*) { return rw_reset_depth(nullptr); });
+  add("null wear", RW_ERROR_NULL_ARGUMENT, [](rw_problem* p) { return rw_set_wear(p, nullptr); });
+  add("null depth count", RW_ERROR_NULL_ARGUMENT,
+      [](rw_problem* p) { return rw_get_depth_count(p, 0, nullptr); });
+  add("null: init_wear", RW_ERROR_NULL_ARGUMENT, [](rw_problem*) { return rw_init_wear(nullptr); });
+  for (size_t size : bad_sizes) {
+    const std::string z = " struct_size " + std::to_string(size);
+    add("rw_wear" + z, RW_ERROR_STRUCT_SIZE, [size](rw_problem* p) {
+      rw_wear w{};
+      w.struct_size = sizeof w;
+      rw_init_wear(&w);
+      w.struct_size = size;
+      return rw_set_wear(p, &w);
+    });
+    add("init rw_wear" + z, RW_ERROR_STRUCT_SIZE, [size](rw_problem*) {
+      rw_wear w{};
+      w.struct_size = size;
+      return rw_init_wear(&w);
+    });
+  }
+  for (int law : {-1, 4, 99, INT_MIN}) {
+    add("rw_wear.law = " + std::to_string(law), RW_ERROR_UNKNOWN_FLAG, [law](rw_problem* p) {
+      rw_wear w{};
+      w.struct_size = sizeof w;
+      rw_init_wear(&w);
+      w.law = law;
+      return rw_set_wear(p, &w);
+    });
+  }
+  for (const auto& [field, offset, v] : std::vector<std::tuple<const char*, size_t, double>>{
+           {"archard_k", offsetof(rw_wear, archard_k), 0.0},
+           {"archard_k", offsetof(rw_wear, archard_k), -1e-4},
+           {"archard_k", offsetof(rw_wear, archard_k), kNaN},
+           {"archard_k", offsetof(rw_wear, archard_k), kInf},
+           {"bin_m", offsetof(rw_wear, bin_m), 0.0},
+           {"bin_m", offsetof(rw_wear, bin_m), -1e-4},
+           {"bin_m", offsetof(rw_wear, bin_m), 1.0},
+           {"bin_m", offsetof(rw_wear, bin_m), kNaN}}) {
+    add(std::string("rw_wear.") + field + " = " + Num(v), RW_ERROR_INVALID_VALUE,
+        [offset = offset, v = v](rw_problem* p) {
+          rw_wear w{};
+          w.struct_size = sizeof w;
+          rw_init_wear(&w);
+          At(w, offset) = v;
+          return rw_set_wear(p, &w);
+        });
+  }
+  for (double v : {-1.0, -1e-300, kNaN, kInf, -kInf}) {
+    add("accumulate passes = " + Num(v), RW_ERROR_INVALID_VALUE,
+        [v](rw_problem* p) { return rw_accumulate(p, v); }, Ready::kCalculated);
+  }
+  add("accumulate before calculate", RW_ERROR_CALL_ORDER,
+      [](rw_problem* p) { return rw_accumulate(p, 1.0); });
+  add("accumulate on a new handle", RW_ERROR_CALL_ORDER,
+      [](rw_problem* p) { return rw_accumulate(p, 1.0); }, Ready::kNew);
+  add("accumulate without rolling contact", RW_ERROR_CALL_ORDER,
+      [](rw_problem* p) { return rw_accumulate(p, 1.0); }, Ready::kCalculated);
+  for (int rail : {-1, 2, 99}) {
+    add("get_depth_count rail " + std::to_string(rail), RW_ERROR_UNKNOWN_FLAG, [rail](rw_problem* p) {
+      size_t n = 0;
+      return rw_get_depth_count(p, rail, &n);
+    });
+    add("get_depth rail " + std::to_string(rail), RW_ERROR_UNKNOWN_FLAG, [rail](rw_problem* p) {
+      double b[1];
+      return rw_get_depth(p, rail, 1, b, b);
+    });
+  }
+  for (int shortfall : {1, 1000}) {
+    add("get_depth buffer " + std::to_string(shortfall) + " short", RW_ERROR_BUFFER_TOO_SMALL,
+        [shortfall](rw_problem* p) -> rw_status {
+          size_t n = 0;
+          rw_get_depth_count(p, 0, &n);
+          if (n <= static_cast<size_t>(shortfall)) return RW_ERROR_INTERNAL;
+          std::vector<double> b(n);
+          return rw_get_depth(p, 0, n - static_cast<size_t>(shortfall), b.data(), nullptr);
+        });
+  }
+
   for (BadCall& c : t) {
     for (const char* prefix : {"null handle:", "null:", "null out:", "init ", "create kind"}) {
       if (c.name.rfind(prefix, 0) == 0) c.on_handle = false;
