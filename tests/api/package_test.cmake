@@ -2,7 +2,10 @@
 # component into a scratch prefix, then the downstream projects examples/embedding/c and
 # examples/embedding/cpp configured with find_package(railwear), built and run against it, and
 # the C one compiled once more by hand with the flags pkg-config gives from railwear.pc.
-# Run as: cmake -DBUILD_DIR=<build> -DSOURCE_DIR=<repo> -DWORK_DIR=<scratch> -P package_test.cmake
+# With -DPYTHON=<interpreter> (the Python module was built) the python component is installed
+# too and `import railwear` must work from the installed tree.
+# Run as: cmake -DBUILD_DIR=<build> -DSOURCE_DIR=<repo> -DWORK_DIR=<scratch> [-DPYTHON=<python3>]
+#         -P package_test.cmake
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
 
@@ -47,6 +50,34 @@ if(NOT run_output MATCHES "y_ws 8.0 mm: [0-9]+ patches.*right wheel")
   message(FATAL_ERROR "wheelset_sweep did not print its steps:\n${run_output}")
 endif()
 message(STATUS "C++:\n${run_output}")
+
+# The Python module from the installed tree: PYTHONPATH to its dist-packages, librailwear found
+# through the module's RPATH.
+if(PYTHON)
+  run("cmake --install (python)" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix}
+      --component python)
+  file(GLOB_RECURSE module ${prefix}/railwear.*.so)
+  if(NOT module)
+    message(FATAL_ERROR "cmake --install did not install the Python module")
+  endif()
+  get_filename_component(module_dir ${module} DIRECTORY)
+  set(ENV{PYTHONPATH} ${module_dir})
+  file(WRITE ${WORK_DIR}/import_railwear.py [=[
+import railwear
+p = railwear.Problem()
+p.set_profile_file(railwear.BODY_WHEEL, "circle:300")
+p.set_profile_file(railwear.BODY_RAIL, "circle:300")
+p.set_model(kind=railwear.MODEL_HERTZ)
+p.set_state(vertical_force_N=5e4)
+assert p.calculate() == railwear.OK
+print(railwear.__file__, "p_max", p.get_patch(0)["p_max_Pa"], "Pa")
+]=])
+  run("import railwear from the installed tree" ${PYTHON} ${WORK_DIR}/import_railwear.py)
+  if(NOT run_output MATCHES "dist-packages/railwear.* p_max [0-9.e+]+ Pa")
+    message(FATAL_ERROR "the installed module did not solve:\n${run_output}")
+  endif()
+  message(STATUS "Python: ${run_output}")
+endif()
 
 # pkg-config: the flags of the installed railwear.pc compile and link the C program.
 find_program(PKG_CONFIG pkg-config)
