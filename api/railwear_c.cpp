@@ -174,7 +174,8 @@ void RequirePositive(double v, const char* what) {
 
 void RequireInRange(double v, double lo, double hi, const char* what) {
   if (!(std::isfinite(v) && v >= lo && v <= hi)) {
-    Fail(RW_ERROR_INVALID_VALUE, fmt::format("{} = {}: expected a number in [{}, {}]", what, v, lo, hi));
+    Fail(RW_ERROR_INVALID_VALUE,
+         fmt::format("{} = {}: expected a number in [{}, {}]", what, v, lo, hi));
   }
 }
 
@@ -199,17 +200,17 @@ void RequireEnum(int v, int lo, int hi, const char* what) {
 
 void RequireResult(const rw_problem* p) {
   if (!p->result) {
-    Fail(RW_ERROR_CALL_ORDER, "no results: call rw_calculate first (any set-up or state call "
-                              "clears the results of the previous one)");
+    Fail(RW_ERROR_CALL_ORDER,
+         "no results: call rw_calculate first (any set-up or state call "
+         "clears the results of the previous one)");
   }
 }
 
 const rw_problem::PatchRef& PatchAt(const rw_problem* p, int index) {
   RequireResult(p);
   if (index < 0 || index >= static_cast<int>(p->patches.size())) {
-    Fail(RW_ERROR_INDEX,
-         fmt::format("patch index {}: expected 0..{} (rw_get_patch_count)", index,
-                     static_cast<int>(p->patches.size()) - 1));
+    Fail(RW_ERROR_INDEX, fmt::format("patch index {}: expected 0..{} (rw_get_patch_count)", index,
+                                     static_cast<int>(p->patches.size()) - 1));
   }
   return p->patches[static_cast<size_t>(index)];
 }
@@ -251,8 +252,9 @@ void ApplyCant(rw_problem* p) {
 void SetProfile(rw_problem* p, rw_body body, Profile profile) {
   RequireEnum(body, RW_BODY_WHEEL, RW_BODY_LEFT_RAIL, "body");
   if (body == RW_BODY_LEFT_RAIL && p->kind != RW_PROBLEM_WHEELSET) {
-    Fail(RW_ERROR_WRONG_KIND, "body = RW_BODY_LEFT_RAIL: a left rail needs a wheelset handle "
-                              "(RW_PROBLEM_WHEELSET)");
+    Fail(RW_ERROR_WRONG_KIND,
+         "body = RW_BODY_LEFT_RAIL: a left rail needs a wheelset handle "
+         "(RW_PROBLEM_WHEELSET)");
   }
   Invalidate(p);
   if (body == RW_BODY_WHEEL) {
@@ -268,9 +270,8 @@ railwear::Material ToMaterial(const rw_material* m, const char* what) {
   const std::string name(what);
   RequirePositive(m->youngs_modulus_Pa, (name + ".youngs_modulus_Pa").c_str());
   if (!(std::isfinite(m->poisson_ratio) && m->poisson_ratio >= 0.0 && m->poisson_ratio < 0.5)) {
-    Fail(RW_ERROR_INVALID_VALUE,
-         fmt::format("{}.poisson_ratio = {}: expected a number in [0, 0.5)", what,
-                     m->poisson_ratio));
+    Fail(RW_ERROR_INVALID_VALUE, fmt::format("{}.poisson_ratio = {}: expected a number in [0, 0.5)",
+                                             what, m->poisson_ratio));
   }
   railwear::Material out;
   out.youngs_modulus_Pa = m->youngs_modulus_Pa;
@@ -287,22 +288,26 @@ railwear::Material ToMaterial(const rw_material* m, const char* what) {
 // The handle's set-up and state as the core's contact case.
 ContactCase MakeCase(const rw_problem* p) {
   if (!p->wheel_profile) {
-    Fail(RW_ERROR_CALL_ORDER, "no wheel profile: call rw_set_profile_file or "
-                              "rw_set_profile_points with RW_BODY_WHEEL first");
+    Fail(RW_ERROR_CALL_ORDER,
+         "no wheel profile: call rw_set_profile_file or "
+         "rw_set_profile_points with RW_BODY_WHEEL first");
   }
   if (!p->rail_profile) {
-    Fail(RW_ERROR_CALL_ORDER, "no rail profile: call rw_set_profile_file or "
-                              "rw_set_profile_points with RW_BODY_RAIL first");
+    Fail(RW_ERROR_CALL_ORDER,
+         "no rail profile: call rw_set_profile_file or "
+         "rw_set_profile_points with RW_BODY_RAIL first");
   }
   if (!p->state) Fail(RW_ERROR_CALL_ORDER, "no state: call rw_set_state first");
   const bool rolling = (p->effects & kKnownEffects) != 0;
   if (rolling && !p->friction) {
-    Fail(RW_ERROR_CALL_ORDER, "rolling contact (RW_EFFECT_TANGENTIAL, DAMAGE or COUPLING) "
-                              "needs a friction coefficient: call rw_set_friction first");
+    Fail(RW_ERROR_CALL_ORDER,
+         "rolling contact (RW_EFFECT_TANGENTIAL, DAMAGE or COUPLING) "
+         "needs a friction coefficient: call rw_set_friction first");
   }
   if ((p->effects & RW_EFFECT_DAMAGE) && !(p->rail_material.shear_yield_Pa > 0.0)) {
-    Fail(RW_ERROR_CALL_ORDER, "RW_EFFECT_DAMAGE needs the rail's shear_yield_Pa: set it with "
-                              "rw_set_materials first");
+    Fail(RW_ERROR_CALL_ORDER,
+         "RW_EFFECT_DAMAGE needs the rail's shear_yield_Pa: set it with "
+         "rw_set_materials first");
   }
   const rw_state& s = *p->state;
   ContactCase c;
@@ -399,21 +404,36 @@ int rw_api_version(void) { return RW_API_VERSION; }
 
 const char* rw_status_name(rw_status status) {
   switch (status) {
-    case RW_OK: return "RW_OK";
-    case RW_ERROR_NULL_ARGUMENT: return "RW_ERROR_NULL_ARGUMENT";
-    case RW_ERROR_STRUCT_SIZE: return "RW_ERROR_STRUCT_SIZE";
-    case RW_ERROR_INVALID_VALUE: return "RW_ERROR_INVALID_VALUE";
-    case RW_ERROR_UNKNOWN_FLAG: return "RW_ERROR_UNKNOWN_FLAG";
-    case RW_ERROR_CALL_ORDER: return "RW_ERROR_CALL_ORDER";
-    case RW_ERROR_BUFFER_TOO_SMALL: return "RW_ERROR_BUFFER_TOO_SMALL";
-    case RW_ERROR_INDEX: return "RW_ERROR_INDEX";
-    case RW_ERROR_INPUT: return "RW_ERROR_INPUT";
-    case RW_ERROR_NOT_CONVERGED: return "RW_ERROR_NOT_CONVERGED";
-    case RW_ERROR_NO_CONTACT: return "RW_ERROR_NO_CONTACT";
-    case RW_ERROR_INTERNAL: return "RW_ERROR_INTERNAL";
-    case RW_ERROR_OUT_OF_MEMORY: return "RW_ERROR_OUT_OF_MEMORY";
-    case RW_ERROR_WRONG_KIND: return "RW_ERROR_WRONG_KIND";
-    default: return "unknown status";
+    case RW_OK:
+      return "RW_OK";
+    case RW_ERROR_NULL_ARGUMENT:
+      return "RW_ERROR_NULL_ARGUMENT";
+    case RW_ERROR_STRUCT_SIZE:
+      return "RW_ERROR_STRUCT_SIZE";
+    case RW_ERROR_INVALID_VALUE:
+      return "RW_ERROR_INVALID_VALUE";
+    case RW_ERROR_UNKNOWN_FLAG:
+      return "RW_ERROR_UNKNOWN_FLAG";
+    case RW_ERROR_CALL_ORDER:
+      return "RW_ERROR_CALL_ORDER";
+    case RW_ERROR_BUFFER_TOO_SMALL:
+      return "RW_ERROR_BUFFER_TOO_SMALL";
+    case RW_ERROR_INDEX:
+      return "RW_ERROR_INDEX";
+    case RW_ERROR_INPUT:
+      return "RW_ERROR_INPUT";
+    case RW_ERROR_NOT_CONVERGED:
+      return "RW_ERROR_NOT_CONVERGED";
+    case RW_ERROR_NO_CONTACT:
+      return "RW_ERROR_NO_CONTACT";
+    case RW_ERROR_INTERNAL:
+      return "RW_ERROR_INTERNAL";
+    case RW_ERROR_OUT_OF_MEMORY:
+      return "RW_ERROR_OUT_OF_MEMORY";
+    case RW_ERROR_WRONG_KIND:
+      return "RW_ERROR_WRONG_KIND";
+    default:
+      return "unknown status";
   }
 }
 
@@ -446,7 +466,8 @@ rw_status rw_set_profile_file(rw_problem* problem, rw_body body, const char* pat
     RequireHandle(problem);
     RequireNonNull(path, "path");
     RequireEnum(body, RW_BODY_WHEEL, RW_BODY_LEFT_RAIL, "body");
-    const auto role = body == RW_BODY_WHEEL ? railwear::BodyRole::kWheel : railwear::BodyRole::kRail;
+    const auto role =
+        body == RW_BODY_WHEEL ? railwear::BodyRole::kWheel : railwear::BodyRole::kRail;
     SetProfile(problem, body, railwear::LoadProfileSpec(path, role, ""));
     return RW_OK;
   });
@@ -458,8 +479,8 @@ rw_status rw_set_profile_points(rw_problem* problem, rw_body body, const double*
     RequireHandle(problem);
     RequireNonNull(yz_m, "yz_m");
     if (n_points < 4 || n_points > kMaxProfilePoints) {
-      Fail(RW_ERROR_INVALID_VALUE, fmt::format("n_points = {}: expected 4..{} points", n_points,
-                                               kMaxProfilePoints));
+      Fail(RW_ERROR_INVALID_VALUE,
+           fmt::format("n_points = {}: expected 4..{} points", n_points, kMaxProfilePoints));
     }
     std::vector<Eigen::Vector2d> points(n_points);
     for (size_t i = 0; i < n_points; ++i) {
@@ -540,8 +561,9 @@ rw_status rw_set_model(rw_problem* problem, const rw_model* model) {
     switch (model->kind) {
       case RW_MODEL_CUSTOM:
         if (!geometry_given || !kernel_given) {
-          Fail(RW_ERROR_INVALID_VALUE, "rw_model.kind = RW_MODEL_CUSTOM: expected both geometry "
-                                       "and kernel given (not RW_*_DEFAULT)");
+          Fail(RW_ERROR_INVALID_VALUE,
+               "rw_model.kind = RW_MODEL_CUSTOM: expected both geometry "
+               "and kernel given (not RW_*_DEFAULT)");
         }
         m.geometry = static_cast<GeometryModel>(model->geometry);
         m.kernel = static_cast<KernelModel>(model->kernel);
@@ -549,26 +571,29 @@ rw_status rw_set_model(rw_problem* problem, const rw_model* model) {
         break;
       case RW_MODEL_AUTO:
         if (geometry_given) {
-          Fail(RW_ERROR_INVALID_VALUE, "rw_model.geometry: expected RW_GEOMETRY_DEFAULT with "
-                                       "RW_MODEL_AUTO (it picks the geometry per patch)");
+          Fail(RW_ERROR_INVALID_VALUE,
+               "rw_model.geometry: expected RW_GEOMETRY_DEFAULT with "
+               "RW_MODEL_AUTO (it picks the geometry per patch)");
         }
         m = railwear::MakeModelOptions(ModelKind::kAuto);
         if (kernel_given) m.kernel = static_cast<KernelModel>(model->kernel);
         break;
       default:
         if (geometry_given || kernel_given) {
-          Fail(RW_ERROR_INVALID_VALUE, "rw_model.geometry, kernel: expected RW_*_DEFAULT with "
-                                       "RW_MODEL_HERTZ, HALFSPACE or CONFORMAL (use RW_MODEL_CUSTOM "
-                                       "for another geometry or kernel)");
+          Fail(RW_ERROR_INVALID_VALUE,
+               "rw_model.geometry, kernel: expected RW_*_DEFAULT with "
+               "RW_MODEL_HERTZ, HALFSPACE or CONFORMAL (use RW_MODEL_CUSTOM "
+               "for another geometry or kernel)");
         }
         m = railwear::MakeModelOptions(model->kind == RW_MODEL_HERTZ       ? ModelKind::kHertz
                                        : model->kind == RW_MODEL_HALFSPACE ? ModelKind::kHalfspace
                                                                            : ModelKind::kConformal);
     }
     if (m.kind == ModelKind::kHertz && model->effects != 0) {
-      Fail(RW_ERROR_INVALID_VALUE, "rw_model.kind = RW_MODEL_HERTZ with effects: rolling contact is "
-                                   "solved on the patch grid, which the analytic Hertz model has "
-                                   "not (use HALFSPACE, CONFORMAL or AUTO)");
+      Fail(RW_ERROR_INVALID_VALUE,
+           "rw_model.kind = RW_MODEL_HERTZ with effects: rolling contact is "
+           "solved on the patch grid, which the analytic Hertz model has "
+           "not (use HALFSPACE, CONFORMAL or AUTO)");
     }
     m.accuracy = static_cast<AccuracyPreset>(model->accuracy);
     if (explicit_cells) {
@@ -711,12 +736,14 @@ rw_status rw_set_state(rw_problem* problem, const rw_state* s) {
                        s->vertical_force_N, s->approach_m));
     }
     if (wheelset && approach) {
-      Fail(RW_ERROR_WRONG_KIND, "rw_state.approach_m: a wheelset takes a vertical force per "
-                                "wheel (vertical_force_N), not an approach");
+      Fail(RW_ERROR_WRONG_KIND,
+           "rw_state.approach_m: a wheelset takes a vertical force per "
+           "wheel (vertical_force_N), not an approach");
     }
     if (OptionalPositive(s->left_vertical_force_N, "rw_state.left_vertical_force_N") && !wheelset) {
-      Fail(RW_ERROR_WRONG_KIND, "rw_state.left_vertical_force_N: expected NaN for a single wheel "
-                                "(a wheelset's left wheel load)");
+      Fail(RW_ERROR_WRONG_KIND,
+           "rw_state.left_vertical_force_N: expected NaN for a single wheel "
+           "(a wheelset's left wheel load)");
     }
     RequirePositive(s->speed_m_s, "rw_state.speed_m_s");
     OptionalFinite(s->pitch_velocity_rad_s, "rw_state.pitch_velocity_rad_s");
@@ -725,22 +752,25 @@ rw_status rw_set_state(rw_problem* problem, const rw_state* s) {
     const auto fx = OptionalFinite(s->longitudinal_force_N, "rw_state.longitudinal_force_N");
     RequireInRange(s->curvature_per_m, 0.0, 0.1, "rw_state.curvature_per_m");
     if (s->curvature_per_m != 0.0 && !wheelset) {
-      Fail(RW_ERROR_WRONG_KIND, "rw_state.curvature_per_m: expected 0 for a single wheel (a "
-                                "wheelset's track curvature)");
+      Fail(RW_ERROR_WRONG_KIND,
+           "rw_state.curvature_per_m: expected 0 for a single wheel (a "
+           "wheelset's track curvature)");
     }
     if (s->flags & RW_STATE_CREEPAGE) {
       RequireInRange(s->creepage_xi, -1.0, 1.0, "rw_state.creepage_xi");
       RequireInRange(s->creepage_eta, -1.0, 1.0, "rw_state.creepage_eta");
       RequireFinite(s->creepage_spin_per_m, "rw_state.creepage_spin_per_m");
       if (fx || !std::isnan(s->pitch_velocity_rad_s)) {
-        Fail(RW_ERROR_INVALID_VALUE, "rw_state: RW_STATE_CREEPAGE with a pitch velocity or a "
-                                     "longitudinal force: expected either prescribed creepages "
-                                     "or the motion, not both");
+        Fail(RW_ERROR_INVALID_VALUE,
+             "rw_state: RW_STATE_CREEPAGE with a pitch velocity or a "
+             "longitudinal force: expected either prescribed creepages "
+             "or the motion, not both");
       }
     }
     if (fx && !std::isnan(s->pitch_velocity_rad_s)) {
-      Fail(RW_ERROR_INVALID_VALUE, "rw_state: pitch_velocity_rad_s and longitudinal_force_N both "
-                                   "given: expected at most one (the other NaN)");
+      Fail(RW_ERROR_INVALID_VALUE,
+           "rw_state: pitch_velocity_rad_s and longitudinal_force_N both "
+           "given: expected at most one (the other NaN)");
     }
     Invalidate(problem);
     problem->state = *s;
@@ -946,14 +976,16 @@ rw_status rw_accumulate(rw_problem* problem, double passes) {
       Fail(RW_ERROR_CALL_ORDER, "rw_accumulate needs a converged rw_calculate: " + message);
     }
     if (!(problem->effects & RW_EFFECT_TANGENTIAL)) {
-      Fail(RW_ERROR_CALL_ORDER, "rw_accumulate needs rolling contact: set RW_EFFECT_TANGENTIAL "
-                                "with rw_set_model (the wear laws use slip and traction)");
+      Fail(RW_ERROR_CALL_ORDER,
+           "rw_accumulate needs rolling contact: set RW_EFFECT_TANGENTIAL "
+           "with rw_set_model (the wear laws use slip and traction)");
     }
     const railwear::WearLawKind kind = problem->wear_law.kind;
     const double hardness = problem->rail_material.hardness_Pa;
     if (kind != railwear::WearLawKind::kUsfd && !(hardness > 0.0)) {
-      Fail(RW_ERROR_CALL_ORDER, "the Archard and KTH wear laws need the rail's hardness_Pa: set "
-                                "it with rw_set_materials");
+      Fail(RW_ERROR_CALL_ORDER,
+           "the Archard and KTH wear laws need the rail's hardness_Pa: set "
+           "it with rw_set_materials");
     }
     // All of a step's depth first, then the sum: a failure leaves the field as it was.
     const double speed = problem->state->speed_m_s;
@@ -966,7 +998,8 @@ rw_status rw_accumulate(rw_problem* problem, double passes) {
       for (size_t b = 0; b < depth.size(); ++b) step[ref.wheel][b] += depth[b];
     }
     for (int rail = 0; rail < 2; ++rail) {
-      for (size_t b = 0; b < step[rail].size(); ++b) problem->depth_m[rail][b] += passes * step[rail][b];
+      for (size_t b = 0; b < step[rail].size(); ++b)
+        problem->depth_m[rail][b] += passes * step[rail][b];
     }
     return RW_OK;
   });

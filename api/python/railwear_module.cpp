@@ -73,8 +73,8 @@ struct Fields {
         for (const auto& f : doubles) known += std::string(known.empty() ? "" : ", ") + f.first;
         for (const auto& f : ints) known += std::string(known.empty() ? "" : ", ") + f.first;
         for (const auto& f : flags) known += std::string(known.empty() ? "" : ", ") + f.first;
-        throw py::type_error(std::string(what) + ": unknown field '" + name + "' (known: " +
-                             known + ")");
+        throw py::type_error(std::string(what) + ": unknown field '" + name + "' (known: " + known +
+                             ")");
       }
     }
   }
@@ -101,13 +101,14 @@ const Fields<rw_material> kMaterial{{{"youngs_modulus_Pa", &rw_material::youngs_
                                      {"shear_yield_Pa", &rw_material::shear_yield_Pa}},
                                     {},
                                     {}};
-const Fields<rw_model> kModel{{{"cell_dx_m", &rw_model::cell_dx_m}, {"cell_ds_m", &rw_model::cell_ds_m}},
-                              {{"kind", &rw_model::kind},
-                               {"geometry", &rw_model::geometry},
-                               {"kernel", &rw_model::kernel},
-                               {"accuracy", &rw_model::accuracy},
-                               {"tangential", &rw_model::tangential}},
-                              {{"effects", &rw_model::effects}}};
+const Fields<rw_model> kModel{
+    {{"cell_dx_m", &rw_model::cell_dx_m}, {"cell_ds_m", &rw_model::cell_ds_m}},
+    {{"kind", &rw_model::kind},
+     {"geometry", &rw_model::geometry},
+     {"kernel", &rw_model::kernel},
+     {"accuracy", &rw_model::accuracy},
+     {"tangential", &rw_model::tangential}},
+    {{"effects", &rw_model::effects}}};
 const Fields<rw_influence_constants> kConstants{
     {{"c_f", &rw_influence_constants::c_f},
      {"c_z", &rw_influence_constants::c_z},
@@ -120,14 +121,15 @@ const Fields<rw_influence_constants> kConstants{
      {"concave_c_s", &rw_influence_constants::concave_c_s}},
     {{"separate", &rw_influence_constants::separate}},
     {}};
-const Fields<rw_geometry> kGeometry{{{"rolling_radius_m", &rw_geometry::rolling_radius_m},
-                                     {"rail_cant", &rw_geometry::rail_cant},
-                                     {"gauge_m", &rw_geometry::gauge_m},
-                                     {"gauge_height_m", &rw_geometry::gauge_height_m},
-                                     {"flange_back_distance_m", &rw_geometry::flange_back_distance_m},
-                                     {"flange_back_position_m", &rw_geometry::flange_back_position_m}},
-                                    {},
-                                    {}};
+const Fields<rw_geometry> kGeometry{
+    {{"rolling_radius_m", &rw_geometry::rolling_radius_m},
+     {"rail_cant", &rw_geometry::rail_cant},
+     {"gauge_m", &rw_geometry::gauge_m},
+     {"gauge_height_m", &rw_geometry::gauge_height_m},
+     {"flange_back_distance_m", &rw_geometry::flange_back_distance_m},
+     {"flange_back_position_m", &rw_geometry::flange_back_position_m}},
+    {},
+    {}};
 const Fields<rw_state> kState{{{"lateral_m", &rw_state::lateral_m},
                                {"yaw_rad", &rw_state::yaw_rad},
                                {"roll_rad", &rw_state::roll_rad},
@@ -145,16 +147,16 @@ const Fields<rw_state> kState{{{"lateral_m", &rw_state::lateral_m},
                                {"creepage_spin_per_m", &rw_state::creepage_spin_per_m}},
                               {},
                               {{"flags", &rw_state::flags}}};
-const Fields<rw_wear> kWear{{{"archard_k", &rw_wear::archard_k}, {"bin_m", &rw_wear::bin_m}},
-                            {{"law", &rw_wear::law}},
-                            {}};
-const Fields<rw_summary> kSummary{{{"pitch_velocity_rad_s", &rw_summary::pitch_velocity_rad_s},
-                                   {"wheelset_lateral_m", &rw_summary::wheelset_lateral_m},
-                                   {"right_rail_origin_Y_m", &rw_summary::right_rail_origin_Y_m},
-                                   {"left_rail_origin_Y_m", &rw_summary::left_rail_origin_Y_m},
-                                   {"time_s", &rw_summary::time_s}},
-                                  {{"status", &rw_summary::status}, {"patches", &rw_summary::patches}},
-                                  {}};
+const Fields<rw_wear> kWear{
+    {{"archard_k", &rw_wear::archard_k}, {"bin_m", &rw_wear::bin_m}}, {{"law", &rw_wear::law}}, {}};
+const Fields<rw_summary> kSummary{
+    {{"pitch_velocity_rad_s", &rw_summary::pitch_velocity_rad_s},
+     {"wheelset_lateral_m", &rw_summary::wheelset_lateral_m},
+     {"right_rail_origin_Y_m", &rw_summary::right_rail_origin_Y_m},
+     {"left_rail_origin_Y_m", &rw_summary::left_rail_origin_Y_m},
+     {"time_s", &rw_summary::time_s}},
+    {{"status", &rw_summary::status}, {"patches", &rw_summary::patches}},
+    {}};
 const Fields<rw_patch> kPatch{{{"contact_x_m", &rw_patch::contact_x_m},
                                {"contact_y_m", &rw_patch::contact_y_m},
                                {"contact_z_m", &rw_patch::contact_z_m},
@@ -188,7 +190,8 @@ class Problem {
   void set_profile_file(int body, const std::string& spec) {
     Check(p_, rw_set_profile_file(p_, body, spec.c_str()));
   }
-  void set_profile_points(int body, py::array_t<double, py::array::c_style | py::array::forcecast> yz) {
+  void set_profile_points(int body,
+                          py::array_t<double, py::array::c_style | py::array::forcecast> yz) {
     if (yz.ndim() != 2 || yz.shape(1) != 2) {
       throw py::value_error("yz_m: expected an array of shape (n, 2) of (y, z) in metres");
     }
@@ -251,16 +254,16 @@ class Problem {
     q.struct_size = sizeof q;
     Check(p_, rw_get_patch(p_, index, &q));
     py::dict d = kPatch.ToDict(q);
-    d["force_on_rail_N"] = py::make_tuple(q.force_on_rail_N[0], q.force_on_rail_N[1],
-                                          q.force_on_rail_N[2]);
+    d["force_on_rail_N"] =
+        py::make_tuple(q.force_on_rail_N[0], q.force_on_rail_N[1], q.force_on_rail_N[2]);
     return d;
   }
   // The size query and the buffers in one: a dict of NumPy arrays, one value per cell.
   py::dict get_cells(int index) {
     size_t n = 0;
     Check(p_, rw_get_cell_count(p_, index, &n));
-    const char* names[7] = {"x_m", "s_m", "pressure_Pa", "traction_x_Pa", "traction_s_Pa",
-                            "slip_x_m_s", "slip_s_m_s"};
+    const char* names[7] = {"x_m",           "s_m",        "pressure_Pa", "traction_x_Pa",
+                            "traction_s_Pa", "slip_x_m_s", "slip_s_m_s"};
     std::vector<py::array_t<double>> a;
     for (int i = 0; i < 7; ++i) a.emplace_back(static_cast<py::ssize_t>(n));
     Check(p_, rw_get_cells(p_, index, n, a[0].mutable_data(), a[1].mutable_data(),

@@ -23,7 +23,7 @@ struct ContactCase {
 };
 
 struct ContactCaseResult {
-  ContactResult wheel;                    // the single wheel (empty for a wheelset)
+  ContactResult wheel;                     // the single wheel (empty for a wheelset)
   std::optional<WheelsetResult> wheelset;  // both wheels of a wheelset
 };
 

@@ -26,7 +26,7 @@ TEST(ApiAbi, StructSizesArePinnedAndEqualInCAndCpp) {
   static_assert(sizeof(void*) == 8, "the pinned sizes are those of an LP64 platform");
   const size_t cpp[] = {sizeof(rw_material), sizeof(rw_model), sizeof(rw_influence_constants),
                         sizeof(rw_geometry), sizeof(rw_state), sizeof(rw_summary),
-                        sizeof(rw_patch), sizeof(rw_wear)};
+                        sizeof(rw_patch),    sizeof(rw_wear)};
   const size_t pinned[] = {40, 48, 88, 56, 136, 104, 184, 32};
   for (int i = 0; i < 8; ++i) {
     EXPECT_EQ(rw_test_c_sizeof(i), cpp[i]) << "struct " << i;

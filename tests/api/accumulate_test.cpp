@@ -129,7 +129,7 @@ TEST(ApiAccumulate, ANewRailOrLawStartsTheFieldAgainAndANewStateKeepsIt) {
   s.vertical_force_N = 100e3;
   s.speed_m_s = 20.0;
   ASSERT_EQ(rw_set_state(p, &s), RW_OK);
-  EXPECT_EQ(MaxAbs(Depth(p, 0)), worn);  // a new state keeps the field
+  EXPECT_EQ(MaxAbs(Depth(p, 0)), worn);                   // a new state keeps the field
   EXPECT_EQ(rw_accumulate(p, 1.0), RW_ERROR_CALL_ORDER);  // but there is no result to add
   EXPECT_EQ(MaxAbs(Depth(p, 0)), worn);
   rw_geometry g{};

@@ -188,26 +188,32 @@ std::vector<BadCall> Table() {
   add("null geometry", RW_ERROR_NULL_ARGUMENT,
       [](rw_problem* p) { return rw_set_geometry(p, nullptr); });
   add("null state", RW_ERROR_NULL_ARGUMENT, [](rw_problem* p) { return rw_set_state(p, nullptr); });
-  add("null summary", RW_ERROR_NULL_ARGUMENT,
+  add(
+      "null summary", RW_ERROR_NULL_ARGUMENT,
       [](rw_problem* p) { return rw_get_summary(p, nullptr); }, Ready::kCalculated);
-  add("null count", RW_ERROR_NULL_ARGUMENT,
+  add(
+      "null count", RW_ERROR_NULL_ARGUMENT,
       [](rw_problem* p) { return rw_get_patch_count(p, nullptr); }, Ready::kCalculated);
-  add("null patch", RW_ERROR_NULL_ARGUMENT,
+  add(
+      "null patch", RW_ERROR_NULL_ARGUMENT,
       [](rw_problem* p) { return rw_get_patch(p, 0, nullptr); }, Ready::kCalculated);
-  add("null cell count", RW_ERROR_NULL_ARGUMENT,
+  add(
+      "null cell count", RW_ERROR_NULL_ARGUMENT,
       [](rw_problem* p) { return rw_get_cell_count(p, 0, nullptr); }, Ready::kCalculated);
   add("null: init_material", RW_ERROR_NULL_ARGUMENT,
       [](rw_problem*) { return rw_init_material(nullptr); });
-  add("null: init_model", RW_ERROR_NULL_ARGUMENT, [](rw_problem*) { return rw_init_model(nullptr); });
+  add("null: init_model", RW_ERROR_NULL_ARGUMENT,
+      [](rw_problem*) { return rw_init_model(nullptr); });
   add("null: init_influence_constants", RW_ERROR_NULL_ARGUMENT,
       [](rw_problem*) { return rw_init_influence_constants(nullptr); });
   add("null: init_geometry", RW_ERROR_NULL_ARGUMENT,
       [](rw_problem*) { return rw_init_geometry(nullptr); });
-  add("null: init_state", RW_ERROR_NULL_ARGUMENT, [](rw_problem*) { return rw_init_state(nullptr); });
+  add("null: init_state", RW_ERROR_NULL_ARGUMENT,
+      [](rw_problem*) { return rw_init_state(nullptr); });
 
   // --- Wrong struct sizes, for every versioned struct and its init function.
-  const std::vector<size_t> bad_sizes = {0, 1, 7, sizeof(double) * 2, 1000,
-                                         std::numeric_limits<size_t>::max()};
+  const std::vector<size_t> bad_sizes = {
+      0, 1, 7, sizeof(double) * 2, 1000, std::numeric_limits<size_t>::max()};
   for (size_t size : bad_sizes) {
     const std::string z = " struct_size " + std::to_string(size);
     add("rw_material" + z, RW_ERROR_STRUCT_SIZE, [size](rw_problem* p) {
@@ -235,16 +241,22 @@ std::vector<BadCall> Table() {
       m.struct_size = size;
       return rw_set_state(p, &m);
     });
-    add("rw_summary" + z, RW_ERROR_STRUCT_SIZE, [size](rw_problem* p) {
-      rw_summary m{};
-      m.struct_size = size;
-      return rw_get_summary(p, &m);
-    }, Ready::kCalculated);
-    add("rw_patch" + z, RW_ERROR_STRUCT_SIZE, [size](rw_problem* p) {
-      rw_patch m{};
-      m.struct_size = size;
-      return rw_get_patch(p, 0, &m);
-    }, Ready::kCalculated);
+    add(
+        "rw_summary" + z, RW_ERROR_STRUCT_SIZE,
+        [size](rw_problem* p) {
+          rw_summary m{};
+          m.struct_size = size;
+          return rw_get_summary(p, &m);
+        },
+        Ready::kCalculated);
+    add(
+        "rw_patch" + z, RW_ERROR_STRUCT_SIZE,
+        [size](rw_problem* p) {
+          rw_patch m{};
+          m.struct_size = size;
+          return rw_get_patch(p, 0, &m);
+        },
+        Ready::kCalculated);
     add("init rw_material" + z, RW_ERROR_STRUCT_SIZE, [size](rw_problem*) {
       rw_material m{};
       m.struct_size = size;
@@ -279,7 +291,9 @@ std::vector<BadCall> Table() {
     std::vector<double> values;
   };
   const std::vector<MaterialCase> material_cases = {
-      {"youngs_modulus_Pa", offsetof(rw_material, youngs_modulus_Pa), {0.0, -210e9, kNaN, kInf, -kInf}},
+      {"youngs_modulus_Pa",
+       offsetof(rw_material, youngs_modulus_Pa),
+       {0.0, -210e9, kNaN, kInf, -kInf}},
       {"poisson_ratio", offsetof(rw_material, poisson_ratio), {-0.1, 0.5, 0.7, kNaN, kInf}},
       {"hardness_Pa", offsetof(rw_material, hardness_Pa), {0.0, -1.0, kInf, -kInf}},
       {"shear_yield_Pa", offsetof(rw_material, shear_yield_Pa), {0.0, -350e6, kInf}},
@@ -291,7 +305,8 @@ std::vector<BadCall> Table() {
             RW_ERROR_INVALID_VALUE, [c, v, body](rw_problem* p) {
               rw_material good = ValidMaterial(), bad = ValidMaterial();
               At(bad, c.offset) = v;
-              return body == 0 ? rw_set_materials(p, &bad, &good) : rw_set_materials(p, &good, &bad);
+              return body == 0 ? rw_set_materials(p, &bad, &good)
+                               : rw_set_materials(p, &good, &bad);
             });
       }
     }
@@ -313,11 +328,12 @@ std::vector<BadCall> Table() {
   };
   for (const DoubleCase& c : geometry_cases) {
     for (double v : c.values) {
-      add(std::string("rw_geometry.") + c.field + " = " + Num(v), c.expected, [c, v](rw_problem* p) {
-        rw_geometry g = ValidGeometry();
-        At(g, c.offset) = v;
-        return rw_set_geometry(p, &g);
-      });
+      add(std::string("rw_geometry.") + c.field + " = " + Num(v), c.expected,
+          [c, v](rw_problem* p) {
+            rw_geometry g = ValidGeometry();
+            At(g, c.offset) = v;
+            return rw_set_geometry(p, &g);
+          });
     }
   }
 
@@ -336,8 +352,9 @@ std::vector<BadCall> Table() {
           });
       // The same value in the convex and the concave set, with separate sets.
       for (const char* set : {"convex_", "concave_"}) {
-        const size_t base = std::string(set) == "convex_" ? offsetof(rw_influence_constants, convex_c_f)
-                                                          : offsetof(rw_influence_constants, concave_c_f);
+        const size_t base = std::string(set) == "convex_"
+                                ? offsetof(rw_influence_constants, convex_c_f)
+                                : offsetof(rw_influence_constants, concave_c_f);
         const size_t offset = base + (c.offset - offsetof(rw_influence_constants, c_f));
         add(std::string("rw_influence_constants.") + set + c.field + " = " + Num(v), c.expected,
             [offset, v](rw_problem* p) {
@@ -362,7 +379,9 @@ std::vector<BadCall> Table() {
       {"lateral_m", offsetof(rw_state, lateral_m), {kNaN, kInf, -kInf, 0.5, -4.0}},
       {"yaw_rad", offsetof(rw_state, yaw_rad), {kNaN, kInf, 0.2, -0.2}},
       {"roll_rad", offsetof(rw_state, roll_rad), {kNaN, kInf, 0.6, -1.0}},
-      {"vertical_force_N", offsetof(rw_state, vertical_force_N), {0.0, -1.0, -100e3, kInf, -kInf, kNaN}},
+      {"vertical_force_N",
+       offsetof(rw_state, vertical_force_N),
+       {0.0, -1.0, -100e3, kInf, -kInf, kNaN}},
       {"speed_m_s", offsetof(rw_state, speed_m_s), {0.0, -20.0, kNaN, kInf}},
       {"pitch_velocity_rad_s", offsetof(rw_state, pitch_velocity_rad_s), {kInf, -kInf}},
       {"lateral_velocity_m_s", offsetof(rw_state, lateral_velocity_m_s), {kNaN, kInf}},
@@ -375,7 +394,8 @@ std::vector<BadCall> Table() {
   for (const DoubleCase& c : state_cases) {
     for (double v : c.values) {
       for (rw_problem_kind kind : {RW_PROBLEM_WHEEL, RW_PROBLEM_WHEELSET}) {
-        add(std::string(kind == RW_PROBLEM_WHEEL ? "wheel" : "wheelset") + " rw_state." + c.field +
+        add(
+            std::string(kind == RW_PROBLEM_WHEEL ? "wheel" : "wheelset") + " rw_state." + c.field +
                 " = " + Num(v),
             c.expected,
             [c, v](rw_problem* p) {
@@ -398,15 +418,16 @@ std::vector<BadCall> Table() {
         });
   }
   // Prescribed creepages out of range or next to a motion.
-  for (const auto& [field, offset, v] :
-       std::vector<std::tuple<const char*, size_t, double>>{
+  for (const auto& [field, offset, v] : std::vector<std::tuple<const char*, size_t, double>>{
            {"creepage_xi", offsetof(rw_state, creepage_xi), kNaN},
            {"creepage_xi", offsetof(rw_state, creepage_xi), 2.0},
            {"creepage_eta", offsetof(rw_state, creepage_eta), -1.5},
            {"creepage_eta", offsetof(rw_state, creepage_eta), kInf},
            {"creepage_spin_per_m", offsetof(rw_state, creepage_spin_per_m), kNaN},
-           {"pitch_velocity_rad_s (with creepage)", offsetof(rw_state, pitch_velocity_rad_s), -40.0},
-           {"longitudinal_force_N (with creepage)", offsetof(rw_state, longitudinal_force_N), 1e3}}) {
+           {"pitch_velocity_rad_s (with creepage)", offsetof(rw_state, pitch_velocity_rad_s),
+            -40.0},
+           {"longitudinal_force_N (with creepage)", offsetof(rw_state, longitudinal_force_N),
+            1e3}}) {
     add(std::string("RW_STATE_CREEPAGE rw_state.") + field + " = " + Num(v), RW_ERROR_INVALID_VALUE,
         [offset, v](rw_problem* p) {
           rw_state s = ValidState();
@@ -432,12 +453,15 @@ std::vector<BadCall> Table() {
     s.curvature_per_m = 1.0 / 600.0;
     return rw_set_state(p, &s);
   });
-  add("wheelset: approach_m", RW_ERROR_WRONG_KIND, [](rw_problem* p) {
-    rw_state s = ValidState();
-    s.vertical_force_N = kNaN;
-    s.approach_m = 1e-5;
-    return rw_set_state(p, &s);
-  }, Ready::kSetUp, RW_PROBLEM_WHEELSET);
+  add(
+      "wheelset: approach_m", RW_ERROR_WRONG_KIND,
+      [](rw_problem* p) {
+        rw_state s = ValidState();
+        s.vertical_force_N = kNaN;
+        s.approach_m = 1e-5;
+        return rw_set_state(p, &s);
+      },
+      Ready::kSetUp, RW_PROBLEM_WHEELSET);
   add("wheel: RW_BODY_LEFT_RAIL", RW_ERROR_WRONG_KIND,
       [](rw_problem* p) { return rw_set_profile_file(p, RW_BODY_LEFT_RAIL, "circle:300"); });
 
@@ -528,9 +552,13 @@ std::vector<BadCall> Table() {
           return rw_set_model(p, &m);
         });
   }
-  for (const auto& [dx, ds] : std::vector<std::pair<double, double>>{
-           {1e-4, 0.0}, {0.0, 1e-4}, {kNaN, 1e-4}, {-1e-4, 1e-4}, {1e-4, kInf}, {1.0, 1e-4},
-           {1e-9, 1e-4}}) {
+  for (const auto& [dx, ds] : std::vector<std::pair<double, double>>{{1e-4, 0.0},
+                                                                     {0.0, 1e-4},
+                                                                     {kNaN, 1e-4},
+                                                                     {-1e-4, 1e-4},
+                                                                     {1e-4, kInf},
+                                                                     {1.0, 1e-4},
+                                                                     {1e-9, 1e-4}}) {
     add("model: cells " + Num(dx) + " x " + Num(ds), RW_ERROR_INVALID_VALUE,
         [dx = dx, ds = ds](rw_problem* p) {
           rw_model m = ValidModel();
@@ -548,8 +576,8 @@ std::vector<BadCall> Table() {
   }
 
   // --- Profiles: bad points and bad files.
-  for (size_t n : {size_t{0}, size_t{1}, size_t{3}, std::numeric_limits<size_t>::max(),
-                   size_t{2000000}}) {
+  for (size_t n :
+       {size_t{0}, size_t{1}, size_t{3}, std::numeric_limits<size_t>::max(), size_t{2000000}}) {
     add("profile points n = " + std::to_string(n), RW_ERROR_INVALID_VALUE,
         [n, yz](rw_problem* p) { return rw_set_profile_points(p, RW_BODY_RAIL, yz, n); });
   }
@@ -583,21 +611,31 @@ std::vector<BadCall> Table() {
   }
 
   // --- Calls out of order.
-  add("calculate: nothing set", RW_ERROR_CALL_ORDER, [](rw_problem* p) { return rw_calculate(p); },
+  add(
+      "calculate: nothing set", RW_ERROR_CALL_ORDER, [](rw_problem* p) { return rw_calculate(p); },
       Ready::kNew);
-  add("calculate: no rail", RW_ERROR_CALL_ORDER, [](rw_problem* p) {
-    rw_set_profile_file(p, RW_BODY_WHEEL, "circle:300");
-    return rw_calculate(p);
-  }, Ready::kNew);
-  add("calculate: no wheel", RW_ERROR_CALL_ORDER, [](rw_problem* p) {
-    rw_set_profile_file(p, RW_BODY_RAIL, "circle:300");
-    return rw_calculate(p);
-  }, Ready::kNew);
-  add("calculate: no state", RW_ERROR_CALL_ORDER, [](rw_problem* p) {
-    rw_set_profile_file(p, RW_BODY_WHEEL, "circle:300");
-    rw_set_profile_file(p, RW_BODY_RAIL, "circle:300");
-    return rw_calculate(p);
-  }, Ready::kNew);
+  add(
+      "calculate: no rail", RW_ERROR_CALL_ORDER,
+      [](rw_problem* p) {
+        rw_set_profile_file(p, RW_BODY_WHEEL, "circle:300");
+        return rw_calculate(p);
+      },
+      Ready::kNew);
+  add(
+      "calculate: no wheel", RW_ERROR_CALL_ORDER,
+      [](rw_problem* p) {
+        rw_set_profile_file(p, RW_BODY_RAIL, "circle:300");
+        return rw_calculate(p);
+      },
+      Ready::kNew);
+  add(
+      "calculate: no state", RW_ERROR_CALL_ORDER,
+      [](rw_problem* p) {
+        rw_set_profile_file(p, RW_BODY_WHEEL, "circle:300");
+        rw_set_profile_file(p, RW_BODY_RAIL, "circle:300");
+        return rw_calculate(p);
+      },
+      Ready::kNew);
   add("calculate: rolling without friction", RW_ERROR_CALL_ORDER, [](rw_problem* p) {
     rw_model m = ValidModel();
     m.kind = RW_MODEL_HALFSPACE;
@@ -614,25 +652,30 @@ std::vector<BadCall> Table() {
     return rw_calculate(p);
   });
   const std::vector<std::pair<std::string, std::function<rw_status(rw_problem*)>>> queries = {
-      {"get_summary", [](rw_problem* p) {
+      {"get_summary",
+       [](rw_problem* p) {
          rw_summary s{};
          s.struct_size = sizeof s;
          return rw_get_summary(p, &s);
        }},
-      {"get_patch_count", [](rw_problem* p) {
+      {"get_patch_count",
+       [](rw_problem* p) {
          int n = 0;
          return rw_get_patch_count(p, &n);
        }},
-      {"get_patch", [](rw_problem* p) {
+      {"get_patch",
+       [](rw_problem* p) {
          rw_patch s{};
          s.struct_size = sizeof s;
          return rw_get_patch(p, 0, &s);
        }},
-      {"get_cell_count", [](rw_problem* p) {
+      {"get_cell_count",
+       [](rw_problem* p) {
          size_t n = 0;
          return rw_get_cell_count(p, 0, &n);
        }},
-      {"get_cells", [](rw_problem* p) {
+      {"get_cells",
+       [](rw_problem* p) {
          double b[1];
          return rw_get_cells(p, 0, 1, b, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr);
        }},
@@ -641,41 +684,59 @@ std::vector<BadCall> Table() {
     add(name + " before calculate (new handle)", RW_ERROR_CALL_ORDER, query, Ready::kNew);
     add(name + " before calculate (set up)", RW_ERROR_CALL_ORDER, query, Ready::kSetUp);
     // Any set-up or state call clears the results it would have made stale.
-    add(name + " after a new state", RW_ERROR_CALL_ORDER, [query = query](rw_problem* p) {
-      rw_state s = ValidState();
-      s.vertical_force_N = 60e3;
-      rw_set_state(p, &s);
-      return query(p);
-    }, Ready::kCalculated);
-    add(name + " after a new friction", RW_ERROR_CALL_ORDER, [query = query](rw_problem* p) {
-      rw_set_friction(p, 0.4);
-      return query(p);
-    }, Ready::kCalculated);
-    add(name + " after a failed calculate", RW_ERROR_CALL_ORDER, [query = query](rw_problem* p) {
-      rw_model m = ValidModel();
-      m.kind = RW_MODEL_HALFSPACE;
-      m.effects = RW_EFFECT_TANGENTIAL;  // no friction: calculate fails
-      rw_set_model(p, &m);
-      rw_calculate(p);
-      return query(p);
-    }, Ready::kCalculated);
+    add(
+        name + " after a new state", RW_ERROR_CALL_ORDER,
+        [query = query](rw_problem* p) {
+          rw_state s = ValidState();
+          s.vertical_force_N = 60e3;
+          rw_set_state(p, &s);
+          return query(p);
+        },
+        Ready::kCalculated);
+    add(
+        name + " after a new friction", RW_ERROR_CALL_ORDER,
+        [query = query](rw_problem* p) {
+          rw_set_friction(p, 0.4);
+          return query(p);
+        },
+        Ready::kCalculated);
+    add(
+        name + " after a failed calculate", RW_ERROR_CALL_ORDER,
+        [query = query](rw_problem* p) {
+          rw_model m = ValidModel();
+          m.kind = RW_MODEL_HALFSPACE;
+          m.effects = RW_EFFECT_TANGENTIAL;  // no friction: calculate fails
+          rw_set_model(p, &m);
+          rw_calculate(p);
+          return query(p);
+        },
+        Ready::kCalculated);
   }
 
   // --- Indices and buffers.
   for (int index : {-1, 1, 2, 1000, INT_MAX, INT_MIN}) {
-    add("get_patch index " + std::to_string(index), RW_ERROR_INDEX, [index](rw_problem* p) {
-      rw_patch s{};
-      s.struct_size = sizeof s;
-      return rw_get_patch(p, index, &s);
-    }, Ready::kCalculated);
-    add("get_cell_count index " + std::to_string(index), RW_ERROR_INDEX, [index](rw_problem* p) {
-      size_t n = 0;
-      return rw_get_cell_count(p, index, &n);
-    }, Ready::kCalculated);
-    add("get_cells index " + std::to_string(index), RW_ERROR_INDEX, [index](rw_problem* p) {
-      double b[1];
-      return rw_get_cells(p, index, 1, b, b, b, b, b, b, b);
-    }, Ready::kCalculated);
+    add(
+        "get_patch index " + std::to_string(index), RW_ERROR_INDEX,
+        [index](rw_problem* p) {
+          rw_patch s{};
+          s.struct_size = sizeof s;
+          return rw_get_patch(p, index, &s);
+        },
+        Ready::kCalculated);
+    add(
+        "get_cell_count index " + std::to_string(index), RW_ERROR_INDEX,
+        [index](rw_problem* p) {
+          size_t n = 0;
+          return rw_get_cell_count(p, index, &n);
+        },
+        Ready::kCalculated);
+    add(
+        "get_cells index " + std::to_string(index), RW_ERROR_INDEX,
+        [index](rw_problem* p) {
+          double b[1];
+          return rw_get_cells(p, index, 1, b, b, b, b, b, b, b);
+        },
+        Ready::kCalculated);
   }
   // A grid model's patch has cells: buffers one short, or empty, must be refused.
   for (int buffer = 0; buffer < 7; ++buffer) {
@@ -765,20 +826,24 @@ std::vector<BadCall> Table() {
         });
   }
   for (double v : {-1.0, -1e-300, kNaN, kInf, -kInf}) {
-    add("accumulate passes = " + Num(v), RW_ERROR_INVALID_VALUE,
+    add(
+        "accumulate passes = " + Num(v), RW_ERROR_INVALID_VALUE,
         [v](rw_problem* p) { return rw_accumulate(p, v); }, Ready::kCalculated);
   }
   add("accumulate before calculate", RW_ERROR_CALL_ORDER,
       [](rw_problem* p) { return rw_accumulate(p, 1.0); });
-  add("accumulate on a new handle", RW_ERROR_CALL_ORDER,
+  add(
+      "accumulate on a new handle", RW_ERROR_CALL_ORDER,
       [](rw_problem* p) { return rw_accumulate(p, 1.0); }, Ready::kNew);
-  add("accumulate without rolling contact", RW_ERROR_CALL_ORDER,
+  add(
+      "accumulate without rolling contact", RW_ERROR_CALL_ORDER,
       [](rw_problem* p) { return rw_accumulate(p, 1.0); }, Ready::kCalculated);
   for (int rail : {-1, 2, 99}) {
-    add("get_depth_count rail " + std::to_string(rail), RW_ERROR_UNKNOWN_FLAG, [rail](rw_problem* p) {
-      size_t n = 0;
-      return rw_get_depth_count(p, rail, &n);
-    });
+    add("get_depth_count rail " + std::to_string(rail), RW_ERROR_UNKNOWN_FLAG,
+        [rail](rw_problem* p) {
+          size_t n = 0;
+          return rw_get_depth_count(p, rail, &n);
+        });
     add("get_depth rail " + std::to_string(rail), RW_ERROR_UNKNOWN_FLAG, [rail](rw_problem* p) {
       double b[1];
       return rw_get_depth(p, rail, 1, b, b);

@@ -20,8 +20,8 @@
 
 #include "app/contact_command.h"
 #include "app/scene.h"
-#include "core/numerics/units.h"
 #include "core/contact/contact_forces.h"
+#include "core/numerics/units.h"
 #include "railwear/railwear.h"
 #include "tests/api/scene_to_api.h"
 
@@ -134,7 +134,8 @@ TEST_P(ApiParity, CApiEqualsTheCliBitForBit) {
                 RW_OK)
           << rw_last_error(p);
       for (size_t k = 0; k < n; ++k) {
-        ASSERT_EQ(pressure[k], patch.pressure_Pa[static_cast<Eigen::Index>(k)]) << where << " cell " << k;
+        ASSERT_EQ(pressure[k], patch.pressure_Pa[static_cast<Eigen::Index>(k)])
+            << where << " cell " << k;
         if (patch.rolling) {
           ASSERT_EQ(tx[k], patch.rolling->tangential.traction_x_Pa[static_cast<Eigen::Index>(k)])
               << where << " cell " << k;

@@ -18,11 +18,11 @@ namespace railwear::test {
 
 // Fails the current test (ADD_FAILURE) with the handle's message when a call does not return
 // RW_OK.
-#define RW_EXPECT_OK(p, call)                                                       \
-  do {                                                                              \
-    const rw_status rw_status_ = (call);                                            \
-    EXPECT_EQ(rw_status_, RW_OK) << #call << ": " << rw_status_name(rw_status_)     \
-                                 << ": " << rw_last_error(p);                       \
+#define RW_EXPECT_OK(p, call)                                                           \
+  do {                                                                                  \
+    const rw_status rw_status_ = (call);                                                \
+    EXPECT_EQ(rw_status_, RW_OK) << #call << ": " << rw_status_name(rw_status_) << ": " \
+                                 << rw_last_error(p);                                   \
   } while (0)
 
 inline rw_material ToApi(const Material& m) {
@@ -68,16 +68,23 @@ inline void SetUpFromScene(rw_problem* p, const app::Scene& scene) {
   rw_init_model(&m);
   const ModelOptions& mo = problem.model;
   switch (mo.kind) {
-    case ModelKind::kHertz: m.kind = RW_MODEL_HERTZ; break;
-    case ModelKind::kHalfspace: m.kind = RW_MODEL_HALFSPACE; break;
-    case ModelKind::kConformal: m.kind = RW_MODEL_CONFORMAL; break;
+    case ModelKind::kHertz:
+      m.kind = RW_MODEL_HERTZ;
+      break;
+    case ModelKind::kHalfspace:
+      m.kind = RW_MODEL_HALFSPACE;
+      break;
+    case ModelKind::kConformal:
+      m.kind = RW_MODEL_CONFORMAL;
+      break;
     case ModelKind::kAuto:
       m.kind = RW_MODEL_AUTO;
       m.kernel = mo.kernel == KernelModel::kBoussinesq ? RW_KERNEL_BOUSSINESQ : RW_KERNEL_GOLUBENKO;
       break;
     case ModelKind::kCustom:
       m.kind = RW_MODEL_CUSTOM;
-      m.geometry = mo.geometry == GeometryModel::kPlanar ? RW_GEOMETRY_PLANAR : RW_GEOMETRY_CONFORMAL;
+      m.geometry =
+          mo.geometry == GeometryModel::kPlanar ? RW_GEOMETRY_PLANAR : RW_GEOMETRY_CONFORMAL;
       m.kernel = mo.kernel == KernelModel::kBoussinesq ? RW_KERNEL_BOUSSINESQ : RW_KERNEL_GOLUBENKO;
       break;
   }

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "railwear/railwear.h"
+#include "tests/api/rolling_wheel.h"
 
 namespace {
 
@@ -24,26 +25,6 @@ struct Case {
   double lateral_m;
   double yaw_rad;
 };
-
-rw_problem* MakeGaugeCornerWheel() {
-  rw_problem* p = nullptr;
-  if (rw_create(RW_PROBLEM_WHEEL, &p) != RW_OK) return nullptr;
-  rw_set_profile_file(p, RW_BODY_WHEEL, "builtin:S1002");
-  rw_set_profile_file(p, RW_BODY_RAIL, "builtin:UIC60");
-  rw_geometry g{};
-  g.struct_size = sizeof g;
-  rw_init_geometry(&g);
-  g.rail_cant = 1.0 / 40.0;
-  rw_set_geometry(p, &g);
-  rw_model m{};
-  m.struct_size = sizeof m;
-  rw_init_model(&m);
-  m.accuracy = RW_ACCURACY_DRAFT;
-  m.effects = RW_EFFECT_TANGENTIAL;
-  rw_set_model(p, &m);
-  rw_set_friction(p, 0.3);
-  return p;
-}
 
 Outcome Step(rw_problem* p, const Case& c) {
   rw_state s{};
@@ -75,7 +56,7 @@ TEST(ApiThreads, TwoHandlesInTwoThreadsEqualSerialRuns) {
   const std::vector<Case> a = {{-4e-3, 5e-3}, {-4.5e-3, 0.0}, {-3.5e-3, -2e-3}};
   const std::vector<Case> b = {{-10.4e-3, 0.0}, {-9e-3, 3e-3}, {-8e-3, -3e-3}};
   auto run = [](const std::vector<Case>& cases, std::vector<Outcome>* out) {
-    rw_problem* p = MakeGaugeCornerWheel();
+    rw_problem* p = railwear::test::MakeRollingS1002Wheel(RW_MODEL_CONFORMAL, RW_ACCURACY_DRAFT);
     for (const Case& c : cases) out->push_back(Step(p, c));
     rw_destroy(p);
   };

@@ -11,29 +11,9 @@
 #include <benchmark/benchmark.h>
 
 #include "railwear/railwear.h"
+#include "tests/api/rolling_wheel.h"
 
 namespace {
-
-rw_problem* MakeWheel(int model_kind, int accuracy) {
-  rw_problem* p = nullptr;
-  rw_create(RW_PROBLEM_WHEEL, &p);
-  rw_set_profile_file(p, RW_BODY_WHEEL, "builtin:S1002");
-  rw_set_profile_file(p, RW_BODY_RAIL, "builtin:UIC60");
-  rw_geometry g{};
-  g.struct_size = sizeof g;
-  rw_init_geometry(&g);
-  g.rail_cant = 1.0 / 40.0;
-  rw_set_geometry(p, &g);
-  rw_model m{};
-  m.struct_size = sizeof m;
-  rw_init_model(&m);
-  m.kind = model_kind;
-  m.accuracy = accuracy;
-  m.effects = RW_EFFECT_TANGENTIAL;
-  rw_set_model(p, &m);
-  rw_set_friction(p, 0.3);
-  return p;
-}
 
 rw_state State(double lateral_m, double yaw_rad) {
   rw_state s{};
@@ -62,14 +42,23 @@ void RunSteps(benchmark::State& state, rw_problem* p, const rw_state& s) {
 }
 
 void BM_GaugeCornerWheel(benchmark::State& state) {
-  RunSteps(state, MakeWheel(RW_MODEL_CONFORMAL, static_cast<int>(state.range(0))), State(-5.6e-3, 0.0));
+  RunSteps(
+      state,
+      railwear::test::MakeRollingS1002Wheel(RW_MODEL_CONFORMAL, static_cast<int>(state.range(0))),
+      State(-5.6e-3, 0.0));
 }
 BENCHMARK(BM_GaugeCornerWheel)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 
 void BM_TreadFastsim(benchmark::State& state) {
-  RunSteps(state, MakeWheel(static_cast<int>(state.range(0)), RW_ACCURACY_DRAFT), State(-10.4e-3, 5e-3));
+  RunSteps(
+      state,
+      railwear::test::MakeRollingS1002Wheel(static_cast<int>(state.range(0)), RW_ACCURACY_DRAFT),
+      State(-10.4e-3, 5e-3));
 }
-BENCHMARK(BM_TreadFastsim)->Arg(RW_MODEL_HALFSPACE)->Arg(RW_MODEL_AUTO)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TreadFastsim)
+    ->Arg(RW_MODEL_HALFSPACE)
+    ->Arg(RW_MODEL_AUTO)
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -66,12 +66,13 @@ int main() try {
       rw_patch patch{};
       patch.struct_size = sizeof patch;
       Check(p, rw_get_patch(p, i, &patch), "patch");
-      std::printf("  %s wheel: Y %.1f mm, angle %.1f deg, p_max %.0f MPa, force on rail (%.2f, "
-                  "%.2f, %.2f) kN\n",
-                  patch.wheel == 0 ? "right" : "left", patch.contact_track_Y_m * 1e3,
-                  patch.contact_angle_rad * 57.29577951308232, patch.p_max_Pa * 1e-6,
-                  patch.force_on_rail_N[0] * 1e-3, patch.force_on_rail_N[1] * 1e-3,
-                  patch.force_on_rail_N[2] * 1e-3);
+      std::printf(
+          "  %s wheel: Y %.1f mm, angle %.1f deg, p_max %.0f MPa, force on rail (%.2f, "
+          "%.2f, %.2f) kN\n",
+          patch.wheel == 0 ? "right" : "left", patch.contact_track_Y_m * 1e3,
+          patch.contact_angle_rad * 57.29577951308232, patch.p_max_Pa * 1e-6,
+          patch.force_on_rail_N[0] * 1e-3, patch.force_on_rail_N[1] * 1e-3,
+          patch.force_on_rail_N[2] * 1e-3);
     }
   }
   return 0;
