@@ -7,7 +7,7 @@
  * this boundary.
  *
  * Input structs are versioned: their first member `struct_size` must be set to sizeof(the
- * struct) (use the RW_*_INIT macros or the rw_init_* functions, which also set the defaults).
+ * struct) and the rest filled with the defaults by the rw_init_* functions.
  * Output structs likewise: the caller sets struct_size, the library fills the struct.
  *
  * Units are SI throughout: metres, radians, newtons, pascals, seconds.
