@@ -3,7 +3,7 @@
 # are already installed are left as they are. Run as root (or with sudo available).
 set -euo pipefail
 packages=(
-  cmake g++ make
+  cmake gcc g++ make python3-dev pybind11-dev python3-numpy valgrind
   libeigen3-dev libgsl-dev libfftw3-dev pkg-config libceres-dev libsqlite3-dev sqlite3
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libbenchmark-dev gnuplot-nox

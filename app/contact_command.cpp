@@ -13,8 +13,7 @@
 #include "app/contact_output.h"
 #include "app/pressure_plot.h"
 #include "app/scene.h"
-#include "core/contact/contact_forces.h"
-#include "core/contact/wheelset_contact.h"
+#include "core/contact/contact_case.h"
 #include "core/numerics/enum_names.h"
 #include "core/numerics/input_error.h"
 
@@ -41,11 +40,7 @@ void ApplyOverrides(const ContactOptions& o, ModelOptions* model) {
     }
     model->kernel = *KernelModelFromString(*o.kernel);
     if (model->kind != ModelKind::kAuto) {  // auto keeps picking the geometry per patch
-      model->kind = ModelKind::kCustom;
-      for (const ModelKind k : {ModelKind::kHalfspace, ModelKind::kConformal}) {
-        const ModelOptions m = MakeModelOptions(k);
-        if (m.geometry == model->geometry && m.kernel == model->kernel) model->kind = k;
-      }
+      model->kind = MatchingModelKind(model->geometry, model->kernel);
     }
   }
   if (o.constants) {
@@ -85,11 +80,7 @@ void Warn(const Scene& scene, const ContactResult& r, const std::string& wheel) 
 
 // A wheelset on a track: both wheels, each in its rail's own frame.
 void RunWheelset(const ContactOptions& o, const Scene& scene) {
-  WheelsetProblem problem;
-  problem.wheel_rail = scene.problem;
-  problem.track = *scene.track;
-  problem.wheelset = *scene.wheelset;
-  const WheelsetResult result = SolveWheelset(problem);
+  const WheelsetResult result = *SolveContactCase(ToContactCase(scene)).wheelset;
   if (o.json) WriteOutput(*o.json, MakeWheelsetJson(scene, result).dump(2) + "\n", "JSON");
   if (o.csv) {
     std::ostringstream csv;
@@ -120,6 +111,18 @@ void RunWheelset(const ContactOptions& o, const Scene& scene) {
 }
 
 }  // namespace
+
+ContactCase ToContactCase(const Scene& scene) {
+  ContactCase c;
+  c.problem = scene.problem;
+  if (scene.wheelset) {
+    c.wheelset.emplace();
+    c.wheelset->track = *scene.track;
+    c.wheelset->wheelset = *scene.wheelset;
+  }
+  c.friction = scene.friction;
+  return c;
+}
 
 void SetupContact(CLI::App& app) {
   auto options = std::make_shared<ContactOptions>();
@@ -159,12 +162,7 @@ void RunContact(const ContactOptions& o) {
     RunWheelset(o, scene);
     return;
   }
-  ContactResult result = SolveContact(scene.problem);
-  // Normal contact has no friction of its own; a friction the scene gives still sets Nadal's
-  // limit for the flange-climb check.
-  if (!result.climb.friction && scene.friction) {
-    result.climb = CheckFlangeClimb(result, scene.friction);
-  }
+  const ContactResult result = SolveContactCase(ToContactCase(scene)).wheel;
 
   if (o.json) WriteOutput(*o.json, MakeContactJson(scene, result).dump(2) + "\n", "JSON");
   if (o.csv) {

@@ -4,11 +4,15 @@
 #include <optional>
 #include <string>
 
+#include "core/contact/contact_case.h"
+
 namespace CLI {
 class App;
 }
 
 namespace railwear::app {
+
+struct Scene;  // app/scene.h
 
 struct ContactOptions {
   std::string scene_path;
@@ -25,6 +29,11 @@ struct ContactOptions {
 };
 
 void SetupContact(CLI::App& app);
+
+// A contact scene (not a wear scene) as the one contact case both front ends solve
+// (core/contact/contact_case.h; the C API of include/railwear/railwear.h builds the same from its
+// calls): the problem, the wheelset's track and placement, and the friction.
+ContactCase ToContactCase(const Scene& scene);
 
 // Throws InputError for bad input (exit 2) and std::runtime_error for failures (exit 1),
 // including a solve that did not converge or found no contact (after writing the outputs).

@@ -14,6 +14,7 @@
 #include "app/load_collective_file.h"
 #include "app/paths.h"
 #include "app/toml_fields.h"
+#include "core/contact/contact_case.h"
 #include "core/numerics/enum_names.h"
 #include "core/numerics/input_error.h"
 #include "core/numerics/units.h"
@@ -111,15 +112,6 @@ void ReadInfluenceConstants(const Fields& model, const std::string& scene_path, 
   scene->problem.model.constants = ReadInfluenceConstantsTable(*t);
 }
 
-// geometry/kernel given explicitly: the kind becomes the shorthand they match, else custom.
-ModelKind KindOf(GeometryModel geometry, KernelModel kernel) {
-  for (const ModelKind k : {ModelKind::kHalfspace, ModelKind::kConformal}) {
-    const ModelOptions o = MakeModelOptions(k);
-    if (o.geometry == geometry && o.kernel == kernel) return k;
-  }
-  return ModelKind::kCustom;
-}
-
 void ReadGeometryAndKernel(const Fields& t, ModelOptions* model) {
   const auto geometry = t.Choice("geometry", EnumChoices(kGeometryModelNames));
   const auto kernel = t.Choice("kernel", EnumChoices(kKernelModelNames));
@@ -136,7 +128,8 @@ void ReadGeometryAndKernel(const Fields& t, ModelOptions* model) {
   }
   if (geometry) model->geometry = *GeometryModelFromString(*geometry);
   if (kernel) model->kernel = *KernelModelFromString(*kernel);
-  model->kind = KindOf(model->geometry, model->kernel);
+  // geometry/kernel given explicitly: the kind becomes the shorthand they match, else custom.
+  model->kind = MatchingModelKind(model->geometry, model->kernel);
 }
 
 constexpr double kMinCell_mm = 0.01, kMaxCell_mm = 20.0;

@@ -1,5 +1,8 @@
-# Layering rule (DESIGN.md §2, §8): app -> {wear, calibration, profiles_db} -> core, never back.
-# wear, calibration and profiles_db never include each other; core includes none of them.
+# Layering rule (DESIGN.md §2, §8): {app, api} -> {wear, calibration, profiles_db} -> core, never
+# back. app and api (the two front ends) never include each other; wear, calibration and
+# profiles_db never include each other; core includes none of them. The C API's public header
+# include/railwear/railwear.h is plain C and includes nothing of ours; only api/ and the tests
+# include it.
 # Inside core: vehicle -> contact -> geometry -> profile -> numerics, never back.
 # SQLite only in profiles_db/*.cpp; CLI11 only in app/; toml++ only in app/; Ceres and GSL never
 # in headers; MPI only in app/sweep_mpi.cpp (linked into the railwear executable alone).
@@ -21,7 +24,8 @@ function(check_dir dir pattern why)
   set(violations "${violations}" PARENT_SCOPE)
 endfunction()
 
-check_dir(core "[\"<](app|wear|calibration|profiles_db)/" "core depends on nothing of ours")
+check_dir(core "[\"<](app|api|wear|calibration|profiles_db|railwear)/"
+          "core depends on nothing of ours")
 check_dir(core "[\"<](sqlite3\\.h|CLI/|toml\\+\\+/)" "core uses no SQLite, CLI11 or toml++")
 # Inside core, each folder includes only the folders below it.
 check_dir(core/contact "[\"<]core/vehicle/" "core/contact never includes core/vehicle")
@@ -31,20 +35,28 @@ check_dir(core/profile "[\"<]core/(vehicle|contact|geometry)/"
           "core/profile includes only core/numerics")
 check_dir(core/numerics "[\"<]core/(vehicle|contact|geometry|profile)/"
           "core/numerics includes nothing else of core")
-check_dir(wear "[\"<](app|calibration|profiles_db)/"
+check_dir(wear "[\"<](app|api|railwear|calibration|profiles_db)/"
           "wear never includes app, calibration or profiles_db")
 check_dir(wear "[\"<](sqlite3\\.h|CLI/|toml\\+\\+/)" "wear uses no SQLite, CLI11 or toml++")
-check_dir(calibration "[\"<](app|wear|profiles_db)/"
+check_dir(calibration "[\"<](app|api|railwear|wear|profiles_db)/"
           "calibration never includes app, wear or profiles_db")
 check_dir(calibration "[\"<](sqlite3\\.h|CLI/|toml\\+\\+/)"
           "calibration uses no SQLite, CLI11 or toml++")
-check_dir(profiles_db "[\"<](app|wear|calibration)/"
+check_dir(profiles_db "[\"<](app|api|railwear|wear|calibration)/"
           "profiles_db never includes app, wear or calibration")
 check_dir(profiles_db "[\"<](CLI/|toml\\+\\+/)" "profiles_db uses no CLI11 or toml++")
+# The front ends: app (the CLI) and api (the C API) sit side by side over the same libraries.
+check_dir(app "[\"<](api|railwear)/" "app never includes api or the C API's header")
+check_dir(api "[\"<]app/" "api never includes app")
+check_dir(api "[\"<](sqlite3\\.h|CLI/|toml\\+\\+/|mpi\\.h)"
+          "api uses no SQLite, CLI11, toml++ or MPI (profiles_db, app)")
+check_dir(include "[\"<](app|api|core|wear|calibration|profiles_db)/"
+          "the public C header includes nothing of ours")
 
 # Ceres and GSL only inside .cpp files; SQLite only in profiles_db/*.cpp.
 file(GLOB_RECURSE headers "${SOURCE_DIR}/core/*.h" "${SOURCE_DIR}/wear/*.h"
-     "${SOURCE_DIR}/calibration/*.h" "${SOURCE_DIR}/profiles_db/*.h" "${SOURCE_DIR}/app/*.h")
+     "${SOURCE_DIR}/calibration/*.h" "${SOURCE_DIR}/profiles_db/*.h" "${SOURCE_DIR}/app/*.h"
+     "${SOURCE_DIR}/api/*.h" "${SOURCE_DIR}/include/*.h")
 foreach(f ${headers})
   file(STRINGS "${f}" lines REGEX "^[ \t]*#[ \t]*include")
   foreach(line ${lines})
@@ -54,7 +66,7 @@ foreach(f ${headers})
     endif()
   endforeach()
 endforeach()
-file(GLOB_RECURSE all_sources "${SOURCE_DIR}/app/*.cpp" "${SOURCE_DIR}/core/*.cpp"
+file(GLOB_RECURSE all_sources "${SOURCE_DIR}/app/*.cpp" "${SOURCE_DIR}/api/*.cpp" "${SOURCE_DIR}/core/*.cpp"
      "${SOURCE_DIR}/wear/*.cpp" "${SOURCE_DIR}/calibration/*.cpp")
 foreach(f ${all_sources})
   file(STRINGS "${f}" lines REGEX "^[ \t]*#[ \t]*include")
@@ -86,6 +98,6 @@ endforeach()
 
 if(violations)
   message(FATAL_ERROR
-          "Forbidden include edges (app -> {wear, calibration, profiles_db} -> core):${violations}")
+          "Forbidden include edges ({app, api} -> {wear, calibration, profiles_db} -> core):${violations}")
 endif()
 message(STATUS "layering: no forbidden include edge")

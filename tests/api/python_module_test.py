@@ -1,0 +1,103 @@
+"""The Python module `railwear` (api/python): the same names as the C API, NumPy arrays out,
+errors as railwear.Error. Parity: the gauge-corner example set up from Python gives the numbers
+`railwear contact examples/gauge_corner.toml --json` writes, bit for bit (the CLI equals the C
+API, tests/api/parity_test.cpp; the module only translates). Run by ctest as
+    python3 tests/api/python_module_test.py RAILWEAR_BINARY EXAMPLES_DIR
+with PYTHONPATH holding the built module."""
+import json
+import subprocess
+import sys
+import unittest
+
+import numpy as np
+
+import railwear
+
+RAILWEAR = sys.argv[1] if len(sys.argv) > 1 else "railwear"
+EXAMPLES = sys.argv[2] if len(sys.argv) > 2 else "examples"
+MM = 1e-3  # the scene reader's mm -> m factor (core/numerics/units.h kMm)
+
+
+def gauge_corner(**model):
+    """examples/gauge_corner.toml through the module, in the scene reader's own arithmetic."""
+    p = railwear.Problem(railwear.PROBLEM_WHEEL)
+    p.set_profile_file(railwear.BODY_WHEEL, "builtin:S1002")
+    p.set_profile_file(railwear.BODY_RAIL, "builtin:UIC60")
+    p.set_geometry(rolling_radius_m=460 * MM, rail_cant=1.0 / 40.0)
+    steel = {"youngs_modulus_Pa": 210000 * 1e6, "poisson_ratio": 0.28}
+    p.set_materials(steel, steel)
+    p.set_model(kind=railwear.MODEL_CONFORMAL, accuracy=railwear.ACCURACY_STANDARD, **model)
+    p.set_state(lateral_m=-4.0 * MM, vertical_force_N=100000.0)
+    return p
+
+
+class PythonModule(unittest.TestCase):
+    def test_the_module_equals_the_cli_bit_for_bit(self):
+        out = subprocess.run([RAILWEAR, "contact", EXAMPLES + "/gauge_corner.toml", "--json", "-"],
+                             check=True, capture_output=True, text=True).stdout
+        cli = json.loads(out)["patches"]
+        p = gauge_corner()
+        self.assertEqual(p.calculate(), railwear.OK)
+        self.assertEqual(p.get_patch_count(), len(cli))
+        for i, q in enumerate(cli):
+            patch = p.get_patch(i)
+            self.assertEqual(patch["normal_force_N"], q["normal_force_N"])
+            self.assertEqual(patch["p_max_Pa"] * 1e-6, q["p_max_MPa"])
+            self.assertEqual(patch["area_m2"] * 1e6, q["area_mm2"])
+            self.assertEqual(patch["cells_in_contact"], q["cells_in_contact"])
+            cells = p.get_cells(i)
+            self.assertIsInstance(cells["pressure_Pa"], np.ndarray)
+            self.assertEqual(len(cells["pressure_Pa"]), patch["cells"])
+            self.assertEqual(int(np.count_nonzero(cells["pressure_Pa"] > 0)),
+                             patch["cells_in_contact"])
+
+    def test_profile_points_from_numpy(self):
+        p = railwear.Problem()
+        y = np.linspace(-0.02, 0.02, 41)
+        p.set_profile_points(railwear.BODY_WHEEL, np.column_stack([y, -(0.3 - np.sqrt(0.3**2 - y**2))]))
+        p.set_profile_points(railwear.BODY_RAIL, np.column_stack([y, 0.3 - np.sqrt(0.3**2 - y**2)]))
+        p.set_model(kind=railwear.MODEL_HERTZ)
+        p.set_state(vertical_force_N=50e3)
+        self.assertEqual(p.calculate(), railwear.OK)
+        self.assertGreater(p.get_patch(0)["p_max_Pa"], 0.0)
+        with self.assertRaises(ValueError):
+            p.set_profile_points(railwear.BODY_WHEEL, np.zeros((5, 3)))
+
+    def test_errors_are_raised_with_status_and_message(self):
+        p = railwear.Problem()
+        with self.assertRaises(railwear.Error) as e:
+            p.set_friction(-1.0)
+        self.assertEqual(e.exception.status, 3)
+        self.assertEqual(e.exception.status_name, "RW_ERROR_INVALID_VALUE")
+        self.assertIn("friction = -1", str(e.exception))
+        with self.assertRaises(railwear.Error) as e:
+            p.calculate()
+        self.assertEqual(e.exception.status_name, "RW_ERROR_CALL_ORDER")
+        with self.assertRaises(TypeError):
+            p.set_state(lateral_mm=4.0)  # an unknown field, named
+        with self.assertRaises(railwear.Error):
+            railwear.Problem(7)
+
+    def test_accumulate(self):
+        p = railwear.Problem()
+        p.set_profile_file(railwear.BODY_WHEEL, "builtin:S1002")
+        p.set_profile_file(railwear.BODY_RAIL, "builtin:UIC60")
+        p.set_geometry(rail_cant=1.0 / 40.0)
+        steel = {"youngs_modulus_Pa": 210e9, "poisson_ratio": 0.28}
+        p.set_materials(steel, dict(steel, hardness_Pa=2.6e9))
+        p.set_model(accuracy=railwear.ACCURACY_DRAFT, effects=railwear.EFFECT_TANGENTIAL)
+        p.set_friction(0.3)
+        p.set_wear(law=railwear.WEAR_ARCHARD)
+        p.set_state(lateral_m=-4e-3, vertical_force_N=100e3, speed_m_s=20.0, yaw_rad=5e-3)
+        self.assertEqual(p.calculate(), railwear.OK)
+        p.accumulate(1.0)
+        s, one = p.get_depth(0)
+        p.accumulate(1.0)
+        _, two = p.get_depth(0)
+        self.assertEqual(len(s), len(one))
+        self.assertGreater(one.max(), 0.0)
+        np.testing.assert_array_equal(two, one + one)
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1])

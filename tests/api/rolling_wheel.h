@@ -1,0 +1,34 @@
+// Test and benchmark support: a C API handle of an S1002 wheel rolling on UIC60 canted 1:40
+// (the wheel and rail of examples/rolling_gauge_corner.toml), FASTSIM, mu 0.3, steel; the
+// caller gives the model kind and accuracy and then the state per step.
+#pragma once
+
+#include "railwear/railwear.h"
+
+namespace railwear::test {
+
+// NULL when the handle could not be made (every call's status is checked).
+inline rw_problem* MakeRollingS1002Wheel(int model_kind, int accuracy) {
+  rw_problem* p = nullptr;
+  if (rw_create(RW_PROBLEM_WHEEL, &p) != RW_OK) return nullptr;
+  rw_geometry g{};
+  g.struct_size = sizeof g;
+  rw_init_geometry(&g);
+  g.rail_cant = 1.0 / 40.0;
+  rw_model m{};
+  m.struct_size = sizeof m;
+  rw_init_model(&m);
+  m.kind = model_kind;
+  m.accuracy = accuracy;
+  m.effects = RW_EFFECT_TANGENTIAL;
+  if (rw_set_profile_file(p, RW_BODY_WHEEL, "builtin:S1002") != RW_OK ||
+      rw_set_profile_file(p, RW_BODY_RAIL, "builtin:UIC60") != RW_OK ||
+      rw_set_geometry(p, &g) != RW_OK || rw_set_model(p, &m) != RW_OK ||
+      rw_set_friction(p, 0.3) != RW_OK) {
+    rw_destroy(p);
+    return nullptr;
+  }
+  return p;
+}
+
+}  // namespace railwear::test

@@ -1,0 +1,65 @@
+// Per-call time of the C API (include/railwear/railwear.h) as a vehicle-dynamics code calls it
+// per time step: rw_set_state + rw_calculate on a handle set up once (issue 20).
+//   BM_GaugeCornerWheel/<accuracy>: S1002 on UIC60 1:40 with the flange root at the gauge
+//     corner (lateral -5.6 mm, no yaw: two patches, the gauge corner's at 16.5 degrees and the
+//     tread's at 7 degrees), 100 kN, rolling at 20 m/s, FASTSIM tractions, conformal model;
+//     accuracy 0 draft .. 3 fine. The counter `patches` shows the two.
+//   BM_TreadFastsim/<model>: the same wheel on its tread (-10.4 mm, 5 mrad of yaw), the cheapest
+//     rolling call: draft accuracy, model 1 halfspace (planar Boussinesq grid), 4 auto.
+// Run: build/tests/benchmarks/api_bench --benchmark_repetitions=5
+//      --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include "railwear/railwear.h"
+#include "tests/api/rolling_wheel.h"
+
+namespace {
+
+rw_state State(double lateral_m, double yaw_rad) {
+  rw_state s{};
+  s.struct_size = sizeof s;
+  rw_init_state(&s);
+  s.lateral_m = lateral_m;
+  s.yaw_rad = yaw_rad;
+  s.vertical_force_N = 100e3;
+  s.speed_m_s = 20.0;
+  return s;
+}
+
+void RunSteps(benchmark::State& state, rw_problem* p, const rw_state& s) {
+  int patches = 0;
+  for (auto _ : state) {
+    rw_set_state(p, &s);
+    if (rw_calculate(p) != RW_OK) {
+      state.SkipWithError(rw_last_error(p));
+      break;
+    }
+    rw_get_patch_count(p, &patches);
+    benchmark::DoNotOptimize(patches);
+  }
+  state.counters["patches"] = patches;
+  rw_destroy(p);
+}
+
+void BM_GaugeCornerWheel(benchmark::State& state) {
+  RunSteps(
+      state,
+      railwear::test::MakeRollingS1002Wheel(RW_MODEL_CONFORMAL, static_cast<int>(state.range(0))),
+      State(-5.6e-3, 0.0));
+}
+BENCHMARK(BM_GaugeCornerWheel)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+
+void BM_TreadFastsim(benchmark::State& state) {
+  RunSteps(
+      state,
+      railwear::test::MakeRollingS1002Wheel(static_cast<int>(state.range(0)), RW_ACCURACY_DRAFT),
+      State(-10.4e-3, 5e-3));
+}
+BENCHMARK(BM_TreadFastsim)
+    ->Arg(RW_MODEL_HALFSPACE)
+    ->Arg(RW_MODEL_AUTO)
+    ->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
