@@ -336,7 +336,8 @@ std::unique_ptr<InfluenceOperator> MakeInfluenceOperator(const PatchGrid& grid,
 double EstimateOperatorBytes(int nx, int ns, bool planar) {
   const double n_x = nx, n_s = ns;
   double doubles = planar ? 8.0 * (2.0 * n_x) * (2.0 * n_s) : 2.0 * (n_x + 1.0) * n_s * n_s;
-  if (nx * ns <= kDenseProductMaxCells) doubles += (n_x * n_s) * (n_x * n_s);  // kAuto's matrix
+  // In doubles: the grid builder asks about sizes whose nx * ns overflows an int (issue 17).
+  if (n_x * n_s <= kDenseProductMaxCells) doubles += (n_x * n_s) * (n_x * n_s);  // kAuto's matrix
   return doubles * sizeof(double);
 }
 

@@ -68,8 +68,9 @@ bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* model
       // re-gridding below keep within it; an explicit cell_mm may not).
       result->status = SolverStatus::kNotConverged;
       result->message = fmt::format(
-          "the potential contact area needs a {} x {} grid, whose influence operator would "
-          "take {:.1f} GB (at most {:.0f} GB): choose a coarser accuracy or larger cell_mm",
+          "the potential contact area needs at least a {} x {} grid, whose influence operator "
+          "would take {:.1f} GB (at most {:.0f} GB): choose a coarser model.accuracy or a "
+          "larger model.cell_mm",
           b.grid.nx, b.grid.ns, EstimateOperatorBytes(b.grid.nx, b.grid.ns, b.grid.planar) / 1e9,
           kMaxOperatorBytes / 1e9);
       return false;
