@@ -370,7 +370,7 @@ std::vector<CorpusCase> Corpus() {
          "[1, 1000000]"},
         {"approach_mm", load("approach_mm = 1e308"), contact_cmd, "load.approach_mm", "1e+308",
          "[1e-06, 1]"},
-        {"lateral_shift_mm", Replace(tread, "lateral_shift_mm = -10.4", "lateral_shift_mm = 1e308"),
+        {"lateral_shift_mm", Replace(tread, "\nlateral_shift_mm = -10.4", "\nlateral_shift_mm = 1e308"),
          contact_cmd, "load.lateral_shift_mm", "1e+308", "[-100, 100]"},
         {"speed_m_s", load("vertical_N = 100000\nspeed_m_s = 1e308"), contact_cmd,
          "load.speed_m_s", "1e+308", "[0, 150]"},
@@ -454,8 +454,8 @@ std::vector<CorpusCase> Corpus() {
                  wear_cmd,
                  2,
                  {"c.toml:", "key 'traffic[0].vertical_N' = 1e+308", "[0, 1000000]"}});
-    const size_t first = collective.find("[[traffic]]");
-    const size_t second = collective.find("[[traffic]]", first + 1);
+    const size_t first = collective.find("\n[[traffic]]") + 1;  // not the header's comment
+    const size_t second = collective.find("\n[[traffic]]", first) + 1;
     std::string bin = collective.substr(first, second - first);
     bin = Replace(bin, "share = 0.00624434766", "share = 0.000199960008");  // 1 / 5001
     std::string many = collective.substr(0, first);
