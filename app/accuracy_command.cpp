@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include "app/cli_checks.h"
 #include "app/curving_accuracy.h"
 #include "app/gnuplot.h"
 #include "app/wear_accuracy.h"
@@ -39,7 +40,7 @@ void SetupAccuracy(CLI::App& app) {
                       "(default: all; a wear scene: draft, standard, reference)")
           ->delimiter(',');
   sub->add_option("--repeats", options->repeats, "Solves per run; the time is their median")
-      ->check(CLI::PositiveNumber);
+      ->check(IntegerIn(1, 1000));
   sub->add_option("--out", options->out_dir,
                   "Write DIR/accuracy.csv and the Pareto plot DIR/accuracy.png");
   sub->add_flag("--no-plot", *no_plot, "With --out: no plot (gnuplot not needed)");
@@ -54,11 +55,13 @@ void SetupAccuracy(CLI::App& app) {
   sub->add_option("--step-limits", options->step_limits_mm,
                   "Wear scenes: step limits (max_depth_per_step) in mm, comma-separated "
                   "(default 0.2,0.1,0.05)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(NumberIn(0.001, 1.0));  // as [wear] max_depth_per_step_mm
   sub->add_option("--mgt", options->total_mgt,
-                  "Wear scenes: run every study to this many MGT instead of the scene's total");
+                  "Wear scenes: run every study to this many MGT instead of the scene's total")
+      ->check(NumberIn(1e-6, 1e4));  // as [wear] total_MGT
   sub->add_option("--threads", options->threads, "Wear scenes: load-case workers (0: the scene's)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(IntegerIn(0, 256));  // as [wear] threads
   CLI::Option* tangential =
       sub->add_option("--tangential", options->tangential,
                       "Rolling scenes: tangential methods to compare, comma-separated: fastsim, "

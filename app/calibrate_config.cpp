@@ -80,9 +80,12 @@ void ReadCurveEntries(const Fields& top, CalibrateConfig* c) {
     t.AllowOnly({"file", "weight", "min_distance_mm", "max_distance_mm"});
     CalibrateCurveEntry e;
     e.file = ExistingFile(t, "file", c->path, "displacement curves (CSV)");
-    e.data.weight = t.Number("weight", Positive()).value_or(1.0);
-    e.data.min_distance_m = t.Number("min_distance_mm", AtLeast(0.0)).value_or(0.0) * kMm;
-    if (const auto max = t.Number("max_distance_mm", Positive())) {
+    // Weights are relative, as traffic shares: up to 1e6 (a sum near the largest double made
+    // the objective infinite). Distances from the load within 1 m (the curves are millimetres).
+    e.data.weight = t.Number("weight", Positive(), OpenClosed(0.0, 1e6)).value_or(1.0);
+    e.data.min_distance_m =
+        t.Number("min_distance_mm", AtLeast(0.0), Closed(0.0, 1000.0)).value_or(0.0) * kMm;
+    if (const auto max = t.Number("max_distance_mm", Positive(), OpenClosed(0.0, 1000.0))) {
       e.data.max_distance_m = *max * kMm;
       if (!(e.data.max_distance_m > e.data.min_distance_m)) {
         t.Fail("max_distance_mm", "a distance larger than min_distance_mm");
@@ -139,7 +142,7 @@ void ReadContactEntries(const Fields& top, CalibrateConfig* c) {
           t.RequiredNumber("p_max_MPa", Positive(), Closed(kMinP_MPa, kMaxP_MPa)) / kToMPa;
       prefix = FieldPrefix(t.file(), *t.Node("scene"), t.KeyName("scene"));
     }
-    e.target.weight = t.Number("weight", Positive()).value_or(1.0);
+    e.target.weight = t.Number("weight", Positive(), OpenClosed(0.0, 1e6)).value_or(1.0);
     e.loaded = LoadScene(e.scene);  // its own FILE:LINE messages
     if (e.loaded.wear || e.loaded.track) {
       throw InputError(fmt::format("{}: expected a single-wheel contact scene ([load]), not a {}",

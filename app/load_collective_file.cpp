@@ -117,8 +117,8 @@ LoadCollective ReadLoadCollective(const std::string& path) {
   const auto unit = head->Choice("weight_unit", units);
   if (!unit) head->FailMissing("weight_unit", JoinQuoted(units));
   c.weight_unit = *EnumFromString(kWeightUnitNames, *unit);
-  c.total_weight_high = head->RequiredNumber("total_weight_high", AtLeast(0.0));
-  c.total_weight_low = head->RequiredNumber("total_weight_low", AtLeast(0.0));
+  c.total_weight_high = head->RequiredNumber("total_weight_high", AtLeast(0.0), Closed(0.0, 1e15));
+  c.total_weight_low = head->RequiredNumber("total_weight_low", AtLeast(0.0), Closed(0.0, 1e15));
   const auto axle = head->Choice("axle_load", {kAxleFromColumn, kAxleFromLoad});
   if (!axle) head->FailMissing("axle_load", "'column' or '2Q/g'");
   c.axle_load_from_column = *axle == kAxleFromColumn;
@@ -157,16 +157,20 @@ LoadCollective ReadLoadCollective(const std::string& path) {
     const auto rail = t.Choice("rail", rails);
     if (!rail) t.FailMissing("rail", JoinQuoted(rails));
     e.rail = *EnumFromString(kRailSideNames, *rail);
-    e.wheelset_y_m = t.RequiredNumber("wheelset_y_mm", AnyFinite()) * kMm;
+    // The ranges a scene's own keys have (docs/testing.md): a wheelset within 100 mm of the
+    // track centre, roll within 0.5 rad, wheel loads up to 1 MN, speeds up to 150 m/s, mu in
+    // (0, 2], xi in [-1, 1], axle loads in [0.1, 40] t; weights (passes, seconds or metres)
+    // up to 1e15.
+    e.wheelset_y_m = t.RequiredNumber("wheelset_y_mm", AnyFinite(), Closed(-100.0, 100.0)) * kMm;
     e.yaw_rad = t.RequiredNumber("yaw_mrad", InRange(-100.0, 100.0)) / kToMrad;
-    e.roll_rad = t.Number("roll_mrad", AnyFinite()).value_or(0.0) / kToMrad;
-    e.vertical_force_N = t.RequiredNumber("vertical_N", AtLeast(0.0));
-    e.speed_m_s = t.RequiredNumber("speed_m_s", Positive());
-    e.friction = t.Number("friction", Positive());
-    e.creepage_x = t.Number("creepage_x", AnyFinite());
+    e.roll_rad = t.Number("roll_mrad", AnyFinite(), Closed(-500.0, 500.0)).value_or(0.0) / kToMrad;
+    e.vertical_force_N = t.RequiredNumber("vertical_N", AtLeast(0.0), Closed(0.0, 1e6));
+    e.speed_m_s = t.RequiredNumber("speed_m_s", Positive(), OpenClosed(0.0, 150.0));
+    e.friction = t.Number("friction", Positive(), OpenClosed(0.0, 2.0));
+    e.creepage_x = t.Number("creepage_x", AnyFinite(), Closed(-1.0, 1.0));
     e.share = t.RequiredNumber("share", OpenClosed(0.0, 1.0));
-    e.weight = t.RequiredNumber("weight", Positive());
-    e.axle_load_t = t.RequiredNumber("axle_load_t", Positive());
+    e.weight = t.RequiredNumber("weight", Positive(), OpenClosed(0.0, 1e15));
+    e.axle_load_t = t.RequiredNumber("axle_load_t", Positive(), Closed(0.1, 40.0));
     e.rows = t.Integer("rows", IntegerAtLeast(1)).value_or(1);
     const auto mbs = t.Table("mbs", "an inline table of the [collective] mbs names");
     if (!c.mbs_names.empty() && !mbs) {

@@ -33,6 +33,27 @@ constexpr double kMaxYaw_mrad = 100.0;  // angles of attack are tens of mrad (we
 constexpr double kMaxShare = 1e6;
 constexpr double kMaxSpeed_m_s = 150.0;  // 540 km/h, above any rail vehicle's
 
+// Ranges the numerics bear (issue 17; the table in docs/testing.md). A value outside is refused
+// at input with "expected RANGE (the range the numerics bear)".
+// Wheel radii from 50 mm (below any rail wheel: small tram wheels are 250 mm) to 2 m: the patch's
+// x extent is sqrt(2 r threshold), and 1e-300 mm left no cell.
+NumberRule WheelRadiusRange() { return Closed(50.0, 2000.0); }
+// Wheel loads from 1 N to 1 MN (a 40 t axle's wheel carries 200 kN; its dynamic peaks 2-3x):
+// the first-contact estimate divides by the load, and 1e308 N overflowed the approach.
+NumberRule WheelLoadRange() { return Closed(1.0, 1e6); }
+// Lateral positions within 100 mm of the profiles' origins or of the centred wheelset: a flange
+// is 30 mm high and a gauge 1435 mm; beyond, the profiles no longer meet (as [load] lateral_mm).
+NumberRule LateralRange() { return Closed(-100.0, 100.0); }
+// Wheelset speeds up to kMaxSpeed_m_s; its pitch velocity within 1e4 rad/s (150 m/s on a 50 mm
+// radius is 3000 rad/s): the creepages divide by the speed.
+NumberRule PitchVelocityRange() { return Closed(-1e4, 1e4); }
+// Longitudinal (traction, braking) forces within 1 MN per wheel (mu Q of the largest load).
+NumberRule LongitudinalForceRange() { return Closed(-1e6, 1e6); }
+// Wear coefficients (Archard k, the KTH map's k): from 1e-12 (a step of 0.1 mm would take more
+// than 1e9 passes: "nothing wears") to 1 (every pass removes its own contact volume).
+NumberRule WearCoefficientRange() { return Closed(1e-12, 1.0); }
+NumberRule AxleLoadRange() { return Closed(0.1, 40.0); }  // t
+
 const std::vector<std::string_view> kKnownEffects = {"normal", "tangential", "coupling", "wear",
                                                      "damage"};
 
@@ -132,14 +153,15 @@ void ReadGeometryAndKernel(const Fields& t, ModelOptions* model) {
   model->kind = MatchingModelKind(model->geometry, model->kernel);
 }
 
-constexpr double kMinCell_mm = 0.01, kMaxCell_mm = 20.0;
+constexpr double kMinCell_mm = 0.001, kMaxCell_mm = 20.0;
 
 void ReadCellSize(const Fields& t, ModelOptions* model) {
   const toml::node* node = t.Node("cell_mm");
   if (node == nullptr) return;
-  // Cells from 0.01 mm (the lateral walk that sizes a patch steps an eighth of a cell: below
-  // this it takes minutes and gigabytes before the operator's memory estimate can refuse the
-  // grid) to 20 mm (a whole patch in one cell; 1e308 overflowed the operator).
+  // Cells from 1 um (the lateral walk that sizes a patch steps an eighth of a cell, 0.125 um,
+  // still a thousand times the profile projections' rounding; grids too fine for memory are
+  // refused by the operator's size estimate before that walk, naming cell_mm) to 20 mm (a
+  // whole patch in one cell; 1e308 overflowed the operator).
   const std::string expected = fmt::format(
       "two positive numbers [dx, ds] in mm, each in [{}, {}] (the range the numerics bear)",
       kMinCell_mm, kMaxCell_mm);
@@ -250,7 +272,7 @@ void ReadWheel(const Fields& top, Scene* scene) {
   t.AllowOnly({"profile", "rolling_radius_mm", "mirror_y"});
   scene->wheel_profile_spec = t.RequiredString("profile", kProfileExpected);
   scene->problem.placement.rolling_radius_m =
-      t.RequiredNumber("rolling_radius_mm", Positive()) * kMm;
+      t.RequiredNumber("rolling_radius_mm", Positive(), WheelRadiusRange()) * kMm;
   Profile p =
       LoadProfileFor(t, "profile", BodyRole::kWheel, scene->wheel_profile_spec, scene->path);
   if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
@@ -309,7 +331,9 @@ void ReadTrackTable(const Fields& top, Scene* scene) {
   // The track's gauge and curve, for vehicle traffic (a curve turns toward the low rail).
   study.track.gauge_m = t.Number("gauge_mm", InRange(1000.0, 1700.0)).value_or(1435.0) * kMm;
   study.track.gauge_height_m = t.Number("gauge_height_mm", InRange(0.0, 30.0)).value_or(14.0) * kMm;
-  study.curve.radius_m = t.Number("radius_m", AtLeast(50.0)).value_or(0.0);
+  // Curves from R 50 m (a tram's tightest) to 100 km (tangent track within the curving's
+  // tolerance): 1e308 m gave a curvature below the smallest double's resolution of the forces.
+  study.curve.radius_m = t.Number("radius_m", AtLeast(50.0), Closed(50.0, 1e5)).value_or(0.0);
   study.curve.cant_m = t.Number("cant_mm", InRange(0.0, 250.0)).value_or(0.0) * kMm;
   if (scene->cant_ratio != 0.0) high = ApplyCant(high, scene->cant_ratio);
   scene->problem.rail_profile = std::move(high);
@@ -322,19 +346,25 @@ Creepage ReadCreepage(const Fields& load) {
   Creepage c;
   c.xi = t->Number("xi", InRange(-1.0, 1.0)).value_or(0.0);
   c.eta = t->Number("eta", InRange(-1.0, 1.0)).value_or(0.0);
-  c.spin_per_m = t->Number("spin_per_mm", AnyFinite()).value_or(0.0) / kMm;
+  // Spin up to 0.1 /mm: sin(contact angle) / r is 2e-3 /mm at a 90 degree flange on a 460 mm
+  // wheel, and the tangential solvers' slip grows with spin times the patch size.
+  c.spin_per_m = t->Number("spin_per_mm", AnyFinite(), Closed(-0.1, 0.1)).value_or(0.0) / kMm;
   return c;
 }
 
 // The rolling keys shared by the single wheel ([load]) and the wheelset ([wheelset]).
 void ReadMotion(const Fields& t, Scene* scene) {
-  if (const auto v = t.Number("speed_m_s", AtLeast(0.0))) scene->speed_m_s = *v;
+  if (const auto v = t.Number("speed_m_s", AtLeast(0.0), Closed(0.0, kMaxSpeed_m_s))) {
+    scene->speed_m_s = *v;
+  }
   // As for traffic: yaw is tens of milliradians; the yawed outline needs |yaw| < 0.5 rad.
   if (const auto yaw = t.Number("yaw_mrad", InRange(-kMaxYaw_mrad, kMaxYaw_mrad))) {
     scene->problem.placement.yaw_rad = *yaw * 1e-3;
   }
-  scene->motion.pitch_velocity_rad_s = t.Number("pitch_velocity_rad_s", AnyFinite());
-  scene->longitudinal_force_N = t.Number("longitudinal_force_N", AnyFinite());
+  scene->motion.pitch_velocity_rad_s =
+      t.Number("pitch_velocity_rad_s", AnyFinite(), PitchVelocityRange());
+  scene->longitudinal_force_N =
+      t.Number("longitudinal_force_N", AnyFinite(), LongitudinalForceRange());
   if (scene->longitudinal_force_N && t.Has("pitch_velocity_rad_s")) {
     t.Fail("longitudinal_force_N",
            "either longitudinal_force_N or pitch_velocity_rad_s (the force sets the pitch "
@@ -415,8 +445,12 @@ void ReadLoad(const Fields& top, Scene* scene) {
                "gauge_mm", "gauge_height_mm", "flange_back_distance_mm",
                "flange_back_position_mm"});
   ContactLoad& load = scene->problem.load;
-  load.vertical_force_N = t.Number("vertical_N", Positive());
-  if (const auto a = t.Number("approach_mm", Positive())) load.approach_m = *a * kMm;
+  load.vertical_force_N = t.Number("vertical_N", Positive(), WheelLoadRange());
+  // Approaches from 1 nm (the first-contact search's tolerance is 0.1 nm) to 1 mm (ten times a
+  // heavy wheel's on the tread; 1e308 mm overflowed the potential area).
+  if (const auto a = t.Number("approach_mm", Positive(), Closed(1e-6, 1.0))) {
+    load.approach_m = *a * kMm;
+  }
   if (load.vertical_force_N && load.approach_m) {
     t.Fail("approach_mm", "exactly one of 'load.vertical_N' and 'load.approach_mm' (both given)");
   }
@@ -424,7 +458,8 @@ void ReadLoad(const Fields& top, Scene* scene) {
     t.FailMissing("vertical_N", "exactly one of 'load.vertical_N' and 'load.approach_mm'");
   }
   WheelPlacement& placement = scene->problem.placement;
-  placement.lateral_shift_m = t.Number("lateral_shift_mm", AnyFinite()).value_or(0.0) * kMm;
+  placement.lateral_shift_m =
+      t.Number("lateral_shift_mm", AnyFinite(), LateralRange()).value_or(0.0) * kMm;
   ReadCentredPlacement(t, scene);
   placement.roll_rad = t.Number("roll_rad", InRange(-kMaxRoll_rad, kMaxRoll_rad)).value_or(0.0);
   scene->friction = t.Number("friction", OpenClosed(0.0, 2.0));
@@ -450,21 +485,28 @@ void ReadWheelset(const Fields& top, Scene* scene) {
   TrackSpec tr;
   if (track) {
     track->AllowOnly({"gauge_mm", "gauge_height_mm"});
-    tr.gauge_m = track->Number("gauge_mm", Positive()).value_or(tr.gauge_m / kMm) * kMm;
-    tr.gauge_height_m =
-        track->Number("gauge_height_mm", AtLeast(0.0)).value_or(tr.gauge_height_m / kMm) * kMm;
+    // As [load]'s reference track: metre to broad gauges, the gauge point within the flange.
+    tr.gauge_m =
+        track->Number("gauge_mm", Positive(), InRange(1000.0, 1700.0)).value_or(tr.gauge_m / kMm) *
+        kMm;
+    tr.gauge_height_m = track->Number("gauge_height_mm", AtLeast(0.0), InRange(0.0, 30.0))
+                            .value_or(tr.gauge_height_m / kMm) *
+                        kMm;
   }
   ws->AllowOnly({"flange_back_distance_mm", "flange_back_position_mm", "lateral_displacement_mm",
                  "yaw_mrad", "roll_rad", "vertical_load_per_wheel_N", "speed_m_s",
                  "pitch_velocity_rad_s", "longitudinal_force_N"});
   WheelsetSpec w;
   w.flange_back_distance_m =
-      ws->Number("flange_back_distance_mm", Positive()).value_or(w.flange_back_distance_m / kMm) *
+      ws->Number("flange_back_distance_mm", Positive(), InRange(900.0, 1700.0))
+          .value_or(w.flange_back_distance_m / kMm) *
       kMm;
   w.flange_back_position_m =
-      ws->Number("flange_back_position_mm", AnyFinite()).value_or(w.flange_back_position_m / kMm) *
+      ws->Number("flange_back_position_mm", AnyFinite(), InRange(-200.0, 200.0))
+          .value_or(w.flange_back_position_m / kMm) *
       kMm;
-  w.lateral_displacement_m = ws->Number("lateral_displacement_mm", AnyFinite()).value_or(0.0) * kMm;
+  w.lateral_displacement_m =
+      ws->Number("lateral_displacement_mm", AnyFinite(), LateralRange()).value_or(0.0) * kMm;
   w.roll_rad = ws->Number("roll_rad", InRange(-kMaxRoll_rad, kMaxRoll_rad)).value_or(0.0);
   w.rolling_radius_m = scene->problem.placement.rolling_radius_m;
   ReadMotion(*ws, scene);
@@ -478,7 +520,7 @@ void ReadWheelset(const Fields& top, Scene* scene) {
   }
   scene->problem.load = {};
   scene->problem.load.vertical_force_N =
-      ws->RequiredNumber("vertical_load_per_wheel_N", Positive());
+      ws->RequiredNumber("vertical_load_per_wheel_N", Positive(), WheelLoadRange());
   scene->track = tr;
   scene->wheelset = w;
 }
@@ -515,12 +557,21 @@ void CheckRolling(const Fields& top, const Scene& scene) {
 
 // ---- wear scenes: [wear] and [[traffic]] ----
 
+// The KTH map's keys: coefficients as Archard's k; slip velocities up to kMaxSpeed_m_s from
+// 1 um/s (the continuous map blends in ln v_s); p/H ratios and the blends' half-widths from
+// 1e-3 (a band of 1e-300 divided the blend by nothing) to 10.
+NumberRule KthRange(std::string_view key) {
+  if (key.starts_with("kth_k_")) return WearCoefficientRange();
+  if (key.ends_with("_m_s")) return Closed(1e-6, kMaxSpeed_m_s);
+  return Closed(1e-3, 10.0);
+}
+
 WearLaw ReadWearLaw(const Fields& t) {
   WearLaw law;
   if (const auto name = t.Choice("law", EnumChoices(kWearLawKindNames))) {
     law.kind = *WearLawKindFromString(*name);
   }
-  law.archard_k = t.Number("k", Positive()).value_or(law.archard_k);
+  law.archard_k = t.Number("k", Positive(), WearCoefficientRange()).value_or(law.archard_k);
   if (t.Has("k") && law.kind != WearLawKind::kArchard) {
     t.Fail("k", "no 'k' with this law (the constant coefficient belongs to law = \"archard\")");
   }
@@ -538,14 +589,15 @@ WearLaw ReadWearLaw(const Fields& t) {
   for (const auto& [key, value] : kth_keys) {
     if (!t.Has(key)) continue;
     if (!kth) t.Fail(key, "KTH map keys only with law = \"kth\" or \"kth-continuous\"");
-    *value = t.RequiredNumber(key, Positive());
+    *value = t.RequiredNumber(key, Positive(), KthRange(key));
   }
   if (law.kth_v1_m_s >= law.kth_v2_m_s) {
     t.Fail("kth_v2_m_s", fmt::format("a speed above kth_v1_m_s = {}", law.kth_v1_m_s));
   }
   if (t.Has("density_kg_m3")) {
     if (law.kind != WearLawKind::kUsfd) t.Fail("density_kg_m3", "density only with law = \"usfd\"");
-    law.density_kg_m3 = t.RequiredNumber("density_kg_m3", Positive());
+    // Densities from 1000 kg/m^3 to 30 000 (steel 7850, tungsten 19 300).
+    law.density_kg_m3 = t.RequiredNumber("density_kg_m3", Positive(), Closed(1000.0, 3e4));
   }
   return law;
 }
@@ -605,7 +657,9 @@ void ReadWearTable(const Fields& top, Scene* scene) {
   WearOptions& o = scene->wear->options;
   o.law = ReadWearLaw(t);
   ReadFrictionConditions(t, &o.conditions);
-  o.max_depth_per_step_m = t.Number("max_depth_per_step_mm", OpenClosed(0.0, 1.0))
+  // Steps from 1 um of depth (below it the step count grows without a change the profile's
+  // 10 um bins and resampling can show: 1e-300 mm meant endless steps) to 1 mm.
+  o.max_depth_per_step_m = t.Number("max_depth_per_step_mm", OpenClosed(0.0, 1.0), Closed(0.001, 1.0))
                                .value_or(o.max_depth_per_step_m / kMm) *
                            kMm;
   // A rail's life is of the order of 1000 MGT (1e8 axle passes): ten times that is the bound.
@@ -645,7 +699,8 @@ void ReadWearTable(const Fields& top, Scene* scene) {
   o.smoothing.smoothing_length_m = t.Number("smoothing_mm", OpenClosed(0.0, 20.0))
                                        .value_or(o.smoothing.smoothing_length_m / kMm) *
                                    kMm;
-  if (const auto layer_mm = t.Number("damage_layer_mm", Positive())) {
+  // A layer from 1 um to 10 mm (the old rule's 0.5 mm; dz / 1e-300 overflowed).
+  if (const auto layer_mm = t.Number("damage_layer_mm", Positive(), Closed(1e-3, 10.0))) {
     o.damage_layer_m = *layer_mm * kMm;
   }
   if (const auto db = t.String("db")) {
@@ -662,11 +717,12 @@ void ReadLateralShift(const Fields& t, TrafficCase* c) {
   if (node->is_table()) {
     const auto d = t.Table("lateral_shift_mm", "{ mean, std }");
     d->AllowOnly({"mean", "std"});
-    c->lateral_shift_mean_m = d->RequiredNumber("mean", AnyFinite()) * kMm;
-    c->lateral_shift_std_m = d->Number("std", AtLeast(0.0)).value_or(0.0) * kMm;
+    c->lateral_shift_mean_m = d->RequiredNumber("mean", AnyFinite(), LateralRange()) * kMm;
+    // As a vehicle entry's lateral_spread_mm: the spread's nodes reach 3-5 std.
+    c->lateral_shift_std_m = d->Number("std", AtLeast(0.0), Closed(0.0, 20.0)).value_or(0.0) * kMm;
     return;
   }
-  c->lateral_shift_mean_m = t.RequiredNumber("lateral_shift_mm", AnyFinite()) * kMm;
+  c->lateral_shift_mean_m = t.RequiredNumber("lateral_shift_mm", AnyFinite(), LateralRange()) * kMm;
 }
 
 // [[vehicle]]: the vehicles that vehicle traffic names (core/vehicle/vehicle.h). Units as in
@@ -694,7 +750,9 @@ void ReadVehicles(const Fields& top, Scene* scene) {
     if (const auto kind = t.Choice("kind", EnumChoices(kVehicleKindNames))) {
       v.kind = *EnumFromString(kVehicleKindNames, *kind);
     }
-    v.axle_load_N = t.RequiredNumber("axle_load_t", OpenClosed(0.0, 40.0)) * 1000.0 * kGravity_m_s2;
+    // Axle loads from 0.1 t (below any rail vehicle's; 1e-300 t left the wheels no load) to 40 t.
+    v.axle_load_N =
+        t.RequiredNumber("axle_load_t", OpenClosed(0.0, 40.0), AxleLoadRange()) * 1000.0 * kGravity_m_s2;
     if (const auto spec = t.String("wheel_profile")) {
       Profile p = LoadProfileFor(t, "wheel_profile", BodyRole::kWheel, *spec, scene->path);
       if (t.Bool("mirror_y").value_or(false)) p = p.Mirrored();
@@ -704,7 +762,7 @@ void ReadVehicles(const Fields& top, Scene* scene) {
     } else {
       t.FailMissing("wheel_profile", std::string(kProfileExpected) + " (or a [wheel] table)");
     }
-    v.rolling_radius_m = t.Number("rolling_radius_mm", Positive())
+    v.rolling_radius_m = t.Number("rolling_radius_mm", Positive(), WheelRadiusRange())
                              .value_or(scene->problem.placement.rolling_radius_m / kMm) *
                          kMm;
     v.flange_back_distance_m =
@@ -712,15 +770,22 @@ void ReadVehicles(const Fields& top, Scene* scene) {
     v.flange_back_position_m =
         t.Number("flange_back_position_mm", InRange(-200.0, 0.0)).value_or(-70.0) * kMm;
     v.cg_height_m = t.Number("cg_height_m", InRange(0.0, 5.0)).value_or(v.cg_height_m);
-    v.traction_N_per_axle = t.Number("traction_kN_per_axle", AnyFinite()).value_or(0.0) * 1e3;
+    // Traction or braking within 500 kN per axle (mu Q of a 40 t axle is about 240 kN).
+    v.traction_N_per_axle =
+        t.Number("traction_kN_per_axle", AnyFinite(), Closed(-500.0, 500.0)).value_or(0.0) * 1e3;
     if (v.kind == VehicleKind::kBogie) {
       v.wheelbase_m = t.RequiredNumber("wheelbase_m", OpenClosed(0.0, 10.0));
       v.bogie_spacing_m = t.RequiredNumber("bogie_spacing_m", OpenClosed(0.0, 40.0));
-      v.primary_kx_N_m = t.RequiredNumber("primary_kx_MN_m", Positive()) * 1e6;
-      v.primary_ky_N_m = t.RequiredNumber("primary_ky_MN_m", Positive()) * 1e6;
+      // Suspension stiffnesses over eight decades around the literature's (primary 1-100 MN/m,
+      // secondary lateral 0.1-5 MN/m, secondary yaw 100-5000 kN m/rad): the equilibrium's
+      // Jacobian adds them to the contact's (1e7-1e8 N/m), so 1e308 made it singular.
+      v.primary_kx_N_m = t.RequiredNumber("primary_kx_MN_m", Positive(), Closed(1e-3, 1e4)) * 1e6;
+      v.primary_ky_N_m = t.RequiredNumber("primary_ky_MN_m", Positive(), Closed(1e-3, 1e4)) * 1e6;
       v.primary_semi_spacing_m = t.RequiredNumber("primary_semi_spacing_m", OpenClosed(0.0, 2.0));
-      v.secondary_ky_N_m = t.RequiredNumber("secondary_ky_MN_m", Positive()) * 1e6;
-      v.secondary_yaw_Nm_rad = t.RequiredNumber("secondary_yaw_kNm_rad", Positive()) * 1e3;
+      v.secondary_ky_N_m =
+          t.RequiredNumber("secondary_ky_MN_m", Positive(), Closed(1e-4, 1e3)) * 1e6;
+      v.secondary_yaw_Nm_rad =
+          t.RequiredNumber("secondary_yaw_kNm_rad", Positive(), Closed(1e-2, 1e6)) * 1e3;
     }
     try {
       ValidateVehicle(v, fmt::format("vehicle \"{}\"", v.name));
@@ -808,7 +873,7 @@ void ReadTrafficWheel(const Fields& t, Scene* scene, bool has_wheel, TrafficCase
   } else {
     t.FailMissing("wheel_profile", std::string(kProfileExpected) + " (or a [wheel] table)");
   }
-  if (const auto r = t.Number("rolling_radius_mm", Positive())) {
+  if (const auto r = t.Number("rolling_radius_mm", Positive(), WheelRadiusRange())) {
     c->rolling_radius_m = *r * kMm;
   } else if (has_wheel) {
     c->rolling_radius_m = scene->problem.placement.rolling_radius_m;
@@ -861,7 +926,7 @@ PopulationWheel ReadPopulationWheel(const Fields& w, const std::string& base_pat
   wheel.name = w.String("name").value_or(spec);
   // A share of the entry's passes, relative to the other wheels': counts or fractions alike.
   wheel.weight = w.RequiredNumber("weight", Positive(), OpenClosed(0.0, 1e9));
-  if (const auto r = w.Number("rolling_radius_mm", Positive(), OpenClosed(0.0, 2000.0))) {
+  if (const auto r = w.Number("rolling_radius_mm", Positive(), WheelRadiusRange())) {
     wheel.rolling_radius_m = *r * kMm;
   } else if (default_radius_m) {
     wheel.rolling_radius_m = *default_radius_m;
@@ -884,7 +949,7 @@ std::vector<PopulationWheel> ReadWheelPopulation(const Fields& t, const Scene& s
   const toml::node* node = t.Node("wheel_population");
   if (node == nullptr) return wheels;
   std::optional<double> radius;
-  if (const auto r = t.Number("rolling_radius_mm", Positive())) {
+  if (const auto r = t.Number("rolling_radius_mm", Positive(), WheelRadiusRange())) {
     radius = *r * kMm;
   } else if (has_wheel) {
     radius = scene.problem.placement.rolling_radius_m;
@@ -991,7 +1056,7 @@ void ReadCollectiveTraffic(const Fields& t, Scene* scene, bool has_wheel, Traffi
   }
   ReadEntryFriction(t, scene->wear->options.conditions, /*required=*/false, c);
   c->axle_load_t =
-      t.Number("axle_load_t", OpenClosed(0.0, 40.0)).value_or(CollectiveAxleLoad_t(lc));
+      t.Number("axle_load_t", OpenClosed(0.0, 40.0), AxleLoadRange()).value_or(CollectiveAxleLoad_t(lc));
   c->collective = std::move(traffic);
 }
 
@@ -1046,6 +1111,18 @@ void ReadTraffic(const Fields& top, Scene* scene) {
       TrafficCase c;
       c.name = t.String("name").value_or(fmt::format("traffic[{}]", index));
       ReadCollectiveTraffic(t, scene, has_wheel, &c);
+      // Each bin of a collective is a load case of its own (counted 1 above).
+      const size_t bins = c.collective->collective.entries.size();
+      cases += bins > 0 ? bins - 1 : 0;
+      if (cases > kMaxLoadCasesPerStep) {
+        t.Fail("collective",
+               fmt::format("a load collective of at most {} bins with the other entries' {} "
+                           "load cases ({} per wear step, each a contact solve; this one has {} "
+                           "bins): import it with wider bins (railwear traffic import "
+                           "--bin-y-mm, --bin-yaw-mrad, ...)",
+                           kMaxLoadCasesPerStep - (cases - bins), cases - bins,
+                           kMaxLoadCasesPerStep, bins));
+      }
       AddTrafficEntry(t, scene, has_wheel, std::move(c));
       ++index;
       continue;
@@ -1065,8 +1142,8 @@ void ReadTraffic(const Fields& top, Scene* scene) {
       }
     }
     ReadTrafficWheel(t, scene, has_wheel, &c);
-    c.vertical_force_N = t.RequiredNumber("vertical_N", Positive());
-    c.axle_load_t = t.Number("axle_load_t", Positive())
+    c.vertical_force_N = t.RequiredNumber("vertical_N", Positive(), WheelLoadRange());
+    c.axle_load_t = t.Number("axle_load_t", Positive(), AxleLoadRange())
                         .value_or(2.0 * c.vertical_force_N / kGravity_m_s2 / 1000.0);
     ReadLateralShift(t, &c);
     c.roll_rad = t.Number("roll_rad", InRange(-kMaxRoll_rad, kMaxRoll_rad)).value_or(0.0);
@@ -1080,7 +1157,9 @@ void ReadTraffic(const Fields& top, Scene* scene) {
   // A wheel population makes one entry per wheel: count the load cases again.
   size_t expanded = 0;
   for (const TrafficCase& c : scene->wear->traffic) {
-    expanded += (c.is_vehicle() || (!c.is_collective() && c.lateral_shift_std_m > 0.0)) ? nodes : 1;
+    expanded += c.is_collective()                               ? c.collective->collective.entries.size()
+                : (c.is_vehicle() || c.lateral_shift_std_m > 0.0) ? nodes
+                                                                  : 1;
   }
   if (expanded > kMaxLoadCasesPerStep) refuse(expanded);
 }

@@ -72,7 +72,7 @@ rail = { E_MPa = 210000, nu = 0.28, hardness_MPa = 2600, shear_yield_MPa = 350 }
 [wheel]                       # required
 profile = "builtin:S1002"     # "builtin:S1002", "circle:R_mm", or a file (.csv, .whl, .prw,
                               # .ban) relative to this scene file
-rolling_radius_mm = 460       # required, > 0: wheel radius at the profile's z = 0
+rolling_radius_mm = 460       # required, [50, 2000]: wheel radius at the profile's z = 0
 # mirror_y = false            # true: mirror the profile (y -> -y) after reading it
 
 [rail]                        # required
@@ -81,8 +81,8 @@ cant = "1:40"                 # "1:N" or "0"; default "0" (no cant)
 # mirror_y = false            # true: mirror the profile (before the cant is applied)
 
 [load]                        # required; one wheel on one rail
-vertical_N = 100000           # give exactly one of vertical_N (> 0) ...
-# approach_mm = 0.05          # ... and approach_mm (> 0, from first contact)
+vertical_N = 100000           # give exactly one of vertical_N ([1, 1e6]) ...
+# approach_mm = 0.05          # ... and approach_mm ([1e-6, 1], from first contact)
 lateral_mm = 0.0              # lateral position of the wheel toward the field side, from where
                               # the right wheel of a centred wheelset stands on this rail: 0 is
                               # a tread contact. The reference (optional; defaults shown):
@@ -91,10 +91,11 @@ lateral_mm = 0.0              # lateral position of the wheel toward the field s
 # flange_back_distance_mm = 1360  # between the wheels' flange backs
 # flange_back_position_mm = -70   # y of the flange back in the wheel profile (S1002: -70)
 # lateral_shift_mm = -10.53   # or (not with lateral_mm) the wheel profile's origin relative to
-                              # the rail's, toward the field side; default 0 when neither is given
+                              # the rail's, toward the field side, [-100, 100]; default 0 when
+                              # neither is given
 roll_rad = 0.0                # roll of the wheel, |roll_rad| < 0.5; default 0
 friction = 0.3                # in (0, 2]; needed by the "tangential" effect
-speed_m_s = 20.0              # > 0; needed by the "tangential" effect
+speed_m_s = 20.0              # (0, 150]; needed by the "tangential" effect
 # yaw_mrad = 0.0              # yaw of the wheel (positive turns its nose to the field side)
 # pitch_velocity_rad_s = -43.5  # about the axle; default pure rolling, -speed / rolling radius
 # longitudinal_force_N = 10000  # or a total longitudinal creep force on the wheel (> 0
@@ -152,7 +153,7 @@ speed_m_s = 20.0              # > 0; needed by the "tangential" effect
 # name = "freight"             # optional
 # wheel_profile = "builtin:S1002"  # default: [wheel] profile (mirror_y = true mirrors it)
 # rolling_radius_mm = 460      # default: [wheel] rolling_radius_mm
-# vertical_N = 110000          # wheel load on this rail, > 0
+# vertical_N = 110000          # wheel load on this rail, [1, 1e6]
 # axle_load_t = 22.5           # for the MGT count; default twice the wheel load
 # lateral_shift_mm = { mean = -4.5, std = 1.0 }   # or a number (no spread)
 # roll_rad = 0.0

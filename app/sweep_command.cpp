@@ -1,4 +1,5 @@
 // `railwear sweep`: a plan's manifest, and its lines run as wear studies, one database each.
+#include "app/cli_checks.h"
 #include "app/sweep_command.h"
 
 #include <algorithm>
@@ -198,13 +199,13 @@ void SetupSweep(CLI::App& app, SweepMpiRunner mpi) {
   CLI::Option* list =
       cmd->add_flag("--list", options->list, "Print the manifest: run id and values per line");
   CLI::Option* index = cmd->add_option("--index", options->index, "Run line N only (0-based)")
-                           ->check(CLI::NonNegativeNumber);
+                           ->check(IntegerIn(0, kMaxSweepLines - 1));
   cmd->add_option("--out-dir", options->out_dir,
                   "Folder of the runs' databases (default: the plan's out_dir)");
   CLI::Option* threads =
       cmd->add_option("--threads", options->threads,
                       "Each run's worker threads (0: all cores; default: all, 1 with --mpi)")
-          ->check(CLI::NonNegativeNumber);
+          ->check(IntegerIn(0, 256));
   CLI::Option* merge = cmd->add_flag(
       "--merge", options->merge,
       "Run nothing: merge every line's run (all complete) into the study database --db");
@@ -221,7 +222,7 @@ void SetupSweep(CLI::App& app, SweepMpiRunner mpi) {
   SlurmResources& r = options->slurm_resources;
   cmd->add_option("--cpus-per-task", r.cpus_per_task,
                   "--slurm: CPUs of each array task, and its run's threads (default 1)")
-      ->check(CLI::PositiveNumber)
+      ->check(IntegerIn(1, 256))
       ->needs(slurm);
   cmd->add_option("--time", r.time, "--slurm: time limit of each task (default 01:00:00)")
       ->needs(slurm);

@@ -1,4 +1,5 @@
 // `railwear wear`: scene -> wear study -> steps stored in the profile history database.
+#include "app/cli_checks.h"
 #include "app/wear_command.h"
 
 #include <unistd.h>
@@ -630,9 +631,9 @@ void SetupWear(CLI::App& app) {
   cmd->add_option("--run", options->run, "Run name (default: the scene's name)");
   cmd->add_flag("--resume", options->resume, "Continue the named run from its last complete step");
   cmd->add_option("--steps", options->steps, "Stop after N new steps (continue with --resume)")
-      ->check(CLI::PositiveNumber);
+      ->check(IntegerIn(1, 1000000000));
   cmd->add_option("--threads", options->threads, "Worker threads (0: all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(IntegerIn(0, 256));  // as [wear] threads
   cmd->add_option("--plot", options->plot,
                   "Write the history plots of the run to PREFIX_*.png when it ends");
   cmd->callback([options]() { RunWearCommand(*options); });

@@ -225,7 +225,7 @@ MbsRow ParseRow(const std::string& source, int line, std::string_view text, cons
       case Column::kWeightPasses:
       case Column::kWeightDistance:
         row.weight = Number(
-            c, [](double v) { return v >= 0.0; }, "a number >= 0 (the weight)");
+            c, [](double v) { return v >= 0.0 && v <= 1e15; }, "a number in [0, 1e15] (the weight)");
         break;
       case Column::kSide:
         if (value == "high" || value == "right") {
@@ -238,10 +238,13 @@ MbsRow ParseRow(const std::string& source, int line, std::string_view text, cons
         break;
       case Column::kSpeed:
         row.speed_m_s = Number(
-            c, [](double v) { return v > 0.0; }, "a number > 0 (speed in m/s)");
+            c, [](double v) { return v > 0.0 && v <= 150.0; }, "a number in (0, 150] (speed in m/s)");
         break;
       case Column::kY:
-        row.wheelset_y_m = Number(c, finite, "a finite number (mm)") * kMm;
+        row.wheelset_y_m = Number(
+                               c, [](double v) { return std::abs(v) <= 100.0; },
+                               "a number in [-100, 100] (mm)") *
+                           kMm;
         break;
       case Column::kYaw:
         row.yaw_rad = Number(
@@ -251,21 +254,27 @@ MbsRow ParseRow(const std::string& source, int line, std::string_view text, cons
         break;
       case Column::kQ:
         row.vertical_force_N = Number(
-            c, [](double v) { return v >= 0.0; }, "a number >= 0 (a wheel load in N)");
+            c, [](double v) { return v >= 0.0 && v <= 1e6; },
+            "a number in [0, 1e6] (a wheel load in N)");
         break;
       case Column::kRoll:
-        row.roll_rad = Number(c, finite, "a finite number (mrad)") * kMrad;
+        row.roll_rad = Number(
+                           c, [](double v) { return std::abs(v) <= 500.0; },
+                           "a number in [-500, 500] (mrad)") *
+                       kMrad;
         break;
       case Column::kXi:
-        row.creepage_x = Number(c, finite, "a finite number (longitudinal creepage)");
+        row.creepage_x = Number(
+            c, [](double v) { return std::abs(v) <= 1.0; },
+            "a number in [-1, 1] (longitudinal creepage)");
         break;
       case Column::kMu:
         row.friction = Number(
-            c, [](double v) { return v > 0.0; }, "a number > 0 (friction)");
+            c, [](double v) { return v > 0.0 && v <= 2.0; }, "a number in (0, 2] (friction)");
         break;
       case Column::kAxleLoad:
         row.axle_load_t = Number(
-            c, [](double v) { return v > 0.0; }, "a number > 0 (tonnes)");
+            c, [](double v) { return v >= 0.1 && v <= 40.0; }, "a number in [0.1, 40] (tonnes)");
         break;
       case Column::kMbs:
         row.mbs[header.mbs_index[i]] = Number(c, finite, "a finite number");

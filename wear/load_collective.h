@@ -70,7 +70,9 @@ struct MbsTimeHistory {
 // Parses the CSV text. `source` names the file in messages ("FILE:LINE: column 'Q_N' = '-5':
 // expected a number >= 0 (a wheel load in N)"). Throws InputError for a missing, unknown or
 // repeated column, a row with too few or too many fields, a value that is not a finite number or
-// out of range (weight or Q < 0, V <= 0, mu <= 0, axle_load_t <= 0, |yaw| >= 100 mrad), a bad
+// out of the range the numerics bear (the scene's for the same quantities, issue 17: weight in
+// [0, 1e15], Q in [0, 1e6] N, V in (0, 150] m/s, mu in (0, 2], axle_load_t in [0.1, 40] t,
+// |y| <= 100 mm, |yaw| < 100 mrad, |roll| <= 500 mrad, |xi| <= 1), a bad
 // side, and a file without data rows. '#' comment lines and blank lines are skipped; CRLF line
 // ends are accepted.
 MbsTimeHistory ParseMbsTimeHistory(std::string_view text, const std::string& source);

@@ -80,6 +80,7 @@ CurvingProblem VehicleCurvingProblem(const WearStudy& study, int traffic_index,
   p.speed_m_s = c.speed_m_s;
   p.friction = c.friction;
   p.options.threads = study.options.threads;
+  p.options.cancel = study.options.cancel;  // a signal stops the solve, not only the step after it
   if (start && start->state.size() > 0) {
     p.options.start = *start;
   } else if (traffic_index < static_cast<int>(study.vehicle_starts.size()) &&
@@ -108,6 +109,7 @@ std::vector<CurvingStart> VehicleStarts(const WearStudy& study, const Profile& u
                                              RailInTrack(study, unworn_low, unworn_low));
     p.options.start.reset();
     const CurvingResult r = SolveCurving(p);
+    if (r.status == CurvingStatus::kCancelled) throw WearCancelled();
     if (r.status == CurvingStatus::kConverged || r.status == CurvingStatus::kFlangeClimb) {
       starts[t] = r.Start();
     }
@@ -125,6 +127,7 @@ VehicleEquilibrium SolveVehicleEquilibrium(const WearStudy& study, int traffic_i
   eq.result = SolveCurving(eq.problem);
   const CurvingProblem& p = eq.problem;
   const CurvingResult& r = eq.result;
+  if (r.status == CurvingStatus::kCancelled) throw WearCancelled();  // the step is dropped
   // An equilibrium stopped just above the tolerance (the contact grid's force noise in flange
   // contact on a worn rail: measured 1.1e-2 Q0 against 3e-3) still gives the wear its loads: it
   // is used, and its cases say so (LoadCase::equilibrium_converged, the step's warning).

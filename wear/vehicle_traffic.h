@@ -46,7 +46,8 @@ TrackRails UnwornRailsInTrack(const WearStudy& study);
 
 // Each vehicle entry's curving solution on the unworn rails (own frames, as in a step-0 state),
 // for WearStudy::vehicle_starts: an empty vector for prescribed entries and for a vehicle whose
-// curving did not converge there (its steps then start centred).
+// curving did not converge there (its steps then start centred). Throws WearCancelled when
+// study.options.cancel stopped a curving solve (it is passed on to every curving solve).
 std::vector<CurvingStart> VehicleStarts(const WearStudy& study, const Profile& unworn_high,
                                         const Profile& unworn_low);
 
@@ -54,7 +55,8 @@ std::vector<CurvingStart> VehicleStarts(const WearStudy& study, const Profile& u
 // it solved and its solution, and whether that solution is only usable (stopped above its
 // tolerance but within CurvingOptions::usable_multiple of it). Throws std::runtime_error naming
 // the entry and the vehicle when the curving has no usable equilibrium (a flange-climb
-// equilibrium is kept: its cases carry their L/V checks). The curving starts from `start`.
+// equilibrium is kept: its cases carry their L/V checks), WearCancelled when study.options.cancel
+// stopped it mid-solve. The curving starts from `start`.
 struct VehicleEquilibrium {
   CurvingProblem problem;
   CurvingResult result;

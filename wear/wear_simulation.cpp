@@ -719,13 +719,19 @@ WearRunSummary RunWear(const WearStudy& study, const UnwornRails& unworn, WearSt
     needs_starts = needs_starts || lacks_start(t);
   }
   std::optional<WearStudy> prepared;
+  WearRunSummary summary;
   if (study.vehicle_starts.empty() && unworn.low && needs_starts) {
     prepared = study;
-    prepared->vehicle_starts = VehicleStarts(study, unworn.high, *unworn.low);
+    try {
+      prepared->vehicle_starts = VehicleStarts(study, unworn.high, *unworn.low);
+    } catch (const WearCancelled&) {  // before any step: nothing in flight
+      summary.state = std::move(start);
+      summary.cancelled = true;
+      return summary;
+    }
   }
   const WearStudy& run = prepared ? *prepared : study;
   const double total = TotalPasses(run);
-  WearRunSummary summary;
   summary.state = std::move(start);
   while (true) {
     const double left = total - summary.state.passes;

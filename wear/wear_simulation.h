@@ -92,7 +92,8 @@ struct WearOptions {
   int threads = 0;
   // Cancellation (issue 17), empty: never. RunWear asks it before each step, and every step
   // before each of its load cases (from the worker threads: it must be thread-safe, e.g. read an
-  // atomic flag). Once it returns true the step in flight is dropped, never handed to the step
+  // atomic flag) and, through CurvingOptions::cancel, inside a vehicle entry's curving solve
+  // before each Newton iteration and each evaluation of the wheelsets' contacts. Once it returns true the step in flight is dropped, never handed to the step
   // callback, and RunWear returns with WearRunSummary::cancelled. The library installs no
   // signal handler: app/ sets the flag from its own.
   std::function<bool()> cancel = {};

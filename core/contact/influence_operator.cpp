@@ -336,7 +336,15 @@ std::unique_ptr<InfluenceOperator> MakeInfluenceOperator(const PatchGrid& grid,
 double EstimateOperatorBytes(int nx, int ns, bool planar) {
   const double n_x = nx, n_s = ns;
   double doubles = planar ? 8.0 * (2.0 * n_x) * (2.0 * n_s) : 2.0 * (n_x + 1.0) * n_s * n_s;
-  if (nx * ns <= kDenseProductMaxCells) doubles += (n_x * n_s) * (n_x * n_s);  // kAuto's matrix
+  if (!planar) {
+    // The curved operator's cosine table, nx x (lx / 2 + 1), a temporary of its construction:
+    // negligible on the presets' grids, but an explicit cell_mm of 1 um along x made it 3 GB of
+    // a 19 000-column grid whose ns^2 part was small (issue 17). lx is within 25 % of 2 nx.
+    const double hx = nx < (1 << 28) ? internal::RealFftSize(nx) / 2 + 1.0 : 1.25 * n_x + 1.0;
+    doubles += n_x * hx;
+  }
+  // In doubles: the grid builder asks about sizes whose nx * ns overflows an int (issue 17).
+  if (n_x * n_s <= kDenseProductMaxCells) doubles += (n_x * n_s) * (n_x * n_s);  // kAuto's matrix
   return doubles * sizeof(double);
 }
 

@@ -111,8 +111,9 @@ std::unique_ptr<InfluenceOperator> MakeInfluenceOperator(
 
 // Memory the operator MakeInfluenceOperator builds for a grid of this shape would hold [bytes]
 // (an estimate within a factor of about 2: the curved operator's per-frequency blocks and their
-// Cholesky factors, 2 (L/2 + 1) ns^2 doubles with L ~ 2 nx; the planar one's padded FFT
-// buffers). Lets a caller refuse a grid before it computes anything for it.
+// Cholesky factors, 2 (L/2 + 1) ns^2 doubles with L ~ 2 nx, and the nx (L/2 + 1) cosine table
+// its construction holds; the planar one's padded FFT buffers). Lets a caller refuse a grid
+// before it computes anything for it.
 double EstimateOperatorBytes(int nx, int ns, bool planar);
 
 // Naive reference: the full dense matrix [cells x cells], C(i, j) in m/Pa. For tests and small

@@ -60,7 +60,9 @@ bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* model
     o.stiffness_ratio_K = stiffness_ratio_K_;
     o.trim_approach_m = trim_approach_;
     o.size_accepted = [](const PatchGrid& sized) {
-      return !(EstimateOperatorBytes(sized.nx, sized.ns, sized.planar) > kMaxOperatorBytes);
+      return !(EstimateOperatorBytes(sized.nx, sized.ns, sized.planar) > kMaxOperatorBytes) &&
+             !(static_cast<double>(sized.nx) * sized.ns > kMaxGridCells) &&
+             sized.nx <= kMaxCellsAlongAxis && sized.ns <= kMaxCellsAlongAxis;
     };
     PatchBuild b = BuildPatchGrid(geom, c, o);
     if (b.too_large) {
@@ -68,9 +70,12 @@ bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* model
       // re-gridding below keep within it; an explicit cell_mm may not).
       result->status = SolverStatus::kNotConverged;
       result->message = fmt::format(
-          "the potential contact area needs a {} x {} grid, whose influence operator would "
-          "take {:.1f} GB (at most {:.0f} GB): choose a coarser accuracy or larger cell_mm",
-          b.grid.nx, b.grid.ns, EstimateOperatorBytes(b.grid.nx, b.grid.ns, b.grid.planar) / 1e9,
+          "the potential contact area needs at least a {} x {} grid ({:.3g} cells; at most {} "
+          "along each axis and {:.0g} in all), whose influence operator would take {:.1f} GB "
+          "(at most {:.0f} GB): choose a coarser model.accuracy or a larger model.cell_mm",
+          b.grid.nx, b.grid.ns, static_cast<double>(b.grid.nx) * b.grid.ns, kMaxCellsAlongAxis,
+          kMaxGridCells,
+          EstimateOperatorBytes(b.grid.nx, b.grid.ns, b.grid.planar) / 1e9,
           kMaxOperatorBytes / 1e9);
       return false;
     }

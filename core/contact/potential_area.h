@@ -53,6 +53,15 @@ class PotentialArea {
   // Memory one patch's influence operator may take (the curved one holds about 2 nx ns^2
   // doubles with its preconditioner, the planar one a few FFT buffers of the padded grid).
   static constexpr double kMaxOperatorBytes = 4e9;
+  // Cells one patch's grid may have: the time estimate (every cell is a gap projection and an
+  // unknown of each normal and tangential iteration). 16 times the finest preset's patch of
+  // about 250 x 250 cells; the re-gridding keeps within 300 across. Only an explicit cell_mm
+  // can ask for more (issue 17: 1 um along x gave 19 000 columns).
+  static constexpr double kMaxGridCells = 1e6;
+  // ... and at most this many along either axis: the curved operator's construction holds an
+  // nx x nx cosine table, and its kernel takes nx ns^2 evaluations (4000: 128 MB, and 13 times
+  // the re-gridding's 300 across).
+  static constexpr int kMaxCellsAlongAxis = 4000;
 
   // From the first estimate of the approach and patch size; stiffness_ratio_K of seed eq. 1.
   PotentialArea(const ContactProblem& problem, const FirstContactEstimate& first,

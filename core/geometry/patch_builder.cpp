@@ -15,6 +15,16 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The lateral walk never leaves this distance from the contact point (beyond any patch).
 constexpr double kMaxLateralReach_m = 0.08;
 
+// Cells beyond the largest accepted ns that the size-capped walk goes on for (see 0. in
+// BuildPatchGrid): the grid's cells are centred on the contact point and bounded by half cells.
+constexpr int kReachMarginCells = 3;
+
+// Cells on either side of the central column for a half-length x_half.
+int HalfCells(double x_half_m, double cell_dx_m) {
+  const double n = std::ceil(x_half_m / cell_dx_m - 0.5);
+  return std::max(1, static_cast<int>(std::min(n, 1e9)));
+}
+
 struct Section {
   double tau = 0.0;       // offset along t0 from the contact point [m]
   double lambda_r = 0.0;  // rail surface offset along n0
@@ -44,18 +54,26 @@ bool CrossSection(const WheelRailGeometry& g, const Eigen::Vector2d& pc, const E
 // After the threshold is passed it goes on for `extra` steps, so that cell centres near the
 // edge interpolate the reference curve instead of extrapolating it; *within is the number of
 // sections up to the first one past the threshold.
+// `reach` (below kMaxLateralReach_m: the memory estimate's bound) ends the walk without either:
+// *capped is set, *limited is not.
 std::vector<Section> Walk(const WheelRailGeometry& g, const Eigen::Vector2d& pc,
                           const Eigen::Vector2d& t0, const Eigen::Vector2d& n0,
                           const Section& start, double step, double threshold_n, double sign,
-                          double y_stop, int extra, bool* limited, int* within) {
+                          double y_stop, int extra, double reach, bool* limited, bool* capped,
+                          int* within) {
   std::vector<Section> out;
   Section prev = start;
   *limited = false;
+  *capped = false;
   *within = -1;
   for (int k = 1;; ++k) {
     const double tau = sign * k * step;
     if (std::abs(tau) > kMaxLateralReach_m) {
       *limited = true;
+      break;
+    }
+    if (std::abs(tau) > reach) {
+      *capped = true;
       break;
     }
     Section s;
@@ -133,20 +151,55 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
   if (w0 < o.min_approach_weight) return build;
   const Eigen::Vector2d pc = c.rail_point_m;
   const double threshold_n = o.threshold_m * w0;
+  const bool planar = o.geometry == GeometryModel::kPlanar;
+
+  // 0. The size estimate before the walk (issue 17): the walk steps an eighth of a cell, so a
+  // tiny cell made it take minutes and gigabytes before the grid's size was asked. The grid's
+  // nx follows from the wheel radius at the contact point (the walk can only raise it, see 3),
+  // and the largest ns that size_accepted takes with it bounds how far the walk needs to go: a
+  // patch that still lies within the threshold beyond (ns_max + kReachMarginCells) cells of
+  // the contact point on one side alone has more than ns_max cells (the reference curve's arc
+  // is at least the walk's |tau|). Exact: no grid the caller would accept is refused.
+  double reach = kMaxLateralReach_m;
+  PatchGrid sized;
+  sized.planar = planar;
+  sized.dx_m = o.cell_dx_m;
+  sized.ds_m = o.cell_ds_m;
+  sized.nx = 2 * HalfCells(std::sqrt(2.0 * c.wheel_radius_m * o.threshold_m), o.cell_dx_m) + 1;
+  if (o.size_accepted) {
+    const double widest = std::ceil(2.0 * kMaxLateralReach_m / o.cell_ds_m) + 1.0;
+    const int ns_reach = static_cast<int>(std::min(widest, 1e9));
+    sized.ns = 1;
+    if (!o.size_accepted(sized)) {  // not even one row of cells
+      build.grid = sized;
+      build.too_large = true;
+      return build;
+    }
+    sized.ns = ns_reach;
+    if (!o.size_accepted(sized)) {
+      int lo = 1, hi = ns_reach;  // lo accepted, hi refused
+      while (hi - lo > 1) {
+        sized.ns = lo + (hi - lo) / 2;
+        (o.size_accepted(sized) ? lo : hi) = sized.ns;
+      }
+      reach = std::min(reach, (lo + kReachMarginCells) * o.cell_ds_m);
+      sized.ns = lo + kReachMarginCells;  // what a walk cut at `reach` shows at least
+    }
+  }
 
   // 1. Lateral walk along t0 at x = 0.
   Section centre;
   if (!CrossSection(g, pc, t0, n0, 0.0, c.rail_s_m, c.wheel_s_m, 1e-3, &centre)) return build;
   const double step = std::min(o.cell_ds_m / 8.0, 2e-5);
-  bool lim_lo = false, lim_hi = false;
+  bool lim_lo = false, lim_hi = false, cap_lo = false, cap_hi = false;
   int within_lo = 0, within_hi = 0;
   const int extra = static_cast<int>(std::ceil(o.cell_ds_m / step)) + 2;
   const double y_stop_lo = c.split_lo ? c.y_lo_m : -kInf;
   const double y_stop_hi = c.split_hi ? c.y_hi_m : kInf;
-  std::vector<Section> lo =
-      Walk(g, pc, t0, n0, centre, step, threshold_n, -1.0, y_stop_lo, extra, &lim_lo, &within_lo);
-  std::vector<Section> hi =
-      Walk(g, pc, t0, n0, centre, step, threshold_n, +1.0, y_stop_hi, extra, &lim_hi, &within_hi);
+  std::vector<Section> lo = Walk(g, pc, t0, n0, centre, step, threshold_n, -1.0, y_stop_lo, extra,
+                                 reach, &lim_lo, &cap_lo, &within_lo);
+  std::vector<Section> hi = Walk(g, pc, t0, n0, centre, step, threshold_n, +1.0, y_stop_hi, extra,
+                                 reach, &lim_hi, &cap_hi, &within_hi);
   std::vector<Section> sections(lo.rbegin(), lo.rend());
   sections.push_back(centre);
   sections.insert(sections.end(), hi.begin(), hi.end());
@@ -154,7 +207,6 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
 
   // 2. Reference curve samples (rail frame) and their arc length, 0 at the contact point.
   const double K = o.stiffness_ratio_K;
-  const bool planar = o.geometry == GeometryModel::kPlanar;
   const int m = static_cast<int>(sections.size());
   std::vector<Eigen::Vector2d> curve(m);
   std::vector<double> arc(m, 0.0);
@@ -189,6 +241,13 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
     }
   }
   if (k_hi <= k_lo) return build;
+  // A walk cut at `reach` whose steep-normal limit does not end the range before its last
+  // section: the patch goes on beyond, wider than the grid the caller accepts.
+  if ((cap_lo && k_lo == 0) || (cap_hi && k_hi == m - 1)) {
+    build.grid = sized;
+    build.too_large = true;
+    return build;
+  }
   build.lateral_limited = lim_lo || lim_hi;
 
   // 3. Cells: one centred on the contact point in s and on x = 0.
@@ -207,7 +266,7 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
     r_max = std::max(r_max, r);
   }
   const double x_half = std::sqrt(2.0 * r_max * o.threshold_m);
-  const int half_cells = std::max(1, static_cast<int>(std::ceil(x_half / o.cell_dx_m - 0.5)));
+  const int half_cells = HalfCells(x_half, o.cell_dx_m);
   grid.nx = 2 * half_cells + 1;
   // Centred on the contact point's x: ahead of or behind the axle for a yawed wheel (0 without).
   grid.x0_m = c.x_m - half_cells * o.cell_dx_m;

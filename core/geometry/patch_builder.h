@@ -43,7 +43,11 @@ struct PatchGridOptions {
   // When set: asked once the grid is sized (nx, ns, dx_m, ds_m, planar set; no points or gaps
   // yet) whether a grid of that size may be built. The caller decides (the contact stage checks
   // the memory of the grid's influence operator); false: the grid is not built, the result has
-  // too_large set and the grid's nx, ns, but no gaps. Unset: every size is accepted.
+  // too_large set and the grid's nx, ns (a lower bound when refused before the walk), but no
+  // gaps. Unset: every size is accepted. Also asked before the lateral walk, with the nx the
+  // contact point's wheel radius gives and trial ns, to bound the walk (a tiny cell made it take
+  // minutes and gigabytes): it must accept every grid no larger in nx and ns than one it
+  // accepts.
   std::function<bool(const PatchGrid& sized)> size_accepted;
 };
 

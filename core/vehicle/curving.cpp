@@ -234,6 +234,7 @@ class Equilibrium {
 
   // Residual (generalised forces) at q; fills the wheelsets' states. False when a contact failed.
   bool Residual(const Eigen::VectorXd& q, std::vector<CurvedWheelset>* ws, Eigen::VectorXd* r) {
+    if (Cancelled()) return false;  // no more contact solves; Solve stops at its next iteration
     *r = suspension_ * q + suspension_offset_;
     // The unbalanced lateral force: on the car body, or on the single wheelset.
     (*r)[l_.bogies > 0 ? l_.BodyIndex() : 0] += unbalanced_N_;
@@ -272,6 +273,7 @@ class Equilibrium {
     double last_ratio = 0.0;
     double step_factor = 1.0;  // of the finite-difference steps
     for (int it = 0; it < o.max_iterations; ++it) {
+      if (Cancelled()) return Fail("cancelled", message);
       if (Norm(*r) <= o.tolerance) return it;
       // The Jacobian is kept while it still reduces the residual fast (chord steps); a slow or
       // failed step evaluates it again.
@@ -514,6 +516,12 @@ class Equilibrium {
   }
 
   int solves() const { return solves_; }
+  // CurvingOptions::cancel returned true (once it has, it is not asked again).
+  bool Cancelled() {
+    cancelled_ = cancelled_ || (p_.options.cancel && p_.options.cancel());
+    return cancelled_;
+  }
+  bool cancelled() const { return cancelled_; }
   const Eigen::MatrixXd& jacobian() const { return jacobian_; }
   void set_contexts(std::vector<WheelsetContext> ctx) { ctx_ = std::move(ctx); }
   // A new start: the contexts of the first phase and the chord to begin with (empty, or of
@@ -569,6 +577,7 @@ class Equilibrium {
   Eigen::VectorXd frame_constant_;
   Eigen::VectorXd suspension_offset_, scale_;
   int solves_ = 0;
+  bool cancelled_ = false;
 };
 
 void Validate(const CurvingProblem& p) {
@@ -670,7 +679,7 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
     } else {
       out.full_iterations += std::max(iterations, 0);
     }
-    if (iterations >= 0 || no_equilibrium) break;
+    if (iterations >= 0 || no_equilibrium || eq.cancelled()) break;
     if (AllConverged(ws, layout.wheelsets) && r.size() == q.size() &&
         (!best || eq.Norm(r) < eq.Norm(best->r))) {
       best = Attempt{q, r, ws, eq.jacobian(), out.message};
@@ -692,7 +701,7 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
   // are smoother, said in the message. Kept when it ends nearer the equilibrium. Farther stalls
   // (no steady state, as on R 150 m at 1.2 m/s^2) are not retried: the finer grid costs 2-3x.
   const ModelOptions& model = p.contact.model;
-  if (iterations < 0 && !no_equilibrium && best &&
+  if (iterations < 0 && !no_equilibrium && best && !eq.cancelled() &&
       eq.Norm(best->r) > p.options.usable_multiple * p.options.tolerance &&
       eq.Norm(best->r) <= kNearStall * p.options.tolerance &&
       model.accuracy == AccuracyPreset::kDraft && !model.cell_dx_m && !model.cell_ds_m) {
@@ -717,6 +726,13 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
                               : fmt::format("{}; on the standard grid: {}", draft, fmessage)};
       take(*best);
     }
+  }
+  if (eq.cancelled()) {  // a state of an unfinished iteration: no solution to report
+    out.status = CurvingStatus::kCancelled;
+    out.message = "cancelled";
+    out.contact_solves = eq.solves();
+    out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
   }
   if (iterations < 0 && !no_equilibrium && best) take(*best);
   if (r.size() == q.size()) out.largest_scaled_residual = eq.Norm(r);

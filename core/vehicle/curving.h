@@ -38,6 +38,7 @@
 // A start with its Jacobian (CurvingStart) uses that Jacobian as the first chord: continuation.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -92,6 +93,12 @@ struct CurvingOptions {
   // Workers for the wheelsets' contact solves (each iterate's wheelsets and finite differences
   // are independent): 0 = the machine's hardware threads. Results do not depend on it.
   int threads = 0;
+  // Cancellation (issue 17), empty: never. Asked before every Newton iteration and before every
+  // evaluation of the wheelsets' contact forces (from the calling thread: it must be
+  // thread-safe, e.g. read an atomic flag). Once it returns true the solve stops at once with
+  // CurvingStatus::kCancelled. The library installs no signal handler: app/ sets the flag from
+  // its own (WearOptions::cancel is passed on here by wear/).
+  std::function<bool()> cancel = {};
 
   static ModelOptions PredictorModel();
 };
@@ -115,13 +122,15 @@ enum class CurvingStatus {
   kFlangeClimb,    // equilibrium found, but a wheel in flange contact exceeds Nadal's limit
   kNoEquilibrium,  // a wheelset went past max_lateral_m, or a wheel unloaded: no steady state
   kNotConverged,   // the iterations stopped before the tolerance
+  kCancelled,      // CurvingOptions::cancel returned true: stopped, the state is not a solution
 };
 
-inline constexpr std::array<EnumName<CurvingStatus>, 4> kCurvingStatusNames = {{
+inline constexpr std::array<EnumName<CurvingStatus>, 5> kCurvingStatusNames = {{
     {CurvingStatus::kConverged, "converged"},
     {CurvingStatus::kFlangeClimb, "flange_climb"},
     {CurvingStatus::kNoEquilibrium, "no_equilibrium"},
     {CurvingStatus::kNotConverged, "not_converged"},
+    {CurvingStatus::kCancelled, "cancelled"},
 }};
 inline std::string_view ToString(CurvingStatus s) { return EnumToString(kCurvingStatusNames, s); }
 

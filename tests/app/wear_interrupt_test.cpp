@@ -201,6 +201,63 @@ TEST_F(WearInterruptTest, SigintMidRunExits130AndResumesBitIdentically) {
   InterruptAndResume(SIGINT, 130, "SIGINT");
 }
 
+// SIGTERM while a vehicle entry's curving solve runs (issue 17): the solve asks the cancel flag
+// between its wheelset contact evaluations (CurvingOptions::cancel), so the run stops within a
+// fraction of one solve instead of after it. The signal is sent once the run and its step 0 are
+// committed (the 8th fsync, logged by the fsync shim without a kill): railwear then solves the
+// vehicle's equilibrium on the unworn rails (RunWear's VehicleStarts) before step 1. Expected:
+// exit 143, interrupted after step 0, well within the time of one curving solve (measured here
+// with `railwear curving` on the same scene), and --resume bit-identical to an uninterrupted run.
+TEST_F(WearInterruptTest, SigtermInTheCurvingSolveStopsItAndResumesBitIdentically) {
+  std::string scene = kWheelsetCurveScene;
+  scene.replace(scene.find("total_passes = 1e5"), 18, "total_passes = 2e4");
+  Write("curve.toml", scene);
+  const std::string expected = Reference("curve.toml", "whole.sqlite");
+  const auto solve_start = std::chrono::steady_clock::now();
+  const Outcome curving = Run("curving curve.toml");
+  const double solve_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
+  ASSERT_EQ(curving.exit_code, 0) << curving.err;
+
+  const std::string shim = std::string("LD_PRELOAD=") + RAILWEAR_KILL_AT_FSYNC;
+  const pid_t pid = Start({"wear", "curve.toml", "--db", "cut.sqlite", "--threads", "1"},
+                          {shim, "ASAN_OPTIONS=verify_asan_link_order=0",
+                           "RAILWEAR_FSYNC_LOG=fsyncs.txt"});
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  int fsyncs = 0;
+  while (fsyncs < 8 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    std::istringstream log(fs::exists(dir_ / "fsyncs.txt") ? ReadFile(dir_ / "fsyncs.txt") : "");
+    fsyncs = 0;
+    for (std::string line; std::getline(log, line);) ++fsyncs;
+  }
+  ASSERT_GE(fsyncs, 8) << ReadFile(dir_ / "err.txt");
+  const auto signalled = std::chrono::steady_clock::now();
+  ASSERT_EQ(kill(pid, SIGTERM), 0);
+  ASSERT_EQ(Wait(pid), 143) << ReadFile(dir_ / "err.txt");
+  const double stop_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
+  const std::string err = ReadFile(dir_ / "err.txt");
+  EXPECT_TRUE(Contains(err, "run 'wheelset on R1500' in cut.sqlite interrupted after step 0 "))
+      << err;
+  {
+    const ProfileStore store = ProfileStore::OpenReadOnly((dir_ / "cut.sqlite").string());
+    const auto run = store.FindRun("wheelset on R1500");
+    ASSERT_TRUE(run.has_value());
+    EXPECT_EQ(run->state, RunState::kInterrupted);
+    EXPECT_EQ(*store.LastStep(run->id), 0);
+  }
+  // A solve that ran to its end would take the whole solve time; the cancelled one stops after
+  // at most one evaluation of the wheelset's contacts (a few of the solve's tens).
+  EXPECT_LT(stop_s, 0.5 * solve_s);
+  std::cerr << "[figure] SIGTERM in the curving solve: stopped in " << stop_s
+            << " s; one curving solve (railwear curving) takes " << solve_s << " s\n";
+
+  const Outcome resumed = Run("wear curve.toml --db cut.sqlite --resume --threads 1");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(RunFingerprint(dir_ / "cut.sqlite"), expected);
+}
+
 // A real SIGKILL at the N-th fsync of a whole run, for every N the run makes (counted by a first
 // run under the shim): SQLite's journal-mode switch and schema creation, the run with its step 0,
 // each step, the final state and the closing checkpoint. After each kill the database must be

@@ -146,6 +146,43 @@ TEST(VehicleTrafficTest, AdaptiveSpreadResumedRunEqualsUninterrupted) {
   ExpectResumedRunEqualsUninterrupted(study);
 }
 
+// Issue 17: WearOptions::cancel reaches the curving solve. Cancelled at its 3rd question, which
+// falls inside the vehicle's equilibrium on the unworn rails (RunWear solves it before step 1),
+// the run ends cancelled with no step; cancelled inside step 2's curving, step 2 is dropped. A
+// run on from the states left behind ends exactly where the uninterrupted run does.
+TEST(VehicleTrafficTest, CancelInTheCurvingSolveDropsTheStepAndResumesExactly) {
+  WearStudy study = VehicleStudy(0.0);
+  study.options.max_depth_per_step_m = 1e-6;  // steps far shorter than the run
+  const WearState s0 = MakeInitialState(study);
+  const UnwornRails unworn = UnwornRails::Of(s0);
+  const WearRunSummary whole = RunWear(study, unworn, s0, nullptr, 2);
+  ASSERT_EQ(whole.state.step, 2);
+
+  int asked = 0;
+  study.options.cancel = [&asked] { return ++asked >= 3; };
+  const WearRunSummary before_step_1 = RunWear(study, unworn, s0, nullptr, 2);
+  EXPECT_TRUE(before_step_1.cancelled);
+  EXPECT_EQ(before_step_1.steps_done, 0);
+  EXPECT_EQ(asked, 3);  // no question after the cancel: the solve stopped at once
+
+  // Step 1 whole, then a cancel in step 2's curving: the questions RunWear asks before step 2
+  // and SolveCurving's first ones pass, the next one (before a contact evaluation) cancels.
+  study.options.cancel = {};
+  const WearRunSummary first = RunWear(study, unworn, s0, nullptr, 1);
+  asked = 0;
+  study.options.cancel = [&asked] { return ++asked >= 3; };
+  const WearRunSummary cut = RunWear(study, unworn, first.state, nullptr, 1);
+  EXPECT_TRUE(cut.cancelled);
+  EXPECT_EQ(cut.steps_done, 0);
+  EXPECT_EQ(cut.state.step, 1);
+  study.options.cancel = {};
+  const WearRunSummary rest = RunWear(study, unworn, cut.state, nullptr, 1);
+  ASSERT_EQ(rest.state.step, 2);
+  EXPECT_EQ(whole.state.passes, rest.state.passes);
+  EXPECT_EQ(whole.state.rail.points(), rest.state.rail.points());
+  EXPECT_EQ(whole.state.low_rail->points(), rest.state.low_rail->points());
+}
+
 // The adaptive rule applies to vehicle traffic: each wheelset's spread around its equilibrium is
 // refined on its own (more nodes than the first five), what it used is recorded, and both rails'
 // case weights sum to 1. The step's worn area per pass is printed against the fixed 20-node

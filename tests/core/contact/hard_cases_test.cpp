@@ -241,21 +241,44 @@ TEST(HardCases, BarelyTouchingPatchOnAWornRailStaysSmall) {
   EXPECT_NEAR(r.area_m2 * 1e6, 120.9, 1.5);
 }
 
-TEST(HardCases, AGridTooLargeForMemoryIsAStatusNotACrash) {
-  // An explicit 5 um cell on the 100 kN gauge corner: a 4000 x 2000 curved grid would need
-  // tens of GB for its operator. The solver says so instead of throwing std::bad_alloc.
+// S1002 on UIC60 1:40 under 100 kN, the wheel profile's origin `lateral_shift_m` from the rail's.
+ContactProblem S1002OnUic60(double lateral_shift_m) {
   ContactProblem p;
   p.wheel_profile = MakeS1002();
   p.rail_profile = ApplyCant(MakeUic60(), 1.0 / 40.0);
   p.wheel_material = p.rail_material = {210e9, 0.28};
-  p.placement = {-4e-3, 0.0, 0.46};
+  p.placement = {lateral_shift_m, 0.0, 0.46};
   p.load.vertical_force_N = 1e5;
+  return p;
+}
+
+TEST(HardCases, AGridTooLargeForMemoryIsAStatusNotACrash) {
+  // An explicit 5 um cell on the 100 kN gauge corner: a 4000 x 2000 curved grid would need
+  // tens of GB for its operator. The solver says so instead of throwing std::bad_alloc.
+  ContactProblem p = S1002OnUic60(-4e-3);
   p.model = MakeModelOptions(ModelKind::kConformal);
   p.model.cell_dx_m = p.model.cell_ds_m = 5e-6;
   const ContactResult r = SolveContact(p);
   EXPECT_EQ(r.status, SolverStatus::kNotConverged);
-  EXPECT_NE(r.message.find("choose a coarser accuracy or larger cell_mm"), std::string::npos)
+  EXPECT_NE(r.message.find("choose a coarser model.accuracy or a larger model.cell_mm"),
+            std::string::npos)
       << r.message;
+}
+
+// Issue 17: a cell of 1 nm. The lateral walk that sizes the patch steps an eighth of a cell, so
+// before the size estimate bounded it this walked 1e8 sections (113 s, then std::bad_alloc at
+// 5 GB); now the walk stops where the grid is already too large for its operator, and the
+// status says which key to change.
+TEST(HardCases, ATinyCellIsRefusedBeforeTheLateralWalk) {
+  ContactProblem p = S1002OnUic60(-10.4e-3);  // tread contact
+  for (const ModelKind kind : {ModelKind::kConformal, ModelKind::kHalfspace, ModelKind::kAuto}) {
+    p.model = MakeModelOptions(kind);
+    p.model.cell_dx_m = p.model.cell_ds_m = 1e-9;
+    const ContactResult r = SolveContact(p);
+    EXPECT_EQ(r.status, SolverStatus::kNotConverged) << ToString(kind);
+    EXPECT_NE(r.message.find("needs at least a"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("larger model.cell_mm"), std::string::npos) << r.message;
+  }
 }
 
 TEST(HardCases, ProfilesApartGiveNoContactNotAnError) {

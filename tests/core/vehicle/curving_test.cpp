@@ -88,6 +88,37 @@ TEST(CurvingTest, WarmStartWithItsJacobianSkipsTheFiniteDifferences) {
               with_jacobian.contact_solves, without.contact_solves);
 }
 
+// Cancellation (issue 17): CurvingOptions::cancel is asked between the wheelsets' contact
+// evaluations, so a solve cancelled after its first evaluation stops there, with status
+// "cancelled", no solution and far fewer contact solves than the whole solve; a callback that
+// never cancels changes nothing (same state, bit for bit, and the same solves).
+TEST(CurvingTest, CancelStopsTheSolveBetweenContactEvaluations) {
+  CurvingProblem p = BaseProblem(MakeCone(0.05), 1000.0);
+  const CurvingResult whole = SolveCurving(p);
+  ASSERT_EQ(whole.status, CurvingStatus::kConverged) << whole.message;
+
+  int asked = 0;
+  p.options.cancel = [&asked] { return ++asked > 1; };  // true from the second question on
+  const CurvingResult cancelled = SolveCurving(p);
+  EXPECT_EQ(cancelled.status, CurvingStatus::kCancelled);
+  EXPECT_EQ(ToString(cancelled.status), "cancelled");
+  EXPECT_EQ(cancelled.message, "cancelled");
+  EXPECT_TRUE(cancelled.wheelsets.empty());
+  EXPECT_EQ(cancelled.state.size(), 0);
+  // The first residual (one wheelset solve), then at most the Jacobian's two finite differences
+  // before the next question.
+  EXPECT_LE(cancelled.contact_solves, 3);
+  EXPECT_GT(whole.contact_solves, cancelled.contact_solves);
+
+  p.options.cancel = [] { return false; };
+  const CurvingResult asked_never = SolveCurving(p);
+  ASSERT_EQ(asked_never.status, CurvingStatus::kConverged);
+  EXPECT_EQ(asked_never.state, whole.state);
+  EXPECT_EQ(asked_never.contact_solves, whole.contact_solves);
+  std::printf("cancelled after %d of %d contact solves\n", cancelled.contact_solves,
+              whole.contact_solves);
+}
+
 // A draft solve that stops above the usable residual goes on from its best state on the standard
 // grid, says so, and keeps that when it ends nearer the equilibrium. Forced here by one iteration
 // per solve from the centred start (on worn rails it is the draft grid's force noise: the
