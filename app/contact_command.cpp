@@ -80,7 +80,8 @@ void Warn(const Scene& scene, const ContactResult& r, const std::string& wheel) 
 
 // A wheelset on a track: both wheels, each in its rail's own frame.
 void RunWheelset(const ContactOptions& o, const Scene& scene) {
-  const WheelsetResult result = *SolveContactCase(ToContactCase(scene)).wheelset;
+  const ContactCase problem = ToContactCase(scene);
+  const WheelsetResult result = *SolveContactCase(problem).wheelset;
   if (o.json) WriteOutput(*o.json, MakeWheelsetJson(scene, result).dump(2) + "\n", "JSON");
   if (o.csv) {
     std::ostringstream csv;
@@ -93,12 +94,13 @@ void RunWheelset(const ContactOptions& o, const Scene& scene) {
   Warn(scene, result.right, "right wheel");
   Warn(scene, result.left, "left wheel");
   if (o.plot) {  // a row per wheel, each in its own rail's frame
-    const Profile& wheel = problem.wheel_rail.wheel_profile;
-    const Profile& rail = problem.wheel_rail.rail_profile;
+    const Profile& wheel = problem.problem.wheel_profile;
+    const Profile& rail = problem.problem.rail_profile;
     PlotContact(scene,
                 {{"right wheel", &result.right, result.placement.right, &wheel, &rail},
                  {"left wheel", &result.left, result.placement.left, &wheel,
-                  problem.left_rail_profile ? &*problem.left_rail_profile : &rail}},
+                  problem.wheelset->left_rail_profile ? &*problem.wheelset->left_rail_profile
+                                                      : &rail}},
                 *o.plot);
   }
   for (const ContactResult* r : {&result.right, &result.left}) {
