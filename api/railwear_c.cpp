@@ -18,6 +18,7 @@
 
 #include "core/contact/contact_case.h"
 #include "core/contact/contact_forces.h"
+#include "core/contact/influence_constant_sets.h"
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
 #include "wear/pass_depth.h"
@@ -447,6 +448,9 @@ rw_status rw_create(rw_problem_kind kind, rw_problem** out) {
     // Steel for both bodies, the scene reader's default (app/scene.cpp DefaultSteel).
     p->wheel_material.youngs_modulus_Pa = p->rail_material.youngs_modulus_Pa = 210e9;
     p->wheel_material.poisson_ratio = p->rail_material.poisson_ratio = 0.28;
+    // The scenes' default influence constants, the FEM-calibrated sets (app/scene.h).
+    p->model.constants =
+        railwear::NamedInfluenceConstants(railwear::InfluenceConstantsName::kFem);
     p->geometry.struct_size = sizeof(rw_geometry);
     rw_init_geometry(&p->geometry);
     *out = p;
@@ -612,11 +616,21 @@ rw_status rw_set_model(rw_problem* problem, const rw_model* model) {
 rw_status rw_init_influence_constants(rw_influence_constants* c) {
   return Guard(nullptr, [&] {
     RequireSize(c, "rw_influence_constants");
-    const railwear::InfluenceConstantSet d;
-    c->c_f = c->convex_c_f = c->concave_c_f = d.c_f;
-    c->c_z = c->convex_c_z = c->concave_c_z = d.c_z;
-    c->c_s = c->convex_c_s = c->concave_c_s = d.c_s;
-    c->separate = 0;
+    // The default, as the scene reader's: the FEM-calibrated convex and concave sets
+    // (core/contact/influence_constant_sets.h); the one set is the seed's, for separate = 0.
+    const railwear::InfluenceConstantSet seed;
+    const railwear::SeparateInfluenceConstants fem =
+        *railwear::NamedInfluenceConstants(railwear::InfluenceConstantsName::kFem).separate;
+    c->c_f = seed.c_f;
+    c->c_z = seed.c_z;
+    c->c_s = seed.c_s;
+    c->convex_c_f = fem.convex.c_f;
+    c->convex_c_z = fem.convex.c_z;
+    c->convex_c_s = fem.convex.c_s;
+    c->concave_c_f = fem.concave.c_f;
+    c->concave_c_z = fem.concave.c_z;
+    c->concave_c_s = fem.concave.c_s;
+    c->separate = 1;
     return RW_OK;
   });
 }

@@ -172,10 +172,13 @@ RW_API rw_status rw_init_model(rw_model* model);
 RW_API rw_status rw_set_model(rw_problem* problem, const rw_model* model);
 
 /* The constants of the seed's eq. 4 (dimensionless). With `separate` nonzero, convex and
- * concave bodies use their own sets and c_f, c_z, c_s are unused. */
+ * concave bodies use their own sets and c_f, c_z, c_s are unused. rw_init_influence_constants
+ * fills the default of a new handle, as of a scene: the FEM-calibrated convex and concave sets
+ * (separate = 1; the scene reader's constants = "fem"), and as the one set the seed's 0.75, 1,
+ * 0.25 ("paper"), which separate = 0 selects. */
 typedef struct rw_influence_constants {
   size_t struct_size;
-  double c_f, c_z, c_s;                         /* default 0.75, 1, 0.25 */
+  double c_f, c_z, c_s;                         /* the seed's: 0.75, 1, 0.25 */
   int separate;                                 /* 0 (default) or 1 */
   double convex_c_f, convex_c_z, convex_c_s;    /* with separate */
   double concave_c_f, concave_c_z, concave_c_s; /* with separate */

@@ -347,6 +347,7 @@ std::vector<BadCall> Table() {
       add(std::string("rw_influence_constants.") + c.field + " = " + Num(v), c.expected,
           [c, v](rw_problem* p) {
             rw_influence_constants k = ValidConstants();
+            k.separate = 0;  // the one set
             At(k, c.offset) = v;
             return rw_set_influence_constants(p, &k);
           });
