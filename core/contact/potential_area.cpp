@@ -46,12 +46,18 @@ bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* model
                           double approach_now, PatchBuilds* out, ContactResult* result) const {
   const auto t0 = Clock::now();
   const std::vector<ContactCandidate> cands = geom.FindCandidates(threshold_);
-  for (const auto& c : cands) {
-    CellSize cc = cell_;
+  for (const auto& found : cands) {
+    CellMemory memory{found.y_lo_m, found.y_hi_m, cell_, std::nullopt, 0};
     for (const auto& m : cell_memory_) {
-      if (c.y_m >= m.y_lo_m && c.y_m <= m.y_hi_m) cc = m.cell;
+      if (found.y_m >= m.y_lo_m && found.y_m <= m.y_hi_m) memory = m;
     }
-    PatchModelChoice choice = models->ChooseFor(c, approach_now);
+    const CellSize cc = memory.cell;
+    PatchModelChoice choice = models->ChooseFor(found, approach_now);
+    // A planar grid re-centred on its solved pressure centre (Review).
+    const ContactCandidate c =
+        choice.geometry == GeometryModel::kPlanar && memory.plane_y_m
+            ? geom.CandidateAt(found, *memory.plane_y_m)
+            : found;
     PatchGridOptions o;
     o.geometry = choice.geometry;
     o.cell_dx_m = cc.dx_m;
@@ -81,7 +87,7 @@ bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* model
     }
     if (b.valid) {
       out->builds.push_back(std::move(b));
-      out->cells.push_back({c.y_lo_m, c.y_hi_m, cc});
+      out->cells.push_back({c.y_lo_m, c.y_hi_m, cc, memory.plane_y_m, memory.recentred});
       out->cands.push_back(c);
       out->choices.push_back(std::move(choice));
     }
@@ -130,6 +136,24 @@ AreaReview PotentialArea::Review(PatchBuilds* builds, const NormalSolution& sol,
       review.switched = review.switched || switched;
     }
     if (e.touches_x_edge || (e.touches_s_edge && !b.lateral_limited)) review.grow = true;
+    // The planar grid's plane onto the rail point under the solved pressure centre.
+    if (b.grid.planar && sol.status == SolverStatus::kConverged &&
+        mem.recentred < kMaxRecentres && builds->choices[k].geometry == GeometryModel::kPlanar) {
+      double weight = 0.0, y = 0.0;
+      for (int j = 0; j < b.grid.ns; ++j) {
+        const double column = p_k.segment(b.grid.Index(0, j), b.grid.nx).sum();
+        weight += column;
+        y += column * b.grid.point_yz_m[j].x();
+      }
+      if (weight > 0.0) {
+        y /= weight;
+        if (std::abs(y - builds->cands[k].rail_point_m.x()) > 0.5 * b.grid.ds_m) {
+          mem.plane_y_m = y;
+          ++mem.recentred;
+          review.recentre = true;
+        }
+      }
+    }
     if (!cell_fixed_ && regrids_ < 3) {
       // The preset's cells per semi-axis for every patch that carries at least
       // kFullShare of the load. A patch that barely touches (a third candidate on a worn

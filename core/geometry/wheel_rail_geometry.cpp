@@ -271,34 +271,58 @@ std::vector<ContactCandidate> WheelRailGeometry::FindCandidates(double threshold
       c.y_m = gap_y_[best];
       c.gap_m = gap_[best];
     }
-    // Contact point: the rail top under the smallest gap (projected onto the spline), and the
-    // wheel point straight above it.
-    const auto rp = rail_locator_.Project({c.y_m, rail_top_[best]}, 0.0, kInf);
-    c.rail_s_m = rp.s;
-    c.rail_point_m = rp.point;
-    const Eigen::Vector2d above = c.rail_point_m - Eigen::Vector2d(0.0, c.gap_m);
-    const auto wp = wheel_locator_.Project(RailToWheel(above));
-    c.wheel_s_m = wp.s;
-    c.normal = rail_locator_.OutwardNormal(c.rail_s_m);
-    c.rail_lateral_curvature = ConvexCurvature(rail_locator_, c.rail_s_m);
-    c.wheel_lateral_curvature = ConvexCurvature(wheel_locator_, c.wheel_s_m);
-    if (!yawed_) {
-      c.wheel_radius_m =
-          pose_.rolling_radius_m + wheel_locator_.profile().Position(c.wheel_s_m).y();
-    } else {
-      // The surface point behind the outline point: its radius, position along x, and lead over
-      // the axle line through it (the axle runs along (-sin psi, cos psi) in the wheel's unrolled
-      // frame, so at lateral position Y_w it lies at x = -Y_w tan psi).
-      const YawedWheelSection::Source src = yawed_->SourceAt(c.wheel_s_m);
-      c.wheel_radius_m =
-          pose_.rolling_radius_m + surface_locator_->profile().Position(src.wheel_s_m).y();
-      c.x_m = src.x_m;
-      const double y_w = wheel_locator_.profile().Position(c.wheel_s_m).x();
-      c.lead_m = c.x_m + y_w * sin_yaw_ / cos_yaw_;
-    }
+    SetContactPoint(best, c.y_m, c.gap_m, &c);
     out.push_back(c);
   }
   return out;
+}
+
+void WheelRailGeometry::SetContactPoint(int sample, double y, double gap,
+                                        ContactCandidate* c) const {
+  // Contact point: the rail top under the lateral position (projected onto the spline), and the
+  // wheel point straight above it.
+  const auto rp = rail_locator_.Project({y, rail_top_[sample]}, 0.0, kInf);
+  c->rail_s_m = rp.s;
+  c->rail_point_m = rp.point;
+  const Eigen::Vector2d above = c->rail_point_m - Eigen::Vector2d(0.0, gap);
+  const auto wp = wheel_locator_.Project(RailToWheel(above));
+  c->wheel_s_m = wp.s;
+  c->normal = rail_locator_.OutwardNormal(c->rail_s_m);
+  c->rail_lateral_curvature = ConvexCurvature(rail_locator_, c->rail_s_m);
+  c->wheel_lateral_curvature = ConvexCurvature(wheel_locator_, c->wheel_s_m);
+  c->x_m = 0.0;
+  c->lead_m = 0.0;
+  if (!yawed_) {
+    c->wheel_radius_m = pose_.rolling_radius_m + wheel_locator_.profile().Position(c->wheel_s_m).y();
+  } else {
+    // The surface point behind the outline point: its radius, position along x, and lead over
+    // the axle line through it (the axle runs along (-sin psi, cos psi) in the wheel's unrolled
+    // frame, so at lateral position Y_w it lies at x = -Y_w tan psi).
+    const YawedWheelSection::Source src = yawed_->SourceAt(c->wheel_s_m);
+    c->wheel_radius_m =
+        pose_.rolling_radius_m + surface_locator_->profile().Position(src.wheel_s_m).y();
+    c->x_m = src.x_m;
+    const double y_w = wheel_locator_.profile().Position(c->wheel_s_m).x();
+    c->lead_m = c->x_m + y_w * sin_yaw_ / cos_yaw_;
+  }
+}
+
+ContactCandidate WheelRailGeometry::CandidateAt(const ContactCandidate& interval,
+                                                double y_m) const {
+  ContactCandidate c = interval;
+  if (gap_y_.empty()) return c;
+  double y = std::clamp(y_m, interval.y_lo_m, interval.y_hi_m);
+  const auto it = std::lower_bound(gap_y_.begin(), gap_y_.end(), y);
+  int sample = static_cast<int>(
+      std::min<std::ptrdiff_t>(it - gap_y_.begin(), static_cast<std::ptrdiff_t>(gap_y_.size()) - 1));
+  if (sample > 0 && std::abs(gap_y_[sample - 1] - y) < std::abs(gap_y_[sample] - y)) --sample;
+  double gap = ExactVerticalGap(y, sample);
+  if (!std::isfinite(gap)) {
+    y = gap_y_[sample];
+    gap = gap_[sample];
+  }
+  SetContactPoint(sample, y, gap, &c);
+  return c;
 }
 
 }  // namespace railwear

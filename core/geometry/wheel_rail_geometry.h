@@ -71,6 +71,13 @@ class WheelRailGeometry {
   // Connected lateral intervals where g(y) < threshold, split at saddles that rise by more than
   // a tenth of the threshold above the minima on both sides; each with its contact point.
   std::vector<ContactCandidate> FindCandidates(double threshold_m) const;
+  // The candidate `interval` (one of FindCandidates') with its contact point moved to the lateral
+  // position y_m [m] (clamped to the interval): the rail point under it, the wheel point above,
+  // their normal, curvatures and radius, as FindCandidates fills them at the smallest gap. y_m and
+  // gap_m stay the interval's smallest gap, by which the candidate is found again. The planar
+  // grid's tangent plane is re-centred on a solved patch's pressure centre this way
+  // (core/contact/potential_area.h).
+  ContactCandidate CandidateAt(const ContactCandidate& interval, double y_m) const;
 
   // Transforms between the wheel profile frame W (x = 0 cross-section) and R.
   Eigen::Vector2d WheelToRail(const Eigen::Vector2d& p_W) const;
@@ -121,6 +128,9 @@ class WheelRailGeometry {
   // set, the scan for each crossing is limited to kGapWindow_m of arc about it (the whole profile
   // when nothing crosses there); `near` is then set to this y's crossings.
   double ExactVerticalGap(double y, int sample, std::optional<GapWindow>* near = nullptr) const;
+  // Fills c's contact point (rail and wheel points, normal, curvatures, radius, x and lead) at the
+  // lateral position y with vertical gap `gap` there, near gap sample `sample`.
+  void SetContactPoint(int sample, double y, double gap, ContactCandidate* c) const;
   // Lateral position of the smallest exact gap near gap sample `sample`.
   double RefineMinimum(int sample) const;
   std::vector<double> gap_y_, gap_, rail_top_, wheel_bottom_;

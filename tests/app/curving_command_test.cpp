@@ -14,7 +14,21 @@
 namespace railwear::test {
 namespace {
 
-using CurvingCommandTest = CliFixture;
+class CurvingCommandTest : public CliFixture {
+ protected:
+  // `railwear curving` of the 10 MGT run's scene on its stored step in tests/data/`database`
+  // (tests/data/README.md): the equilibria's JSON, after checking the exit code and that the
+  // output names `step` (e.g. "step 66 (5.197 MGT)").
+  nlohmann::json SolveOnStoredRails(const std::string& database, const std::string& step) {
+    const fs::path data = fs::path(RAILWEAR_SOURCE_DIR) / "tests/data";
+    fs::copy_file(data / "r600_10mgt_scene.toml", dir_ / "s.toml");
+    fs::copy_file(data / database, dir_ / "w.sqlite");
+    const Outcome o = Run("curving s.toml --db w.sqlite --json eq.json");
+    EXPECT_EQ(o.exit_code, 0) << o.out << o.err;
+    EXPECT_TRUE(Contains(o.out, step)) << o.out;
+    return nlohmann::json::parse(ReadFile(dir_ / "eq.json"));
+  }
+};
 
 const char* const kScene = kWheelsetCurveScene;
 
@@ -117,34 +131,43 @@ TEST_F(CurvingCommandTest, OnAStoredStepIsTheRunsNextStepsSolve) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "none.sqlite"));
 }
 
-// The main job's curve after 5.2 MGT (tests/data/README.md): the Y25 wagon's rear bogie runs at
-// the worn gauge corner, where its leading wheelset's yaw moment jumps from -1.3 to +2.0 kN m
-// within 4 um and 11 urad as the contact switches between one and two patches. No position meets
-// the force tolerance there; the 10 MGT run stopped on it ("no step reduced the residual" after
-// 752 wheelset solves, 1.6e-2 Q0). The solve ends converged in position at the force step:
-// within the position tolerances (0.05 mm, 0.05 mrad) along the Newton direction the yaw moment
-// changes sign. (The coach on the same rails converges on its forces.)
-TEST_F(CurvingCommandTest, WornGaugeCornersForceStepConvergesInPosition) {
-  const std::filesystem::path data = std::filesystem::path(RAILWEAR_SOURCE_DIR) / "tests/data";
-  std::filesystem::copy_file(data / "r600_10mgt_scene.toml", dir_ / "s.toml");
-  std::filesystem::copy_file(data / "r600_10mgt_step66.sqlite", dir_ / "w.sqlite");
-  const Outcome o = Run("curving s.toml --db w.sqlite --json eq.json");
-  ASSERT_EQ(o.exit_code, 0) << o.out << o.err;
-  EXPECT_TRUE(Contains(o.out, "step 66 (5.197 MGT)")) << o.out;
-  const nlohmann::json j = nlohmann::json::parse(ReadFile(dir_ / "eq.json"));
+// The main job's curve after 5.2 MGT (tests/data/README.md), where the 10 MGT run once stopped
+// ("no step reduced the residual" after 752 wheelset solves, 1.6e-2 Q0): the Y25 wagon's rear
+// bogie on the worn rails. (The coach on the same rails converges on its forces.)
+TEST_F(CurvingCommandTest, WornRailsOfStep66Converge) {
+  const nlohmann::json j =
+      SolveOnStoredRails("r600_10mgt_step66.sqlite", "step 66 (5.197 MGT)");
   ASSERT_EQ(j.size(), 2u);
   const nlohmann::json& wagon = j[1];
   ASSERT_EQ(wagon["vehicle"], "Y25 wagon");
   std::printf("wagon: %s, %d solves\n", std::string(wagon["message"]).c_str(),
               wagon["contact_solves"].get<int>());
+  // The step in wheelset 2's yaw moment that this case was made for (-1.3 to +2.0 kN m within
+  // 4 um) came from a planar patch's plane jumping with its smallest gap; with the plane on the
+  // pressure centre the wagon converges outright (32 solves, where the probe rule took 112 and
+  // the solve without it failed after 752), within the tolerance the wear accepts.
   EXPECT_EQ(wagon["status"], "converged");
-  const std::string message = wagon["message"].get<std::string>();
-  EXPECT_TRUE(Contains(message, "converged in position at a step in the contact forces"));
-  EXPECT_TRUE(Contains(message, "wheelset 2's yaw moment"));
-  // Within the near-stall bound of a solve converged in position (20 x the 3e-3 tolerance).
-  EXPECT_LE(wagon["largest_scaled_residual"].get<double>(), 20.0 * 3e-3);
-  EXPECT_LT(wagon["contact_solves"].get<int>(), 752);
+  EXPECT_LE(wagon["largest_scaled_residual"].get<double>(), 5.0 * 3e-3);
+  EXPECT_LT(wagon["contact_solves"].get<int>(), 112);
   EXPECT_EQ(j[0]["status"], "converged");
+}
+
+// Step 81 of the same run (6.24 MGT), where the 10 MGT run stopped after 1040 wheelset solves
+// without an equilibrium: the Y25 wagon's rear bogie's low wheel runs on the worn tread's wide,
+// nearly conformal patch, whose smallest gap jumps between its two ends as the wheelset moves by
+// micrometres; the planar grid's plane (and the spin and creep forces) jumped with it (F_x 14.0
+// to 16.7 kN within 7 um of y). With the plane on the patch's pressure centre
+// (core/contact/potential_area.h) both vehicles converge in a few dozen solves.
+TEST_F(CurvingCommandTest, WornTreadPlaneOnThePressureCentreConverges) {
+  const nlohmann::json j =
+      SolveOnStoredRails("r600_10mgt_step81.sqlite", "step 81 (6.236 MGT)");
+  ASSERT_EQ(j.size(), 2u);
+  for (const nlohmann::json& vehicle : j) {
+    EXPECT_EQ(vehicle["status"], "converged") << vehicle["message"];
+    // Within the 5x tolerance the wear accepts (3e-3), and far from the failed 1040 solves.
+    EXPECT_LE(vehicle["largest_scaled_residual"].get<double>(), 5.0 * 3e-3) << vehicle["vehicle"];
+    EXPECT_LT(vehicle["contact_solves"].get<int>(), 300) << vehicle["vehicle"];
+  }
 }
 
 TEST_F(CurvingCommandTest, BadVehicleInputIsExitTwoWithFileAndKey) {

@@ -273,3 +273,58 @@ TEST(SolveContact, TwoPointContactSharesOneApproach) {
 
 }  // namespace
 }  // namespace railwear
+
+namespace railwear {
+namespace {
+
+// The planar grid's tangent plane at the solved pressure centre (core/contact/potential_area.h).
+// A wide, nearly conformal patch over two gap minima 10 mm apart on a 100 mm crown, the one at
+// -5 mm or the one at +5 mm the deeper by 0.2 um: the smallest gap, where the first grid is
+// placed, jumps by 10 mm between the two, and with it the plane's angle by 2 w / R = 0.1 rad
+// (5.7 degrees: what the Y25 wagon's low wheel met on a worn tread, docs/curving.md). The patch
+// itself spans both minima and hardly moves. The plane follows the pressure centre, so the two
+// solutions' contact angles agree within the re-centring's half-cell rule (ds / 2R), and each
+// plane passes within half a cell of its patch's pressure centre.
+TEST(SolveContact, PlanarPlaneFollowsThePressureCentreNotTheSmallestGap) {
+  const double R = 0.1, w = 0.005, h = 2e-6;
+  ContactProblem p;
+  p.rail_profile = testing::ArcProfile(R, +1.0, 0.35, 1401);
+  p.wheel_material = p.rail_material = {210e9, 0.28};
+  p.placement.rolling_radius_m = 0.46;
+  p.load.vertical_force_N = 60e3;
+  p.model = MakeModelOptions(ModelKind::kHalfspace);
+  p.model.accuracy = AccuracyPreset::kStandard;
+  double angle[2] = {0.0, 0.0};
+  for (int k = 0; k < 2; ++k) {
+    const double e = k == 0 ? -2e-7 : 2e-7;  // the deeper minimum at -w, then at +w
+    auto wheel = [&](double y) {
+      const double u = y / w;
+      const double gap = h * (u * u - 1.0) * (u * u - 1.0) + e * u;
+      return (R - std::sqrt(R * R - y * y)) - gap;
+    };
+    p.wheel_profile = testing::FunctionProfile(wheel, -0.03, 0.03, 1201);
+    const ContactResult r = SolveContact(p);
+    ASSERT_EQ(r.status, SolverStatus::kConverged) << r.message;
+    ASSERT_EQ(r.patches.size(), 1u);
+    const PatchResult& patch = r.patches[0];
+    const PatchGrid& g = patch.grid;
+    ASSERT_TRUE(g.planar);
+    // The plane's tangent point (s = 0 on the grid) against the pressure centre's lateral place.
+    const double plane_y = g.point_yz_m[0].x() - g.S(0) * g.tangent_yz[0].x();
+    EXPECT_LE(std::abs(plane_y - patch.contact_point_yz_m.x()), 0.5 * g.ds_m + 1e-9) << k;
+    // A patch wider than the two minima: one connected contact, not a patch at one minimum.
+    double s_lo = 1.0, s_hi = -1.0;
+    for (int j = 0; j < g.ns; ++j) {
+      if (patch.pressure_Pa.segment(g.Index(0, j), g.nx).maxCoeff() > 0.0) {
+        s_lo = std::min(s_lo, g.S(j));
+        s_hi = std::max(s_hi, g.S(j));
+      }
+    }
+    EXPECT_GT(s_hi - s_lo, 2.0 * w) << k;
+    angle[k] = patch.contact_angle_rad;
+  }
+  EXPECT_LT(std::abs(angle[1] - angle[0]), 0.1 * 2.0 * w / R);
+}
+
+}  // namespace
+}  // namespace railwear

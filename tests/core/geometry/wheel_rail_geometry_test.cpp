@@ -184,3 +184,42 @@ TEST(WheelRailGeometry, YawedConeOnCylinderLeadsByTheClosedForm) {
 
 }  // namespace
 }  // namespace railwear
+
+namespace railwear {
+namespace {
+
+// CandidateAt: at the smallest gap it is FindCandidates' candidate; elsewhere the rail point and
+// normal of the crown at that lateral position (the planar grid's plane is moved there,
+// core/contact/potential_area.h), clamped to the candidate's interval.
+TEST(WheelRailGeometry, CandidateAtMovesTheContactPointAlongTheInterval) {
+  const double R = 0.3;
+  const Profile rail = testing::ArcProfile(R, +1.0, 0.15);
+  const Profile wheel = testing::FunctionProfile([](double) { return 0.002; }, -0.05, 0.05, 201);
+  WheelPose pose;
+  pose.rolling_radius_m = 0.46;
+  const WheelRailGeometry g(wheel, rail, pose);
+  const auto cands = g.FindCandidates(1e-4);
+  ASSERT_EQ(cands.size(), 1u);
+  const ContactCandidate& c = cands[0];
+  const ContactCandidate same = g.CandidateAt(c, c.y_m);
+  EXPECT_NEAR(same.gap_m, c.gap_m, kGeomTolerance_m);
+  EXPECT_NEAR((same.rail_point_m - c.rail_point_m).norm(), 0.0, kGeomTolerance_m);
+  EXPECT_NEAR((same.normal - c.normal).norm(), 0.0, 1e-9);
+  EXPECT_EQ(same.y_lo_m, c.y_lo_m);
+  EXPECT_EQ(same.y_hi_m, c.y_hi_m);
+  // 3 mm off the crown: the arc's height and tilted normal there; the smallest gap it is found
+  // by stays the interval's.
+  const double y = 0.003, z = R - std::sqrt(R * R - y * y);
+  const ContactCandidate moved = g.CandidateAt(c, y);
+  EXPECT_EQ(moved.y_m, c.y_m);
+  EXPECT_EQ(moved.gap_m, c.gap_m);
+  EXPECT_NEAR(moved.rail_point_m.x(), y, 1e-7);
+  EXPECT_NEAR(moved.rail_point_m.y(), z, 1e-8);
+  EXPECT_NEAR(moved.normal.x(), y / R, 1e-6);
+  EXPECT_NEAR(moved.rail_lateral_curvature, 1.0 / R, 1e-6 / R);
+  EXPECT_NEAR(moved.wheel_radius_m, 0.462, 1e-9);
+  EXPECT_NEAR(g.CandidateAt(c, 1.0).rail_point_m.x(), c.y_hi_m, 1e-7);
+}
+
+}  // namespace
+}  // namespace railwear
