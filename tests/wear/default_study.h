@@ -8,17 +8,24 @@
 
 namespace railwear {
 
-// The default study (examples/wear_high_rail.toml) at draft accuracy with 3 nodes per entry.
-inline WearStudy DefaultStudy(WearLawKind law) {
+// The set-up the wear tests share: UIC60 at 1:40, conformal geometry with the Boussinesq kernel
+// at draft accuracy; materials and traffic are each test's.
+inline WearStudy DraftConformalStudyOnUic60() {
   WearStudy study;
   study.rail_profile = MakeUic60();
   study.cant_ratio = 0.025;
-  study.rail_material.hardness_Pa = 2.6e9;
-  study.rail_material.shear_yield_Pa = 350e6;
   study.model = MakeModelOptions(ModelKind::kConformal);
   study.model.kernel = KernelModel::kBoussinesq;
   study.model.kind = ModelKind::kCustom;
   study.model.accuracy = AccuracyPreset::kDraft;
+  return study;
+}
+
+// The default study (examples/wear_high_rail.toml) at draft accuracy with 3 nodes per entry.
+inline WearStudy DefaultStudy(WearLawKind law) {
+  WearStudy study = DraftConformalStudyOnUic60();
+  study.rail_material.hardness_Pa = 2.6e9;
+  study.rail_material.shear_yield_Pa = 350e6;
   TrafficCase freight;
   freight.name = "freight";
   freight.wheel_profile = MakeS1002();

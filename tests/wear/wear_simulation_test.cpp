@@ -11,20 +11,15 @@
 
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
+#include "tests/wear/default_study.h"
 
 namespace railwear {
 namespace {
 
 WearStudy MakeStudy(int threads = 1) {
-  WearStudy study;
-  study.rail_profile = MakeUic60();
-  study.cant_ratio = 0.025;
+  WearStudy study = DraftConformalStudyOnUic60();
   study.rail_material.hardness_Pa = 2.6e9;
   study.rail_material.shear_yield_Pa = 350e6;
-  study.model = MakeModelOptions(ModelKind::kConformal);
-  study.model.kernel = KernelModel::kBoussinesq;
-  study.model.kind = ModelKind::kCustom;
-  study.model.accuracy = AccuracyPreset::kDraft;
   TrafficCase c;
   c.name = "S1002";
   c.wheel_profile = MakeS1002();

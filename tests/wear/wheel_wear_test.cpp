@@ -16,6 +16,7 @@
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
 #include "tests/test_support.h"
+#include "tests/wear/default_study.h"
 #include "wear/rail_grade.h"
 #include "wear/wear_simulation.h"
 
@@ -34,14 +35,8 @@ constexpr double kRollingRadius_m = 0.46;
 // S1002 on UIC60 1:40 at draft accuracy, one load case at the gauge corner (no spread), the
 // entry's wheel wearing over `distance_m` per pass with hardness `wheel_hardness_Pa`.
 WearStudy MakeStudy(WearLawKind law, double wheel_hardness_Pa, double distance_m = 200.0) {
-  WearStudy study;
-  study.rail_profile = MakeUic60();
-  study.cant_ratio = 0.025;
+  WearStudy study = DraftConformalStudyOnUic60();
   study.rail_material.hardness_Pa = kRailHardness_Pa;
-  study.model = MakeModelOptions(ModelKind::kConformal);
-  study.model.kernel = KernelModel::kBoussinesq;
-  study.model.kind = ModelKind::kCustom;
-  study.model.accuracy = AccuracyPreset::kDraft;
   TrafficCase c;
   c.name = "S1002";
   c.wheel_profile = MakeS1002();
