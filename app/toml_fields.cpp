@@ -158,6 +158,19 @@ std::vector<Fields> ArrayOfTables(const Fields& top, std::string_view key,
   return out;
 }
 
+namespace {
+
+// E, nu and the hardness a rail or wheel grade presets (wear/rail_grade.h); true.
+template <class Grade>
+bool PresetFromGrade(const Grade& grade, Material* m) {
+  m->youngs_modulus_Pa = grade.youngs_modulus_Pa;
+  m->poisson_ratio = grade.poisson_ratio;
+  m->hardness_Pa = grade.hardness_Pa;
+  return true;
+}
+
+}  // namespace
+
 Material ReadMaterial(const Fields& parent, std::string_view key, MaterialKeys keys) {
   constexpr double kMPa = 1e6;  // MPa -> Pa
   const auto t = parent.Table(key, "an inline table { E_MPa, nu }");
@@ -176,20 +189,13 @@ Material ReadMaterial(const Fields& parent, std::string_view key, MaterialKeys k
   if (keys == MaterialKeys::kWithDamage) {
     if (const auto name = t->Choice("grade", EnumChoices(kRailGradeNames))) {
       const RailGradeProperties grade = RailGradeOf(*RailGradeFromString(*name));
-      preset = true;
-      m.youngs_modulus_Pa = grade.youngs_modulus_Pa;
-      m.poisson_ratio = grade.poisson_ratio;
-      m.hardness_Pa = grade.hardness_Pa;
+      preset = PresetFromGrade(grade, &m);
       m.shear_yield_Pa = grade.shear_yield_Pa;
     }
   } else if (keys == MaterialKeys::kWithHardness) {
     // A wheel grade (EN 13262): E, nu and the rim's minimum hardness.
     if (const auto name = t->Choice("grade", EnumChoices(kWheelGradeNames))) {
-      const WheelGradeProperties grade = WheelGradeOf(*WheelGradeFromString(*name));
-      preset = true;
-      m.youngs_modulus_Pa = grade.youngs_modulus_Pa;
-      m.poisson_ratio = grade.poisson_ratio;
-      m.hardness_Pa = grade.hardness_Pa;
+      preset = PresetFromGrade(WheelGradeOf(*WheelGradeFromString(*name)), &m);
     }
   }
   // Moduli from soft rubber (1 MPa) to beyond diamond (1e7 MPa): the contact modulus and the
