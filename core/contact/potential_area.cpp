@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 
 #include "core/contact/influence_operator.h"
-#include "core/contact/kinematics.h"
 #include "core/contact/patch_results.h"
 #include "core/contact/stage_timer.h"
 
@@ -140,14 +139,19 @@ AreaReview PotentialArea::Review(PatchBuilds* builds, const NormalSolution& sol,
     // The planar grid's plane onto the rail point under the solved pressure centre.
     if (b.grid.planar && sol.status == SolverStatus::kConverged &&
         mem.recentred < kMaxRecentres && builds->choices[k].geometry == GeometryModel::kPlanar) {
-      // On the plane s = 0 is the candidate's point (patch_builder.h), so the pressure centre's
-      // lateral place is that point's plus s_c along the plane's tangent.
-      const double s_c = PressureCentre(b.grid, p_k).y();
-      const double offset = s_c * b.grid.tangent_yz[0].x();
-      if (std::abs(offset) > 0.5 * b.grid.ds_m) {
-        mem.plane_y_m = builds->cands[k].rail_point_m.x() + offset;
-        ++mem.recentred;
-        review.recentre = true;
+      double weight = 0.0, y = 0.0;
+      for (int j = 0; j < b.grid.ns; ++j) {
+        const double column = p_k.segment(b.grid.Index(0, j), b.grid.nx).sum();
+        weight += column;
+        y += column * b.grid.point_yz_m[j].x();
+      }
+      if (weight > 0.0) {
+        y /= weight;
+        if (std::abs(y - builds->cands[k].rail_point_m.x()) > 0.5 * b.grid.ds_m) {
+          mem.plane_y_m = y;
+          ++mem.recentred;
+          review.recentre = true;
+        }
       }
     }
     if (!cell_fixed_ && regrids_ < 3) {
