@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "core/contact/balance_target.h"
 #include "core/contact/contact_forces.h"
 #include "core/contact/coupling.h"
 #include "core/contact/patch_results.h"
@@ -15,13 +16,6 @@
 
 namespace railwear::internal {
 namespace {
-
-// The smallest slope d(V_p + V_c)/dT a secant step divides by: creep forces that cancel the
-// pressure's vertical part (dV_c/dV_p near -1) leave no load to balance.
-constexpr double kMinBalanceSlope = 0.05;
-// A bracket on the target narrower than this (relative to the load) that has not met the
-// tolerance holds a jump of f, not a root.
-constexpr double kStalledBracket = 1e-10;
 
 std::pair<double, double> AreaAndPeak(const ContactResult& r) {
   double area = 0.0, p_max = 0.0;
@@ -32,82 +26,22 @@ std::pair<double, double> AreaAndPeak(const ContactResult& r) {
   return {area, p_max};
 }
 
-// The iteration on the pressure's target T for f(T) = V_p + V_c - Q = 0: secant steps, and once
-// f has changed sign, regula falsi (Illinois) inside the bracket. V_c(T) can jump where a cell
-// enters or leaves the contact (the tangential solution changes with the contact set); the
-// bracket then closes on the jump without a root, and Stalled() says so.
-class BalanceTarget {
- public:
-  BalanceTarget(double load_N, double target_N) : load_(load_N), target_(target_N) {}
+// f = V_p + V_c - Q [N] of a rolling result under the load Q.
+double BalanceError(const ContactResult& r, double load_N) {
+  const ForceParts f = TotalForcesOnRail(r);
+  return f.normal_N.z() + f.creep_N.z() - load_N;
+}
 
-  // f [N] of the result solved with the current target.
-  double Error(const ContactResult& r) const {
-    const ForceParts f = TotalForcesOnRail(r);
-    return f.normal_N.z() + f.creep_N.z() - load_;
-  }
-  bool Settled(const ContactResult& r) const {
-    return std::abs(Error(r)) <= kBalanceTolerance * load_;
-  }
-  // The bracket has closed to round-off without meeting the tolerance: f jumps there.
-  bool Stalled() const { return lo_ && hi_ && hi_->first - lo_->first <= kStalledBracket * load_; }
-  // The jump of f across the closed bracket [N].
-  double Jump() const { return lo_ && hi_ ? hi_->second - lo_->second : 0.0; }
-
-  // The next target from the result of the current one; nullopt when none is positive.
-  std::optional<double> Next(const ContactResult& r) {
-    const double f = Error(r);
-    // f grows with T (the pressure's part does, and dV_c/dT > -1): f < 0 below the root.
-    if (f < 0) {
-      if (lo_ && side_ == -1 && hi_) hi_->second *= 0.5;  // Illinois
-      lo_ = std::pair{target_, f};
-      side_ = -1;
-    } else {
-      if (hi_ && side_ == +1 && lo_) lo_->second *= 0.5;
-      hi_ = std::pair{target_, f};
-      side_ = +1;
-    }
-    if (lo_ && hi_) {
-      double t =
-          (lo_->first * hi_->second - hi_->first * lo_->second) / (hi_->second - lo_->second);
-      if (!(t > lo_->first && t < hi_->first)) t = 0.5 * (lo_->first + hi_->first);
-      target_ = t;
-    } else {
-      double slope = 1.0;
-      if (last_) {
-        slope = (f - last_->second) / (target_ - last_->first);
-      } else {
-        const ForceParts parts = TotalForcesOnRail(r);
-        if (parts.normal_N.z() > 0.0) slope = 1.0 + parts.creep_N.z() / parts.normal_N.z();
-      }
-      if (!std::isfinite(slope) || slope < kMinBalanceSlope) slope = kMinBalanceSlope;
-      last_ = std::pair{target_, f};
-      target_ -= f / slope;
-    }
-    if (!(target_ > 0.0)) return std::nullopt;
-    return target_;
-  }
-
- private:
-  double load_, target_;
-  std::optional<std::pair<double, double>> last_;     // (T, f) of the previous secant step
-  std::optional<std::pair<double, double>> lo_, hi_;  // (T, f) with f < 0 and f >= 0
-  int side_ = 0;
-
- public:
-  // Forget the history (f has changed: the coupling moved the gap).
-  void Reset() {
-    last_.reset();
-    lo_.reset();
-    hi_.reset();
-    side_ = 0;
-  }
-};
+// df/dT's estimate for the first secant step: 1 + V_c / V_p.
+double InitialBalanceSlope(const ContactResult& r) {
+  const ForceParts parts = TotalForcesOnRail(r);
+  return parts.normal_N.z() > 0.0 ? 1.0 + parts.creep_N.z() / parts.normal_N.z() : 1.0;
+}
 
 }  // namespace
 
 double BalanceResidual(const ContactResult& result, double load_N) {
-  const ForceParts f = TotalForcesOnRail(result);
-  return std::abs(f.normal_N.z() + f.creep_N.z() - load_N) / load_N;
+  return std::abs(BalanceError(result, load_N)) / load_N;
 }
 
 namespace {
@@ -124,21 +58,32 @@ bool Iterate(const ContactProblem& problem, const WheelRailGeometry& geom,
   // Once the coupling has settled its gap stays as it is, so that the balance's f(T) no longer
   // changes between steps and its bracket holds.
   bool gap_settled = !coupling;
+  const double load_N = balance ? *problem.load.vertical_force_N : 0.0;
+  // After a step of f: one more solve on the bracket's better side, then the balance stops.
+  bool last_balance_solve = false;
   for (int it = 1; it <= max_iterations; ++it) {
     if (coupling) result->coupling_iterations = it;
-    if (balance && !balance->Settled(*result) && balance->Stalled()) {
-      // As near as the pressure's target can come: say so, and stop moving it.
+    const double f = balance ? BalanceError(*result, load_N) : 0.0;
+    if (balance && !balance->Settled(f) && balance->Stalled()) {
+      // As near as the pressure's target can come: say so, take the side of the step nearer to
+      // the load, and stop moving the target.
+      const auto [best_target, best_f] = balance->Best();
       result->message += fmt::format(
           "{}vertical balance: the creep forces' vertical part jumps by {:.3g} N where a cell "
           "enters the contact; residual {:.2e} of the load",
-          result->message.empty() ? "" : "; ", balance->Jump(), result->balance_residual);
-      if (!coupling) return true;
+          result->message.empty() ? "" : "; ", balance->Jump(), std::abs(best_f) / load_N);
       balance = nullptr;
+      if (std::abs(f) > std::abs(best_f)) {
+        np->force_N = best_target;
+        last_balance_solve = true;
+      } else if (!coupling) {
+        return true;
+      }
     }
     if (balance) {
       ++result->balance_iterations;
-      if (!balance->Settled(*result)) {
-        const auto target = balance->Next(*result);
+      if (!balance->Settled(f)) {
+        const auto target = balance->Next(f, InitialBalanceSlope(*result));
         if (!target) {
           result->status = SolverStatus::kNotConverged;
           result->message =
@@ -180,11 +125,13 @@ bool Iterate(const ContactProblem& problem, const WheelRailGeometry& geom,
     const double change =
         (sol.pressure_Pa - *pressure).cwiseAbs().maxCoeff() / std::max(pressure->maxCoeff(), 1.0);
     *pressure = sol.pressure_Pa;
-    if (balance) {
-      result->balance_residual = BalanceResidual(*result, *problem.load.vertical_force_N);
+    if (balance || last_balance_solve) {
+      result->balance_residual = BalanceResidual(*result, load_N);
     }
+    if (last_balance_solve && !coupling) return true;
+    last_balance_solve = false;
     if (change < o.coupling_tolerance) gap_settled = true;
-    if (gap_settled && (!balance || balance->Settled(*result))) return true;
+    if (gap_settled && (!balance || balance->Settled(BalanceError(*result, load_N)))) return true;
   }
   result->status = SolverStatus::kNotConverged;
   result->message = coupling
@@ -207,14 +154,14 @@ void IterateNormalTangential(const ContactProblem& problem, const WheelRailGeome
   const bool coupling = problem.rolling->coupling;
   std::optional<BalanceTarget> balance;
   if (problem.load.vertical_force_N) {
-    balance.emplace(*problem.load.vertical_force_N, *np->force_N);
+    balance.emplace(*problem.load.vertical_force_N, *np->force_N, kBalanceTolerance);
     result->balance_residual = BalanceResidual(*result, *problem.load.vertical_force_N);
   }
   BalanceTarget* balance_ptr = balance ? &*balance : nullptr;
   const Eigen::VectorXd base_gap = np->gap_m;
   // The balance first, alone: the coupling's changes are measured against the balanced
   // uncoupled solution, so that they are the coupling's own.
-  if (balance && !balance->Settled(*result) &&
+  if (balance && !balance->Settled(BalanceError(*result, *problem.load.vertical_force_N)) &&
       !Iterate(problem, geom, {}, kept_offset, base_gap, false, balance_ptr, np, &pressure,
                result)) {
     return;

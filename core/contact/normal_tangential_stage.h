@@ -4,9 +4,10 @@
 //             terms) to each patch's gap, until the pressure settles;
 //   balance   with a prescribed vertical load Q, the net vertical force on the rail, pressure
 //             V_p and creep forces V_c (contact_forces.h), must equal Q: the normal problem's
-//             target for the pressure alone is set to T with T + V_c(T) = Q by secant steps,
-//             until |V_p + V_c - Q| <= kBalanceTolerance Q (dV_c/dV_p is about mu tan(gamma)
-//             in full slip, where V_c is linear in T and one secant step ends it).
+//             target for the pressure alone is set to T with T + V_c(T) = Q (balance_target.h:
+//             secant steps, then regula falsi; a step of V_c is recognised), until
+//             |V_p + V_c - Q| <= kBalanceTolerance Q (dV_c/dV_p is about mu tan(gamma) in full
+//             slip, where V_c is linear in T and one secant step ends it).
 // With both, the balance runs alone first (so that the coupling's reported area and peak changes
 // are against the balanced uncoupled solution), then the one loop iterates both; the secant
 // steps go on in that loop. With a prescribed approach only coupling iterates. Internal to
