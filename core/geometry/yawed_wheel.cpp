@@ -3,10 +3,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/numerics/check.h"
+#include "core/profile/profile_defects.h"
 
 namespace railwear {
+namespace {
+
+// At most this many folds are cut out of one outline (Car7216_0001r.whl at 20 mrad needs a few
+// dozen); beyond it the outline is refused with the Profile's message.
+constexpr int kMaxFoldCuts = 2000;
+
+}  // namespace
 
 double YawedWheelSection::SinTheta(const Eigen::Vector2d& n, double yaw_rad) {
   const double t = std::tan(yaw_rad);
@@ -39,18 +48,48 @@ YawedWheelSection::YawedWheelSection(const Profile& wheel, double r0, double yaw
                        [](const auto& a, const auto& b) { return a.y() < b.y(); }) -
       pts.begin());
   const double sign = wheel.LeftNormal(s_of[lowest]).y() > 0 ? 1.0 : -1.0;
+  // A sample whose outline point steps back against the profile's direction is dropped: the
+  // outline follows the surface normal, so a measured profile's noise in its slope folds the
+  // outline into swallowtails of a few micrometres (avg_wheel.whl's flange face at 5 mrad), whose
+  // backward part is hidden behind the rest of the silhouette. A smooth profile keeps every sample.
+  int kept = 0;
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector2d p = pts[i];
     const double sin_t = SinTheta(sign * wheel.LeftNormal(s_of[i]), yaw_rad);
     const double cos_t = std::sqrt(1.0 - sin_t * sin_t);
     const double r = r0 + p.y();
-    wheel_s_[i] = s_of[i];
-    x_[i] = r * sin_t * c - p.x() * sn;
-    pts[i] = {r * sin_t * sn + p.x() * c, r * cos_t - r0};
+    const Eigen::Vector2d q(r * sin_t * sn + p.x() * c, r * cos_t - r0);
+    if (kept > 0 && (q - pts[kept - 1]).dot(wheel.Tangent(s_of[i])) <= 0.0) continue;
+    wheel_s_[kept] = s_of[i];
+    x_[kept] = r * sin_t * c - p.x() * sn;
+    pts[kept++] = q;
   }
+  auto erase = [&](int from, int to) {  // samples [from, to)
+    pts.erase(pts.begin() + from, pts.begin() + to);
+    wheel_s_.erase(wheel_s_.begin() + from, wheel_s_.begin() + to);
+    x_.erase(x_.begin() + from, x_.begin() + to);
+  };
+  erase(kept, n);
+  // Folds that step forward and still cross an earlier stretch: a measured profile's noisy,
+  // nearly vertical faces (Car7216_0001r.whl's hooked flange tip and its flange back at 4-20
+  // mrad), where the outline point moves round the wheel by up to r |sin(theta)| and back. The
+  // loop between two crossing segments is the hidden part of the silhouette and is cut out (a
+  // turn back or a duplicate: its one point), one at a time (each check well under a
+  // millisecond; a smooth outline pays for one, which the Profile makes again).
+  for (int cut = 0; cut < kMaxFoldCuts; ++cut) {
+    const std::optional<ProfileDefect> d = FindProfileDefect(pts);
+    if (!d) break;
+    int from = d->b, to = d->b + 1;  // a duplicate: point b
+    if (d->kind == ProfileDefect::Kind::kTurnBack) from = d->a + 1, to = d->a + 2;
+    if (d->kind == ProfileDefect::Kind::kCrossing) from = d->a + 1, to = d->b + 1;
+    to = std::min(to, static_cast<int>(pts.size()) - 1);  // keep the last point
+    if (from >= to) break;  // nothing to cut: the Profile below says what is wrong
+    erase(from, to);
+  }
+  kept = static_cast<int>(pts.size());
   outline_ = Profile(std::move(pts), wheel.source() + " (yawed outline)");
   // The profile keeps the samples as its knots unless it had to subdivide a long segment.
-  knots_are_samples_ = outline_.size() == n;
+  knots_are_samples_ = outline_.size() == kept;
 }
 
 YawedWheelSection::Source YawedWheelSection::SourceAt(double outline_s_m) const {

@@ -29,6 +29,12 @@
 // Where the outline is not defined (|n_y / n_z tan(psi)| >= 1: faces steeper than
 // 90 deg - |psi|, the vertical flange back) theta is held at the bound kMaxSinTheta; such faces
 // never touch a rail from above.
+//
+// The outline follows the surface normal, so a measured profile's noise in its slope moves its
+// points round the wheel and can fold it (swallowtails of micrometres on a flange face, loops on
+// a noisy near-vertical face). The hidden parts are removed: samples that step back against the
+// profile's direction, then the loops between crossing segments. A smooth profile keeps every
+// sample (tests/core/geometry/yawed_wheel_test.cpp).
 #pragma once
 
 #include <vector>

@@ -1,9 +1,13 @@
 #include "core/geometry/yawed_wheel.h"
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 
 #include <gtest/gtest.h>
 
+#include "core/profile/builtin_profiles.h"
+#include "core/profile/profile_io.h"
 #include "tests/core/geometry/geometry_test_util.h"
 
 namespace railwear {
@@ -92,6 +96,73 @@ TEST(YawedWheelSection, ConeOutlineAndLeadMatchTheClosedForm) {
         EXPECT_NEAR(lead, closed, 1e-3 * std::abs(closed) + 1e-9)
             << "gamma " << gamma_deg << " psi " << psi;
       }
+    }
+  }
+}
+
+// The outline follows the surface normal, so ripples in a profile's slope move its points round
+// the wheel: on a steep face yawed far enough they fold the outline back on itself, which the
+// profile's own check refuses ("turns back on itself"). Samples that step back against the
+// profile's direction are hidden behind the rest of the silhouette and dropped. Here a 76 deg
+// flange face with a 1 um ripple of 60 um wavelength (a measured profile's noise) at 20 mrad.
+TEST(YawedWheelSection, RippledSteepFaceBuildsWithoutFolding) {
+  const double tg = std::tan(76.0 * M_PI / 180.0), amplitude = 1e-6, wavelength = 60e-6;
+  const Profile face = testing::FunctionProfile(
+      [&](double y) { return -tg * y + amplitude * std::sin(2.0 * M_PI * y / wavelength); },
+      -2e-3, 2e-3, 801);
+  const double psi = 0.02, r0 = 0.46;
+  const YawedWheelSection yawed(face, r0, psi);
+  const Profile& outline = yawed.outline();
+  const int samples = static_cast<int>(std::ceil(face.Length() / 2e-5)) + 1;
+  std::printf("[ measured ] rippled face: %d of %d samples kept\n", outline.size(), samples);
+  EXPECT_LT(outline.size(), samples);  // the ripple did fold the outline
+  EXPECT_GT(outline.size(), samples / 2);
+  // Every kept point steps forward along the profile, and is the exact outline point of its
+  // source (the closed form of yawed_wheel.h at the source's normal).
+  // Outward: the normal with +z at the face's deepest end (its start, y = -2 mm).
+  const double outward = face.LeftNormal(0.0).y() > 0 ? 1.0 : -1.0;
+  for (int k = 0; k < outline.size(); ++k) {
+    const auto src = yawed.SourceAt(outline.KnotS(k));
+    const Eigen::Vector2d p = face.Position(src.wheel_s_m);
+    const double sin_t =
+        YawedWheelSection::SinTheta(outward * face.LeftNormal(src.wheel_s_m), psi);
+    const double r = r0 + p.y();
+    const Eigen::Vector2d expected(r * sin_t * std::sin(psi) + p.x() * std::cos(psi),
+                                   r * std::sqrt(1.0 - sin_t * sin_t) - r0);
+    EXPECT_NEAR((outline.points()[k] - expected).norm(), 0.0, 1e-12) << k;
+    if (k > 0) {
+      EXPECT_GT((outline.points()[k] - outline.points()[k - 1]).dot(face.Tangent(src.wheel_s_m)), 0.0)
+          << k;
+    }
+  }
+}
+
+// A smooth profile keeps every sample, so the outline is what it was before folds were dropped
+// (the S1002 wheel at the yaw of curving and beyond).
+TEST(YawedWheelSection, SmoothProfileKeepsEverySample) {
+  const Profile s1002 = MakeS1002();
+  const int samples = static_cast<int>(std::ceil(s1002.Length() / 2e-5)) + 1;
+  for (double psi : {-0.02, 0.001, 0.005, 0.02}) {
+    const YawedWheelSection yawed(s1002, 0.46, psi);
+    EXPECT_EQ(yawed.outline().size(), samples) << psi;
+  }
+}
+
+// The measured wheels of ../shared at the yaw of curving: avg_wheel.whl's flange-face slope
+// noise folded its outline near y = -43.5 mm (turned back), Car7216_0001r.whl's nearly vertical
+// flange back crossed itself near y = -54 mm, and the yawed contact refused both wheels.
+TEST(YawedWheelSection, MeasuredWheelsBuildAtYaw) {
+  for (const char* name : {"avg_wheel.whl", "Car7216_0001r.whl"}) {
+    const std::filesystem::path file =
+        std::filesystem::path(RAILWEAR_SHARED_DIR) / "data/profiles" / name;
+    if (!std::filesystem::exists(file)) {
+      GTEST_SKIP() << file << " is absent (../shared beside the checkout): the measured-wheel "
+                      "case needs it";
+    }
+    const Profile wheel = ReadProfileFile(file.string()).profile;
+    for (double psi : {-0.005, 0.004, 0.005, 0.02}) {
+      const YawedWheelSection yawed(wheel, 0.46, psi);
+      EXPECT_GT(yawed.outline().size(), 1000) << name << " " << psi;
     }
   }
 }
