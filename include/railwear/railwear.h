@@ -226,8 +226,8 @@ typedef struct rw_state {
   /* Motion (with RW_EFFECT_TANGENTIAL). */
   double speed_m_s;            /* > 0 */
   double pitch_velocity_rad_s; /* NaN: pure rolling at the nominal radius */
-  double lateral_velocity_m_s; /* toward +y */
-  double yaw_velocity_rad_s;   /* about +z */
+  double lateral_velocity_m_s; /* toward +y (wheelset: +Y of the track; mirrored for the left) */
+  double yaw_velocity_rad_s;   /* about +z (wheelset: against the curve's own -V curvature) */
   double longitudinal_force_N; /* NaN, or a prescribed total F_x instead of the pitch velocity */
   double curvature_per_m;      /* wheelset only: track curvature 1/R >= 0, curve to the left */
   /* Prescribed creepages with RW_STATE_CREEPAGE. */
