@@ -83,6 +83,10 @@ struct rw_problem {
   railwear::WearGrid wear_grid[2];
   std::vector<double> depth_m[2];
 
+  // The placed geometries of the last calculate, reused by the next one at the same pose on the
+  // same profiles (core/contact/placement_cache.h): exact, so results do not depend on it.
+  railwear::PlacementCache placement_cache;
+
   std::optional<ContactCaseResult> result;
   struct PatchRef {
     int wheel;
@@ -798,7 +802,7 @@ rw_status rw_calculate(rw_problem* problem) {
     RequireHandle(problem);
     Invalidate(problem);
     const ContactCase c = MakeCase(problem);
-    problem->result = railwear::SolveContactCase(c);
+    problem->result = railwear::SolveContactCase(c, &problem->placement_cache);
     const ContactCaseResult& r = *problem->result;
     auto add = [&](int wheel, const ContactResult& contact) {
       for (const PatchResult& patch : contact.patches) {

@@ -41,7 +41,7 @@ WheelMotions CurveWheelMotions(const WheelMotion& axle, const WheelsetPlacement&
   return out;
 }
 
-WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
+WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cache) {
   WheelsetResult out;
   const Profile& right_rail = problem.wheel_rail.rail_profile;
   const Profile& left_rail =
@@ -90,9 +90,16 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
     right.rolling->longitudinal_force_N.reset();
     left.rolling->longitudinal_force_N.reset();
   }
-  // Each wheel's placed geometry, built once for all its solves and the trials of the search.
-  const WheelRailGeometry right_geom(right.wheel_profile, right.rail_profile, r);
-  const WheelRailGeometry left_geom(left.wheel_profile, left.rail_profile, l);
+  // Each wheel's placed geometry, built once for all its solves and the trials of the search
+  // (or kept from an earlier solve at the same pose: PlacementCache).
+  std::optional<WheelRailGeometry> own_right, own_left;
+  auto place = [&](PlacementCache::Slot slot, const ContactProblem& wheel, const WheelPose& pose,
+                   std::optional<WheelRailGeometry>* own) -> const WheelRailGeometry& {
+    if (cache) return cache->Get(slot, wheel.wheel_profile, wheel.rail_profile, pose);
+    return own->emplace(wheel.wheel_profile, wheel.rail_profile, pose);
+  };
+  const WheelRailGeometry& right_geom = place(PlacementCache::kRight, right, r, &own_right);
+  const WheelRailGeometry& left_geom = place(PlacementCache::kLeft, left, l, &own_left);
   out.right = SolveContact(right, right_geom);
   out.left = SolveContact(left, left_geom);
   if (!target || out.right.status != SolverStatus::kConverged ||

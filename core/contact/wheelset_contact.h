@@ -12,6 +12,7 @@
 #pragma once
 
 #include "core/contact/contact_solver.h"
+#include "core/contact/placement_cache.h"
 #include "core/geometry/wheelset.h"
 
 namespace railwear {
@@ -64,6 +65,8 @@ WheelMotions CurveWheelMotions(const WheelMotion& axle, const WheelsetPlacement&
                                double curvature_per_m, double rolling_radius_m);
 
 // Throws InputError as SolveContact does, and when the rail is too shallow for the gauge height.
-WheelsetResult SolveWheelset(const WheelsetProblem& problem);
+// `cache` (optional) keeps both wheels' placed geometries between calls (placement_cache.h):
+// the same results, bit for bit.
+WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cache = nullptr);
 
 }  // namespace railwear
