@@ -205,11 +205,12 @@ def simulate(args, log=None):
             passes = V * dt / (track.end - track.s2)
             p.accumulate(passes)
             expected_area += passes * archard_area_per_pass(p, V)
-        # The suspension, the unbalanced force in the moving frame and the curve's yaw
-        # acceleration (the tangent turns at V kappa).
+        # The suspension, the unbalanced force in the moving frame (centrifugal toward +Y, the
+        # cant's share of gravity toward the low rail) and, in yaw against the tangent, which
+        # turns toward -Y at V kappa, the tangent's angular acceleration -V^2 dkappa/ds.
         F_unbalanced = m * (V ** 2 * kappa - GRAVITY_M_S2 * math.sin(track.cant(s)))
         F = F_Y - Ky * y + F_unbalanced
-        M = M_z - Kpsi * psi - Iz * V ** 2 * track.curvature_slope(s)
+        M = M_z - Kpsi * psi + Iz * V ** 2 * track.curvature_slope(s)
         rows.append([t, s, kappa, y, psi, ydot, psidot, F_Y, M_z,
                      w[0]["F_X"], w[0]["F_Y"], w[1]["F_X"], w[1]["F_Y"],
                      w[0]["xi"], w[0]["eta"], w[1]["xi"], w[1]["eta"],
