@@ -414,34 +414,14 @@ TEST_F(SweepEnsembleTest, LifeOfBothRailsIsTheEarlierAndNamesTheGoverningRail) {
   EXPECT_TRUE(Contains(one.err, "has one rail only; expected two-rail runs")) << one.err;
 }
 
-// A real failing sample (issue 19): 3 samples of the wear coefficient and the cell size along
-// the rail's profile, uniform in [0.001, 3.001] mm. Seed 115 draws one cell of 0.0037 mm: its
-// run fails at once (the grid of its contact needs 7300 cells along one axis, more than the 4000
-// the solver takes: "the contact solution did not converge ... choose ... a larger
-// model.cell_mm"), the other two (1.5 and 2.7 mm) complete in about a second each. The sweep
-// goes on past it and exits 3 naming it; --merge merges the two complete runs and the failed
-// one with its error and exits 3; bands and life use the two and name the failed one.
+// A real failing sample (issue 19; kFailingSamplePlan): the 0.0037 mm cell's run fails at once
+// ("the contact solution did not converge ... choose ... a larger model.cell_mm"), the other
+// two complete in about a second each. The sweep goes on past it and exits 3 naming it; --merge
+// merges the two complete runs and the failed one with its error and exits 3; bands and life use
+// the two and name the failed one.
 TEST_F(SweepEnsembleTest, AFailedSampleIsRecordedMergedNamedAndLeftOutOfBandsAndLife) {
-  std::string base = SmallStudyOfPasses("2e4");
-  base.replace(base.find("accuracy = \"draft\""), 18, "accuracy = \"draft\"\ncell_mm = [2.0, 1.0]");
-  Write("fbase.toml", base);
-  Write("fail.toml", R"([sweep]
-scene = "fbase.toml"
-out_dir = "fail_runs"
-samples = 3
-seed = 115
-[[axis]]
-key = "wear.k"
-distribution = { kind = "lognormal" }
-[[axis]]
-key = "model.cell_mm[0]"
-distribution = { kind = "uniform", min = 0.001, max = 3.001 }
-[life]
-[[life.limit]]
-name = "worn"
-measure = "worn_area_mm2"
-value = 1e-6
-)");
+  Write("fbase.toml", FailingSampleBase());
+  Write("fail.toml", kFailingSamplePlan);
   // The design: exactly one sample below 0.01 mm (fails), the others at 1 mm or more (fast).
   const app::SweepPlan plan = app::LoadSweepPlan((dir_ / "fail.toml").string());
   int failing = -1;
