@@ -754,12 +754,20 @@ void RunWearScene(const Scene& scene, const WearCommandOptions& options) {
           return true;
         },
         options.steps);
+  } catch (const std::exception& failure) {
+    progress.Finish();
+    try {
+      // The run is aborted and says why (issue 19: a sweep names its failed runs).
+      store.SetRunFailed(run_id, failure.what());
+    } catch (const std::exception&) {
+      // The failure itself says more (e.g. the database file was deleted under the run).
+    }
+    throw;
   } catch (...) {
     progress.Finish();
     try {
       store.SetRunState(run_id, RunState::kAborted);
     } catch (const std::exception&) {
-      // The failure itself says more (e.g. the database file was deleted under the run).
     }
     throw;
   }

@@ -531,9 +531,22 @@ CREATE TABLE step_warnings(
 )sql");
 }
 
+// Version 9: why a run failed (issue 19: a sweep or an ensemble merges and names its failed runs
+// beside the complete ones): the error message of the run's failure and its last stored step,
+// one row per run in state 'aborted' (none for a run aborted by an older railwear).
+void MigrateTo9(const Connection& c) {
+  c.Exec(R"sql(
+CREATE TABLE run_failures(
+  run_id  INTEGER PRIMARY KEY REFERENCES runs(id) ON DELETE CASCADE,
+  step    INTEGER NOT NULL,
+  message TEXT NOT NULL);
+)sql");
+}
+
 using Migration = void (*)(const Connection&);
-constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3, &MigrateTo4,
-                                     &MigrateTo5, &MigrateTo6, &MigrateTo7, &MigrateTo8};
+constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3,
+                                     &MigrateTo4, &MigrateTo5, &MigrateTo6,
+                                     &MigrateTo7, &MigrateTo8, &MigrateTo9};
 static_assert(std::size(kMigrations) == ProfileStore::kSchemaVersion);
 
 const char* kNowUtc = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
@@ -993,12 +1006,43 @@ std::vector<RunInfo> ProfileStore::Runs() const {
 
 void ProfileStore::SetRunState(int64_t run, RunState state) {
   impl_->RequireSameFile();
+  Transaction t(impl_->db);
   Statement s(impl_->db, "UPDATE runs SET state = ?1 WHERE id = ?2");
   s.Bind(1, ToString(state)).Bind(2, run);
   s.Run();
   if (sqlite3_changes(impl_->db.get()) == 0) {
     throw InputError(fmt::format("database '{}': no run with id {}", path(), run));
   }
+  // A new state ends the failure that was recorded (a resumed run starts afresh).
+  Statement clear(impl_->db, "DELETE FROM run_failures WHERE run_id = ?1");
+  clear.Bind(1, run);
+  clear.Run();
+  t.Commit();
+}
+
+void ProfileStore::SetRunFailed(int64_t run, const std::string& message) {
+  impl_->RequireSameFile();
+  const std::optional<int> last = LastStep(run);
+  Transaction t(impl_->db);
+  Statement s(impl_->db, "UPDATE runs SET state = ?1 WHERE id = ?2");
+  s.Bind(1, ToString(RunState::kAborted)).Bind(2, run);
+  s.Run();
+  if (sqlite3_changes(impl_->db.get()) == 0) {
+    throw InputError(fmt::format("database '{}': no run with id {}", path(), run));
+  }
+  Statement f(impl_->db,
+              "INSERT OR REPLACE INTO run_failures(run_id, step, message) VALUES (?1, ?2, ?3)");
+  f.Bind(1, run).Bind(2, last.value_or(-1)).Bind(3, message);
+  f.Run();
+  t.Commit();
+}
+
+std::optional<RunFailure> ProfileStore::FindRunFailure(int64_t run) const {
+  if (!internal::TableExists(impl_->db, "run_failures")) return std::nullopt;  // schema <= 8
+  Statement s(impl_->db, "SELECT step, message FROM run_failures WHERE run_id = ?1");
+  s.Bind(1, run);
+  if (!s.Step()) return std::nullopt;
+  return RunFailure{static_cast<int>(s.Int64(0)), s.Text(1)};
 }
 
 namespace {

@@ -85,6 +85,13 @@ enum class RunState { kRunning, kComplete, kAborted, kInterrupted };
 std::string ToString(RunState state);
 RunState RunStateFromString(const std::string& text);
 
+// Why a run failed (schema 9): the error message of the failure that stopped it, and its last
+// stored step then (-1 for none).
+struct RunFailure {
+  int step = 0;
+  std::string message;
+};
+
 // One wear run: what it was started from. Everything needed to re-run any of its steps.
 struct RunInfo {
   int64_t id = 0;               // assigned by CreateRun; ignored on input
@@ -235,7 +242,7 @@ struct QueryResult {
 class ProfileStore {
  public:
   // Schema version written by this program (PRAGMA user_version).
-  static constexpr int kSchemaVersion = 8;
+  static constexpr int kSchemaVersion = 9;
   // The oldest schema OpenReadOnly reads as it is: version 5 only widened runs.state's CHECK
   // (adding 'interrupted'), version 6 only added curving_starts and version 7 wheel_steps (both
   // read when present), so a version-4, -5 or -6 file reads the same; older ones need migrating.
@@ -279,8 +286,15 @@ class ProfileStore {
   std::optional<RunInfo> FindRun(const std::string& name) const;
   // All runs, in creation (id) order.
   std::vector<RunInfo> Runs() const;
-  // Throws InputError for an unknown run id.
+  // Throws InputError for an unknown run id. Clears the run's recorded failure (SetRunFailed):
+  // a run resumed after a failure is running again.
   void SetRunState(int64_t run, RunState state);
+  // Marks the run aborted and records why, with its last stored step, in one transaction (issue
+  // 19: a sweep merges and names its failed runs). Throws InputError for an unknown run id.
+  void SetRunFailed(int64_t run, const std::string& message);
+  // The run's recorded failure; nullopt when it has none (not aborted, aborted by a railwear
+  // before schema 9, or a read-only file of schema 8 or older, which has no place for it).
+  std::optional<RunFailure> FindRunFailure(int64_t run) const;
   // Every write (CreateRun, AppendStep, SetRunState) first checks that the database's path still
   // names the file this store opened (SQLite's SQLITE_FCNTL_HAS_MOVED and the file's st_dev and
   // st_ino recorded at Open): when the file was deleted, or replaced by or renamed over with

@@ -243,11 +243,10 @@ TEST(ProfileStore, CreatesSchemaInMemory) {
       db.Query("SELECT name FROM sqlite_schema WHERE type = 'table' ORDER BY name");
   std::vector<std::string> names;
   for (const auto& row : tables.rows) names.push_back(row[0]);
-  EXPECT_EQ(names,
-            (std::vector<std::string>{"calibration_inputs", "calibrations", "curving_starts",
-                                      "distributions", "load_cases", "low_rail_distributions",
-                                      "low_rail_steps", "meta", "profiles", "runs",
-                                      "step_warnings", "steps", "wheel_steps"}));
+  EXPECT_EQ(names, (std::vector<std::string>{
+                       "calibration_inputs", "calibrations", "curving_starts", "distributions",
+                       "load_cases", "low_rail_distributions", "low_rail_steps", "meta", "profiles",
+                       "run_failures", "runs", "step_warnings", "steps", "wheel_steps"}));
   EXPECT_EQ(db.Query("PRAGMA application_id").rows[0][0],
             std::to_string(ProfileStore::kApplicationId));
 }
@@ -525,7 +524,9 @@ TEST(ProfileStore, MigratesVersion6AndReadsItUnmigrated) {
     const int64_t run = db.CreateRun(TestRun("old"), TestStep(0));
     db.AppendStep(run, TestStep(1));
   }
-  RawExec(path, "DROP TABLE wheel_steps; DROP TABLE step_warnings; PRAGMA user_version = 6;");
+  RawExec(path,
+          "DROP TABLE wheel_steps; DROP TABLE step_warnings; DROP TABLE run_failures; "
+          "PRAGMA user_version = 6;");
   {
     const ProfileStore ro = ProfileStore::OpenReadOnly(path);
     EXPECT_EQ(ro.SchemaVersion(), 6);
@@ -559,7 +560,7 @@ TEST(ProfileStore, StepWarningsRoundTripAndVersion7ReadsUnmigrated) {
     const int64_t run = db.CreateRun(TestRun("old"), TestStep(0));
     db.AppendStep(run, TestStep(1));
   }
-  RawExec(path, "DROP TABLE step_warnings; PRAGMA user_version = 7;");
+  RawExec(path, "DROP TABLE step_warnings; DROP TABLE run_failures; PRAGMA user_version = 7;");
   {
     const ProfileStore ro = ProfileStore::OpenReadOnly(path);
     EXPECT_EQ(ro.SchemaVersion(), 7);
@@ -570,7 +571,7 @@ TEST(ProfileStore, StepWarningsRoundTripAndVersion7ReadsUnmigrated) {
   }
   ProfileStore db = ProfileStore::Open(path);
   EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
-  EXPECT_EQ(ProfileStore::kSchemaVersion, 8);
+  EXPECT_EQ(ProfileStore::kSchemaVersion, 9);
   const int64_t run = db.FindRun("old")->id;
   StepRecord two = TestStep(2);
   two.warnings = {{"hardness", "p_max beyond the hardness in 2 of 3 load cases"},
@@ -1182,6 +1183,53 @@ TEST(ProfileStoreReadOnly, RefusesARailwearFileWithAHotJournalUntouched) {
   EXPECT_EQ(DatabaseFiles(path), before);
 }
 
+// Schema 9 (issue 19): a failed run's message and last step are stored with its aborted state,
+// cleared when the run is resumed (a new state), copied by merge with the run; a schema-8 file
+// reads as having none and is migrated by the next read-write open.
+TEST(ProfileStore, RunFailuresRoundTripClearOnResumeAndMerge) {
+  TempDir tmp;
+  const std::string path = tmp.File("f.rwdb");
+  {
+    ProfileStore db = ProfileStore::Open(path);
+    const int64_t run = db.CreateRun(TestRun("failed"), TestStep(0));
+    db.AppendStep(run, TestStep(1));
+    EXPECT_FALSE(db.FindRunFailure(run).has_value());
+    db.SetRunFailed(run, "wear: the contact solution did not converge");
+    EXPECT_EQ(db.FindRun("failed")->state, RunState::kAborted);
+    const std::optional<RunFailure> f = db.FindRunFailure(run);
+    ASSERT_TRUE(f.has_value());
+    EXPECT_EQ(f->step, 1);
+    EXPECT_EQ(f->message, "wear: the contact solution did not converge");
+    // Resumed: running again, the failure gone; failed again: the new message.
+    db.SetRunState(run, RunState::kRunning);
+    EXPECT_FALSE(db.FindRunFailure(run).has_value());
+    db.SetRunFailed(run, "second");
+    EXPECT_EQ(db.FindRunFailure(run)->message, "second");
+    ExpectInputError([&] { db.SetRunFailed(run + 7, "x"); }, {"no run with id"});
+  }
+  // Merge copies the failure with its run; merging again changes nothing.
+  const std::string merged = tmp.File("m.rwdb");
+  {
+    ProfileStore out = ProfileStore::Open(merged);
+    const ProfileStore in = ProfileStore::OpenReadOnly(path);
+    EXPECT_EQ(out.MergeRunsFrom(in).runs_copied, 1);
+    EXPECT_EQ(out.MergeRunsFrom(in).runs_identical, 1);
+    const RunInfo run = *out.FindRun("failed");
+    EXPECT_EQ(run.state, RunState::kAborted);
+    EXPECT_EQ(out.FindRunFailure(run.id)->message, "second");
+  }
+  // Schema 8: no table, no failure; migrated on write.
+  RawExec(path, "DROP TABLE run_failures; PRAGMA user_version = 8;");
+  {
+    const ProfileStore ro = ProfileStore::OpenReadOnly(path);
+    EXPECT_EQ(ro.SchemaVersion(), 8);
+    EXPECT_FALSE(ro.FindRunFailure(ro.FindRun("failed")->id).has_value());
+  }
+  ProfileStore db = ProfileStore::Open(path);
+  EXPECT_EQ(db.SchemaVersion(), 9);
+  EXPECT_FALSE(db.FindRunFailure(db.FindRun("failed")->id).has_value());
+}
+
 // Version 4 differs from 5 only in the CHECK on runs.state: read-only commands read it as it is.
 TEST(ProfileStoreReadOnly, ReadsVersion4AsItIs) {
   TempDir tmp;
@@ -1244,9 +1292,14 @@ std::string RunContent(const ProfileStore& db, const std::string& except = "") {
                                          "('run_id', 'created_utc')");
     std::string select = "r.name";
     for (const auto& c : columns.rows) select += ", quote(t." + c[0] + ")";
+    // By the run and up to three more columns (run_failures has two besides the run).
+    std::string order = "1";
+    for (size_t k = 2; k <= std::min<size_t>(4, columns.rows.size() + 1); ++k) {
+      order += ", " + std::to_string(k);
+    }
     const QueryResult rows = db.Query("SELECT " + select + " FROM " + table +
                                       " t JOIN runs r ON r.id = t.run_id WHERE r.name != '" +
-                                      except + "' ORDER BY 1, 2, 3, 4");
+                                      except + "' ORDER BY " + order);
     out += table + ":\n";
     for (const auto& row : rows.rows) {
       for (const auto& v : row) out += v + "|";
@@ -1272,10 +1325,10 @@ TEST(ProfileStoreMerge, EveryTableHasARoleAndARunTableIsNeverSkipped) {
     EXPECT_EQ(roles[i].first, tables.rows[i][0]);
     if (roles[i].second == MergeTableRole::kRunRows) run_rows.push_back(roles[i].first);
   }
-  EXPECT_EQ(run_rows, (std::vector<std::string>{"curving_starts", "distributions", "load_cases",
-                                                "low_rail_distributions", "low_rail_steps",
-                                                "profiles", "step_warnings", "steps",
-                                                "wheel_steps"}));
+  EXPECT_EQ(run_rows,
+            (std::vector<std::string>{"curving_starts", "distributions", "load_cases",
+                                      "low_rail_distributions", "low_rail_steps", "profiles",
+                                      "run_failures", "step_warnings", "steps", "wheel_steps"}));
   // A table merge does not know (no run_id, not one of the known others) is refused by name.
   RawExec(path, "CREATE TABLE run_notes(note TEXT)");
   ExpectInputError([&] { db.MergeTableRoles(); }, {path, "table 'run_notes' is unknown to merge"});
