@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "core/profile/builtin_profiles.h"
+#include "tests/wear/default_study.h"
 #include "wear/vehicle_traffic.h"
 #include "wear/wheel_wear.h"
 
@@ -22,34 +23,12 @@ constexpr double kDistancePerPass_m = 300.0;
 // wheels wear over kDistancePerPass_m per pass with hardness `wheel_hardness_Pa`: a single
 // wheelset (`bogie` false) or a bogie vehicle of four.
 WearStudy VehicleWheelStudy(double wheel_hardness_Pa, bool bogie = false) {
-  WearStudy study;
-  study.rail_profile = MakeUic60();
-  study.low_rail_profile = MakeUic60();
-  study.cant_ratio = 0.025;
+  WearStudy study = VehicleCurveStudy(600.0, bogie ? VehicleKind::kBogie : VehicleKind::kWheelset,
+                                      0.4, 20.0);
   study.rail_material.hardness_Pa = kRailHardness_Pa;
-  study.model = MakeModelOptions(ModelKind::kAuto);
-  study.model.accuracy = AccuracyPreset::kDraft;
-  study.curve.radius_m = 600.0;
-  VehicleSpec v;
-  v.name = bogie ? "wagon" : "wheelset";
-  v.kind = bogie ? VehicleKind::kBogie : VehicleKind::kWheelset;
-  v.axle_load_N = 16e3 * kGravity_m_s2;
-  v.wheel_profile = MakeS1002();
-  study.vehicles = {v};
-  TrafficCase c;
-  c.name = "vehicle";
-  c.vehicle = 0;
-  c.wheel_profile = v.wheel_profile;
-  c.axle_load_t = 16.0;
-  c.vertical_force_N = 0.5 * v.axle_load_N;
-  c.friction = 0.4;
-  c.speed_m_s = 20.0;
-  c.wheel_wear = WheelWear{kDistancePerPass_m, wheel_hardness_Pa};
-  study.traffic = {c};
-  study.options.law.archard_k = 1e-4;
-  study.options.total_passes = 1e6;
+  study.traffic[0].name = "vehicle";
+  study.traffic[0].wheel_wear = WheelWear{kDistancePerPass_m, wheel_hardness_Pa};
   study.options.quadrature_points = 1;
-  study.options.threads = 1;
   return study;
 }
 
