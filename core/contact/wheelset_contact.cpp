@@ -67,6 +67,7 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cac
   // (PlaceWheelset) and the yaw are mirrored.
   ContactProblem left = problem.wheel_rail;
   if (problem.left_rail_profile) left.rail_profile = *problem.left_rail_profile;
+  if (problem.left_wheel_profile) left.wheel_profile = *problem.left_wheel_profile;
   left.placement = {l.lateral_shift_m, l.roll_rad, l.rolling_radius_m, l.yaw_rad};
   if (problem.left_vertical_force_N) {
     if (!left.load.vertical_force_N) {

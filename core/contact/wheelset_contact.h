@@ -24,6 +24,9 @@ struct WheelsetProblem {
   // Two different rails, unequal loads and a curve (the defaults: the same rail and load on both
   // sides, tangent track).
   std::optional<Profile> left_rail_profile;  // the left rail in its own frame (y to its field)
+  // The left wheel in its own frame (mirrored as the left rail's) when it differs from the right
+  // one (worn wheels of a wheelset wear differently in a curve); absent: wheel_rail.wheel_profile.
+  std::optional<Profile> left_wheel_profile;
   // Where the rails stand (each gauge point in its own rail's frame); absent: from the profiles.
   // A worn rail keeps its unworn place: pass the unworn rails' gauge points.
   std::optional<RailGaugePoints> gauge_points;

@@ -549,6 +549,79 @@ TEST(ProfileStore, MigratesVersion6AndReadsItUnmigrated) {
   EXPECT_EQ(db.WheelSteps(run->id).size(), 1u);
 }
 
+// Schema 9 (issue 16, a vehicle entry's wheels wear): wheel_steps.wheel tells the wheels of one
+// entry apart (0 an entry's one wheel, 1 + 2 x wheelset + side a vehicle's); each round-trips bit
+// for bit and the same wheel twice in a step is refused. A schema-8 file (wheel_steps without the
+// column) reads as it is, every wheel as wheel 0, and a writing open rebuilds the table keeping
+// every row.
+TEST(ProfileStore, VehicleWheelsRoundTripAndVersion9ReadsUnmigrated) {
+  TempDir tmp;
+  const std::string path = tmp.File("v9.rwdb");
+  const Profile wheel({{-0.07, 0.0}, {-0.02, 1e-3}, {0.0, 1.0 / 3.0 * 1e-3}, {0.05, 2e-300}}, "w");
+  const Profile worn({{-0.07, -1e-6}, {-0.02, 1e-3}, {0.0, 1.0 / 7.0 * 1e-3}, {0.05, 0.0}}, "w");
+  {
+    ProfileStore db = ProfileStore::Open(path);
+    StepRecord zero = TestStep(0);
+    zero.wheels = {TestWheel(1, "freight", 0.0, 0.0, 0.0, 0.0, wheel, 32.5)};
+    const int64_t run = db.CreateRun(TestRun("old"), zero);
+    StepRecord one = TestStep(1);
+    one.wheels = {TestWheel(1, "freight", 0.125, 0.25, -0.5, 0.0, worn, 32.25)};
+    db.AppendStep(run, one);
+  }
+  // Back to schema 9's wheel_steps (MigrateTo7's table, rows kept).
+  RawExec(path, R"sql(
+CREATE TABLE wheel_steps_v8(
+  run_id INTEGER NOT NULL, step INTEGER NOT NULL,
+  traffic_index INTEGER NOT NULL CHECK (traffic_index >= 0), name TEXT NOT NULL,
+  worn_area_mm2 REAL NOT NULL, max_depth_mm REAL NOT NULL, max_depth_y_mm REAL NOT NULL,
+  smoothing_area_error REAL NOT NULL, sh_mm REAL, sd_mm REAL, qr_mm REAL,
+  n_points INTEGER NOT NULL, yz BLOB NOT NULL CHECK (length(yz) = 16 * n_points),
+  PRIMARY KEY (run_id, step, traffic_index),
+  FOREIGN KEY (run_id, step) REFERENCES steps(run_id, step) ON DELETE CASCADE);
+INSERT INTO wheel_steps_v8 SELECT run_id, step, traffic_index, name, worn_area_mm2, max_depth_mm,
+  max_depth_y_mm, smoothing_area_error, sh_mm, sd_mm, qr_mm, n_points, yz FROM wheel_steps;
+DROP TABLE wheel_steps;
+ALTER TABLE wheel_steps_v8 RENAME TO wheel_steps;
+PRAGMA user_version = 9;)sql");
+  {
+    const ProfileStore ro = ProfileStore::OpenReadOnly(path);
+    EXPECT_EQ(ro.SchemaVersion(), 9);
+    const int64_t run = ro.FindRun("old")->id;
+    const std::vector<WheelStepRecord> summaries = ro.WheelSteps(run);
+    ASSERT_EQ(summaries.size(), 2u);
+    EXPECT_EQ(summaries[1].wheel, 0);
+    EXPECT_EQ(summaries[1].worn_area_mm2, 0.125);
+    EXPECT_EQ(ro.LoadStep(run, 1).wheels.at(0).profile.points(), worn.points());
+    EXPECT_EQ(ro.LoadWheelProfile(run, 1, 1).points(), worn.points());
+  }
+  ProfileStore db = ProfileStore::Open(path);
+  EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
+  const int64_t run = db.FindRun("old")->id;
+  EXPECT_EQ(db.LoadWheelProfile(run, 1, 1, 0).points(), worn.points());  // kept, as wheel 0
+  StepRecord two = TestStep(2);
+  WheelStepRecord high = TestWheel(0, "coach / wheelset 1 high", 0.5, 0.25, 1.5, 0.0, worn);
+  high.wheel = 3;
+  WheelStepRecord low = TestWheel(0, "coach / wheelset 1 low", 0.25, 0.125, 1.5, 0.0, wheel);
+  low.wheel = 4;
+  two.wheels = {TestWheel(1, "freight", 0.25, 0.5, -0.5, 0.0, worn), low, high};
+  db.AppendStep(run, two);
+  const StepRecord back = db.LoadStep(run, 2);
+  ASSERT_EQ(back.wheels.size(), 3u);  // by entry, then wheel
+  EXPECT_EQ(back.wheels[0].wheel, 3);
+  EXPECT_EQ(back.wheels[0].name, "coach / wheelset 1 high");
+  EXPECT_EQ(back.wheels[0].profile.points(), worn.points());
+  EXPECT_EQ(back.wheels[1].wheel, 4);
+  EXPECT_EQ(back.wheels[1].profile.points(), wheel.points());
+  EXPECT_EQ(back.wheels[2].traffic_index, 1);
+  EXPECT_EQ(db.LoadWheelProfile(run, 2, 0, 4).points(), wheel.points());
+  ExpectInputError([&] { db.LoadWheelProfile(run, 2, 0, 5); },
+                   {"wheel 5 of traffic entry 0", "not stored"});
+  StepRecord bad = TestStep(3);
+  bad.wheels = {high, high};
+  ExpectInputError([&] { db.AppendStep(run, bad); }, {"wheel 3 of traffic entry 0 given twice"});
+  EXPECT_EQ(db.LastStep(run), 2);
+}
+
 // Schema 8 (issue 17): a step's warnings round-trip in order through Steps() and LoadStep(); a
 // kind outside the schema's is refused with the step rolled back; a schema-7 file is read as it
 // is (no warnings) and migrated by the next read-write open.
@@ -571,7 +644,7 @@ TEST(ProfileStore, StepWarningsRoundTripAndVersion7ReadsUnmigrated) {
   }
   ProfileStore db = ProfileStore::Open(path);
   EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
-  EXPECT_EQ(ProfileStore::kSchemaVersion, 9);
+  EXPECT_EQ(ProfileStore::kSchemaVersion, 10);
   const int64_t run = db.FindRun("old")->id;
   StepRecord two = TestStep(2);
   two.warnings = {{"hardness", "p_max beyond the hardness in 2 of 3 load cases"},
@@ -1226,7 +1299,7 @@ TEST(ProfileStore, RunFailuresRoundTripClearOnResumeAndMerge) {
     EXPECT_FALSE(ro.FindRunFailure(ro.FindRun("failed")->id).has_value());
   }
   ProfileStore db = ProfileStore::Open(path);
-  EXPECT_EQ(db.SchemaVersion(), 9);
+  EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
   EXPECT_FALSE(db.FindRunFailure(db.FindRun("failed")->id).has_value());
 }
 

@@ -48,6 +48,31 @@ void ExpectMirrored(const ContactResult& a, const ContactResult& b) {
   }
 }
 
+// A left wheel of its own (worn wheels of one wheelset differ, wear co-evolution): the right-hand
+// wheel's profile given again changes nothing, bit for bit; another profile (here the S1002
+// moved 0.5 mm toward its flange back) moves the left wheel's contact and leaves the right
+// wheel's solution as it was, bit for bit (no axle force target couples them here).
+TEST(WheelsetContact, LeftWheelProfileReplacesOnlyTheLeftWheel) {
+  const WheelsetProblem p = Problem(0.002, 0.0);
+  const WheelsetResult base = SolveWheelset(p);
+  WheelsetProblem same = p;
+  same.left_wheel_profile = MakeS1002();
+  const WheelsetResult again = SolveWheelset(same);
+  EXPECT_EQ(again.left.p_max_Pa, base.left.p_max_Pa);
+  EXPECT_EQ(again.left.patches.at(0).contact_point_yz_m, base.left.patches.at(0).contact_point_yz_m);
+  EXPECT_EQ(again.right.p_max_Pa, base.right.p_max_Pa);
+  WheelsetProblem other = p;
+  other.left_wheel_profile = MakeS1002().Transformed(0.0, Eigen::Vector2d(-5e-4, 0.0));
+  const WheelsetResult moved = SolveWheelset(other);
+  ASSERT_EQ(moved.left.status, SolverStatus::kConverged);
+  EXPECT_EQ(moved.right.p_max_Pa, base.right.p_max_Pa);
+  EXPECT_EQ(moved.right.patches.at(0).contact_point_yz_m,
+            base.right.patches.at(0).contact_point_yz_m);
+  EXPECT_GT((moved.left.patches.at(0).contact_point_yz_m -
+             base.left.patches.at(0).contact_point_yz_m).norm(),
+            1e-5);
+}
+
 TEST(WheelsetContact, CentredWheelsetIsSymmetric) {
   const WheelsetResult r = SolveWheelset(Problem(0.0, 0.0));
   ExpectMirrored(r.right, r.left);
