@@ -73,6 +73,7 @@ struct rw_problem {
   TangentialMethod tangential = TangentialMethod::kFastsim;
   uint32_t effects = 0;
   std::optional<double> friction;
+  railwear::PressureLimit pressure_limit;
   rw_geometry geometry{};
   std::optional<rw_state> state;
 
@@ -82,6 +83,10 @@ struct rw_problem {
   double wear_bin_m = 1e-4;
   railwear::WearGrid wear_grid[2];
   std::vector<double> depth_m[2];
+
+  // The placed geometries of the last calculate, reused by the next one at the same pose on the
+  // same profiles (core/contact/placement_cache.h): exact, so results do not depend on it.
+  railwear::PlacementCache placement_cache;
 
   std::optional<ContactCaseResult> result;
   struct PatchRef {
@@ -305,6 +310,12 @@ ContactCase MakeCase(const rw_problem* p) {
          "rolling contact (RW_EFFECT_TANGENTIAL, DAMAGE or COUPLING) "
          "needs a friction coefficient: call rw_set_friction first");
   }
+  if (p->pressure_limit.kind == railwear::PressureLimitKind::kHardness &&
+      !(p->wheel_material.hardness_Pa > 0.0) && !(p->rail_material.hardness_Pa > 0.0)) {
+    Fail(RW_ERROR_CALL_ORDER,
+         "RW_PRESSURE_LIMIT_HARDNESS needs a hardness_Pa: set the rail's (or the wheel's) with "
+         "rw_set_materials first");
+  }
   if ((p->effects & RW_EFFECT_DAMAGE) && !(p->rail_material.shear_yield_Pa > 0.0)) {
     Fail(RW_ERROR_CALL_ORDER,
          "RW_EFFECT_DAMAGE needs the rail's shear_yield_Pa: set it with "
@@ -318,6 +329,7 @@ ContactCase MakeCase(const rw_problem* p) {
   problem.model = p->model;
   problem.tangential = p->tangential;
   problem.damage = (p->effects & RW_EFFECT_DAMAGE) != 0;
+  problem.pressure_limit = p->pressure_limit;
   problem.wheel_profile = *p->wheel_profile;
   problem.rail_profile = *p->canted_rail;
   problem.placement.rolling_radius_m = p->geometry.rolling_radius_m;
@@ -712,6 +724,32 @@ rw_status rw_set_geometry(rw_problem* problem, const rw_geometry* g) {
   });
 }
 
+rw_status rw_set_pressure_limit(rw_problem* problem, rw_pressure_limit kind, double value_Pa) {
+  return Guard(problem, [&] {
+    RequireHandle(problem);
+    RequireEnum(kind, RW_PRESSURE_LIMIT_NONE, RW_PRESSURE_LIMIT_VALUE, "kind");
+    railwear::PressureLimit limit;
+    if (kind == RW_PRESSURE_LIMIT_VALUE) {
+      // The scene reader's range: 1 MPa (far below any steel's yield) to 1e6 MPa.
+      RequireInRange(value_Pa, 1e6, 1e12, "value_Pa");
+      limit.kind = railwear::PressureLimitKind::kValue;
+      limit.value_Pa = value_Pa;
+    } else {
+      if (!std::isnan(value_Pa)) {
+        Fail(RW_ERROR_INVALID_VALUE,
+             fmt::format("value_Pa = {}: expected NaN with RW_PRESSURE_LIMIT_NONE or _HARDNESS "
+                         "(a value goes with RW_PRESSURE_LIMIT_VALUE)",
+                         value_Pa));
+      }
+      limit.kind = kind == RW_PRESSURE_LIMIT_HARDNESS ? railwear::PressureLimitKind::kHardness
+                                                       : railwear::PressureLimitKind::kNone;
+    }
+    Invalidate(problem);
+    problem->pressure_limit = limit;
+    return RW_OK;
+  });
+}
+
 rw_status rw_init_state(rw_state* s) {
   return Guard(nullptr, [&] {
     RequireSize(s, "rw_state");
@@ -798,7 +836,7 @@ rw_status rw_calculate(rw_problem* problem) {
     RequireHandle(problem);
     Invalidate(problem);
     const ContactCase c = MakeCase(problem);
-    problem->result = railwear::SolveContactCase(c);
+    problem->result = railwear::SolveContactCase(c, &problem->placement_cache);
     const ContactCaseResult& r = *problem->result;
     auto add = [&](int wheel, const ContactResult& contact) {
       for (const PatchResult& patch : contact.patches) {

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/interrupt_signals.h"
 #include "app/scene.h"
 #include "app/stored_study.h"
 #include "app/toml_fields.h"
@@ -146,6 +147,10 @@ void SetupCurving(CLI::App& app) {
 }
 
 void RunCurving(const CurvingOptions& o) {
+  // SIGINT / SIGTERM stop the solve in flight (CurvingOptions::cancel, asked before every Newton
+  // iteration and contact evaluation) and end the command with 130 / 143 (issue 17), as `wear`
+  // does (app/interrupt_signals.h). Installed first, so a signal at any moment is handled.
+  const InterruptSignals signals;
   const Scene scene = LoadScene(o.scene);
   if (!scene.wear || scene.wear->vehicles.empty()) {
     throw InputError(fmt::format(
@@ -167,8 +172,18 @@ void RunCurving(const CurvingOptions& o) {
     // An entry without a stored solution (state empty) starts centred (VehicleCurvingProblem).
     const CurvingStart* start =
         t < static_cast<int>(stored.state.curving.size()) ? &stored.state.curving[t] : nullptr;
-    const CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low, start);
+    CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low, start);
+    p.options.cancel = [] { return InterruptSignals::Received() != 0; };
+    std::cerr << fmt::format("railwear: curving: solving traffic entry '{}'\n", c.name);
     const CurvingResult r = SolveCurving(p);
+    if (const int signal = InterruptSignals::Received()) {
+      throw Interrupted(signal,
+                        fmt::format("{}: curving of {} stopped in the solve of traffic entry '{}' "
+                                    "(stopped, not a solution){}; nothing else was solved{}",
+                                    SignalName(signal), o.scene, c.name,
+                                    all.empty() ? "" : ", the entries before it are printed above",
+                                    o.json ? fmt::format(" and {} was not written", *o.json) : ""));
+    }
     if (!o.json || *o.json != "-") Print(c, p, r);
     if (r.status == CurvingStatus::kFlangeClimb) {
       std::cerr << "warning: " << c.name << ": " << r.message << "\n";

@@ -10,6 +10,10 @@
 // start), as the run's next step would: how the
 // vehicle runs after that much traffic, and the way to see why a run stopped on a curving that
 // did not converge. The database is only read.
+//
+// SIGINT / SIGTERM (issue 17) stop the solve in flight within one contact evaluation and end the
+// command with exit 130 / 143 and a message naming the entry; nothing is written (--json
+// neither). Before each solve stderr says which entry it solves.
 #pragma once
 
 #include <optional>
@@ -32,7 +36,8 @@ struct CurvingOptions {
 void SetupCurving(CLI::App& app);
 
 // Throws InputError for a bad scene or one without vehicle traffic (exit 2), std::runtime_error
-// when a vehicle has no equilibrium or does not converge (after printing every entry; exit 1).
+// when a vehicle has no equilibrium or does not converge (after printing every entry; exit 1),
+// Interrupted for SIGINT / SIGTERM (exit 130 / 143).
 void RunCurving(const CurvingOptions& options);
 
 }  // namespace railwear::app

@@ -177,6 +177,11 @@ void RunFemReference(const FemReferenceOptions& options) {
     if (e.kind == FemExperimentKind::kContact) {
       e.contact.work_dir = work.path().string();
       e.contact.progress = e.options.progress;
+      const FemContactOptions resolved = ResolvedFemContactOptions(e.contact);
+      for (const double h : resolved.mesh_sizes_m) {
+        e.options.progress(fmt::format("mesh level {:g} mm: about {:.3g} nodes (estimate)", h * 1e3,
+                                       EstimateFemContactNodes(resolved, h)));
+      }
       const FemContactResult r = RunFemContact(e.contact, programs);
       const fs::path folder = fs::absolute(e.output).parent_path();
       const std::string scene =
@@ -195,6 +200,8 @@ void RunFemReference(const FemReferenceOptions& options) {
       ++run;
       continue;
     }
+    e.options.progress(fmt::format("mesh: about {:.3g} nodes (estimate)",
+                                   EstimateFemDisplacementNodes(e.options)));
     FemDisplacementResult r = RunFemDisplacement(e.options, programs);
     r.curves.metadata.insert(
         r.curves.metadata.begin(),

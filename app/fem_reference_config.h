@@ -73,7 +73,11 @@ struct FemReferenceConfig {
 };
 
 // Reads and validates a config. Throws InputError "FILE:LINE: key 'KEY' = VALUE: expected ..."
-// for unknown keys, wrong types, out-of-range values, unknown names and inconsistent options.
+// for unknown keys, wrong types, out-of-range values (every numeric key has the range the mesher
+// and solver bear, issue 17: docs/testing.md), unknown names and inconsistent options, and
+// "FILE:LINE: experiment 'NAME': the mesh would have about N nodes ..." when the node count
+// estimated before meshing (EstimateFemDisplacementNodes, EstimateFemContactNodes per level)
+// exceeds 500,000 (at least 15 GB and hours per CalculiX solve), naming the keys to change.
 FemReferenceConfig ReadFemReferenceConfig(const std::string& path, const std::string& out_dir);
 
 }  // namespace railwear::app

@@ -97,22 +97,29 @@ Profile LoadRailProfile(const ProfileStore& db, const RunInfo& run, int step, Ra
 struct WheelRef {
   int traffic_index = 0;
   std::string name;
+  int wheel = 0;  // WheelStepRecord::wheel: 0 an entry's one wheel, >= 1 a vehicle entry's
+  bool Is(const WheelStepRecord& w) const {
+    return w.traffic_index == traffic_index && w.wheel == wheel;
+  }
+  // How --wheel names it: the entry's index for an entry's one wheel, else "INDEX:WHEEL".
+  std::string Address() const {
+    return wheel == 0 ? std::to_string(traffic_index) : fmt::format("{}:{}", traffic_index, wheel);
+  }
 };
 
-// The wheel --wheel names (a traffic entry's index or name); InputError naming the run's wheels.
+// The wheel --wheel names (a traffic entry's index or name; a vehicle entry's wheel by its name
+// "ENTRY / wheelset W high" or "INDEX:WHEEL"); InputError naming the run's wheels.
 WheelRef WheelOrThrow(const ProfileStore& db, const RunInfo& run, const std::string& wheel) {
   std::vector<WheelRef> wheels;
   for (const WheelStepRecord& w : db.WheelSteps(run.id)) {
-    if (wheels.empty() || wheels.back().traffic_index != w.traffic_index) {
-      wheels.push_back({w.traffic_index, w.name});
-    }
+    if (wheels.empty() || !wheels.back().Is(w)) wheels.push_back({w.traffic_index, w.name, w.wheel});
   }
   for (const WheelRef& w : wheels) {
-    if (w.name == wheel || std::to_string(w.traffic_index) == wheel) return w;
+    if (w.name == wheel || w.Address() == wheel) return w;
   }
   std::string known;
   for (const WheelRef& w : wheels) {
-    known += fmt::format("{}{} ('{}')", known.empty() ? "" : ", ", w.traffic_index, w.name);
+    known += fmt::format("{}{} ('{}')", known.empty() ? "" : ", ", w.Address(), w.name);
   }
   throw InputError(fmt::format(
       "database '{}': run '{}' has no wearing wheel '{}'; expected {}", db.path(), run.name, wheel,
@@ -446,7 +453,7 @@ void PrintWheelSteps(const ProfileStore& db, const RunInfo& run, const std::stri
   const std::vector<StepRecord> steps = db.Steps(run.id);
   std::vector<std::vector<std::string>> rows;
   for (const WheelStepRecord& w : db.WheelSteps(run.id)) {
-    if (w.traffic_index != ref.traffic_index) continue;
+    if (!ref.Is(w)) continue;
     const auto st = std::find_if(steps.begin(), steps.end(),
                                  [&](const StepRecord& r) { return r.step == w.step; });
     if (st == steps.end()) continue;
@@ -520,11 +527,12 @@ void RunHistorySteps(const HistoryOptions& o, const HistoryStepsOptions& s) {
   if (!wheels.empty()) {
     std::cerr << fmt::format("railwear: its wheels wear too: `history steps '{}' --wheel ENTRY`",
                              run.name);
-    int last = -1;
+    std::optional<WheelRef> last;
     for (const WheelStepRecord& w : wheels) {
-      if (w.traffic_index == last) continue;
-      std::cerr << fmt::format("{} {} ('{}')", last < 0 ? ", ENTRY:" : ",", w.traffic_index, w.name);
-      last = w.traffic_index;
+      if (last && last->Is(w)) continue;
+      const WheelRef ref{w.traffic_index, w.name, w.wheel};
+      std::cerr << fmt::format("{} {} ('{}')", last ? "," : ", ENTRY:", ref.Address(), w.name);
+      last = ref;
     }
     std::cerr << "\n";
   }
@@ -549,7 +557,7 @@ void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) 
           p.wheel));
     }
   }
-  const Profile profile = wheel ? db.LoadWheelProfile(run.id, step_number, wheel->traffic_index)
+  const Profile profile = wheel ? db.LoadWheelProfile(run.id, step_number, wheel->traffic_index, wheel->wheel)
                                 : LoadRailProfile(db, run, step_number, rail);
 
   if (format == HistoryProfileFormat::kJson) {
@@ -557,6 +565,7 @@ void RunHistoryProfile(const HistoryOptions& o, const HistoryProfileOptions& p) 
     if (wheel) {
       j.erase("rail");
       j["wheel"] = {{"traffic_index", wheel->traffic_index}, {"traffic", wheel->name}};
+      if (wheel->wheel != 0) j["wheel"]["wheel"] = wheel->wheel;  // a vehicle entry's wheel
       j["frame"] = "wheel profile frame: y lateral (as the rail's), z toward the rail, mm";
     }
     const std::string text = j.dump(1) + "\n";
@@ -599,8 +608,9 @@ void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
   WearMeasureOptions options;
   WearMeasures m;
   if (wheel) {
-    m = CompareWheelProfiles(db.LoadWheelProfile(run.id, a.step, wheel->traffic_index),
-                             db.LoadWheelProfile(run.id, b.step, wheel->traffic_index), options);
+    m = CompareWheelProfiles(db.LoadWheelProfile(run.id, a.step, wheel->traffic_index, wheel->wheel),
+                             db.LoadWheelProfile(run.id, b.step, wheel->traffic_index, wheel->wheel),
+                             options);
   } else {
     const Profile unworn = LoadRailProfile(db, run, steps.front().step, rail);
     const Profile pa = LoadRailProfile(db, run, a.step, rail);
@@ -623,6 +633,7 @@ void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
                         {"unmatched_samples", m.unmatched_samples}};
     if (wheel) {
       j["wheel"] = {{"traffic_index", wheel->traffic_index}, {"traffic", wheel->name}};
+      if (wheel->wheel != 0) j["wheel"]["wheel"] = wheel->wheel;  // a vehicle entry's wheel
     } else {
       j["rail"] = std::string(ToString(rail));
       j["w1_mm"] = m.vertical_wear_m * kToMm;

@@ -18,6 +18,7 @@
 #include "app/history_plot.h"
 #include "app/number_format.h"
 #include "app/stored_study.h"
+#include "app/sweep_command.h"
 #include "app/sweep_plan.h"
 #include "core/numerics/input_error.h"
 #include "profiles_db/profile_store.h"
@@ -34,9 +35,19 @@ struct EnsembleGroup {
   std::vector<RunInfo> runs;
 };
 
+// A run that failed (state aborted, its failure recorded: schema 9): named, never banded.
+struct FailedRun {
+  std::string run;
+  std::string label;   // its curve class
+  std::string values;  // the plan's values of its line ("" without --plan)
+  std::string message;
+  std::string text;  // as printed: "line 3 (ID; values): message" or "run 'NAME': message"
+};
+
 // The ensembles of --plan (one per curve class, in manifest order), else every complete run.
+// Runs that failed with a recorded failure go to `failed` (left out of every ensemble).
 std::vector<EnsembleGroup> Ensembles(const ProfileStore& db, const std::string& plan_path,
-                                     SweepPlan* plan_out) {
+                                     SweepPlan* plan_out, std::vector<FailedRun>* failed) {
   std::vector<EnsembleGroup> groups;
   if (plan_path.empty()) {
     EnsembleGroup all{"(all runs)", {}};
@@ -44,6 +55,10 @@ std::vector<EnsembleGroup> Ensembles(const ProfileStore& db, const std::string& 
     for (const RunInfo& run : db.Runs()) {
       if (run.state == RunState::kComplete) {
         all.runs.push_back(run);
+      } else if (const std::optional<RunFailure> f =
+                     run.state == RunState::kAborted ? db.FindRunFailure(run.id) : std::nullopt) {
+        failed->push_back({run.name, all.label, "", f->message,
+                           fmt::format("run '{}': {}", run.name, f->message)});
       } else {
         left_out.push_back(run.name);
       }
@@ -64,6 +79,13 @@ std::vector<EnsembleGroup> Ensembles(const ProfileStore& db, const std::string& 
   std::vector<int> missing;
   for (const SweepLine& line : plan_out->lines) {
     const std::optional<RunInfo> run = db.FindRun(line.id);
+    if (run && run->state == RunState::kAborted) {
+      if (const std::optional<RunFailure> f = db.FindRunFailure(run->id)) {
+        failed->push_back({line.id, line.group, line.Differences(), f->message,
+                           FailedLineText(line, f->message)});
+        continue;
+      }
+    }
     if (!run || run->state != RunState::kComplete) {
       missing.push_back(line.index);
       continue;
@@ -85,7 +107,38 @@ std::vector<EnsembleGroup> Ensembles(const ProfileStore& db, const std::string& 
         plan_path, missing.size(), plan_out->lines.size(), db.path(), lines, plan_path,
         plan_path));
   }
+  if (groups.empty()) {
+    throw InputError(fmt::format(
+        "--plan {}: every one of its {} run(s) in database '{}' failed (first: {}); expected "
+        "complete runs to band",
+        plan_path, failed->size(), db.path(), failed->front().text));
+  }
   return groups;
+}
+
+// The failed runs on stderr, as a warning (every format), and as a table for the text output.
+void WarnOfFailedRuns(const std::vector<FailedRun>& failed, const std::string& left_out_of) {
+  if (failed.empty()) return;
+  std::vector<std::string> texts;
+  for (const FailedRun& f : failed) texts.push_back(f.text);
+  std::cerr << fmt::format("railwear: warning: {} run(s) failed and are left out of the {}: {}\n",
+                           failed.size(), left_out_of, fmt::join(texts, "; "));
+}
+
+std::string FailedRunsTable(const std::vector<FailedRun>& failed) {
+  std::vector<std::vector<std::string>> rows;
+  for (const FailedRun& f : failed) {
+    rows.push_back({f.run, f.label, f.values.empty() ? "-" : f.values, f.message});
+  }
+  return AlignedTable({"run", "class", "values", "error"}, rows);
+}
+
+nlohmann::json FailedRunsJson(const std::vector<FailedRun>& failed) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const FailedRun& f : failed) {
+    out.push_back({{"run", f.run}, {"class", f.label}, {"values", f.values}, {"error", f.message}});
+  }
+  return out;
 }
 
 // The run's `measure` against MGT, of the chosen rail.
@@ -137,7 +190,8 @@ MeasureSeries SeriesOf(const ProfileStore& db, const RunInfo& run, const std::st
 
 RailSide RailOf(const HistoryEnsembleOptions& o) {
   if (const auto side = RailSideFromString(o.rail)) return *side;
-  throw InputError(fmt::format("--rail '{}': expected high or low", o.rail));
+  throw InputError(
+      fmt::format("--rail '{}': expected high or low (history life: also both)", o.rail));
 }
 
 void CheckPercentiles(const std::vector<double>& p) {
@@ -239,7 +293,8 @@ void RunHistoryBands(const HistoryOptions& o, const HistoryBandsOptions& b) {
   }
   const ProfileStore db = OpenExistingStudy(o.db);
   SweepPlan plan;
-  const std::vector<EnsembleGroup> groups = Ensembles(db, b.plan, &plan);
+  std::vector<FailedRun> failed;
+  const std::vector<EnsembleGroup> groups = Ensembles(db, b.plan, &plan, &failed);
 
   std::vector<GroupBands> results;
   for (const EnsembleGroup& group : groups) {
@@ -275,6 +330,7 @@ void RunHistoryBands(const HistoryOptions& o, const HistoryBandsOptions& b) {
                         {"percentiles", b.percentiles},
                         {"classes", nlohmann::json::array()}};
     if (!b.plan.empty()) j["plan"] = b.plan;
+    j["failed_runs"] = FailedRunsJson(failed);
     for (const GroupBands& r : results) {
       nlohmann::json c = {{"class", r.label}, {"runs", r.runs}, {"measures", nlohmann::json::object()}};
       for (const auto& [measure, bands] : r.measures) {
@@ -319,8 +375,12 @@ void RunHistoryBands(const HistoryOptions& o, const HistoryBandsOptions& b) {
       }
     } else {
       std::cout << AlignedTable(columns, rows);
+      if (!failed.empty()) {
+        std::cout << "\nFailed runs (left out of the bands)\n" << FailedRunsTable(failed);
+      }
     }
   }
+  WarnOfFailedRuns(failed, "bands");
   size_t runs = 0;
   for (const EnsembleGroup& g : groups) runs += g.runs.size();
   std::cerr << fmt::format("railwear: {} class(es), {} run(s), {} rail, in {}\n", groups.size(),
@@ -361,7 +421,9 @@ std::string LifeCell(double mgt) {
 
 void RunHistoryLife(const HistoryOptions& o, const HistoryLifeOptions& l) {
   CheckPercentiles(l.percentiles);
-  const RailSide rail = RailOf(l);
+  // --rail both: the high and the low rail of each (two-rail) run, the life the earlier.
+  const bool both = l.rail == "both";
+  const RailSide rail = both ? RailSide::kHigh : RailOf(l);
   std::vector<LifeLimit> extra;
   for (const std::string& text : l.limits) extra.push_back(ParseLimitOption(text));
   if (l.annual_mgt && !(*l.annual_mgt > 0.0 && std::isfinite(*l.annual_mgt))) {
@@ -370,7 +432,8 @@ void RunHistoryLife(const HistoryOptions& o, const HistoryLifeOptions& l) {
   }
   const ProfileStore db = OpenExistingStudy(o.db);
   SweepPlan plan;
-  const std::vector<EnsembleGroup> groups = Ensembles(db, l.plan, &plan);
+  std::vector<FailedRun> failed;
+  const std::vector<EnsembleGroup> groups = Ensembles(db, l.plan, &plan, &failed);
   std::vector<LifeLimit> limits = plan.life.limits;
   limits.insert(limits.end(), extra.begin(), extra.end());
   if (limits.empty()) {
@@ -382,7 +445,9 @@ void RunHistoryLife(const HistoryOptions& o, const HistoryLifeOptions& l) {
   // Every [[life.class]] names a class of the plan.
   for (const LifeClassLength& c : plan.life.classes) {
     if (std::none_of(groups.begin(), groups.end(),
-                     [&](const EnsembleGroup& g) { return g.label == c.match; })) {
+                     [&](const EnsembleGroup& g) { return g.label == c.match; }) &&
+        std::none_of(failed.begin(), failed.end(),
+                     [&](const FailedRun& f) { return f.label == c.match; })) {
       std::vector<std::string> labels;
       for (const EnsembleGroup& g : groups) labels.push_back("\"" + g.label + "\"");
       throw InputError(fmt::format("{}: key 'match' = \"{}\": expected a curve class of the plan: {}",
@@ -390,26 +455,57 @@ void RunHistoryLife(const HistoryOptions& o, const HistoryLifeOptions& l) {
     }
   }
 
-  // life[g][r][k]: MGT of group g's run r to limit k (+inf: not reached); final MGT per run.
+  // life[g][r][k]: MGT of group g's run r to limit k (+inf: not reached); final MGT per run;
+  // with --rail both, governs[g][r][k]: the rail that reaches the limit first ("high", "low",
+  // "both" at the same MGT, "" when neither does).
   std::vector<std::vector<std::vector<double>>> life(groups.size());
+  std::vector<std::vector<std::vector<std::string>>> governs(groups.size());
   std::vector<std::vector<double>> final_mgt(groups.size());
   for (size_t g = 0; g < groups.size(); ++g) {
     for (const RunInfo& run : groups[g].runs) {
-      std::map<std::string, MeasureSeries> cache;
+      std::map<std::pair<std::string, RailSide>, MeasureSeries> cache;
+      const auto series = [&](const std::string& measure, RailSide side) -> const MeasureSeries& {
+        auto it = cache.find({measure, side});
+        if (it == cache.end()) {
+          it = cache.emplace(std::make_pair(measure, side), SeriesOf(db, run, measure, side)).first;
+        }
+        return it->second;
+      };
       std::vector<double> per_limit;
+      std::vector<std::string> per_limit_rail;
       double last = 0.0;
       for (const LifeLimit& limit : limits) {
-        auto it = cache.find(limit.measure);
-        if (it == cache.end()) {
-          it = cache.emplace(limit.measure, SeriesOf(db, run, limit.measure, rail)).first;
+        const MeasureSeries& first = series(limit.measure, rail);
+        last = first.mgt.empty() ? 0.0 : first.mgt.back();
+        const double at = FirstCrossing(first, limit.value).value_or(INFINITY);
+        if (!both) {
+          per_limit.push_back(at);
+          continue;
         }
-        last = it->second.mgt.empty() ? 0.0 : it->second.mgt.back();
-        per_limit.push_back(FirstCrossing(it->second, limit.value).value_or(INFINITY));
+        const double low =
+            FirstCrossing(series(limit.measure, RailSide::kLow), limit.value).value_or(INFINITY);
+        per_limit.push_back(std::min(at, low));
+        per_limit_rail.push_back(!std::isfinite(std::min(at, low)) ? ""
+                                 : at < low                        ? "high"
+                                 : low < at                        ? "low"
+                                                                   : "both");
       }
       life[g].push_back(std::move(per_limit));
+      governs[g].push_back(std::move(per_limit_rail));
       final_mgt[g].push_back(last);
     }
   }
+  // Per class and limit, with --rail both: how many runs each rail governs ("high 3, low 5").
+  const auto governing_count = [&](size_t g, size_t k) {
+    int high = 0, low = 0, tie = 0;
+    for (const auto& run : governs[g]) {
+      high += run[k] == "high" ? 1 : 0;
+      low += run[k] == "low" ? 1 : 0;
+      tie += run[k] == "both" ? 1 : 0;
+    }
+    return tie > 0 ? fmt::format("high {}, low {}, both {}", high, low, tie)
+                   : fmt::format("high {}, low {}", high, low);
+  };
   auto years = [&](double mgt) { return annual ? mgt / *annual : std::nan(""); };
 
   // Per class and limit: percentiles over the runs.
@@ -446,9 +542,15 @@ void RunHistoryLife(const HistoryOptions& o, const HistoryLifeOptions& l) {
     }
   }
 
+  // Failed runs per class (the classes' percentiles are over their complete runs).
+  std::vector<int> failed_in(groups.size(), 0);
+  for (const FailedRun& f : failed) {
+    for (size_t g = 0; g < groups.size(); ++g) failed_in[g] += groups[g].label == f.label ? 1 : 0;
+  }
   if (l.json) {
     nlohmann::json j = {{"database", db.path()}, {"rail", l.rail}, {"percentiles", l.percentiles}};
     if (annual) j["annual_mgt"] = *annual;
+    j["failed_runs"] = FailedRunsJson(failed);
     j["limits"] = nlohmann::json::array();
     for (const LifeLimit& limit : limits) {
       j["limits"].push_back({{"name", limit.name}, {"measure", limit.measure}, {"value", limit.value}});
@@ -462,6 +564,12 @@ void RunHistoryLife(const HistoryOptions& o, const HistoryLifeOptions& l) {
                               {"final_mgt", final_mgt[g][r]},
                               {"mgt", nlohmann::json::array()}};
         for (double v : life[g][r]) run["mgt"].push_back(Finite(v));
+        if (both) {
+          run["governing_rail"] = nlohmann::json::array();
+          for (const std::string& side : governs[g][r]) {
+            run["governing_rail"].push_back(side.empty() ? nlohmann::json() : nlohmann::json(side));
+          }
+        }
         if (annual) {
           run["years"] = nlohmann::json::array();
           for (double v : life[g][r]) run["years"].push_back(Finite(years(v)));
@@ -470,11 +578,17 @@ void RunHistoryLife(const HistoryOptions& o, const HistoryLifeOptions& l) {
       }
       nlohmann::json c = {{"class", groups[g].label},
                           {"runs", groups[g].runs.size()},
+                          {"failed", failed_in[g]},
                           {"mgt", nlohmann::json::array()}};
       for (const auto& ps : class_p[g]) {
         nlohmann::json row = nlohmann::json::object();
         for (size_t p = 0; p < ps.size(); ++p) row[PercentileName(l.percentiles[p])] = Finite(ps[p]);
         c["mgt"].push_back(std::move(row));
+      }
+      if (both) {
+        c["governing_rail"] = nlohmann::json::array();
+        for (size_t k = 0; k < limits.size(); ++k)
+          c["governing_rail"].push_back(governing_count(g, k));
       }
       j["classes"].push_back(std::move(c));
     }
@@ -496,6 +610,7 @@ void RunHistoryLife(const HistoryOptions& o, const HistoryLifeOptions& l) {
           std::vector<std::string> row = {groups[g].runs[r].name, groups[g].label, limits[k].name,
                                           LifeCell(v)};
           if (annual) row.push_back(LifeCell(years(v)));
+          if (both) row.push_back(governs[g][r][k].empty() ? "-" : governs[g][r][k]);
           row.push_back(FixedNoNegativeZero(final_mgt[g][r], 3));
           rows.push_back(std::move(row));
         }
@@ -503,6 +618,7 @@ void RunHistoryLife(const HistoryOptions& o, const HistoryLifeOptions& l) {
     }
     std::vector<std::string> columns = {"run", "class", "limit", "MGT"};
     if (annual) columns.push_back("years");
+    if (both) columns.push_back("governing_rail");
     columns.push_back("final_MGT");
     std::cout << "Per run\n" << AlignedTable(columns, rows);
 
@@ -523,14 +639,15 @@ void RunHistoryLife(const HistoryOptions& o, const HistoryLifeOptions& l) {
       for (size_t k = 0; k < limits.size(); ++k) {
         int reached = 0;
         for (const auto& run : life[g]) reached += std::isfinite(run[k]) ? 1 : 0;
-        rows.push_back(percentile_rows(class_p[g][k],
-                                       {groups[g].label, limits[k].name,
-                                        std::to_string(groups[g].runs.size()),
-                                        std::to_string(reached)}));
+        rows.push_back(percentile_rows(
+            class_p[g][k], {groups[g].label, limits[k].name, std::to_string(groups[g].runs.size()),
+                            std::to_string(failed_in[g]), std::to_string(reached)}));
+        if (both) rows.back().push_back(governing_count(g, k));
       }
     }
-    columns = {"class", "limit", "runs", "reached"};
+    columns = {"class", "limit", "runs", "failed", "reached"};
     columns.insert(columns.end(), pcols.begin(), pcols.end());
+    if (both) columns.push_back("governing_rail");
     std::cout << "\nPer curve class (percentiles over its runs)\n" << AlignedTable(columns, rows);
     if (!line_p.empty()) {
       rows.clear();
@@ -543,7 +660,12 @@ void RunHistoryLife(const HistoryOptions& o, const HistoryLifeOptions& l) {
                    "the length reaches the limit)\n"
                 << AlignedTable(columns, rows);
     }
+    if (!failed.empty()) {
+      std::cout << "\nFailed runs (no life: left out of the percentiles)\n"
+                << FailedRunsTable(failed);
+    }
   }
+  WarnOfFailedRuns(failed, "life percentiles");
   std::cerr << fmt::format("railwear: {} limit(s), {} class(es), {} rail, in {}{}\n",
                            limits.size(), groups.size(), l.rail, db.path(),
                            annual ? fmt::format(", {} MGT a year", *annual) : std::string());
@@ -582,6 +704,9 @@ void SetupHistoryEnsemble(CLI::App* history, const std::shared_ptr<HistoryOption
       "MGT (and years) to each wear limit per run, per curve class as percentiles, and for the "
       "line weighted by class length");
   add_common(l, *life);
+  l->get_option("--rail")->description(
+      "high, low, or both: the life of a two-rail run is then the earlier of its rails', and the "
+      "output says which rail governs");
   l->add_option("--limit", life->limits,
                 "MEASURE=VALUE, e.g. w2_mm=8 (repeatable; added to the plan's [life] limits)");
   l->add_option("--annual-mgt", life->annual_mgt, "Traffic per year [MGT] (default: the plan's)");

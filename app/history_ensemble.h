@@ -13,6 +13,14 @@
 // steps table, rcf_damage as the largest value of the step's "rcf_damage" distribution. --rail
 // low reads a two-rail run's low rail.
 //
+// Failed runs (issue 19): a run in state aborted with a recorded failure (schema 9; a sweep
+// line whose run failed, merged by `sweep --merge`) is left out of the ensembles and named (run,
+// class, the plan's values of its line, the error) in a "Failed runs" table after the text
+// output, in "failed_runs" of the JSON, and in a warning on stderr (every format; the CSV stays
+// a table of numbers). The exit code stays 0: the answer is over the complete runs and says
+// which are missing (the sweep and the merge exited 3). A line with no run, or one started and
+// not complete without a recorded failure, is still refused (it is work left to do).
+//
 // bands: on an MGT grid of --points values from 0 to the smallest final MGT of the class's runs
 // (so every run covers it and nothing is extrapolated), each run's measure interpolated linearly
 // between its stored steps, then percentiles over the runs (wear/ensemble.h
@@ -28,6 +36,10 @@
 // length / the class's runs (a class without a [[life.class]] length weighs nothing there), the
 // weighted quantile (wear/ensemble.h WeightedQuantile) = the
 // traffic by which that share of the line's curve length reaches the limit.
+// --rail both (life only): both rails of each two-rail run (the high and low rail of a curve);
+// a run's life to a limit is the earlier of its two rails' (the rail is replaced when either
+// reaches it), and the output names the governing rail per run and limit ("high", "low", "both"
+// when they reach it at the same MGT) and counts them per class.
 #pragma once
 
 #include <memory>
@@ -46,7 +58,7 @@ namespace railwear::app {
 struct HistoryEnsembleOptions {
   std::string plan;  // the sweep plan; empty: every complete run of the database
   std::vector<double> percentiles = {5.0, 50.0, 95.0};
-  std::string rail = "high";
+  std::string rail = "high";  // high or low; life also both
 };
 
 struct HistoryBandsOptions : HistoryEnsembleOptions {

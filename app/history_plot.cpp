@@ -321,7 +321,7 @@ std::vector<WheelDepthCurves> WheelDepthCurvesOf(const std::vector<StepRecord>& 
     w.name = unworn.name;
     for (size_t k = 1; k < steps.size(); ++k) {
       for (const WheelStepRecord& now : steps[k].wheels) {
-        if (now.traffic_index != unworn.traffic_index) continue;
+        if (now.traffic_index != unworn.traffic_index || now.wheel != unworn.wheel) continue;
         const WearMeasures m = CompareWheelProfiles(unworn.profile, now.profile);
         DepthCurve c;
         c.step = steps[k].step;

@@ -1,5 +1,6 @@
 // railwear command-line entry point. Exit codes: 0 ok, 1 runtime or numerical failure,
-// 2 bad input or usage, 130 / 143 a `wear` run stopped by SIGINT / SIGTERM (its run marked
+// 2 bad input or usage, 3 a sweep or merge whose every line ended but some runs failed (named;
+// app/sweep_command.h), 130 / 143 a `wear` run stopped by SIGINT / SIGTERM (its run marked
 // interrupted, resumable). Errors go to stderr as "railwear: error: MESSAGE".
 #include <exception>
 #include <iostream>
@@ -63,6 +64,10 @@ int main(int argc, char** argv) {
     // SIGINT / SIGTERM: the stored data is in order (app/interrupt_signals.h); 130 / 143.
     std::cerr << "railwear: " << e.what() << "\n";
     return e.exit_code();
+  } catch (const railwear::app::SomeRunsFailed& e) {
+    // Every line ended; the complete runs are usable, the failed ones named (issue 19).
+    std::cerr << "railwear: warning: " << e.what() << "\n";
+    return railwear::app::kExitSomeRunsFailed;
   } catch (const railwear::InputError& e) {
     return Fail(e.what(), kExitBadInput);
   } catch (const std::exception& e) {

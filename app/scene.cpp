@@ -819,18 +819,17 @@ void ReadEntryFriction(const Fields& t, const FrictionConditions& conditions, bo
   }
 }
 
+void ReadWheelWear(const Fields& t, const Scene& scene, TrafficCase* c);
+
 // A [[traffic]] entry that names a vehicle: its wheels and positions come from curving.
 void ReadVehicleTraffic(const Fields& t, Scene* scene, TrafficCase* c) {
-  for (const std::string_view key : {"wheel_wear", "wheel_population"}) {
-    if (t.Has(key)) {
-      t.Fail(key,
-             "no wheel wear or wheel population on a vehicle entry (a vehicle's wheels are its "
-             "own, [[vehicle]] wheel_profile, and do not wear): use a prescribed or collective "
-             "entry");
-    }
+  if (t.Has("wheel_population")) {
+    t.Fail("wheel_population",
+           "no wheel population on a vehicle entry (a vehicle's wheels are its own, [[vehicle]] "
+           "wheel_profile; wheel_wear wears them): use a prescribed or collective entry");
   }
   t.AllowOnly({"name", "vehicle", "speed_m_s", "friction", "condition", "gauge_face_condition",
-               "share", "lateral_spread_mm"});
+               "share", "lateral_spread_mm", "wheel_wear"});
   const std::string name = t.RequiredString("vehicle", "the name of a [[vehicle]]");
   const std::vector<VehicleSpec>& vehicles = scene->wear->vehicles;
   for (int i = 0; i < static_cast<int>(vehicles.size()); ++i) {
@@ -851,6 +850,7 @@ void ReadVehicleTraffic(const Fields& t, Scene* scene, TrafficCase* c) {
   ReadEntryFriction(t, scene->wear->options.conditions, /*required=*/true, c);
   c->speed_m_s = t.RequiredNumber("speed_m_s", OpenClosed(0.0, kMaxSpeed_m_s));
   c->share = t.Number("share", OpenClosed(0.0, kMaxShare)).value_or(1.0);
+  ReadWheelWear(t, *scene, c);  // co-evolution: every wheel of every wheelset wears
 }
 
 // The wheel of a prescribed or collective entry: its profile and rolling radius (from the

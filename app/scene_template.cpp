@@ -166,7 +166,8 @@ speed_m_s = 20.0              # (0, 150]; needed by the "tangential" effect
 # wheel_wear = { distance_per_pass_m = 500 }  # co-evolution: this entry's wheel wears too;
 #                              # the distance it rolls on track like this one per pass of the
 #                              # entry, (0, 1e7] m; grade = "R7" | "R8" or hardness_MPa set its
-#                              # hardness (default: materials.wheel's); not on vehicle entries
+#                              # hardness (default: materials.wheel's); on a vehicle entry
+#                              # both wheels of every wheelset wear, each its own
 # wheel_population = [ { profile = "worn.whl", weight = 3, name = "worn" },
 #                      { profile = "builtin:S1002", weight = 1 } ]
 #                              # or a TOML file of [[wheel]] tables with these keys: one load

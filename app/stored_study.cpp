@@ -66,10 +66,7 @@ WearState StateFromStore(const ProfileStore& store, int64_t run, int step) {
   }
   // Each wearing wheel's profile (co-evolution): the next step's contacts run it.
   for (const WheelStepRecord& w : r.wheels) {
-    if (w.traffic_index >= static_cast<int>(state.wheels.size())) {
-      state.wheels.resize(w.traffic_index + 1);
-    }
-    state.wheels[w.traffic_index] = w.profile;
+    StateWheelSlot(&state, w.traffic_index, w.wheel) = w.profile;
   }
   return state;
 }

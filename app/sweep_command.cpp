@@ -12,6 +12,7 @@
 #include <fmt/ranges.h>
 #include <CLI/CLI.hpp>
 
+#include "app/interrupt_signals.h"
 #include "app/merge_command.h"
 #include "app/scene.h"
 #include "app/sweep_plan.h"
@@ -144,8 +145,24 @@ std::string SweepStudyPath(const SweepPlan& plan, const SweepCommandOptions& opt
   return dir + ".sqlite";
 }
 
+std::optional<std::string> SweepLineFailure(const SweepPlan& plan, const SweepLine& line) {
+  const std::string db = (fs::path(plan.out_dir) / (line.id + ".sqlite")).string();
+  if (!fs::exists(db)) return std::nullopt;
+  const ProfileStore store = ProfileStore::OpenReadOnly(db);
+  const std::optional<RunInfo> run = store.FindRun(line.id);
+  if (!run || run->state != RunState::kAborted) return std::nullopt;
+  if (const std::optional<RunFailure> f = store.FindRunFailure(run->id)) return f->message;
+  return std::nullopt;
+}
+
+std::string FailedLineText(const SweepLine& line, const std::string& message) {
+  return fmt::format("line {} ({}; {}): {}", line.index, line.id,
+                     line.overrides.empty() ? "the base scene" : line.Differences(), message);
+}
+
 void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db, int max_array_size) {
   std::vector<int> missing, unfinished;
+  std::vector<std::string> failed;
   MergeCommandOptions merge;
   merge.out = study_db;
   for (const SweepLine& line : plan.lines) {
@@ -155,7 +172,11 @@ void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db, int max_
     if (!run) {
       missing.push_back(line.index);
     } else if (run->state != RunState::kComplete) {
-      unfinished.push_back(line.index);
+      if (const std::optional<std::string> why = SweepLineFailure(plan, line)) {
+        failed.push_back(FailedLineText(line, *why));
+      } else {
+        unfinished.push_back(line.index);
+      }
     }
     merge.inputs.push_back(db);
   }
@@ -179,13 +200,24 @@ void MergeSweepRuns(const SweepPlan& plan, const std::string& study_db, int max_
     }
     throw InputError(fmt::format(
         "sweep {}: {} of {} line(s) not complete in {} (not run: {}; started, not complete: "
-        "{}); expected every line complete before the merge: run them with `railwear sweep {} "
-        "--index N`, or resubmit them with {}; complete lines are skipped",
+        "{}{}); expected every line complete (or failed, with its failure recorded) before the "
+        "merge: run them with `railwear sweep {} --index N`, or resubmit them with {}; complete "
+        "lines are skipped",
         plan.path, all.size(), plan.lines.size(), plan.out_dir,
         missing.empty() ? "none" : Ranges(missing),
-        unfinished.empty() ? "none" : Ranges(unfinished), plan.path, resubmit));
+        unfinished.empty() ? "none" : Ranges(unfinished),
+        failed.empty() ? "" : fmt::format("; failed: {}", failed.size()), plan.path, resubmit));
   }
   RunMergeCommand(merge);
+  if (!failed.empty()) {
+    for (const std::string& f : failed) std::cout << "failed run: " << f << "\n";
+    throw SomeRunsFailed(fmt::format(
+        "sweep {}: {} of {} run(s) failed and are merged into {} with their error (state "
+        "aborted; `history bands` and `history life` leave them out and name them), the other "
+        "{} complete: {}",
+        plan.path, failed.size(), plan.lines.size(), study_db, plan.lines.size() - failed.size(),
+        fmt::join(failed, "; ")));
+  }
 }
 
 void SetupSweep(CLI::App& app, SweepMpiRunner mpi) {
@@ -308,7 +340,33 @@ void RunSweepCommand(const SweepCommandOptions& options, SweepMpiRunner mpi) {
     return;
   }
   for (const SweepLine& line : plan.lines) SweepLineScene(plan, line);  // all before the first
-  for (const SweepLine& line : plan.lines) RunSweepLine(plan, line, options);
+  std::vector<std::string> failed;
+  for (const SweepLine& line : plan.lines) {
+    try {
+      RunSweepLine(plan, line, options);
+    } catch (const Interrupted&) {
+      throw;
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      // A run that failed and says so in its database is a result: the sweep goes on.
+      const std::optional<std::string> why = SweepLineFailure(plan, line);
+      if (!why) throw;
+      failed.push_back(FailedLineText(line, *why));
+      std::cerr << fmt::format(
+          "railwear: error: sweep {}; its run is recorded as failed, the "
+          "sweep goes on\n",
+          failed.back());
+    }
+  }
+  if (!failed.empty()) {
+    throw SomeRunsFailed(fmt::format(
+        "sweep {}: {} of {} run(s) failed (recorded in their databases in {}), the other {} "
+        "complete: {}; merge them all with `railwear sweep {} --merge` (the failed runs are "
+        "named, not banded)",
+        options.plan_path, failed.size(), lines, plan.out_dir, lines - failed.size(),
+        fmt::join(failed, "; "), options.plan_path));
+  }
   std::cerr << fmt::format(
       "railwear: sweep {}: {} run(s) done in {}; merge them into {} with `railwear sweep {} "
       "--merge`\n",

@@ -194,7 +194,14 @@ void RunSweepMpi(const SweepPlan& plan, const std::vector<int>& order,
       plan.lines.size(), plan.path, mpi.size());
   const std::vector<Failure> failures = Dispatch(plan, order, costs, run_options, mpi.size());
   mpi.Finalize();  // the other ranks end now; rank 0 merges alone
-  if (!failures.empty()) {
+  // Lines whose run failed and says so in its database are results: merged with the complete
+  // ones and named (MergeSweepRuns throws SomeRunsFailed, exit 3). Any other failure (bad input,
+  // a run that did not record its failure) merges nothing.
+  const bool all_recorded = std::all_of(failures.begin(), failures.end(), [&](const Failure& f) {
+    return f.exit_code == 1 &&
+           SweepLineFailure(plan, plan.lines[static_cast<size_t>(f.line)]).has_value();
+  });
+  if (!failures.empty() && !all_recorded) {
     std::string list;
     for (const Failure& f : failures) {
       list += fmt::format("{}{} (rank {}, exit {})", list.empty() ? "" : ", ", f.line, f.rank,

@@ -13,8 +13,11 @@
 // - When every rank is done, rank 0 merges every line's run in manifest order into the study
 //   database (MergeSweepRuns): the same file, bit for bit, as serially or through Slurm.
 // - A line that fails (its exception printed by its rank, with the rank) does not stop the
-//   others; rank 0 then merges nothing and ends with exit 1, naming the lines: mpirun again (or
-//   `sweep --index N`) runs only those, and the merge.
+//   others. When every failed line's run recorded its failure (a run that failed: a result,
+//   app/sweep_command.h), rank 0 merges the complete and the failed runs, names the failed ones
+//   and exits 3; otherwise (bad input, a run that recorded nothing) it merges nothing and ends
+//   with exit 1, naming the lines: mpirun again (or `sweep --index N`) runs only those, and the
+//   merge.
 // - SIGINT / SIGTERM (mpirun forwards them): the rank's run is marked interrupted as by `wear`,
 //   and the rank aborts the job (MPI_Abort, exit 130 / 143); runs continue when started again.
 // - Each run's worker threads: --threads, default 1 (the ranks are the parallelism).

@@ -336,7 +336,7 @@ StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const 
   }
   for (const WheelStepResult& w : step.wheels) {
     const WearMeasures& wm = w.measures;
-    const std::string& name = study.traffic[w.traffic_index].name;
+    const std::string name = WheelName(study.traffic[w.traffic_index], w.wheel);
     for (const double v : {wm.worn_area_m2, wm.max_depth_m, wm.max_depth_y_m, w.smoothing_area_error}) {
       if (!std::isfinite(v)) {
         throw std::runtime_error(fmt::format(
@@ -347,12 +347,13 @@ StepRecord MakeStepRecord(const StepResult& step, const WearStudy& study, const 
     }
     WheelStepRecord rec;
     rec.traffic_index = w.traffic_index;
+    rec.wheel = w.wheel;
     rec.name = name;
     rec.worn_area_mm2 = wm.worn_area_m2 * 1e6;
     rec.max_depth_mm = wm.max_depth_m * 1e3;
     rec.max_depth_y_mm = wm.max_depth_y_m * 1e3;
     rec.smoothing_area_error = w.smoothing_area_error;
-    rec.profile = step.state.wheels[w.traffic_index];
+    rec.profile = StateWheel(step.state, w.traffic_index, w.wheel);
     SetFlange(w.flange, &rec);
     r.wheels.push_back(std::move(rec));
   }
@@ -383,6 +384,25 @@ StepRecord MakeInitialRecord(const WearState& state, const WearStudy& study) {
     SetFlange(MeasureWheelFlange(w.profile), &w);
     r.wheels.push_back(std::move(w));
   }
+  // A vehicle entry's wheels (each wheelset's high and low wheel), in the steps' order.
+  for (size_t t = 0; t < state.vehicle_wheels.size(); ++t) {
+    for (size_t ws = 0; ws < state.vehicle_wheels[t].size(); ++ws) {
+      for (const RailSide side : {RailSide::kHigh, RailSide::kLow}) {
+        WheelStepRecord w;
+        w.traffic_index = static_cast<int>(t);
+        w.wheel = VehicleWheelIndex(static_cast<int>(ws), side);
+        w.name = WheelName(study.traffic[t], w.wheel);
+        w.profile = StateWheel(state, w.traffic_index, w.wheel);
+        SetFlange(MeasureWheelFlange(w.profile), &w);
+        r.wheels.push_back(std::move(w));
+      }
+    }
+  }
+  // Stored by entry, then wheel (the steps' order puts prescribed wheels first).
+  std::stable_sort(r.wheels.begin(), r.wheels.end(),
+                   [](const WheelStepRecord& a, const WheelStepRecord& b) {
+                     return a.traffic_index < b.traffic_index;
+                   });
   return r;
 }
 
@@ -433,7 +453,7 @@ class Progress {
         std::cerr << fmt::format("railwear: step {}: {}\n", step.state.step, nodes);
       for (const WheelStepResult& w : step.wheels) {
         std::cerr << fmt::format("railwear: step {}: wheel of '{}': max depth {:.3f} mm at y = {:.2f} mm\n",
-                                 step.state.step, study.traffic[w.traffic_index].name,
+                                 step.state.step, WheelName(study.traffic[w.traffic_index], w.wheel),
                                  w.measures.max_depth_m * 1e3, w.measures.max_depth_y_m * 1e3);
       }
     }
@@ -584,7 +604,10 @@ std::string FlangeText(const std::optional<double>& mm) {
 void PrintWheels(const ProfileStore& store, int64_t run) {
   const std::vector<WheelStepRecord> wheels = store.WheelSteps(run);
   for (size_t i = 0; i < wheels.size(); ++i) {
-    if (i + 1 < wheels.size() && wheels[i + 1].traffic_index == wheels[i].traffic_index) continue;
+    if (i + 1 < wheels.size() && wheels[i + 1].traffic_index == wheels[i].traffic_index &&
+        wheels[i + 1].wheel == wheels[i].wheel) {
+      continue;
+    }
     const WheelStepRecord& w = wheels[i];
     std::cout << fmt::format(
         "wheel of '{}' (traffic entry {}) at step {}: worn area {} mm2, max depth {} mm at y = {} "
@@ -592,7 +615,8 @@ void PrintWheels(const ProfileStore& store, int64_t run) {
         w.name, w.traffic_index, w.step, FixedNoNegativeZero(w.worn_area_mm2, 4),
         FixedNoNegativeZero(w.max_depth_mm, 4), FixedNoNegativeZero(w.max_depth_y_mm, 2),
         FlangeText(w.flange_height_mm), FlangeText(w.flange_thickness_mm),
-        FlangeText(w.flange_slope_mm), w.traffic_index);
+        FlangeText(w.flange_slope_mm),
+        w.wheel == 0 ? std::to_string(w.traffic_index) : fmt::format("'{}'", w.name));
   }
 }
 
@@ -703,8 +727,18 @@ void RunWearScene(const Scene& scene, const WearCommandOptions& options) {
           study.low_rail_profile ? "two ([track])" : "one ([rail])"));
     }
     for (size_t t = 0; t < study.traffic.size(); ++t) {
-      if (study.traffic[t].wears_wheel() &&
-          (t >= state.wheels.size() || state.wheels[t].size() == 0)) {
+      const TrafficCase& c = study.traffic[t];
+      const bool stored =
+          c.is_vehicle()
+              ? t < state.vehicle_wheels.size() &&
+                    static_cast<int>(state.vehicle_wheels[t].size()) ==
+                        study.vehicles[c.vehicle].wheelsets() &&
+                    std::all_of(state.vehicle_wheels[t].begin(), state.vehicle_wheels[t].end(),
+                                [](const WheelsetWheels& w) {
+                                  return w.high.size() > 0 && w.low.size() > 0;
+                                })
+              : t < state.wheels.size() && state.wheels[t].size() > 0;
+      if (c.wears_wheel() && !stored) {
         throw InputError(fmt::format(
             "{}: run '{}' step {} stored no wheel of traffic entry '{}', whose wheel wears in the "
             "scene: expected the run's wheels to resume (start a new run with --run NAME)",
@@ -754,12 +788,20 @@ void RunWearScene(const Scene& scene, const WearCommandOptions& options) {
           return true;
         },
         options.steps);
+  } catch (const std::exception& failure) {
+    progress.Finish();
+    try {
+      // The run is aborted and says why (issue 19: a sweep names its failed runs).
+      store.SetRunFailed(run_id, failure.what());
+    } catch (const std::exception&) {
+      // The failure itself says more (e.g. the database file was deleted under the run).
+    }
+    throw;
   } catch (...) {
     progress.Finish();
     try {
       store.SetRunState(run_id, RunState::kAborted);
     } catch (const std::exception&) {
-      // The failure itself says more (e.g. the database file was deleted under the run).
     }
     throw;
   }

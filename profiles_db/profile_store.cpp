@@ -531,9 +531,57 @@ CREATE TABLE step_warnings(
 )sql");
 }
 
+// Version 9: why a run failed (issue 19: a sweep or an ensemble merges and names its failed runs
+// beside the complete ones): the error message of the run's failure and its last stored step,
+// one row per run in state 'aborted' (none for a run aborted by an older railwear).
+void MigrateTo9(const Connection& c) {
+  c.Exec(R"sql(
+CREATE TABLE run_failures(
+  run_id  INTEGER PRIMARY KEY REFERENCES runs(id) ON DELETE CASCADE,
+  step    INTEGER NOT NULL,
+  message TEXT NOT NULL);
+)sql");
+}
+
+// Version 10: a vehicle entry's wheels wear too (co-evolution, issue 16), each wheel of each
+// wheelset its own: wheel_steps gains `wheel` (0: a prescribed or collective entry's one wheel;
+// a vehicle entry's 1 + 2 x wheelset + 0 for the high rail's wheel, 1 for the low rail's) in its
+// primary key. SQLite cannot change a primary key in place, so the table is rebuilt as
+// MigrateTo5 rebuilt runs (foreign keys off meanwhile, checked before the commit); every row is
+// kept, with wheel 0.
+void MigrateTo10(const Connection& c) {
+  c.Exec(R"sql(
+CREATE TABLE wheel_steps_v10(
+  run_id               INTEGER NOT NULL,
+  step                 INTEGER NOT NULL,
+  traffic_index        INTEGER NOT NULL CHECK (traffic_index >= 0),
+  wheel                INTEGER NOT NULL DEFAULT 0 CHECK (wheel >= 0),
+  name                 TEXT NOT NULL,
+  worn_area_mm2        REAL NOT NULL,
+  max_depth_mm         REAL NOT NULL,
+  max_depth_y_mm       REAL NOT NULL,
+  smoothing_area_error REAL NOT NULL,
+  sh_mm                REAL,
+  sd_mm                REAL,
+  qr_mm                REAL,
+  n_points             INTEGER NOT NULL,
+  yz                   BLOB NOT NULL CHECK (length(yz) = 16 * n_points),
+  PRIMARY KEY (run_id, step, traffic_index, wheel),
+  FOREIGN KEY (run_id, step) REFERENCES steps(run_id, step) ON DELETE CASCADE);
+INSERT INTO wheel_steps_v10(run_id, step, traffic_index, wheel, name, worn_area_mm2, max_depth_mm,
+                           max_depth_y_mm, smoothing_area_error, sh_mm, sd_mm, qr_mm, n_points, yz)
+  SELECT run_id, step, traffic_index, 0, name, worn_area_mm2, max_depth_mm, max_depth_y_mm,
+         smoothing_area_error, sh_mm, sd_mm, qr_mm, n_points, yz FROM wheel_steps;
+DROP TABLE wheel_steps;
+ALTER TABLE wheel_steps_v10 RENAME TO wheel_steps;
+)sql");
+}
+
 using Migration = void (*)(const Connection&);
-constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3, &MigrateTo4,
-                                     &MigrateTo5, &MigrateTo6, &MigrateTo7, &MigrateTo8};
+constexpr Migration kMigrations[] = {&MigrateTo1, &MigrateTo2, &MigrateTo3,
+                                     &MigrateTo4, &MigrateTo5, &MigrateTo6,
+                                     &MigrateTo7, &MigrateTo8, &MigrateTo9,
+                                     &MigrateTo10};
 static_assert(std::size(kMigrations) == ProfileStore::kSchemaVersion);
 
 const char* kNowUtc = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
@@ -542,6 +590,21 @@ bool TableExists(const Connection& c, const std::string& name) {
   Statement s(c, "SELECT 1 FROM sqlite_schema WHERE type = 'table' AND name = ?1");
   s.Bind(1, name);
   return s.Step();
+}
+
+// "wheel of traffic entry T" for an entry's one wheel (wheel 0), "wheel W of traffic entry T"
+// for a vehicle entry's.
+std::string WheelText(int traffic_index, int wheel) {
+  return wheel == 0 ? fmt::format("wheel of traffic entry {}", traffic_index)
+                    : fmt::format("wheel {} of traffic entry {}", wheel, traffic_index);
+}
+
+// The SQL of wheel_steps' wheel column: `wheel`, or 0 in a file opened read-only that predates
+// version 10 (every wheel of it is an entry's one wheel), usable in SELECT, WHERE and ORDER BY.
+std::string WheelColumn(const Connection& c) {
+  Statement s(c, "SELECT 1 FROM pragma_table_info('wheel_steps') WHERE name = 'wheel'");
+  // Not the literal 0: SQLite reads an integer literal in ORDER BY as a column number.
+  return s.Step() ? "wheel" : "CAST(0 AS INTEGER)";
 }
 
 // Checks that `c` holds a railwear database this program can use, or an empty database, without
@@ -645,9 +708,10 @@ RailStepRecord ReadLowRail(const Statement& s, int first) {
 }
 
 // A wheel's summary from the columns traffic_index, name, worn_area_mm2, max_depth_mm,
-// max_depth_y_mm, smoothing_area_error, sh_mm, sd_mm, qr_mm (0 to 8).
-WheelStepRecord ReadWheelStep(const Statement& s) {
+// max_depth_y_mm, smoothing_area_error, sh_mm, sd_mm, qr_mm (0 to 8) and wheel (`wheel_col`).
+WheelStepRecord ReadWheelStep(const Statement& s, int wheel_col) {
   WheelStepRecord w;
+  w.wheel = static_cast<int>(s.Int64(wheel_col));
   w.traffic_index = static_cast<int>(s.Int64(0));
   w.name = s.Text(1);
   w.worn_area_mm2 = s.Double(2);
@@ -993,12 +1057,43 @@ std::vector<RunInfo> ProfileStore::Runs() const {
 
 void ProfileStore::SetRunState(int64_t run, RunState state) {
   impl_->RequireSameFile();
+  Transaction t(impl_->db);
   Statement s(impl_->db, "UPDATE runs SET state = ?1 WHERE id = ?2");
   s.Bind(1, ToString(state)).Bind(2, run);
   s.Run();
   if (sqlite3_changes(impl_->db.get()) == 0) {
     throw InputError(fmt::format("database '{}': no run with id {}", path(), run));
   }
+  // A new state ends the failure that was recorded (a resumed run starts afresh).
+  Statement clear(impl_->db, "DELETE FROM run_failures WHERE run_id = ?1");
+  clear.Bind(1, run);
+  clear.Run();
+  t.Commit();
+}
+
+void ProfileStore::SetRunFailed(int64_t run, const std::string& message) {
+  impl_->RequireSameFile();
+  const std::optional<int> last = LastStep(run);
+  Transaction t(impl_->db);
+  Statement s(impl_->db, "UPDATE runs SET state = ?1 WHERE id = ?2");
+  s.Bind(1, ToString(RunState::kAborted)).Bind(2, run);
+  s.Run();
+  if (sqlite3_changes(impl_->db.get()) == 0) {
+    throw InputError(fmt::format("database '{}': no run with id {}", path(), run));
+  }
+  Statement f(impl_->db,
+              "INSERT OR REPLACE INTO run_failures(run_id, step, message) VALUES (?1, ?2, ?3)");
+  f.Bind(1, run).Bind(2, last.value_or(-1)).Bind(3, message);
+  f.Run();
+  t.Commit();
+}
+
+std::optional<RunFailure> ProfileStore::FindRunFailure(int64_t run) const {
+  if (!internal::TableExists(impl_->db, "run_failures")) return std::nullopt;  // schema <= 8
+  Statement s(impl_->db, "SELECT step, message FROM run_failures WHERE run_id = ?1");
+  s.Bind(1, run);
+  if (!s.Step()) return std::nullopt;
+  return RunFailure{static_cast<int>(s.Int64(0)), s.Text(1)};
 }
 
 namespace {
@@ -1057,11 +1152,12 @@ void ProfileStore::WriteStep(int64_t run, const StepRecord& step) {
                     path(), run, step.step));
   }
   for (const WheelStepRecord& w : step.wheels) {
-    if (w.profile.size() == 0 || w.traffic_index < 0) {
+    if (w.profile.size() == 0 || w.traffic_index < 0 || w.wheel < 0) {
       throw InputError(fmt::format(
-          "database '{}': run {} step {}: the wheel of traffic entry {} ('{}') has {} profile "
-          "points; expected an entry index >= 0 and the wheel's profile after the step",
-          path(), run, step.step, w.traffic_index, w.name, w.profile.size()));
+          "database '{}': run {} step {}: the {} ('{}') has {} profile points; expected an "
+          "entry index >= 0, a wheel >= 0 and the wheel's profile after the step",
+          path(), run, step.step, internal::WheelText(w.traffic_index, w.wheel), w.name,
+          w.profile.size()));
     }
   }
   if (step.low_rail && step.low_rail->profile.size() == 0) {
@@ -1149,7 +1245,8 @@ void ProfileStore::WriteStep(int64_t run, const StepRecord& step) {
     Statement s(c,
                 "INSERT INTO wheel_steps(run_id, step, traffic_index, name, worn_area_mm2, "
                 "max_depth_mm, max_depth_y_mm, smoothing_area_error, sh_mm, sd_mm, qr_mm, "
-                "n_points, yz) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13)");
+                "n_points, yz, wheel) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, "
+                "?13, ?14)");
     for (const WheelStepRecord& w : step.wheels) {
       sqlite3_reset(s.get());
       s.Bind(1, run).Bind(2, step.step).Bind(3, w.traffic_index).Bind(4, w.name);
@@ -1158,13 +1255,13 @@ void ProfileStore::WriteStep(int64_t run, const StepRecord& step) {
       s.Bind(9, w.flange_height_mm).Bind(10, w.flange_thickness_mm).Bind(11, w.flange_slope_mm);
       s.Bind(12, w.profile.size());
       s.BindBlob(13, internal::EncodePoints(w.profile.points()));
+      s.Bind(14, w.wheel);
       int constraint = 0;
       s.Step(&constraint);
       if (constraint != 0) {
         throw InputError(fmt::format(
-            "database '{}': run {} step {}: the wheel of traffic entry {} given twice; expected "
-            "each entry once",
-            path(), run, step.step, w.traffic_index));
+            "database '{}': run {} step {}: the {} given twice; expected each wheel once",
+            path(), run, step.step, internal::WheelText(w.traffic_index, w.wheel)));
       }
     }
   }
@@ -1321,17 +1418,19 @@ StepRecord ProfileStore::LoadStep(int64_t run, int step) const {
     while (s.Step()) r.warnings.push_back({s.Text(0), s.Text(1)});
   }
   if (internal::TableExists(c, "wheel_steps")) {
-    Statement s(c,
-                "SELECT traffic_index, name, worn_area_mm2, max_depth_mm, max_depth_y_mm, "
-                "smoothing_area_error, sh_mm, sd_mm, qr_mm, n_points, yz FROM wheel_steps "
-                "WHERE run_id = ?1 AND step = ?2 ORDER BY traffic_index");
+    const std::string wheel = internal::WheelColumn(c);
+    Statement s(c, fmt::format("SELECT traffic_index, name, worn_area_mm2, max_depth_mm, "
+                               "max_depth_y_mm, smoothing_area_error, sh_mm, sd_mm, qr_mm, "
+                               "n_points, yz, {0} FROM wheel_steps WHERE run_id = ?1 AND step = ?2 "
+                               "ORDER BY traffic_index, {0}",
+                               wheel));
     s.Bind(1, run).Bind(2, step);
     while (s.Step()) {
-      WheelStepRecord w = internal::ReadWheelStep(s);
+      WheelStepRecord w = internal::ReadWheelStep(s, 11);
       w.step = step;
       w.profile = internal::DecodeProfile(
-          s, 9, 10, path(), fmt::format("run {} step {} wheel of traffic entry {}", run, step,
-                                       w.traffic_index));
+          s, 9, 10, path(),
+          fmt::format("run {} step {} {}", run, step, internal::WheelText(w.traffic_index, w.wheel)));
       r.wheels.push_back(std::move(w));
     }
   }
@@ -1341,27 +1440,30 @@ StepRecord ProfileStore::LoadStep(int64_t run, int step) const {
 std::vector<WheelStepRecord> ProfileStore::WheelSteps(int64_t run) const {
   std::vector<WheelStepRecord> out;
   if (!internal::TableExists(impl_->db, "wheel_steps")) return out;
-  Statement s(impl_->db,
-              "SELECT traffic_index, name, worn_area_mm2, max_depth_mm, max_depth_y_mm, "
-              "smoothing_area_error, sh_mm, sd_mm, qr_mm, step FROM wheel_steps "
-              "WHERE run_id = ?1 ORDER BY traffic_index, step");
+  const std::string wheel = internal::WheelColumn(impl_->db);
+  Statement s(impl_->db, fmt::format("SELECT traffic_index, name, worn_area_mm2, max_depth_mm, "
+                                     "max_depth_y_mm, smoothing_area_error, sh_mm, sd_mm, qr_mm, "
+                                     "step, {0} FROM wheel_steps WHERE run_id = ?1 "
+                                     "ORDER BY traffic_index, {0}, step",
+                                     wheel));
   s.Bind(1, run);
   while (s.Step()) {
-    WheelStepRecord w = internal::ReadWheelStep(s);
+    WheelStepRecord w = internal::ReadWheelStep(s, 10);
     w.step = static_cast<int>(s.Int64(9));
     out.push_back(std::move(w));
   }
   return out;
 }
 
-Profile ProfileStore::LoadWheelProfile(int64_t run, int step, int traffic_index) const {
+Profile ProfileStore::LoadWheelProfile(int64_t run, int step, int traffic_index,
+                                       int wheel) const {
   const std::string what =
-      fmt::format("run {} step {} wheel of traffic entry {}", run, step, traffic_index);
+      fmt::format("run {} step {} {}", run, step, internal::WheelText(traffic_index, wheel));
   if (internal::TableExists(impl_->db, "wheel_steps")) {
-    Statement s(impl_->db,
-                "SELECT n_points, yz FROM wheel_steps WHERE run_id = ?1 AND step = ?2 AND "
-                "traffic_index = ?3");
-    s.Bind(1, run).Bind(2, step).Bind(3, traffic_index);
+    Statement s(impl_->db, fmt::format("SELECT n_points, yz FROM wheel_steps WHERE run_id = ?1 "
+                                       "AND step = ?2 AND traffic_index = ?3 AND {} = ?4",
+                                       internal::WheelColumn(impl_->db)));
+    s.Bind(1, run).Bind(2, step).Bind(3, traffic_index).Bind(4, wheel);
     if (s.Step()) return internal::DecodeProfile(s, 0, 1, path(), what);
   }
   throw InputError(fmt::format(

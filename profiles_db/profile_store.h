@@ -42,10 +42,10 @@
 //                  PRIMARY KEY(run_id, step, traffic_index))               -- since v6
 //         -- each vehicle traffic entry's curving solution at the step (float64; the Jacobian
 //         -- n x n in column order, or empty): the next step's start
-//   wheel_steps(run_id, step, traffic_index, name TEXT, worn_area_mm2, max_depth_mm,
+//   wheel_steps(run_id, step, traffic_index, wheel, name TEXT, worn_area_mm2, max_depth_mm,
 //               max_depth_y_mm, smoothing_area_error, sh_mm NULL, sd_mm NULL, qr_mm NULL,
 //               n_points, yz BLOB,
-//               PRIMARY KEY(run_id, step, traffic_index))                 -- since v7
+//               PRIMARY KEY(run_id, step, traffic_index, wheel))          -- since v7 (wheel v9)
 //         -- the wheel of each traffic entry that wears its own (co-evolution, issue 16) after
 //         -- the step, in the wheel profile frame, coded as profiles.yz; no rows otherwise
 //
@@ -55,7 +55,9 @@
 // low_rail_distributions (older runs have no rows there: they are single-rail runs); 4 -> 5
 // rebuilds runs to allow state 'interrupted' (foreign keys off meanwhile, checked before commit);
 // 5 -> 6 adds curving_starts (older runs have no rows there: their steps start from the unworn
-// solution); 6 -> 7 adds wheel_steps (older runs have no rows there: no wheel of theirs wore).
+// solution); 6 -> 7 adds wheel_steps (older runs have no rows there: no wheel of theirs wore);
+// 7 -> 8 adds step_warnings; 8 -> 9 rebuilds wheel_steps with the column wheel in its primary
+// key (a vehicle entry's wheels, issue 16; older rows get wheel 0, an entry's one wheel).
 //
 // The database runs in WAL mode with foreign keys on. Each AppendStep is one transaction: a crash
 // loses at most the step in flight; CreateRun(run, first_step) stores a run with its step 0 in
@@ -84,6 +86,13 @@ enum class RunState { kRunning, kComplete, kAborted, kInterrupted };
 // "running", "complete", "aborted", "interrupted"; FromString throws InputError for anything else.
 std::string ToString(RunState state);
 RunState RunStateFromString(const std::string& text);
+
+// Why a run failed (schema 9): the error message of the failure that stopped it, and its last
+// stored step then (-1 for none).
+struct RunFailure {
+  int step = 0;
+  std::string message;
+};
 
 // One wear run: what it was started from. Everything needed to re-run any of its steps.
 struct RunInfo {
@@ -135,7 +144,10 @@ struct CurvingStartRecord {
 // against its unworn profile (step 0) and its profile after the step, wheel profile frame.
 struct WheelStepRecord {
   int traffic_index = 0;  // the study's traffic entry (0-based)
-  std::string name;       // that entry's name
+  // Which wheel of the entry (schema 10): 0 for a prescribed or collective entry's one wheel; a
+  // vehicle entry's 1 + 2 x wheelset + (0 high rail's wheel, 1 low rail's).
+  int wheel = 0;
+  std::string name;  // the entry's name; a vehicle wheel's "ENTRY / wheelset W high" (or low)
   int step = 0;           // filled by WheelSteps(); AppendStep takes the StepRecord's
   double worn_area_mm2 = 0.0;
   double max_depth_mm = 0.0;
@@ -235,10 +247,11 @@ struct QueryResult {
 class ProfileStore {
  public:
   // Schema version written by this program (PRAGMA user_version).
-  static constexpr int kSchemaVersion = 8;
+  static constexpr int kSchemaVersion = 10;
   // The oldest schema OpenReadOnly reads as it is: version 5 only widened runs.state's CHECK
-  // (adding 'interrupted'), version 6 only added curving_starts and version 7 wheel_steps (both
-  // read when present), so a version-4, -5 or -6 file reads the same; older ones need migrating.
+  // (adding 'interrupted'), version 6 only added curving_starts, 7 wheel_steps, 8 step_warnings
+  // (each read when present) and 9 wheel_steps.wheel (read as 0 when absent), so a version-4 to
+  // -8 file reads the same; older ones need migrating.
   static constexpr int kOldestReadOnlyVersion = 4;
   // PRAGMA application_id of railwear databases: "RWDB" in ASCII.
   static constexpr int32_t kApplicationId = 0x52574442;
@@ -279,8 +292,15 @@ class ProfileStore {
   std::optional<RunInfo> FindRun(const std::string& name) const;
   // All runs, in creation (id) order.
   std::vector<RunInfo> Runs() const;
-  // Throws InputError for an unknown run id.
+  // Throws InputError for an unknown run id. Clears the run's recorded failure (SetRunFailed):
+  // a run resumed after a failure is running again.
   void SetRunState(int64_t run, RunState state);
+  // Marks the run aborted and records why, with its last stored step, in one transaction (issue
+  // 19: a sweep merges and names its failed runs). Throws InputError for an unknown run id.
+  void SetRunFailed(int64_t run, const std::string& message);
+  // The run's recorded failure; nullopt when it has none (not aborted, aborted by a railwear
+  // before schema 9, or a read-only file of schema 8 or older, which has no place for it).
+  std::optional<RunFailure> FindRunFailure(int64_t run) const;
   // Every write (CreateRun, AppendStep, SetRunState) first checks that the database's path still
   // names the file this store opened (SQLite's SQLITE_FCNTL_HAS_MOVED and the file's st_dev and
   // st_ino recorded at Open): when the file was deleted, or replaced by or renamed over with
@@ -305,12 +325,12 @@ class ProfileStore {
   Profile LoadProfile(int64_t run, int step) const;
   // The low rail's profile stored for a step; InputError when the step has no low rail.
   Profile LoadLowRailProfile(int64_t run, int step) const;
-  // The wearing wheels' summaries of a run (co-evolution), by traffic entry then step, profiles
+  // The wearing wheels' summaries of a run (co-evolution), by traffic entry, wheel, then step, profiles
   // left empty; none for a run without them or a file older than schema 7.
   std::vector<WheelStepRecord> WheelSteps(int64_t run) const;
-  // The profile of traffic entry `traffic_index`'s wheel stored for a step; InputError when the
-  // step has none.
-  Profile LoadWheelProfile(int64_t run, int step, int traffic_index) const;
+  // The profile of traffic entry `traffic_index`'s wheel `wheel` (WheelStepRecord::wheel) stored
+  // for a step; InputError when the step has none.
+  Profile LoadWheelProfile(int64_t run, int step, int traffic_index, int wheel = 0) const;
   // The last stored step of a run, nullopt when it has none.
   std::optional<int> LastStep(int64_t run) const;
 

@@ -60,6 +60,18 @@ void Require(bool ok, const TrafficCase& c, const char* key, double value, const
 
 }  // namespace
 
+const Profile& CaseWheelProfile(const TrafficCase& entry, const LoadCase& load_case) {
+  if (!entry.is_vehicle() || entry.vehicle_wheels.empty()) return entry.wheel_profile;
+  const WheelsetWheels& w = entry.vehicle_wheels[load_case.wheelset];
+  return load_case.rail == RailSide::kHigh ? w.high : w.low;
+}
+
+std::string WheelName(const TrafficCase& entry, int wheel) {
+  if (wheel == 0) return entry.name;
+  return fmt::format("{} / wheelset {} {}", entry.name, WheelsetOfWheel(wheel),
+                     ToString(RailOfWheel(wheel)));
+}
+
 void ValidateTraffic(const std::vector<TrafficCase>& traffic) {
   if (traffic.empty()) throw InputError("traffic: no entries: expected at least one [[traffic]]");
   for (const TrafficCase& c : traffic) {
@@ -70,12 +82,6 @@ void ValidateTraffic(const std::vector<TrafficCase>& traffic) {
     Require(c.lateral_shift_std_m >= 0.0, c, "lateral_shift_mm.std", c.lateral_shift_std_m * 1e3,
             ">= 0");
     if (c.wheel_wear) {
-      if (c.is_vehicle()) {
-        throw InputError(fmt::format(
-            "{}: wheel_wear on a vehicle entry: expected a prescribed or collective entry (a "
-            "vehicle's wheels are its own and do not wear)",
-            c.name));
-      }
       Require(c.wheel_wear->distance_per_pass_m > 0.0 && c.wheel_wear->distance_per_pass_m <= 1e7,
               c, "wheel_wear.distance_per_pass_m", c.wheel_wear->distance_per_pass_m,
               "a distance in (0, 1e7] m");

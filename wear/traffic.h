@@ -28,6 +28,7 @@
 #include "core/contact/kinematics.h"
 #include "core/numerics/enum_names.h"
 #include "core/profile/profile.h"
+#include "core/vehicle/curving.h"
 #include "wear/friction_condition.h"
 
 namespace railwear {
@@ -93,11 +94,16 @@ struct TrafficCase {
   // axle_load_t (one axle pass: CollectiveAxleLoad_t unless the scene gives it).
   std::shared_ptr<const CollectiveTraffic> collective;
   bool is_collective() const { return collective != nullptr; }
-  // Co-evolution (issue 16): present when this entry's wheel wears (prescribed and collective
-  // entries; a vehicle's wheels belong to its VehicleSpec and do not wear). The wheel's current
-  // profile is then WearState::wheels[index of this entry]; wheel_profile stays the unworn one.
+  // Co-evolution (issue 16): present when this entry's wheel wears. A prescribed or collective
+  // entry's one wheel: its current profile is then WearState::wheels[index of this entry];
+  // wheel_profile stays the unworn one. A vehicle entry's wheels: both wheels of every wheelset
+  // wear, each on its own (WearState::vehicle_wheels), from the vehicle's wheel_profile.
   std::optional<WheelWear> wheel_wear;
   bool wears_wheel() const { return wheel_wear.has_value(); }
+  // A vehicle entry whose wheels wear: each wheelset's current wheels, from the front (set by the
+  // wear step from WearState::vehicle_wheels), run by its curving and its load cases; empty: the
+  // vehicle's wheel_profile on every wheel.
+  std::vector<WheelsetWheels> vehicle_wheels;
   // Whether this entry's wheels load `side`: a vehicle both rails, a collective the rails it has
   // bins on, a prescribed entry its `rail`.
   bool RunsOn(RailSide side) const;
@@ -126,6 +132,24 @@ struct LoadCase {
   double equilibrium_residual = 0.0;
   bool equilibrium_converged = true;
 };
+
+// The wheel profile a load case of `entry` runs: a vehicle entry's wheelset's wheel on the case's
+// rail when the entry carries its wheelsets' wheels (TrafficCase::vehicle_wheels), else the
+// entry's wheel_profile.
+const Profile& CaseWheelProfile(const TrafficCase& entry, const LoadCase& load_case);
+
+// The index of a wearing wheel within its traffic entry (co-evolution's steps and storage,
+// profiles_db wheel_steps.wheel): 0 is a prescribed or collective entry's one wheel; a vehicle
+// entry's wheels are 1 + 2 x wheelset + (0 for the high rail's wheel, 1 for the low rail's).
+inline int VehicleWheelIndex(int wheelset, RailSide side) {
+  return 1 + 2 * wheelset + (side == RailSide::kLow ? 1 : 0);
+}
+// The wheelset and rail of a vehicle wheel index (>= 1).
+inline int WheelsetOfWheel(int wheel) { return (wheel - 1) / 2; }
+inline RailSide RailOfWheel(int wheel) { return (wheel - 1) % 2 == 0 ? RailSide::kHigh : RailSide::kLow; }
+// A wearing wheel's name for reports and storage: the entry's, and for a vehicle wheel
+// "ENTRY / wheelset W high" (or low).
+std::string WheelName(const TrafficCase& entry, int wheel);
 
 // Nodes x_k and weights w_k (sum 1) with E[f(X)] ~ sum_k w_k f(x_k) for X ~ N(0, 1), exact for
 // polynomials up to degree 2n - 1. n in [1, 20].

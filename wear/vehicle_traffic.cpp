@@ -34,8 +34,12 @@ double RigidContactAngle(const Profile& wheel, const Profile& rail, const WheelP
 // already at it). A node is a wheelset displaced by the track's irregularity; in flange contact
 // the flange force would be the equilibrium's, not an imposed position's.
 double OffsetBeforeFlange(const WheelsetSpec& at_equilibrium, double offset, RailSide side,
-                          const CurvingProblem& p) {
-  const Profile& wheel = p.vehicle.wheel_profile;
+                          const CurvingProblem& p, int wheelset) {
+  // The wheel on that rail: the wheelset's own (worn wheels, CurvingProblem::wheels), else the
+  // vehicle's.
+  const Profile& wheel =
+      p.wheels.empty() ? p.vehicle.wheel_profile
+                       : (side == RailSide::kHigh ? p.wheels[wheelset].high : p.wheels[wheelset].low);
   auto flanging = [&](double d) {
     WheelsetSpec ws = at_equilibrium;
     ws.lateral_displacement_m += d;
@@ -77,6 +81,7 @@ CurvingProblem VehicleCurvingProblem(const WearStudy& study, int traffic_index,
   p.track = study.track;
   p.curve = study.curve;
   p.vehicle = study.vehicles[c.vehicle];
+  p.wheels = c.vehicle_wheels;  // its wheelsets' worn wheels when they wear (co-evolution)
   p.speed_m_s = c.speed_m_s;
   p.friction = c.friction;
   p.options.threads = study.options.threads;
@@ -163,7 +168,7 @@ std::vector<LoadCase> VehicleNodeCases(const WearStudy& study, int traffic_index
   if ((offset > 0.0 && high_flange) || (offset < 0.0 && low_flange)) offset = 0.0;
   if (offset != 0.0) {
     offset = OffsetBeforeFlange(at_equilibrium, offset,
-                                offset > 0.0 ? RailSide::kHigh : RailSide::kLow, p);
+                                offset > 0.0 ? RailSide::kHigh : RailSide::kLow, p, wheelset);
   }
   ws.lateral_displacement_m = w.lateral_m + offset;
   const WheelsetPlacement placed = PlaceWheelsetAt(*p.gauge_points, p.track, ws);

@@ -106,7 +106,7 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
   // The study's set-up; the wheel from its traffic entry, everything else from the case.
   ContactProblem problem;
   problem.setup() = study.setup();
-  problem.wheel_profile = traffic.wheel_profile;
+  problem.wheel_profile = CaseWheelProfile(traffic, load_case);
   problem.rail_profile = rail_track;
   problem.placement = load_case.placement;
   problem.load.vertical_force_N = load_case.vertical_force_N;
@@ -129,7 +129,7 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
   std::optional<PlacedWheel> wheel;
   WearGrid wheel_grid;
   if (traffic.wears_wheel()) {
-    wheel_grid = WearGrid::ForProfile(traffic.wheel_profile, study.options.bin_m);
+    wheel_grid = WearGrid::ForProfile(problem.wheel_profile, study.options.bin_m);
     out.wheel_depth_per_pass_m.assign(wheel_grid.n, 0.0);
   }
   LoadCaseSummary& s = out.summary;
@@ -391,6 +391,36 @@ Profile ResampleProfile(const Profile& profile, double spacing_m) {
   return Profile(std::move(points), profile.source());
 }
 
+const Profile& StateWheel(const WearState& state, int traffic_index, int wheel) {
+  if (wheel == 0) {
+    RAILWEAR_CHECK(traffic_index < static_cast<int>(state.wheels.size()));
+    return state.wheels[traffic_index];
+  }
+  RAILWEAR_CHECK(traffic_index < static_cast<int>(state.vehicle_wheels.size()) &&
+                 WheelsetOfWheel(wheel) < static_cast<int>(state.vehicle_wheels[traffic_index].size()));
+  const WheelsetWheels& pair = state.vehicle_wheels[traffic_index][WheelsetOfWheel(wheel)];
+  return RailOfWheel(wheel) == RailSide::kHigh ? pair.high : pair.low;
+}
+
+Profile& StateWheelSlot(WearState* state, int traffic_index, int wheel) {
+  RAILWEAR_CHECK(traffic_index >= 0 && wheel >= 0);
+  if (wheel == 0) {
+    if (traffic_index >= static_cast<int>(state->wheels.size())) {
+      state->wheels.resize(traffic_index + 1);
+    }
+    return state->wheels[traffic_index];
+  }
+  if (traffic_index >= static_cast<int>(state->vehicle_wheels.size())) {
+    state->vehicle_wheels.resize(traffic_index + 1);
+  }
+  std::vector<WheelsetWheels>& pairs = state->vehicle_wheels[traffic_index];
+  if (WheelsetOfWheel(wheel) >= static_cast<int>(pairs.size())) {
+    pairs.resize(WheelsetOfWheel(wheel) + 1);
+  }
+  WheelsetWheels& pair = pairs[WheelsetOfWheel(wheel)];
+  return RailOfWheel(wheel) == RailSide::kHigh ? pair.high : pair.low;
+}
+
 WearState MakeInitialState(const WearStudy& study) {
   ValidateWearStudy(study);
   return internal::InitialState(study);
@@ -406,9 +436,16 @@ WearState InitialState(const WearStudy& study) {
   }
   const int n_traffic = static_cast<int>(study.traffic.size());
   for (int t = 0; t < n_traffic; ++t) {
-    if (!study.traffic[t].wears_wheel()) continue;
+    const TrafficCase& c = study.traffic[t];
+    if (!c.wears_wheel()) continue;
+    if (c.is_vehicle()) {  // every wheel of every wheelset starts as the vehicle's
+      const VehicleSpec& v = study.vehicles[c.vehicle];
+      state.vehicle_wheels.resize(n_traffic);
+      state.vehicle_wheels[t].assign(v.wheelsets(), {v.wheel_profile, v.wheel_profile});
+      continue;
+    }
     state.wheels.resize(n_traffic);
-    state.wheels[t] = study.traffic[t].wheel_profile;
+    state.wheels[t] = c.wheel_profile;
   }
   return state;
 }
@@ -558,20 +595,35 @@ struct RailWork {
 // depth per axle pass of the mix) and smoothed like a rail's.
 struct WheelWork {
   int traffic_index = 0;
+  // A vehicle entry's wheel: its wheelset and rail (VehicleWheelIndex); absent: the entry's one.
+  std::optional<std::pair<int, RailSide>> vehicle_wheel;
   const Profile* current = nullptr;  // wheel profile frame
-  const Profile* unworn = nullptr;   // the entry's wheel_profile as given
+  const Profile* unworn = nullptr;   // the entry's wheel_profile (a vehicle's) as given
   WearGrid grid;
   SmoothedPerPass field;
 
-  WheelWork(int t, const Profile& now, const Profile& step0, double bin_m)
-      : traffic_index(t), current(&now), unworn(&step0), grid(WearGrid::ForProfile(now, bin_m)) {}
+  WheelWork(int t, const Profile& now, const Profile& step0, double bin_m,
+            std::optional<std::pair<int, RailSide>> of_vehicle = std::nullopt)
+      : traffic_index(t),
+        vehicle_wheel(of_vehicle),
+        current(&now),
+        unworn(&step0),
+        grid(WearGrid::ForProfile(now, bin_m)) {}
+
+  // Whether a case runs this wheel: the entry's, and for a vehicle its wheelset on its rail.
+  bool Runs(const LoadCase& c) const {
+    return c.traffic_index == traffic_index &&
+           (!vehicle_wheel || (c.wheelset == vehicle_wheel->first && c.rail == vehicle_wheel->second));
+  }
+  int WheelIndex() const {
+    return vehicle_wheel ? VehicleWheelIndex(vehicle_wheel->first, vehicle_wheel->second) : 0;
+  }
 
   void Collect(const std::vector<CaseOutcome>& outcomes, const std::vector<LoadCase>& cases,
                const DepthSmoothingOptions& options) {
-    const int t = traffic_index;
     field.depth_per_pass_m =
-        WeightedSum(outcomes, cases, [t](const LoadCase& c) { return c.traffic_index == t; },
-                    grid.n, &CaseOutcome::wheel_depth_per_pass_m);
+        WeightedSum(outcomes, cases, [this](const LoadCase& c) { return Runs(c); }, grid.n,
+                    &CaseOutcome::wheel_depth_per_pass_m);
     field.Smooth(grid.h_m, options);
   }
 
@@ -580,6 +632,7 @@ struct WheelWork {
   WheelStepResult Apply(double passes, const WearOptions& o, Profile* next_profile) const {
     WheelStepResult r;
     r.traffic_index = traffic_index;
+    r.wheel = WheelIndex();
     r.grid = grid;
     r.depth_per_pass_m = field.depth_per_pass_m;
     r.step_depth_m = field.StepDepth(passes);
@@ -609,6 +662,22 @@ StepResult RunWearStep(const WearStudy& given, const UnwornRails& unworn, const 
   std::vector<WheelWork> wheels;
   for (int t = 0; t < static_cast<int>(given.traffic.size()); ++t) {
     if (!given.traffic[t].wears_wheel()) continue;
+    if (given.traffic[t].is_vehicle()) {
+      // Both wheels of each wheelset, each its own; the curving and the cases run them.
+      const VehicleSpec& v = given.vehicles[given.traffic[t].vehicle];
+      RAILWEAR_CHECK(t < static_cast<int>(state.vehicle_wheels.size()) &&
+                     static_cast<int>(state.vehicle_wheels[t].size()) == v.wheelsets());
+      if (!stepped) stepped = given;
+      stepped->traffic[t].vehicle_wheels = state.vehicle_wheels[t];
+      for (int w = 0; w < v.wheelsets(); ++w) {
+        const WheelsetWheels& now = state.vehicle_wheels[t][w];
+        wheels.emplace_back(t, now.high, v.wheel_profile, given.options.bin_m,
+                            std::make_pair(w, RailSide::kHigh));
+        wheels.emplace_back(t, now.low, v.wheel_profile, given.options.bin_m,
+                            std::make_pair(w, RailSide::kLow));
+      }
+      continue;
+    }
     RAILWEAR_CHECK(t < static_cast<int>(state.wheels.size()) && state.wheels[t].size() > 0);
     if (!stepped) stepped = given;
     stepped->traffic[t].wheel_profile = state.wheels[t];
@@ -689,11 +758,19 @@ StepResult RunWearStep(const WearStudy& given, const UnwornRails& unworn, const 
     step.low_rail =
         low->Apply(step.step_passes, outcomes, cases, study, &*next.low_rail, &next.low_damage);
   }
-  if (!wheels.empty()) {
-    next.wheels.resize(study.traffic.size());
-    for (const WheelWork& w : wheels) {
-      step.wheels.push_back(w.Apply(step.step_passes, o, &next.wheels[w.traffic_index]));
+  for (const WheelWork& w : wheels) {
+    Profile* next_wheel = nullptr;
+    if (w.vehicle_wheel) {
+      next.vehicle_wheels.resize(study.traffic.size());
+      std::vector<WheelsetWheels>& pairs = next.vehicle_wheels[w.traffic_index];
+      pairs.resize(state.vehicle_wheels[w.traffic_index].size());
+      WheelsetWheels& pair = pairs[w.vehicle_wheel->first];
+      next_wheel = w.vehicle_wheel->second == RailSide::kHigh ? &pair.high : &pair.low;
+    } else {
+      next.wheels.resize(study.traffic.size());
+      next_wheel = &next.wheels[w.traffic_index];
     }
+    step.wheels.push_back(w.Apply(step.step_passes, o, next_wheel));
   }
   if (std::any_of(curving.begin(), curving.end(),
                   [](const CurvingStart& c) { return c.state.size() > 0; })) {

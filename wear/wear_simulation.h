@@ -27,8 +27,9 @@
 //      damage_layer_m asks for the old rule) and moves with the material onto the next
 //      profile's bins (wear/damage_transport.h: conserved over material);
 //   7. the wheels of the entries that wear their own (TrafficCase::wheel_wear, co-evolution,
-//      issue 16) wear from the same solutions (wear/wheel_wear.h): each such wheel's per-pass
-//      depth is summed over its entry's cases with the cases' weights, smoothed as a rail's, and
+//      issue 16; a vehicle entry's: both wheels of each wheelset, each its own) wear from the
+//      same solutions (wear/wheel_wear.h): each such wheel's per-pass
+//      depth is summed over its cases with the cases' weights, smoothed as a rail's, and
 //      its profile moves along its inward normal by the step's passes times that depth and is
 //      resampled, every step; the step's passes (step 5) take the deepest smoothed wear of every
 //      rail AND every wearing wheel, so no profile moves more than max_depth_per_step in a step;
@@ -161,7 +162,18 @@ struct WearState {
   // no entry's wheel wears. At step 0 each is the entry's wheel_profile as given (not
   // resampled: the first step's contacts are those of the same study without wheel wear).
   std::vector<Profile> wheels;
+  // Co-evolution of a vehicle entry's wheels: per traffic entry, each wheelset's current wheels
+  // (from the front; high and low, each in its rail's frame) of a vehicle entry whose wheels wear,
+  // empty for the others; empty when no vehicle entry's wheels wear. At step 0 every wheel is the
+  // vehicle's wheel_profile as given.
+  std::vector<std::vector<WheelsetWheels>> vehicle_wheels;
 };
+
+// The current profile of wheel `wheel` (WheelStepResult::wheel: 0 an entry's one wheel, else a
+// vehicle entry's VehicleWheelIndex) of traffic entry `traffic_index` in `state`; it must be there.
+const Profile& StateWheel(const WearState& state, int traffic_index, int wheel);
+// The same slot to write, made when missing (a state read back from storage).
+Profile& StateWheelSlot(WearState* state, int traffic_index, int wheel);
 
 // Step 0 of a run: the unworn rails resampled at the study's profile spacing.
 WearState MakeInitialState(const WearStudy& study);
@@ -228,6 +240,9 @@ struct RailStepResult {
 // What a step did to the wheel of one entry that wears its own (co-evolution).
 struct WheelStepResult {
   int traffic_index = 0;                 // the entry (WearStudy::traffic)
+  // Which wheel of the entry (VehicleWheelIndex, wear/traffic.h): 0 for a prescribed or
+  // collective entry's one wheel; 1 + 2 x wheelset + (0 high, 1 low) for a vehicle entry's.
+  int wheel = 0;
   WearGrid grid;                         // the bins of the wheel profile the step started from
   std::vector<double> depth_per_pass_m;  // weighted depth per axle pass of the mix, [grid.n]
   std::vector<double> step_depth_m;      // smoothed depth removed in this step, [grid.n]
@@ -250,7 +265,8 @@ struct StepResult {
   double smoothing_area_error = 0.0;       // relative, before the area correction
   WearMeasures measures;                   // against step 0 (cumulative)
   std::optional<RailStepResult> low_rail;  // present when the study has a low rail
-  std::vector<WheelStepResult> wheels;     // the wearing wheels, in entry order
+  // The wearing wheels, in entry order (a vehicle entry's by wheelset, high before low).
+  std::vector<WheelStepResult> wheels;
   std::vector<LoadCaseSummary> cases;      // both rails' cases, in StepLoadCases order
   SpreadIntegrationSummary integration;    // the spread rule's nodes per entry and its error
   double seconds = 0.0;                    // wall time of the step

@@ -214,6 +214,9 @@ class Problem {
     Check(p_, rw_set_influence_constants(p_, &c));
   }
   void set_friction(double mu) { Check(p_, rw_set_friction(p_, mu)); }
+  void set_pressure_limit(int kind, double value_Pa) {
+    Check(p_, rw_set_pressure_limit(p_, kind, value_Pa));
+  }
   void set_geometry(const py::kwargs& kwargs) {
     rw_geometry g = Init(&rw_init_geometry);
     kGeometry.Apply(kwargs, &g, "set_geometry");
@@ -335,6 +338,9 @@ PYBIND11_MODULE(railwear, m) {
   RW_CONSTANT(WEAR_KTH);
   RW_CONSTANT(WEAR_KTH_CONTINUOUS);
   RW_CONSTANT(WEAR_USFD);
+  RW_CONSTANT(PRESSURE_LIMIT_NONE);
+  RW_CONSTANT(PRESSURE_LIMIT_HARDNESS);
+  RW_CONSTANT(PRESSURE_LIMIT_VALUE);
 #undef RW_CONSTANT
 
   py::class_<Problem>(m, "Problem", "One contact problem (rw_problem): a wheel or a wheelset.")
@@ -352,6 +358,9 @@ PYBIND11_MODULE(railwear, m) {
       .def("set_influence_constants", &Problem::set_influence_constants,
            "rw_influence_constants fields: c_f, c_z, c_s, separate, convex_*, concave_*.")
       .def("set_friction", &Problem::set_friction, py::arg("friction"))
+      .def("set_pressure_limit", &Problem::set_pressure_limit, py::arg("kind"),
+           py::arg("value_Pa") = std::numeric_limits<double>::quiet_NaN(),
+           "PRESSURE_LIMIT_NONE, _HARDNESS (the smaller hardness), or _VALUE with value_Pa.")
       .def("set_geometry", &Problem::set_geometry,
            "rw_geometry fields: rolling_radius_m, rail_cant, gauge_m, gauge_height_m, "
            "flange_back_distance_m, flange_back_position_m.")

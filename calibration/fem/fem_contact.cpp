@@ -680,4 +680,13 @@ FemContactResult RunFemContact(const FemContactOptions& options, const FemProgra
   return result;
 }
 
+double EstimateFemContactNodes(const FemContactOptions& o, double mesh_size_m) {
+  // Nodes per unit of the integral and body, fitted to docs/fem_contact_cases.md (the header).
+  constexpr double kNodesPerUnit = 15.47;
+  return 2.0 * kNodesPerUnit *
+         GradedMeshIntegral({0.5 * o.length_m, 0.5 * o.width_m, o.depth_m},
+                            {o.zone_x_m, o.zone_s_m, o.zone_depth_m}, mesh_size_m, o.mesh_growth,
+                            o.max_element_m);
+}
+
 }  // namespace railwear

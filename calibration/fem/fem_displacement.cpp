@@ -52,14 +52,6 @@ double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-FemBodySize SizeUsed(const FemDisplacementOptions& o) {
-  FemBodySize s = DefaultFemBodySize(o.body, o.radius_m);
-  if (o.length_m > 0.0) s.length_m = o.length_m;
-  if (o.width_m > 0.0 && o.body != CurveBody::kConvex) s.width_m = o.width_m;
-  if (o.depth_m > 0.0) s.depth_m = o.depth_m;
-  return s;
-}
-
 // Geometry of the quarter model in mm, for the checks and the path extraction.
 struct Quarter {
   CurveBody body;
@@ -295,7 +287,7 @@ bool FemDisplacementOptions::IsValid(std::string* error) const {
     return fail(fmt::format("distances {} to {} mm: expected 0 < min_distance < max_distance",
                             min_distance_m / kMm, max_distance_m / kMm));
   }
-  const FemBodySize s = SizeUsed(*this);
+  const FemBodySize s = FemBodySizeUsed(*this);
   if (s.length_m < 4.0 * max_distance_m) {
     return fail(
         fmt::format("body length {} mm: expected at least 4 max_distance = {} mm, so the "
@@ -408,7 +400,7 @@ FemDisplacementResult RunFemDisplacement(const FemDisplacementOptions& o,
 
   FemDisplacementResult result;
   FemDisplacementSummary& summary = result.summary;
-  summary.body_size = SizeUsed(o);
+  summary.body_size = FemBodySizeUsed(o);
   const Quarter q = MakeQuarter(o, summary.body_size);
 
   // 1. Geometry and mesh.
@@ -560,6 +552,23 @@ FemDisplacementResult RunFemDisplacement(const FemDisplacementOptions& o,
       {"solve_time_s", times},
   };
   return result;
+}
+
+FemBodySize FemBodySizeUsed(const FemDisplacementOptions& o) {
+  FemBodySize s = DefaultFemBodySize(o.body, o.radius_m);
+  if (o.length_m > 0.0) s.length_m = o.length_m;
+  if (o.width_m > 0.0 && o.body != CurveBody::kConvex) s.width_m = o.width_m;
+  if (o.depth_m > 0.0) s.depth_m = o.depth_m;
+  return s;
+}
+
+double EstimateFemDisplacementNodes(const FemDisplacementOptions& o) {
+  // Nodes per unit of the integral, fitted to docs/fem_reference.md's meshes (see the header).
+  constexpr double kNodesPerUnit = 8.28;
+  const FemBodySize s = FemBodySizeUsed(o);
+  return kNodesPerUnit * GradedMeshIntegral({0.5 * s.length_m, 0.5 * s.width_m, s.depth_m},
+                                            {0.0, 0.0, 0.0}, o.mesh_size_at_load_m, o.mesh_growth,
+                                            o.max_element_m);
 }
 
 }  // namespace railwear

@@ -119,6 +119,17 @@ FemDisplacementResult RunFemDisplacement(const FemDisplacementOptions& options,
 // The gmsh .geo text of the quarter model (mm), with physical groups BODY, LOAD (the point O),
 // TOP (the loaded surface), SYMX (x = 0), SYMY (y = 0), BOTTOM, END (x = L/2), SIDE (y = W/2;
 // convex: y = R) and, for a concave body, TOPFLAT (its flat top beside the groove).
+// The body size a run uses: the options' sizes, DefaultFemBodySize's for zeros (convex: 2R wide).
+FemBodySize FemBodySizeUsed(const FemDisplacementOptions& options);
+
+// The quarter model's node count gmsh will make, estimated before meshing (issue 17: a mesh too
+// large for the machine is refused before a long run): 8.28 x GradedMeshIntegral over the
+// quarter box (L/2 x W/2 x D, graded from the load point). The constant is fitted (geometric
+// mean) to the 7 meshes of docs/fem_reference.md (2,591 to 96,209 nodes); each is within a
+// factor 0.68-1.33 of its estimate (the box ignores the curved faces and their 12 elements per
+// circle). An order of magnitude, not a count.
+double EstimateFemDisplacementNodes(const FemDisplacementOptions& options);
+
 std::string FemDisplacementGeo(const FemDisplacementOptions& options, const FemBodySize& size);
 
 }  // namespace railwear

@@ -2,6 +2,7 @@
 #include "calibration/fem/fem_mesh.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -339,6 +340,38 @@ FemMesh ReadGmshMesh(const std::string& path) {
                                                                                     : "$Elements"));
   }
   return mesh;
+}
+
+double GradedMeshIntegral(const std::array<double, 3>& body_m, const std::array<double, 3>& zone_m,
+                          double h0_m, double growth, double h_max_m) {
+  constexpr int kCells = 40;
+  constexpr double kFirst = 1e-6;  // [m]: the first cell edge past 0
+  // Midpoints and widths of [0, a] cut at 0 and log-spaced edges from kFirst to a.
+  const auto cells = [](double a) {
+    std::vector<std::pair<double, double>> out;
+    double previous = 0.0;
+    for (int k = 0; k < kCells; ++k) {
+      const double edge =
+          a <= kFirst ? a * (k + 1) / kCells : kFirst * std::pow(a / kFirst, k / (kCells - 1.0));
+      out.emplace_back(0.5 * (previous + edge), edge - previous);
+      previous = edge;
+    }
+    return out;
+  };
+  const auto xs = cells(body_m[0]), ys = cells(body_m[1]), zs = cells(body_m[2]);
+  double sum = 0.0;
+  for (const auto& [x, wx] : xs) {
+    const double dx = std::max(0.0, x - zone_m[0]);
+    for (const auto& [y, wy] : ys) {
+      const double dy = std::max(0.0, y - zone_m[1]);
+      for (const auto& [z, wz] : zs) {
+        const double dz = std::max(0.0, z - zone_m[2]);
+        const double h = std::min(h0_m + growth * std::sqrt(dx * dx + dy * dy + dz * dz), h_max_m);
+        sum += wx * wy * wz / (h * h * h);
+      }
+    }
+  }
+  return sum;
 }
 
 }  // namespace railwear

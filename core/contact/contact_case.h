@@ -32,7 +32,9 @@ struct ContactCaseResult {
 // `kernel` keys, the CLI's --kernel and the C API's RW_MODEL_CUSTOM make of them.
 ModelKind MatchingModelKind(GeometryModel geometry, KernelModel kernel);
 
-// Throws InputError as SolveContact and SolveWheelset do.
-ContactCaseResult SolveContactCase(const ContactCase& c);
+// Throws InputError as SolveContact and SolveWheelset do. `cache` (optional, the C API's handle
+// keeps one) reuses the placed geometries of an earlier call at the same pose on the same
+// profiles (placement_cache.h): the same results, bit for bit.
+ContactCaseResult SolveContactCase(const ContactCase& c, PlacementCache* cache = nullptr);
 
 }  // namespace railwear

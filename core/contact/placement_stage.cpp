@@ -54,10 +54,13 @@ void CheckRollingProblem(const ContactProblem& problem) {
   }
 }
 
+WheelPose PoseOf(const ContactProblem& problem) {
+  return {problem.placement.lateral_shift_m, problem.placement.roll_rad,
+          problem.placement.rolling_radius_m, problem.placement.yaw_rad};
+}
+
 WheelRailGeometry PlaceWheel(const ContactProblem& problem) {
-  const WheelPose pose{problem.placement.lateral_shift_m, problem.placement.roll_rad,
-                       problem.placement.rolling_radius_m, problem.placement.yaw_rad};
-  return WheelRailGeometry(problem.wheel_profile, problem.rail_profile, pose);
+  return WheelRailGeometry(problem.wheel_profile, problem.rail_profile, PoseOf(problem));
 }
 
 std::optional<std::string> NoContactBeforeGrid(const ContactProblem& problem,

@@ -20,7 +20,10 @@ void CheckContactProblem(const ContactProblem& problem);
 // Nothing to check without problem.rolling.
 void CheckRollingProblem(const ContactProblem& problem);
 
-// The wheel placed on the rail (problem.placement: lateral shift, roll, rolling radius).
+// The wheel's pose on the rail (problem.placement: lateral shift, roll, rolling radius, yaw).
+WheelPose PoseOf(const ContactProblem& problem);
+
+// The wheel placed on the rail at PoseOf(problem).
 WheelRailGeometry PlaceWheel(const ContactProblem& problem);
 
 // Why there is no contact to solve before any grid is built (the profiles do not overlap

@@ -20,16 +20,20 @@ constexpr int kBalanceRounds = 8;
 WheelMotions CurveWheelMotions(const WheelMotion& axle, const WheelsetPlacement& placed,
                                double curvature_per_m, double rolling_radius_m) {
   WheelMotions out{axle, axle};
-  if (curvature_per_m == 0.0) return out;
+  const double ydot = axle.lateral_velocity_m_s, psidot = axle.yaw_velocity_rad_s;
+  if (curvature_per_m == 0.0 && ydot == 0.0 && psidot == 0.0) return out;
   const double v = axle.speed_m_s;
-  // Each wheel's origin: its distance from the curve's centre sets its forward speed.
+  // Each wheel's origin: its distance from the curve's centre, and the wheelset's own yaw rate
+  // about its centre (a wheel at +Y goes back at psidot Y), set its forward speed.
   const double y_right = placed.right_rail_origin_Y_m + placed.right.lateral_shift_m;
   const double y_left = placed.left_rail_origin_Y_m - placed.left.lateral_shift_m;
-  out.right.speed_m_s = v * (1.0 + curvature_per_m * y_right);
-  out.left.speed_m_s = v * (1.0 + curvature_per_m * y_left);
-  // The wheelset turns with the curve (toward -Y); the left rail's frame is mirrored.
-  out.right.yaw_velocity_rad_s = -v * curvature_per_m;
-  out.left.yaw_velocity_rad_s = v * curvature_per_m;
+  out.right.speed_m_s = v * (1.0 + curvature_per_m * y_right) - psidot * y_right;
+  out.left.speed_m_s = v * (1.0 + curvature_per_m * y_left) - psidot * y_left;
+  // The wheelset turns with the curve (toward -Y) and at its own yaw rate; the left rail's frame
+  // is mirrored (y toward its field side, -Y), so its yaw rate and lateral velocity change sign.
+  out.right.yaw_velocity_rad_s = psidot - v * curvature_per_m;
+  out.left.yaw_velocity_rad_s = v * curvature_per_m - psidot;
+  if (ydot != 0.0) out.left.lateral_velocity_m_s = -ydot;  // (no -0.0 where there is none)
   // One axle, one pitch velocity: pure rolling of the centre's speed at r0 unless given.
   const double omega = axle.pitch_velocity_rad_s.value_or(-v / rolling_radius_m);
   out.right.pitch_velocity_rad_s = omega;
@@ -37,7 +41,7 @@ WheelMotions CurveWheelMotions(const WheelMotion& axle, const WheelsetPlacement&
   return out;
 }
 
-WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
+WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cache) {
   WheelsetResult out;
   const Profile& right_rail = problem.wheel_rail.rail_profile;
   const Profile& left_rail =
@@ -63,6 +67,7 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
   // (PlaceWheelset) and the yaw are mirrored.
   ContactProblem left = problem.wheel_rail;
   if (problem.left_rail_profile) left.rail_profile = *problem.left_rail_profile;
+  if (problem.left_wheel_profile) left.wheel_profile = *problem.left_wheel_profile;
   left.placement = {l.lateral_shift_m, l.roll_rad, l.rolling_radius_m, l.yaw_rad};
   if (problem.left_vertical_force_N) {
     if (!left.load.vertical_force_N) {
@@ -70,7 +75,7 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
     }
     left.load.vertical_force_N = problem.left_vertical_force_N;
   }
-  if (problem.curvature_per_m != 0.0 && right.rolling) {
+  if (right.rolling) {
     const WheelMotions m =
         CurveWheelMotions(problem.wheel_rail.rolling->motion, out.placement,
                           problem.curvature_per_m, problem.wheelset.rolling_radius_m);
@@ -86,9 +91,16 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem) {
     right.rolling->longitudinal_force_N.reset();
     left.rolling->longitudinal_force_N.reset();
   }
-  // Each wheel's placed geometry, built once for all its solves and the trials of the search.
-  const WheelRailGeometry right_geom(right.wheel_profile, right.rail_profile, r);
-  const WheelRailGeometry left_geom(left.wheel_profile, left.rail_profile, l);
+  // Each wheel's placed geometry, built once for all its solves and the trials of the search
+  // (or kept from an earlier solve at the same pose: PlacementCache).
+  std::optional<WheelRailGeometry> own_right, own_left;
+  auto place = [&](PlacementCache::Slot slot, const ContactProblem& wheel, const WheelPose& pose,
+                   std::optional<WheelRailGeometry>* own) -> const WheelRailGeometry& {
+    if (cache) return cache->Get(slot, wheel.wheel_profile, wheel.rail_profile, pose);
+    return own->emplace(wheel.wheel_profile, wheel.rail_profile, pose);
+  };
+  const WheelRailGeometry& right_geom = place(PlacementCache::kRight, right, r, &own_right);
+  const WheelRailGeometry& left_geom = place(PlacementCache::kLeft, left, l, &own_left);
   out.right = SolveContact(right, right_geom);
   out.left = SolveContact(left, left_geom);
   if (!target || out.right.status != SolverStatus::kConverged ||

@@ -12,6 +12,7 @@
 #pragma once
 
 #include "core/contact/contact_solver.h"
+#include "core/contact/placement_cache.h"
 #include "core/geometry/wheelset.h"
 
 namespace railwear {
@@ -23,6 +24,9 @@ struct WheelsetProblem {
   // Two different rails, unequal loads and a curve (the defaults: the same rail and load on both
   // sides, tangent track).
   std::optional<Profile> left_rail_profile;  // the left rail in its own frame (y to its field)
+  // The left wheel in its own frame (mirrored as the left rail's) when it differs from the right
+  // one (worn wheels of a wheelset wear differently in a curve); absent: wheel_rail.wheel_profile.
+  std::optional<Profile> left_wheel_profile;
   // Where the rails stand (each gauge point in its own rail's frame); absent: from the profiles.
   // A worn rail keeps its unworn place: pass the unworn rails' gauge points.
   std::optional<RailGaugePoints> gauge_points;
@@ -33,7 +37,9 @@ struct WheelsetProblem {
   // each wheel's origin moves forward at V (1 + curvature Y_w), Y_w its Y, V the speed of the
   // wheelset centre (wheel_rail.rolling->motion.speed_m_s), and the wheelset turns at -V/R
   // (WheelMotion::yaw_velocity_rad_s), so every cell slips with its own distance from the
-  // curve's centre. Without a prescribed pitch velocity the axle rolls at -V/r0.
+  // curve's centre. Without a prescribed pitch velocity the axle rolls at -V/r0. The axle's
+  // lateral and yaw velocity (wheel_rail.rolling->motion) are the wheelset's in the track frame,
+  // mirrored for the left wheel (CurveWheelMotions), with or without curvature.
   double curvature_per_m = 0.0;
   // How closely the wheels' F_x must add up to an axle force target [N]; absent: 1e-6 mu F_n
   // (F_n both wheels' normal forces). Each round of the search solves both wheels again, so a
@@ -47,10 +53,14 @@ struct WheelsetResult {
   ContactResult left;
 };
 
-// Each wheel's motion on a curve of the given curvature (1/R, turning toward -Y): the wheel's
-// origin moves at V (1 + curvature Y_w), the wheelset turns at -V curvature (mirrored in the left
-// rail's frame), and both share the axle's pitch velocity (-V/r0 when `axle` has none). `axle`
-// is the wheelset centre's motion; with curvature 0 both wheels get it unchanged.
+// Each wheel's motion on a curve of the given curvature (1/R, turning toward -Y), with the
+// wheelset's own lateral and yaw velocity (`axle`, in the track frame: dY/dt, and the yaw rate
+// against the curve, e.g. a co-simulation's wheelset moving across the track): the wheel's
+// origin moves at V (1 + curvature Y_w) - yaw_rate Y_w, the wheelset turns at
+// yaw_rate - V curvature, each wheel moves across at the lateral velocity (the left rail's frame
+// mirrors the last two), and both share the axle's pitch velocity (-V/r0 when `axle` has none).
+// `axle` is the wheelset centre's motion; with curvature 0 and no lateral or yaw velocity both
+// wheels get it unchanged.
 struct WheelMotions {
   WheelMotion right, left;
 };
@@ -58,6 +68,8 @@ WheelMotions CurveWheelMotions(const WheelMotion& axle, const WheelsetPlacement&
                                double curvature_per_m, double rolling_radius_m);
 
 // Throws InputError as SolveContact does, and when the rail is too shallow for the gauge height.
-WheelsetResult SolveWheelset(const WheelsetProblem& problem);
+// `cache` (optional) keeps both wheels' placed geometries between calls (placement_cache.h):
+// the same results, bit for bit.
+WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cache = nullptr);
 
 }  // namespace railwear

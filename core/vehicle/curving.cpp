@@ -105,6 +105,8 @@ double KinematicRoll(const WheelsetProblem& p) {
   ws.yaw_rad = 0.0;
   const Profile& right_rail = p.wheel_rail.rail_profile;
   const Profile& left_rail = p.left_rail_profile ? *p.left_rail_profile : right_rail;
+  const Profile& left_wheel =
+      p.left_wheel_profile ? *p.left_wheel_profile : p.wheel_rail.wheel_profile;
   const double half_span = 0.5 * ws.flange_back_distance_m - ws.flange_back_position_m;
   double roll = 0.0;
   for (int k = 0; k < 2; ++k) {
@@ -112,7 +114,7 @@ double KinematicRoll(const WheelsetProblem& p) {
     const WheelsetPlacement placed = PlaceWheelsetAt(*p.gauge_points, p.track, ws);
     const WheelRailGeometry right(p.wheel_rail.wheel_profile, right_rail, placed.right,
                                   kSampling_m);
-    const WheelRailGeometry left(p.wheel_rail.wheel_profile, left_rail, placed.left, kSampling_m);
+    const WheelRailGeometry left(left_wheel, left_rail, placed.left, kSampling_m);
     if (!right.has_overlap() || !left.has_overlap()) return roll;
     // z is down: the right wheel's origin lower by dz_R - dz_L over the span 2 half_span.
     roll = std::asin(std::clamp((right.dz_m() - left.dz_m()) / (2.0 * half_span), -0.1, 0.1));
@@ -126,6 +128,8 @@ struct WheelsetContext {
   ModelOptions model;
   double high_load_N = 0.0, low_load_N = 0.0;
   double q0_N = 0.0;  // the static wheel load, the scale of the tolerance
+  // This wheelset's own wheels (CurvingProblem::wheels), null: the vehicle's wheel_profile.
+  const WheelsetWheels* wheels = nullptr;
 };
 
 CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw) {
@@ -134,7 +138,8 @@ CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw
   WheelsetProblem wp;
   wp.wheel_rail.setup() = p.contact;
   wp.wheel_rail.model = ctx.model;
-  wp.wheel_rail.wheel_profile = v.wheel_profile;
+  wp.wheel_rail.wheel_profile = ctx.wheels ? ctx.wheels->high : v.wheel_profile;
+  if (ctx.wheels) wp.left_wheel_profile = ctx.wheels->low;
   wp.wheel_rail.rail_profile = p.high_rail;
   wp.wheel_rail.load.vertical_force_N = ctx.high_load_N;
   RollingOptions rolling;
@@ -589,6 +594,18 @@ void Validate(const CurvingProblem& p) {
   if (!(p.friction > 0.0) || !std::isfinite(p.friction)) {
     throw InputError(fmt::format("curving: friction = {}: expected mu > 0", p.friction));
   }
+  if (!p.wheels.empty() && static_cast<int>(p.wheels.size()) != p.vehicle.wheelsets()) {
+    throw InputError(fmt::format("curving: {} wheelset wheel pairs: expected none or one per "
+                                 "wheelset of vehicle \"{}\" ({})",
+                                 p.wheels.size(), p.vehicle.name, p.vehicle.wheelsets()));
+  }
+  for (const WheelsetWheels& w : p.wheels) {
+    if (w.high.size() < 2 || w.low.size() < 2) {
+      throw InputError(fmt::format("curving: vehicle \"{}\": a wheelset's wheel profile is "
+                                   "empty: expected a wheel profile on each wheel",
+                                   p.vehicle.name));
+    }
+  }
 }
 
 }  // namespace
@@ -628,7 +645,9 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
   }
   auto contexts = [&](const ModelOptions& model) {
     std::vector<WheelsetContext> ctx(layout.wheelsets);
-    for (WheelsetContext& c : ctx) c = {&p, model, q0 + transfer, q0 - transfer, q0};
+    for (int i = 0; i < layout.wheelsets; ++i) {
+      ctx[i] = {&p, model, q0 + transfer, q0 - transfer, q0, p.wheels.empty() ? nullptr : &p.wheels[i]};
+    }
     return ctx;
   };
   const double unbalanced_N = axle_mass_kg * layout.wheelsets * out.unbalanced_acceleration_m_s2;

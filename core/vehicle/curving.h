@@ -103,6 +103,12 @@ struct CurvingOptions {
   static ModelOptions PredictorModel();
 };
 
+// The two wheels of one wheelset, each in its own rail's frame (the low wheel mirrored as the low
+// rail is, core/notation.md): worn wheels of one wheelset differ (wear co-evolution, issue 16).
+struct WheelsetWheels {
+  Profile high, low;
+};
+
 struct CurvingProblem {
   ContactSetup contact;  // materials, model (the solution's accuracy), tangential method, damage
   Profile high_rail;     // the right (outer) rail, its own frame, inclination applied
@@ -112,6 +118,9 @@ struct CurvingProblem {
   TrackSpec track;
   CurveSpec curve;
   VehicleSpec vehicle;
+  // Each wheelset's own wheels, from the front (one per wheelset); empty: vehicle.wheel_profile
+  // on every wheel.
+  std::vector<WheelsetWheels> wheels;
   double speed_m_s = 20.0;
   double friction = 0.3;
   CurvingOptions options;

@@ -51,7 +51,7 @@ extern "C" {
  * size this header writes. rw_api_version() gives the library's (major * 10000 + minor * 100 +
  * patch), for a check at run time. */
 #define RW_API_VERSION_MAJOR 1
-#define RW_API_VERSION_MINOR 0
+#define RW_API_VERSION_MINOR 1
 #define RW_API_VERSION_PATCH 0
 #define RW_API_VERSION \
   (RW_API_VERSION_MAJOR * 10000 + RW_API_VERSION_MINOR * 100 + RW_API_VERSION_PATCH)
@@ -192,6 +192,22 @@ RW_API rw_status rw_set_influence_constants(rw_problem* problem,
  * only it sets Nadal's limit of the flange-climb check. */
 RW_API rw_status rw_set_friction(rw_problem* problem, double friction);
 
+/* Since 1.1. The elastic-perfectly-plastic pressure limit of the normal solve (a scene's [model]
+ * pressure_limit / pressure_limit_MPa, docs/contact_plasticity.md): every cell's pressure is
+ * bounded by p_lim and the patch grows until it carries the load. RW_PRESSURE_LIMIT_NONE (the
+ * default, elastic; value_Pa NaN), RW_PRESSURE_LIMIT_HARDNESS (p_lim = the smaller hardness_Pa
+ * given to rw_set_materials; value_Pa NaN), RW_PRESSURE_LIMIT_VALUE (p_lim = value_Pa in
+ * [1e6, 1e12] Pa, the scene's 1 MPa to 1e6 MPa). The Hertz model has no cells to limit:
+ * rw_calculate then returns RW_ERROR_INPUT with the engine's message. */
+typedef int rw_pressure_limit;
+enum {
+  RW_PRESSURE_LIMIT_NONE = 0,
+  RW_PRESSURE_LIMIT_HARDNESS = 1,
+  RW_PRESSURE_LIMIT_VALUE = 2
+};
+RW_API rw_status rw_set_pressure_limit(rw_problem* problem, rw_pressure_limit kind,
+                                       double value_Pa);
+
 /* Wheel and track geometry. */
 typedef struct rw_geometry {
   size_t struct_size;
@@ -226,8 +242,8 @@ typedef struct rw_state {
   /* Motion (with RW_EFFECT_TANGENTIAL). */
   double speed_m_s;            /* > 0 */
   double pitch_velocity_rad_s; /* NaN: pure rolling at the nominal radius */
-  double lateral_velocity_m_s; /* toward +y */
-  double yaw_velocity_rad_s;   /* about +z */
+  double lateral_velocity_m_s; /* toward +y (wheelset: +Y of the track; mirrored for the left) */
+  double yaw_velocity_rad_s;   /* about +z (wheelset: against the curve's own -V curvature) */
   double longitudinal_force_N; /* NaN, or a prescribed total F_x instead of the pitch velocity */
   double curvature_per_m;      /* wheelset only: track curvature 1/R >= 0, curve to the left */
   /* Prescribed creepages with RW_STATE_CREEPAGE. */

@@ -15,9 +15,9 @@ namespace {
 
 TEST(ApiAbi, VersionNumbersArePinned) {
   EXPECT_EQ(RW_API_VERSION_MAJOR, 1);
-  EXPECT_EQ(RW_API_VERSION_MINOR, 0);
+  EXPECT_EQ(RW_API_VERSION_MINOR, 1);  // 1.1: rw_set_pressure_limit added
   EXPECT_EQ(RW_API_VERSION_PATCH, 0);
-  EXPECT_EQ(RW_API_VERSION, 10000);
+  EXPECT_EQ(RW_API_VERSION, 10100);
   EXPECT_EQ(rw_api_version(), RW_API_VERSION);  // the library is the header's
 }
 
@@ -53,6 +53,9 @@ TEST(ApiAbi, EnumValuesArePinned) {
   EXPECT_EQ(RW_EFFECT_COUPLING, 0x4u);
   EXPECT_EQ(RW_STATE_CREEPAGE, 0x1u);
   EXPECT_EQ(RW_WEAR_USFD, 3);
+  EXPECT_EQ(RW_PRESSURE_LIMIT_NONE, 0);
+  EXPECT_EQ(RW_PRESSURE_LIMIT_HARDNESS, 1);
+  EXPECT_EQ(RW_PRESSURE_LIMIT_VALUE, 2);
 }
 
 TEST(ApiAbi, ACProgramSolvesAsCppDoes) {

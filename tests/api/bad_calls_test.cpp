@@ -611,6 +611,31 @@ std::vector<BadCall> Table() {
         [spec](rw_problem* p) { return rw_set_profile_file(p, RW_BODY_RAIL, spec); });
   }
 
+  // --- The pressure limit (API 1.1).
+  add("null handle: set_pressure_limit", RW_ERROR_NULL_ARGUMENT, [](rw_problem*) {
+    return rw_set_pressure_limit(nullptr, RW_PRESSURE_LIMIT_NONE, NAN);
+  });
+  for (int kind : {-1, 3, 1000}) {
+    add("pressure limit kind " + std::to_string(kind), RW_ERROR_UNKNOWN_FLAG,
+        [kind](rw_problem* p) { return rw_set_pressure_limit(p, kind, NAN); });
+  }
+  for (double v : {double{NAN}, double{INFINITY}, -double{INFINITY}, 0.0, -1e9, 1e5, 2e12}) {
+    add("pressure limit value " + Num(v), RW_ERROR_INVALID_VALUE,
+        [v](rw_problem* p) { return rw_set_pressure_limit(p, RW_PRESSURE_LIMIT_VALUE, v); });
+  }
+  for (int kind : {RW_PRESSURE_LIMIT_NONE, RW_PRESSURE_LIMIT_HARDNESS}) {
+    add("pressure limit kind " + std::to_string(kind) + " with a value", RW_ERROR_INVALID_VALUE,
+        [kind](rw_problem* p) { return rw_set_pressure_limit(p, kind, 1e9); });
+  }
+  add("calculate: hardness limit without a hardness", RW_ERROR_CALL_ORDER, [](rw_problem* p) {
+    rw_set_pressure_limit(p, RW_PRESSURE_LIMIT_HARDNESS, NAN);
+    return rw_calculate(p);
+  });
+  add("calculate: pressure limit with the Hertz model", RW_ERROR_INPUT, [](rw_problem* p) {
+    rw_set_pressure_limit(p, RW_PRESSURE_LIMIT_VALUE, 1e9);
+    return rw_calculate(p);
+  });
+
   // --- Calls out of order.
   add(
       "calculate: nothing set", RW_ERROR_CALL_ORDER, [](rw_problem* p) { return rw_calculate(p); },

@@ -82,15 +82,8 @@ void ExpectSamePatch(const rw_patch& a, const PatchResult& p, const std::string&
   }
 }
 
-TEST_P(ApiParity, CApiEqualsTheCliBitForBit) {
-  const fs::path path = fs::path(RAILWEAR_SOURCE_DIR) / "examples" / GetParam();
-  const std::string text = Slurp(path);
-  if (text.find("shared/data") != std::string::npos &&
-      !fs::exists(fs::path(RAILWEAR_SHARED_DIR) / "data" / "profiles")) {
-    GTEST_SKIP() << GetParam() << " reads profiles from ../shared/data/profiles, which is absent ("
-                 << RAILWEAR_SHARED_DIR << ")";
-  }
-  const app::Scene scene = app::LoadScene(path.string());
+// The CLI's solve of `scene` against the C API set up from it, every patch and cell compared.
+void ExpectParity(const app::Scene& scene, const std::string& name) {
   const ContactCaseResult cli = SolveContactCase(app::ToContactCase(scene));
 
   rw_problem* p = nullptr;
@@ -123,7 +116,7 @@ TEST_P(ApiParity, CApiEqualsTheCliBitForBit) {
       a.struct_size = sizeof a;
       ASSERT_EQ(rw_get_patch(p, index, &a), RW_OK) << rw_last_error(p);
       EXPECT_EQ(a.wheel, static_cast<int>(w));
-      const std::string where = GetParam() + " patch " + std::to_string(index);
+      const std::string where = name + " patch " + std::to_string(index);
       ExpectSamePatch(a, patch, where);
       size_t n = 0;
       ASSERT_EQ(rw_get_cell_count(p, index, &n), RW_OK);
@@ -146,6 +139,38 @@ TEST_P(ApiParity, CApiEqualsTheCliBitForBit) {
   }
   EXPECT_EQ(index, count);
   rw_destroy(p);
+}
+
+TEST_P(ApiParity, CApiEqualsTheCliBitForBit) {
+  const fs::path path = fs::path(RAILWEAR_SOURCE_DIR) / "examples" / GetParam();
+  const std::string text = Slurp(path);
+  if (text.find("shared/data") != std::string::npos &&
+      !fs::exists(fs::path(RAILWEAR_SHARED_DIR) / "data" / "profiles")) {
+    GTEST_SKIP() << GetParam() << " reads profiles from ../shared/data/profiles, which is absent ("
+                 << RAILWEAR_SHARED_DIR << ")";
+  }
+  ExpectParity(app::LoadScene(path.string()), GetParam());
+}
+
+// rw_set_pressure_limit (API 1.1): no shipped contact example has a pressure limit, so the
+// gauge-corner example with one, as a scene's [model] pressure_limit_MPa or pressure_limit =
+// "hardness" sets it; a limit below the elastic p_max, so that it acts.
+TEST(ApiPressureLimit, CApiEqualsTheCliBitForBit) {
+  const fs::path path = fs::path(RAILWEAR_SOURCE_DIR) / "examples" / "rolling_gauge_corner.toml";
+  app::Scene scene = app::LoadScene(path.string());
+  const ContactCaseResult elastic = SolveContactCase(app::ToContactCase(scene));
+  ASSERT_FALSE(elastic.wheel.patches.empty());
+  double p_max = 0.0;
+  for (const PatchResult& patch : elastic.wheel.patches) p_max = std::max(p_max, patch.p_max_Pa);
+  scene.problem.pressure_limit = {PressureLimitKind::kValue, 0.8 * p_max};
+  ExpectParity(scene, "pressure_limit_MPa");
+  const ContactCaseResult limited = SolveContactCase(app::ToContactCase(scene));
+  for (const PatchResult& patch : limited.wheel.patches) {
+    EXPECT_LE(patch.p_max_Pa, 0.8 * p_max * (1.0 + 1e-12));  // the limit acts
+  }
+  scene.problem.pressure_limit = {PressureLimitKind::kHardness, 0.0};
+  scene.problem.rail_material.hardness_Pa = 0.8 * p_max;
+  ExpectParity(scene, "pressure_limit = hardness");
 }
 
 // The same through the railwear executable itself: `railwear contact SCENE --json FILE` gives per

@@ -78,6 +78,22 @@ class PythonModule(unittest.TestCase):
         with self.assertRaises(railwear.Error):
             railwear.Problem(7)
 
+    def test_pressure_limit(self):
+        # A limit below the elastic peak caps every cell (the C API's rw_set_pressure_limit).
+        p = railwear.Problem()
+        p.set_profile_file(railwear.BODY_WHEEL, "circle:300")
+        p.set_profile_file(railwear.BODY_RAIL, "circle:300")
+        p.set_model(kind=railwear.MODEL_HALFSPACE, accuracy=railwear.ACCURACY_DRAFT)
+        p.set_state(vertical_force_N=50e3)
+        p.calculate()
+        elastic = p.get_patch(0)["p_max_Pa"]
+        p.set_pressure_limit(railwear.PRESSURE_LIMIT_VALUE, 0.8 * elastic)
+        p.calculate()
+        self.assertLessEqual(p.get_cells(0)["pressure_Pa"].max(), 0.8 * elastic * (1 + 1e-12))
+        with self.assertRaises(railwear.Error) as e:
+            p.set_pressure_limit(railwear.PRESSURE_LIMIT_VALUE)  # no value
+        self.assertEqual(e.exception.status_name, "RW_ERROR_INVALID_VALUE")
+
     def test_accumulate(self):
         p = railwear.Problem()
         p.set_profile_file(railwear.BODY_WHEEL, "builtin:S1002")

@@ -115,6 +115,17 @@ inline void SetUpFromScene(rw_problem* p, const app::Scene& scene) {
   }
   RW_EXPECT_OK(p, rw_set_influence_constants(p, &k));
   if (scene.friction) RW_EXPECT_OK(p, rw_set_friction(p, *scene.friction));
+  switch (problem.pressure_limit.kind) {
+    case PressureLimitKind::kNone:
+      break;
+    case PressureLimitKind::kHardness:
+      RW_EXPECT_OK(p, rw_set_pressure_limit(p, RW_PRESSURE_LIMIT_HARDNESS, NAN));
+      break;
+    case PressureLimitKind::kValue:
+      RW_EXPECT_OK(p, rw_set_pressure_limit(p, RW_PRESSURE_LIMIT_VALUE,
+                                            problem.pressure_limit.value_Pa));
+      break;
+  }
 
   rw_geometry g{};
   g.struct_size = sizeof g;

@@ -197,12 +197,18 @@ std::vector<CorpusCase> Corpus() {
                "wear s.toml --db w.sqlite",
                2,
                {"s.toml:30:", "key 'traffic[0].wheel_wear.hardness_MPa' is missing", "archard"}});
-  c.push_back({"wheel_wear_on_a_vehicle",
+  c.push_back({"wheel_population_on_a_vehicle",
                {{"s.toml", std::string(kWheelsetCurveScene) +
-                               "wheel_wear = { distance_per_pass_m = 100, grade = \"R7\" }\n"}},
+                               "wheel_population = [ { profile = \"builtin:S1002\" } ]\n"}},
                "wear s.toml --db w.sqlite",
                2,
-               {"s.toml:31:", "key 'traffic[0].wheel_wear'", "vehicle entry"}});
+               {"s.toml:31:", "key 'traffic[0].wheel_population'", "vehicle entry"}});
+  c.push_back({"wheel_wear_on_a_vehicle_negative_distance",
+               {{"s.toml", std::string(kWheelsetCurveScene) +
+                               "wheel_wear = { distance_per_pass_m = -1, grade = \"R7\" }\n"}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"s.toml:31:", "key 'traffic[0].wheel_wear.distance_per_pass_m' = -1", "> 0"}});
   c.push_back({"wheel_grade_unknown",
                {{"s.toml", Replace(wear, "wheel = { E_MPa = 210000, nu = 0.28 }",
                                    "wheel = { grade = \"R9\" }")}},

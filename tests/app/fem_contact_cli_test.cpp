@@ -77,7 +77,7 @@ TEST_F(FemContactCliTest, BadContactKeysNameFileLineKeyAndExpectation) {
   EXPECT_TRUE(Contains(ConfigError(std::string(kHead) + "case = \"wheel_in_groove\"\n"
                                                         "mesh_sizes_mm = []\n"),
                        "key 'experiment[0].mesh_sizes_mm' = []: expected a non-empty array of "
-                       "element sizes in mm, each > 0"));
+                       "element sizes in mm, each in [0.005, 1000]"));
   EXPECT_TRUE(Contains(ConfigError(std::string(kHead) + "case = \"wheel_in_groove\"\n"
                                                         "load_N = -5\n"),
                        "key 'experiment[0].load_N' = -5: expected a number > 0"));

@@ -144,6 +144,55 @@ TEST_F(FemReferenceTest, BadConfigsNameFileLineKeyAndExpectation) {
   EXPECT_TRUE(Contains(ConfigError("[fem\n"), "bad.toml:1:5: TOML syntax error"));
 }
 
+// Issue 17: every numeric key has a range the mesher and solver bear, and a mesh estimated too
+// large is refused before gmsh runs (exit 2, file:line, the keys to change), in a fraction of a
+// second where the run would take hours and tens of GB.
+TEST_F(FemReferenceTest, OutOfRangeKeysAndOversizedMeshesExitTwoBeforeMeshing) {
+  const std::string head = "[[experiment]]\nname = \"a\"\nbody = \"flat\"\n";
+  struct Case {
+    std::string config, expected;
+  };
+  const std::vector<Case> cases = {
+      {"[fem]\nmesh_size_at_load_mm = 0.001\n" + head,
+       "key 'fem.mesh_size_at_load_mm' = 0.001: expected a number in [0.005, 1000]"},
+      {"[fem]\nmax_element_mm = 1e308\n" + head, "key 'fem.max_element_mm' = 1e+308"},
+      {"[fem]\njobs = 100000\n" + head, "key 'fem.jobs' = 100000: expected an integer in [1, 256]"},
+      {"[fem]\ntimeout_s = 1e300\n" + head, "key 'fem.timeout_s'"},
+      {"[[experiment]]\nname = \"a\"\nbody = \"convex\"\nradius_mm = 1e-9\n",
+       "key 'experiment[0].radius_mm' = 1e-09: expected a number in [0.1, 10000]"},
+      {head + "length_mm = 1e9\n",
+       "key 'experiment[0].length_mm' = 1000000000: expected a number in [1, 10000]"},
+      {"[[experiment]]\nname = \"c\"\nkind = \"contact\"\ncase = \"wheel_in_groove\"\n"
+       "load_N = 1e30\n",
+       "key 'experiment[0].load_N' = 1e+30: expected a number in [1, 10000000]"},
+      {"[[experiment]]\nname = \"c\"\nkind = \"contact\"\ncase = \"wheel_in_groove\"\n"
+       "mesh_sizes_mm = [0.7, 0.0001]\n",
+       "key 'experiment[0].mesh_sizes_mm' = [0.7, 0.0001]: expected a non-empty array of element "
+       "sizes in mm, each in [0.005, 1000]"},
+      // In range, but the mesh would be enormous: refused by the estimate, naming the keys.
+      {"[fem]\nmesh_size_at_load_mm = 0.005\nmesh_growth = 0.01\n" + head,
+       "bad.toml:4: experiment 'a': the mesh would have about"},
+      {"[fem]\nmesh_size_at_load_mm = 0.005\nmesh_growth = 0.01\n" + head,
+       "expected a coarser mesh: a larger mesh_size_at_load_mm, mesh_growth or max_element_mm"},
+      {"[[experiment]]\nname = \"c\"\nkind = \"contact\"\ncase = \"wheel_in_groove\"\n"
+       "mesh_sizes_mm = [0.7, 0.05]\n",
+       "bad.toml:1: experiment 'c': the mesh level of 0.05 mm would have about"},
+  };
+  for (const Case& c : cases) {
+    EXPECT_TRUE(Contains(ConfigError(c.config), c.expected)) << c.config << ConfigError(c.config);
+  }
+  // Through the command: exit 2 before any program runs.
+  Write("big.toml", "[fem]\nmesh_size_at_load_mm = 0.005\nmesh_growth = 0.01\n" + head);
+  const Outcome o = Run("fem-reference big.toml");
+  EXPECT_EQ(o.exit_code, 2) << o.err;
+  EXPECT_TRUE(Contains(o.err,
+                       "railwear: error: big.toml:4: experiment 'a': the mesh would have "
+                       "about"))
+      << o.err;
+  // The documented meshes pass (the example configs are read by ExampleConfigsAnd...).
+  EXPECT_EQ(ConfigError(kTinyConfig), "");
+}
+
 TEST_F(FemReferenceTest, BadConfigExitsWith2) {
   Write("bad.toml", "[[experiment]]\nname = \"a\"\nbody = \"round\"\n");
   const Outcome o = Run("fem-reference bad.toml");

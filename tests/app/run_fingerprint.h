@@ -53,7 +53,8 @@ inline std::string RunFingerprint(const fs::path& db, const std::string& name = 
       distributions(s.low_rail->distributions);
     }
     for (const WheelStepRecord& w : s.wheels) {  // co-evolution (issue 16)
-      os << "wheel " << w.traffic_index << ' ' << w.name << ' ' << w.worn_area_mm2 << ' '
+      os << "wheel " << w.traffic_index << (w.wheel != 0 ? ":" + std::to_string(w.wheel) : "")
+         << ' ' << w.name << ' ' << w.worn_area_mm2 << ' '
          << w.max_depth_mm << ' ' << w.max_depth_y_mm << ' ' << w.smoothing_area_error << ' '
          << w.flange_height_mm.value_or(-1.0) << ' ' << w.flange_thickness_mm.value_or(-1.0) << ' '
          << w.flange_slope_mm.value_or(-1.0) << '\n';

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "profiles_db/profile_store.h"
 #include "tests/app/cli_runner.h"
 #include "tests/app/wear_scenes.h"
 #include "tests/sqlite_test_support.h"
@@ -46,7 +47,7 @@ TEST_F(CliFixture, AnOverloadedStudyStoresAndShowsItsWarnings) {
   const Outcome js = Run("history --db s.sqlite steps 'small study' --json");
   ASSERT_EQ(js.exit_code, 0) << js.err;
   const nlohmann::json j = nlohmann::json::parse(js.out);
-  EXPECT_EQ(j["schema_version"], 8);
+  EXPECT_EQ(j["schema_version"], ProfileStore::kSchemaVersion);
   ASSERT_EQ(j["steps"].size(), 3u);
   EXPECT_TRUE(j["steps"][0]["warnings"].empty());
   for (int k : {1, 2}) {
@@ -78,7 +79,8 @@ TEST_F(CliFixture, ASchema7StudyReadsAsItIsAndMigratesOnWrite) {
   Write("study.toml", OverloadedStudy());
   ASSERT_EQ(Run("wear study.toml --db s.sqlite --steps 1").exit_code, 0);
   // Schema 7: no step_warnings table (what railwear before this change wrote).
-  RawExec((dir_ / "s.sqlite").string(), "DROP TABLE step_warnings; PRAGMA user_version = 7;");
+  RawExec((dir_ / "s.sqlite").string(),
+          "DROP TABLE step_warnings; DROP TABLE run_failures; PRAGMA user_version = 7;");
   const Outcome table = Run("history --db s.sqlite steps 'small study'");
   ASSERT_EQ(table.exit_code, 0) << table.err;
   EXPECT_FALSE(Contains(table.err, "warning")) << table.err;
@@ -90,7 +92,7 @@ TEST_F(CliFixture, ASchema7StudyReadsAsItIsAndMigratesOnWrite) {
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   const nlohmann::json after =
       nlohmann::json::parse(Run("history --db s.sqlite steps 'small study' --json").out);
-  EXPECT_EQ(after["schema_version"], 8);
+  EXPECT_EQ(after["schema_version"], ProfileStore::kSchemaVersion);
   EXPECT_TRUE(after["steps"][1]["warnings"].empty());  // stored under schema 7
   ASSERT_EQ(after["steps"][2]["warnings"].size(), 2u);
   EXPECT_EQ(after["steps"][2]["warnings"][1]["kind"], "hardness");

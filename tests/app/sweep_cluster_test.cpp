@@ -193,6 +193,33 @@ TEST_F(SweepClusterTest, MpiRankKilledThenRunAgainGivesTheSerialStudy) {
   EXPECT_EQ(StudyFingerprint("runs.sqlite"), reference);
 }
 
+// A run that fails under MPI and records its failure (issue 19; kFailingSamplePlan's 0.0037 mm
+// cell) is a result: rank 0 merges the two complete runs and the failed one, names it and exits
+// 3, as the serial `sweep --merge` does.
+TEST_F(SweepClusterTest, MpiRecordedRunFailureIsMergedAndNamedWithExitThree) {
+  Write("fbase.toml", FailingSampleBase());
+  Write("fail.toml", kFailingSamplePlan);
+  const Outcome o =
+      Run("sweep fail.toml --mpi", std::string(kMpiEnv) + " mpirun -n 2 --oversubscribe");
+  EXPECT_EQ(o.exit_code, 3) << o.err;
+  EXPECT_TRUE(Contains(o.out, "failed run: line ")) << o.out;
+  EXPECT_TRUE(Contains(o.out, "model.cell_mm[0]=0.0036762220077216625")) << o.out;
+  EXPECT_TRUE(Contains(o.err, "1 of 3 run(s) failed and are merged into")) << o.err;
+  const ProfileStore study = ProfileStore::OpenReadOnly((dir_ / "fail_runs.sqlite").string());
+  ASSERT_EQ(study.Runs().size(), 3u);
+  int aborted = 0;
+  for (const RunInfo& run : study.Runs()) {
+    if (run.state == RunState::kAborted) {
+      ++aborted;
+      EXPECT_TRUE(
+          Contains(study.FindRunFailure(run.id)->message, "the contact solution did not converge"));
+    } else {
+      EXPECT_EQ(run.state, RunState::kComplete) << run.name;
+    }
+  }
+  EXPECT_EQ(aborted, 1);
+}
+
 // A line that fails under MPI (its database file is not SQLite) does not stop the others: rank 0
 // names it with its rank and exit code, merges nothing and exits 1; with the file removed,
 // mpirun again runs only that line and merges the serial study.

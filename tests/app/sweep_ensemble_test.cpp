@@ -8,9 +8,10 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
-#include <sstream>
 #include <regex>
+#include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
@@ -329,6 +330,196 @@ TEST_F(SweepEnsembleTest, LifeOnConstantWearRatesIsLimitOverRate) {
   const Outcome cls = Run("history --db study.sqlite life --plan unknown.toml");
   EXPECT_EQ(cls.exit_code, 2);
   EXPECT_TRUE(Contains(cls.err, "key 'match' = \"track.radius_m=600\"")) << cls.err;
+}
+
+// Both rails of a curve (issue 19): a run's life to a limit is the earlier of its high and low
+// rail's, and the output names the rail that governs. Constant wear rates on both rails
+// (W2 = r MGT, stored at uneven steps to 3 MGT), limit W2 = 0.6 mm, by hand:
+//   run    high rate  low rate  high life  low life  life  governs
+//   a      0.30       0.40      2.0        1.5       1.5   low
+//   b      0.50       0.20      1.2        3.0       1.2   high
+//   c      0.10       0.10      -          -         -     - (0.3 mm at 3 MGT: not reached)
+//   d      0.25       0.25      2.4        2.4       2.4   both
+// The class's median: sorted 1.2, 1.5, 2.4, inf; rank 1.5: (1.5 + 2.4) / 2 = 1.95 MGT.
+TEST_F(SweepEnsembleTest, LifeOfBothRailsIsTheEarlierAndNamesTheGoverningRail) {
+  const std::vector<double> mgt = {0.0, 0.5, 1.1, 1.7, 2.6, 3.0};
+  const std::vector<std::tuple<std::string, double, double>> runs = {
+      {"a", 0.30, 0.40}, {"b", 0.50, 0.20}, {"c", 0.10, 0.10}, {"d", 0.25, 0.25}};
+  {
+    ProfileStore db = ProfileStore::Open((dir_ / "rails.sqlite").string());
+    const Profile rail = MakeUic60();
+    for (const auto& [name, high, low] : runs) {
+      RunInfo info;
+      info.name = name;
+      info.program_version = "test";
+      info.scene_text = "two rails " + name;
+      const int64_t run = db.CreateRun(info);
+      for (size_t k = 0; k < mgt.size(); ++k) {
+        StepRecord step;
+        step.step = static_cast<int>(k);
+        step.mgt = mgt[k];
+        step.passes = mgt[k] * 62500.0;
+        step.w2_mm = high * mgt[k];
+        step.profile = rail;
+        RailStepRecord l;
+        l.w2_mm = low * mgt[k];
+        l.profile = rail;
+        step.low_rail = l;
+        db.AppendStep(run, step);
+      }
+      db.SetRunState(run, RunState::kComplete);
+    }
+  }
+  const Outcome o = Run("history --db rails.sqlite life --rail both --limit w2_mm=0.6 --json");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(o.out);
+  ASSERT_EQ(j["runs"].size(), 4u);
+  // Linear between stored steps on linear histories: exact up to rounding.
+  constexpr double kRounding = 1e-12;
+  const std::vector<double> hand = {1.5, 1.2, INFINITY, 2.4};
+  const std::vector<std::string> governs = {"low", "high", "", "both"};
+  for (size_t r = 0; r < 4; ++r) {
+    const nlohmann::json& run = j["runs"][r];
+    EXPECT_EQ(run["run"], std::get<0>(runs[r]));
+    if (std::isfinite(hand[r])) {
+      EXPECT_NEAR(run["mgt"][0].get<double>(), hand[r], kRounding) << r;
+      EXPECT_EQ(run["governing_rail"][0], governs[r]) << r;
+    } else {
+      EXPECT_TRUE(run["mgt"][0].is_null());
+      EXPECT_TRUE(run["governing_rail"][0].is_null());
+    }
+  }
+  EXPECT_NEAR(j["classes"][0]["mgt"][0]["p50"].get<double>(), 1.95, kRounding);
+  EXPECT_EQ(j["classes"][0]["governing_rail"][0], "high 1, low 1, both 1");
+  // One rail at a time: run a's high rail alone lasts 2.0 MGT, its low rail 1.5.
+  const Outcome high = Run("history --db rails.sqlite life --limit w2_mm=0.6 --json");
+  ASSERT_EQ(high.exit_code, 0) << high.err;
+  EXPECT_NEAR(nlohmann::json::parse(high.out)["runs"][0]["mgt"][0].get<double>(), 2.0, kRounding);
+  EXPECT_FALSE(nlohmann::json::parse(high.out)["runs"][0].contains("governing_rail"));
+  const Outcome low = Run("history --db rails.sqlite life --rail low --limit w2_mm=0.6 --json");
+  ASSERT_EQ(low.exit_code, 0) << low.err;
+  EXPECT_NEAR(nlohmann::json::parse(low.out)["runs"][0]["mgt"][0].get<double>(), 1.5, kRounding);
+  // The table names the rail per run and counts it per class.
+  const Outcome table = Run("history --db rails.sqlite life --rail both --limit w2_mm=0.6");
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_TRUE(Contains(table.out, "governing_rail")) << table.out;
+  EXPECT_TRUE(Contains(table.out, "high 1, low 1, both 1")) << table.out;
+  // bands take one rail; a one-rail study cannot give both.
+  const Outcome bands = Run("history --db rails.sqlite bands --rail both");
+  EXPECT_EQ(bands.exit_code, 2);
+  EXPECT_TRUE(Contains(bands.err, "--rail 'both'")) << bands.err;
+  BuildStudy({0.0, 1.0}, [](int, double m) { return m; });
+  const Outcome one = Run("history --db study.sqlite life --rail both --limit w2_mm=0.6");
+  EXPECT_EQ(one.exit_code, 2);
+  EXPECT_TRUE(Contains(one.err, "has one rail only; expected two-rail runs")) << one.err;
+}
+
+// A real failing sample (issue 19; kFailingSamplePlan): the 0.0037 mm cell's run fails at once
+// ("the contact solution did not converge ... choose ... a larger model.cell_mm"), the other
+// two complete in about a second each. The sweep goes on past it and exits 3 naming it; --merge
+// merges the two complete runs and the failed one with its error and exits 3; bands and life use
+// the two and name the failed one.
+TEST_F(SweepEnsembleTest, AFailedSampleIsRecordedMergedNamedAndLeftOutOfBandsAndLife) {
+  Write("fbase.toml", FailingSampleBase());
+  Write("fail.toml", kFailingSamplePlan);
+  // The design: exactly one sample below 0.01 mm (fails), the others at 1 mm or more (fast).
+  const app::SweepPlan plan = app::LoadSweepPlan((dir_ / "fail.toml").string());
+  int failing = -1;
+  for (const app::SweepLine& line : plan.lines) {
+    const double cell = std::stod(line.overrides[1].value);
+    if (cell < 0.01) {
+      ASSERT_EQ(failing, -1);
+      failing = line.index;
+    } else {
+      ASSERT_GE(cell, 1.0);
+    }
+  }
+  ASSERT_GE(failing, 0);
+  const app::SweepLine& bad = plan.lines[static_cast<size_t>(failing)];
+  const std::string cell_value = "model.cell_mm[0]=" + bad.overrides[1].value;
+  const std::string error = "the contact solution did not converge";
+
+  // The sweep runs every line, names the failed one (id, values, error) and exits 3.
+  const Outcome sweep = Run("sweep fail.toml");
+  EXPECT_EQ(sweep.exit_code, 3) << sweep.err;
+  EXPECT_TRUE(Contains(sweep.err, "railwear: warning: sweep fail.toml: 1 of 3 run(s) failed"))
+      << sweep.err;
+  EXPECT_TRUE(Contains(sweep.err, "line " + std::to_string(failing) + " (" + bad.id + "; "))
+      << sweep.err;
+  EXPECT_TRUE(Contains(sweep.err, cell_value)) << sweep.err;
+  EXPECT_TRUE(Contains(sweep.err, error)) << sweep.err;
+  EXPECT_TRUE(Contains(sweep.err, "choose a coarser model.accuracy or a larger model.cell_mm"));
+  {
+    const ProfileStore line_db =
+        ProfileStore::OpenReadOnly((dir_ / "fail_runs" / (bad.id + ".sqlite")).string());
+    const RunInfo run = *line_db.FindRun(bad.id);
+    EXPECT_EQ(run.state, RunState::kAborted);
+    ASSERT_TRUE(line_db.FindRunFailure(run.id).has_value());
+    EXPECT_TRUE(Contains(line_db.FindRunFailure(run.id)->message, error));
+  }
+  // The failing line alone: exit 1, as `wear`.
+  EXPECT_EQ(Run("sweep fail.toml --index " + std::to_string(failing)).exit_code, 1);
+
+  // The merge takes the complete runs and the failed one (with its error), names it, exits 3;
+  // merging again changes nothing and says the same.
+  for (int pass = 0; pass < 2; ++pass) {
+    const Outcome merge = Run("sweep fail.toml --merge");
+    EXPECT_EQ(merge.exit_code, 3) << merge.err;
+    EXPECT_TRUE(
+        Contains(merge.out, "failed run: line " + std::to_string(failing) + " (" + bad.id + "; "))
+        << merge.out;
+    EXPECT_TRUE(Contains(merge.out, error)) << merge.out;
+    EXPECT_TRUE(Contains(merge.err, "1 of 3 run(s) failed and are merged into")) << merge.err;
+  }
+  {
+    const ProfileStore study = ProfileStore::OpenReadOnly((dir_ / "fail_runs.sqlite").string());
+    ASSERT_EQ(study.Runs().size(), 3u);
+    const RunInfo run = *study.FindRun(bad.id);
+    EXPECT_EQ(run.state, RunState::kAborted);
+    EXPECT_TRUE(Contains(study.FindRunFailure(run.id)->message, error));
+  }
+
+  // bands: the two complete runs; the failed one named in the JSON, the table and on stderr.
+  const Outcome bands =
+      Run("history --db fail_runs.sqlite bands --plan fail.toml --measures worn_area_mm2 --format "
+          "json");
+  ASSERT_EQ(bands.exit_code, 0) << bands.err;
+  const nlohmann::json j = nlohmann::json::parse(bands.out);
+  EXPECT_EQ(j["classes"][0]["runs"].size(), 2u);
+  ASSERT_EQ(j["failed_runs"].size(), 1u);
+  EXPECT_EQ(j["failed_runs"][0]["run"], bad.id);
+  EXPECT_TRUE(Contains(j["failed_runs"][0]["values"].get<std::string>(), cell_value));
+  EXPECT_TRUE(Contains(j["failed_runs"][0]["error"].get<std::string>(), error));
+  EXPECT_TRUE(Contains(bands.err,
+                       "railwear: warning: 1 run(s) failed and are left out of the "
+                       "bands"))
+      << bands.err;
+  const Outcome table =
+      Run("history --db fail_runs.sqlite bands --plan fail.toml --measures worn_area_mm2");
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_TRUE(Contains(table.out, "Failed runs (left out of the bands)")) << table.out;
+  EXPECT_TRUE(Contains(table.out, bad.id)) << table.out;
+  // Without --plan: the complete runs, the failed one named by its run name.
+  const Outcome all =
+      Run("history --db fail_runs.sqlite bands --measures worn_area_mm2 --format csv");
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  EXPECT_TRUE(Contains(all.err, "run '" + bad.id + "': ")) << all.err;
+  EXPECT_FALSE(Contains(all.out, bad.id));  // the CSV stays a table of numbers
+
+  // life: per run and per class over the two complete runs; the class says 1 failed.
+  const Outcome life = Run("history --db fail_runs.sqlite life --plan fail.toml --json");
+  ASSERT_EQ(life.exit_code, 0) << life.err;
+  const nlohmann::json l = nlohmann::json::parse(life.out);
+  EXPECT_EQ(l["runs"].size(), 2u);
+  EXPECT_EQ(l["classes"][0]["runs"], 2);
+  EXPECT_EQ(l["classes"][0]["failed"], 1);
+  ASSERT_EQ(l["failed_runs"].size(), 1u);
+  EXPECT_EQ(l["failed_runs"][0]["run"], bad.id);
+  const Outcome life_table = Run("history --db fail_runs.sqlite life --plan fail.toml");
+  ASSERT_EQ(life_table.exit_code, 0) << life_table.err;
+  EXPECT_TRUE(Contains(life_table.out, "Failed runs (no life: left out of the percentiles)"))
+      << life_table.out;
+  EXPECT_TRUE(Contains(life_table.err, "left out of the life percentiles")) << life_table.err;
 }
 
 // A small real ensemble: 3 samples of the wear coefficient, swept, merged, banded: the band's

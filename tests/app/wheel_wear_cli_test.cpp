@@ -145,6 +145,59 @@ TEST_F(WheelWearCliTest, StoppedAndResumedRunIsBitIdentical) {
   EXPECT_EQ(RunFingerprint(dir_ / "cut.sqlite"), whole);
 }
 
+// A vehicle entry's wheels wear too (issue 16): kWheelsetCurveScene's wheelset with R8 wheels
+// over 300 m per pass, 3 steps of at most 0.02 mm. Every step stores both rails and both wheels
+// of the wheelset (wheel_steps.wheel 1 high, 2 low), `history steps --wheel` finds each by name
+// or INDEX:WHEEL, and a run stopped after one step and resumed is the uninterrupted one, bit for
+// bit.
+TEST_F(WheelWearCliTest, VehicleWheelsCoEvolveAndResumeBitIdentically) {
+  std::string s = kWheelsetCurveScene;
+  s.replace(s.find("wheel = { E_MPa = 210000, nu = 0.28 }"), 37, "wheel = { grade = \"R8\" }");
+  s.replace(s.find("total_passes = 1e5"), 18, "total_passes = 1e5\nmax_depth_per_step_mm = 0.02");
+  s += "name = \"wheelset\"\nwheel_wear = { distance_per_pass_m = 300.0 }\n";
+  Write("study.toml", s);
+  const Outcome whole = Run("wear study.toml --db whole.sqlite --threads 1 --steps 3");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_TRUE(Contains(whole.err, "wheel of 'wheelset / wheelset 0 high': max depth"));
+  EXPECT_TRUE(Contains(whole.out, "wheel of 'wheelset / wheelset 0 low' (traffic entry 0)"));
+  const Outcome first = Run("wear study.toml --db cut.sqlite --threads 1 --steps 1");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const Outcome rest = Run("wear study.toml --db cut.sqlite --threads 1 --steps 2 --resume");
+  ASSERT_EQ(rest.exit_code, 0) << rest.err;
+  const std::string fingerprint = RunFingerprint(dir_ / "whole.sqlite", "wheelset on R1500");
+  EXPECT_TRUE(Contains(fingerprint, "wheel 0:2 wheelset / wheelset 0 low"));
+  EXPECT_EQ(RunFingerprint(dir_ / "cut.sqlite", "wheelset on R1500"), fingerprint);
+
+  const ProfileStore store = ProfileStore::OpenReadOnly((dir_ / "whole.sqlite").string());
+  const RunInfo info = *store.FindRun("wheelset on R1500");
+  ASSERT_EQ(*store.LastStep(info.id), 3);
+  for (int k = 0; k <= 3; ++k) {
+    SCOPED_TRACE(k);
+    const StepRecord step = store.LoadStep(info.id, k);
+    ASSERT_TRUE(step.low_rail.has_value());
+    ASSERT_EQ(step.wheels.size(), 2u);
+    EXPECT_EQ(step.wheels[0].wheel, 1);
+    EXPECT_EQ(step.wheels[1].wheel, 2);
+    if (k == 0) continue;
+    const StepRecord before = store.LoadStep(info.id, k - 1);
+    EXPECT_NE(step.profile.points(), before.profile.points());
+    EXPECT_NE(step.low_rail->profile.points(), before.low_rail->profile.points());
+    for (int w = 0; w < 2; ++w) {
+      EXPECT_NE(step.wheels[w].profile.points(), before.wheels[w].profile.points()) << w;
+      EXPECT_GT(step.wheels[w].worn_area_mm2, before.wheels[w].worn_area_mm2) << w;
+    }
+  }
+  const Outcome by_name =
+      Run("history --db whole.sqlite steps 'wheelset on R1500' --wheel 'wheelset / wheelset 0 low'");
+  ASSERT_EQ(by_name.exit_code, 0) << by_name.err;
+  const Outcome by_index = Run("history --db whole.sqlite steps 'wheelset on R1500' --wheel 0:2");
+  ASSERT_EQ(by_index.exit_code, 0) << by_index.err;
+  EXPECT_EQ(by_name.out, by_index.out);
+  const Outcome unknown = Run("history --db whole.sqlite steps 'wheelset on R1500' --wheel 0");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_TRUE(Contains(unknown.err, "0:1 ('wheelset / wheelset 0 high')"));
+}
+
 // The measured wheels next to the checkout (../shared/data/profiles, never copied into the
 // repository); empty when they are absent.
 std::string SharedProfiles() {

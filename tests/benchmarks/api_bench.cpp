@@ -6,6 +6,14 @@
 //     accuracy 0 draft .. 3 fine. The counter `patches` shows the two.
 //   BM_TreadFastsim/<model>: the same wheel on its tread (-10.4 mm, 5 mrad of yaw), the cheapest
 //     rolling call: draft accuracy, model 1 halfspace (planar Boussinesq grid), 4 auto.
+//   The handle keeps the placed geometry of its last call and reuses it at the same pose
+//   (core/contact/placement_cache.h), as in the rows above (one state, called again and again).
+//   Two rows show what that reuse is worth in a time loop:
+//   BM_TreadFastsimNewVelocity/<model>: the same position, a new lateral velocity every call
+//     (an implicit integrator's creep-damping derivative, or a step re-solved at one position):
+//     the placement is reused.
+//   BM_TreadFastsimNewPosition/<model>: a new lateral position every call (0.1 um apart, the
+//     next time step of a co-simulation): every call places the wheel again.
 // Run: build/tests/benchmarks/api_bench --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -26,9 +34,13 @@ rw_state State(double lateral_m, double yaw_rad) {
   return s;
 }
 
-void RunSteps(benchmark::State& state, rw_problem* p, const rw_state& s) {
+// Calls `next(k)` for the k-th call's state, then rw_set_state and rw_calculate.
+template <class Next>
+void RunChangingSteps(benchmark::State& state, rw_problem* p, Next next) {
   int patches = 0;
+  long k = 0;
   for (auto _ : state) {
+    const rw_state s = next(k++);
     rw_set_state(p, &s);
     if (rw_calculate(p) != RW_OK) {
       state.SkipWithError(rw_last_error(p));
@@ -39,6 +51,11 @@ void RunSteps(benchmark::State& state, rw_problem* p, const rw_state& s) {
   }
   state.counters["patches"] = patches;
   rw_destroy(p);
+}
+
+// The same state every call.
+void RunSteps(benchmark::State& state, rw_problem* p, const rw_state& s) {
+  RunChangingSteps(state, p, [&](long) { return s; });
 }
 
 void BM_GaugeCornerWheel(benchmark::State& state) {
@@ -56,6 +73,32 @@ void BM_TreadFastsim(benchmark::State& state) {
       State(-10.4e-3, 5e-3));
 }
 BENCHMARK(BM_TreadFastsim)
+    ->Arg(RW_MODEL_HALFSPACE)
+    ->Arg(RW_MODEL_AUTO)
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_TreadFastsimNewVelocity(benchmark::State& state) {
+  RunChangingSteps(
+      state,
+      railwear::test::MakeRollingS1002Wheel(static_cast<int>(state.range(0)), RW_ACCURACY_DRAFT),
+      [](long k) {
+        rw_state s = State(-10.4e-3, 5e-3);
+        s.lateral_velocity_m_s = 1e-3 * static_cast<double>(k % 16);
+        return s;
+      });
+}
+BENCHMARK(BM_TreadFastsimNewVelocity)
+    ->Arg(RW_MODEL_HALFSPACE)
+    ->Arg(RW_MODEL_AUTO)
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_TreadFastsimNewPosition(benchmark::State& state) {
+  RunChangingSteps(
+      state,
+      railwear::test::MakeRollingS1002Wheel(static_cast<int>(state.range(0)), RW_ACCURACY_DRAFT),
+      [](long k) { return State(-10.4e-3 + 1e-7 * static_cast<double>(k % 16), 5e-3); });
+}
+BENCHMARK(BM_TreadFastsimNewPosition)
     ->Arg(RW_MODEL_HALFSPACE)
     ->Arg(RW_MODEL_AUTO)
     ->Unit(benchmark::kMicrosecond);

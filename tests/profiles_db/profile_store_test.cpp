@@ -243,11 +243,10 @@ TEST(ProfileStore, CreatesSchemaInMemory) {
       db.Query("SELECT name FROM sqlite_schema WHERE type = 'table' ORDER BY name");
   std::vector<std::string> names;
   for (const auto& row : tables.rows) names.push_back(row[0]);
-  EXPECT_EQ(names,
-            (std::vector<std::string>{"calibration_inputs", "calibrations", "curving_starts",
-                                      "distributions", "load_cases", "low_rail_distributions",
-                                      "low_rail_steps", "meta", "profiles", "runs",
-                                      "step_warnings", "steps", "wheel_steps"}));
+  EXPECT_EQ(names, (std::vector<std::string>{
+                       "calibration_inputs", "calibrations", "curving_starts", "distributions",
+                       "load_cases", "low_rail_distributions", "low_rail_steps", "meta", "profiles",
+                       "run_failures", "runs", "step_warnings", "steps", "wheel_steps"}));
   EXPECT_EQ(db.Query("PRAGMA application_id").rows[0][0],
             std::to_string(ProfileStore::kApplicationId));
 }
@@ -525,7 +524,9 @@ TEST(ProfileStore, MigratesVersion6AndReadsItUnmigrated) {
     const int64_t run = db.CreateRun(TestRun("old"), TestStep(0));
     db.AppendStep(run, TestStep(1));
   }
-  RawExec(path, "DROP TABLE wheel_steps; DROP TABLE step_warnings; PRAGMA user_version = 6;");
+  RawExec(path,
+          "DROP TABLE wheel_steps; DROP TABLE step_warnings; DROP TABLE run_failures; "
+          "PRAGMA user_version = 6;");
   {
     const ProfileStore ro = ProfileStore::OpenReadOnly(path);
     EXPECT_EQ(ro.SchemaVersion(), 6);
@@ -548,6 +549,79 @@ TEST(ProfileStore, MigratesVersion6AndReadsItUnmigrated) {
   EXPECT_EQ(db.WheelSteps(run->id).size(), 1u);
 }
 
+// Schema 9 (issue 16, a vehicle entry's wheels wear): wheel_steps.wheel tells the wheels of one
+// entry apart (0 an entry's one wheel, 1 + 2 x wheelset + side a vehicle's); each round-trips bit
+// for bit and the same wheel twice in a step is refused. A schema-8 file (wheel_steps without the
+// column) reads as it is, every wheel as wheel 0, and a writing open rebuilds the table keeping
+// every row.
+TEST(ProfileStore, VehicleWheelsRoundTripAndVersion9ReadsUnmigrated) {
+  TempDir tmp;
+  const std::string path = tmp.File("v9.rwdb");
+  const Profile wheel({{-0.07, 0.0}, {-0.02, 1e-3}, {0.0, 1.0 / 3.0 * 1e-3}, {0.05, 2e-300}}, "w");
+  const Profile worn({{-0.07, -1e-6}, {-0.02, 1e-3}, {0.0, 1.0 / 7.0 * 1e-3}, {0.05, 0.0}}, "w");
+  {
+    ProfileStore db = ProfileStore::Open(path);
+    StepRecord zero = TestStep(0);
+    zero.wheels = {TestWheel(1, "freight", 0.0, 0.0, 0.0, 0.0, wheel, 32.5)};
+    const int64_t run = db.CreateRun(TestRun("old"), zero);
+    StepRecord one = TestStep(1);
+    one.wheels = {TestWheel(1, "freight", 0.125, 0.25, -0.5, 0.0, worn, 32.25)};
+    db.AppendStep(run, one);
+  }
+  // Back to schema 9's wheel_steps (MigrateTo7's table, rows kept).
+  RawExec(path, R"sql(
+CREATE TABLE wheel_steps_v8(
+  run_id INTEGER NOT NULL, step INTEGER NOT NULL,
+  traffic_index INTEGER NOT NULL CHECK (traffic_index >= 0), name TEXT NOT NULL,
+  worn_area_mm2 REAL NOT NULL, max_depth_mm REAL NOT NULL, max_depth_y_mm REAL NOT NULL,
+  smoothing_area_error REAL NOT NULL, sh_mm REAL, sd_mm REAL, qr_mm REAL,
+  n_points INTEGER NOT NULL, yz BLOB NOT NULL CHECK (length(yz) = 16 * n_points),
+  PRIMARY KEY (run_id, step, traffic_index),
+  FOREIGN KEY (run_id, step) REFERENCES steps(run_id, step) ON DELETE CASCADE);
+INSERT INTO wheel_steps_v8 SELECT run_id, step, traffic_index, name, worn_area_mm2, max_depth_mm,
+  max_depth_y_mm, smoothing_area_error, sh_mm, sd_mm, qr_mm, n_points, yz FROM wheel_steps;
+DROP TABLE wheel_steps;
+ALTER TABLE wheel_steps_v8 RENAME TO wheel_steps;
+PRAGMA user_version = 9;)sql");
+  {
+    const ProfileStore ro = ProfileStore::OpenReadOnly(path);
+    EXPECT_EQ(ro.SchemaVersion(), 9);
+    const int64_t run = ro.FindRun("old")->id;
+    const std::vector<WheelStepRecord> summaries = ro.WheelSteps(run);
+    ASSERT_EQ(summaries.size(), 2u);
+    EXPECT_EQ(summaries[1].wheel, 0);
+    EXPECT_EQ(summaries[1].worn_area_mm2, 0.125);
+    EXPECT_EQ(ro.LoadStep(run, 1).wheels.at(0).profile.points(), worn.points());
+    EXPECT_EQ(ro.LoadWheelProfile(run, 1, 1).points(), worn.points());
+  }
+  ProfileStore db = ProfileStore::Open(path);
+  EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
+  const int64_t run = db.FindRun("old")->id;
+  EXPECT_EQ(db.LoadWheelProfile(run, 1, 1, 0).points(), worn.points());  // kept, as wheel 0
+  StepRecord two = TestStep(2);
+  WheelStepRecord high = TestWheel(0, "coach / wheelset 1 high", 0.5, 0.25, 1.5, 0.0, worn);
+  high.wheel = 3;
+  WheelStepRecord low = TestWheel(0, "coach / wheelset 1 low", 0.25, 0.125, 1.5, 0.0, wheel);
+  low.wheel = 4;
+  two.wheels = {TestWheel(1, "freight", 0.25, 0.5, -0.5, 0.0, worn), low, high};
+  db.AppendStep(run, two);
+  const StepRecord back = db.LoadStep(run, 2);
+  ASSERT_EQ(back.wheels.size(), 3u);  // by entry, then wheel
+  EXPECT_EQ(back.wheels[0].wheel, 3);
+  EXPECT_EQ(back.wheels[0].name, "coach / wheelset 1 high");
+  EXPECT_EQ(back.wheels[0].profile.points(), worn.points());
+  EXPECT_EQ(back.wheels[1].wheel, 4);
+  EXPECT_EQ(back.wheels[1].profile.points(), wheel.points());
+  EXPECT_EQ(back.wheels[2].traffic_index, 1);
+  EXPECT_EQ(db.LoadWheelProfile(run, 2, 0, 4).points(), wheel.points());
+  ExpectInputError([&] { db.LoadWheelProfile(run, 2, 0, 5); },
+                   {"wheel 5 of traffic entry 0", "not stored"});
+  StepRecord bad = TestStep(3);
+  bad.wheels = {high, high};
+  ExpectInputError([&] { db.AppendStep(run, bad); }, {"wheel 3 of traffic entry 0 given twice"});
+  EXPECT_EQ(db.LastStep(run), 2);
+}
+
 // Schema 8 (issue 17): a step's warnings round-trip in order through Steps() and LoadStep(); a
 // kind outside the schema's is refused with the step rolled back; a schema-7 file is read as it
 // is (no warnings) and migrated by the next read-write open.
@@ -559,7 +633,7 @@ TEST(ProfileStore, StepWarningsRoundTripAndVersion7ReadsUnmigrated) {
     const int64_t run = db.CreateRun(TestRun("old"), TestStep(0));
     db.AppendStep(run, TestStep(1));
   }
-  RawExec(path, "DROP TABLE step_warnings; PRAGMA user_version = 7;");
+  RawExec(path, "DROP TABLE step_warnings; DROP TABLE run_failures; PRAGMA user_version = 7;");
   {
     const ProfileStore ro = ProfileStore::OpenReadOnly(path);
     EXPECT_EQ(ro.SchemaVersion(), 7);
@@ -570,7 +644,7 @@ TEST(ProfileStore, StepWarningsRoundTripAndVersion7ReadsUnmigrated) {
   }
   ProfileStore db = ProfileStore::Open(path);
   EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
-  EXPECT_EQ(ProfileStore::kSchemaVersion, 8);
+  EXPECT_EQ(ProfileStore::kSchemaVersion, 10);
   const int64_t run = db.FindRun("old")->id;
   StepRecord two = TestStep(2);
   two.warnings = {{"hardness", "p_max beyond the hardness in 2 of 3 load cases"},
@@ -1182,6 +1256,53 @@ TEST(ProfileStoreReadOnly, RefusesARailwearFileWithAHotJournalUntouched) {
   EXPECT_EQ(DatabaseFiles(path), before);
 }
 
+// Schema 9 (issue 19): a failed run's message and last step are stored with its aborted state,
+// cleared when the run is resumed (a new state), copied by merge with the run; a schema-8 file
+// reads as having none and is migrated by the next read-write open.
+TEST(ProfileStore, RunFailuresRoundTripClearOnResumeAndMerge) {
+  TempDir tmp;
+  const std::string path = tmp.File("f.rwdb");
+  {
+    ProfileStore db = ProfileStore::Open(path);
+    const int64_t run = db.CreateRun(TestRun("failed"), TestStep(0));
+    db.AppendStep(run, TestStep(1));
+    EXPECT_FALSE(db.FindRunFailure(run).has_value());
+    db.SetRunFailed(run, "wear: the contact solution did not converge");
+    EXPECT_EQ(db.FindRun("failed")->state, RunState::kAborted);
+    const std::optional<RunFailure> f = db.FindRunFailure(run);
+    ASSERT_TRUE(f.has_value());
+    EXPECT_EQ(f->step, 1);
+    EXPECT_EQ(f->message, "wear: the contact solution did not converge");
+    // Resumed: running again, the failure gone; failed again: the new message.
+    db.SetRunState(run, RunState::kRunning);
+    EXPECT_FALSE(db.FindRunFailure(run).has_value());
+    db.SetRunFailed(run, "second");
+    EXPECT_EQ(db.FindRunFailure(run)->message, "second");
+    ExpectInputError([&] { db.SetRunFailed(run + 7, "x"); }, {"no run with id"});
+  }
+  // Merge copies the failure with its run; merging again changes nothing.
+  const std::string merged = tmp.File("m.rwdb");
+  {
+    ProfileStore out = ProfileStore::Open(merged);
+    const ProfileStore in = ProfileStore::OpenReadOnly(path);
+    EXPECT_EQ(out.MergeRunsFrom(in).runs_copied, 1);
+    EXPECT_EQ(out.MergeRunsFrom(in).runs_identical, 1);
+    const RunInfo run = *out.FindRun("failed");
+    EXPECT_EQ(run.state, RunState::kAborted);
+    EXPECT_EQ(out.FindRunFailure(run.id)->message, "second");
+  }
+  // Schema 8: no table, no failure; migrated on write.
+  RawExec(path, "DROP TABLE run_failures; PRAGMA user_version = 8;");
+  {
+    const ProfileStore ro = ProfileStore::OpenReadOnly(path);
+    EXPECT_EQ(ro.SchemaVersion(), 8);
+    EXPECT_FALSE(ro.FindRunFailure(ro.FindRun("failed")->id).has_value());
+  }
+  ProfileStore db = ProfileStore::Open(path);
+  EXPECT_EQ(db.SchemaVersion(), ProfileStore::kSchemaVersion);
+  EXPECT_FALSE(db.FindRunFailure(db.FindRun("failed")->id).has_value());
+}
+
 // Version 4 differs from 5 only in the CHECK on runs.state: read-only commands read it as it is.
 TEST(ProfileStoreReadOnly, ReadsVersion4AsItIs) {
   TempDir tmp;
@@ -1244,9 +1365,14 @@ std::string RunContent(const ProfileStore& db, const std::string& except = "") {
                                          "('run_id', 'created_utc')");
     std::string select = "r.name";
     for (const auto& c : columns.rows) select += ", quote(t." + c[0] + ")";
+    // By the run and up to three more columns (run_failures has two besides the run).
+    std::string order = "1";
+    for (size_t k = 2; k <= std::min<size_t>(4, columns.rows.size() + 1); ++k) {
+      order += ", " + std::to_string(k);
+    }
     const QueryResult rows = db.Query("SELECT " + select + " FROM " + table +
                                       " t JOIN runs r ON r.id = t.run_id WHERE r.name != '" +
-                                      except + "' ORDER BY 1, 2, 3, 4");
+                                      except + "' ORDER BY " + order);
     out += table + ":\n";
     for (const auto& row : rows.rows) {
       for (const auto& v : row) out += v + "|";
@@ -1272,10 +1398,10 @@ TEST(ProfileStoreMerge, EveryTableHasARoleAndARunTableIsNeverSkipped) {
     EXPECT_EQ(roles[i].first, tables.rows[i][0]);
     if (roles[i].second == MergeTableRole::kRunRows) run_rows.push_back(roles[i].first);
   }
-  EXPECT_EQ(run_rows, (std::vector<std::string>{"curving_starts", "distributions", "load_cases",
-                                                "low_rail_distributions", "low_rail_steps",
-                                                "profiles", "step_warnings", "steps",
-                                                "wheel_steps"}));
+  EXPECT_EQ(run_rows,
+            (std::vector<std::string>{"curving_starts", "distributions", "load_cases",
+                                      "low_rail_distributions", "low_rail_steps", "profiles",
+                                      "run_failures", "step_warnings", "steps", "wheel_steps"}));
   // A table merge does not know (no run_id, not one of the known others) is refused by name.
   RawExec(path, "CREATE TABLE run_notes(note TEXT)");
   ExpectInputError([&] { db.MergeTableRoles(); }, {path, "table 'run_notes' is unknown to merge"});

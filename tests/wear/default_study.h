@@ -1,6 +1,7 @@
 // The default wear study (examples/wear_high_rail.toml: S1002 freight and passenger traffic on
 // the gauge corner of a UIC60 1:40 high rail) at draft accuracy with 3 nodes per entry, for the
-// one-step tests of friction conditions and rail grades; and the worn area of its first step.
+// one-step tests of friction conditions and rail grades; and the worn area of its first step. Also
+// the vehicle wear tests' set-up (VehicleCurveStudy).
 #pragma once
 
 #include "core/profile/builtin_profiles.h"
@@ -50,6 +51,39 @@ inline WearStudy DefaultStudy(WearLawKind law) {
   study.options.total_mgt = 10.0;
   study.options.quadrature_points = 3;
   study.options.threads = 0;
+  return study;
+}
+
+// One vehicle entry (S1002 wheels, 16 t axles) on UIC60 1:40 rails (hardness 2.6 GPa) in a curve
+// of `radius_m` without cant, auto model at draft accuracy, Archard k = 1e-4, one thread: the
+// set-up of the vehicle wear tests (a single wheelset, or a bogie vehicle of four).
+inline WearStudy VehicleCurveStudy(double radius_m, VehicleKind kind, double friction,
+                                   double speed_m_s) {
+  WearStudy study;
+  study.rail_profile = MakeUic60();
+  study.low_rail_profile = MakeUic60();
+  study.cant_ratio = 0.025;
+  study.rail_material.hardness_Pa = 2.6e9;
+  study.model = MakeModelOptions(ModelKind::kAuto);
+  study.model.accuracy = AccuracyPreset::kDraft;
+  study.curve.radius_m = radius_m;
+  VehicleSpec v;
+  v.name = kind == VehicleKind::kBogie ? "wagon" : "wheelset";
+  v.kind = kind;
+  v.axle_load_N = 16e3 * kGravity_m_s2;
+  v.wheel_profile = MakeS1002();
+  study.vehicles = {v};
+  TrafficCase c;
+  c.vehicle = 0;
+  c.wheel_profile = v.wheel_profile;
+  c.axle_load_t = 16.0;
+  c.vertical_force_N = 0.5 * v.axle_load_N;
+  c.friction = friction;
+  c.speed_m_s = speed_m_s;
+  study.traffic = {c};
+  study.options.law.archard_k = 1e-4;
+  study.options.total_passes = 1e6;
+  study.options.threads = 1;
   return study;
 }
 

@@ -8,40 +8,16 @@
 #include <gtest/gtest.h>
 
 #include "core/profile/builtin_profiles.h"
+#include "tests/wear/default_study.h"
 
 namespace railwear {
 namespace {
 
 WearStudy VehicleStudy(double spread_m) {
-  WearStudy study;
-  study.rail_profile = MakeUic60();
-  study.low_rail_profile = MakeUic60();
-  study.cant_ratio = 0.025;
-  study.rail_material.hardness_Pa = 2.6e9;
-  study.model = MakeModelOptions(ModelKind::kAuto);
-  study.model.accuracy = AccuracyPreset::kDraft;
-  study.curve.radius_m = 1500.0;
-  VehicleSpec v;
-  v.name = "wheelset";
-  v.kind = VehicleKind::kWheelset;
-  v.axle_load_N = 16e3 * kGravity_m_s2;
-  v.wheel_profile = MakeS1002();
-  v.cg_height_m = 1.5;
-  study.vehicles = {v};
-  TrafficCase c;
-  c.name = "one wheelset";
-  c.vehicle = 0;
-  c.wheel_profile = v.wheel_profile;
-  c.axle_load_t = 16.0;
-  c.vertical_force_N = 0.5 * v.axle_load_N;
-  c.lateral_shift_std_m = spread_m;
-  c.friction = 0.3;
-  c.speed_m_s = 25.0;
-  study.traffic = {c};
-  study.options.law.archard_k = 1e-4;
-  study.options.total_passes = 1e6;
+  WearStudy study = VehicleCurveStudy(1500.0, VehicleKind::kWheelset, 0.3, 25.0);
+  study.traffic[0].name = "one wheelset";
+  study.traffic[0].lateral_shift_std_m = spread_m;
   study.options.quadrature_points = 3;
-  study.options.threads = 1;
   return study;
 }
 

@@ -190,7 +190,9 @@ TEST(WheelWearTest, WheelsAreStateAndAResumedRunIsBitIdentical) {
   EXPECT_EQ(resumed[0].state.passes, whole[1].state.passes);
 }
 
-TEST(WheelWearTest, WheelWearNeedsAHardnessAndIsNotForVehicles) {
+// (A vehicle entry's wheels wear too since issue 16's vehicle co-evolution:
+// tests/wear/vehicle_wheel_wear_test.cpp; a population stays refused there.)
+TEST(WheelWearTest, WheelWearNeedsAHardnessAndAPositiveDistance) {
   WearStudy study = MakeStudy(WearLawKind::kArchard, 2.4e9);
   study.traffic[0].wheel_wear->hardness_Pa.reset();
   ExpectInputError([&] { MakeInitialState(study); },
@@ -202,8 +204,9 @@ TEST(WheelWearTest, WheelWearNeedsAHardnessAndIsNotForVehicles) {
                          {"S1002", "wheel_wear.distance_per_pass_m = -1"});
   study.traffic[0].wheel_wear->distance_per_pass_m = 10.0;
   study.traffic[0].vehicle = 0;
-  ExpectInputError([&] { ValidateTraffic(study.traffic); },
-                         {"S1002", "wheel_wear on a vehicle entry"});
+  EXPECT_NO_THROW(ValidateTraffic(study.traffic));
+  ExpectInputError([&] { ExpandWheelPopulation(study.traffic[0], {{"a", MakeS1002(), 0.46, 1.0}}); },
+                   {"S1002", "population on a vehicle entry"});
 }
 
 // EN 13262 as quoted in wear/rail_grade.h: the rim's minimum hardness in HB times 9.80665 MPa.

@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -64,6 +66,22 @@ constexpr double kAreaTolerance = 0.005;
 // The force integral of a field interpolated quadratically from nodes: the sqrt edge is not
 // polynomial, 1 % at 40 cells.
 constexpr double kForceTolerance = 0.01;
+
+// The node estimate of a contact mesh level (issue 17) against gmsh's node counts of the six
+// levels docs/fem_contact_cases.md documents (both bodies, C3D10): within 20 %, above the fit's
+// spread (0.91-1.14).
+TEST(FemContactEstimate, NodeEstimateIsWithinTwentyPercentOfTheDocumentedLevels) {
+  constexpr double kTolerance = 0.2;
+  const std::vector<std::pair<double, double>> a = {{0.7, 9652}, {0.5, 15703}, {0.35, 29339}};
+  const std::vector<std::pair<double, double>> b = {{0.9, 13932}, {0.6, 29432}, {0.45, 53132}};
+  for (const auto& [which, levels] : {std::pair{FemContactCase::kWheelInGroove, a},
+                                      std::pair{FemContactCase::kRailInWheelGroove, b}}) {
+    const FemContactOptions o = ResolvedFemContactOptions(DefaultFemContactOptions(which));
+    for (const auto& [h_mm, nodes] : levels) {
+      EXPECT_NEAR(EstimateFemContactNodes(o, h_mm * kMm) / nodes, 1.0, kTolerance) << h_mm;
+    }
+  }
+}
 
 TEST(FemContactPatchTest, FlatHertzEllipse) {
   const double a = 3 * kMm, b = 5 * kMm, p0 = 400 * kMPa;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iostream>
 #include <numbers>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -112,6 +113,46 @@ TEST_F(FemDisplacementTest, DefaultBodySizes) {
   const FemBodySize concave = DefaultFemBodySize(CurveBody::kConcave, 80.1e-3);
   EXPECT_NEAR(concave.width_m, 0.2602, 1e-12);  // 100 mm wider than the groove
   EXPECT_DOUBLE_EQ(concave.depth_m, 0.1);
+}
+
+// The node estimate made before meshing (issue 17) against gmsh's node counts of the meshes
+// docs/fem_reference.md documents (quarter models, C3D10, measured by `railwear fem-reference`):
+// the paper experiment's four bodies at the default mesh, the R 15 head at h0 and growth halved,
+// the flat block at the default mesh and at a coarse one. Tolerance: a factor 1.5 either way,
+// the spread of the fit (0.68-1.33: the estimate's box ignores the curved faces and their 12
+// elements per circle); the estimate guards against meshes 10-100x too large, not a count.
+TEST_F(FemDisplacementTest, NodeEstimateIsWithinAFactorOneAndAHalfOfTheDocumentedMeshes) {
+  struct Mesh {
+    CurveBody body;
+    double radius_mm, h0_mm, growth, max_mm, nodes;
+  };
+  const std::vector<Mesh> meshes = {
+      {CurveBody::kConvex, 15.0, 0.1, 0.12, 20.0, 14458},
+      {CurveBody::kConvex, 15.0, 0.05, 0.06, 20.0, 96209},
+      {CurveBody::kConcave, 15.1, 0.1, 0.12, 20.0, 28830},
+      {CurveBody::kConvex, 80.0, 0.1, 0.12, 20.0, 22955},
+      {CurveBody::kConcave, 80.1, 0.1, 0.12, 20.0, 28107},
+      {CurveBody::kFlat, 0.0, 0.1, 0.12, 20.0, 24711},
+      {CurveBody::kFlat, 0.0, 0.2, 0.3, 100.0, 2591},
+  };
+  constexpr double kFactor = 1.5;
+  for (const Mesh& m : meshes) {
+    FemDisplacementOptions o;
+    o.body = m.body;
+    o.radius_m = m.radius_mm * kMm;
+    o.mesh_size_at_load_m = m.h0_mm * kMm;
+    o.mesh_growth = m.growth;
+    o.max_element_m = m.max_mm * kMm;
+    const double estimate = EstimateFemDisplacementNodes(o);
+    EXPECT_GT(estimate, m.nodes / kFactor) << m.radius_mm << " " << m.h0_mm;
+    EXPECT_LT(estimate, m.nodes * kFactor) << m.radius_mm << " " << m.h0_mm;
+  }
+  // A mesh far too fine shows as such: h0 1 um and growth 0.01 give over 1e7 nodes.
+  FemDisplacementOptions fine;
+  fine.body = CurveBody::kFlat;
+  fine.mesh_size_at_load_m = 1e-6;
+  fine.mesh_growth = 0.01;
+  EXPECT_GT(EstimateFemDisplacementNodes(fine), 1e7);
 }
 
 TEST_F(FemDisplacementTest, GeoNamesEveryGroup) {

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/contact/kalker_coefficients.h"
+#include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
 #include "tests/core/vehicle/curving_cases.h"
 
@@ -47,6 +48,25 @@ TEST(CurvingTest, FreeConicalWheelsetRollsPurelyAtItsOffset) {
       "solves, residuals %.2e N %.2e N m %.2e N\n",
       l0, r0, w.lateral_m * 1e3, expected * 1e3, w.yaw_rad, r.full_iterations, r.contact_solves,
       r.lateral_residual_N, r.yaw_residual_Nm, r.longitudinal_residual_N);
+}
+
+// Each wheelset's own wheels (CurvingProblem::wheels, wear co-evolution): the vehicle's wheel
+// given for every wheel is the same solve, bit for bit; a count other than one pair per wheelset,
+// or an empty profile, is InputError.
+TEST(CurvingTest, WheelsetWheelsOfTheVehiclesProfileChangeNothing) {
+  CurvingProblem p = BaseProblem(MakeCone(0.05), 1000.0);
+  p.speed_m_s = 10.0;
+  const CurvingResult base = SolveCurving(p);
+  ASSERT_EQ(base.status, CurvingStatus::kConverged) << base.message;
+  CurvingProblem own = p;
+  own.wheels = {{p.vehicle.wheel_profile, p.vehicle.wheel_profile}};
+  const CurvingResult r = SolveCurving(own);
+  EXPECT_EQ(r.state, base.state);
+  EXPECT_EQ(r.wheelsets[0].roll_rad, base.wheelsets[0].roll_rad);
+  own.wheels.push_back(own.wheels[0]);
+  EXPECT_THROW(SolveCurving(own), InputError);
+  own.wheels = {{p.vehicle.wheel_profile, Profile()}};
+  EXPECT_THROW(SolveCurving(own), InputError);
 }
 
 TEST(CurvingTest, FreeWheelsetOnTangentTrackCentres) {

@@ -1,0 +1,103 @@
+#include "core/contact/placement_cache.h"
+
+#include <gtest/gtest.h>
+
+#include "core/contact/contact_case.h"
+#include "core/profile/builtin_profiles.h"
+
+namespace railwear {
+namespace {
+
+// An S1002 wheel rolling on UIC60 at 1:40 (draft, FASTSIM), at a lateral shift and yaw.
+ContactCase Rolling(double lateral_m, double yaw_rad, double lateral_velocity_m_s = 0.0) {
+  ContactCase c;
+  ContactProblem& p = c.problem;
+  p.wheel_profile = MakeS1002();
+  p.rail_profile = ApplyCant(MakeUic60(), 1.0 / 40.0);
+  p.wheel_material = p.rail_material = {210e9, 0.28};
+  p.load.vertical_force_N = 100e3;
+  p.model = MakeModelOptions(ModelKind::kHalfspace);
+  p.model.accuracy = AccuracyPreset::kDraft;
+  p.placement.lateral_shift_m = lateral_m;
+  p.placement.yaw_rad = yaw_rad;
+  RollingOptions r;
+  r.friction = 0.3;
+  r.motion.speed_m_s = 20.0;
+  r.motion.lateral_velocity_m_s = lateral_velocity_m_s;
+  p.rolling = r;
+  return c;
+}
+
+// Every number of a wheel's result that the C API reports, compared with ==.
+void ExpectSame(const ContactResult& a, const ContactResult& b) {
+  ASSERT_EQ(a.status, b.status);
+  ASSERT_EQ(a.patches.size(), b.patches.size());
+  EXPECT_EQ(a.approach_m, b.approach_m);
+  for (size_t k = 0; k < a.patches.size(); ++k) {
+    const PatchResult& p = a.patches[k];
+    const PatchResult& q = b.patches[k];
+    EXPECT_EQ(p.area_m2, q.area_m2);
+    EXPECT_EQ(p.p_max_Pa, q.p_max_Pa);
+    EXPECT_EQ(p.contact_x_m, q.contact_x_m);
+    EXPECT_EQ(p.contact_point_yz_m, q.contact_point_yz_m);
+    EXPECT_EQ(p.pressure_Pa, q.pressure_Pa);
+    ASSERT_EQ(p.rolling.has_value(), q.rolling.has_value());
+    if (p.rolling) {
+      EXPECT_EQ(p.rolling->creepage.xi, q.rolling->creepage.xi);
+      EXPECT_EQ(p.rolling->creepage.eta, q.rolling->creepage.eta);
+      EXPECT_EQ(p.rolling->tangential.force_x_N, q.rolling->tangential.force_x_N);
+      EXPECT_EQ(p.rolling->tangential.force_s_N, q.rolling->tangential.force_s_N);
+      EXPECT_EQ(p.rolling->tangential.traction_x_Pa, q.rolling->tangential.traction_x_Pa);
+    }
+  }
+}
+
+TEST(PlacementCache, ReusesTheGeometryOnlyAtTheSamePoseAndProfiles) {
+  PlacementCache cache;
+  const ContactCase a = Rolling(-10.4e-3, 5e-3);
+  SolveContactCase(a, &cache);
+  SolveContactCase(a, &cache);
+  EXPECT_EQ(cache.misses(), 1);
+  EXPECT_EQ(cache.hits(), 1);
+  SolveContactCase(Rolling(-10.4e-3, 5e-3, 0.01), &cache);  // a velocity: the same placement
+  EXPECT_EQ(cache.hits(), 2);
+  SolveContactCase(Rolling(-10.3e-3, 5e-3), &cache);  // another position
+  EXPECT_EQ(cache.misses(), 2);
+  ContactCase other_rail = a;
+  other_rail.problem.rail_profile = ApplyCant(MakeUic60(), 1.0 / 20.0);
+  SolveContactCase(other_rail, &cache);
+  EXPECT_EQ(cache.misses(), 3);
+}
+
+TEST(PlacementCache, CachedSolvesEqualFreshOnesBitForBit) {
+  // A time loop on one cache: the same pose twice, a new velocity, a new pose, the first again.
+  PlacementCache cache;
+  const ContactCase steps[] = {Rolling(-10.4e-3, 5e-3), Rolling(-10.4e-3, 5e-3),
+                               Rolling(-10.4e-3, 5e-3, 0.02), Rolling(-5.6e-3, 0.0),
+                               Rolling(-10.4e-3, 5e-3)};
+  for (const ContactCase& c : steps) {
+    ExpectSame(SolveContactCase(c, &cache).wheel, SolveContactCase(c).wheel);
+  }
+  EXPECT_EQ(cache.hits(), 2);
+}
+
+TEST(PlacementCache, WheelsetSolvesEqualFreshOnesBitForBit) {
+  ContactCase c = Rolling(0.0, 0.0);
+  c.problem.placement = {};
+  WheelsetProblem& w = c.wheelset.emplace();
+  w.wheelset.lateral_displacement_m = 3e-3;
+  w.wheelset.yaw_rad = 1e-3;
+  w.curvature_per_m = 1.0 / 800.0;
+  PlacementCache cache;
+  for (int step = 0; step < 2; ++step) {
+    const ContactCaseResult cached = SolveContactCase(c, &cache);
+    const ContactCaseResult fresh = SolveContactCase(c);
+    ExpectSame(cached.wheelset->right, fresh.wheelset->right);
+    ExpectSame(cached.wheelset->left, fresh.wheelset->left);
+  }
+  EXPECT_EQ(cache.misses(), 2);  // both wheels placed once
+  EXPECT_EQ(cache.hits(), 2);    // and reused by the second step
+}
+
+}  // namespace
+}  // namespace railwear
