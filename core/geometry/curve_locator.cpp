@@ -54,8 +54,8 @@ CurveLocator::CurveLocator(const Profile& profile, bool material_toward_plus_z,
     }
     box_lo_[k] = lo;
     box_hi_[k] = hi;
-    max_abs_coordinate_ = std::max({max_abs_coordinate_, lo.cwiseAbs().maxCoeff(),
-                                    hi.cwiseAbs().maxCoeff()});
+    max_abs_coordinate_ =
+        std::max({max_abs_coordinate_, lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()});
   }
 }
 
@@ -241,8 +241,7 @@ std::optional<CurveLocator::Crossing> CurveLocator::IntersectLine(const Eigen::V
   // Pairs (i - 1, i) with i in (k kScanBlock, (k + 1) kScanBlock] lie in block k. A block whose
   // box is strictly on one side of the line (beyond the rounding margin) has all its values of
   // one strict sign: none of its pairs brackets a crossing.
-  const double margin =
-      kCullMargin * (1.0 + b.cwiseAbs().maxCoeff() + max_abs_coordinate_);
+  const double margin = kCullMargin * (1.0 + b.cwiseAbs().maxCoeff() + max_abs_coordinate_);
   for (int i = i0 + 1; i <= i1;) {
     const int k = (i - 1) / kScanBlock;
     const int last = std::min((k + 1) * kScanBlock, i1);

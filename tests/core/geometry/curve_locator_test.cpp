@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -80,7 +81,7 @@ TEST(CurveLocator, BlockScanEqualsSampleScanBitForBit) {
     const double length = fast.length();
     std::uniform_real_distribution<double> along(-0.1 * length, 1.1 * length);
     std::uniform_real_distribution<double> offset(-3e-3, 3e-3);
-    std::uniform_real_distribution<double> angle(-M_PI, M_PI);
+    std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
     std::uniform_real_distribution<double> window(0.0, 0.3 * length);
     int crossings = 0;
     for (int trial = 0; trial < 3000; ++trial) {
@@ -95,7 +96,8 @@ TEST(CurveLocator, BlockScanEqualsSampleScanBitForBit) {
       const auto pn = whole ? naive.Project(q) : naive.Project(q, lo, hi);
       ASSERT_EQ(pf.s, pn.s) << trial;
       ASSERT_EQ(pf.signed_distance, pn.signed_distance) << trial;
-      const double phi = trial % 7 == 0 ? 0.5 * M_PI : angle(rng);  // vertical lines too
+      const double phi =
+          trial % 7 == 0 ? 0.5 * std::numbers::pi : angle(rng);  // vertical lines too
       const Eigen::Vector2d n(std::cos(phi), std::sin(phi));
       const auto xf = fast.IntersectLine(q, n, whole ? 0.0 : lo, whole ? 1.0 : hi);
       const auto xn = naive.IntersectLine(q, n, whole ? 0.0 : lo, whole ? 1.0 : hi);
