@@ -13,11 +13,11 @@
 //        (extrapolated beyond them). CONTACT's reference: 3,148 / 12,902 / 50,796 / 200,980
 //        cells in contact, 19 / 22 / 27 / 31 CG iterations at its EPS = 1e-7.
 //
-// Counters: cells, in_contact, iterations, p_max_MPa, Fn_kN (railwear's default tolerance 1e-10
-// unless stated). Growth exponent of time against cells:
+// Counters (bench_normal_solve.h): cells, in_contact, iterations, p_max_MPa, Fn_kN (railwear's
+// default tolerance 1e-10 unless stated). Growth exponent of time against cells:
 //   build/tests/benchmarks/contact_reference_bench --benchmark_repetitions=5
 //     --benchmark_report_aggregates_only=true --benchmark_format=json
-//     | python3 tests/benchmarks/scaling_exponent.py
+//     | python3 tests/benchmarks/scaling_exponent.py --cpu
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -26,6 +26,7 @@
 
 #include "core/contact/influence_operator.h"
 #include "core/contact/normal_solver.h"
+#include "tests/benchmarks/bench_normal_solve.h"
 
 namespace railwear {
 namespace {
@@ -119,22 +120,7 @@ void BM_PerfcNormal(benchmark::State& state) {
   np.approach_weight = Eigen::VectorXd::Ones(g.cells());
   np.cell_area_m2 = Eigen::VectorXd::Constant(g.cells(), g.CellArea());
   np.approach_m = kPerfcPen_mm * 1e-3;
-  const NormalSolverOptions options;
-  NormalSolution sol;
-  for (auto _ : state) {
-    const auto op = MakeInfluenceOperator(g, settings);
-    np.blocks = {op.get()};
-    sol = SolveNormal(np, options);
-    benchmark::DoNotOptimize(sol.pressure_Pa.data());
-  }
-  int in_contact = 0;
-  for (int k = 0; k < sol.pressure_Pa.size(); ++k) in_contact += sol.pressure_Pa[k] > 0;
-  state.counters["cells"] = g.cells();
-  state.counters["in_contact"] = in_contact;
-  state.counters["iterations"] = sol.iterations;
-  state.counters["converged"] = sol.status == SolverStatus::kConverged;
-  state.counters["p_max_MPa"] = sol.pressure_Pa.maxCoeff() * 1e-6;
-  state.counters["Fn_kN"] = sol.pressure_Pa.sum() * g.CellArea() * 1e-3;
+  bench::TimeNormalSolve(state, g, settings, np, NormalSolverOptions());
 }
 BENCHMARK(BM_PerfcNormal)->Arg(1)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMillisecond);
 
