@@ -9,9 +9,19 @@
 
 namespace railwear {
 
+namespace {
+
+// Rounding margin of the block tests, relative to the size of the coordinates: (p - b) . t and
+// |p - q|^2 carry a relative rounding error of a few ulp (~1e-15), so a box must clear the line
+// or the best distance by far more than that before its block is skipped. Any value from 1e-13 up
+// keeps the answers exact; a larger one only skips fewer blocks.
+constexpr double kCullMargin = 1e-12;
+
+}  // namespace
+
 CurveLocator::CurveLocator(const Profile& profile, bool material_toward_plus_z,
-                           double sample_step_m)
-    : profile_(&profile), length_(profile.Length()) {
+                           double sample_step_m, Scan scan)
+    : profile_(&profile), length_(profile.Length()), scan_(scan) {
   RAILWEAR_CHECK(sample_step_m > 0 && length_ > 0);
   const int n = std::max(2, static_cast<int>(std::ceil(length_ / sample_step_m)) + 1);
   step_ = length_ / (n - 1);
@@ -32,6 +42,92 @@ CurveLocator::CurveLocator(const Profile& profile, bool material_toward_plus_z,
   const double nz = profile.LeftNormal(sample_s_[extreme]).y();
   const bool left_points_up = nz < 0.0;
   outward_sign_ = (material_toward_plus_z == left_points_up) ? 1.0 : -1.0;
+  const int blocks = (n - 2) / kScanBlock + 1;  // block k starts at k kScanBlock <= n - 2
+  box_lo_.resize(blocks);
+  box_hi_.resize(blocks);
+  for (int k = 0; k < blocks; ++k) {
+    const int first = k * kScanBlock, last = std::min(first + kScanBlock, n - 1);
+    Eigen::Vector2d lo = sample_p_[first], hi = sample_p_[first];
+    for (int i = first + 1; i <= last; ++i) {
+      lo = lo.cwiseMin(sample_p_[i]);
+      hi = hi.cwiseMax(sample_p_[i]);
+    }
+    box_lo_[k] = lo;
+    box_hi_[k] = hi;
+    max_abs_coordinate_ =
+        std::max({max_abs_coordinate_, lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()});
+  }
+}
+
+double CurveLocator::BlockDistance2(int k, const Eigen::Vector2d& q) const {
+  const Eigen::Vector2d below = box_lo_[k] - q, above = q - box_hi_[k];
+  const Eigen::Vector2d d = below.cwiseMax(above).cwiseMax(0.0);
+  return d.squaredNorm();
+}
+
+bool CurveLocator::BlockOnOneSide(int k, const Eigen::Vector2d& b, const Eigen::Vector2d& t,
+                                  double margin) const {
+  const Eigen::Vector2d lo = box_lo_[k] - b, hi = box_hi_[k] - b;
+  // (p - b) . t is linear in p: its extremes over the box are at corners.
+  const double y_min = t.x() >= 0 ? lo.x() * t.x() : hi.x() * t.x();
+  const double y_max = t.x() >= 0 ? hi.x() * t.x() : lo.x() * t.x();
+  const double z_min = t.y() >= 0 ? lo.y() * t.y() : hi.y() * t.y();
+  const double z_max = t.y() >= 0 ? hi.y() * t.y() : lo.y() * t.y();
+  return y_min + z_min > margin || y_max + z_max < -margin;
+}
+
+int CurveLocator::ClosestSample(const Eigen::Vector2d& q, int i0, int i1) const {
+  int best = i0;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  if (scan_ == Scan::kEverySample) {
+    for (int i = i0; i <= i1; ++i) {
+      const double d2 = (sample_p_[i] - q).squaredNorm();
+      if (d2 < best_d2) {
+        best_d2 = d2;
+        best = i;
+      }
+    }
+    return best;
+  }
+  // The sample scan keeps the first of the smallest distances: the least (d2, i). Taking that
+  // least pair is independent of the order of visits, so the block nearest q goes first and the
+  // others only where their boxes could hold a pair as small.
+  auto visit = [&](int first, int last) {
+    for (int i = first; i <= last; ++i) {
+      const double d2 = (sample_p_[i] - q).squaredNorm();
+      if (d2 < best_d2 || (d2 == best_d2 && i < best)) {
+        best_d2 = d2;
+        best = i;
+      }
+    }
+  };
+  // Block k's own samples here are [k kScanBlock, (k + 1) kScanBlock - 1] within [i0, i1].
+  const int k0 = i0 / kScanBlock, k1 = i1 / kScanBlock;
+  auto own = [&](int k, int* first, int* last) {
+    *first = std::max(i0, k * kScanBlock);
+    *last = std::min(i1, (k + 1) * kScanBlock - 1);
+  };
+  const int last_box = static_cast<int>(box_lo_.size()) - 1;
+  int nearest = k0;
+  double nearest_d2 = std::numeric_limits<double>::infinity();
+  for (int k = k0; k <= k1; ++k) {
+    const double d2 = BlockDistance2(std::min(k, last_box), q);
+    if (d2 < nearest_d2) {
+      nearest_d2 = d2;
+      nearest = k;
+    }
+  }
+  int first = 0, last = 0;
+  own(nearest, &first, &last);
+  visit(first, last);
+  for (int k = k0; k <= k1; ++k) {
+    if (k == nearest) continue;
+    // Skip when every sample of the box is farther than the best by more than rounding.
+    if (BlockDistance2(std::min(k, last_box), q) * (1.0 - kCullMargin) > best_d2) continue;
+    own(k, &first, &last);
+    visit(first, last);
+  }
+  return best;
 }
 
 Eigen::Vector2d CurveLocator::OutwardNormal(double s) const {
@@ -74,15 +170,7 @@ CurveLocator::Projection CurveLocator::Project(const Eigen::Vector2d& q, double 
   const int n = static_cast<int>(sample_s_.size());
   int i0 = std::clamp(static_cast<int>(std::floor(s_lo / step_)), 0, n - 1);
   int i1 = std::clamp(static_cast<int>(std::ceil(s_hi / step_)), 0, n - 1);
-  int best = i0;
-  double best_d2 = std::numeric_limits<double>::infinity();
-  for (int i = i0; i <= i1; ++i) {
-    const double d2 = (sample_p_[i] - q).squaredNorm();
-    if (d2 < best_d2) {
-      best_d2 = d2;
-      best = i;
-    }
-  }
+  const int best = ClosestSample(q, i0, i1);
   const double s = RefineClosest(q, sample_s_[best], std::max(s_lo, sample_s_[best] - step_),
                                  std::min(s_hi, sample_s_[best] + step_));
   Projection p;
@@ -91,6 +179,36 @@ CurveLocator::Projection CurveLocator::Project(const Eigen::Vector2d& q, double 
   const double dist = (q - p.point).norm();
   p.signed_distance = (q - p.point).dot(OutwardNormal(s)) >= 0 ? dist : -dist;
   return p;
+}
+
+CurveLocator::Crossing CurveLocator::RefineCrossing(const Eigen::Vector2d& b,
+                                                    const Eigen::Vector2d& n,
+                                                    const Eigen::Vector2d& t, int i, double prev,
+                                                    double cur) const {
+  // Bisection-safeguarded Newton on phi(s) = (C(s) - b) . t in [s_{i-1}, s_i].
+  double lo = sample_s_[i - 1], hi = sample_s_[i];
+  double flo = prev;
+  double s = (prev == cur) ? lo : lo + (hi - lo) * prev / (prev - cur);
+  for (int it = 0; it < 60; ++it) {
+    Eigen::Vector2d c, d1;
+    profile_->Evaluate(s, &c, &d1, nullptr);
+    const double f = (c - b).dot(t);
+    if (f == 0.0) break;
+    if ((f <= 0) == (flo <= 0)) {
+      lo = s;
+      flo = f;
+    } else {
+      hi = s;
+    }
+    const double fp = d1.dot(t);
+    if (fp != 0 && std::abs(f / fp) < kParameterTolerance_m) break;  // as in RefineClosest
+    double next = (fp != 0) ? s - f / fp : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    const double step = std::abs(next - s);
+    s = next;
+    if (step < kParameterTolerance_m || hi - lo < kParameterTolerance_m) break;
+  }
+  return Crossing{s, (profile_->Position(s) - b).dot(n)};
 }
 
 std::optional<CurveLocator::Crossing> CurveLocator::IntersectLine(const Eigen::Vector2d& b,
@@ -104,37 +222,31 @@ std::optional<CurveLocator::Crossing> CurveLocator::IntersectLine(const Eigen::V
   const int i0 = std::clamp(static_cast<int>(std::floor(s_lo / step_)), 0, n_samples - 1);
   const int i1 = std::clamp(static_cast<int>(std::ceil(s_hi / step_)), 0, n_samples - 1);
   std::optional<Crossing> best;
-  double prev = (sample_p_[i0] - b).dot(t);
-  for (int i = i0 + 1; i <= i1; ++i) {
-    const double cur = (sample_p_[i] - b).dot(t);
-    if ((prev <= 0 && cur >= 0) || (prev >= 0 && cur <= 0)) {
-      // Bisection-safeguarded Newton on phi(s) = (C(s) - b) . t in [s_{i-1}, s_i].
-      double lo = sample_s_[i - 1], hi = sample_s_[i];
-      double flo = prev;
-      double s = (prev == cur) ? lo : lo + (hi - lo) * prev / (prev - cur);
-      for (int it = 0; it < 60; ++it) {
-        Eigen::Vector2d c, d1;
-        profile_->Evaluate(s, &c, &d1, nullptr);
-        const double f = (c - b).dot(t);
-        if (f == 0.0) break;
-        if ((f <= 0) == (flo <= 0)) {
-          lo = s;
-          flo = f;
-        } else {
-          hi = s;
-        }
-        const double fp = d1.dot(t);
-        if (fp != 0 && std::abs(f / fp) < kParameterTolerance_m) break;  // as in RefineClosest
-        double next = (fp != 0) ? s - f / fp : 0.5 * (lo + hi);
-        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-        const double step = std::abs(next - s);
-        s = next;
-        if (step < kParameterTolerance_m || hi - lo < kParameterTolerance_m) break;
+  // Neighbours (i - 1, i) whose values (p - b) . t change sign (or touch zero) bracket a
+  // crossing; each is refined and the one with the smallest |lambda| kept.
+  auto scan = [&](int first, int last, double prev) {
+    for (int i = first; i <= last; ++i) {
+      const double cur = (sample_p_[i] - b).dot(t);
+      if ((prev <= 0 && cur >= 0) || (prev >= 0 && cur <= 0)) {
+        const Crossing c = RefineCrossing(b, n, t, i, prev, cur);
+        if (!best || std::abs(c.lambda) < std::abs(best->lambda)) best = c;
       }
-      const double lambda = (profile_->Position(s) - b).dot(n);
-      if (!best || std::abs(lambda) < std::abs(best->lambda)) best = Crossing{s, lambda};
+      prev = cur;
     }
-    prev = cur;
+  };
+  if (scan_ == Scan::kEverySample) {
+    scan(i0 + 1, i1, (sample_p_[i0] - b).dot(t));
+    return best;
+  }
+  // Pairs (i - 1, i) with i in (k kScanBlock, (k + 1) kScanBlock] lie in block k. A block whose
+  // box is strictly on one side of the line (beyond the rounding margin) has all its values of
+  // one strict sign: none of its pairs brackets a crossing.
+  const double margin = kCullMargin * (1.0 + b.cwiseAbs().maxCoeff() + max_abs_coordinate_);
+  for (int i = i0 + 1; i <= i1;) {
+    const int k = (i - 1) / kScanBlock;
+    const int last = std::min((k + 1) * kScanBlock, i1);
+    if (!BlockOnOneSide(k, b, t, margin)) scan(i, last, (sample_p_[i - 1] - b).dot(t));
+    i = last + 1;
   }
   return best;
 }

@@ -3,8 +3,14 @@
 #include "core/geometry/wheel_rail_geometry.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <deque>
 #include <limits>
+#include <mutex>
+#include <string>
 
 #include "core/numerics/check.h"
 
@@ -17,6 +23,52 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // moves y by 4 sampling steps at most, which moves a crossing by that over the profile's lateral
 // slope: 2 mm holds it up to 87 degrees at the default 20 um sampling (the full scan follows).
 constexpr double kGapWindow_m = 2e-3;
+
+// The yawed wheel's outline shared by every geometry of the same wheel, rolling radius and yaw
+// (issue 18 point 3): a curving solve's Jacobian moves a wheelset laterally at its yaw, and a
+// wear step's load cases spread the wheelsets laterally at their equilibrium yaw, so the same
+// outline (a 15 000-point spline, 12 % of a curving run) was built again and again. The key is
+// the exact input: the wheel profile's points and source byte for byte (they alone define the
+// Profile) and the bits of r0 and yaw, so a shared outline is the one the geometry would build.
+// The kMaxSharedOutlines most recently used ones are kept (about 1.5 MB each); the cache is
+// process-wide under a mutex (curving solves wheelsets in parallel) and invisible in results.
+constexpr size_t kMaxSharedOutlines = 12;
+
+std::shared_ptr<const YawedWheelSection> SharedYawedSection(const Profile& wheel, double r0,
+                                                            double yaw_rad) {
+  struct Entry {
+    std::vector<Eigen::Vector2d> points;
+    std::string source;
+    std::uint64_t r0_bits, yaw_bits;
+    std::shared_ptr<const YawedWheelSection> section;
+  };
+  static std::mutex mutex;
+  static std::deque<Entry> entries;  // most recently used first
+  const std::uint64_t r0_bits = std::bit_cast<std::uint64_t>(r0);
+  const std::uint64_t yaw_bits = std::bit_cast<std::uint64_t>(yaw_rad);
+  const std::vector<Eigen::Vector2d>& points = wheel.points();
+  auto same = [&](const Entry& e) {
+    return e.r0_bits == r0_bits && e.yaw_bits == yaw_bits && e.source == wheel.source() &&
+           e.points.size() == points.size() &&
+           (points.empty() ||
+            std::memcmp(e.points.data(), points.data(), points.size() * sizeof(points[0])) == 0);
+  };
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (auto it = entries.begin(); it != entries.end(); ++it) {
+      if (!same(*it)) continue;
+      Entry hit = std::move(*it);
+      entries.erase(it);
+      entries.push_front(std::move(hit));
+      return entries.front().section;
+    }
+  }
+  auto section = std::make_shared<const YawedWheelSection>(wheel, r0, yaw_rad);
+  const std::lock_guard<std::mutex> lock(mutex);
+  entries.push_front(Entry{points, wheel.source(), r0_bits, yaw_bits, section});
+  if (entries.size() > kMaxSharedOutlines) entries.pop_back();
+  return section;
+}
 
 // Golden-section minimisation of f on [a, b] to an absolute tolerance.
 template <typename F>
@@ -77,8 +129,7 @@ double ConvexCurvature(const CurveLocator& loc, double s) {
 WheelRailGeometry::WheelRailGeometry(const Profile& wheel, const Profile& rail,
                                      const WheelPose& pose, double vertical_step_m)
     : pose_(pose),
-      yawed_(pose.yaw_rad != 0.0 ? std::make_shared<const YawedWheelSection>(
-                                       wheel, pose.rolling_radius_m, pose.yaw_rad)
+      yawed_(pose.yaw_rad != 0.0 ? SharedYawedSection(wheel, pose.rolling_radius_m, pose.yaw_rad)
                                  : nullptr),
       rail_locator_(rail, /*material_toward_plus_z=*/true),
       wheel_locator_(yawed_ ? yawed_->outline() : wheel, /*material_toward_plus_z=*/false),
@@ -293,7 +344,8 @@ void WheelRailGeometry::SetContactPoint(int sample, double y, double gap,
   c->x_m = 0.0;
   c->lead_m = 0.0;
   if (!yawed_) {
-    c->wheel_radius_m = pose_.rolling_radius_m + wheel_locator_.profile().Position(c->wheel_s_m).y();
+    c->wheel_radius_m =
+        pose_.rolling_radius_m + wheel_locator_.profile().Position(c->wheel_s_m).y();
   } else {
     // The surface point behind the outline point: its radius, position along x, and lead over
     // the axle line through it (the axle runs along (-sin psi, cos psi) in the wheel's unrolled
@@ -313,8 +365,8 @@ ContactCandidate WheelRailGeometry::CandidateAt(const ContactCandidate& interval
   if (gap_y_.empty()) return c;
   double y = std::clamp(y_m, interval.y_lo_m, interval.y_hi_m);
   const auto it = std::lower_bound(gap_y_.begin(), gap_y_.end(), y);
-  int sample = static_cast<int>(
-      std::min<std::ptrdiff_t>(it - gap_y_.begin(), static_cast<std::ptrdiff_t>(gap_y_.size()) - 1));
+  int sample = static_cast<int>(std::min<std::ptrdiff_t>(
+      it - gap_y_.begin(), static_cast<std::ptrdiff_t>(gap_y_.size()) - 1));
   if (sample > 0 && std::abs(gap_y_[sample - 1] - y) < std::abs(gap_y_[sample] - y)) --sample;
   double gap = ExactVerticalGap(y, sample);
   if (!std::isfinite(gap)) {

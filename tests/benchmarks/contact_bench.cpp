@@ -32,6 +32,7 @@
 #include "core/contact/normal_solver.h"
 #include "core/profile/builtin_profiles.h"
 #include "tests/benchmarks/bench_grids.h"
+#include "tests/benchmarks/bench_normal_solve.h"
 
 namespace railwear {
 namespace {
@@ -65,21 +66,7 @@ void Solve(benchmark::State& state, bool planar, KernelModel kernel, double Rx, 
   NormalSolverOptions options;
   options.preconditioner =
       state.range(2) == 0 ? CgPreconditioner::kNone : CgPreconditioner::kInverseOperator;
-  NormalSolution sol;
-  for (auto _ : state) {
-    const auto op = MakeInfluenceOperator(g, settings);
-    np.blocks = {op.get()};
-    sol = SolveNormal(np, options);
-    benchmark::DoNotOptimize(sol.pressure_Pa.data());
-  }
-  int in_contact = 0;
-  for (int k = 0; k < sol.pressure_Pa.size(); ++k) in_contact += sol.pressure_Pa[k] > 0;
-  state.counters["cells"] = g.cells();
-  state.counters["in_contact"] = in_contact;
-  state.counters["iterations"] = sol.iterations;
-  state.counters["converged"] = sol.status == SolverStatus::kConverged;
-  state.counters["applies"] = sol.operator_applications;
-  state.counters["pc_applies"] = sol.preconditioner_applications;
+  bench::TimeNormalSolve(state, g, settings, np, options);
   state.SetLabel(std::string(ToString(options.preconditioner)));
 }
 

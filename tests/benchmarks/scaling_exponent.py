@@ -6,7 +6,8 @@ benchmark family and series (BM_HalfspaceSolve and BM_ConformalSolve per precond
 BM_GaugeCorner per model), fits log(time) = a + k log(cells) by least squares over the sizes and
 prints the exponent k with the local slopes between neighbouring sizes. With repetitions, the
 median aggregate is used. The cell count is the benchmark's "cells" counter (all grid cells);
-Hertz (no cells) is left out.
+Hertz (no cells) is left out. With --cpu the CPU time is fitted instead of the real time (on
+a shared, loaded machine the CPU time is the steadier of the two).
 
   build/tests/benchmarks/contact_bench --benchmark_repetitions=3 \\
       --benchmark_report_aggregates_only=true --benchmark_format=json \\
@@ -29,7 +30,9 @@ def series_of(bench):
 
 
 def main():
-    source = open(sys.argv[1]) if len(sys.argv) > 1 and sys.argv[1] != "-" else sys.stdin
+    args = [a for a in sys.argv[1:] if a != "--cpu"]
+    time_key = "cpu_time" if "--cpu" in sys.argv[1:] else "real_time"
+    source = open(args[0]) if args and args[0] != "-" else sys.stdin
     data = json.load(source)
     points = collections.defaultdict(list)
     for b in data["benchmarks"]:
@@ -38,7 +41,7 @@ def main():
         cells = b.get("cells", 0)
         if not cells or cells <= 0:
             continue
-        points[series_of(b)].append((cells, b["real_time"] * TO_MS[b["time_unit"]]))
+        points[series_of(b)].append((cells, b[time_key] * TO_MS[b["time_unit"]]))
     print(f"{'benchmark':<20} {'series':<22} {'sizes':>5} {'cells':>17} {'exponent':>8}  "
           "local slopes")
     for (family, label), pts in sorted(points.items()):

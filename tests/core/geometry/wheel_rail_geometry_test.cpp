@@ -1,6 +1,7 @@
 #include "core/geometry/wheel_rail_geometry.h"
 
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -219,6 +220,51 @@ TEST(WheelRailGeometry, CandidateAtMovesTheContactPointAlongTheInterval) {
   EXPECT_NEAR(moved.rail_lateral_curvature, 1.0 / R, 1e-6 / R);
   EXPECT_NEAR(moved.wheel_radius_m, 0.462, 1e-9);
   EXPECT_NEAR(g.CandidateAt(c, 1.0).rail_point_m.x(), c.y_hi_m, 1e-7);
+}
+
+// The yawed outline is shared between geometries of the same wheel, rolling radius and yaw
+// (issue 18 point 3), and only then: a lateral shift keeps it, another yaw or radius, or a wheel
+// one ulp different in one point, gets its own. Shared or not, a geometry's answers are those of
+// one built alone (the shared outline is the one it would build).
+TEST(WheelRailGeometry, YawedOutlineSharedOnlyForTheSameWheelRadiusAndYaw) {
+  const Profile rail = testing::ArcProfile(0.3, +1.0, 0.2);
+  const Profile wheel =
+      testing::FunctionProfile([](double y) { return -0.05 * y; }, -0.02, 0.02, 401);
+  std::vector<Eigen::Vector2d> moved = wheel.points();
+  moved[200].y() = std::nextafter(moved[200].y(), 1.0);
+  const Profile wheel_ulp(moved, wheel.source());
+  WheelPose pose;
+  pose.yaw_rad = 0.004;
+  const WheelRailGeometry a(wheel, rail, pose);
+  WheelPose shifted = pose;
+  shifted.lateral_shift_m = 1e-3;
+  const WheelRailGeometry b(wheel, rail, shifted);
+  EXPECT_EQ(&a.wheel().profile(), &b.wheel().profile());
+  WheelPose other_yaw = pose;
+  other_yaw.yaw_rad = std::nextafter(pose.yaw_rad, 1.0);
+  EXPECT_NE(&WheelRailGeometry(wheel, rail, other_yaw).wheel().profile(), &a.wheel().profile());
+  WheelPose other_radius = pose;
+  other_radius.rolling_radius_m = 0.45;
+  EXPECT_NE(&WheelRailGeometry(wheel, rail, other_radius).wheel().profile(), &a.wheel().profile());
+  EXPECT_NE(&WheelRailGeometry(wheel_ulp, rail, pose).wheel().profile(), &a.wheel().profile());
+  // b's answers, from the shared outline, equal those of a geometry built after the cache has
+  // been cycled through other yaws (so built anew).
+  for (int k = 1; k <= 20; ++k) {
+    WheelPose p = pose;
+    p.yaw_rad = 0.001 * k;
+    const WheelRailGeometry cycle(wheel, rail, p);
+  }
+  const WheelRailGeometry fresh(wheel, rail, shifted);
+  EXPECT_NE(&fresh.wheel().profile(), &b.wheel().profile());
+  const auto cb = b.FindCandidates(1e-5), cf = fresh.FindCandidates(1e-5);
+  ASSERT_EQ(cb.size(), cf.size());
+  ASSERT_FALSE(cb.empty());
+  for (size_t i = 0; i < cb.size(); ++i) {
+    EXPECT_EQ(cb[i].y_m, cf[i].y_m);
+    EXPECT_EQ(cb[i].wheel_s_m, cf[i].wheel_s_m);
+    EXPECT_EQ(cb[i].lead_m, cf[i].lead_m);
+  }
+  EXPECT_EQ(b.dz_m(), fresh.dz_m());
 }
 
 }  // namespace
