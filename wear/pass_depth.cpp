@@ -171,6 +171,11 @@ std::vector<double> CalcPatchDamageSpread(const PatchResult& patch, const CurveL
   RequireGridAndRolling(patch, kWhat, "damage per position");
   RequireWearGrid(wear_grid);
   if (!patch.rolling->damage.has_value()) {
+    // A patch left without pressure (the vertical balance or the coupling unloaded a small
+    // second patch) has no tractions and damages nothing.
+    if (patch.rolling->tangential.status == SolverStatus::kNoContact) {
+      return std::vector<double>(wear_grid.n, 0.0);
+    }
     throw InputError(
         "damage per position: the patch has no damage indices: it needs the damage effect "
         "(scene effects = [..., \"damage\"]) and the rail's shear_yield_MPa");

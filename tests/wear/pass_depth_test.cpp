@@ -397,6 +397,21 @@ TEST(PassDepth, DamageCoversTheLoadedPositions) {
   EXPECT_GT(full, 20);
 }
 
+// A patch the vertical balance left without pressure (the default study's dry KTH run at step
+// 13: a second patch of 319 cells, "no cell carries pressure") has no tractions, so no damage
+// indices: it damages nothing, where it stopped the run as if the damage effect were off.
+TEST(PassDepth, AnUnloadedPatchSpreadsNoDamage) {
+  PatchResult patch = HertzPatch(6e-3, 4e-3, 20, 20, 1e9, 0.01, 0.0);
+  patch.pressure_Pa.setZero();
+  patch.rolling->tangential.status = SolverStatus::kNoContact;
+  ASSERT_FALSE(patch.rolling->damage.has_value());
+  const Profile rail = FlatRail();
+  const WearGrid wg = WearGrid::ForProfile(rail, 0.3e-3);
+  const std::vector<double> damage = CalcPatchDamageSpread(patch, rail, wg);
+  ASSERT_EQ(static_cast<int>(damage.size()), wg.n);
+  for (double d : damage) EXPECT_EQ(d, 0.0);
+}
+
 TEST(PassDepth, DamageSpreadOnARealPatch) {
   const ContactProblem problem = GrooveRollingProblem();
   const ContactResult r = SolveContact(problem);
