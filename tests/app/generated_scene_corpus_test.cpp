@@ -32,6 +32,7 @@ const SceneCase kScenes[] = {
     {"wheelset.toml", "contact"},            {"groove_conformal.toml", "contact"},
     {"wear_high_rail.toml", "wear"},         {"curve_r600_vehicles.toml", "wear"},
     {"curve_r600_mbs_collective.toml", "wear"}, {"wear_wheel_coevolution.toml", "wear"},
+    {"curve_r600_wheel_wear.toml", "wear"},
 };
 
 class GeneratedSceneCorpus : public CliFixture,
