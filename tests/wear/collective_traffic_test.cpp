@@ -18,6 +18,7 @@
 #include "core/profile/builtin_profiles.h"
 #include "wear/vehicle_traffic.h"
 #include "wear/wear_simulation.h"
+#include "tests/wear/default_study.h"
 
 namespace railwear {
 namespace {
@@ -25,38 +26,20 @@ namespace {
 // A free S1002 wheelset on UIC60 1:40 rails of a 1500 m curve, at two speeds (shares 3 and 1):
 // the fixture of tests/wear/vehicle_traffic_test.cpp with a second entry.
 WearStudy VehicleStudy() {
-  WearStudy study;
-  study.rail_profile = MakeUic60();
-  study.low_rail_profile = MakeUic60();
-  study.cant_ratio = 0.025;
-  study.rail_material.hardness_Pa = 2.6e9;
-  study.model = MakeModelOptions(ModelKind::kAuto);
-  study.model.accuracy = AccuracyPreset::kDraft;
-  study.curve.radius_m = 1500.0;
-  VehicleSpec v;
-  v.name = "wheelset";
-  v.kind = VehicleKind::kWheelset;
-  v.axle_load_N = 16e3 * kGravity_m_s2;
-  v.wheel_profile = MakeS1002();
+  WearStudy study = VehicleCurveStudy(1500.0, VehicleKind::kWheelset, 0.3, 25.0);
+  VehicleSpec& v = study.vehicles[0];
   v.cg_height_m = 1.5;
-  study.vehicles = {v};
+  const TrafficCase one = study.traffic[0];
+  study.traffic.clear();
   for (const auto& [speed, share] : {std::pair{25.0, 3.0}, std::pair{15.0, 1.0}}) {
-    TrafficCase c;
+    TrafficCase c = one;
     c.name = fmt::format("wheelset at {} m/s", speed);
-    c.vehicle = 0;
-    c.wheel_profile = v.wheel_profile;
     c.rolling_radius_m = v.rolling_radius_m;
-    c.axle_load_t = 16.0;
-    c.vertical_force_N = 0.5 * v.axle_load_N;
-    c.friction = 0.3;
     c.speed_m_s = speed;
     c.share = share;
     study.traffic.push_back(c);
   }
-  study.options.law.archard_k = 1e-4;
-  study.options.total_passes = 1e6;
   study.options.quadrature_points = 1;
-  study.options.threads = 1;
   return study;
 }
 
