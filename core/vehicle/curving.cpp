@@ -616,6 +616,15 @@ ModelOptions CurvingOptions::PredictorModel() {
   return m;
 }
 
+ModelOptions CurvingOptions::PredictorFor(const ModelOptions& full) {
+  ModelOptions m = full;
+  if (m.kind == ModelKind::kConformal) m.kind = ModelKind::kAuto;
+  m.accuracy = AccuracyPreset::kDraft;
+  m.cell_dx_m.reset();
+  m.cell_ds_m.reset();
+  return m;
+}
+
 CurvingResult SolveCurving(const CurvingProblem& problem_in) {
   Validate(problem_in);
   const auto start = std::chrono::steady_clock::now();
@@ -660,19 +669,31 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
     const double X = layout.wheelset_x[i], Xb = layout.bogie_x[layout.bogie_of[i]];
     centred[2 * i + 1] = kappa * (X - Xb);  // rigid with a frame on its tangent
   }
-  std::vector<CurvingStart> starts;
+  // Each start, and whether it goes to the full model directly (a start with its Jacobian is a
+  // solution of the full model nearby: continuation); when that fails, the same start goes
+  // through the predictor's phase before the centred start is tried.
+  struct Attempted {
+    CurvingStart start;
+    bool full_directly = false;
+  };
+  std::vector<Attempted> starts;
   if (p.options.start && p.options.start->state.size() == layout.size()) {
-    starts.push_back(*p.options.start);
+    const bool has_jacobian = p.options.start->jacobian.rows() == layout.size() &&
+                              p.options.start->jacobian.cols() == layout.size();
+    if (has_jacobian) starts.push_back({*p.options.start, true});
+    starts.push_back({*p.options.start, false});
   }
-  starts.push_back({centred, {}});
+  starts.push_back({{centred, {}}, false});
   Eigen::VectorXd q;
   std::vector<CurvedWheelset> ws;
   Eigen::VectorXd r;
   bool no_equilibrium = false;
   // The predictor's phase, then the full model's; one phase when they are the same model.
-  const ModelOptions& first_model = p.options.predictor ? *p.options.predictor : p.contact.model;
-  const bool two_phases = p.options.predictor && !(*p.options.predictor == p.contact.model);
-  Equilibrium eq(p, layout, contexts(first_model), unbalanced_N, q0);
+  const ModelOptions predictor = !p.options.use_predictor ? p.contact.model
+                                 : p.options.predictor    ? *p.options.predictor
+                                                          : CurvingOptions::PredictorFor(p.contact.model);
+  const bool has_predictor = !(predictor == p.contact.model);
+  Equilibrium eq(p, layout, contexts(predictor), unbalanced_N, q0);
   int iterations = 0;
   // The best stopped attempt (smallest largest scaled residual) when no start converges: a later
   // start that goes astray does not replace a nearer one.
@@ -683,10 +704,11 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
     std::string message;
   };
   std::optional<Attempt> best;
-  for (const CurvingStart& start : starts) {
+  for (const auto& [start, full_directly] : starts) {
     q = start.state;
     no_equilibrium = false;
-    eq.Restart(contexts(first_model), start.jacobian);
+    const bool two_phases = has_predictor && !full_directly;
+    eq.Restart(contexts(two_phases ? predictor : p.contact.model), start.jacobian);
     iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
     if (two_phases) {
       out.predictor_iterations += std::max(iterations, 0);

@@ -108,6 +108,34 @@ TEST(CurvingTest, WarmStartWithItsJacobianSkipsTheFiniteDifferences) {
               with_jacobian.contact_solves, without.contact_solves);
 }
 
+// Continuation goes to the full model directly: a standard-accuracy solve with the draft
+// predictor, continued to a nearby radius from its solution and Jacobian, runs no predictor
+// iteration and needs fewer solves than the same start without its Jacobian (which goes
+// through the predictor's phase); both end on the same full-model equilibrium, within the
+// position error the tolerance allows (as in the test above).
+TEST(CurvingTest, ContinuedStartGoesToTheFullModelDirectly) {
+  CurvingProblem p = BaseProblem(MakeCone(0.05), 1000.0);
+  p.contact.model.accuracy = AccuracyPreset::kStandard;  // the predictor: the same on draft
+  const CurvingResult cold = SolveCurving(p);
+  ASSERT_EQ(cold.status, CurvingStatus::kConverged) << cold.message;
+  EXPECT_GT(cold.predictor_iterations, 0);
+
+  p.options.start = cold.Start();
+  p.curve.radius_m = 1030.0;
+  const CurvingResult continued = SolveCurving(p);
+  ASSERT_EQ(continued.status, CurvingStatus::kConverged) << continued.message;
+  EXPECT_EQ(continued.predictor_iterations, 0);
+  p.options.start->jacobian.resize(0, 0);
+  const CurvingResult through_predictor = SolveCurving(p);
+  ASSERT_EQ(through_predictor.status, CurvingStatus::kConverged) << through_predictor.message;
+  EXPECT_GT(through_predictor.predictor_iterations, 0);
+  EXPECT_LT(continued.contact_solves, through_predictor.contact_solves);
+  EXPECT_NEAR(continued.wheelsets[0].lateral_m, through_predictor.wheelsets[0].lateral_m, 1e-4);
+  std::printf("continued at standard R 1000 -> 1030 m: %d solves directly, %d through the "
+              "predictor\n",
+              continued.contact_solves, through_predictor.contact_solves);
+}
+
 // Cancellation (issue 17): CurvingOptions::cancel is asked between the wheelsets' contact
 // evaluations, so a solve cancelled after its first evaluation stops there, with status
 // "cancelled", no solution and far fewer contact solves than the whole solve; a callback that
