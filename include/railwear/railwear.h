@@ -303,8 +303,10 @@ typedef struct rw_patch {
    * axle; (y, z) the point turned about the axle into that cross-section, in the wheel profile
    * frame W (core/notation.md: y along the axle, z toward the rail, the wheel radius there is
    * rolling_radius_m + z). A wheelset's left wheel in its own (mirrored) profile frame. The
-   * point is the rail-frame pressure centre: it lies within about the approach of the wheel
-   * profile. A caller of 1.1 passes struct_size = RW_PATCH_SIZE_1_1 and gets the fields above. */
+   * wheel is the one of the solve's geometry, placed at first contact (before the approach):
+   * (y, z) is the wheel profile's point at the rail-frame pressure centre, off the profile by
+   * the initial gap there (at most the approach). A caller of 1.1 passes
+   * struct_size = RW_PATCH_SIZE_1_1 and gets the fields above. */
   double contact_wheel_x_m, contact_wheel_y_m, contact_wheel_z_m;
 } rw_patch;
 
