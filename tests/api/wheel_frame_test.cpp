@@ -1,7 +1,7 @@
 // The wheel-frame contact location of rw_patch (API 1.2): the pressure centre turned into the
-// wheel's frame lies on the wheel profile (to the approach: the rigid profiles overlap by it in
-// the patch), at the lateral position the placement puts it; a caller of API 1.1 still gets its
-// smaller rw_patch, filled up to its size.
+// wheel's frame lies on the wheel profile (to the initial gap there, at most the approach), at
+// the lateral position the placement puts it and ahead of the axle by a cone's lead; a caller
+// of API 1.1 still gets its smaller rw_patch, filled up to its size.
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -11,6 +11,7 @@
 #include "core/geometry/curve_locator.h"
 #include "core/profile/builtin_profiles.h"
 #include "railwear/railwear.h"
+#include "tests/api/rolling_wheel.h"
 
 namespace railwear::test {
 namespace {
@@ -31,28 +32,15 @@ constexpr double kLeadRelTol = 0.15;
 // x_R = cos(psi) x_W - sin(psi) y_W, the yaw turned back: rounding of millimetre values.
 constexpr double kTurnBackTol_m = 1e-15;
 
+// An S1002 wheel (the built-in, MakeS1002()) rolling on UIC60 1:40, conformal at draft
+// accuracy (tests/api/rolling_wheel.h), or a wheelset of them.
 struct Fixture {
   Profile wheel = MakeS1002();
   rw_problem* p = nullptr;
 
-  explicit Fixture(int kind) {
-    EXPECT_EQ(rw_create(kind, &p), RW_OK);
-    std::vector<double> yz;
-    for (const Eigen::Vector2d& q : wheel.points()) yz.insert(yz.end(), {q.x(), q.y()});
-    EXPECT_EQ(rw_set_profile_points(p, RW_BODY_WHEEL, yz.data(), wheel.points().size()), RW_OK);
-    EXPECT_EQ(rw_set_profile_file(p, RW_BODY_RAIL, "builtin:UIC60"), RW_OK);
-    rw_geometry g{};
-    g.struct_size = sizeof g;
-    rw_init_geometry(&g);
-    g.rail_cant = 1.0 / 40.0;
-    EXPECT_EQ(rw_set_geometry(p, &g), RW_OK);
-    rw_model m{};
-    m.struct_size = sizeof m;
-    rw_init_model(&m);
-    m.accuracy = RW_ACCURACY_DRAFT;
-    m.effects = RW_EFFECT_TANGENTIAL;
-    EXPECT_EQ(rw_set_model(p, &m), RW_OK);
-    EXPECT_EQ(rw_set_friction(p, 0.3), RW_OK);
+  explicit Fixture(int kind)
+      : p(MakeRollingS1002Wheel(RW_MODEL_CONFORMAL, RW_ACCURACY_DRAFT, kind)) {
+    EXPECT_NE(p, nullptr);
   }
   ~Fixture() { rw_destroy(p); }
 
