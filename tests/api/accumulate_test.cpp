@@ -17,6 +17,7 @@
 #include "profiles_db/profile_store.h"
 #include "railwear/railwear.h"
 #include "tests/app/cli_runner.h"
+#include "tests/api/rolling_wheel.h"
 #include "tests/api/scene_to_api.h"
 #include "wear/pass_depth.h"
 
@@ -254,35 +255,20 @@ speed_m_s = 20.0
   ASSERT_NE(stored, nullptr);
   const Profile rail = store.LoadProfile(runs[0].id, 0);
 
-  rw_problem* p = nullptr;
-  ASSERT_EQ(rw_create(RW_PROBLEM_WHEEL, &p), RW_OK);
+  // The scene's wheel, rail, cant (1:40), radius (the default 460 mm), steel, model and friction
+  // (tests/api/rolling_wheel.h), then the run's step-0 rail in place of the built-in and the
+  // rail's hardness.
+  rw_problem* p = MakeRollingS1002Wheel(RW_MODEL_CONFORMAL, RW_ACCURACY_DRAFT);
+  ASSERT_NE(p, nullptr);
   std::vector<double> yz;
   for (const Eigen::Vector2d& q : rail.points()) yz.insert(yz.end(), {q.x(), q.y()});
-  RW_EXPECT_OK(p, rw_set_profile_file(p, RW_BODY_WHEEL, "builtin:S1002"));
   RW_EXPECT_OK(p, rw_set_profile_points(p, RW_BODY_RAIL, yz.data(), rail.points().size()));
-  rw_geometry g{};
-  g.struct_size = sizeof g;
-  rw_init_geometry(&g);
-  g.rolling_radius_m = 0.46;
-  g.rail_cant = 1.0 / 40.0;
-  RW_EXPECT_OK(p, rw_set_geometry(p, &g));
   rw_material steel{};
   steel.struct_size = sizeof steel;
-  rw_init_material(&steel);
-  steel.youngs_modulus_Pa = 210e9;
-  steel.poisson_ratio = 0.28;
+  rw_init_material(&steel);  // 210 GPa, 0.28: the scene's
   rw_material rail_steel = steel;
   rail_steel.hardness_Pa = 2600e6;
   RW_EXPECT_OK(p, rw_set_materials(p, &steel, &rail_steel));
-  rw_model m{};
-  m.struct_size = sizeof m;
-  rw_init_model(&m);
-  m.kind = RW_MODEL_CONFORMAL;
-  m.accuracy = RW_ACCURACY_DRAFT;
-  m.tangential = RW_TANGENTIAL_FASTSIM;
-  m.effects = RW_EFFECT_TANGENTIAL;
-  RW_EXPECT_OK(p, rw_set_model(p, &m));
-  RW_EXPECT_OK(p, rw_set_friction(p, 0.3));
   const rw_wear wear = DefaultWear();  // Archard at the scene's default k, 0.1 mm bins
   RW_EXPECT_OK(p, rw_set_wear(p, &wear));
   rw_state s{};
