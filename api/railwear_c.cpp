@@ -19,6 +19,7 @@
 #include "core/contact/contact_case.h"
 #include "core/contact/contact_forces.h"
 #include "core/contact/influence_constant_sets.h"
+#include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
 #include "wear/pass_depth.h"
@@ -901,7 +902,10 @@ rw_status rw_get_patch_count(rw_problem* problem, int* count) {
 rw_status rw_get_patch(rw_problem* problem, int index, rw_patch* out) {
   return Guard(problem, [&] {
     RequireHandle(problem);
-    RequireSize(out, "rw_patch");
+    RequireNonNull(out, "rw_patch");
+    // A 1.1 caller's smaller struct (without the wheel-frame location) is filled up to its size.
+    const size_t size = out->struct_size;
+    if (size != RW_PATCH_SIZE_1_1) RequireSize(out, "rw_patch");
     const rw_problem::PatchRef& ref = PatchAt(problem, index);
     const PatchResult& p = *ref.patch;
     rw_patch o{};
@@ -938,7 +942,27 @@ rw_status rw_get_patch(rw_problem* problem, int index, rw_patch* out) {
     }
     o.cells = p.cells;
     o.cells_in_contact = p.cells_in_contact;
-    *out = o;
+    // The wheel frame: the pressure centre in the wheel's placed geometry of this solve (the
+    // handle's placement cache holds each wheel's last one, core/contact/placement_cache.h).
+    const railwear::WheelRailGeometry* geometry = problem->placement_cache.Last(
+        ref.wheel == 0 ? railwear::PlacementCache::kRight : railwear::PlacementCache::kLeft);
+    RAILWEAR_CHECK(geometry != nullptr);
+    const Eigen::Vector3d p_R(p.contact_x_m, o.contact_y_m, o.contact_z_m);
+    const Eigen::Vector2d meridian = geometry->Meridian(p_R);  // (y_W, r - r0)
+    // x along the wheel's rolling direction: Meridian's own rotation about the vertical through
+    // the wheel profile origin (its yaw undone), of which it returns y and r only.
+    const double yaw = geometry->pose().yaw_rad;
+    const double y_roll_undone = geometry->RailToWheel({o.contact_y_m, o.contact_z_m}).x();
+    o.contact_wheel_x_m =
+        yaw == 0.0 ? p.contact_x_m : std::cos(yaw) * p.contact_x_m + std::sin(yaw) * y_roll_undone;
+    o.contact_wheel_y_m = meridian.x();
+    o.contact_wheel_z_m = meridian.y();
+    if (size == RW_PATCH_SIZE_1_1) {
+      o.struct_size = size;
+      std::memcpy(out, &o, size);
+    } else {
+      *out = o;
+    }
     return RW_OK;
   });
 }

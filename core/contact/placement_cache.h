@@ -27,6 +27,10 @@ class PlacementCache {
   const WheelRailGeometry& Get(Slot slot, const Profile& wheel, const Profile& rail,
                                const WheelPose& pose);
 
+  // The geometry the last Get of `slot` returned (null before the first): the C API reads the
+  // wheel's placement of its last solve here (the wheel-frame contact location).
+  const WheelRailGeometry* Last(Slot slot) const { return entries_[slot].geometry.get(); }
+
   int hits() const { return hits_; }      // calls that reused a geometry
   int misses() const { return misses_; }  // calls that built one
 

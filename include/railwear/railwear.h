@@ -51,7 +51,7 @@ extern "C" {
  * size this header writes. rw_api_version() gives the library's (major * 10000 + minor * 100 +
  * patch), for a check at run time. */
 #define RW_API_VERSION_MAJOR 1
-#define RW_API_VERSION_MINOR 1
+#define RW_API_VERSION_MINOR 2
 #define RW_API_VERSION_PATCH 0
 #define RW_API_VERSION \
   (RW_API_VERSION_MAJOR * 10000 + RW_API_VERSION_MINOR * 100 + RW_API_VERSION_PATCH)
@@ -298,7 +298,20 @@ typedef struct rw_patch {
   double t_gamma_N; /* with RW_EFFECT_DAMAGE, else 0 */
   double wlrm_damage, fi_surf;
   int cells, cells_in_contact;
+  /* Since 1.2: the pressure centre in the wheel's frame [m]. x along the wheel's own rolling
+   * direction (its yaw undone) from the wheel profile origin's cross-section, > 0 ahead of the
+   * axle; (y, z) the point turned about the axle into that cross-section, in the wheel profile
+   * frame W (core/notation.md: y along the axle, z toward the rail, the wheel radius there is
+   * rolling_radius_m + z). A wheelset's left wheel in its own (mirrored) profile frame. The
+   * wheel is the one of the solve's geometry, placed at first contact (before the approach):
+   * (y, z) is the wheel profile's point at the rail-frame pressure centre, off the profile by
+   * the initial gap there (at most the approach). A caller of 1.1 passes
+   * struct_size = RW_PATCH_SIZE_1_1 and gets the fields above. */
+  double contact_wheel_x_m, contact_wheel_y_m, contact_wheel_z_m;
 } rw_patch;
+
+/* rw_patch's size in API 1.0 and 1.1 (before the wheel-frame location), still accepted. */
+#define RW_PATCH_SIZE_1_1 offsetof(rw_patch, contact_wheel_x_m)
 
 RW_API rw_status rw_get_patch(rw_problem* problem, int index, rw_patch* patch);
 

@@ -16,6 +16,7 @@ size_t rw_test_c_sizeof(int which) {
     case 5: return sizeof(rw_summary);
     case 6: return sizeof(rw_patch);
     case 7: return sizeof(rw_wear);
+    case 8: return RW_PATCH_SIZE_1_1;
     default: return 0;
   }
 }

@@ -15,9 +15,10 @@ namespace {
 
 TEST(ApiAbi, VersionNumbersArePinned) {
   EXPECT_EQ(RW_API_VERSION_MAJOR, 1);
-  EXPECT_EQ(RW_API_VERSION_MINOR, 1);  // 1.1: rw_set_pressure_limit added
+  // 1.1: rw_set_pressure_limit added; 1.2: rw_patch's wheel-frame location appended.
+  EXPECT_EQ(RW_API_VERSION_MINOR, 2);
   EXPECT_EQ(RW_API_VERSION_PATCH, 0);
-  EXPECT_EQ(RW_API_VERSION, 10100);
+  EXPECT_EQ(RW_API_VERSION, 10200);
   EXPECT_EQ(rw_api_version(), RW_API_VERSION);  // the library is the header's
 }
 
@@ -27,7 +28,7 @@ TEST(ApiAbi, StructSizesArePinnedAndEqualInCAndCpp) {
   const size_t cpp[] = {sizeof(rw_material), sizeof(rw_model), sizeof(rw_influence_constants),
                         sizeof(rw_geometry), sizeof(rw_state), sizeof(rw_summary),
                         sizeof(rw_patch),    sizeof(rw_wear)};
-  const size_t pinned[] = {40, 48, 88, 56, 136, 104, 184, 32};
+  const size_t pinned[] = {40, 48, 88, 56, 136, 104, 208, 32};
   for (int i = 0; i < 8; ++i) {
     EXPECT_EQ(rw_test_c_sizeof(i), cpp[i]) << "struct " << i;
     EXPECT_EQ(cpp[i], pinned[i]) << "struct " << i;
@@ -41,6 +42,9 @@ TEST(ApiAbi, StructSizesArePinnedAndEqualInCAndCpp) {
   EXPECT_EQ(offsetof(rw_summary, struct_size), 0u);
   EXPECT_EQ(offsetof(rw_patch, struct_size), 0u);
   EXPECT_EQ(offsetof(rw_wear, struct_size), 0u);
+  // rw_patch of 1.0 and 1.1, still accepted: everything before the wheel-frame location.
+  EXPECT_EQ(RW_PATCH_SIZE_1_1, 184u);
+  EXPECT_EQ(rw_test_c_sizeof(8), RW_PATCH_SIZE_1_1);
 }
 
 TEST(ApiAbi, EnumValuesArePinned) {

@@ -1,8 +1,9 @@
 // Wear for co-simulation (rw_accumulate): the depth a co-simulation accumulates over steps of a
-// fixed state equals the per-pass depth `railwear wear` computes for that state
-// (wear/pass_depth.h CalcPatchPassDepth summed over the patches, as the wear loop's load case
-// does, on the contact the CLI solves), times the passes; the field is per rail and starts again
-// when the rail, its cant or the law changes.
+// fixed state equals the per-pass depth `railwear wear` computes for that state, times the
+// passes: against the `wear` command itself (a one-load-case wear scene run by the CLI, its
+// stored per-pass depth read back from the database) and against the wear loop's own sum
+// (wear/pass_depth.h CalcPatchPassDepth summed over the patches, on the contact the CLI
+// solves); the field is per rail and starts again when the rail, its cant or the law changes.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -13,7 +14,10 @@
 
 #include "app/contact_command.h"
 #include "app/scene.h"
+#include "profiles_db/profile_store.h"
 #include "railwear/railwear.h"
+#include "tests/app/cli_runner.h"
+#include "tests/api/rolling_wheel.h"
 #include "tests/api/scene_to_api.h"
 #include "wear/pass_depth.h"
 
@@ -183,6 +187,120 @@ TEST(ApiAccumulate, AWheelsetWearsBothRails) {
   EXPECT_GT(MaxAbs(Depth(p, 0)), 0.0);
   EXPECT_GT(MaxAbs(Depth(p, 1)), 0.0);
   rw_destroy(p);
+}
+
+// The `wear` command against N passes accumulated through the C API: a wear scene with one load
+// case (the rolling_gauge_corner example's wheel, rail, materials, position, yaw, load, speed and
+// friction as one [[traffic]] entry without a lateral spread, at draft accuracy, Archard's law)
+// run one step by the CLI into a database; its stored per-pass depth (`depth_per_pass_nm`, the
+// step's weighted mean depth per pass before smoothing) against the depth the handle
+// accumulates over N calculate + accumulate(1 pass) steps of the same state, divided by N. The
+// handle's rail is the run's stored step-0 rail (the wear loop resamples the unworn rail at
+// its profile spacing before the first step), set as points with the same cant.
+class ApiAccumulateCli : public CliFixture {};
+
+// Per bin, relative to the bin's own depth: the stored depth went through nm (x 1e9, a rounding
+// of 1 ulp each way) and N additions round by at most N ulps, some 1e-15 relative for N = 4;
+// 1e-12 is the issue's parity tolerance. Zero bins must be zero in both.
+constexpr double kCliParityRelTol = 1e-12;
+constexpr int kPasses = 4;
+
+TEST_F(ApiAccumulateCli, NPassesOfAFixedStateEqualTheWearCommandsStoredPerPassDepth) {
+  const std::string scene = Write("one_case.toml", R"([scene]
+name = "accumulate parity"
+effects = ["normal", "tangential", "wear"]
+
+[model]
+kind = "conformal"
+accuracy = "draft"
+tangential = "fastsim"
+
+[materials]
+wheel = { E_MPa = 210000, nu = 0.28 }
+rail = { E_MPa = 210000, nu = 0.28, hardness_MPa = 2600 }
+
+[wheel]
+profile = "builtin:S1002"
+rolling_radius_mm = 460
+
+[rail]
+profile = "builtin:UIC60"
+cant = "1:40"
+
+[wear]
+law = "archard"
+max_depth_per_step_mm = 0.1
+total_passes = 1e6
+threads = 1
+
+[[traffic]]
+name = "one load case"
+vertical_N = 100000
+lateral_shift_mm = -4.0
+yaw_mrad = 5.0
+friction = 0.3
+speed_m_s = 20.0
+)");
+  const Outcome run = Run("wear one_case.toml --db wear.sqlite --steps 1");
+  ASSERT_EQ(run.exit_code, 0) << run.out << run.err;
+  const ProfileStore store = ProfileStore::OpenReadOnly((dir_ / "wear.sqlite").string());
+  const std::vector<RunInfo> runs = store.Runs();
+  ASSERT_EQ(runs.size(), 1u);
+  const StepRecord step = store.LoadStep(runs[0].id, 1);
+  ASSERT_EQ(step.load_cases_json.size(), 1u);  // one load case: its weight is 1
+  const Distribution* stored = nullptr;
+  for (const Distribution& d : step.distributions) {
+    if (d.kind == "depth_per_pass_nm") stored = &d;
+  }
+  ASSERT_NE(stored, nullptr);
+  const Profile rail = store.LoadProfile(runs[0].id, 0);
+
+  // The scene's wheel, rail, cant (1:40), radius (the default 460 mm), steel, model and friction
+  // (tests/api/rolling_wheel.h), then the run's step-0 rail in place of the built-in and the
+  // rail's hardness.
+  rw_problem* p = MakeRollingS1002Wheel(RW_MODEL_CONFORMAL, RW_ACCURACY_DRAFT);
+  ASSERT_NE(p, nullptr);
+  std::vector<double> yz;
+  for (const Eigen::Vector2d& q : rail.points()) yz.insert(yz.end(), {q.x(), q.y()});
+  RW_EXPECT_OK(p, rw_set_profile_points(p, RW_BODY_RAIL, yz.data(), rail.points().size()));
+  rw_material steel{};
+  steel.struct_size = sizeof steel;
+  rw_init_material(&steel);  // 210 GPa, 0.28: the scene's
+  rw_material rail_steel = steel;
+  rail_steel.hardness_Pa = 2600e6;
+  RW_EXPECT_OK(p, rw_set_materials(p, &steel, &rail_steel));
+  const rw_wear wear = DefaultWear();  // Archard at the scene's default k, 0.1 mm bins
+  RW_EXPECT_OK(p, rw_set_wear(p, &wear));
+  rw_state s{};
+  s.struct_size = sizeof s;
+  rw_init_state(&s);
+  s.lateral_m = -4e-3;
+  s.yaw_rad = 5e-3;
+  s.vertical_force_N = 100e3;
+  s.speed_m_s = 20.0;
+  for (int pass = 0; pass < kPasses; ++pass) {
+    RW_EXPECT_OK(p, rw_set_state(p, &s));
+    ASSERT_EQ(rw_calculate(p), RW_OK) << rw_last_error(p);
+    ASSERT_EQ(rw_accumulate(p, 1.0), RW_OK) << rw_last_error(p);
+  }
+  const std::vector<double> depth = Depth(p, 0);
+  std::vector<double> centre(depth.size());
+  ASSERT_EQ(rw_get_depth(p, 0, centre.size(), centre.data(), nullptr), RW_OK);
+  rw_destroy(p);
+
+  ASSERT_EQ(depth.size(), stored->value.size());
+  int worn_bins = 0;
+  for (size_t b = 0; b < depth.size(); ++b) {
+    const double want = stored->value[b] * 1e-9;  // nm -> m
+    const double got = depth[b] / kPasses;
+    EXPECT_NEAR(got, want, kCliParityRelTol * std::abs(want)) << "bin " << b;
+    if (want > 0.0) ++worn_bins;
+    // The same bins: the stored centre is clipped to the profile's length (the last bin).
+    if (stored->s_m[b] == centre[b] || b + 1 < depth.size()) {
+      EXPECT_DOUBLE_EQ(stored->s_m[b], centre[b]) << "bin " << b;
+    }
+  }
+  EXPECT_GT(worn_bins, 20);  // the patch spans a few millimetres of rail: tens of bins
 }
 
 }  // namespace

@@ -45,6 +45,10 @@ class PythonModule(unittest.TestCase):
             self.assertEqual(patch["p_max_Pa"] * 1e-6, q["p_max_MPa"])
             self.assertEqual(patch["area_m2"] * 1e6, q["area_mm2"])
             self.assertEqual(patch["cells_in_contact"], q["cells_in_contact"])
+            # The wheel frame (API 1.2): without yaw or roll, the rail frame's point less the
+            # wheel's lateral shift (tests/api/wheel_frame_test.cpp).
+            self.assertEqual(patch["contact_wheel_y_m"], patch["contact_y_m"] - (-4.0 * MM))
+            self.assertEqual(patch["contact_wheel_x_m"], patch["contact_x_m"])
             cells = p.get_cells(i)
             self.assertIsInstance(cells["pressure_Pa"], np.ndarray)
             self.assertEqual(len(cells["pressure_Pa"]), patch["cells"])

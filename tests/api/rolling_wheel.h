@@ -7,10 +7,12 @@
 
 namespace railwear::test {
 
-// NULL when the handle could not be made (every call's status is checked).
-inline rw_problem* MakeRollingS1002Wheel(int model_kind, int accuracy) {
+// NULL when the handle could not be made (every call's status is checked). problem_kind
+// RW_PROBLEM_WHEELSET: a wheelset of these wheels on two such rails.
+inline rw_problem* MakeRollingS1002Wheel(int model_kind, int accuracy,
+                                         int problem_kind = RW_PROBLEM_WHEEL) {
   rw_problem* p = nullptr;
-  if (rw_create(RW_PROBLEM_WHEEL, &p) != RW_OK) return nullptr;
+  if (rw_create(problem_kind, &p) != RW_OK) return nullptr;
   rw_geometry g{};
   g.struct_size = sizeof g;
   rw_init_geometry(&g);
