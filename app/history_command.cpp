@@ -28,6 +28,7 @@
 #include "profiles_db/profile_store.h"
 #include "wear/traffic.h"
 #include "wear/wear_measures.h"
+#include "wear/wear_simulation.h"
 
 namespace railwear::app {
 namespace fs = std::filesystem;
@@ -608,9 +609,12 @@ void RunHistoryDiff(const HistoryOptions& o, const HistoryDiffOptions& d) {
   WearMeasureOptions options;
   WearMeasures m;
   if (wheel) {
-    m = CompareWheelProfiles(db.LoadWheelProfile(run.id, a.step, wheel->traffic_index, wheel->wheel),
-                             db.LoadWheelProfile(run.id, b.step, wheel->traffic_index, wheel->wheel),
-                             options);
+    const Profile pa = db.LoadWheelProfile(run.id, a.step, wheel->traffic_index, wheel->wheel);
+    const Profile pb = db.LoadWheelProfile(run.id, b.step, wheel->traffic_index, wheel->wheel);
+    // From step 0 (the wheel as given, not resampled) as the run measured it: against the
+    // unworn wheel resampled as the worn one was (wear/wear_simulation.h).
+    m = a.step == steps.front().step ? CompareWheelWithUnworn(pa, pb)
+                                     : CompareWheelProfiles(pa, pb, options);
   } else {
     const Profile unworn = LoadRailProfile(db, run, steps.front().step, rail);
     const Profile pa = LoadRailProfile(db, run, a.step, rail);

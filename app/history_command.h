@@ -107,7 +107,7 @@ void RunHistoryProfile(const HistoryOptions& options, const HistoryProfileOption
 // diff: CompareProfiles(step A, step B) with the wear gauge of the run's step 0, so W1/W2/W3
 // between A and B are the differences of their values against step 0 (wear/wear_measures.h);
 // --rail low: of the low rail; --wheel ENTRY: of that wearing wheel (CompareWheelProfiles: worn
-// area and max depth, no W1/W2/W3).
+// area and max depth, no W1/W2/W3; from step 0 CompareWheelWithUnworn, as the run measured it).
 void RunHistoryDiff(const HistoryOptions& options, const HistoryDiffOptions& diff);
 // plot: three PNGs via gnuplot (app/history_plot.h); std::runtime_error when gnuplot is missing.
 void RunHistoryPlot(const HistoryOptions& options, const HistoryPlotOptions& plot);

@@ -14,6 +14,7 @@
 #include "app/gnuplot.h"
 #include "core/numerics/units.h"
 #include "wear/wear_measures.h"
+#include "wear/wear_simulation.h"
 
 namespace railwear::app {
 namespace fs = std::filesystem;
@@ -322,7 +323,7 @@ std::vector<WheelDepthCurves> WheelDepthCurvesOf(const std::vector<StepRecord>& 
     for (size_t k = 1; k < steps.size(); ++k) {
       for (const WheelStepRecord& now : steps[k].wheels) {
         if (now.traffic_index != unworn.traffic_index || now.wheel != unworn.wheel) continue;
-        const WearMeasures m = CompareWheelProfiles(unworn.profile, now.profile);
+        const WearMeasures m = CompareWheelWithUnworn(unworn.profile, now.profile);
         DepthCurve c;
         c.step = steps[k].step;
         c.mgt = steps[k].mgt;

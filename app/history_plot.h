@@ -57,7 +57,7 @@ struct DepthCurve {
 std::vector<DepthCurve> WearDepthCurves(const std::vector<StepRecord>& steps);
 
 // Co-evolution: each wearing wheel's depth curves, the normal depth of its profile at every step
-// after step 0 against its step-0 profile (CompareWheelProfiles), s along that profile.
+// after step 0 against its step-0 profile (CompareWheelWithUnworn), s along that profile.
 struct WheelDepthCurves {
   int traffic_index = 0;
   std::string name;

@@ -382,13 +382,50 @@ double TotalPasses(const WearStudy& study) {
   return *study.options.total_mgt / MgtPerPass(study.traffic);
 }
 
-Profile ResampleProfile(const Profile& profile, double spacing_m) {
-  RAILWEAR_CHECK(spacing_m > 0.0);
+namespace {
+
+// `profile` at m + 1 points of uniform arc length, both ends included.
+Profile ResampleProfileIntervals(const Profile& profile, int m) {
   const double length = profile.Length();
-  const int m = std::max(3, static_cast<int>(std::ceil(length / spacing_m)));
   std::vector<Eigen::Vector2d> points(m + 1);
   for (int k = 0; k <= m; ++k) points[k] = profile.Position(length * k / m);
   return Profile(std::move(points), profile.source());
+}
+
+}  // namespace
+
+Profile ResampleProfile(const Profile& profile, double spacing_m) {
+  RAILWEAR_CHECK(spacing_m > 0.0);
+  return ResampleProfileIntervals(
+      profile, std::max(3, static_cast<int>(std::ceil(profile.Length() / spacing_m))));
+}
+
+WearMeasures CompareWheelWithUnworn(const Profile& unworn, const Profile& worn) {
+  if (worn.points() == unworn.points()) return CompareWheelProfiles(unworn, worn);
+  // The reference: the unworn curve at the feet of the worn profile's points (wear moved each
+  // point along the normal from its foot). Off the worn band the feet are the points themselves,
+  // so the two splines coincide there to rounding; on it the reference samples the unworn curve
+  // where the worn one's material came from, with the same spacing. Each foot is searched near
+  // its uniform place, within twice the change of length plus 1 mm.
+  const int m = worn.size() - 1;
+  const double length = unworn.Length();
+  const double window = 2.0 * std::abs(worn.Length() - length) + 1e-3;
+  const CurveLocator locator(unworn, /*material_toward_plus_z=*/false);
+  std::vector<Eigen::Vector2d> feet(m + 1);
+  double previous_s = -1.0;
+  for (int k = 0; k <= m; ++k) {
+    const double guess = length * k / m;
+    const CurveLocator::Projection foot =
+        locator.Project(worn.points()[k], guess - window, guess + window);
+    if (!(foot.s > previous_s + Profile::kDuplicateDistance_m)) {
+      // Feet out of order (wear deeper than the curve's radius bunched them): the unworn curve
+      // at the worn profile's uniform spacing instead.
+      return CompareWheelProfiles(ResampleProfileIntervals(unworn, m), worn);
+    }
+    previous_s = foot.s;
+    feet[k] = foot.point;
+  }
+  return CompareWheelProfiles(Profile(std::move(feet), unworn.source()), worn);
 }
 
 const Profile& StateWheel(const WearState& state, int traffic_index, int wheel) {
@@ -645,7 +682,7 @@ struct WheelWork {
     } else {
       *next_profile = *current;
     }
-    r.measures = CompareWheelProfiles(*unworn, *next_profile);
+    r.measures = CompareWheelWithUnworn(*unworn, *next_profile);
     r.flange = MeasureWheelFlange(*next_profile);
     return r;
   }

@@ -317,4 +317,19 @@ std::vector<LoadCase> StepLoadCases(const WearStudy& study, const Profile& high_
 // A profile resampled at uniform arc length: ceil(L / spacing) + 1 points including both ends.
 Profile ResampleProfile(const Profile& profile, double spacing_m);
 
+// A wearing wheel's measures (worn area, max depth and where) against its unworn profile as
+// given. The loop keeps the unworn wheel as given at step 0 (so that opting in to wheel wear
+// changes no contact of the first step) and resamples a wheel every step that wears it
+// (ResampleProfile). Natural cubic splines through samples at another spacing leave the curve
+// off the given one where it curves near an end: up to 0.1 um at S1002's flange back (y = -70
+// mm, about 20 mm radius) with no wear there, which a nearly unworn wheel reported as its
+// deepest point. So a `worn` profile that is not `unworn` itself is measured against the spline
+// through the feet of its points on `unworn` (their closest points: wear moved each point along
+// the normal from there): off the worn band the two splines coincide to rounding, on it both
+// sample the same curve at the same material points, and what is left is wear (WheelWearTest.
+// AWheelWornInTheMiddleReportsItsDepthThereAndNoneAtItsEnds). A rail needs none of this: its
+// step 0 is already resampled. `worn` with `unworn`'s points (a wheel that never wore) is
+// measured against `unworn` as it is (all zero).
+WearMeasures CompareWheelWithUnworn(const Profile& unworn, const Profile& worn);
+
 }  // namespace railwear

@@ -98,6 +98,15 @@ TEST_F(WheelWearCliTest, CoEvolutionRunStoresBothProfilesPerStep) {
   ASSERT_EQ(diff.exit_code, 0) << diff.err;
   EXPECT_TRUE(Contains(diff.out, "wheel         of 'freight'"));
   EXPECT_TRUE(Contains(diff.out, "worn area"));
+  // From step 0 the diff measures as the run did (CompareWheelWithUnworn, issue 16): the same
+  // worn area and max depth as the stored step, to the stored profiles' round trip (bit for bit).
+  const Outcome diff_json = Run("history --db w.sqlite diff 'small study' 0 " +
+                                std::to_string(last) + " --wheel 0 --json");
+  ASSERT_EQ(diff_json.exit_code, 0) << diff_json.err;
+  const nlohmann::json dj = nlohmann::json::parse(diff_json.out);
+  const StepRecord last_step = store.LoadStep(info.id, last);
+  EXPECT_NEAR(dj["max_depth_mm"].get<double>(), last_step.wheels.at(0).max_depth_mm, 1e-12);
+  EXPECT_NEAR(dj["worn_area_mm2"].get<double>(), last_step.wheels.at(0).worn_area_mm2, 1e-12);
 
   // The plots: a fourth PNG, each wearing wheel's depth (gnuplot is optional).
   if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
