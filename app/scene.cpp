@@ -179,6 +179,23 @@ void ReadCellSize(const Fields& t, ModelOptions* model) {
   model->cell_ds_m = v[1] * kMm;
 }
 
+// [model] normal_tolerance = eps: the normal solver stops by CONTACT's criterion, when its last
+// step changed the pressures by at most eps of their RMS over the contact set and left the set
+// as it was (NormalStopCriterion::kPressureUpdate; about eps relative in p_max and F_n,
+// docs/speed.md). Absent: the default criterion (the gap residual at 1e-10 of the largest
+// elastic displacement).
+constexpr double kMinNormalTolerance = 1e-13, kMaxNormalTolerance = 1e-2;
+
+void ReadNormalTolerance(const Fields& t, NormalSolverOptions* solver) {
+  // From 1e-13 (a few hundred times double rounding of the pressures' RMS: a step below that is
+  // rounding and may never come) to 1e-2 (2 digits; looser stops before the contact set settles).
+  if (const auto v = t.Number("normal_tolerance", Positive(),
+                              Closed(kMinNormalTolerance, kMaxNormalTolerance))) {
+    solver->criterion = NormalStopCriterion::kPressureUpdate;
+    solver->tolerance = *v;
+  }
+}
+
 void ReadModel(const Fields& top, Scene* scene) {
   ModelOptions& model = scene->problem.model;
   model = MakeModelOptions(ModelKind::kConformal);
@@ -188,7 +205,8 @@ void ReadModel(const Fields& top, Scene* scene) {
   const auto t = top.Table("model", "a table");
   if (!t) return;
   t->AllowOnly({"kind", "geometry", "kernel", "constants", "influence_constants", "accuracy",
-                "cell_mm", "tangential", "pressure_limit", "pressure_limit_MPa"});
+                "cell_mm", "tangential", "pressure_limit", "pressure_limit_MPa",
+                "normal_tolerance"});
   if (const auto kind = t->Choice("kind", EnumChoices(kModelKindNames))) {
     const InfluenceConstants constants = model.constants;
     model = MakeModelOptions(*ModelKindFromString(*kind));
@@ -204,6 +222,7 @@ void ReadModel(const Fields& top, Scene* scene) {
     scene->problem.tangential = *TangentialMethodFromString(*tan);
   }
   ReadInfluenceConstants(*t, scene->path, scene);
+  ReadNormalTolerance(*t, &scene->problem.solver);
 }
 
 // [model] pressure_limit = "none" | "hardness", or pressure_limit_MPa = p_lim: the elastic-

@@ -510,6 +510,11 @@ class PkSolver {
     double residual = 0.0, scale = 0.0;
     double best = std::numeric_limits<double>::infinity();
     int since_best = 0;
+    // NormalStopCriterion::kPressureUpdate: the last step's RMS pressure update over the contact
+    // set, the RMS pressure there (refreshed as CONTACT does) and whether the sets changed.
+    const bool by_update = options_.criterion == NormalStopCriterion::kPressureUpdate;
+    double update_rms = std::numeric_limits<double>::infinity(), pressure_rms = 0.0;
+    bool sets_changed = true, update_small = false;
     for (;;) {
       if (!(Load() > 0.0)) {
         // A step projected every cell away (possible under a prescribed approach): restart
@@ -521,10 +526,18 @@ class PkSolver {
         }
         u_fresh = true;
         reset = true;
+        sets_changed = true;
       }
       UpdateGap();
       Measure(&residual, &scale);
-      if (residual <= tol * scale) {
+      if (by_update) {
+        update_small = it > 0 && !sets_changed && update_rms <= tol * pressure_rms;
+        if (update_small) {
+          if (!u_fresh) op_.Apply(p_, &u_);  // the reported gap and residual from an exact C p
+          u_fresh = true;
+          break;
+        }
+      } else if (residual <= tol * scale) {
         if (u_fresh) break;
         op_.Apply(p_, &u_);  // confirm with an exact C p before accepting
         if (load_control_ && ScaleToLoad()) op_.Apply(p_, &u_);
@@ -610,6 +623,8 @@ class PkSolver {
 
       // Step, projection onto p >= 0, and PK's rule for overlapping cells outside the set.
       bool projected = false, grew = false;
+      double update_sq = 0.0, pressure_sq = 0.0;  // over the free cells, before projecting
+      int free_cells = 0;
       for (int k = 0; k < n_; ++k) {
         if (p_[k] >= p_lim_) {
           // A plastic cell whose gap opens is released (PK's rule mirrored; without a
@@ -620,6 +635,9 @@ class PkSolver {
           }
         } else if (p_[k] > 0.0) {
           p_[k] -= tau * t_[k];
+          update_sq += (tau * t_[k]) * (tau * t_[k]);
+          pressure_sq += p_[k] * p_[k];
+          ++free_cells;
           if (p_[k] <= 0.0) {
             p_[k] = 0.0;
             projected = true;
@@ -633,6 +651,14 @@ class PkSolver {
         } else if (g_[k] < 0.0 && no_direction) {
           p_[k] = std::min(p_lim_, -g_[k] / diag_[k]);
           grew = true;
+        }
+      }
+      if (by_update) {
+        sets_changed = projected || grew;
+        update_rms = free_cells > 0 ? std::sqrt(update_sq / free_cells) : 0.0;
+        // CONTACT's rms_xk: iterations 1, 2, 3 and every 10th (m_solvpn.f90).
+        if (free_cells > 0 && (it <= 3 || it % 10 == 0)) {
+          pressure_rms = std::sqrt(pressure_sq / free_cells);
         }
       }
       if (projected || grew) {
@@ -674,13 +700,23 @@ class PkSolver {
         out.plastic_force_N += area_[k] * w_[k] * p_[k];
       }
     }
-    const bool converged =
-        failure.empty() && residual <= tol * scale && out.load_error_relative <= tol;
+    const bool criterion_met = by_update ? update_small : residual <= tol * scale;
+    const bool converged = failure.empty() && criterion_met && out.load_error_relative <= tol;
     std::ostringstream msg;
     if (converged) {
       out.status = SolverStatus::kConverged;
       msg << "converged in " << it << " iterations, complementarity residual " << residual
           << " m (gap scale " << scale << " m)";
+      if (by_update) {
+        msg << ", last pressure update " << update_rms << " Pa RMS <= tolerance " << tol
+            << " x RMS pressure " << pressure_rms << " Pa";
+      }
+    } else if (by_update) {
+      out.status = SolverStatus::kNotConverged;
+      msg << (failure.empty() ? "no convergence" : failure) << " after " << it
+          << " iterations: last pressure update " << update_rms << " Pa RMS"
+          << (sets_changed ? " (contact set still changing)" : "") << ", tolerance " << tol
+          << " x RMS pressure " << pressure_rms << " Pa";
     } else {
       out.status = SolverStatus::kNotConverged;
       msg << (failure.empty() ? "no convergence" : failure) << " after " << it
@@ -755,6 +791,16 @@ std::string_view ToString(SolverStatus s) {
       return "not converged";
     case SolverStatus::kNoContact:
       return "no contact";
+  }
+  return "unknown";
+}
+
+std::string_view ToString(NormalStopCriterion c) {
+  switch (c) {
+    case NormalStopCriterion::kGapResidual:
+      return "gap-residual";
+    case NormalStopCriterion::kPressureUpdate:
+      return "pressure-update";
   }
   return "unknown";
 }

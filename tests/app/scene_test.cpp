@@ -283,6 +283,29 @@ TEST(SceneTest, TangentialAutoIsAMethod) {
   EXPECT_EQ(ParseScene(kMinimal, "a.toml").problem.tangential, TangentialMethod::kFastsim);
 }
 
+// [model] normal_tolerance (issue 18 point 4): CONTACT's pressure-update criterion at the given
+// tolerance; absent, the default criterion and tolerance; outside [1e-13, 1e-2] or not a number
+// refused with the key, the value and the range.
+TEST(SceneTest, NormalToleranceSelectsThePressureUpdateCriterion) {
+  const Scene d = ParseScene(kMinimal, "a.toml");
+  EXPECT_EQ(d.problem.solver.criterion, NormalStopCriterion::kGapResidual);
+  EXPECT_EQ(d.problem.solver.tolerance, NormalSolverOptions{}.tolerance);
+  const Scene s =
+      ParseScene(std::string(kMinimal) + "[model]\nnormal_tolerance = 1e-4\n", "a.toml");
+  EXPECT_EQ(s.problem.solver.criterion, NormalStopCriterion::kPressureUpdate);
+  EXPECT_EQ(s.problem.solver.tolerance, 1e-4);
+  const std::string m = std::string(kMinimal) + "[model]\n";
+  EXPECT_TRUE(Contains(ErrorOf(m + "normal_tolerance = 0.1\n"),
+                       "scene.toml:12: key 'model.normal_tolerance' = 0.1: expected a number in "
+                       "[1e-13, 0.01]"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "normal_tolerance = 0\n"),
+                       "key 'model.normal_tolerance' = 0: expected a number > 0"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "normal_tolerance = 1e-20\n"), "[1e-13, 0.01]"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "normal_tolerance = nan\n"), "key 'model.normal_tolerance'"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "normal_tolerance = \"tight\"\n"),
+                       "key 'model.normal_tolerance' = \"tight\""));
+}
+
 TEST(SceneTest, RollingRadiusAndLoadMustBePositive) {
   std::string text = kMinimal;
   text.replace(text.find("460"), 3, "0");
