@@ -13,10 +13,12 @@
 #include "core/contact/contact_solver.h"
 
 #include <algorithm>
+#include <memory>
 #include <optional>
 
 #include "core/contact/contact_forces.h"
 #include "core/contact/hertz_estimate.h"
+#include "core/contact/normal_part_memo.h"
 #include "core/contact/normal_stage.h"
 #include "core/contact/normal_tangential_stage.h"
 #include "core/contact/operator_stage.h"
@@ -40,6 +42,35 @@ ContactResult SolveContact(const ContactProblem& problem) {
 
 ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometry& geom,
                            double placement_s) {
+  return internal::SolveContact(problem, geom, placement_s, nullptr);
+}
+
+namespace {
+
+// 5. Rolling, then coupling and the vertical balance, from the normal part's result, candidates,
+// kept patches, normal problem *np (changed by the balance) and solution.
+void RunRollingPart(const ContactProblem& problem, const WheelRailGeometry& geom,
+                    const std::vector<ContactCandidate>& cands, const KeptPatches& kept,
+                    NormalProblem* np, const Eigen::VectorXd& pressure, ContactResult* result) {
+  if (!problem.rolling || result->status != SolverStatus::kConverged) return;
+  auto t0 = Clock::now();
+  RunRollingStage(problem, geom, result);
+  AddStage(&result->stages, "tangential", SecondsSince(t0));
+  if (result->status == SolverStatus::kConverged &&
+      (problem.rolling->coupling || problem.load.vertical_force_N)) {
+    t0 = Clock::now();
+    IterateNormalTangential(problem, geom, cands, kept.build, kept.offset, np, pressure, result);
+    AddStage(&result->stages, problem.rolling->coupling ? "coupling" : "balance",
+             SecondsSince(t0));
+  }
+}
+
+}  // namespace
+
+namespace internal {
+
+ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometry& geom,
+                           double placement_s, NormalPartMemo* memo) {
   const auto t_start = Clock::now();
   auto finish = [&](ContactResult r) {
     r = FinishResult(std::move(r), placement_s + SecondsSince(t_start));
@@ -61,6 +92,19 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
     return finish(result);
   }
   CheckRollingProblem(problem);
+
+  // Steps 2-4 kept by an earlier solve of this problem on this geometry (normal_part_memo.h):
+  // continue from a copy of its state.
+  if (const NormalPart* part = memo ? memo->Find(geom) : nullptr) {
+    const auto t0 = Clock::now();
+    ContactResult continued = part->result;
+    continued.stages = std::move(result.stages);
+    NormalProblem np = part->assembly.np;  // its blocks are the kept operators
+    AddStage(&continued.stages, "normal reused", SecondsSince(t0));
+    memo->CountReuse();
+    RunRollingPart(problem, geom, part->cands, part->kept, &np, part->pressure, &continued);
+    return finish(std::move(continued));
+  }
 
   // 2. The Hertz model, or the Hertz estimates that seed the grid models.
   const double estar = ContactModulus(problem.wheel_material, problem.rail_material);
@@ -114,25 +158,24 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
       result.message += "pressure reaches the edge of the potential contact area";
     }
 
-    // 5. Rolling, then coupling and the vertical balance.
-    if (problem.rolling && result.status == SolverStatus::kConverged) {
-      t0 = Clock::now();
-      RunRollingStage(problem, geom, &result);
-      AddStage(&result.stages, "tangential", SecondsSince(t0));
-      if (result.status == SolverStatus::kConverged &&
-          (problem.rolling->coupling || problem.load.vertical_force_N)) {
-        t0 = Clock::now();
-        IterateNormalTangential(problem, geom, builds.cands, kept.build, kept.offset, &assembly.np,
-                                sol.pressure_Pa, &result);
-        AddStage(&result.stages, problem.rolling->coupling ? "coupling" : "balance",
-                 SecondsSince(t0));
-      }
+    // 5. Rolling, then coupling and the vertical balance; with a memo, the normal part is
+    // kept for the next solve first (the balance changes the normal problem: it runs on a copy).
+    if (memo && problem.rolling && result.status == SolverStatus::kConverged) {
+      auto part = std::make_unique<NormalPart>(
+          NormalPart{result, builds.cands, kept, std::move(assembly), sol.pressure_Pa});
+      NormalProblem np = part->assembly.np;
+      RunRollingPart(problem, geom, part->cands, part->kept, &np, part->pressure, &result);
+      memo->Keep(geom, std::move(part));
+      return finish(result);
     }
+    RunRollingPart(problem, geom, builds.cands, kept, &assembly.np, sol.pressure_Pa, &result);
     return finish(result);
   }
   result.status = SolverStatus::kNotConverged;
   result.message = "the potential contact area did not settle";
   return finish(result);
 }
+
+}  // namespace internal
 
 }  // namespace railwear

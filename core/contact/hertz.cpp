@@ -139,25 +139,27 @@ double HertzAxisRatio(double curvature_ratio) {
 
 }  // namespace internal
 
-HertzSolution SolveHertz(double A_per_m, double B_per_m, double contact_modulus_Pa,
-                         double force_N) {
+HertzShape::HertzShape(double A_per_m, double B_per_m) : A_per_m_(A_per_m), B_per_m_(B_per_m) {
   CheckPositiveFinite(A_per_m, "curvature A");
   CheckPositiveFinite(B_per_m, "curvature B");
+  const double small = std::min(A_per_m, B_per_m);
+  const double large = std::max(A_per_m, B_per_m);
+  g_ = internal::HertzAxisRatio(large / small);
+  const double m = (1.0 - g_) * (1.0 + g_);
+  k_ = internal::CompleteEllipticK(m);
+  e_ = internal::CompleteEllipticE(m);
+}
+
+HertzSolution HertzShape::Solve(double contact_modulus_Pa, double force_N) const {
   CheckPositiveFinite(contact_modulus_Pa, "contact modulus E*");
   CheckNonNegativeFinite(force_N, "force P");
   HertzSolution s;
   s.force_N = force_N;
   if (force_N == 0.0) return s;
-
-  const double small = std::min(A_per_m, B_per_m);
-  const double large = std::max(A_per_m, B_per_m);
-  const double g = internal::HertzAxisRatio(large / small);
-  const double m = (1.0 - g) * (1.0 + g);
-  const double k = internal::CompleteEllipticK(m);
-  const double e = internal::CompleteEllipticE(m);
+  const double g = g_, k = k_, e = e_;
   const double pi = std::numbers::pi;
   const double c3 =
-      3.0 * force_N * e / (2.0 * pi * contact_modulus_Pa * (A_per_m + B_per_m) * std::sqrt(g));
+      3.0 * force_N * e / (2.0 * pi * contact_modulus_Pa * (A_per_m_ + B_per_m_) * std::sqrt(g));
   const double c = std::cbrt(c3);
   const double a = c / std::sqrt(g);  // major semi-axis, along the smaller curvature
   const double b = c * std::sqrt(g);
@@ -165,7 +167,7 @@ HertzSolution SolveHertz(double A_per_m, double B_per_m, double contact_modulus_
   s.approach_m = s.p0_Pa * b * k / contact_modulus_Pa;
   s.area_m2 = pi * a * b;
   // The major axis lies along the direction of the smaller curvature.
-  if (A_per_m <= B_per_m) {
+  if (A_per_m_ <= B_per_m_) {
     s.semi_axis_x_m = a;
     s.semi_axis_y_m = b;
   } else {
@@ -175,15 +177,38 @@ HertzSolution SolveHertz(double A_per_m, double B_per_m, double contact_modulus_
   return s;
 }
 
+HertzSolution HertzShape::SolveForApproach(double contact_modulus_Pa, double approach_m) const {
+  CheckNonNegativeFinite(approach_m, "approach delta");
+  // delta is proportional to P^(2/3): scale from the solution for a unit force.
+  const HertzSolution unit = Solve(contact_modulus_Pa, 1.0);
+  const double force_N = std::pow(approach_m / unit.approach_m, 1.5);
+  HertzSolution s = Solve(contact_modulus_Pa, force_N);
+  s.approach_m = approach_m;  // exact by construction; avoid the round-trip rounding
+  return s;
+}
+
+HertzSolution SolveHertz(double A_per_m, double B_per_m, double contact_modulus_Pa,
+                         double force_N) {
+  CheckPositiveFinite(A_per_m, "curvature A");
+  CheckPositiveFinite(B_per_m, "curvature B");
+  CheckPositiveFinite(contact_modulus_Pa, "contact modulus E*");
+  CheckNonNegativeFinite(force_N, "force P");
+  if (force_N == 0.0) {  // no axis ratio needed (nor a failure to find one)
+    HertzSolution s;
+    s.force_N = force_N;
+    return s;
+  }
+  return HertzShape(A_per_m, B_per_m).Solve(contact_modulus_Pa, force_N);
+}
+
 HertzSolution SolveHertzForApproach(double A_per_m, double B_per_m, double contact_modulus_Pa,
                                     double approach_m) {
   CheckNonNegativeFinite(approach_m, "approach delta");
-  // delta is proportional to P^(2/3): scale from the solution for a unit force.
-  const HertzSolution unit = SolveHertz(A_per_m, B_per_m, contact_modulus_Pa, 1.0);
-  const double force_N = std::pow(approach_m / unit.approach_m, 1.5);
-  HertzSolution s = SolveHertz(A_per_m, B_per_m, contact_modulus_Pa, force_N);
-  s.approach_m = approach_m;  // exact by construction; avoid the round-trip rounding
-  return s;
+  // The unit-force solve checked A, B and E* first (SolveHertz's order).
+  CheckPositiveFinite(A_per_m, "curvature A");
+  CheckPositiveFinite(B_per_m, "curvature B");
+  CheckPositiveFinite(contact_modulus_Pa, "contact modulus E*");
+  return HertzShape(A_per_m, B_per_m).SolveForApproach(contact_modulus_Pa, approach_m);
 }
 
 LineContactSolution SolveLineContact(double force_per_length_N_m, double relative_radius_m,

@@ -26,6 +26,27 @@ HertzSolution SolveHertz(double A_per_m, double B_per_m, double contact_modulus_
 HertzSolution SolveHertzForApproach(double A_per_m, double B_per_m, double contact_modulus_Pa,
                                     double approach_m);
 
+// The part of the Hertz solution that depends on the curvatures alone: the axis ratio g (a
+// bracketed root of the elliptic-integral equation) and K(e), E(e). Callers that solve the same
+// A and B for many forces or approaches (the bisection of the common approach over a wheel's
+// candidates, SolveHertzForApproach's unit-force scaling) build it once: Solve and
+// SolveForApproach then run exactly the arithmetic of SolveHertz and SolveHertzForApproach on the
+// same values, so their results are bit for bit the same (issue 18, set-up reuse; hertz_test.cpp).
+class HertzShape {
+ public:
+  // Throws as SolveHertz does for A or B.
+  HertzShape(double A_per_m, double B_per_m);
+  // = SolveHertz(A, B, contact_modulus_Pa, force_N), bit for bit (and the same exceptions).
+  HertzSolution Solve(double contact_modulus_Pa, double force_N) const;
+  // = SolveHertzForApproach(A, B, contact_modulus_Pa, approach_m), bit for bit.
+  HertzSolution SolveForApproach(double contact_modulus_Pa, double approach_m) const;
+
+ private:
+  double A_per_m_, B_per_m_;
+  double g_ = 1.0;           // axis ratio b/a
+  double k_ = 0.0, e_ = 0.0;  // K(m), E(m), m = 1 - g^2
+};
+
 // 2-D line contact (exact): a = sqrt(4 P' R / (pi E*)), p0 = 2 P' / (pi a), 1/R = 1/R1 + 1/R2.
 struct LineContactSolution {
   double half_width_m = 0.0;

@@ -211,11 +211,13 @@ class CurvedFftOperator final : public InfluenceOperator {
     // (j, 2k + 1) of the column-major ns x 2 hx spectrum matrices.
     const fftw_iodim forward_dims{lx_, 1, 2 * ns_}, forward_rows{ns_, lx_, 1};
     const fftw_iodim inverse_dims{lx_, 2 * ns_, 1}, inverse_rows{ns_, 1, lx_};
-    forward_ = internal::FftwPlan::Make([&] {
+    // Shared plans (core/numerics/fftw.h), described by the kind and lx, ns (every dimension
+    // and stride above, and the split arrays' offset ns, follow from them).
+    forward_ = internal::SharedPlan({6, lx_, ns_}, [&] {
       return fftw_plan_guru_split_dft_r2c(1, &forward_dims, 1, &forward_rows, padded_in_.data(),
                                           p_hat_.data(), p_hat_.data() + ns_, FFTW_ESTIMATE);
     });
-    inverse_ = internal::FftwPlan::Make([&] {
+    inverse_ = internal::SharedPlan({7, lx_, ns_}, [&] {
       return fftw_plan_guru_split_dft_c2r(1, &inverse_dims, 1, &inverse_rows, u_hat_.data(),
                                           u_hat_.data() + ns_, padded_out_.data(), FFTW_ESTIMATE);
     });
@@ -278,7 +280,8 @@ class CurvedFftOperator final : public InfluenceOperator {
                 p.data() + static_cast<size_t>(j + 1) * nx_,
                 padded_in_.data() + static_cast<size_t>(j) * lx_);
     }
-    fftw_execute(forward_.get());
+    fftw_execute_split_dft_r2c(forward_->get(), padded_in_.data(), p_hat_.data(),
+                               p_hat_.data() + ns_);
     const Eigen::Map<const Eigen::MatrixXd> p_hat(p_hat_.data(), ns_, 2 * hx_);
     Eigen::Map<Eigen::MatrixXd> u_hat(u_hat_.data(), ns_, 2 * hx_);
     if (inverse) {
@@ -297,7 +300,8 @@ class CurvedFftOperator final : public InfluenceOperator {
         u_hat.col(2 * k + 1).noalias() = k_k * p_hat.col(2 * k + 1);
       }
     }
-    fftw_execute(inverse_.get());  // overwrites u_hat_
+    fftw_execute_split_dft_c2r(inverse_->get(), u_hat_.data(), u_hat_.data() + ns_,
+                               padded_out_.data());  // overwrites u_hat_
     if (u->size() != size()) u->resize(size());
     for (int j = 0; j < ns_; ++j) {
       const double* row = padded_out_.data() + static_cast<size_t>(j) * lx_;
@@ -316,8 +320,8 @@ class CurvedFftOperator final : public InfluenceOperator {
   mutable internal::FftwBuffer<double> padded_out_;  // [ns * lx]
   mutable internal::FftwBuffer<double> p_hat_;  // [ns x 2 hx_] column-major: (real, imag) per bin
   mutable internal::FftwBuffer<double> u_hat_;  // [ns x 2 hx_]
-  internal::FftwPlan forward_;                  // padded_in_ -> p_hat_
-  internal::FftwPlan inverse_;                  // u_hat_ -> padded_out_ (overwrites u_hat_)
+  internal::SharedFftwPlan forward_;            // padded_in_ -> p_hat_
+  internal::SharedFftwPlan inverse_;            // u_hat_ -> padded_out_ (overwrites u_hat_)
 };
 
 }  // namespace

@@ -24,7 +24,8 @@
 // doubles, L >= 2 nx - 1; construction nx ns^2 kernel evaluations), Toeplitz in x and s for a
 // planar one (2-D FFT; nx ns kernel evaluations). Both embed the Toeplitz matrix in a circulant
 // one with zero padding, so they reproduce the dense matrix to rounding (~1e-15 relative). The
-// FFTs are FFTW's, planned once per operator (FFTW_ESTIMATE: bit-reproducible from run to run).
+// FFTs are FFTW's, planned once per transform size and shared by the operators of that size
+// (FFTW_ESTIMATE: bit-reproducible from run to run; core/numerics/fftw.h).
 // On tiny grids (at most kDenseProductMaxCells cells) the products use the full matrix expanded
 // from the same coefficients instead, which beats the FFTs' fixed costs (OperatorProducts). A
 // dense matrix assembled cell by cell serves as the naive reference on small grids.

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/contact/contact_forces.h"
+#include "core/contact/normal_part_memo.h"
 #include "core/numerics/input_error.h"
 
 namespace railwear {
@@ -101,8 +102,11 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cac
   };
   const WheelRailGeometry& right_geom = place(PlacementCache::kRight, right, r, &own_right);
   const WheelRailGeometry& left_geom = place(PlacementCache::kLeft, left, l, &own_left);
-  out.right = SolveContact(right, right_geom);
-  out.left = SolveContact(left, left_geom);
+  // Each wheel's normal part (the grids, operators and normal solves, which do not depend on
+  // the pitch velocity) kept for the solves of the balance rounds below (normal_part_memo.h).
+  internal::NormalPartMemo right_memo, left_memo;
+  out.right = internal::SolveContact(right, right_geom, 0.0, &right_memo);
+  out.left = internal::SolveContact(left, left_geom, 0.0, &left_memo);
   if (!target || out.right.status != SolverStatus::kConverged ||
       out.left.status != SolverStatus::kConverged) {
     return out;
@@ -141,8 +145,8 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cac
     for (int round = 0; round < kBalanceRounds; ++round) {
       right.rolling->motion.pitch_velocity_rad_s = found;
       left.rolling->motion.pitch_velocity_rad_s = found;
-      out.right = SolveContact(right, right_geom);
-      out.left = SolveContact(left, left_geom);
+      out.right = internal::SolveContact(right, right_geom, 0.0, &right_memo);
+      out.left = internal::SolveContact(left, left_geom, 0.0, &left_memo);
       if (out.right.status != SolverStatus::kConverged ||
           out.left.status != SolverStatus::kConverged || round + 1 == kBalanceRounds) {
         break;

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/numerics/check.h"
+#include "core/profile/profile_keyed_cache.h"
 
 namespace railwear {
 
@@ -19,44 +20,84 @@ constexpr double kCullMargin = 1e-12;
 
 }  // namespace
 
-CurveLocator::CurveLocator(const Profile& profile, bool material_toward_plus_z,
-                           double sample_step_m, Scan scan)
-    : profile_(&profile), length_(profile.Length()), scan_(scan) {
-  RAILWEAR_CHECK(sample_step_m > 0 && length_ > 0);
-  const int n = std::max(2, static_cast<int>(std::ceil(length_ / sample_step_m)) + 1);
-  step_ = length_ / (n - 1);
-  sample_s_.resize(n);
-  sample_p_.resize(n);
+struct CurveLocator::Samples {
+  double step = 0.0;
+  double outward_sign = 1.0;
+  std::vector<double> s;
+  std::vector<Eigen::Vector2d> p;
+  std::vector<Eigen::Vector2d> box_lo, box_hi;
+  double max_abs_coordinate = 0.0;
+};
+
+namespace {
+
+// The samples of `profile` every sample_step_m (rounded to divide its length), its orientation,
+// and the boxes of the blocks of kScanBlock samples.
+template <class Samples>
+std::shared_ptr<const Samples> SampleProfile(const Profile& profile, bool material_toward_plus_z,
+                                             double sample_step_m, int block) {
+  auto out = std::make_shared<Samples>();
+  const double length = profile.Length();
+  const int n = std::max(2, static_cast<int>(std::ceil(length / sample_step_m)) + 1);
+  out->step = length / (n - 1);
+  std::vector<double>& sample_s = out->s;
+  std::vector<Eigen::Vector2d>& sample_p = out->p;
+  sample_s.resize(n);
+  sample_p.resize(n);
   for (int i = 0; i < n; ++i) {
-    sample_s_[i] = i * step_;
-    sample_p_[i] = profile.Position(sample_s_[i]);
+    sample_s[i] = i * out->step;
+    sample_p[i] = profile.Position(sample_s[i]);
   }
   // Orientation: at the surface point facing away from the material (the top of a rail, the
   // bottom of a wheel), the outward normal points to -z for a rail and to +z for a wheel.
   int extreme = 0;
   for (int i = 1; i < n; ++i) {
-    const bool better = material_toward_plus_z ? sample_p_[i].y() < sample_p_[extreme].y()
-                                               : sample_p_[i].y() > sample_p_[extreme].y();
+    const bool better = material_toward_plus_z ? sample_p[i].y() < sample_p[extreme].y()
+                                               : sample_p[i].y() > sample_p[extreme].y();
     if (better) extreme = i;
   }
-  const double nz = profile.LeftNormal(sample_s_[extreme]).y();
+  const double nz = profile.LeftNormal(sample_s[extreme]).y();
   const bool left_points_up = nz < 0.0;
-  outward_sign_ = (material_toward_plus_z == left_points_up) ? 1.0 : -1.0;
-  const int blocks = (n - 2) / kScanBlock + 1;  // block k starts at k kScanBlock <= n - 2
-  box_lo_.resize(blocks);
-  box_hi_.resize(blocks);
+  out->outward_sign = (material_toward_plus_z == left_points_up) ? 1.0 : -1.0;
+  const int blocks = (n - 2) / block + 1;  // block k starts at k block <= n - 2
+  out->box_lo.resize(blocks);
+  out->box_hi.resize(blocks);
   for (int k = 0; k < blocks; ++k) {
-    const int first = k * kScanBlock, last = std::min(first + kScanBlock, n - 1);
-    Eigen::Vector2d lo = sample_p_[first], hi = sample_p_[first];
+    const int first = k * block, last = std::min(first + block, n - 1);
+    Eigen::Vector2d lo = sample_p[first], hi = sample_p[first];
     for (int i = first + 1; i <= last; ++i) {
-      lo = lo.cwiseMin(sample_p_[i]);
-      hi = hi.cwiseMax(sample_p_[i]);
+      lo = lo.cwiseMin(sample_p[i]);
+      hi = hi.cwiseMax(sample_p[i]);
     }
-    box_lo_[k] = lo;
-    box_hi_[k] = hi;
-    max_abs_coordinate_ =
-        std::max({max_abs_coordinate_, lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()});
+    out->box_lo[k] = lo;
+    out->box_hi[k] = hi;
+    out->max_abs_coordinate =
+        std::max({out->max_abs_coordinate, lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()});
   }
+  return out;
+}
+
+}  // namespace
+
+CurveLocator::CurveLocator(const Profile& profile, bool material_toward_plus_z,
+                           double sample_step_m, Scan scan)
+    : profile_(&profile), length_(profile.Length()), scan_(scan) {
+  RAILWEAR_CHECK(sample_step_m > 0 && length_ > 0);
+  static ProfileKeyedCache<Samples> shared(kSharedSampleSets);
+  samples_ = shared.Get(profile, {material_toward_plus_z ? 1u : 0u, DoubleBits(sample_step_m)}, {},
+                        [&] {
+                          return SampleProfile<Samples>(profile, material_toward_plus_z,
+                                                        sample_step_m, kScanBlock);
+                        });
+  step_ = samples_->step;
+  outward_sign_ = samples_->outward_sign;
+  n_samples_ = static_cast<int>(samples_->s.size());
+  sample_s_ = samples_->s.data();
+  sample_p_ = samples_->p.data();
+  n_boxes_ = static_cast<int>(samples_->box_lo.size());
+  box_lo_ = samples_->box_lo.data();
+  box_hi_ = samples_->box_hi.data();
+  max_abs_coordinate_ = samples_->max_abs_coordinate;
 }
 
 double CurveLocator::BlockDistance2(int k, const Eigen::Vector2d& q) const {
@@ -107,7 +148,7 @@ int CurveLocator::ClosestSample(const Eigen::Vector2d& q, int i0, int i1) const 
     *first = std::max(i0, k * kScanBlock);
     *last = std::min(i1, (k + 1) * kScanBlock - 1);
   };
-  const int last_box = static_cast<int>(box_lo_.size()) - 1;
+  const int last_box = n_boxes_ - 1;
   int nearest = k0;
   double nearest_d2 = std::numeric_limits<double>::infinity();
   for (int k = k0; k <= k1; ++k) {
@@ -167,7 +208,7 @@ CurveLocator::Projection CurveLocator::Project(const Eigen::Vector2d& q, double 
                                                double s_hi) const {
   s_lo = std::max(0.0, s_lo);
   s_hi = std::min(length_, s_hi);
-  const int n = static_cast<int>(sample_s_.size());
+  const int n = n_samples_;
   int i0 = std::clamp(static_cast<int>(std::floor(s_lo / step_)), 0, n - 1);
   int i1 = std::clamp(static_cast<int>(std::ceil(s_hi / step_)), 0, n - 1);
   const int best = ClosestSample(q, i0, i1);
@@ -218,7 +259,7 @@ std::optional<CurveLocator::Crossing> CurveLocator::IntersectLine(const Eigen::V
   const Eigen::Vector2d t(n.y(), -n.x());
   s_lo = std::max(0.0, s_lo);
   s_hi = std::min(length_, s_hi);
-  const int n_samples = static_cast<int>(sample_s_.size());
+  const int n_samples = n_samples_;
   const int i0 = std::clamp(static_cast<int>(std::floor(s_lo / step_)), 0, n_samples - 1);
   const int i1 = std::clamp(static_cast<int>(std::ceil(s_hi / step_)), 0, n_samples - 1);
   std::optional<Crossing> best;

@@ -11,8 +11,16 @@
 // sample so far holds no closer sample. Every sample a skipped block holds would have lost the
 // comparison it skips, so the answers are those of the sample-by-sample scan bit for bit
 // (Scan::kEverySample keeps that scan, the reference of curve_locator_test.cpp).
+//
+// The samples and their blocks' boxes are a function of the profile's points, the orientation
+// and the step alone, so locators on the same points share them (issue 18 point 3): every placed
+// geometry of a wear step builds locators on the same rails and unyawed wheels, and a wear step's
+// load cases on the same yawed outlines. They come from a process-wide cache of the
+// kSharedSampleSets most recently used (ProfileKeyedCache: exact keys, under a mutex), so a
+// locator answers bit for bit as one that sampled its profile itself.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -28,6 +36,10 @@ class CurveLocator {
   // Samples per bounding box of the coarse scan: 16 samples of 2e-5 m, 0.32 mm of arc
   // (fastest of 8, 16 and 32 on the main job's curving).
   static constexpr int kScanBlock = 16;
+  // Sample sets kept for sharing: a rail's or wheel's takes about 0.5 MB with its key (7,500
+  // samples of 2e-5 m and the profile's points), so at most about 12 MB. A wear step uses a few
+  // rails and wheels and, per vehicle, a few yawed outlines at a time.
+  static constexpr size_t kSharedSampleSets = 24;
 
   // How the coarse scan visits the samples: kBlocks skips blocks by their bounding boxes (the
   // default), kEverySample tests each one (the reference; same answers bit for bit).
@@ -65,7 +77,11 @@ class CurveLocator {
 
   double length() const { return length_; }
 
+  // True when both locators use the same shared samples (for tests of the sharing).
+  bool SharesSamplesWith(const CurveLocator& other) const { return samples_ == other.samples_; }
+
  private:
+  struct Samples;
   double RefineClosest(const Eigen::Vector2d& q, double s0, double lo, double hi) const;
   // Index of the sample in [i0, i1] closest to q, the first of equals (the scan's choice).
   int ClosestSample(const Eigen::Vector2d& q, int i0, int i1) const;
@@ -79,14 +95,19 @@ class CurveLocator {
                       double margin) const;
   const Profile* profile_;
   double length_ = 0.0;
+  Scan scan_ = Scan::kBlocks;
+  std::shared_ptr<const Samples> samples_;
+  // Copies of samples_'s scalars and plain pointers into its arrays, for the scans.
   double step_ = 0.0;
   double outward_sign_ = 1.0;  // OutwardNormal = outward_sign_ * LeftNormal
-  std::vector<double> sample_s_;
-  std::vector<Eigen::Vector2d> sample_p_;
-  Scan scan_ = Scan::kBlocks;
+  int n_samples_ = 0;
+  const double* sample_s_ = nullptr;
+  const Eigen::Vector2d* sample_p_ = nullptr;
   // Block k holds samples [k kScanBlock, (k + 1) kScanBlock] (the last one shared with the
   // next block, so that each pair of neighbours lies in one block); its bounding box.
-  std::vector<Eigen::Vector2d> box_lo_, box_hi_;
+  int n_boxes_ = 0;
+  const Eigen::Vector2d* box_lo_ = nullptr;
+  const Eigen::Vector2d* box_hi_ = nullptr;
   double max_abs_coordinate_ = 0.0;  // of the samples [m], for the rounding margin
 };
 

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "core/numerics/check.h"
+#include "core/profile/profile_keyed_cache.h"
 
 namespace railwear {
 
@@ -31,43 +32,16 @@ constexpr double kGapWindow_m = 2e-3;
 // the exact input: the wheel profile's points and source byte for byte (they alone define the
 // Profile) and the bits of r0 and yaw, so a shared outline is the one the geometry would build.
 // The kMaxSharedOutlines most recently used ones are kept (about 1.5 MB each); the cache is
-// process-wide under a mutex (curving solves wheelsets in parallel) and invisible in results.
+// process-wide under a mutex (curving solves wheelsets in parallel: ProfileKeyedCache) and
+// invisible in results.
 constexpr size_t kMaxSharedOutlines = 12;
 
 std::shared_ptr<const YawedWheelSection> SharedYawedSection(const Profile& wheel, double r0,
                                                             double yaw_rad) {
-  struct Entry {
-    std::vector<Eigen::Vector2d> points;
-    std::string source;
-    std::uint64_t r0_bits, yaw_bits;
-    std::shared_ptr<const YawedWheelSection> section;
-  };
-  static std::mutex mutex;
-  static std::deque<Entry> entries;  // most recently used first
-  const std::uint64_t r0_bits = std::bit_cast<std::uint64_t>(r0);
-  const std::uint64_t yaw_bits = std::bit_cast<std::uint64_t>(yaw_rad);
-  const std::vector<Eigen::Vector2d>& points = wheel.points();
-  auto same = [&](const Entry& e) {
-    return e.r0_bits == r0_bits && e.yaw_bits == yaw_bits && e.source == wheel.source() &&
-           e.points.size() == points.size() &&
-           (points.empty() ||
-            std::memcmp(e.points.data(), points.data(), points.size() * sizeof(points[0])) == 0);
-  };
-  {
-    const std::lock_guard<std::mutex> lock(mutex);
-    for (auto it = entries.begin(); it != entries.end(); ++it) {
-      if (!same(*it)) continue;
-      Entry hit = std::move(*it);
-      entries.erase(it);
-      entries.push_front(std::move(hit));
-      return entries.front().section;
-    }
-  }
-  auto section = std::make_shared<const YawedWheelSection>(wheel, r0, yaw_rad);
-  const std::lock_guard<std::mutex> lock(mutex);
-  entries.push_front(Entry{points, wheel.source(), r0_bits, yaw_bits, section});
-  if (entries.size() > kMaxSharedOutlines) entries.pop_back();
-  return section;
+  static ProfileKeyedCache<YawedWheelSection> shared(kMaxSharedOutlines);
+  return shared.Get(wheel, {DoubleBits(r0), DoubleBits(yaw_rad)}, wheel.source(), [&] {
+    return std::make_shared<const YawedWheelSection>(wheel, r0, yaw_rad);
+  });
 }
 
 // Golden-section minimisation of f on [a, b] to an absolute tolerance.

@@ -2,6 +2,10 @@
 #include "core/numerics/fftw.h"
 
 #include <algorithm>
+#include <deque>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include "core/numerics/fft_size.h"
 
@@ -28,6 +32,44 @@ void FftwPlan::Reset() {
   plan_ = nullptr;
 }
 
+SharedFftwPlan SharedPlan(std::initializer_list<long> description,
+                          const std::function<fftw_plan()>& make) {
+  struct Entry {
+    std::vector<long> description;
+    SharedFftwPlan plan;
+  };
+  static std::mutex mutex;  // the cache's; never held while the planner mutex is taken
+  static std::deque<Entry> entries;  // most recently used first
+  auto same = [&](const Entry& e) {
+    return std::equal(e.description.begin(), e.description.end(), description.begin(),
+                      description.end());
+  };
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (auto it = entries.begin(); it != entries.end(); ++it) {
+      if (!same(*it)) continue;
+      if (it != entries.begin()) {
+        Entry hit = std::move(*it);
+        entries.erase(it);
+        entries.push_front(std::move(hit));
+      }
+      return entries.front().plan;
+    }
+  }
+  SharedFftwPlan plan = std::make_shared<const FftwPlan>(FftwPlan::Make(make));
+  SharedFftwPlan evicted;  // destroyed after the cache's lock (it takes the planner mutex)
+  const std::lock_guard<std::mutex> lock(mutex);
+  for (const Entry& e : entries) {
+    if (same(e)) return e.plan;  // another thread kept the same plan meanwhile
+  }
+  entries.push_front(Entry{std::vector<long>(description), plan});
+  if (entries.size() > kSharedFftwPlans) {
+    evicted = std::move(entries.back().plan);
+    entries.pop_back();
+  }
+  return plan;
+}
+
 PaddedFft2d::PaddedFft2d(int nx, int ns)
     : nx_(nx),
       ns_(ns),
@@ -37,26 +79,29 @@ PaddedFft2d::PaddedFft2d(int nx, int ns)
       padded_in_(static_cast<size_t>(ns) * lx_),
       padded_out_(static_cast<size_t>(ns) * lx_),
       x_spectrum_(spectrum_size()) {
-  // The s transforms run on the caller's spectra through the new-array interface; plan them on
-  // a buffer of the same alignment.
-  FftwBuffer<FftwComplex> planning = NewSpectrum();
+  // Every transform runs through the new-array interface (the plans are shared, fftw.h); plan
+  // them on buffers of the same alignment. The descriptions: a kind number, then the numbers
+  // of the planner call.
   const int lx[] = {lx_}, ls[] = {ls_};
-  x_forward_ = FftwPlan::Make([&] {
+  std::optional<FftwBuffer<FftwComplex>> planning;
+  auto planning_data = [&] {
+    if (!planning) planning.emplace(spectrum_size());
+    return AsFftw(planning->data());
+  };
+  x_forward_ = SharedPlan({1, lx_, ns_, hx_}, [&] {
     return fftw_plan_many_dft_r2c(1, lx, ns_, padded_in_.data(), nullptr, 1, lx_,
                                   AsFftw(x_spectrum_.data()), nullptr, 1, hx_, FFTW_ESTIMATE);
   });
-  s_forward_ = FftwPlan::Make([&] {
+  s_forward_ = SharedPlan({2, ls_, hx_}, [&] {
     return fftw_plan_many_dft(1, ls, hx_, AsFftw(x_spectrum_.data()), nullptr, hx_, 1,
-                              AsFftw(planning.data()), nullptr, hx_, 1, FFTW_FORWARD,
-                              FFTW_ESTIMATE);
+                              planning_data(), nullptr, hx_, 1, FFTW_FORWARD, FFTW_ESTIMATE);
   });
-  s_inverse_ = FftwPlan::Make([&] {  // in place
-    return fftw_plan_many_dft(1, ls, hx_, AsFftw(planning.data()), nullptr, hx_, 1,
-                              AsFftw(planning.data()), nullptr, hx_, 1, FFTW_BACKWARD,
-                              FFTW_ESTIMATE);
+  s_inverse_ = SharedPlan({3, ls_, hx_}, [&] {  // in place
+    return fftw_plan_many_dft(1, ls, hx_, planning_data(), nullptr, hx_, 1, planning_data(),
+                              nullptr, hx_, 1, FFTW_BACKWARD, FFTW_ESTIMATE);
   });
-  x_inverse_ = FftwPlan::Make([&] {
-    return fftw_plan_many_dft_c2r(1, lx, ns_, AsFftw(planning.data()), nullptr, 1, hx_,
+  x_inverse_ = SharedPlan({4, lx_, ns_, hx_}, [&] {
+    return fftw_plan_many_dft_c2r(1, lx, ns_, planning_data(), nullptr, 1, hx_,
                                   padded_out_.data(), nullptr, 1, lx_, FFTW_ESTIMATE);
   });
 }
@@ -64,10 +109,13 @@ PaddedFft2d::PaddedFft2d(int nx, int ns)
 void PaddedFft2d::ForwardGenerator(const double* g, FftwComplex* spectrum) const {
   FftwBuffer<double> generator(static_cast<size_t>(ls_) * lx_);
   std::copy(g, g + generator.size(), generator.data());
-  const FftwPlan plan = FftwPlan::Make([&] {
-    return fftw_plan_dft_r2c_2d(ls_, lx_, generator.data(), AsFftw(spectrum), FFTW_ESTIMATE);
+  // Planned on a spectrum buffer of its own: the caller's has the same alignment (NewSpectrum).
+  const SharedFftwPlan plan = SharedPlan({5, ls_, lx_}, [&] {
+    FftwBuffer<FftwComplex> planning = NewSpectrum();
+    return fftw_plan_dft_r2c_2d(ls_, lx_, generator.data(), AsFftw(planning.data()),
+                                FFTW_ESTIMATE);
   });
-  fftw_execute(plan.get());
+  fftw_execute_dft_r2c(plan->get(), generator.data(), AsFftw(spectrum));
 }
 
 void PaddedFft2d::Forward(const double* in, FftwComplex* spectrum) const {
@@ -75,13 +123,13 @@ void PaddedFft2d::Forward(const double* in, FftwComplex* spectrum) const {
     std::copy(in + static_cast<size_t>(j) * nx_, in + static_cast<size_t>(j + 1) * nx_,
               padded_in_.data() + static_cast<size_t>(j) * lx_);
   }
-  fftw_execute_dft_r2c(x_forward_.get(), padded_in_.data(), AsFftw(x_spectrum_.data()));
-  fftw_execute_dft(s_forward_.get(), AsFftw(x_spectrum_.data()), AsFftw(spectrum));
+  fftw_execute_dft_r2c(x_forward_->get(), padded_in_.data(), AsFftw(x_spectrum_.data()));
+  fftw_execute_dft(s_forward_->get(), AsFftw(x_spectrum_.data()), AsFftw(spectrum));
 }
 
 void PaddedFft2d::Inverse(FftwComplex* spectrum, double* out) const {
-  fftw_execute_dft(s_inverse_.get(), AsFftw(spectrum), AsFftw(spectrum));
-  fftw_execute_dft_c2r(x_inverse_.get(), AsFftw(spectrum), padded_out_.data());
+  fftw_execute_dft(s_inverse_->get(), AsFftw(spectrum), AsFftw(spectrum));
+  fftw_execute_dft_c2r(x_inverse_->get(), AsFftw(spectrum), padded_out_.data());
   for (int j = 0; j < ns_; ++j) {
     const double* row = padded_out_.data() + static_cast<size_t>(j) * lx_;
     std::copy(row, row + nx_, out + static_cast<size_t>(j) * nx_);

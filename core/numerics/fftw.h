@@ -10,10 +10,21 @@
 // Threads: FFTW's planner is not thread-safe, so FftwPlan creates and destroys plans under one
 // process-wide mutex. Executing a plan (fftw_execute_dft_r2c etc. on arrays of the caller's)
 // is thread-safe, so operators built in different threads run concurrently.
+//
+// Shared plans (issue 18, set-up reuse): an FFTW_ESTIMATE plan is a function of the transform's
+// description (kind, lengths, batch count, strides, distances, in place or not) and of the
+// arrays' alignment alone, and every array here comes from fftw_malloc (one alignment; split
+// arrays at an offset fixed by the description). So the operators take their plans from
+// SharedPlan, a process-wide cache keyed by the whole description: a kept plan is the plan the
+// planner would make again, and the transforms give the same results bit for bit. Planning was
+// 3 % of the main job's CPU time, every influence operator planning its transforms anew. Users
+// execute shared plans only through FFTW's new-array functions on arrays of their own.
 #pragma once
 
 #include <complex>
 #include <cstddef>
+#include <functional>
+#include <initializer_list>
 #include <memory>
 #include <mutex>
 
@@ -80,6 +91,19 @@ class FftwPlan {
   fftw_plan plan_ = nullptr;
 };
 
+// A plan shared by every user of the same transform description (above); immutable.
+using SharedFftwPlan = std::shared_ptr<const FftwPlan>;
+
+// Plans kept by SharedPlan: the most recently used ones (a plan holds a few kB to a few hundred
+// kB of twiddle factors; a wear step's patches need some tens of distinct sizes).
+inline constexpr size_t kSharedFftwPlans = 96;
+
+// The kept plan for `description` (every number the planner call takes, with a distinct first
+// number per kind of call), else the plan of make() (called under the planner mutex, as
+// FftwPlan::Make), kept as the most recently used. Thread-safe.
+SharedFftwPlan SharedPlan(std::initializer_list<long> description,
+                          const std::function<fftw_plan()>& make);
+
 // Linear 2-D convolutions on an nx by ns grid (x fastest) by zero-padded real FFTs: the field is
 // padded to lx = RealFftSize(nx) by ls = ComplexFftSize(ns) and transformed to the half spectrum
 // of hx = lx/2 + 1 by ls complex bins, stored s-major (bin (kx, ks) at ks * hx + kx; FFTW's own
@@ -103,13 +127,18 @@ class PaddedFft2d {
   void Forward(const double* in, FftwComplex* spectrum) const;
   // out [ns * nx] = the nx by ns corner of the inverse FFT2 of spectrum (which it overwrites).
   void Inverse(FftwComplex* spectrum, double* out) const;
+  // True when both use the same shared plans (for tests of the sharing).
+  bool SharesPlansWith(const PaddedFft2d& other) const {
+    return x_forward_ == other.x_forward_ && s_forward_ == other.s_forward_ &&
+           s_inverse_ == other.s_inverse_ && x_inverse_ == other.x_inverse_;
+  }
 
  private:
   int nx_, ns_, lx_, hx_, ls_;
   mutable FftwBuffer<double> padded_in_;        // [ns * lx], entries x >= nx stay zero
   mutable FftwBuffer<double> padded_out_;       // [ns * lx]
   mutable FftwBuffer<FftwComplex> x_spectrum_;  // [ls * hx], rows ks >= ns stay zero
-  FftwPlan x_forward_, s_forward_, s_inverse_, x_inverse_;
+  SharedFftwPlan x_forward_, s_forward_, s_inverse_, x_inverse_;
 };
 
 }  // namespace railwear::internal

@@ -1,6 +1,7 @@
 // Tests of hertz.h against the computed cases and exact checks of reference README §1.
 #include "core/contact/hertz.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -162,6 +163,72 @@ TEST(Hertz, ZeroLoadAndBadInput) {
   }
   EXPECT_THROW(SolveHertz(1.0, -2.0, 1e11, 1.0), std::invalid_argument);
   EXPECT_THROW(SolveHertz(1.0, 2.0, 1e11, -1.0), std::invalid_argument);
+}
+
+// SolveHertz's arithmetic as it was before HertzShape kept the axis ratio (issue 18): the ratio
+// and the elliptic integrals found inside every call. The reference of the bit-for-bit tests.
+HertzSolution SolveHertzFoundPerCall(double A, double B, double Estar, double P) {
+  HertzSolution s;
+  s.force_N = P;
+  if (P == 0.0) return s;
+  const double g = internal::HertzAxisRatio(std::max(A, B) / std::min(A, B));
+  const double m = (1.0 - g) * (1.0 + g);
+  const double k = internal::CompleteEllipticK(m);
+  const double e = internal::CompleteEllipticE(m);
+  const double pi = std::numbers::pi;
+  const double c = std::cbrt(3.0 * P * e / (2.0 * pi * Estar * (A + B) * std::sqrt(g)));
+  const double a = c / std::sqrt(g);
+  const double b = c * std::sqrt(g);
+  s.p0_Pa = 3.0 * P / (2.0 * pi * a * b);
+  s.approach_m = s.p0_Pa * b * k / Estar;
+  s.area_m2 = pi * a * b;
+  s.semi_axis_x_m = A <= B ? a : b;
+  s.semi_axis_y_m = A <= B ? b : a;
+  return s;
+}
+
+void ExpectSameBits(const HertzSolution& s, const HertzSolution& t) {
+  EXPECT_EQ(s.semi_axis_x_m, t.semi_axis_x_m);
+  EXPECT_EQ(s.semi_axis_y_m, t.semi_axis_y_m);
+  EXPECT_EQ(s.p0_Pa, t.p0_Pa);
+  EXPECT_EQ(s.approach_m, t.approach_m);
+  EXPECT_EQ(s.area_m2, t.area_m2);
+  EXPECT_EQ(s.force_N, t.force_N);
+}
+
+TEST(HertzShape, KeptShapeSolvesBitForBitAsAShapeFoundPerCall) {
+  const double Estar = ContactModulusSame(210e9, 0.3);
+  // Circular, the near-circle series, moderate and extreme ratios, either curvature larger.
+  const double curvatures[][2] = {{1.0, 1.0},        {1.0, 1.0 + 5e-7}, {1.0 / 0.92, 1.0 / 0.16},
+                                  {1.0 / 0.16, 1.0 / 0.92}, {0.5, 2e3},   {3.0, 3.0 * 1.0001}};
+  for (const auto& ab : curvatures) {
+    const HertzShape shape(ab[0], ab[1]);
+    for (double P : {0.0, 1.0, 1e3, 1e5, 1.2345678e5}) {
+      SCOPED_TRACE(testing::Message() << "A " << ab[0] << " B " << ab[1] << " P " << P);
+      const HertzSolution reference = SolveHertzFoundPerCall(ab[0], ab[1], Estar, P);
+      ExpectSameBits(shape.Solve(Estar, P), reference);
+      ExpectSameBits(SolveHertz(ab[0], ab[1], Estar, P), reference);
+      // For an approach: the unit-force scaling, once from the kept shape and once per call.
+      const HertzSolution unit = SolveHertzFoundPerCall(ab[0], ab[1], Estar, 1.0);
+      const double delta = reference.approach_m;
+      HertzSolution by_approach =
+          SolveHertzFoundPerCall(ab[0], ab[1], Estar, std::pow(delta / unit.approach_m, 1.5));
+      by_approach.approach_m = delta;
+      ExpectSameBits(shape.SolveForApproach(Estar, delta), by_approach);
+      ExpectSameBits(SolveHertzForApproach(ab[0], ab[1], Estar, delta), by_approach);
+    }
+  }
+}
+
+TEST(HertzShape, BadInputThrowsAsSolveHertz) {
+  EXPECT_THROW(HertzShape(0.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(HertzShape(1.0, std::nan("")), std::invalid_argument);
+  const HertzShape shape(1.0, 2.0);
+  EXPECT_THROW(shape.Solve(0.0, 1.0), std::invalid_argument);
+  EXPECT_THROW(shape.Solve(1e11, -1.0), std::invalid_argument);
+  EXPECT_THROW(shape.SolveForApproach(1e11, -1e-6), std::invalid_argument);
+  // A zero force needs no axis ratio: SolveHertz returns the empty patch without one.
+  EXPECT_EQ(SolveHertz(1.0, 1e300, 1e11, 0.0).area_m2, 0.0);
 }
 
 TEST(Hertz, LineContact) {

@@ -4,6 +4,7 @@
 
 #include "core/contact/contact_case.h"
 #include "core/profile/builtin_profiles.h"
+#include "tests/core/contact/same_result.h"
 
 namespace railwear {
 namespace {
@@ -28,29 +29,7 @@ ContactCase Rolling(double lateral_m, double yaw_rad, double lateral_velocity_m_
   return c;
 }
 
-// Every number of a wheel's result that the C API reports, compared with ==.
-void ExpectSame(const ContactResult& a, const ContactResult& b) {
-  ASSERT_EQ(a.status, b.status);
-  ASSERT_EQ(a.patches.size(), b.patches.size());
-  EXPECT_EQ(a.approach_m, b.approach_m);
-  for (size_t k = 0; k < a.patches.size(); ++k) {
-    const PatchResult& p = a.patches[k];
-    const PatchResult& q = b.patches[k];
-    EXPECT_EQ(p.area_m2, q.area_m2);
-    EXPECT_EQ(p.p_max_Pa, q.p_max_Pa);
-    EXPECT_EQ(p.contact_x_m, q.contact_x_m);
-    EXPECT_EQ(p.contact_point_yz_m, q.contact_point_yz_m);
-    EXPECT_EQ(p.pressure_Pa, q.pressure_Pa);
-    ASSERT_EQ(p.rolling.has_value(), q.rolling.has_value());
-    if (p.rolling) {
-      EXPECT_EQ(p.rolling->creepage.xi, q.rolling->creepage.xi);
-      EXPECT_EQ(p.rolling->creepage.eta, q.rolling->creepage.eta);
-      EXPECT_EQ(p.rolling->tangential.force_x_N, q.rolling->tangential.force_x_N);
-      EXPECT_EQ(p.rolling->tangential.force_s_N, q.rolling->tangential.force_s_N);
-      EXPECT_EQ(p.rolling->tangential.traction_x_Pa, q.rolling->tangential.traction_x_Pa);
-    }
-  }
-}
+using testing::ExpectSameResult;
 
 TEST(PlacementCache, ReusesTheGeometryOnlyAtTheSamePoseAndProfiles) {
   PlacementCache cache;
@@ -76,7 +55,7 @@ TEST(PlacementCache, CachedSolvesEqualFreshOnesBitForBit) {
                                Rolling(-10.4e-3, 5e-3, 0.02), Rolling(-5.6e-3, 0.0),
                                Rolling(-10.4e-3, 5e-3)};
   for (const ContactCase& c : steps) {
-    ExpectSame(SolveContactCase(c, &cache).wheel, SolveContactCase(c).wheel);
+    ExpectSameResult(SolveContactCase(c, &cache).wheel, SolveContactCase(c).wheel);
   }
   EXPECT_EQ(cache.hits(), 2);
 }
@@ -92,8 +71,8 @@ TEST(PlacementCache, WheelsetSolvesEqualFreshOnesBitForBit) {
   for (int step = 0; step < 2; ++step) {
     const ContactCaseResult cached = SolveContactCase(c, &cache);
     const ContactCaseResult fresh = SolveContactCase(c);
-    ExpectSame(cached.wheelset->right, fresh.wheelset->right);
-    ExpectSame(cached.wheelset->left, fresh.wheelset->left);
+    ExpectSameResult(cached.wheelset->right, fresh.wheelset->right);
+    ExpectSameResult(cached.wheelset->left, fresh.wheelset->left);
   }
   EXPECT_EQ(cache.misses(), 2);  // both wheels placed once
   EXPECT_EQ(cache.hits(), 2);    // and reused by the second step

@@ -4,6 +4,8 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -113,6 +115,112 @@ TEST(CurveLocator, BlockScanEqualsSampleScanBitForBit) {
     EXPECT_EQ(fast.Project(nan_point).s, naive.Project(nan_point).s);
     EXPECT_EQ(fast.IntersectLine(nan_point, {0.0, 1.0}, 0.0, 1.0).has_value(),
               naive.IntersectLine(nan_point, {0.0, 1.0}, 0.0, 1.0).has_value());
+  }
+}
+
+// Answers of a locator to a fixed set of queries near and across the profile, for comparing
+// locators bit for bit: projections (s, signed distance) and crossings (s, lambda, or NaN).
+std::vector<double> Answers(const CurveLocator& loc, const Profile& profile, int seed) {
+  std::mt19937 rng(seed);
+  const double length = loc.length();
+  std::uniform_real_distribution<double> along(0.0, length);
+  std::uniform_real_distribution<double> offset(-2e-3, 2e-3);
+  std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
+  std::vector<double> out;
+  for (int trial = 0; trial < 400; ++trial) {
+    const Eigen::Vector2d q = profile.Position(along(rng)) + Eigen::Vector2d(offset(rng), offset(rng));
+    const auto p = loc.Project(q);
+    out.push_back(p.s);
+    out.push_back(p.signed_distance);
+    const double phi = angle(rng);
+    const auto x = loc.IntersectLine(q, {std::cos(phi), std::sin(phi)}, 0.0, length);
+    out.push_back(x ? x->s : std::numeric_limits<double>::quiet_NaN());
+    out.push_back(x ? x->lambda : std::numeric_limits<double>::quiet_NaN());
+  }
+  return out;
+}
+
+// Bit for bit, NaN equal to NaN.
+void ExpectSameAnswers(const std::vector<double>& a, const std::vector<double>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (std::isnan(a[i]) && std::isnan(b[i])) continue;
+    ASSERT_EQ(a[i], b[i]) << i;
+  }
+}
+
+// Sets the shared samples of kSharedSampleSets other profiles, so that the next locator on any
+// earlier profile samples it anew.
+void EvictSharedSamples() {
+  for (size_t k = 0; k <= CurveLocator::kSharedSampleSets; ++k) {
+    const Profile other = testing::ArcProfile(0.02 + 1e-4 * k, +1.0, 0.5, 101);
+    const CurveLocator loc(other, true);
+  }
+}
+
+// Issue 18: locators on the same points share their samples, and a locator on shared samples
+// answers as one that sampled its profile itself.
+TEST(CurveLocatorSharedSamples, SameProfilePointsShareAndAnswerBitForBit) {
+  const Profile rail = MakeUic60();
+  EvictSharedSamples();
+  const CurveLocator fresh(rail, true);  // samples the profile itself
+  const std::vector<double> reference = Answers(fresh, rail, 3);
+  EvictSharedSamples();
+  const Profile copy(rail.points(), "another source");  // equal points, another object
+  const CurveLocator resampled(copy, true);
+  EXPECT_FALSE(resampled.SharesSamplesWith(fresh));  // evicted: sampled again
+  const CurveLocator shared(rail, true);
+  EXPECT_TRUE(shared.SharesSamplesWith(resampled));  // the source does not matter
+  ExpectSameAnswers(Answers(shared, rail, 3), reference);
+  ExpectSameAnswers(Answers(resampled, copy, 3), reference);
+  // The reference scan shares the samples too, and still answers the same.
+  const CurveLocator naive(rail, true, 2e-5, CurveLocator::Scan::kEverySample);
+  EXPECT_TRUE(naive.SharesSamplesWith(shared));
+  ExpectSameAnswers(Answers(naive, rail, 3), reference);
+}
+
+TEST(CurveLocatorSharedSamples, OtherPointsOrientationOrStepDoNotShare) {
+  const Profile rail = MakeUic60();
+  const CurveLocator base(rail, true);
+  // One coordinate of one point moved by one ulp.
+  std::vector<Eigen::Vector2d> moved = rail.points();
+  moved[moved.size() / 2].y() = std::nextafter(moved[moved.size() / 2].y(), 1.0);
+  const Profile nudged(moved, rail.source());
+  EXPECT_FALSE(CurveLocator(nudged, true).SharesSamplesWith(base));
+  EXPECT_FALSE(CurveLocator(rail, false).SharesSamplesWith(base));  // the wheel's orientation
+  EXPECT_FALSE(CurveLocator(rail, true, std::nextafter(2e-5, 1.0)).SharesSamplesWith(base));
+  EXPECT_FALSE(CurveLocator(rail, true, 4e-5).SharesSamplesWith(base));
+  EXPECT_TRUE(CurveLocator(rail, true).SharesSamplesWith(base));
+}
+
+// Locators built and queried in several threads at once (as a wear step's load cases do) on
+// profiles shared between the threads and on profiles the others evict: every answer is the
+// single-threaded one.
+TEST(CurveLocatorSharedSamples, ConcurrentLocatorsAnswerAsSingleThreaded) {
+  std::vector<Profile> profiles = {MakeUic60(), MakeS1002(), testing::ArcProfile(0.01, +1.0)};
+  for (int k = 0; k < 6; ++k) profiles.push_back(testing::ArcProfile(0.03 + 1e-3 * k, -1.0));
+  std::vector<std::vector<double>> reference;
+  for (const Profile& p : profiles) reference.push_back(Answers(CurveLocator(p, true), p, 7));
+  constexpr int kThreads = 4;
+  std::vector<std::vector<std::vector<double>>> got(kThreads);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&, t] {
+      for (int round = 0; round < 3; ++round) {
+        for (size_t k = 0; k < profiles.size(); ++k) {
+          const size_t i = (k + t) % profiles.size();
+          if (t == kThreads - 1 && round == 1) EvictSharedSamples();
+          got[t].push_back(Answers(CurveLocator(profiles[i], true), profiles[i], 7));
+        }
+      }
+    });
+  }
+  for (auto& th : threads) th.join();
+  for (int t = 0; t < kThreads; ++t) {
+    ASSERT_EQ(got[t].size(), 3 * profiles.size());
+    for (size_t j = 0; j < got[t].size(); ++j) {
+      ExpectSameAnswers(got[t][j], reference[(j % profiles.size() + t) % profiles.size()]);
+    }
   }
 }
 

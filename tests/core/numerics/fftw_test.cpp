@@ -61,6 +61,12 @@ void ExpectLinearConvolution(int nx, int ns) {
   EXPECT_LE(error, kConvolutionTolerance * scale) << nx << " x " << ns;
 }
 
+// Fills the shared-plan cache with other transforms, so that the next transform of any earlier
+// size is planned anew.
+void EvictSharedPlans() {
+  for (int ns = 100; ns < 100 + static_cast<int>(kSharedFftwPlans); ++ns) PaddedFft2d(2, ns);
+}
+
 TEST(PaddedFft2d, IsALinearConvolution) {
   for (auto [nx, ns] : {std::pair{1, 1}, {1, 6}, {6, 1}, {7, 5}, {11, 11}, {16, 9}}) {
     ExpectLinearConvolution(nx, ns);
@@ -79,8 +85,14 @@ TEST(PaddedFft2d, ReusedAndRebuiltTransformsAreBitIdentical) {
   };
   const PaddedFft2d fft(nx, ns);
   const std::vector<double> first = round_trip(fft);
-  EXPECT_EQ(round_trip(fft), first);                  // reused plans and buffers
-  EXPECT_EQ(round_trip(PaddedFft2d(nx, ns)), first);  // plans made again
+  EXPECT_EQ(round_trip(fft), first);  // reused plans and buffers
+  const PaddedFft2d sharing(nx, ns);
+  EXPECT_TRUE(sharing.SharesPlansWith(fft));
+  EXPECT_EQ(round_trip(sharing), first);  // shared plans, buffers of its own
+  EvictSharedPlans();
+  const PaddedFft2d planned_again(nx, ns);
+  EXPECT_FALSE(planned_again.SharesPlansWith(fft));
+  EXPECT_EQ(round_trip(planned_again), first);  // plans made again
   for (int k = 0; k < nx * ns; ++k) {
     EXPECT_NEAR(first[k], fft.lx() * fft.ls() * in[k], 1e-12 * fft.lx() * fft.ls());
   }
@@ -88,7 +100,8 @@ TEST(PaddedFft2d, ReusedAndRebuiltTransformsAreBitIdentical) {
 
 TEST(PaddedFft2d, PlansMadeInSeveralThreadsAtOnceGiveTheSameResults) {
   // Four threads each plan and run their own transforms of several sizes at the same time
-  // (planning goes through the planner mutex; execution is concurrent).
+  // (planning goes through the planner mutex; execution is concurrent; the plans are shared
+  // through SharedPlan's cache, which one thread empties on the way).
   const std::vector<double> in = RandomField(40 * 30, 11);
   auto run = [&](int nx, int ns) {
     const PaddedFft2d fft(nx, ns);
@@ -106,6 +119,7 @@ TEST(PaddedFft2d, PlansMadeInSeveralThreadsAtOnceGiveTheSameResults) {
   for (int t = 0; t < 4; ++t) {
     threads.emplace_back([&, t] {
       for (int repeat = 0; repeat < 5; ++repeat) {
+        if (t == 3 && repeat == 2) EvictSharedPlans();  // the others' shared plans meanwhile
         for (auto [nx, ns] : sizes) got[t].push_back(run(nx, ns));
       }
     });
@@ -115,6 +129,38 @@ TEST(PaddedFft2d, PlansMadeInSeveralThreadsAtOnceGiveTheSameResults) {
     ASSERT_EQ(got[t].size(), 5 * sizes.size());
     for (size_t k = 0; k < got[t].size(); ++k) EXPECT_EQ(got[t][k], expected[k % sizes.size()]);
   }
+}
+
+// Issue 18: plans are shared by transforms of the same description only, and a plan kept by
+// its users outlives its eviction from the cache.
+TEST(SharedFftwPlan, SharedOnlyForTheSameTransform) {
+  const PaddedFft2d a(23, 17);
+  EXPECT_TRUE(PaddedFft2d(23, 17).SharesPlansWith(a));
+  // The same padded lengths (lx 48 for 23 and 24 cells): the same transforms, shared.
+  ASSERT_EQ(PaddedFft2d(24, 17).lx(), a.lx());
+  EXPECT_TRUE(PaddedFft2d(24, 17).SharesPlansWith(a));
+  EXPECT_FALSE(PaddedFft2d(30, 17).SharesPlansWith(a));  // another lx
+  EXPECT_FALSE(PaddedFft2d(23, 16).SharesPlansWith(a));  // another number of rows
+  // Several descriptions of one kind differ in every number.
+  int made = 0;
+  auto make = [&] {
+    ++made;
+    static double in[8], out[10];
+    return fftw_plan_dft_r2c_1d(8, in, reinterpret_cast<fftw_complex*>(out), FFTW_ESTIMATE);
+  };
+  const SharedFftwPlan p = SharedPlan({900, 8}, make);
+  EXPECT_EQ(SharedPlan({900, 8}, make), p);
+  EXPECT_NE(SharedPlan({900, 8, 0}, make), p);
+  EXPECT_NE(SharedPlan({901, 8}, make), p);
+  EXPECT_EQ(made, 3);
+  // Evicted, still usable by its holder.
+  const std::vector<double> in = RandomField(23 * 17, 2);
+  FftwBuffer<FftwComplex> before = a.NewSpectrum(), after = a.NewSpectrum();
+  a.Forward(in.data(), before.data());
+  EvictSharedPlans();
+  EXPECT_NE(SharedPlan({900, 8}, make), p);
+  a.Forward(in.data(), after.data());
+  for (size_t k = 0; k < before.size(); ++k) ASSERT_EQ(before[k], after[k]);
 }
 
 bool IsSevenSmooth(int l) {
