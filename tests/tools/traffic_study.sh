@@ -36,7 +36,7 @@ fi
     END {
       split("high W2,high W3,low W2,low W3", name, ",")
       mid = 5; end = t
-      if (m[n] < t) { end = m[n]; mid = (1 + end) / 2; printf "stopped at %.3g MGT: checkpoints 1, %.3g, %.3g MGT\n", end, mid, end }
+      if (m[n] < t * (1 - 1e-9)) { end = m[n]; mid = (1 + end) / 2; printf "stopped at %.3g MGT: checkpoints 1, %.3g, %.3g MGT\n", end, mid, end }
       lm = sprintf("%.3g", mid); le = sprintf("%.3g", end)
       printf "%-8s %9s %9s %9s %14s %14s %7s\n", "measure", "at 1 MGT", "at " lm, "at " le, "rate 1-" lm, "rate " lm "-" le, "ratio"
       for (k = 1; k <= 4; k++) {
