@@ -103,10 +103,11 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cac
   const WheelRailGeometry& right_geom = place(PlacementCache::kRight, right, r, &own_right);
   const WheelRailGeometry& left_geom = place(PlacementCache::kLeft, left, l, &own_left);
   // Each wheel's normal part (the grids, operators and normal solves, which do not depend on
-  // the pitch velocity) kept for the solves of the balance rounds below (normal_part_memo.h).
+  // the pitch velocity) kept for the solves of the balance rounds below (normal_part_memo.h);
+  // only an axle force target has such rounds.
   internal::NormalPartMemo right_memo, left_memo;
-  out.right = internal::SolveContact(right, right_geom, 0.0, &right_memo);
-  out.left = internal::SolveContact(left, left_geom, 0.0, &left_memo);
+  out.right = internal::SolveContact(right, right_geom, 0.0, target ? &right_memo : nullptr);
+  out.left = internal::SolveContact(left, left_geom, 0.0, target ? &left_memo : nullptr);
   if (!target || out.right.status != SolverStatus::kConverged ||
       out.left.status != SolverStatus::kConverged) {
     return out;

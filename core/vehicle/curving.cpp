@@ -676,11 +676,16 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
     CurvingStart start;
     bool full_directly = false;
   };
+  // The predictor's phase, then the full model's; one phase when they are the same model.
+  const ModelOptions predictor =
+      p.options.predictor ? *p.options.predictor : CurvingOptions::PredictorFor(p.contact.model);
+  const bool has_predictor = !(predictor == p.contact.model);
   std::vector<Attempted> starts;
   if (p.options.start && p.options.start->state.size() == layout.size()) {
     const bool has_jacobian = p.options.start->jacobian.rows() == layout.size() &&
                               p.options.start->jacobian.cols() == layout.size();
-    if (has_jacobian) starts.push_back({*p.options.start, true});
+    // (Without a predictor both attempts would be the same solve.)
+    if (has_jacobian && has_predictor) starts.push_back({*p.options.start, true});
     starts.push_back({*p.options.start, false});
   }
   starts.push_back({{centred, {}}, false});
@@ -688,11 +693,6 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
   std::vector<CurvedWheelset> ws;
   Eigen::VectorXd r;
   bool no_equilibrium = false;
-  // The predictor's phase, then the full model's; one phase when they are the same model.
-  const ModelOptions predictor = !p.options.use_predictor ? p.contact.model
-                                 : p.options.predictor    ? *p.options.predictor
-                                                          : CurvingOptions::PredictorFor(p.contact.model);
-  const bool has_predictor = !(predictor == p.contact.model);
   Equilibrium eq(p, layout, contexts(predictor), unbalanced_N, q0);
   int iterations = 0;
   // The best stopped attempt (smallest largest scaled residual) when no start converges: a later

@@ -65,11 +65,11 @@ struct CurvingStart {
 struct CurvingOptions {
   // The contact model of the iterates (the predictor's phase): this model when given, otherwise
   // the problem's own model on the draft grid (PredictorFor), so that a problem at draft accuracy
-  // is solved in one phase. use_predictor = false: the full model throughout (slower, no better).
+  // is solved in one phase; the problem's own model here: the full model throughout (slower, no
+  // better).
   // A start with its Jacobian (continuation) is first finished with the full model directly:
   // it is a solution of the full model nearby, and the predictor's equilibrium lies farther off
   // (0.06-0.07 mm and 0.03 mrad between draft and standard on the main job's rails).
-  bool use_predictor = true;
   std::optional<ModelOptions> predictor;
   // Convergence: every residual below tolerance x Q0 (forces) or tolerance x Q0 x l0 (moments),
   // Q0 the static wheel load, l0 = 0.75 m. The default sits just above the noise of the draft

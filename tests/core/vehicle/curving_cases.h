@@ -35,7 +35,6 @@ inline CurvingProblem BaseProblem(const Profile& wheel, double radius_m) {
   p.vehicle.cg_height_m = 0.0;
   p.speed_m_s = 20.0;
   p.friction = 0.3;
-  p.options.predictor.reset();  // the full model is the predictor's here
   return p;
 }
 

@@ -272,7 +272,6 @@ CurvingProblem S1002Coach(double radius, double cant_m, double speed) {
   p.vehicle.cg_height_m = 1.5;
   p.speed_m_s = speed;
   p.friction = 0.35;
-  p.options.predictor.reset();
   return p;
 }
 
