@@ -2,12 +2,12 @@
 #include "core/numerics/fftw.h"
 
 #include <algorithm>
-#include <deque>
 #include <optional>
 #include <utility>
 #include <vector>
 
 #include "core/numerics/fft_size.h"
+#include "core/numerics/mru_cache.h"
 
 namespace railwear::internal {
 
@@ -34,40 +34,15 @@ void FftwPlan::Reset() {
 
 SharedFftwPlan SharedPlan(std::initializer_list<long> description,
                           const std::function<fftw_plan()>& make) {
-  struct Entry {
-    std::vector<long> description;
-    SharedFftwPlan plan;
-  };
-  static std::mutex mutex;  // the cache's; never held while the planner mutex is taken
-  static std::deque<Entry> entries;  // most recently used first
-  auto same = [&](const Entry& e) {
-    return std::equal(e.description.begin(), e.description.end(), description.begin(),
-                      description.end());
-  };
-  {
-    const std::lock_guard<std::mutex> lock(mutex);
-    for (auto it = entries.begin(); it != entries.end(); ++it) {
-      if (!same(*it)) continue;
-      if (it != entries.begin()) {
-        Entry hit = std::move(*it);
-        entries.erase(it);
-        entries.push_front(std::move(hit));
-      }
-      return entries.front().plan;
-    }
-  }
-  SharedFftwPlan plan = std::make_shared<const FftwPlan>(FftwPlan::Make(make));
-  SharedFftwPlan evicted;  // destroyed after the cache's lock (it takes the planner mutex)
-  const std::lock_guard<std::mutex> lock(mutex);
-  for (const Entry& e : entries) {
-    if (same(e)) return e.plan;  // another thread kept the same plan meanwhile
-  }
-  entries.push_front(Entry{std::vector<long>(description), plan});
-  if (entries.size() > kSharedFftwPlans) {
-    evicted = std::move(entries.back().plan);
-    entries.pop_back();
-  }
-  return plan;
+  // The cache's mutex is never held while the planner's is taken: plans are made outside it and
+  // evicted ones released after it (MruCache).
+  static MruCache<std::vector<long>, FftwPlan> cache(kSharedFftwPlans);
+  return cache.Get(
+      [&](const std::vector<long>& kept) {
+        return std::equal(kept.begin(), kept.end(), description.begin(), description.end());
+      },
+      [&] { return std::vector<long>(description); },
+      [&] { return std::make_shared<const FftwPlan>(FftwPlan::Make(make)); });
 }
 
 PaddedFft2d::PaddedFft2d(int nx, int ns)
