@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/contact/contact_forces.h"
+#include "core/contact/hertz_tread.h"
 #include "core/contact/placement_stage.h"
 
 namespace railwear {
@@ -16,26 +17,35 @@ ModelKind MatchingModelKind(GeometryModel geometry, KernelModel kernel) {
 }
 
 ContactCaseResult SolveContactCase(const ContactCase& c, PlacementCache* cache) {
+  return SolveContactCase(c, cache, nullptr);
+}
+
+ContactCaseResult SolveContactCase(const ContactCase& c, PlacementCache* cache,
+                                   std::optional<HertzTreadPoint>* tread_point) {
   ContactCaseResult out;
+  if (tread_point) tread_point->reset();
   if (c.wheelset) {
     WheelsetProblem problem = *c.wheelset;
     problem.wheel_rail = c.problem;
     out.wheelset = SolveWheelset(problem, cache);
     return out;
   }
-  if (cache) {
+  auto solve_full = [&](const ContactProblem& problem) {
+    if (!cache) return SolveContact(problem);
     // SolveContact(problem)'s own order: the checks, then the placement, timed.
-    internal::CheckContactProblem(c.problem);
+    internal::CheckContactProblem(problem);
     const auto t0 = std::chrono::steady_clock::now();
     const WheelRailGeometry& geom =
-        cache->Get(PlacementCache::kRight, c.problem.wheel_profile, c.problem.rail_profile,
-                   internal::PoseOf(c.problem));
+        cache->Get(PlacementCache::kRight, problem.wheel_profile, problem.rail_profile,
+                   internal::PoseOf(problem));
     const double placement_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    out.wheel = SolveContact(c.problem, geom, placement_s);
-  } else {
-    out.wheel = SolveContact(c.problem);
-  }
+    return SolveContact(problem, geom, placement_s);
+  };
+  // kind = hertz with rolling contact: the fast tread path, or the full path's fallback
+  // (hertz_tread.h).
+  out.wheel = IsHertzRolling(c.problem) ? SolveHertzRolling(c.problem, solve_full, tread_point)
+                                        : solve_full(c.problem);
   // Normal contact has no friction of its own; a friction the case gives still sets Nadal's
   // limit for the flange-climb check.
   if (!out.wheel.climb.friction && c.friction) {

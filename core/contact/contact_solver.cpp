@@ -18,6 +18,7 @@
 
 #include "core/contact/contact_forces.h"
 #include "core/contact/hertz_estimate.h"
+#include "core/contact/hertz_tread.h"
 #include "core/contact/normal_part_memo.h"
 #include "core/contact/normal_stage.h"
 #include "core/contact/normal_tangential_stage.h"
@@ -33,6 +34,10 @@ namespace railwear {
 using namespace internal;  // the stages
 
 ContactResult SolveContact(const ContactProblem& problem) {
+  // kind = hertz with rolling contact: the fast tread path, or its fallback (hertz_tread.h).
+  if (IsHertzRolling(problem)) {
+    return SolveHertzRolling(problem, [](const ContactProblem& p) { return SolveContact(p); });
+  }
   CheckContactProblem(problem);
   // 1. Placement.
   const auto t0 = Clock::now();

@@ -5,25 +5,43 @@
 
 #include <Eigen/Dense>
 
+#include "core/contact/rigid_motion.h"
 #include "core/numerics/check.h"
 
 namespace railwear {
 
-RollingInput RigidSlipFromMotion(const WheelRailGeometry& geom, const PatchGrid& grid,
-                                 const WheelMotion& motion, double friction) {
+WheelRigidMotion MakeWheelRigidMotion(const Eigen::Vector2d& axle_yz,
+                                      const Eigen::Vector2d& origin_yz, double roll, double yaw,
+                                      double r0, const WheelMotion& motion) {
   RAILWEAR_CHECK(motion.speed_m_s > 0);
-  const double V = motion.speed_m_s;
-  const double r0 = geom.pose().rolling_radius_m;
-  const double omega = motion.pitch_velocity_rad_s.value_or(-V / r0);
-  // Axle: a point on it (x = 0) and its direction, in R.
-  const Eigen::Vector2d axle_yz = geom.WheelToRail({0.0, -r0});
-  const Eigen::Vector3d a0(0.0, axle_yz.x(), axle_yz.y());
+  WheelRigidMotion m;
+  m.speed_m_s = motion.speed_m_s;
+  m.pitch_velocity_rad_s = motion.pitch_velocity_rad_s.value_or(-motion.speed_m_s / r0);
+  m.lateral_velocity_m_s = motion.lateral_velocity_m_s;
+  m.yaw_velocity_rad_s = motion.yaw_velocity_rad_s;
+  m.axle_point_m = Eigen::Vector3d(0.0, axle_yz.x(), axle_yz.y());
   // Axle direction in R: e_y yawed about z, then rolled about x (the geometry's order).
-  const double roll = geom.pose().roll_rad, yaw = geom.pose().yaw_rad;
-  const Eigen::Vector3d a(-std::sin(yaw), std::cos(yaw) * std::cos(roll),
-                          std::cos(yaw) * std::sin(roll));
-  const Eigen::Vector2d origin_yz = geom.WheelToRail({0.0, 0.0});
-  const double yaw_rate = motion.yaw_velocity_rad_s;
+  m.axle_direction = Eigen::Vector3d(-std::sin(yaw), std::cos(yaw) * std::cos(roll),
+                                     std::cos(yaw) * std::sin(roll));
+  m.origin_yz_m = origin_yz;
+  return m;
+}
+
+Eigen::Vector3d WheelRigidMotion::SlipVelocity(const Eigen::Vector3d& p) const {
+  const Eigen::Vector3d& a = axle_direction;
+  const Eigen::Vector3d d = p - axle_point_m;
+  const Eigen::Vector3d r = d - d.dot(a) * a;  // perpendicular from the axle
+  Eigen::Vector3d v = Eigen::Vector3d(speed_m_s, lateral_velocity_m_s, 0.0) +
+                      pitch_velocity_rad_s * a.cross(r);
+  if (yaw_velocity_rad_s != 0.0) {
+    v += yaw_velocity_rad_s * Eigen::Vector3d(-(p.y() - origin_yz_m.x()), p.x(), 0.0);
+  }
+  return v;
+}
+
+RollingInput RigidSlipOfMotion(const WheelRigidMotion& motion, const PatchGrid& grid,
+                               double friction) {
+  const double V = motion.speed_m_s;
   RollingInput in;
   in.speed_m_s = V;
   in.friction = friction;
@@ -32,18 +50,21 @@ RollingInput RigidSlipFromMotion(const WheelRailGeometry& geom, const PatchGrid&
   for (int j = 0; j < grid.ns; ++j) {
     const Eigen::Vector3d t(0.0, grid.tangent_yz[j].x(), grid.tangent_yz[j].y());
     for (int i = 0; i < grid.nx; ++i) {
-      const Eigen::Vector3d d = grid.Point(i, j) - a0;
-      const Eigen::Vector3d r = d - d.dot(a) * a;  // perpendicular from the axle
-      Eigen::Vector3d v = Eigen::Vector3d(V, motion.lateral_velocity_m_s, 0.0) + omega * a.cross(r);
-      if (yaw_rate != 0.0) {
-        const Eigen::Vector3d p = grid.Point(i, j);
-        v += yaw_rate * Eigen::Vector3d(-(p.y() - origin_yz.x()), p.x(), 0.0);
-      }
+      const Eigen::Vector3d v = motion.SlipVelocity(grid.Point(i, j));
       in.creep_x[grid.Index(i, j)] = v.x() / V;
       in.creep_s[grid.Index(i, j)] = v.dot(t) / V;
     }
   }
   return in;
+}
+
+RollingInput RigidSlipFromMotion(const WheelRailGeometry& geom, const PatchGrid& grid,
+                                 const WheelMotion& motion, double friction) {
+  const double r0 = geom.pose().rolling_radius_m;
+  return RigidSlipOfMotion(
+      MakeWheelRigidMotion(geom.WheelToRail({0.0, -r0}), geom.WheelToRail({0.0, 0.0}),
+                           geom.pose().roll_rad, geom.pose().yaw_rad, r0, motion),
+      grid, friction);
 }
 
 Eigen::Vector2d PressureCentre(const PatchGrid& grid, const Eigen::VectorXd& weight) {

@@ -9,6 +9,7 @@
 #include "core/contact/damage.h"
 #include "core/contact/fastsim.h"
 #include "core/contact/kinematics.h"
+#include "core/contact/rolling_patch.h"
 #include "core/contact/tangential_method.h"
 #include "core/numerics/check.h"
 
@@ -29,29 +30,7 @@ void SolveRolling(const ContactProblem& problem, const WheelRailGeometry& geom,
                                 ? RigidSlipFromCreepage(patch.grid, patch.pressure_Pa, *o.creepage,
                                                         o.motion.speed_m_s, o.friction)
                                 : RigidSlipFromMotion(geom, patch.grid, o.motion, o.friction);
-    RollingPatch rolling;
-    rolling.creepage = AverageCreepage(patch.grid, patch.pressure_Pa, in);
-    rolling.tangential =
-        SolveTangential(problem.tangential, problem.model.accuracy, patch.grid, patch.pressure_Pa,
-                        in, problem.wheel_material, problem.rail_material, &rolling.choice);
-    // The patch's equivalent ellipse (the semi-axes FASTSIM uses), reported with the patch.
-    const ContactEllipse used = EstimateContactEllipse(patch.grid, patch.pressure_Pa);
-    rolling.semi_axis_x_m = used.semi_axis_x_m;
-    rolling.semi_axis_s_m = used.semi_axis_s_m;
-    if (problem.damage && rolling.tangential.status == SolverStatus::kConverged) {
-      PatchDamageInput d;
-      d.force_x_N = rolling.tangential.force_x_N;
-      d.force_y_N = rolling.tangential.force_s_N;
-      d.normal_force_N = patch.normal_force_N;
-      d.xi = rolling.creepage.xi;
-      d.eta = rolling.creepage.eta;
-      d.spin_moment_Nm = rolling.tangential.spin_moment_Nm;
-      d.spin_per_m = rolling.creepage.spin_per_m;
-      d.peak_pressure_Pa = patch.p_max_Pa;  // the patch's own peak (issue 16), not Hertz's p0
-      d.shear_yield_Pa = problem.rail_material.shear_yield_Pa;
-      rolling.damage = CalcPatchDamage(d);
-    }
-    patch.rolling = std::move(rolling);
+    patch.rolling = internal::SolveRollingPatch(problem, patch, in);
   }
 }
 
@@ -144,6 +123,33 @@ void ApplyRolling(const ContactProblem& problem, const WheelRailGeometry& geomet
 }
 
 namespace internal {
+
+RollingPatch SolveRollingPatch(const ContactProblem& problem, const PatchResult& patch,
+                               const RollingInput& in) {
+  RollingPatch rolling;
+  rolling.creepage = AverageCreepage(patch.grid, patch.pressure_Pa, in);
+  rolling.tangential =
+      SolveTangential(problem.tangential, problem.model.accuracy, patch.grid, patch.pressure_Pa,
+                      in, problem.wheel_material, problem.rail_material, &rolling.choice);
+  // The patch's equivalent ellipse (the semi-axes FASTSIM uses), reported with the patch.
+  const ContactEllipse used = EstimateContactEllipse(patch.grid, patch.pressure_Pa);
+  rolling.semi_axis_x_m = used.semi_axis_x_m;
+  rolling.semi_axis_s_m = used.semi_axis_s_m;
+  if (problem.damage && rolling.tangential.status == SolverStatus::kConverged) {
+    PatchDamageInput d;
+    d.force_x_N = rolling.tangential.force_x_N;
+    d.force_y_N = rolling.tangential.force_s_N;
+    d.normal_force_N = patch.normal_force_N;
+    d.xi = rolling.creepage.xi;
+    d.eta = rolling.creepage.eta;
+    d.spin_moment_Nm = rolling.tangential.spin_moment_Nm;
+    d.spin_per_m = rolling.creepage.spin_per_m;
+    d.peak_pressure_Pa = patch.p_max_Pa;  // the patch's own peak (issue 16), not Hertz's p0
+    d.shear_yield_Pa = problem.rail_material.shear_yield_Pa;
+    rolling.damage = CalcPatchDamage(d);
+  }
+  return rolling;
+}
 
 void RunRollingStage(const ContactProblem& problem, const WheelRailGeometry& geom,
                      ContactResult* result) {

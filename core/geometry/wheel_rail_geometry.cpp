@@ -12,7 +12,9 @@
 #include <mutex>
 #include <string>
 
+#include "core/geometry/polyline_envelope.h"
 #include "core/numerics/check.h"
+#include "core/numerics/golden_section.h"
 #include "core/profile/profile_keyed_cache.h"
 
 namespace railwear {
@@ -42,52 +44,6 @@ std::shared_ptr<const YawedWheelSection> SharedYawedSection(const Profile& wheel
   return shared.Get(wheel, {DoubleBits(r0), DoubleBits(yaw_rad)}, wheel.source(), [&] {
     return std::make_shared<const YawedWheelSection>(wheel, r0, yaw_rad);
   });
-}
-
-// Golden-section minimisation of f on [a, b] to an absolute tolerance.
-template <typename F>
-double GoldenMinimise(F&& f, double a, double b, double tol) {
-  const double r = 0.5 * (std::sqrt(5.0) - 1.0);
-  double c = b - r * (b - a), d = a + r * (b - a);
-  double fc = f(c), fd = f(d);
-  while (b - a > tol) {
-    if (fc < fd) {
-      b = d;
-      d = c;
-      fd = fc;
-      c = b - r * (b - a);
-      fc = f(c);
-    } else {
-      a = c;
-      c = d;
-      fc = fd;
-      d = a + r * (b - a);
-      fd = f(d);
-    }
-  }
-  return 0.5 * (a + b);
-}
-
-// Lower (max z) or upper (min z) envelope of a polyline on a uniform y grid.
-void Rasterise(const std::vector<Eigen::Vector2d>& pts, double y0, double h, int n, bool take_min,
-               std::vector<double>* z) {
-  for (size_t k = 0; k + 1 < pts.size(); ++k) {
-    const Eigen::Vector2d& a = pts[k];
-    const Eigen::Vector2d& b = pts[k + 1];
-    const double ya = std::min(a.x(), b.x()), yb = std::max(a.x(), b.x());
-    int i0 = static_cast<int>(std::ceil((ya - y0) / h));
-    int i1 = static_cast<int>(std::floor((yb - y0) / h));
-    i0 = std::max(i0, 0);
-    i1 = std::min(i1, n - 1);
-    for (int i = i0; i <= i1; ++i) {
-      const double y = y0 + i * h;
-      const double t = (b.x() == a.x()) ? 0.0 : (y - a.x()) / (b.x() - a.x());
-      const double zi = a.y() + t * (b.y() - a.y());
-      double& slot = (*z)[i];
-      slot = take_min ? std::min(slot, zi) : std::max(slot, zi);
-      if (b.x() == a.x()) slot = take_min ? std::min(slot, b.y()) : std::max(slot, b.y());
-    }
-  }
 }
 
 // Lateral curvature of a profile at s, positive where the body is convex.
@@ -137,8 +93,8 @@ WheelRailGeometry::WheelRailGeometry(const Profile& wheel, const Profile& rail,
   if (!(y1 > y0)) return;
   const int n = static_cast<int>(std::floor((y1 - y0) / vertical_step_m)) + 1;
   std::vector<double> ztop(n, kInf), zbot(n, -kInf);
-  Rasterise(rail_pts, y0, vertical_step_m, n, /*take_min=*/true, &ztop);
-  Rasterise(wheel_pts, y0, vertical_step_m, n, /*take_min=*/false, &zbot);
+  internal::RasteriseEnvelope(rail_pts, y0, vertical_step_m, n, /*take_min=*/true, &ztop);
+  internal::RasteriseEnvelope(wheel_pts, y0, vertical_step_m, n, /*take_min=*/false, &zbot);
   gap_y_.resize(n);
   gap_.assign(n, std::numeric_limits<double>::quiet_NaN());
   int best = -1;
