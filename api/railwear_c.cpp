@@ -18,6 +18,7 @@
 
 #include "core/contact/contact_case.h"
 #include "core/contact/contact_forces.h"
+#include "core/contact/hertz_tread.h"
 #include "core/contact/influence_constant_sets.h"
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
@@ -88,6 +89,9 @@ struct rw_problem {
   // The placed geometries of the last calculate, reused by the next one at the same pose on the
   // same profiles (core/contact/placement_cache.h): exact, so results do not depend on it.
   railwear::PlacementCache placement_cache;
+  // The fast tread path's wheel-frame contact point of the last calculate (RW_MODEL_HERTZ with
+  // rolling contact on a single wheel, core/contact/hertz_tread.h); empty for any other solve.
+  std::optional<railwear::HertzTreadPoint> tread_point;
 
   std::optional<ContactCaseResult> result;
   struct PatchRef {
@@ -226,6 +230,7 @@ const rw_problem::PatchRef& PatchAt(const rw_problem* p, int index) {
 void Invalidate(rw_problem* p) {
   p->result.reset();
   p->patches.clear();
+  p->tread_point.reset();
 }
 
 // The canted rail each wheel of the handle runs on: rail 0 (single or right), 1 (left: its own
@@ -606,11 +611,18 @@ rw_status rw_set_model(rw_problem* problem, const rw_model* model) {
                                        : model->kind == RW_MODEL_HALFSPACE ? ModelKind::kHalfspace
                                                                            : ModelKind::kConformal);
     }
-    if (m.kind == ModelKind::kHertz && model->effects != 0) {
+    // Since 1.3 the Hertz model rolls on a single wheel: the fast tread path
+    // (core/contact/hertz_tread.h); coupling and a wheelset need a grid model.
+    if (m.kind == ModelKind::kHertz && (model->effects & RW_EFFECT_COUPLING)) {
       Fail(RW_ERROR_INVALID_VALUE,
-           "rw_model.kind = RW_MODEL_HERTZ with effects: rolling contact is "
-           "solved on the patch grid, which the analytic Hertz model has "
-           "not (use HALFSPACE, CONFORMAL or AUTO)");
+           "rw_model.kind = RW_MODEL_HERTZ with RW_EFFECT_COUPLING: the "
+           "coupling effect needs a patch grid (use HALFSPACE, CONFORMAL or AUTO)");
+    }
+    if (m.kind == ModelKind::kHertz && model->effects != 0 &&
+        problem->kind == RW_PROBLEM_WHEELSET) {
+      Fail(RW_ERROR_WRONG_KIND,
+           "rw_model.kind = RW_MODEL_HERTZ with effects: rolling contact with the Hertz model is "
+           "the single wheel's fast tread path; a wheelset needs HALFSPACE, CONFORMAL or AUTO");
     }
     m.accuracy = static_cast<AccuracyPreset>(model->accuracy);
     if (explicit_cells) {
@@ -837,7 +849,8 @@ rw_status rw_calculate(rw_problem* problem) {
     RequireHandle(problem);
     Invalidate(problem);
     const ContactCase c = MakeCase(problem);
-    problem->result = railwear::SolveContactCase(c, &problem->placement_cache);
+    problem->result =
+        railwear::SolveContactCase(c, &problem->placement_cache, &problem->tread_point);
     const ContactCaseResult& r = *problem->result;
     auto add = [&](int wheel, const ContactResult& contact) {
       for (const PatchResult& patch : contact.patches) {
@@ -942,27 +955,46 @@ rw_status rw_get_patch(rw_problem* problem, int index, rw_patch* out) {
     }
     o.cells = p.cells;
     o.cells_in_contact = p.cells_in_contact;
-    // The wheel frame: the pressure centre in the wheel's placed geometry of this solve (the
-    // handle's placement cache holds each wheel's last one, core/contact/placement_cache.h).
-    const railwear::WheelRailGeometry* geometry = problem->placement_cache.Last(
-        ref.wheel == 0 ? railwear::PlacementCache::kRight : railwear::PlacementCache::kLeft);
-    RAILWEAR_CHECK(geometry != nullptr);
-    const Eigen::Vector3d p_R(p.contact_x_m, o.contact_y_m, o.contact_z_m);
-    const Eigen::Vector2d meridian = geometry->Meridian(p_R);  // (y_W, r - r0)
-    // x along the wheel's rolling direction: Meridian's own rotation about the vertical through
-    // the wheel profile origin (its yaw undone), of which it returns y and r only.
-    const double yaw = geometry->pose().yaw_rad;
-    const double y_roll_undone = geometry->RailToWheel({o.contact_y_m, o.contact_z_m}).x();
-    o.contact_wheel_x_m =
-        yaw == 0.0 ? p.contact_x_m : std::cos(yaw) * p.contact_x_m + std::sin(yaw) * y_roll_undone;
-    o.contact_wheel_y_m = meridian.x();
-    o.contact_wheel_z_m = meridian.y();
+    if (problem->tread_point && p.model == "hertz") {
+      // The fast tread path placed the wheel itself: its contact point on the wheel.
+      o.contact_wheel_x_m = problem->tread_point->wheel_x_m;
+      o.contact_wheel_y_m = problem->tread_point->wheel_y_m;
+      o.contact_wheel_z_m = problem->tread_point->wheel_z_m;
+    } else {
+      // The wheel frame: the pressure centre in the wheel's placed geometry of this solve (the
+      // handle's placement cache holds each wheel's last one, core/contact/placement_cache.h).
+      const railwear::WheelRailGeometry* geometry = problem->placement_cache.Last(
+          ref.wheel == 0 ? railwear::PlacementCache::kRight : railwear::PlacementCache::kLeft);
+      RAILWEAR_CHECK(geometry != nullptr);
+      const Eigen::Vector3d p_R(p.contact_x_m, o.contact_y_m, o.contact_z_m);
+      const Eigen::Vector2d meridian = geometry->Meridian(p_R);  // (y_W, r - r0)
+      // x along the wheel's rolling direction: Meridian's own rotation about the vertical through
+      // the wheel profile origin (its yaw undone), of which it returns y and r only.
+      const double yaw = geometry->pose().yaw_rad;
+      const double y_roll_undone = geometry->RailToWheel({o.contact_y_m, o.contact_z_m}).x();
+      o.contact_wheel_x_m = yaw == 0.0 ? p.contact_x_m
+                                       : std::cos(yaw) * p.contact_x_m +
+                                             std::sin(yaw) * y_roll_undone;
+      o.contact_wheel_y_m = meridian.x();
+      o.contact_wheel_z_m = meridian.y();
+    }
     if (size == RW_PATCH_SIZE_1_1) {
       o.struct_size = size;
       std::memcpy(out, &o, size);
     } else {
       *out = o;
     }
+    return RW_OK;
+  });
+}
+
+rw_status rw_get_patch_model(rw_problem* problem, int index, const char** model,
+                             const char** reason) {
+  return Guard(problem, [&] {
+    RequireHandle(problem);
+    const PatchResult& p = *PatchAt(problem, index).patch;
+    if (model) *model = p.model.c_str();
+    if (reason) *reason = p.model_reason.c_str();
     return RW_OK;
   });
 }

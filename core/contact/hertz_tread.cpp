@@ -539,6 +539,14 @@ std::optional<ContactResult> SolveHertzTread(const ContactProblem& problem, std:
         100.0 * kMaxTreadGapDeviation));
   }
 
+  const std::string valid_reason = fmt::format(
+      "fast tread path: one Hertzian patch: over s {:.2f} to {:.2f} mm the gap departs from "
+      "Hertz's quadratic by {:.0f} % (limit {:.0f} %), the normal turns by {:.2f} deg and stands "
+      "at {:.1f} deg to the vertical",
+      conformity.t_lo_m * 1e3, conformity.t_hi_m * 1e3, 100.0 * conformity.gap_deviation,
+      100.0 * kMaxTreadGapDeviation, conformity.normal_turn_rad * 180.0 / 3.14159265358979323846,
+      conformity.normal_angle_rad * 180.0 / 3.14159265358979323846);
+
   // 4. The patch and its rolling solution at the pressure's vertical target T.
   const double r0 = problem.placement.rolling_radius_m;
   const Eigen::Vector2d axle_yz = g.WheelToRail({0.0, -r0}, pl.dz_m);
@@ -548,7 +556,7 @@ std::optional<ContactResult> SolveHertzTread(const ContactProblem& problem, std:
     h = hertz_for(target_N);
     PatchResult patch = internal::HertzPatch(c, h);
     patch.model = "hertz";
-    patch.model_reason = "fast tread path: " + choice.reason;
+    patch.model_reason = valid_reason;
     EllipseGrid(c, k, h, problem.model, &patch);
     WheelMotion motion = ro.motion;
     if (pitch) motion.pitch_velocity_rad_s = pitch;

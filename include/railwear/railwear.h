@@ -51,7 +51,7 @@ extern "C" {
  * size this header writes. rw_api_version() gives the library's (major * 10000 + minor * 100 +
  * patch), for a check at run time. */
 #define RW_API_VERSION_MAJOR 1
-#define RW_API_VERSION_MINOR 2
+#define RW_API_VERSION_MINOR 3
 #define RW_API_VERSION_PATCH 0
 #define RW_API_VERSION \
   (RW_API_VERSION_MAJOR * 10000 + RW_API_VERSION_MINOR * 100 + RW_API_VERSION_PATCH)
@@ -133,7 +133,10 @@ RW_API rw_status rw_set_materials(rw_problem* problem, const rw_material* wheel,
 
 typedef int rw_model_kind;
 enum {
-  RW_MODEL_HERTZ = 0,     /* analytic, no grid (normal contact only) */
+  RW_MODEL_HERTZ = 0,     /* analytic, no grid; since 1.3 with RW_EFFECT_TANGENTIAL (single
+                             wheel): the fast tread path, Hertz's ellipse and FASTSIM on it,
+                             where the contact is one Hertzian patch, else RW_MODEL_AUTO
+                             (rw_get_patch_model says which and why; docs/library.md) */
   RW_MODEL_HALFSPACE = 1, /* planar grid, Boussinesq kernel */
   RW_MODEL_CONFORMAL = 2, /* conformal grid, the seed's kernel (eq. 4); the default */
   RW_MODEL_CUSTOM = 3,    /* the given geometry and kernel */
@@ -315,7 +318,17 @@ typedef struct rw_patch {
 
 RW_API rw_status rw_get_patch(rw_problem* problem, int index, rw_patch* patch);
 
-/* Number of grid cells of a patch (0 for a Hertz patch, which has no grid). */
+/* Since 1.3. The model a patch was solved with and why, as `railwear contact` prints them:
+ * *model "hertz", "halfspace", "conformal+golubenko", ...; *reason the model selection's reason
+ * (RW_MODEL_AUTO; RW_MODEL_HERTZ with rolling contact: "fast tread path: ..." when the fast
+ * tread path solved the patch, "fast tread path not valid: <why>; full path: ..." when it did not
+ * apply and RW_MODEL_AUTO solved it), "" otherwise. The texts belong to the handle and stay valid
+ * until the next call that clears the results. Either pointer may be NULL. */
+RW_API rw_status rw_get_patch_model(rw_problem* problem, int index, const char** model,
+                                    const char** reason);
+
+/* Number of grid cells of a patch (0 for a Hertz patch of normal contact, which has no grid; the
+ * fast tread path's patch has the grid its tangential solution ran on). */
 RW_API rw_status rw_get_cell_count(rw_problem* problem, int index, size_t* count);
 /* Per cell k = j * nx + i (i along x, j along s): centre x and s [m], pressure [Pa], tractions
  * on the wheel along x and s [Pa], slip velocities along x and s [m/s] (0 without rolling). Any

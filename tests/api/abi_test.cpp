@@ -15,10 +15,11 @@ namespace {
 
 TEST(ApiAbi, VersionNumbersArePinned) {
   EXPECT_EQ(RW_API_VERSION_MAJOR, 1);
-  // 1.1: rw_set_pressure_limit added; 1.2: rw_patch's wheel-frame location appended.
-  EXPECT_EQ(RW_API_VERSION_MINOR, 2);
+  // 1.1: rw_set_pressure_limit added; 1.2: rw_patch's wheel-frame location appended; 1.3:
+  // RW_MODEL_HERTZ with rolling contact (the fast tread path) and rw_get_patch_model.
+  EXPECT_EQ(RW_API_VERSION_MINOR, 3);
   EXPECT_EQ(RW_API_VERSION_PATCH, 0);
-  EXPECT_EQ(RW_API_VERSION, 10200);
+  EXPECT_EQ(RW_API_VERSION, 10300);
   EXPECT_EQ(rw_api_version(), RW_API_VERSION);  // the library is the header's
 }
 

@@ -162,6 +162,10 @@ std::vector<BadCall> Table() {
     s.struct_size = sizeof s;
     return rw_get_patch(nullptr, 0, &s);
   });
+  add("null handle: get_patch_model", RW_ERROR_NULL_ARGUMENT, [](rw_problem*) {
+    const char* model = nullptr;
+    return rw_get_patch_model(nullptr, 0, &model, nullptr);
+  });
   add("null handle: get_cell_count", RW_ERROR_NULL_ARGUMENT, [](rw_problem*) {
     size_t n = 0;
     return rw_get_cell_count(nullptr, 0, &n);
@@ -545,7 +549,8 @@ std::vector<BadCall> Table() {
           return rw_set_model(p, &m);
         });
   }
-  for (uint32_t effect : {RW_EFFECT_TANGENTIAL, RW_EFFECT_DAMAGE, RW_EFFECT_COUPLING}) {
+  // Since 1.3 the Hertz model rolls (the fast tread path); coupling still needs a grid.
+  for (uint32_t effect : {RW_EFFECT_COUPLING, RW_EFFECT_TANGENTIAL | RW_EFFECT_COUPLING}) {
     add("model: hertz with effect " + std::to_string(effect), RW_ERROR_INVALID_VALUE,
         [effect](rw_problem* p) {
           rw_model m = ValidModel();
@@ -695,6 +700,11 @@ std::vector<BadCall> Table() {
          s.struct_size = sizeof s;
          return rw_get_patch(p, 0, &s);
        }},
+      {"get_patch_model",
+       [](rw_problem* p) {
+         const char* model = nullptr;
+         return rw_get_patch_model(p, 0, &model, nullptr);
+       }},
       {"get_cell_count",
        [](rw_problem* p) {
          size_t n = 0;
@@ -747,6 +757,13 @@ std::vector<BadCall> Table() {
           rw_patch s{};
           s.struct_size = sizeof s;
           return rw_get_patch(p, index, &s);
+        },
+        Ready::kCalculated);
+    add(
+        "get_patch_model index " + std::to_string(index), RW_ERROR_INDEX,
+        [index](rw_problem* p) {
+          const char* reason = nullptr;
+          return rw_get_patch_model(p, index, nullptr, &reason);
         },
         Ready::kCalculated);
     add(

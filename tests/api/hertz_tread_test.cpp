@@ -1,0 +1,131 @@
+// RW_MODEL_HERTZ with rolling contact (API 1.3): the fast tread path through the C API equals
+// the core's (core/contact/hertz_tread.h), rw_get_patch_model says which path solved a patch and
+// why, and a wheelset refuses it.
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/contact/contact_case.h"
+#include "core/contact/hertz_tread.h"
+#include "core/profile/builtin_profiles.h"
+#include "railwear/railwear.h"
+#include "tests/api/rolling_wheel.h"
+
+namespace railwear::test {
+namespace {
+
+rw_state TreadState(double lateral_m, double yaw_rad) {
+  rw_state s{};
+  s.struct_size = sizeof s;
+  rw_init_state(&s);
+  s.lateral_m = lateral_m;
+  s.yaw_rad = yaw_rad;
+  s.vertical_force_N = 100e3;
+  s.speed_m_s = 20.0;
+  return s;
+}
+
+// The handle's problem (tests/api/rolling_wheel.h) as the core's ContactCase.
+ContactCase CoreCase(double lateral_m, double yaw_rad) {
+  ContactCase c;
+  ContactProblem& p = c.problem;
+  p.wheel_profile = MakeS1002();
+  p.rail_profile = ApplyCant(MakeUic60(), 1.0 / 40.0);
+  p.model = MakeModelOptions(ModelKind::kHertz);
+  p.model.accuracy = AccuracyPreset::kDraft;
+  p.placement.lateral_shift_m = lateral_m;
+  p.placement.yaw_rad = yaw_rad;
+  p.load.vertical_force_N = 100e3;
+  RollingOptions r;
+  r.friction = 0.3;
+  r.motion.speed_m_s = 20.0;
+  p.rolling = r;
+  return c;
+}
+
+TEST(ApiHertzTread, EqualsTheCoreFastPath) {
+  rw_problem* p = MakeRollingS1002Wheel(RW_MODEL_HERTZ, RW_ACCURACY_DRAFT);
+  ASSERT_NE(p, nullptr);
+  const rw_state s = TreadState(-20e-3, 5e-3);
+  ASSERT_EQ(rw_set_state(p, &s), RW_OK) << rw_last_error(p);
+  ASSERT_EQ(rw_calculate(p), RW_OK) << rw_last_error(p);
+  int n = 0;
+  ASSERT_EQ(rw_get_patch_count(p, &n), RW_OK);
+  ASSERT_EQ(n, 1);
+  rw_patch q{};
+  q.struct_size = sizeof q;
+  ASSERT_EQ(rw_get_patch(p, 0, &q), RW_OK);
+  const char* model = nullptr;
+  const char* reason = nullptr;
+  ASSERT_EQ(rw_get_patch_model(p, 0, &model, &reason), RW_OK);
+  EXPECT_STREQ(model, "hertz");
+  EXPECT_EQ(std::string(reason).rfind("fast tread path: one Hertzian patch", 0), 0u) << reason;
+
+  PlacementCache cache;
+  std::optional<HertzTreadPoint> point;
+  const ContactResult core = SolveContactCase(CoreCase(-20e-3, 5e-3), &cache, &point).wheel;
+  ASSERT_EQ(core.patches.size(), 1u);
+  ASSERT_TRUE(point.has_value());
+  const PatchResult& c = core.patches[0];
+  EXPECT_EQ(q.area_m2, c.area_m2);
+  EXPECT_EQ(q.p_max_Pa, c.p_max_Pa);
+  EXPECT_EQ(q.contact_y_m, c.contact_point_yz_m.x());
+  EXPECT_EQ(q.creep_force_x_N, c.rolling->tangential.force_x_N);
+  EXPECT_EQ(q.creep_force_s_N, c.rolling->tangential.force_s_N);
+  EXPECT_EQ(q.contact_wheel_x_m, point->wheel_x_m);
+  EXPECT_EQ(q.contact_wheel_y_m, point->wheel_y_m);
+  EXPECT_EQ(q.contact_wheel_z_m, point->wheel_z_m);
+  // The wheel point is the wheel profile's: y_W is the rail point's y less the lateral shift
+  // (no roll), to the placement's refinement.
+  EXPECT_NEAR(q.contact_wheel_y_m, q.contact_y_m + 20e-3, 1e-6);
+  // Its cells are the ellipse grid FASTSIM ran on.
+  size_t cells = 0;
+  ASSERT_EQ(rw_get_cell_count(p, 0, &cells), RW_OK);
+  EXPECT_EQ(cells, static_cast<size_t>(c.grid.cells()));
+  EXPECT_GT(cells, 0u);
+  rw_destroy(p);
+}
+
+TEST(ApiHertzTread, FallsBackAndSaysWhy) {
+  rw_problem* p = MakeRollingS1002Wheel(RW_MODEL_HERTZ, RW_ACCURACY_DRAFT);
+  ASSERT_NE(p, nullptr);
+  // The benchmark's tread position: the crown's 300 mm radius meets the 80 mm one in the patch.
+  const rw_state s = TreadState(-10.4e-3, 5e-3);
+  ASSERT_EQ(rw_set_state(p, &s), RW_OK);
+  ASSERT_EQ(rw_calculate(p), RW_OK) << rw_last_error(p);
+  int n = 0;
+  ASSERT_EQ(rw_get_patch_count(p, &n), RW_OK);
+  ASSERT_GE(n, 1);
+  const char* model = nullptr;
+  const char* reason = nullptr;
+  ASSERT_EQ(rw_get_patch_model(p, 0, &model, &reason), RW_OK);
+  EXPECT_STRNE(model, "hertz");
+  EXPECT_EQ(std::string(reason).rfind("fast tread path not valid: non-Hertzian patch", 0), 0u)
+      << reason;
+  // The wheel-frame location comes from the full path's placed geometry.
+  rw_patch q{};
+  q.struct_size = sizeof q;
+  ASSERT_EQ(rw_get_patch(p, 0, &q), RW_OK);
+  EXPECT_NEAR(q.contact_wheel_y_m, q.contact_y_m + 10.4e-3, 1e-6);
+  rw_destroy(p);
+}
+
+TEST(ApiHertzTread, WheelsetRefusesIt) {
+  rw_problem* p = nullptr;
+  ASSERT_EQ(rw_create(RW_PROBLEM_WHEELSET, &p), RW_OK);
+  rw_model m{};
+  m.struct_size = sizeof m;
+  rw_init_model(&m);
+  m.kind = RW_MODEL_HERTZ;
+  m.effects = RW_EFFECT_TANGENTIAL;
+  EXPECT_EQ(rw_set_model(p, &m), RW_ERROR_WRONG_KIND);
+  EXPECT_NE(std::string(rw_last_error(p)).find("single wheel's fast tread path"),
+            std::string::npos)
+      << rw_last_error(p);
+  rw_destroy(p);
+}
+
+}  // namespace
+}  // namespace railwear::test
