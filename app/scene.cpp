@@ -548,10 +548,14 @@ void ReadWheelset(const Fields& top, Scene* scene) {
 void CheckRolling(const Fields& top, const Scene& scene) {
   if (!scene.tangential) return;
   if (const auto model = top.Table("model", "a table")) {
-    if (scene.problem.model.kind == ModelKind::kHertz) {
+    // kind = "hertz" rolls on the single wheel's fast tread path (core/contact/hertz_tread.h,
+    // docs/library.md): not with coupling, not on a wheelset.
+    if (scene.problem.model.kind == ModelKind::kHertz &&
+        (scene.wheelset || HasEffect(scene, "coupling"))) {
       model->Fail("kind",
-                  "\"halfspace\" or \"conformal\" with the tangential effect (rolling contact "
-                  "is solved on the patch grid, which the analytic Hertz model has not)");
+                  "\"halfspace\", \"conformal\" or \"auto\" with a wheelset or the coupling "
+                  "effect (the hertz model rolls only on a single wheel's fast tread path, "
+                  "without coupling)");
     }
   }
   if (scene.damage && !(scene.problem.rail_material.shear_yield_Pa > 0)) {

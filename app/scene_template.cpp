@@ -49,7 +49,8 @@ constants = "fem"             # the named set of seed eq. 4's constants: "fem" (
 accuracy = "standard"         # "draft" | "standard" | "reference" | "fine"; default "standard"
 # cell_mm = [0.2, 0.2]        # explicit cell size [dx, ds] in mm (> 0); overrides accuracy
 tangential = "fastsim"        # "fastsim" | "exact" | "auto"; default "fastsim": the tangential
-                              # solver of the "tangential" effect (not with kind = "hertz");
+                              # solver of the "tangential" effect (kind = "hertz": on the
+                              # fast tread path's ellipse, a single wheel, docs/library.md);
                               # "auto": per patch exact where spin or the patch's shape takes
                               # FASTSIM beyond the accuracy's creep-force tolerance
                               # (docs/rolling_contact.md)

@@ -264,6 +264,13 @@ class Problem {
         py::make_tuple(q.force_on_rail_N[0], q.force_on_rail_N[1], q.force_on_rail_N[2]);
     return d;
   }
+  // (model, reason) of a patch (rw_get_patch_model, since 1.3).
+  py::tuple get_patch_model(int index) {
+    const char* model = nullptr;
+    const char* reason = nullptr;
+    Check(p_, rw_get_patch_model(p_, index, &model, &reason));
+    return py::make_tuple(std::string(model), std::string(reason));
+  }
   // The size query and the buffers in one: a dict of NumPy arrays, one value per cell.
   py::dict get_cells(int index) {
     size_t n = 0;
@@ -375,6 +382,9 @@ PYBIND11_MODULE(railwear, m) {
       .def("get_summary", &Problem::get_summary)
       .def("get_patch_count", &Problem::get_patch_count)
       .def("get_patch", &Problem::get_patch, py::arg("index"))
+      .def("get_patch_model", &Problem::get_patch_model, py::arg("index"),
+           "(model, reason) of patch `index`: the model that solved it (\"hertz\", "
+           "\"halfspace\", ...) and why (rw_get_patch_model)")
       .def("get_cells", &Problem::get_cells, py::arg("index"),
            "Per cell (NumPy arrays): x_m, s_m, pressure_Pa, traction_x_Pa, traction_s_Pa, "
            "slip_x_m_s, slip_s_m_s.")

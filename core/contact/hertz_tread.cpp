@@ -103,7 +103,8 @@ class TreadGeometry {
     const auto& wp = wheel.points();
     const int nw = static_cast<int>(wp.size());
     int lowest = 0, highest = 0;
-    for (int i = 0; i < nw; i += Stride(wheel)) {
+    const int wheel_stride = Stride(wheel);
+    for (int i = 0; i < nw; i += wheel_stride) {
       if (wp[i].y() > wp[lowest].y()) lowest = i;
     }
     y0_ = kInf;

@@ -67,6 +67,27 @@ class PythonModule(unittest.TestCase):
         with self.assertRaises(ValueError):
             p.set_profile_points(railwear.BODY_WHEEL, np.zeros((5, 3)))
 
+    def test_hertz_tread_path_and_its_fallback(self):
+        # RW_MODEL_HERTZ with rolling contact (API 1.3): on the crown the fast tread path, at
+        # -10.4 mm the fallback to auto (core/contact/hertz_tread.h), each saying so.
+        p = railwear.Problem()
+        p.set_profile_file(railwear.BODY_WHEEL, "builtin:S1002")
+        p.set_profile_file(railwear.BODY_RAIL, "builtin:UIC60")
+        p.set_geometry(rail_cant=1 / 40)
+        p.set_model(kind=railwear.MODEL_HERTZ, accuracy=railwear.ACCURACY_DRAFT,
+                    effects=railwear.EFFECT_TANGENTIAL)
+        p.set_friction(0.3)
+        p.set_state(lateral_m=-20e-3, yaw_rad=5e-3, vertical_force_N=100e3, speed_m_s=20.0)
+        self.assertEqual(p.calculate(), railwear.OK)
+        model, reason = p.get_patch_model(0)
+        self.assertEqual(model, "hertz")
+        self.assertTrue(reason.startswith("fast tread path: one Hertzian patch"), reason)
+        p.set_state(lateral_m=-10.4e-3, yaw_rad=5e-3, vertical_force_N=100e3, speed_m_s=20.0)
+        self.assertEqual(p.calculate(), railwear.OK)
+        model, reason = p.get_patch_model(0)
+        self.assertNotEqual(model, "hertz")
+        self.assertTrue(reason.startswith("fast tread path not valid: non-Hertzian patch"), reason)
+
     def test_errors_are_raised_with_status_and_message(self):
         p = railwear.Problem()
         with self.assertRaises(railwear.Error) as e:

@@ -14,6 +14,12 @@
 //     the placement is reused.
 //   BM_TreadFastsimNewPosition/<model>: a new lateral position every call (0.1 um apart, the
 //     next time step of a co-simulation): every call places the wheel again.
+//   BM_TreadFastsimNewPosition/0 is RW_MODEL_HERTZ there: at -10.4 mm the patch is not Hertzian
+//     (the crown's 300 mm radius meets the 80 mm one inside it), so the fast tread path
+//     (core/contact/hertz_tread.h) falls back to kind auto: the check's cost on top of auto's.
+//   BM_CrownNewPosition/<model>/<accuracy>: the same wheel at -20 mm, 5 mrad (on the rail's
+//     crown, one Hertzian patch), a new lateral position every call: model 0 RW_MODEL_HERTZ (the
+//     fast tread path), 1 halfspace, 4 auto; accuracy 0 draft, 1 standard.
 // Run: build/tests/benchmarks/api_bench --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -99,8 +105,22 @@ void BM_TreadFastsimNewPosition(benchmark::State& state) {
       [](long k) { return State(-10.4e-3 + 1e-7 * static_cast<double>(k % 16), 5e-3); });
 }
 BENCHMARK(BM_TreadFastsimNewPosition)
+    ->Arg(RW_MODEL_HERTZ)
     ->Arg(RW_MODEL_HALFSPACE)
     ->Arg(RW_MODEL_AUTO)
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_CrownNewPosition(benchmark::State& state) {
+  RunChangingSteps(state,
+                   railwear::test::MakeRollingS1002Wheel(static_cast<int>(state.range(0)),
+                                                         static_cast<int>(state.range(1))),
+                   [](long k) { return State(-20e-3 + 1e-7 * static_cast<double>(k % 16), 5e-3); });
+}
+BENCHMARK(BM_CrownNewPosition)
+    ->Args({RW_MODEL_HERTZ, RW_ACCURACY_DRAFT})
+    ->Args({RW_MODEL_HERTZ, RW_ACCURACY_STANDARD})
+    ->Args({RW_MODEL_HALFSPACE, RW_ACCURACY_DRAFT})
+    ->Args({RW_MODEL_AUTO, RW_ACCURACY_DRAFT})
     ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
