@@ -356,16 +356,12 @@ PatchConformity MeasureTreadConformity(const TreadGeometry& g, const TreadPlacem
   const Profile& wheel = g.wheel();
   const double dir = rail.Tangent(c.rail_s_m).x() >= 0 ? 1.0 : -1.0;
   const double wdir = g.WheelDirectionToRail(wheel.Tangent(pl.wheel_s_m)).x() >= 0 ? 1.0 : -1.0;
-  struct Sample {
-    Eigen::Vector2d normal;
-    double gap = 0.0, k_rail = 0.0, k_wheel = 0.0;
-  };
   auto sample = [&](double t) {
     const double s_r = std::clamp(c.rail_s_m + dir * t, 0.0, rail.Length());
     const Eigen::Vector2d p = rail.Position(s_r);
     // The silhouette point nearest p: (q(s) - p) . T(s) = 0, |dq/ds| about 1.
     double s_w = std::clamp(pl.wheel_s_m + wdir * t, 0.0, wheel.Length());
-    Eigen::Vector2d q, n_w;
+    Eigen::Vector2d q;
     for (int it = 0; it < 6; ++it) {
       const auto w = g.WheelAt(s_w);
       q = w.yz_R + Eigen::Vector2d(0.0, pl.dz_m);
@@ -374,39 +370,16 @@ PatchConformity MeasureTreadConformity(const TreadGeometry& g, const TreadPlacem
       s_w = std::clamp(s_w - step, 0.0, wheel.Length());
       if (std::abs(step) < kNewtonTolerance_m) break;
     }
-    n_w = g.WheelDirectionToRail(g.wheel_sign() * wheel.LeftNormal(s_w));
-    Sample out;
+    const Eigen::Vector2d n_w = g.WheelDirectionToRail(g.wheel_sign() * wheel.LeftNormal(s_w));
+    ConformitySample out;
     const Eigen::Vector2d n_rail = g.rail_sign() * rail.LeftNormal(s_r);
     out.normal = ((1.0 - K) * n_rail - K * n_w).normalized();
-    out.gap = (p - q).dot(n_w);
+    out.gap_m = (p - q).dot(n_w);
     out.k_rail = -g.rail_sign() * rail.Curvature(s_r);
     out.k_wheel = -g.wheel_sign() * wheel.Curvature(s_w);
     return out;
   };
-  const Sample centre = sample(0.0);
-  const double B0 = 0.5 * (centre.k_rail + centre.k_wheel);
-  const double w0 = std::max(-centre.normal.y(), 1e-6);
-  PatchConformity pc;
-  pc.t_lo_m = -b;
-  pc.t_hi_m = b;
-  pc.lateral_radius_m = 1.0 / std::max({std::abs(centre.k_rail), std::abs(centre.k_wheel), 1e-9});
-  double angle_lo = 0.0, angle_hi = 0.0, w_lo = w0, w_hi = w0, dg = 0.0;
-  for (int k = 0; k < kConformitySamples; ++k) {
-    const double t = -b + 2.0 * b * k / (kConformitySamples - 1);
-    const Sample s = sample(t);
-    const double cross = centre.normal.x() * s.normal.y() - centre.normal.y() * s.normal.x();
-    const double angle = std::atan2(cross, centre.normal.dot(s.normal));
-    angle_lo = std::min(angle_lo, angle);
-    angle_hi = std::max(angle_hi, angle);
-    w_lo = std::min(w_lo, -s.normal.y());
-    w_hi = std::max(w_hi, -s.normal.y());
-    dg = std::max(dg, std::abs(s.gap - centre.gap - B0 * t * t));
-  }
-  pc.normal_angle_rad = std::acos(std::clamp(-centre.normal.y(), -1.0, 1.0));
-  pc.normal_turn_rad = angle_hi - angle_lo;
-  pc.approach_weight_change = (w_hi - w_lo) / w0;
-  pc.gap_deviation = B0 > 0 ? dg / (B0 * b * b) : kInf;
-  return pc;
+  return ConformityFromSamples(sample, -b, b);
 }
 
 // A planar grid over Hertz's ellipse h at candidate c, carrying Hertz's pressure scaled so that
@@ -470,8 +443,8 @@ std::optional<ContactResult> SolveHertzTread(const ContactProblem& problem, std:
   const auto t_start = Clock::now();
   internal::CheckContactProblem(problem);
   RAILWEAR_CHECK(IsHertzRolling(problem));
-  const RollingOptions& o = *problem.rolling;
-  if (o.coupling) {
+  const RollingOptions& ro = *problem.rolling;
+  if (ro.coupling) {
     throw InputError(
         "the coupling effect needs a patch grid: use the halfspace, conformal or auto model, not "
         "hertz");
@@ -552,7 +525,6 @@ std::optional<ContactResult> SolveHertzTread(const ContactProblem& problem, std:
   const double r0 = problem.placement.rolling_radius_m;
   const Eigen::Vector2d axle_yz = g.WheelToRail({0.0, -r0}, pl.dz_m);
   const Eigen::Vector2d origin_yz = g.WheelToRail({0.0, 0.0}, pl.dz_m);
-  const RollingOptions& ro = *problem.rolling;
   auto solve_at = [&](double target_N, std::optional<double> pitch, ContactResult* r) {
     h = hertz_for(target_N);
     PatchResult patch = internal::HertzPatch(c, h);

@@ -35,14 +35,8 @@ PatchConformity MeasureConformity(const WheelRailGeometry& geometry,
   RAILWEAR_CHECK(t_lo_m < 0 && t_hi_m > 0 && stiffness_ratio_K >= 0 && stiffness_ratio_K <= 1);
   const CurveLocator& rail = geometry.rail();
   const CurveLocator& wheel = geometry.wheel();
-  const double b = 0.5 * (t_hi_m - t_lo_m);
   // The wheel point opposite a rail point lies within a few semi-axes of the contact point's.
   const double window = 3.0 * std::max(-t_lo_m, t_hi_m) + 1e-3;
-  struct Sample {
-    Eigen::Vector2d normal;              // intermediate surface normal (unit, out of the rail)
-    double gap = 0.0;                    // distance of the rail point to the wheel [m]
-    double k_rail = 0.0, k_wheel = 0.0;  // convex-positive lateral curvatures [1/m]
-  };
   // t runs along the rail toward +y, as s does on the patch grids.
   const double dir = rail.profile().Tangent(candidate.rail_s_m).x() >= 0 ? 1.0 : -1.0;
   auto sample = [&](double t) {
@@ -50,16 +44,23 @@ PatchConformity MeasureConformity(const WheelRailGeometry& geometry,
     const Eigen::Vector2d p = rail.profile().Position(s_r);
     const auto wp = wheel.Project(geometry.RailToWheel(p), candidate.wheel_s_m - window,
                                   candidate.wheel_s_m + window);
-    Sample out;
+    ConformitySample out;
     const Eigen::Vector2d n_rail = rail.OutwardNormal(s_r);
     const Eigen::Vector2d n_wheel = geometry.WheelOutwardNormalInRail(wp.s);  // toward the rail
     out.normal = ((1.0 - stiffness_ratio_K) * n_rail - stiffness_ratio_K * n_wheel).normalized();
-    out.gap = wp.signed_distance;
+    out.gap_m = wp.signed_distance;
     out.k_rail = ConvexCurvature(rail, s_r);
     out.k_wheel = ConvexCurvature(wheel, wp.s);
     return out;
   };
-  const Sample centre = sample(0.0);
+  return ConformityFromSamples(sample, t_lo_m, t_hi_m);
+}
+
+PatchConformity ConformityFromSamples(const std::function<ConformitySample(double)>& sample,
+                                      double t_lo_m, double t_hi_m) {
+  RAILWEAR_CHECK(t_lo_m < 0 && t_hi_m > 0);
+  const double b = 0.5 * (t_hi_m - t_lo_m);
+  const ConformitySample centre = sample(0.0);
   const double B0 = 0.5 * (centre.k_rail + centre.k_wheel);
   const double w0 = std::max(-centre.normal.y(), 1e-6);  // cos(theta) at the contact point
   PatchConformity c;
@@ -69,13 +70,13 @@ PatchConformity MeasureConformity(const WheelRailGeometry& geometry,
   double angle_lo = 0.0, angle_hi = 0.0, w_lo = w0, w_hi = w0, dg = 0.0;
   for (int k = 0; k < kConformitySamples; ++k) {
     const double t = t_lo_m + (t_hi_m - t_lo_m) * k / (kConformitySamples - 1);
-    const Sample s = sample(t);
+    const ConformitySample s = sample(t);
     const double angle = std::atan2(Cross(centre.normal, s.normal), centre.normal.dot(s.normal));
     angle_lo = std::min(angle_lo, angle);
     angle_hi = std::max(angle_hi, angle);
     w_lo = std::min(w_lo, -s.normal.y());
     w_hi = std::max(w_hi, -s.normal.y());
-    dg = std::max(dg, std::abs(s.gap - centre.gap - B0 * t * t));
+    dg = std::max(dg, std::abs(s.gap_m - centre.gap_m - B0 * t * t));
   }
   c.normal_angle_rad = std::acos(std::clamp(-centre.normal.y(), -1.0, 1.0));
   c.normal_turn_rad = angle_hi - angle_lo;

@@ -27,6 +27,7 @@
 // (the measurements are in model_selection.cpp).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -65,6 +66,19 @@ constexpr int kConformitySamples = 9;
 PatchConformity MeasureConformity(const WheelRailGeometry& geometry,
                                   const ContactCandidate& candidate, double t_lo_m, double t_hi_m,
                                   double stiffness_ratio_K);
+
+// One sample of a patch's two surfaces at a rail arc offset t from its contact point.
+struct ConformitySample {
+  Eigen::Vector2d normal = Eigen::Vector2d::Zero();  // intermediate normal (unit, out of the rail)
+  double gap_m = 0.0;                  // distance of the rail point to the wheel [m]
+  double k_rail = 0.0, k_wheel = 0.0;  // convex-positive lateral curvatures there [1/m]
+};
+// The measures of PatchConformity (measured = false) from `sample` at t = 0 and at
+// kConformitySamples offsets spread over [t_lo_m, t_hi_m] (t_lo_m < 0 < t_hi_m) [m]:
+// MeasureConformity's on a placed WheelRailGeometry, and the fast tread path's on its own
+// placement (core/contact/hertz_tread.h).
+PatchConformity ConformityFromSamples(const std::function<ConformitySample(double)>& sample,
+                                      double t_lo_m, double t_hi_m);
 
 // The model auto gives one patch.
 enum class PatchModel { kHertz, kHalfspace, kConformal };

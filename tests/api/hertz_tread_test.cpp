@@ -16,17 +16,6 @@
 namespace railwear::test {
 namespace {
 
-rw_state TreadState(double lateral_m, double yaw_rad) {
-  rw_state s{};
-  s.struct_size = sizeof s;
-  rw_init_state(&s);
-  s.lateral_m = lateral_m;
-  s.yaw_rad = yaw_rad;
-  s.vertical_force_N = 100e3;
-  s.speed_m_s = 20.0;
-  return s;
-}
-
 // The handle's problem (tests/api/rolling_wheel.h) as the core's ContactCase.
 ContactCase CoreCase(double lateral_m, double yaw_rad) {
   ContactCase c;
@@ -48,7 +37,7 @@ ContactCase CoreCase(double lateral_m, double yaw_rad) {
 TEST(ApiHertzTread, EqualsTheCoreFastPath) {
   rw_problem* p = MakeRollingS1002Wheel(RW_MODEL_HERTZ, RW_ACCURACY_DRAFT);
   ASSERT_NE(p, nullptr);
-  const rw_state s = TreadState(-20e-3, 5e-3);
+  const rw_state s = RollingState(-20e-3, 5e-3);
   ASSERT_EQ(rw_set_state(p, &s), RW_OK) << rw_last_error(p);
   ASSERT_EQ(rw_calculate(p), RW_OK) << rw_last_error(p);
   int n = 0;
@@ -92,7 +81,7 @@ TEST(ApiHertzTread, FallsBackAndSaysWhy) {
   rw_problem* p = MakeRollingS1002Wheel(RW_MODEL_HERTZ, RW_ACCURACY_DRAFT);
   ASSERT_NE(p, nullptr);
   // The benchmark's tread position: the crown's 300 mm radius meets the 80 mm one in the patch.
-  const rw_state s = TreadState(-10.4e-3, 5e-3);
+  const rw_state s = RollingState(-10.4e-3, 5e-3);
   ASSERT_EQ(rw_set_state(p, &s), RW_OK);
   ASSERT_EQ(rw_calculate(p), RW_OK) << rw_last_error(p);
   int n = 0;

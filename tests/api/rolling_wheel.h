@@ -33,4 +33,16 @@ inline rw_problem* MakeRollingS1002Wheel(int model_kind, int accuracy,
   return p;
 }
 
+// A state of that wheel at a lateral position [m] and yaw [rad]: 100 kN, rolling at 20 m/s.
+inline rw_state RollingState(double lateral_m, double yaw_rad) {
+  rw_state s{};
+  s.struct_size = sizeof s;
+  rw_init_state(&s);
+  s.lateral_m = lateral_m;
+  s.yaw_rad = yaw_rad;
+  s.vertical_force_N = 100e3;
+  s.speed_m_s = 20.0;
+  return s;
+}
+
 }  // namespace railwear::test

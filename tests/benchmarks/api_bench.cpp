@@ -30,14 +30,7 @@
 namespace {
 
 rw_state State(double lateral_m, double yaw_rad) {
-  rw_state s{};
-  s.struct_size = sizeof s;
-  rw_init_state(&s);
-  s.lateral_m = lateral_m;
-  s.yaw_rad = yaw_rad;
-  s.vertical_force_N = 100e3;
-  s.speed_m_s = 20.0;
-  return s;
+  return railwear::test::RollingState(lateral_m, yaw_rad);
 }
 
 // Calls `next(k)` for the k-th call's state, then rw_set_state and rw_calculate.
