@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include <fmt/format.h>
@@ -25,6 +26,7 @@
 #include "core/numerics/check.h"
 #include "core/numerics/golden_section.h"
 #include "core/numerics/input_error.h"
+#include "core/profile/profile_keyed_cache.h"
 
 namespace railwear {
 
@@ -70,19 +72,16 @@ int Stride(const Profile& profile) {
   return std::max(1, static_cast<int>(std::lround(kEnvelopeStep_m / spacing)));
 }
 
-// The wheel and the rail as the fast path sees them: the wheel's silhouette seen along the rail
-// (YawedWheelSection's closed form per profile point) placed by the pose, and the rail's top.
-class TreadGeometry {
- public:
-  TreadGeometry(const Profile& wheel, const Profile& rail, const WheelPose& pose)
-      : wheel_(wheel),
-        rail_(rail),
-        pose_(pose),
-        cr_(std::cos(pose.roll_rad)),
-        sr_(std::sin(pose.roll_rad)),
-        cy_(std::cos(pose.yaw_rad)),
-        sy_(std::sin(pose.yaw_rad)) {
-    // Every Stride(rail)-th rail point (and the last): the envelope's polyline.
+// The rail's upper envelope on every Stride(rail)-th point (and the last), on a lateral grid of
+// kEnvelopeStep_m: its z and the rail parameter under it (the exact top's search starts there),
+// and the rail's orientation. A pure function of the rail profile, so one is kept per rail and
+// shared (RailEnvelopeOf): an MBS time loop runs on one rail.
+struct RailEnvelope {
+  double rail_sign = 1.0;  // outward normal = rail_sign * LeftNormal (CurveLocator's rule)
+  double y0_m = 0.0;       // lateral position of the first sample [m]
+  std::vector<double> top_z_m, top_s_m;  // per sample; +inf and -1 where no rail is
+
+  explicit RailEnvelope(const Profile& rail) {
     const auto& rp = rail.points();
     const int np = static_cast<int>(rp.size());
     const int stride = Stride(rail);
@@ -98,52 +97,76 @@ class TreadGeometry {
       pts.push_back(rp[np - 1]);
       knot.push_back(np - 1);
     }
-    // Orientations as CurveLocator's: outward at the wheel's lowest point is +z, at the rail's
-    // highest point -z (both found on the coarse points).
-    const auto& wp = wheel.points();
-    const int nw = static_cast<int>(wp.size());
-    int lowest = 0, highest = 0;
-    const int wheel_stride = Stride(wheel);
-    for (int i = 0; i < nw; i += wheel_stride) {
-      if (wp[i].y() > wp[lowest].y()) lowest = i;
-    }
-    y0_ = kInf;
+    // Orientation as CurveLocator's: outward at the rail's highest point is -z.
+    int highest = 0;
+    y0_m = kInf;
     double y1 = -kInf;
     for (size_t k = 0; k < pts.size(); ++k) {
       if (pts[k].y() < pts[highest].y()) highest = static_cast<int>(k);
-      y0_ = std::min(y0_, pts[k].x());
+      y0_m = std::min(y0_m, pts[k].x());
       y1 = std::max(y1, pts[k].x());
     }
-    wheel_sign_ = wheel.LeftNormal(wheel.KnotS(lowest)).y() >= 0 ? 1.0 : -1.0;
-    rail_sign_ = rail.LeftNormal(rail.KnotS(knot[highest])).y() < 0 ? 1.0 : -1.0;
-    // The rail's upper envelope.
-    const int n = static_cast<int>(std::floor((y1 - y0_) / kEnvelopeStep_m)) + 1;
-    top_.assign(n, kInf);
-    internal::RasteriseEnvelope(pts, y0_, kEnvelopeStep_m, n, /*take_min=*/true, &top_);
-    // The rail chord under each envelope sample's top: the exact top's search starts there.
-    top_s_.assign(n, -1.0);
+    rail_sign = rail.LeftNormal(rail.KnotS(knot[highest])).y() < 0 ? 1.0 : -1.0;
+    const int n = static_cast<int>(std::floor((y1 - y0_m) / kEnvelopeStep_m)) + 1;
+    top_z_m.assign(n, kInf);
+    internal::RasteriseEnvelope(pts, y0_m, kEnvelopeStep_m, n, /*take_min=*/true, &top_z_m);
+    top_s_m.assign(n, -1.0);
     for (size_t k = 0; k + 1 < pts.size(); ++k) {
       const Eigen::Vector2d& a = pts[k];
       const Eigen::Vector2d& b = pts[k + 1];
       const double ya = std::min(a.x(), b.x()), yb = std::max(a.x(), b.x());
-      const int i0 = std::max(0, static_cast<int>(std::ceil((ya - y0_) / kEnvelopeStep_m)));
-      const int i1 = std::min(n - 1, static_cast<int>(std::floor((yb - y0_) / kEnvelopeStep_m)));
+      const int i0 = std::max(0, static_cast<int>(std::ceil((ya - y0_m) / kEnvelopeStep_m)));
+      const int i1 = std::min(n - 1, static_cast<int>(std::floor((yb - y0_m) / kEnvelopeStep_m)));
       for (int i = i0; i <= i1; ++i) {
-        const double y = y0_ + i * kEnvelopeStep_m;
+        const double y = y0_m + i * kEnvelopeStep_m;
         const double t = yb == ya ? 0.0 : (y - a.x()) / (b.x() - a.x());
         const double z = a.y() + t * (b.y() - a.y());
-        if (z <= top_[i]) {
-          top_s_[i] = rail.KnotS(knot[k]) + t * (rail.KnotS(knot[k + 1]) - rail.KnotS(knot[k]));
+        if (z <= top_z_m[i]) {
+          top_s_m[i] = rail.KnotS(knot[k]) + t * (rail.KnotS(knot[k + 1]) - rail.KnotS(knot[k]));
         }
       }
     }
+  }
+};
+
+// The envelope of `rail`, shared process-wide by the rail's points (ProfileKeyedCache: a hit is
+// the envelope a new build would make, bit for bit). A few rails are enough: a handle has one or
+// two.
+constexpr size_t kMaxSharedEnvelopes = 8;
+std::shared_ptr<const RailEnvelope> RailEnvelopeOf(const Profile& rail) {
+  static ProfileKeyedCache<RailEnvelope> shared(kMaxSharedEnvelopes);
+  return shared.Get(rail, {}, {}, [&] { return std::make_shared<const RailEnvelope>(rail); });
+}
+
+// The wheel and the rail as the fast path sees them: the wheel's silhouette seen along the rail
+// (YawedWheelSection's closed form per profile point) placed by the pose, and the rail's top.
+class TreadGeometry {
+ public:
+  TreadGeometry(const Profile& wheel, const Profile& rail, const WheelPose& pose)
+      : wheel_(wheel),
+        rail_(rail),
+        pose_(pose),
+        cr_(std::cos(pose.roll_rad)),
+        sr_(std::sin(pose.roll_rad)),
+        cy_(std::cos(pose.yaw_rad)),
+        sy_(std::sin(pose.yaw_rad)),
+        envelope_(RailEnvelopeOf(rail)) {
+    // The wheel's orientation as CurveLocator's: outward at its lowest point is +z.
+    const auto& wp = wheel.points();
+    const int nw = static_cast<int>(wp.size());
+    int lowest = 0;
+    const int wheel_stride = Stride(wheel);
+    for (int i = 0; i < nw; i += wheel_stride) {
+      if (wp[i].y() > wp[lowest].y()) lowest = i;
+    }
+    wheel_sign_ = wheel.LeftNormal(wheel.KnotS(lowest)).y() >= 0 ? 1.0 : -1.0;
   }
 
   const Profile& wheel() const { return wheel_; }
   const Profile& rail() const { return rail_; }
   const WheelPose& pose() const { return pose_; }
   double wheel_sign() const { return wheel_sign_; }
-  double rail_sign() const { return rail_sign_; }
+  double rail_sign() const { return envelope_->rail_sign; }
 
   // W -> R with the wheel lowered by dz [m] (WheelRailGeometry::WheelToRail's transform).
   Eigen::Vector2d WheelToRail(const Eigen::Vector2d& p, double dz) const {
@@ -181,20 +204,22 @@ class TreadGeometry {
 
   // The rail envelope's z at y (linear between its samples), +inf off the rail.
   double CoarseTop(double y) const {
-    const double u = (y - y0_) / kEnvelopeStep_m;
+    const std::vector<double>& top = envelope_->top_z_m;
+    const double u = (y - envelope_->y0_m) / kEnvelopeStep_m;
     const int i = static_cast<int>(std::floor(u));
-    if (i < 0 || i + 1 >= static_cast<int>(top_.size())) return kInf;
+    if (i < 0 || i + 1 >= static_cast<int>(top.size())) return kInf;
     const double f = u - i;
-    return top_[i] + f * (top_[i + 1] - top_[i]);
+    return top[i] + f * (top[i + 1] - top[i]);
   }
   // The rail's top on the spline at lateral y: its parameter (Newton on y(s) = y from the
   // envelope's point, kept inside that point's neighbours), or -1 off the rail.
   double RailTopS(double y, double s_start = -1.0) const {
     double s = s_start;
     if (s < 0) {
-      const int i = static_cast<int>(std::lround((y - y0_) / kEnvelopeStep_m));
-      if (i < 0 || i >= static_cast<int>(top_s_.size()) || top_s_[i] < 0) return -1.0;
-      s = top_s_[i];
+      const std::vector<double>& top_s = envelope_->top_s_m;
+      const int i = static_cast<int>(std::lround((y - envelope_->y0_m) / kEnvelopeStep_m));
+      if (i < 0 || i >= static_cast<int>(top_s.size()) || top_s[i] < 0) return -1.0;
+      s = top_s[i];
     }
     for (int it = 0; it < 8; ++it) {
       Eigen::Vector2d p, d1;
@@ -222,10 +247,8 @@ class TreadGeometry {
   const Profile& rail_;
   WheelPose pose_;
   double cr_, sr_, cy_, sy_;
-  double wheel_sign_ = 1.0, rail_sign_ = 1.0;
-  double y0_ = 0.0;
-  std::vector<double> top_;
-  std::vector<double> top_s_;
+  std::shared_ptr<const RailEnvelope> envelope_;
+  double wheel_sign_ = 1.0;
 };
 
 // The first contact of the placed wheel: the coarse gap per wheel-profile point, refined.
