@@ -54,10 +54,11 @@ constexpr double kBasinProminence = 0.1;
 // gap_deviation, measured over the larger patch estimate) the fast path accepts. kind = "auto"
 // takes Hertz only within the preset's tolerance (5 % at draft), which no S1002/UIC60 1:40 tread
 // position meets (the crown's 300 mm radius meets the 80 mm one within the patch). Measured
-// against the half-space grid at standard accuracy (hertz_tread_test.cpp, docs/library.md): up
-// to 0.34 the fast path's area is within 4.2 %, p_max within 0.6 %, the contact point within
-// 0.5 mm and the creep forces within 1.1 % of mu N; at 0.55 the area is 6.5 % off and the point
-// 1 mm, beyond 0.6 the patch is another (area -20 to -50 %).
+// against the half-space grid at standard accuracy (tests/benchmarks/tread_hertz_accuracy.py,
+// docs/library.md): up to 0.31 the fast path's area is within 4.2 %, p_max within 0.6 %, the
+// contact point within 0.5 mm and the creep forces within 1.1 % of mu Q; with this check removed,
+// at 0.41-0.55 the area was 6.5 % off and the point 1 mm, beyond 0.6 the patch is another (area
+// -20 to -50 %).
 constexpr double kMaxTreadGapDeviation = 0.35;
 // The golden-section refinement of the first contact stops at this width of wheel arc [m]
 // (WheelRailGeometry refines y to 1e-10 m).
