@@ -590,6 +590,27 @@ LocalResult LocalSolveAt(const PatchGrid& grid, const SweepTables& tables,
   return SolveLocal(sx[k] - dxx * qx[k], ss[k] - dss * qs[k], dxx, dss, mu * pressure_Pa[k]);
 }
 
+// The innermost loop of the sweeps (most of a sweep's time on the benchmark grids, perf in
+// docs/speed.md): one column's slip refreshed after a chain update, from the table rows of the
+// cell (*1) and of the virtual cell beyond the chain end (*2). Compiled twice, for AVX2 (4
+// doubles per instruction, chosen at load time on CPUs that have it) and for the baseline (SSE2,
+// 2 doubles): the loop is element-wise and AVX2 without the "fma" target keeps every multiply
+// and add separately rounded, so both clones give the same bits.
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void RefreshColumn(int len, const double* __restrict xx1, const double* __restrict xx2,
+                   const double* __restrict xs1, const double* __restrict xs2,
+                   const double* __restrict ss1, const double* __restrict ss2, double dqx,
+                   double dqs, double* __restrict ox, double* __restrict os) {
+#pragma GCC ivdep
+  for (int j = 0; j < len; ++j) {
+    const double bxs = xs1[j] - xs2[j];
+    ox[j] += (xx1[j] - xx2[j]) * dqx + bxs * dqs;
+    os[j] += bxs * dqx + (ss1[j] - ss2[j]) * dqs;
+  }
+}
+
 // One block (columns block_lo .. block_hi) of a Gauss-Seidel sweep from the leading edge with
 // relaxation w: tractions *qx_io, *qs_io updated chain by chain, the block's slip (from sx, ss)
 // refreshed in the column-major copies *sx_col_io, *ss_col_io.
@@ -659,12 +680,7 @@ void SweepBlock(const PatchGrid& grid, const SweepTables& tables,
         const size_t at = static_cast<size_t>(im) * grid.ns + jm_lo;
         double* __restrict ox = sx_col.data() + at;
         double* __restrict os = ss_col.data() + at;
-#pragma GCC ivdep
-        for (int j = 0; j < len; ++j) {
-          const double bxs = xs1[j] - xs2[j];
-          ox[j] += (xx1[j] - xx2[j]) * dqx + bxs * dqs;
-          os[j] += bxs * dqx + (ss1[j] - ss2[j]) * dqs;
-        }
+        RefreshColumn(len, xx1, xx2, xs1, xs2, ss1, ss2, dqx, dqs, ox, os);
       }
     }
   }
