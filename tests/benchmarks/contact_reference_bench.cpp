@@ -256,10 +256,10 @@ BENCHMARK(BM_PerfcRolling)
 // grid) and solves the normal problem in every case; 2 also solves the normal problem once per
 // ellipse (it is the same problem in all its cases). The three give the same numbers bit for bit
 // (reuse of identical inputs). Counters: ms_per_case, cells (mx^2, for the growth
-// exponent); with RAILWEAR_CONTACT_TABLE_REF naming CONTACT's reference file (e.g.
-// testbank/test_table_mx11.ref_fx for mx = 11) also the largest differences of F_x / (mu F_n),
-// F_y / (mu F_n) and M_z / (mu F_n c) from it (dfx_max, dfy_max, dmz_max); with
-// RAILWEAR_CONTACT_TABLE_OUT naming a file, railwear's values in CONTACT's format.
+// exponent), tang_iterations (the tangential solves' mean); with RAILWEAR_CONTACT_TABLE_REF naming
+// CONTACT's reference file (e.g. testbank/test_table_mx11.ref_fx for mx = 11) also the largest
+// differences of F_x / (mu F_n), F_y / (mu F_n) and M_z / (mu F_n c) from it (dfx_max, dfy_max,
+// dmz_max); with RAILWEAR_CONTACT_TABLE_OUT naming a file, railwear's values in CONTACT's format.
 constexpr int kTableCases = 5 * 4 * 7 * 23;
 constexpr double kTableFn_N = 82000.0, kTableFriction = 0.3, kTableSpeed_m_s = 10.0;
 
@@ -354,8 +354,10 @@ void BM_CreepTable(benchmark::State& state) {
     np.force_N = kTableFn_N;
     return SolveNormal(np, options);
   };
+  double tang_iterations = 0.0;
   for (auto _ : state) {
     not_converged = 0;
+    tang_iterations = 0.0;
     built_for = -1;
     for (size_t c = 0; c < cases.size(); ++c) {
       const PatchGrid& g = grids[cases[c].ellipse];
@@ -374,6 +376,7 @@ void BM_CreepTable(benchmark::State& state) {
                      : SolveTangentialExact(g, normal.pressure_Pa, in, kPerfcSteel, kPerfcSteel);
       not_converged +=
           normal.status != SolverStatus::kConverged || t.status != SolverStatus::kConverged;
+      tang_iterations += t.iterations;
       const double mu_fn = kTableFriction * normal.force_N;
       result[c] = {t.force_x_N / mu_fn, t.force_s_N / mu_fn,
                    t.spin_moment_Nm / (mu_fn * cp_m[cases[c].ellipse])};
@@ -383,6 +386,7 @@ void BM_CreepTable(benchmark::State& state) {
   state.counters["cells"] = mx * mx;
   state.counters["cases"] = static_cast<double>(cases.size());
   state.counters["not_converged"] = not_converged;
+  state.counters["tang_iterations"] = tang_iterations / static_cast<double>(cases.size());
   state.counters["ms_per_case"] = benchmark::Counter(
       static_cast<double>(cases.size()) * 1e-3,
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
