@@ -730,6 +730,13 @@ void CollectExactResults(const PatchGrid& grid, const SweepTables& tables,
   }
 }
 
+TangentialSolution NoContactSolution(const PatchGrid& grid) {
+  TangentialSolution sol = EmptyTangentialSolution(grid.cells());
+  sol.status = SolverStatus::kNoContact;
+  sol.message = "no cell carries pressure";
+  return sol;
+}
+
 // The solve proper (inputs checked, some cell loaded): steps 2 and 3 of the header comment.
 TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                                   const RollingInput& in, const ExactTangentialSetup::Impl& setup,
@@ -794,12 +801,7 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
                                         const Material& rail, const ExactTangentialOptions& opt) {
   CheckInputs(grid, pressure_Pa, in, opt);
   internal::MakeCerrutiCoefficients(wheel, rail);  // throws for bad materials
-  if (!(pressure_Pa.maxCoeff() > 0.0)) {
-    TangentialSolution sol = EmptyTangentialSolution(grid.cells());
-    sol.status = SolverStatus::kNoContact;
-    sol.message = "no cell carries pressure";
-    return sol;
-  }
+  if (!(pressure_Pa.maxCoeff() > 0.0)) return NoContactSolution(grid);
   const ExactTangentialSetup setup(grid, wheel, rail, opt.method);
   return SolveWithSetup(grid, pressure_Pa, in, setup.impl(), opt);
 }
@@ -819,12 +821,7 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
         << (opt.method == ExactTangentialOptions::Method::kDense ? "dense" : "FFT") << " operator";
     throw InputError(msg.str());
   }
-  if (!(pressure_Pa.maxCoeff() > 0.0)) {
-    TangentialSolution sol = EmptyTangentialSolution(grid.cells());
-    sol.status = SolverStatus::kNoContact;
-    sol.message = "no cell carries pressure";
-    return sol;
-  }
+  if (!(pressure_Pa.maxCoeff() > 0.0)) return NoContactSolution(grid);
   return SolveWithSetup(grid, pressure_Pa, in, setup.impl(), opt);
 }
 

@@ -60,7 +60,8 @@
 // converges also in full stick (and beats 0.3: 46 against 66 iterations on the README case); the
 // divergence guard (see ExactTangentialOptions::relaxation) stays.
 // Each outer iteration evaluates s = w + B q exactly (one FFT product of the four blocks, or the
-// dense matrix), checks convergence, then sweeps once and mixes. The sweep runs over blocks of
+// dense matrix; on small patches the dense matrix of the loaded cells, Method::kAuto), checks
+// convergence, then sweeps once and mixes. The sweep runs over blocks of
 // adjacent x-columns, leading block first. Inside a block every update refreshes exactly, from a
 // table of A on the offsets, the slip of the block's loaded cells not yet visited (columns
 // block_lo .. ix; the chain's effect (A(m - k) - A(m - v)) / dx). After a block one operator
