@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -20,6 +21,14 @@
 #include "core/numerics/input_error.h"
 
 namespace railwear {
+
+// Measured (tangential_exact_bench's BM_TangentialExactSmallPatch, CPU, medians of 3 on a
+// loaded machine; docs/speed.md): the loaded cells' matrix against the FFT products takes 0.71,
+// 0.83, 0.59, 0.69, 0.71, 0.82 of the time at 37, 69, 97, 137, 177, 225 loaded cells and 1.40 at
+// 349 (its 2m x 2m matrix, 3.9 MB, no longer fits a 2 MB L2 cache). 200 keeps the matrix at
+// 1.3 MB.
+const int kLoadedDenseMaxCells = 200;
+
 namespace internal {
 namespace {
 
@@ -144,6 +153,32 @@ int FftBlockColumns(int nx, int ns, int cells_loaded, double mean_column_length)
   return std::clamp(static_cast<int>(std::lround(k)), 1, nx);
 }
 
+// The rolling operator's blocks B(d, e) on the offsets of the grid, d in (-nx, nx), e in (-ns, ns)
+// (d fastest): the generator of the FFT products and the source of the loaded cells' dense
+// matrix (LoadedDenseProduct).
+struct RollingGenerator {
+  int nx = 0, ns = 0;
+  std::vector<double> xx, xs, ss;
+  RollingGenerator(const PatchGrid& grid, const RollingKernel& kernel) : nx(grid.nx), ns(grid.ns) {
+    const size_t size = static_cast<size_t>(2 * nx - 1) * (2 * ns - 1);
+    xx.resize(size);
+    xs.resize(size);
+    ss.resize(size);
+    for (int e = -(ns - 1); e <= ns - 1; ++e) {
+      for (int d = -(nx - 1); d <= nx - 1; ++d) {
+        const TangentialBlock b = kernel(d, e);
+        const size_t k = At(d, e);
+        xx[k] = b.xx;
+        xs[k] = b.xs;
+        ss[k] = b.ss;
+      }
+    }
+  }
+  size_t At(int d, int e) const {
+    return static_cast<size_t>(e + ns - 1) * (2 * nx - 1) + static_cast<size_t>(d + nx - 1);
+  }
+};
+
 // The rolling operator applied to a traction field: s = B q, (q_x, q_s) -> (s_x, s_s).
 class RollingOperator {
  public:
@@ -192,7 +227,7 @@ class DenseRollingOperator final : public RollingOperator {
 // s-major [ks * hx + kx].
 class FftRollingOperator final : public RollingOperator {
  public:
-  FftRollingOperator(const PatchGrid& grid, const RollingKernel& kernel)
+  FftRollingOperator(const PatchGrid& grid, const RollingGenerator& generator)
       : nx_(grid.nx),
         ns_(grid.ns),
         fft_(grid.nx, grid.ns),
@@ -207,12 +242,12 @@ class FftRollingOperator final : public RollingOperator {
     std::vector<double> gxx(size, 0.0), gxs(size, 0.0), gss(size, 0.0);
     for (int e = -(ns_ - 1); e <= ns_ - 1; ++e) {
       for (int d = -(nx_ - 1); d <= nx_ - 1; ++d) {
-        const TangentialBlock b = kernel(d, e);
+        const size_t g = generator.At(d, e);
         const size_t k =
             static_cast<size_t>((e + ls) % ls) * lx + static_cast<size_t>((d + lx) % lx);
-        gxx[k] = b.xx;
-        gxs[k] = b.xs;
-        gss[k] = b.ss;
+        gxx[k] = generator.xx[g];
+        gxs[k] = generator.xs[g];
+        gss[k] = generator.ss[g];
       }
     }
     // The unscaled inverse transforms need 1 / (lx ls); fold it into the spectra.
@@ -245,6 +280,55 @@ class FftRollingOperator final : public RollingOperator {
   Spectrum spec_xx_, spec_xs_, spec_ss_;  // [hx * ls], scaled by 1/(lx ls)
   // Scratch (hence mutable; not for concurrent use).
   mutable Spectrum qx_hat_, qs_hat_, out_hat_;
+};
+
+// The rolling operator restricted to the m loaded cells, a dense 2m x 2m matrix [Bxx Bxs; Bsx Bss]
+// from the generator: s = B q at the loaded cells for a q that is zero elsewhere, which is all
+// the solve reads (the slip of an unloaded cell is never used; it is set to 0 here). On small
+// patches this beats the padded FFTs' fixed costs (kLoadedDenseMaxCells); it agrees with them
+// to rounding.
+class LoadedDenseProduct final : public RollingOperator {
+ public:
+  LoadedDenseProduct(const PatchGrid& grid, const RollingGenerator& generator,
+                     const std::vector<int>& loaded)
+      : n_(grid.cells()), loaded_(loaded) {
+    const int m = static_cast<int>(loaded_.size());
+    b_.resize(2 * m, 2 * m);
+    q_.resize(2 * m);
+    s_.resize(2 * m);
+    for (int j = 0; j < m; ++j) {
+      const int jx = loaded_[j] % grid.nx, js = loaded_[j] / grid.nx;
+      for (int i = 0; i < m; ++i) {
+        const int ix = loaded_[i] % grid.nx, is = loaded_[i] / grid.nx;
+        const size_t k = generator.At(ix - jx, is - js);
+        b_(i, j) = generator.xx[k];
+        b_(i, m + j) = generator.xs[k];
+        b_(m + i, j) = generator.xs[k];
+        b_(m + i, m + j) = generator.ss[k];
+      }
+    }
+  }
+  void Apply(const Eigen::VectorXd& qx, const Eigen::VectorXd& qs, Eigen::VectorXd* sx,
+             Eigen::VectorXd* ss) const override {
+    const int m = static_cast<int>(loaded_.size());
+    for (int t = 0; t < m; ++t) {
+      q_[t] = qx[loaded_[t]];
+      q_[m + t] = qs[loaded_[t]];
+    }
+    s_.noalias() = b_ * q_;
+    sx->setZero(n_);
+    ss->setZero(n_);
+    for (int t = 0; t < m; ++t) {
+      (*sx)[loaded_[t]] = s_[t];
+      (*ss)[loaded_[t]] = s_[m + t];
+    }
+  }
+
+ private:
+  int n_;
+  const std::vector<int>& loaded_;
+  Eigen::MatrixXd b_;
+  mutable Eigen::VectorXd q_, s_;  // scratch
 };
 
 // Anderson acceleration (type II, Walker & Ni 2011) of the fixed-point map x -> G(x) of one
@@ -311,11 +395,14 @@ LocalResult SolveLocal(double rx, double rs, double dxx, double dss, double g) {
   const double ts = -rs / dss;
   if (tx * tx + ts * ts <= g * g) return {tx, ts, true};
   // Slip: q = -g s/|s|, s = r + D q  =>  s_k = r_k sigma / (sigma + g d_k), sigma = |s| the root
-  // of f(sigma) = sum r_k^2 / (sigma + g d_k)^2 - 1, convex and decreasing: Newton from 0 (where
-  // f > 0, this branch) climbs monotonically to the root.
+  // of f(sigma) = sum r_k^2 / (sigma + g d_k)^2 - 1, convex and decreasing: Newton from a point
+  // left of the root climbs monotonically to it. The start: sigma_0 = max(0, |r| - g max_k d_k),
+  // where every sigma_0 + g d_k <= |r|, so f(sigma_0) >= sum r_k^2 / |r|^2 - 1 = 0 (at 0, f > 0
+  // in this branch). From 0 Newton gains only a factor of about 1.5 per step while sigma << |r|
+  // (about 20 steps in full slip); from sigma_0 it needs 3 to 5.
   const double ax = g * dxx;
   const double as = g * dss;
-  double sigma = 0.0;
+  double sigma = std::max(0.0, std::sqrt(rx * rx + rs * rs) - std::max(ax, as));
   for (int it = 0; it < 100; ++it) {
     const double ex = sigma + ax;
     const double es = sigma + as;
@@ -359,34 +446,38 @@ void CheckInputs(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa, cons
 
 // Step 1 of SolveTangentialExact, the tables of the sweeps: the displacement kernel A / dx on
 // offsets d in [-nx, nx], e in (-ns, ns) (a_*: row length tx, d fastest; c_*: transposed, the s
-// offset fastest, for the refreshes along s), each cell's chain end and each x-column's loaded
-// span.
-struct SweepTables {
+// offset fastest, for the refreshes along s; both depend on the grid's shape and the materials
+// only, so ExactTangentialSetup keeps them), each cell's chain end and each x-column's loaded
+// span (these depend on the pressure).
+struct KernelTables {
   int nx = 0, ns = 0;
   int tx = 0;         // table row length (d = -nx .. nx)
   int col_table = 0;  // c_* entries per x offset
   std::vector<double> a_xx, a_xs, a_ss;
   std::vector<double> c_xx, c_xs, c_ss;
+};
+
+struct SweepTables {
+  const KernelTables* kernel = nullptr;
+  int nx = 0, ns = 0;
   // Downstream end of each cell's chain: the smallest ix' <= ix with all of ix' .. ix loaded.
   std::vector<int> chain_end;
   // Loaded span of each x-column [first, last] in s.
   std::vector<int> first_loaded_col, last_loaded_col;
 
   double Table(const std::vector<double>& t, int d, int e) const {
-    return t[static_cast<size_t>(e + ns - 1) * tx + (d + nx)];
+    return t[static_cast<size_t>(e + ns - 1) * kernel->tx + (d + nx)];
   }
   // The local diagonal of a chain update at ix with chain end e: (A(0) - A(ix - e + 1)) / dx.
   void LocalDiagonal(const PatchGrid& grid, int ix, int js, double* dxx, double* dss) const {
     const int v = chain_end[grid.Index(ix, js)] - 1;
-    *dxx = Table(a_xx, 0, 0) - Table(a_xx, ix - v, 0);
-    *dss = Table(a_ss, 0, 0) - Table(a_ss, ix - v, 0);
+    *dxx = Table(kernel->a_xx, 0, 0) - Table(kernel->a_xx, ix - v, 0);
+    *dss = Table(kernel->a_ss, 0, 0) - Table(kernel->a_ss, ix - v, 0);
   }
 };
 
-SweepTables MakeSweepTables(const PatchGrid& grid,
-                            const internal::CerrutiCoefficients& coefficients,
-                            const Eigen::VectorXd& pressure_Pa) {
-  const int n = grid.cells();
+KernelTables MakeKernelTables(const PatchGrid& grid,
+                              const internal::CerrutiCoefficients& coefficients) {
   const int tx = 2 * grid.nx + 1;  // table row length (d = -nx .. nx)
   const int ts = 2 * grid.ns - 1;
   std::vector<double> a_xx(static_cast<size_t>(tx) * ts), a_xs(a_xx.size()), a_ss(a_xx.size());
@@ -403,6 +494,35 @@ SweepTables MakeSweepTables(const PatchGrid& grid,
   auto table = [&](const std::vector<double>& t, int d, int e) {
     return t[static_cast<size_t>(e + grid.ns - 1) * tx + (d + grid.nx)];
   };
+  // The table transposed (s offset fastest: col_table entries per x offset) for the refreshes
+  // along s in the sweeps.
+  const int col_table = ts;
+  std::vector<double> c_xx(a_xx.size()), c_xs(a_xx.size()), c_ss(a_xx.size());
+  for (int e = -(grid.ns - 1); e <= grid.ns - 1; ++e) {
+    for (int d = -grid.nx; d <= grid.nx; ++d) {
+      const size_t kc = static_cast<size_t>(d + grid.nx) * col_table + (e + grid.ns - 1);
+      c_xx[kc] = table(a_xx, d, e);
+      c_xs[kc] = table(a_xs, d, e);
+      c_ss[kc] = table(a_ss, d, e);
+    }
+  }
+  KernelTables out;
+  out.nx = grid.nx;
+  out.ns = grid.ns;
+  out.tx = tx;
+  out.col_table = col_table;
+  out.a_xx = std::move(a_xx);
+  out.a_xs = std::move(a_xs);
+  out.a_ss = std::move(a_ss);
+  out.c_xx = std::move(c_xx);
+  out.c_xs = std::move(c_xs);
+  out.c_ss = std::move(c_ss);
+  return out;
+}
+
+SweepTables MakeSweepTables(const PatchGrid& grid, const KernelTables& kernel,
+                            const Eigen::VectorXd& pressure_Pa) {
+  const int n = grid.cells();
   // Downstream end of each cell's chain: the smallest ix' <= ix with all of ix' .. ix loaded.
   std::vector<int> chain_end(n, -1);
   for (int js = 0; js < grid.ns; ++js) {
@@ -417,8 +537,7 @@ SweepTables MakeSweepTables(const PatchGrid& grid,
       chain_end[k] = end;
     }
   }
-  // Loaded span of each x-column [first, last] in s, and the table transposed (s offset fastest:
-  // col_table entries per x offset) for the refreshes along s in the sweeps.
+  // Loaded span of each x-column [first, last] in s.
   std::vector<int> first_loaded_col(grid.nx, grid.ns), last_loaded_col(grid.nx, -1);
   for (int ix = 0; ix < grid.nx; ++ix) {
     for (int js = 0; js < grid.ns; ++js) {
@@ -427,27 +546,10 @@ SweepTables MakeSweepTables(const PatchGrid& grid,
       last_loaded_col[ix] = js;
     }
   }
-  const int col_table = ts;
-  std::vector<double> c_xx(a_xx.size()), c_xs(a_xx.size()), c_ss(a_xx.size());
-  for (int e = -(grid.ns - 1); e <= grid.ns - 1; ++e) {
-    for (int d = -grid.nx; d <= grid.nx; ++d) {
-      const size_t kc = static_cast<size_t>(d + grid.nx) * col_table + (e + grid.ns - 1);
-      c_xx[kc] = table(a_xx, d, e);
-      c_xs[kc] = table(a_xs, d, e);
-      c_ss[kc] = table(a_ss, d, e);
-    }
-  }
   SweepTables out;
+  out.kernel = &kernel;
   out.nx = grid.nx;
   out.ns = grid.ns;
-  out.tx = tx;
-  out.col_table = col_table;
-  out.a_xx = std::move(a_xx);
-  out.a_xs = std::move(a_xs);
-  out.a_ss = std::move(a_ss);
-  out.c_xx = std::move(c_xx);
-  out.c_xs = std::move(c_xs);
-  out.c_ss = std::move(c_ss);
   out.chain_end = std::move(chain_end);
   out.first_loaded_col = std::move(first_loaded_col);
   out.last_loaded_col = std::move(last_loaded_col);
@@ -488,6 +590,27 @@ LocalResult LocalSolveAt(const PatchGrid& grid, const SweepTables& tables,
   return SolveLocal(sx[k] - dxx * qx[k], ss[k] - dss * qs[k], dxx, dss, mu * pressure_Pa[k]);
 }
 
+// The innermost loop of the sweeps (most of a sweep's time on the benchmark grids, perf in
+// docs/speed.md): one column's slip refreshed after a chain update, from the table rows of the
+// cell (*1) and of the virtual cell beyond the chain end (*2). Compiled twice, for AVX2 (4
+// doubles per instruction, chosen at load time on CPUs that have it) and for the baseline (SSE2,
+// 2 doubles): the loop is element-wise and AVX2 without the "fma" target keeps every multiply
+// and add separately rounded, so both clones give the same bits.
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void RefreshColumn(int len, const double* __restrict xx1, const double* __restrict xx2,
+                   const double* __restrict xs1, const double* __restrict xs2,
+                   const double* __restrict ss1, const double* __restrict ss2, double dqx,
+                   double dqs, double* __restrict ox, double* __restrict os) {
+#pragma GCC ivdep
+  for (int j = 0; j < len; ++j) {
+    const double bxs = xs1[j] - xs2[j];
+    ox[j] += (xx1[j] - xx2[j]) * dqx + bxs * dqs;
+    os[j] += bxs * dqx + (ss1[j] - ss2[j]) * dqs;
+  }
+}
+
 // One block (columns block_lo .. block_hi) of a Gauss-Seidel sweep from the leading edge with
 // relaxation w: tractions *qx_io, *qs_io updated chain by chain, the block's slip (from sx, ss)
 // refreshed in the column-major copies *sx_col_io, *ss_col_io.
@@ -502,10 +625,10 @@ void SweepBlock(const PatchGrid& grid, const SweepTables& tables,
   const std::vector<int>& chain_end = tables.chain_end;
   const std::vector<int>& first_loaded_col = tables.first_loaded_col;
   const std::vector<int>& last_loaded_col = tables.last_loaded_col;
-  const std::vector<double>& c_xx = tables.c_xx;
-  const std::vector<double>& c_xs = tables.c_xs;
-  const std::vector<double>& c_ss = tables.c_ss;
-  const int col_table = tables.col_table;
+  const std::vector<double>& c_xx = tables.kernel->c_xx;
+  const std::vector<double>& c_xs = tables.kernel->c_xs;
+  const std::vector<double>& c_ss = tables.kernel->c_ss;
+  const int col_table = tables.kernel->col_table;
   auto local_diagonal = [&](int ix, int js, double* dxx, double* dss) {
     tables.LocalDiagonal(grid, ix, js, dxx, dss);
   };
@@ -557,12 +680,7 @@ void SweepBlock(const PatchGrid& grid, const SweepTables& tables,
         const size_t at = static_cast<size_t>(im) * grid.ns + jm_lo;
         double* __restrict ox = sx_col.data() + at;
         double* __restrict os = ss_col.data() + at;
-#pragma GCC ivdep
-        for (int j = 0; j < len; ++j) {
-          const double bxs = xs1[j] - xs2[j];
-          ox[j] += (xx1[j] - xx2[j]) * dqx + bxs * dqs;
-          os[j] += bxs * dqx + (ss1[j] - ss2[j]) * dqs;
-        }
+        RefreshColumn(len, xx1, xx2, xs1, xs2, ss1, ss2, dqx, dqs, ox, os);
       }
     }
   }
@@ -612,35 +730,112 @@ void CollectExactResults(const PatchGrid& grid, const SweepTables& tables,
   }
 }
 
+TangentialSolution NoContactSolution(const PatchGrid& grid) {
+  TangentialSolution sol = EmptyTangentialSolution(grid.cells());
+  sol.status = SolverStatus::kNoContact;
+  sol.message = "no cell carries pressure";
+  return sol;
+}
+
+// The solve proper (inputs checked, some cell loaded): steps 2 and 3 of the header comment.
+TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                                  const RollingInput& in, const ExactTangentialSetup::Impl& setup,
+                                  const ExactTangentialOptions& opt);
+
 }  // namespace
+
+// Step 1 of the solve, the parts that depend on the grid's shape and the materials only: the
+// rolling operator (for the exact slip of each outer iteration) and the table of the
+// displacement kernel A / dx on offsets d in [-nx, nx], e in (-ns, ns) (for the sweeps).
+struct ExactTangentialSetup::Impl {
+  int nx = 0, ns = 0;
+  double dx_m = 0.0, ds_m = 0.0;
+  ExactTangentialOptions::Method method = ExactTangentialOptions::Method::kAuto;
+  std::unique_ptr<RollingGenerator> generator;  // with kFft only
+  std::unique_ptr<RollingOperator> op;
+  KernelTables kernel_tables;
+};
+
+ExactTangentialSetup::ExactTangentialSetup(const PatchGrid& grid, const Material& wheel,
+                                           const Material& rail,
+                                           ExactTangentialOptions::Method method)
+    : impl_(std::make_unique<Impl>()) {
+  if (grid.nx < 1 || grid.ns < 1 || !(grid.dx_m > 0.0) || !(grid.ds_m > 0.0)) {
+    std::ostringstream msg;
+    msg << "tangential exact setup: grid " << grid.nx << " x " << grid.ns << " cells of "
+        << grid.dx_m << " x " << grid.ds_m << " m, expected at least one cell of positive size";
+    throw InputError(msg.str());
+  }
+  const internal::CerrutiCoefficients coefficients = internal::MakeCerrutiCoefficients(wheel, rail);
+  impl_->nx = grid.nx;
+  impl_->ns = grid.ns;
+  impl_->dx_m = grid.dx_m;
+  impl_->ds_m = grid.ds_m;
+  impl_->method = method;
+  const RollingKernel kernel(grid, coefficients);
+  if (method == ExactTangentialOptions::Method::kDense) {
+    impl_->op = std::make_unique<DenseRollingOperator>(grid, kernel);
+  } else {
+    impl_->generator = std::make_unique<RollingGenerator>(grid, kernel);
+    impl_->op = std::make_unique<FftRollingOperator>(grid, *impl_->generator);
+  }
+  impl_->kernel_tables = MakeKernelTables(grid, coefficients);
+}
+
+ExactTangentialSetup::~ExactTangentialSetup() = default;
+ExactTangentialSetup::ExactTangentialSetup(ExactTangentialSetup&&) noexcept = default;
+ExactTangentialSetup& ExactTangentialSetup::operator=(ExactTangentialSetup&&) noexcept = default;
+
+bool ExactTangentialSetup::Fits(const PatchGrid& grid) const {
+  return grid.nx == impl_->nx && grid.ns == impl_->ns && grid.dx_m == impl_->dx_m &&
+         grid.ds_m == impl_->ds_m;
+}
+
+bool ExactTangentialSetup::Serves(ExactTangentialOptions::Method method) const {
+  return (method == ExactTangentialOptions::Method::kDense) ==
+         (impl_->method == ExactTangentialOptions::Method::kDense);
+}
 
 TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                                         const RollingInput& in, const Material& wheel,
                                         const Material& rail, const ExactTangentialOptions& opt) {
   CheckInputs(grid, pressure_Pa, in, opt);
-  const internal::CerrutiCoefficients coefficients = internal::MakeCerrutiCoefficients(wheel, rail);
+  internal::MakeCerrutiCoefficients(wheel, rail);  // throws for bad materials
+  if (!(pressure_Pa.maxCoeff() > 0.0)) return NoContactSolution(grid);
+  const ExactTangentialSetup setup(grid, wheel, rail, opt.method);
+  return SolveWithSetup(grid, pressure_Pa, in, setup.impl(), opt);
+}
+
+TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                                        const RollingInput& in, const ExactTangentialSetup& setup,
+                                        const ExactTangentialOptions& opt) {
+  CheckInputs(grid, pressure_Pa, in, opt);
+  if (!setup.Fits(grid) || !setup.Serves(opt.method)) {
+    std::ostringstream msg;
+    msg << "tangential exact: the setup was built for " << setup.impl().nx << " x "
+        << setup.impl().ns << " cells of " << setup.impl().dx_m << " x " << setup.impl().ds_m
+        << " m with the "
+        << (setup.impl().method == ExactTangentialOptions::Method::kDense ? "dense" : "FFT")
+        << " operator; expected the grid's " << grid.nx << " x " << grid.ns << " cells of "
+        << grid.dx_m << " x " << grid.ds_m << " m and the options' "
+        << (opt.method == ExactTangentialOptions::Method::kDense ? "dense" : "FFT") << " operator";
+    throw InputError(msg.str());
+  }
+  if (!(pressure_Pa.maxCoeff() > 0.0)) return NoContactSolution(grid);
+  return SolveWithSetup(grid, pressure_Pa, in, setup.impl(), opt);
+}
+
+namespace {
+
+TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                                  const RollingInput& in, const ExactTangentialSetup::Impl& setup,
+                                  const ExactTangentialOptions& opt) {
   const int n = grid.cells();
   const double mu = in.friction;
-
   TangentialSolution sol = EmptyTangentialSolution(n);
   const double p_max = pressure_Pa.maxCoeff();
-  if (!(p_max > 0.0)) {
-    sol.status = SolverStatus::kNoContact;
-    sol.message = "no cell carries pressure";
-    return sol;
-  }
-
-  // 1. The rolling operator (for the exact slip of each outer iteration) and the table of the
-  //    displacement kernel A / dx on offsets d in [-nx, nx], e in (-ns, ns) (for the sweeps).
-  const RollingKernel kernel(grid, coefficients);
   const bool dense = opt.method == ExactTangentialOptions::Method::kDense;
-  std::unique_ptr<RollingOperator> op;
-  if (dense) {
-    op = std::make_unique<DenseRollingOperator>(grid, kernel);
-  } else {
-    op = std::make_unique<FftRollingOperator>(grid, kernel);
-  }
-  const SweepTables tables = MakeSweepTables(grid, coefficients, pressure_Pa);
+  const SweepTables tables = MakeSweepTables(grid, setup.kernel_tables, pressure_Pa);
   Eigen::VectorXd sx_col(n), ss_col(n);
   const int block_columns = ChooseBlockColumns(grid, tables, dense, opt);
 
@@ -660,6 +855,14 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
     if (pressure_Pa[k] > 0.0) loaded.push_back(k);
   }
   const int n_loaded = static_cast<int>(loaded.size());
+  // The products: the setup's (FFT or full dense), or on small patches the loaded cells' matrix.
+  const RollingOperator* op = setup.op.get();
+  std::optional<LoadedDenseProduct> loaded_product;
+  if (setup.generator && opt.method == ExactTangentialOptions::Method::kAuto &&
+      n_loaded <= kLoadedDenseMaxCells) {
+    loaded_product.emplace(grid, *setup.generator, loaded);
+    op = &*loaded_product;
+  }
   AndersonMixer mixer(opt.anderson_depth, 2 * n_loaded);
   Eigen::VectorXd x_start(2 * n_loaded), x_next(2 * n_loaded);  // before and after a sweep
   auto gather = [&](Eigen::VectorXd* v) {
@@ -735,4 +938,5 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
   return sol;
 }
 
+}  // namespace
 }  // namespace railwear

@@ -60,7 +60,8 @@
 // converges also in full stick (and beats 0.3: 46 against 66 iterations on the README case); the
 // divergence guard (see ExactTangentialOptions::relaxation) stays.
 // Each outer iteration evaluates s = w + B q exactly (one FFT product of the four blocks, or the
-// dense matrix), checks convergence, then sweeps once and mixes. The sweep runs over blocks of
+// dense matrix; on small patches the dense matrix of the loaded cells, Method::kAuto), checks
+// convergence, then sweeps once and mixes. The sweep runs over blocks of
 // adjacent x-columns, leading block first. Inside a block every update refreshes exactly, from a
 // table of A on the offsets, the slip of the block's loaded cells not yet visited (columns
 // block_lo .. ix; the chain's effect (A(m - k) - A(m - v)) / dx). After a block one operator
@@ -77,6 +78,7 @@
 // 0.44); about 6.5 ms per sweep, 55 % of it the in-block refreshes and 40 % the FFT products.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include <Eigen/Core>
@@ -87,14 +89,24 @@
 
 namespace railwear {
 
+// The crossover of ExactTangentialOptions::Method::kAuto [loaded cells]: 200. Measured with
+// tangential_exact_bench's BM_TangentialExactSmallPatch (docs/speed.md): the loaded cells' matrix
+// is faster than the FFT products up to 225 loaded cells and slower at 349. Defined in the .cpp.
+extern const int kLoadedDenseMaxCells;
+
 struct ExactTangentialOptions {
   // How the rolling operator B is applied.
+  //   kAuto:  kFft, except on small patches (at most kLoadedDenseMaxCells loaded cells), where the
+  //           products use the dense 2m x 2m matrix of the m loaded cells, taken from the same
+  //           coefficients (4 m^2 multiply-adds per product, beating the padded FFTs' fixed
+  //           costs there; the matrix is built per solve, 3 m^2 table reads).
   //   kFft:   2-D FFT products (padded, exact to rounding), O(N log N) per product,
   //           N = grid.cells().
   //   kDense: the full 2N x 2N matrix (the naive reference, for tests; memory 32 N^2 bytes).
-  // Both run the same sweeps, so they give the same iterates to rounding.
-  enum class Method { kFft, kDense };
-  Method method = Method::kFft;
+  // All run the same sweeps (kAuto and kFft the same blocks), so they give the same iterates to
+  // rounding.
+  enum class Method { kAuto, kFft, kDense };
+  Method method = Method::kAuto;
   // Stopping criterion (dimensionless, > 0): the largest change of any cell's traction that one
   // exact local solve would make, with a freshly applied operator, relative to mu * max(p):
   //   max_k |q_k - LocalSolve_k(q)| <= tolerance * mu * max_k p_k.
@@ -129,6 +141,45 @@ struct ExactTangentialOptions {
 TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                                         const RollingInput& in, const Material& wheel,
                                         const Material& rail,
+                                        const ExactTangentialOptions& opt = {});
+
+// The parts of the exact solve that depend only on the grid's shape (nx, ns, dx_m, ds_m), the two
+// materials and the operator method: the rolling operator B (its FFT spectra or dense matrix) and
+// the table of the displacement kernel the sweeps read (step 1 of the header comment; kernel
+// evaluations and FFTs, about a quarter of a solve on a creep table's 11 x 11 grid, perf in
+// docs/speed.md). A caller that solves many problems on one grid (a creep table, a search over
+// creepages) builds one setup and passes it to every solve; the results are those of the solve
+// that builds its own, bit for bit (the same computations; tangential_exact_test.cpp). Not for
+// concurrent use: the FFT products keep scratch buffers (build one per thread).
+class ExactTangentialSetup {
+ public:
+  // Throws InputError for a grid without cells of positive size or a bad material (as
+  // SolveTangentialExact).
+  ExactTangentialSetup(
+      const PatchGrid& grid, const Material& wheel, const Material& rail,
+      ExactTangentialOptions::Method method = ExactTangentialOptions::Method::kFft);
+  ~ExactTangentialSetup();
+  ExactTangentialSetup(ExactTangentialSetup&&) noexcept;
+  ExactTangentialSetup& operator=(ExactTangentialSetup&&) noexcept;
+  // True when the setup serves this grid: the same nx, ns, dx_m and ds_m (the operator does not
+  // depend on the rest of the grid, see the header comment on curved grids).
+  bool Fits(const PatchGrid& grid) const;
+  // True when the setup serves this method: kDense needs a setup built for kDense, kAuto and
+  // kFft one built for either of them.
+  bool Serves(ExactTangentialOptions::Method method) const;
+
+  struct Impl;  // defined in the .cpp
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+// The same solve with a setup built beforehand for this grid and the materials (wheel, rail of
+// the overload above). Throws InputError as above, and when the setup does not fit the grid or
+// does not serve opt.method.
+TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                                        const RollingInput& in, const ExactTangentialSetup& setup,
                                         const ExactTangentialOptions& opt = {});
 
 namespace internal {

@@ -32,6 +32,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -246,12 +248,18 @@ BENCHMARK(BM_PerfcRolling)
 // creepages xi = m mu cos(t) c / rho, eta = m mu sin(t) c / rho, phi = mu spin / rho (c =
 // sqrt(aa bb), rho = 2 / (A1 + B1)) over spin = 0, 0.5, 1, 2, t = -90 .. 90 deg in steps of 30
 // and m = 0 .. 12 (23 values), CONTACT's order of the cases. CONTACT solves at EPS = 1e-6; the
-// normal solve here runs at the criterion of the args (mx, normal criterion, exponent), the
-// tangential one at railwear's default. Counters: ms_per_case, cells (mx^2, for the growth
-// exponent); with RAILWEAR_CONTACT_TABLE_REF naming CONTACT's reference file (e.g.
-// testbank/test_table_mx11.ref_fx for mx = 11) also the largest differences of F_x / (mu F_n),
-// F_y / (mu F_n) and M_z / (mu F_n c) from it (dfx_max, dfy_max, dmz_max); with
-// RAILWEAR_CONTACT_TABLE_OUT naming a file, railwear's values in CONTACT's format.
+// normal solve here runs at the criterion of the args (mx, normal criterion, exponent, reuse), the
+// tangential one at railwear's default. reuse: 0 builds everything for every case, as CONTACT's
+// test_table does (its flags C = 2, I = 0: influence coefficients computed and the normal problem
+// solved from the undeformed distance in every case); 1 builds the influence operator and the
+// exact solver's ExactTangentialSetup once per ellipse (the 644 cases of an ellipse share one
+// grid) and solves the normal problem in every case; 2 also solves the normal problem once per
+// ellipse (it is the same problem in all its cases). The three give the same numbers bit for bit
+// (reuse of identical inputs). Counters: ms_per_case, cells (mx^2, for the growth
+// exponent), tang_iterations (the tangential solves' mean); with RAILWEAR_CONTACT_TABLE_REF naming
+// CONTACT's reference file (e.g. testbank/test_table_mx11.ref_fx for mx = 11) also the largest
+// differences of F_x / (mu F_n), F_y / (mu F_n) and M_z / (mu F_n c) from it (dfx_max, dfy_max,
+// dmz_max); with RAILWEAR_CONTACT_TABLE_OUT naming a file, railwear's values in CONTACT's format.
 constexpr int kTableCases = 5 * 4 * 7 * 23;
 constexpr double kTableFn_N = 82000.0, kTableFriction = 0.3, kTableSpeed_m_s = 10.0;
 
@@ -328,27 +336,47 @@ void BM_CreepTable(benchmark::State& state) {
     }
   }
   const InfluenceSettings settings{KernelModel::kBoussinesq, {}, kPerfcSteel, kPerfcSteel};
+  const int reuse = static_cast<int>(state.range(3));
   std::vector<std::array<double, 3>> result(cases.size());
   int not_converged = 0;
+  // What a case builds or solves: with reuse, once per ellipse (the cases run ellipse by ellipse)
+  // and built inside the timed loop, so the table's time includes it.
+  std::unique_ptr<InfluenceOperator> op;
+  std::optional<ExactTangentialSetup> setup;
+  std::optional<NormalSolution> kept_normal;
+  int built_for = -1;
+  auto solve_normal = [&](const PatchGrid& g) {
+    NormalProblem np;
+    np.blocks = {op.get()};
+    np.gap_m = g.gap_m;
+    np.approach_weight = Eigen::VectorXd::Ones(g.cells());
+    np.cell_area_m2 = Eigen::VectorXd::Constant(g.cells(), g.CellArea());
+    np.force_N = kTableFn_N;
+    return SolveNormal(np, options);
+  };
+  double tang_iterations = 0.0;
   for (auto _ : state) {
     not_converged = 0;
+    tang_iterations = 0.0;
+    built_for = -1;
     for (size_t c = 0; c < cases.size(); ++c) {
       const PatchGrid& g = grids[cases[c].ellipse];
-      const auto op = MakeInfluenceOperator(g, settings);
-      NormalProblem np;
-      np.blocks = {op.get()};
-      np.gap_m = g.gap_m;
-      np.approach_weight = Eigen::VectorXd::Ones(g.cells());
-      np.cell_area_m2 = Eigen::VectorXd::Constant(g.cells(), g.CellArea());
-      np.force_N = kTableFn_N;
-      const NormalSolution normal = SolveNormal(np, options);
+      if (reuse == 0 || built_for != cases[c].ellipse) {
+        op = MakeInfluenceOperator(g, settings);
+        if (reuse >= 1) setup.emplace(g, kPerfcSteel, kPerfcSteel);
+        if (reuse >= 2) kept_normal = solve_normal(g);
+        built_for = cases[c].ellipse;
+      }
+      const NormalSolution normal = reuse >= 2 ? *kept_normal : solve_normal(g);
       RollingInput in = testing::KalkerCreepage(g, cases[c].xi, cases[c].eta, cases[c].phi_per_m,
                                                 kTableSpeed_m_s, kTableFriction);
       AddContactSpinOffset(g, cases[c].phi_per_m, &in);
       const TangentialSolution t =
-          SolveTangentialExact(g, normal.pressure_Pa, in, kPerfcSteel, kPerfcSteel);
+          reuse >= 1 ? SolveTangentialExact(g, normal.pressure_Pa, in, *setup)
+                     : SolveTangentialExact(g, normal.pressure_Pa, in, kPerfcSteel, kPerfcSteel);
       not_converged +=
           normal.status != SolverStatus::kConverged || t.status != SolverStatus::kConverged;
+      tang_iterations += t.iterations;
       const double mu_fn = kTableFriction * normal.force_N;
       result[c] = {t.force_x_N / mu_fn, t.force_s_N / mu_fn,
                    t.spin_moment_Nm / (mu_fn * cp_m[cases[c].ellipse])};
@@ -358,6 +386,7 @@ void BM_CreepTable(benchmark::State& state) {
   state.counters["cells"] = mx * mx;
   state.counters["cases"] = static_cast<double>(cases.size());
   state.counters["not_converged"] = not_converged;
+  state.counters["tang_iterations"] = tang_iterations / static_cast<double>(cases.size());
   state.counters["ms_per_case"] = benchmark::Counter(
       static_cast<double>(cases.size()) * 1e-3,
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
@@ -383,15 +412,13 @@ void BM_CreepTable(benchmark::State& state) {
     state.counters["dmz_max"] = worst[2];
   }
 }
-BENCHMARK(BM_CreepTable)
-    ->Args({11, 0, 10})
-    ->Args({15, 0, 10})
-    ->Args({25, 0, 10})
-    ->Args({11, 1, 6})
-    ->Args({15, 1, 6})
-    ->Args({25, 1, 6})
-    ->Iterations(1)
-    ->Unit(benchmark::kMillisecond);
+void CreepTableArgs(benchmark::internal::Benchmark* b) {
+  for (const int mx : {11, 15, 25}) {
+    for (const int reuse : {0, 1, 2}) b->Args({mx, 0, 10, reuse});
+    for (const int reuse : {0, 2}) b->Args({mx, 1, 6, reuse});
+  }
+}
+BENCHMARK(BM_CreepTable)->Apply(CreepTableArgs)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 // testbank/examples_conformal/groove_li.inp, case 1 (after Li, 2002): CONTACT's circ_r10.prw
 // wheel profile (a 10 mm circle) in its groove_r1025.prr rail profile (a 10.25 mm groove), both

@@ -13,7 +13,10 @@
 #include <gtest/gtest.h>
 
 #include "core/contact/influence_kernels.h"
+#include "core/contact/normal_solver.h"
 #include "core/numerics/input_error.h"
+#include "tests/core/contact/hertz_grid.h"
+#include "tests/core/contact/same_result.h"
 
 namespace railwear {
 namespace {
@@ -643,6 +646,49 @@ TEST(InfluenceOperator, DenseOperatorHasNoPreconditioner) {
   Eigen::VectorXd z = Eigen::VectorXd::Constant(2, 7.0);
   EXPECT_FALSE(dense->ApplyPreconditioner(Eigen::VectorXd::Ones(12), &z));
   EXPECT_EQ(z.size(), 2);  // untouched
+}
+
+// One operator serves many normal solves on its grid (a creep table's cases, contact_reference_
+// bench's reuse): after solves of other problems with it (its products' scratch reused), a solve
+// equals, bit for bit, the solve with a freshly built operator. Dense products (11 x 11) and FFT
+// products (16 x 16), prescribed load and approach.
+TEST(InfluenceOperator, ReusedOperatorGivesTheFreshNormalSolveBitForBit) {
+  Material steel;
+  steel.youngs_modulus_Pa = 210e9;
+  steel.poisson_ratio = 0.28;
+  const InfluenceSettings settings{KernelModel::kBoussinesq, {}, steel, steel};
+  for (const int mx : {11, 16}) {
+    const PatchGrid g = testing::MakeHertzGrid(6e-3, 4e-3, mx, mx);
+    auto problem = [&](const InfluenceOperator* op, double curvature_x_per_m, bool load) {
+      NormalProblem np;
+      np.blocks = {op};
+      np.gap_m.resize(g.cells());
+      for (int j = 0; j < g.ns; ++j) {
+        for (int i = 0; i < g.nx; ++i) {
+          np.gap_m[g.Index(i, j)] = 0.5 * (curvature_x_per_m * g.X(i) * g.X(i) +
+                                           20.0 * g.S(j) * g.S(j));
+        }
+      }
+      np.approach_weight = Eigen::VectorXd::Ones(g.cells());
+      np.cell_area_m2 = Eigen::VectorXd::Constant(g.cells(), g.CellArea());
+      if (load) {
+        np.force_N = 50e3;
+      } else {
+        np.approach_m = 40e-6;
+      }
+      return np;
+    };
+    const auto reused = MakeInfluenceOperator(g, settings);
+    for (const bool load : {true, false}) {
+      SolveNormal(problem(reused.get(), 5.0, !load));
+      SolveNormal(problem(reused.get(), 12.0, load));
+      const NormalSolution again = SolveNormal(problem(reused.get(), 8.0, load));
+      const auto fresh = MakeInfluenceOperator(g, settings);
+      SCOPED_TRACE(::testing::Message() << mx << " x " << mx << (load ? ", load" : ", approach"));
+      ASSERT_EQ(again.status, SolverStatus::kConverged) << again.message;
+      testing::ExpectSameNormal(again, SolveNormal(problem(fresh.get(), 8.0, load)));
+    }
+  }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include "core/contact/influence_operator.h"
 #include "core/numerics/input_error.h"
 #include "tests/core/contact/hertz_grid.h"
+#include "tests/core/contact/same_result.h"
 
 namespace railwear {
 namespace {
@@ -211,8 +213,10 @@ TEST(TangentialExact, FftAgreesWithDenseReference) {
   const Case c = MakeCase(6);
   ExactTangentialOptions dense;
   dense.method = ExactTangentialOptions::Method::kDense;
+  ExactTangentialOptions fft;  // forced: kAuto would use the loaded cells' matrix on this grid
+  fft.method = ExactTangentialOptions::Method::kFft;
   const RollingInput in = Creepage(c.grid, 1e-4, -6.25e-4, 0.625);
-  const TangentialSolution f = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG());
+  const TangentialSolution f = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), fft);
   const TangentialSolution d = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), dense);
   ASSERT_EQ(f.status, SolverStatus::kConverged);
   ASSERT_EQ(d.status, SolverStatus::kConverged);
@@ -222,6 +226,96 @@ TEST(TangentialExact, FftAgreesWithDenseReference) {
   EXPECT_LE((f.traction_s_Pa - d.traction_s_Pa).cwiseAbs().maxCoeff(),
             kFastVersusDenseTolerance * qmax);
   EXPECT_EQ(f.stick, d.stick);
+}
+
+// kAuto on a small patch (72 cells, all loaded cells below kLoadedDenseMaxCells) uses the loaded
+// cells' dense matrix; it reaches the FFT products' and the full dense reference's solution to
+// rounding, with and without blocks (the products between blocks are the loaded matrix's).
+TEST(TangentialExact, LoadedCellsMatrixAgreesWithFftAndDense) {
+  const Case c = MakeCase(6);
+  const RollingInput in = Creepage(c.grid, 1e-4, -6.25e-4, 0.625);
+  ExactTangentialOptions dense, fft;
+  dense.method = ExactTangentialOptions::Method::kDense;
+  fft.method = ExactTangentialOptions::Method::kFft;
+  const TangentialSolution d = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), dense);
+  const TangentialSolution f = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), fft);
+  const double qmax = kMu * c.p.maxCoeff();
+  for (int block : {0, 2}) {
+    ExactTangentialOptions automatic;
+    automatic.block_columns = block;
+    const TangentialSolution a =
+        SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), automatic);
+    ASSERT_EQ(a.status, SolverStatus::kConverged) << a.message;
+    for (const TangentialSolution* other : {&d, &f}) {
+      EXPECT_LE((a.traction_x_Pa - other->traction_x_Pa).cwiseAbs().maxCoeff(),
+                kFastVersusDenseTolerance * qmax);
+      EXPECT_LE((a.traction_s_Pa - other->traction_s_Pa).cwiseAbs().maxCoeff(),
+                kFastVersusDenseTolerance * qmax);
+      EXPECT_EQ(a.stick, other->stick);
+    }
+  }
+}
+
+// One setup serves many solves on its grid: each equals, bit for bit, the solve that builds its
+// own setup, whatever was solved with the setup before (the FFT products' scratch, the loaded
+// cells' matrix per solve). Pressures of two loads (different loaded sets), creepages from stick
+// to full slip, each method, and a grid of the same shape at another place (a setup depends on
+// nx, ns, dx, ds only).
+TEST(TangentialExact, ReusedSetupGivesTheFreshSolveBitForBit) {
+  using Method = ExactTangentialOptions::Method;
+  for (const Method method : {Method::kAuto, Method::kFft, Method::kDense}) {
+    for (const int n : {6, 12}) {  // 72 cells (loaded matrix under kAuto) and 288 (FFT)
+      const Case c = MakeCase(n);
+      ExactTangentialOptions opt;
+      opt.method = method;
+      const ExactTangentialSetup setup(c.grid, SteelG(), SteelG(), method);
+      ASSERT_TRUE(setup.Fits(c.grid));
+      PatchGrid moved = c.grid;
+      moved.x0_m += 0.3e-3;
+      ASSERT_TRUE(setup.Fits(moved));
+      const Eigen::VectorXd light = HertzPressure(c.grid, 0.8 * kA_m, 0.8 * kB_m, 0.5 * kFn_N);
+      for (const auto& [xi, eta, phi] : {std::tuple{1e-4, -6.25e-4, 0.625},
+                                         {0.0, 0.0, 0.0},
+                                         {3e-3, 1e-3, 0.0},
+                                         {-1e-4, 2e-4, -1.0}}) {
+        for (const Eigen::VectorXd* p : {&c.p, &light}) {
+          for (const PatchGrid* g : {&c.grid, static_cast<const PatchGrid*>(&moved)}) {
+            const RollingInput in = Creepage(*g, xi, eta, phi);
+            SCOPED_TRACE(::testing::Message()
+                         << "method " << static_cast<int>(method) << ", n " << n << ", xi " << xi
+                         << ", eta " << eta << ", phi " << phi);
+            testing::ExpectSameTangential(
+                SolveTangentialExact(*g, *p, in, setup, opt),
+                SolveTangentialExact(*g, *p, in, SteelG(), SteelG(), opt));
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(TangentialExact, SetupThatDoesNotFitIsAnInputError) {
+  const Case c = MakeCase(4);
+  const Case other = MakeCase(5);
+  const RollingInput in = Creepage(c.grid, 1e-4, 0, 0);
+  const ExactTangentialSetup setup(other.grid, SteelG(), SteelG());
+  EXPECT_FALSE(setup.Fits(c.grid));
+  try {
+    SolveTangentialExact(c.grid, c.p, in, setup);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the setup was built for 10 x 5 cells"), std::string::npos)
+        << e.what();
+  }
+  const ExactTangentialSetup fft_setup(c.grid, SteelG(), SteelG());
+  EXPECT_TRUE(fft_setup.Serves(ExactTangentialOptions::Method::kFft));
+  EXPECT_FALSE(fft_setup.Serves(ExactTangentialOptions::Method::kDense));
+  ExactTangentialOptions dense;
+  dense.method = ExactTangentialOptions::Method::kDense;
+  EXPECT_THROW(SolveTangentialExact(c.grid, c.p, in, fft_setup, dense), InputError);
+  Material soft = SteelG();
+  soft.poisson_ratio = 0.5;
+  EXPECT_THROW(ExactTangentialSetup(c.grid, soft, SteelG()), InputError);
 }
 
 // The block sweep (direct refreshes inside blocks of columns, one FFT product between blocks)
@@ -236,6 +330,7 @@ TEST(TangentialExact, BlockSweepAgreesWithDenseReference) {
   const double qmax = kMu * c.p.maxCoeff();
   for (int block : {1, 3, 5}) {
     ExactTangentialOptions fft;
+    fft.method = ExactTangentialOptions::Method::kFft;  // the FFT products between blocks
     fft.block_columns = block;
     const TangentialSolution f = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), fft);
     ASSERT_EQ(f.status, SolverStatus::kConverged) << "block " << block;
