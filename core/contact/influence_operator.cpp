@@ -353,8 +353,11 @@ SectionStructure ChooseSectionStructure(const PatchGrid& grid, SectionStructure 
     case SectionStructure::kAuto:
       break;
   }
-  return grid.planar || IsUniformArc(grid) ? SectionStructure::kToeplitzXs
-                                           : SectionStructure::kBlocks;
+  // One row is a uniform arc of any curvature: the patch builder makes such grids (a barely
+  // touching patch, a cropped one), and their 1 x 1 blocks gain nothing from the 2-D FFT, whose
+  // different rounding would move their solves at the 1e-12 level. They keep the blocks.
+  const bool arc = grid.ns >= 2 && IsUniformArc(grid);
+  return grid.planar || arc ? SectionStructure::kToeplitzXs : SectionStructure::kBlocks;
 }
 
 double EstimateOperatorBytes(int nx, int ns, bool planar) {

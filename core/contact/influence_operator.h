@@ -108,7 +108,9 @@ enum class OperatorProducts { kAuto, kFft, kDense };
 extern const int kDenseProductMaxCells;
 
 // How the operator uses the cross-section's structure along s.
-//   kAuto:       kToeplitzXs when grid.planar or IsUniformArc(grid), else kBlocks.
+//   kAuto:       kToeplitzXs when grid.planar or IsUniformArc(grid) with ns >= 2 (a single row
+//                keeps its 1 x 1 blocks: nothing to gain, and the patch builder's one-row grids
+//                stay bit for bit as before), else kBlocks.
 //   kToeplitzXs: the 2-D FFT (Toeplitz in x and s); the grid must be planar or a uniform arc
 //                (a bug otherwise: aborts).
 //   kBlocks:     the FFT along x with a dense ns x ns block per x frequency, on any grid (for

@@ -577,7 +577,7 @@ TEST(InfluenceOperator, UniformArcToeplitzEqualsBlocks) {
                         {40, 24, 2e-4, 10e-3},  // far-field pairs
                         {20, 45, 1e-4, -5e-3},  // the other curvature sign, 52 degrees
                         {11, 11, 2e-4, 10e-3},  // dense products (kAuto at 121 cells)
-                        {7, 1, 2e-4, 10e-3}};   // one row
+                        {7, 2, 2e-4, 10e-3}};   // two rows
   double worst = 0.0;
   for (const Case& c : cases) {
     const PatchGrid grid = MakeArcGrid(c.nx, c.ns, 2e-4, c.ds, c.radius);
@@ -639,6 +639,11 @@ TEST(InfluenceOperator, NonCircularSectionKeepsTheBlockPath) {
   ASSERT_EQ(ChooseSectionStructure(arc), SectionStructure::kToeplitzXs);
   arc.point_yz_m[6] += 1e-9 * arc.ds_m * arc.normal_yz[6];
   EXPECT_EQ(ChooseSectionStructure(arc), SectionStructure::kBlocks);
+  // One row is a uniform arc but keeps its 1 x 1 blocks (the patch builder makes such grids).
+  const PatchGrid row = MakeArcGrid(9, 1, 2e-4, 4e-4, 10e-3);
+  EXPECT_EQ(ChooseSectionStructure(row), SectionStructure::kBlocks);
+  EXPECT_EQ(ChooseSectionStructure(row, SectionStructure::kToeplitzXs),
+            SectionStructure::kToeplitzXs);
   // Planar grids keep the 2-D path; kBlocks is honoured on any grid.
   const PatchGrid flat = MakePlanarGrid(6, 7, 2e-4, 3e-4, -0.5);
   EXPECT_EQ(ChooseSectionStructure(flat), SectionStructure::kToeplitzXs);
