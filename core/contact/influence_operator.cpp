@@ -354,8 +354,8 @@ SectionStructure ChooseSectionStructure(const PatchGrid& grid, SectionStructure 
       break;
   }
   // One row is a uniform arc of any curvature: the patch builder makes such grids (a barely
-  // touching patch, a cropped one), and their 1 x 1 blocks gain nothing from the 2-D FFT, whose
-  // different rounding would move their solves at the 1e-12 level. They keep the blocks.
+  // touching patch, a cropped one), and their 1 x 1 blocks have no structure along s to use.
+  // They keep the blocks, so every grid the patch builder makes takes the path it took before.
   const bool arc = grid.ns >= 2 && IsUniformArc(grid);
   return grid.planar || arc ? SectionStructure::kToeplitzXs : SectionStructure::kBlocks;
 }
