@@ -61,17 +61,20 @@ void CheckPlanarGrid(const PatchGrid& grid) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Planar grid: C depends on (i_x - j_x, i_s - j_s). 2-D linear convolution by FFT (PaddedFft2d:
-// real FFTs along x, complex along s, half spectrum stored s-major [ks * hx + kx]).
-class PlanarFftOperator final : public InfluenceOperator {
+// Planar grid or uniform arc (IsUniformArc): C depends on |i_x - j_x| and |i_s - j_s|. 2-D
+// linear convolution by FFT (PaddedFft2d: real FFTs along x, complex along s, half spectrum
+// stored s-major [ks * hx + kx]).
+class ToeplitzXsFftOperator final : public InfluenceOperator {
  public:
-  PlanarFftOperator(const PatchGrid& grid, const internal::KernelCoefficients& coefficients,
-                    bool dense_products)
+  // The caller has checked that the grid is planar (grid.planar: checked here) or a uniform arc.
+  ToeplitzXsFftOperator(const PatchGrid& grid, const internal::KernelCoefficients& coefficients,
+                        bool dense_products)
       : nx_(grid.nx), ns_(grid.ns), fft_(grid.nx, grid.ns), work_(fft_.NewSpectrum()) {
-    CheckPlanarGrid(grid);
+    if (grid.planar) CheckPlanarGrid(grid);
     const int lx = fft_.lx(), ls = fft_.ls();
-    // Kernel on offsets d >= 0, e >= 0 (nx * ns evaluations), even extension into an
-    // lx by ls circulant generator (x fastest).
+    // Kernel on offsets d >= 0, e >= 0 (nx * ns evaluations; on an arc from the frame of row 0,
+    // which every row shares up to a rotation), even extension into an lx by ls circulant
+    // generator (x fastest).
     std::vector<double> generator(static_cast<size_t>(lx) * ls, 0.0);
     for (int e = 0; e < ns_; ++e) {
       for (int d = 0; d < nx_; ++d) {
@@ -328,13 +331,33 @@ class CurvedFftOperator final : public InfluenceOperator {
 
 std::unique_ptr<InfluenceOperator> MakeInfluenceOperator(const PatchGrid& grid,
                                                          const InfluenceSettings& settings,
-                                                         OperatorProducts products) {
+                                                         OperatorProducts products,
+                                                         SectionStructure structure) {
   internal::CheckGrid(grid);
   const internal::KernelCoefficients coefficients = internal::MakeKernelCoefficients(settings);
   const bool dense = products == OperatorProducts::kDense ||
                      (products == OperatorProducts::kAuto && grid.cells() <= kDenseProductMaxCells);
-  if (grid.planar) return std::make_unique<PlanarFftOperator>(grid, coefficients, dense);
+  if (ChooseSectionStructure(grid, structure) == SectionStructure::kToeplitzXs) {
+    return std::make_unique<ToeplitzXsFftOperator>(grid, coefficients, dense);
+  }
   return std::make_unique<CurvedFftOperator>(grid, coefficients, dense);
+}
+
+SectionStructure ChooseSectionStructure(const PatchGrid& grid, SectionStructure requested) {
+  switch (requested) {
+    case SectionStructure::kBlocks:
+      return SectionStructure::kBlocks;
+    case SectionStructure::kToeplitzXs:
+      RAILWEAR_CHECK(grid.planar || IsUniformArc(grid));
+      return SectionStructure::kToeplitzXs;
+    case SectionStructure::kAuto:
+      break;
+  }
+  // One row is a uniform arc of any curvature: the patch builder makes such grids (a barely
+  // touching patch, a cropped one), and their 1 x 1 blocks have no structure along s to use.
+  // They keep the blocks, so every grid the patch builder makes takes the path it took before.
+  const bool arc = grid.ns >= 2 && IsUniformArc(grid);
+  return grid.planar || arc ? SectionStructure::kToeplitzXs : SectionStructure::kBlocks;
 }
 
 double EstimateOperatorBytes(int nx, int ns, bool planar) {

@@ -21,25 +21,31 @@
 //
 // Implementations exploit the grid's structure (see patch_grid.h): Toeplitz in x for a curved
 // cross-section (FFT along x, a dense ns x ns block per frequency: memory (L/2 + 1) ns^2
-// doubles, L >= 2 nx - 1; construction nx ns^2 kernel evaluations), Toeplitz in x and s for a
-// planar one (2-D FFT; nx ns kernel evaluations). Both embed the Toeplitz matrix in a circulant
-// one with zero padding, so they reproduce the dense matrix to rounding (~1e-15 relative). The
-// FFTs are FFTW's, planned once per transform size and shared by the operators of that size
-// (FFTW_ESTIMATE: bit-reproducible from run to run; core/numerics/fftw.h).
-// On tiny grids (at most kDenseProductMaxCells cells) the products use the full matrix expanded
-// from the same coefficients instead, which beats the FFTs' fixed costs (OperatorProducts). A
-// dense matrix assembled cell by cell serves as the naive reference on small grids.
+// doubles, L >= 2 nx - 1; construction nx ns^2 kernel evaluations, N^1.5 per product on square
+// grids), Toeplitz in x and s for a planar one and for a uniform arc of constant curvature
+// (IsUniformArc, patch_grid.h: the kernel sees only the offsets of two cells in the source's
+// tangent frame, which on a circle depend on the arc separation alone, evenly; 2-D FFT, nx ns
+// kernel evaluations, N log N per product; SectionStructure). Both embed the Toeplitz matrix in a
+// circulant one with zero padding, so they reproduce the dense matrix to rounding (~1e-15
+// relative). The FFTs are FFTW's, planned once per transform size and shared by the operators of
+// that size (FFTW_ESTIMATE: bit-reproducible from run to run; core/numerics/fftw.h). On tiny grids
+// (at most kDenseProductMaxCells cells) the products use the full matrix expanded from the same
+// coefficients instead, which beats the FFTs' fixed costs (OperatorProducts). A dense matrix
+// assembled cell by cell serves as the naive reference on small grids.
 //
-// Approximate inverses (ApplyPreconditioner), the same structure run backwards: the planar
-// operator divides by the circulant embedding's spectrum (2-D FFT, the cost of one Apply), the
-// curved one solves with each frequency's ns x ns block (its symmetric part, Cholesky-factored
-// once in the constructor: another (L/2 + 1) ns^2 doubles and (L/2 + 1) ns^3 / 3 flops; each
-// application costs about 1.5 Apply, the triangular solves being slower than Apply's products).
-// Spectrum values and block eigenvalues below a floor are raised to it, so M stays positive
-// definite. M inverts the circulant embedding, not C itself: C M r - r is small for displacement
-// fields r that are smooth and vanish toward the grid's edges (below 0.15 relative at every grid
-// size, influence_operator_test.cpp), which is what makes it a good preconditioner (Vollebregt, J.
-// Comput. Phys. 2014).
+// Approximate inverses (ApplyPreconditioner), the same structure run backwards: the 2-D
+// operator (planar or uniform arc) divides by the circulant embedding's spectrum (2-D FFT, the
+// cost of one Apply), the curved one solves with each frequency's ns x ns block (its symmetric
+// part, Cholesky-factored once in the constructor: another (L/2 + 1) ns^2 doubles and
+// (L/2 + 1) ns^3 / 3 flops; each application costs about 1.5 Apply, the triangular solves being
+// slower than Apply's products). On a uniform arc the 2-D inverse is circulant along s as well,
+// where the blocks' inverse is exact along s: it loses at the s edges too, which costs a few
+// iterations (docs/speed.md) and saves the blocks' ns^3 factorisations. Spectrum values and
+// block eigenvalues below a floor are raised to it, so M stays positive definite. M inverts the
+// circulant embedding, not C itself: C M r - r is small for displacement fields r that are
+// smooth and vanish toward the grid's edges (below 0.15 relative at every grid size,
+// influence_operator_test.cpp), which is what makes it a good preconditioner (Vollebregt,
+// J. Comput. Phys. 2014).
 //
 // Threads: the FFT operators keep scratch buffers for Apply (no allocation per call), so one
 // operator must not be applied from several threads at once; build one per thread (building
@@ -101,20 +107,42 @@ enum class OperatorProducts { kAuto, kFft, kDense };
 // .cpp so that re-tuning it rebuilds one file.
 extern const int kDenseProductMaxCells;
 
-// Chooses the fastest exact-structure implementation for the grid (2-D FFT when grid.planar,
-// x-Toeplitz FFT otherwise; products as `products` says). grid.planar promises a straight
+// How the operator uses the cross-section's structure along s.
+//   kAuto:       kToeplitzXs when grid.planar or IsUniformArc(grid) with ns >= 2 (a single row
+//                keeps its 1 x 1 blocks: nothing to gain, and the patch builder's one-row grids
+//                stay bit for bit as before), else kBlocks.
+//   kToeplitzXs: the 2-D FFT (Toeplitz in x and s); the grid must be planar or a uniform arc
+//                (a bug otherwise: aborts).
+//   kBlocks:     the FFT along x with a dense ns x ns block per x frequency, on any grid (for
+//                comparisons and benchmarks; what every curved grid used before issue 18).
+// On a uniform arc both give the same products to rounding (the coefficients of one are those
+// of the other up to the arc's rounding, InfluenceOperator.UniformArcToeplitzEqualsBlocks); the
+// preconditioners differ (the 2-D one is circulant along s too), so solves agree to the solver's
+// tolerance, not bit for bit.
+enum class SectionStructure { kAuto, kToeplitzXs, kBlocks };
+
+// The structure MakeInfluenceOperator uses for `requested` on this grid (kToeplitzXs or kBlocks).
+SectionStructure ChooseSectionStructure(const PatchGrid& grid,
+                                        SectionStructure requested = SectionStructure::kAuto);
+
+// Chooses the fastest exact-structure implementation for the grid (2-D FFT when grid.planar or
+// the cross-section is a uniform arc, x-Toeplitz FFT with per-frequency blocks otherwise;
+// `structure` may force either; products as `products` says). grid.planar promises a straight
 // cross-section with points at uniform spacing ds_m along one tangent and one normal (to 1e-9
 // relative); a grid that breaks the promise is a bug and aborts. Throws InputError for a
 // material with E <= 0 or nu outside [0, 0.5).
 std::unique_ptr<InfluenceOperator> MakeInfluenceOperator(
     const PatchGrid& grid, const InfluenceSettings& settings,
-    OperatorProducts products = OperatorProducts::kAuto);
+    OperatorProducts products = OperatorProducts::kAuto,
+    SectionStructure structure = SectionStructure::kAuto);
 
 // Memory the operator MakeInfluenceOperator builds for a grid of this shape would hold [bytes]
 // (an estimate within a factor of about 2: the curved operator's per-frequency blocks and their
 // Cholesky factors, 2 (L/2 + 1) ns^2 doubles with L ~ 2 nx, and the nx (L/2 + 1) cosine table
 // its construction holds; the planar one's padded FFT buffers). Lets a caller refuse a grid
-// before it computes anything for it.
+// before it computes anything for it. A non-planar shape is costed as blocks: an overestimate
+// for a uniform arc, which the shape alone does not tell (the patch builder asks before it has
+// points, and its grids are never uniform arcs).
 double EstimateOperatorBytes(int nx, int ns, bool planar);
 
 // Naive reference: the full dense matrix [cells x cells], C(i, j) in m/Pa. For tests and small

@@ -4,7 +4,9 @@
 // for the conformal model) is extruded along x, the rolling direction: its cross-section is the
 // same at every x. Cells are dx by ds; s is the arc length along the cross-section. Because of
 // the extrusion, influence coefficients depend on x_i - x_j only (Toeplitz in x), and for a
-// planar cross-section on s_i - s_j as well.
+// planar cross-section on s_i - s_j as well. So they do on a uniform arc (IsUniformArc below):
+// the distance and the relative orientation of two points of a circle depend only on their
+// separation in arc length.
 #pragma once
 
 #include <vector>
@@ -41,5 +43,27 @@ struct PatchGrid {
   // Cell-centre point in 3-D (x, y, z) [m].
   Eigen::Vector3d Point(int i, int j) const { return {X(i), point_yz_m[j].x(), point_yz_m[j].y()}; }
 };
+
+// Tolerance of IsUniformArc: positions relative to ds_m, unit vectors absolute. About 100 units
+// in the last place of coordinates of 3 cm over cells of 10 um (what an arc computed as
+// centre + R (sin, -cos) carries), and far below anything visible in a coefficient: a
+// cross-section within it gives the influence coefficients of the exact arc to ~1e-10 relative.
+inline constexpr double kUniformArcTolerance = 1e-10;
+
+// True when the grid's cross-section is a circular arc of constant curvature kappa (a straight
+// line when kappa = 0) sampled every ds_m in arc length, with the arc's own tangents and a
+// normal perpendicular to them: for every j, with phi_j = kappa j ds_m and R(phi) the rotation
+// by phi,
+//   point_yz_m[j] = point_yz_m[0] + R-integral of the arc  (within kUniformArcTolerance * ds_m),
+//   tangent_yz[j] = R(phi_j) tangent_yz[0],  normal_yz[j] = R(phi_j) normal_yz[0]  (within
+//   kUniformArcTolerance), tangent_yz[0] and normal_yz[0] unit and perpendicular.
+// kappa is taken from the end tangents, so arcs turning by pi or more are not recognised.
+// Such a grid is symmetric under a shift along s (a rotation about the centre) and under the
+// reflection s -> -s about any cell, so its influence coefficients depend on |i_s - j_s|.
+// Grids of one row are uniform arcs. O(ns). Only geometry built as an arc passes: the patch
+// builder's reference curves are polylines of samples of the intermediate curve (tangents
+// constant per sample interval), and the intermediate curve of two arcs of different radii is no
+// arc (docs/speed.md, "Constant-curvature arcs").
+bool IsUniformArc(const PatchGrid& grid, double tolerance = kUniformArcTolerance);
 
 }  // namespace railwear

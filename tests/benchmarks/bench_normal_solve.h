@@ -10,14 +10,16 @@
 namespace railwear::bench {
 
 // Times operator construction plus SolveNormal on grid g (np's gap, weights, areas and load or
-// approach set by the caller; np.blocks is set here). Counters: cells, in_contact, iterations,
+// approach set by the caller; np.blocks is set here), the operator's structure along s as
+// `structure` asks (influence_operator.h). Counters: cells, in_contact, iterations,
 // converged, applies, pc_applies, p_max_MPa, Fn_kN. Returns the last solution.
 inline NormalSolution TimeNormalSolve(benchmark::State& state, const PatchGrid& g,
                                       const InfluenceSettings& settings, NormalProblem np,
-                                      const NormalSolverOptions& options) {
+                                      const NormalSolverOptions& options,
+                                      SectionStructure structure = SectionStructure::kAuto) {
   NormalSolution sol;
   for (auto _ : state) {
-    const auto op = MakeInfluenceOperator(g, settings);
+    const auto op = MakeInfluenceOperator(g, settings, OperatorProducts::kAuto, structure);
     np.blocks = {op.get()};
     sol = SolveNormal(np, options);
     benchmark::DoNotOptimize(sol.pressure_Pa.data());

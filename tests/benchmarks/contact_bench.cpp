@@ -5,8 +5,16 @@
 //                             so that ~55 % of the cells are in contact, like CONTACT's figures
 //                             (71 x 81 grid with 3,148 in contact; 575 x 647 with 201k).
 //  BM_ConformalSolve/nx/ns/pc 10 mm arc cross-section, the seed's kernel, gap of a 10 mm wheel
-//                             in a 10.25 mm groove; ~2,000 cells at 45 x 45.
-//  Both time operator construction plus the normal solve, prescribed load, one thread.
+//                             in a 10.25 mm groove; ~2,000 cells at 45 x 45. The arc is uniform
+//                             (IsUniformArc), so the operator is the 2-D FFT (issue 18 point 3).
+//  BM_ConformalSolveBlocks/nx/ns/pc  the same with the per-frequency blocks forced
+//                             (SectionStructure::kBlocks): what every curved grid used before.
+//  BM_ProfilePatchSolve/cell_um/pc  a real conformal patch: S1002 on UIC60 1:40 at the gauge
+//                             corner (shift -4 mm), the flange-side candidate's grid from
+//                             BuildPatchGrid (conformal, threshold 0.1 mm) with ds = cell_um and
+//                             dx chosen so that nx ~ ns; prescribed approach of half the
+//                             threshold; no uniform arc, so the blocks.
+//  All time operator construction plus the normal solve, one thread.
 //  BM_GaugeCorner/model/preset  the whole pipeline (SolveContact) on examples/gauge_corner.toml's
 //                             problem: S1002 on UIC60 1:40, shift -4 mm, 100 kN. model: 0 hertz,
 //                             1 halfspace, 2 conformal+boussinesq, 3 conformal+golubenko, 4 auto;
@@ -22,14 +30,18 @@
 //      ... --benchmark_format=json | python3 tests/benchmarks/scaling_exponent.py
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
 #include "core/contact/contact_solver.h"
 #include "core/contact/influence_operator.h"
 #include "core/contact/normal_solver.h"
+#include "core/geometry/patch_builder.h"
+#include "core/geometry/wheel_rail_geometry.h"
 #include "core/profile/builtin_profiles.h"
 #include "tests/benchmarks/bench_grids.h"
 #include "tests/benchmarks/bench_normal_solve.h"
@@ -49,7 +61,8 @@ PatchGrid MakeGrid(int nx, int ns, bool planar, double Rx, double Rs) {
   return g;
 }
 
-void Solve(benchmark::State& state, bool planar, KernelModel kernel, double Rx, double Rs) {
+void Solve(benchmark::State& state, bool planar, KernelModel kernel, double Rx, double Rs,
+           SectionStructure structure = SectionStructure::kAuto) {
   const int nx = static_cast<int>(state.range(0)), ns = static_cast<int>(state.range(1));
   const PatchGrid g = MakeGrid(nx, ns, planar, Rx, Rs);
   // Hertz load for contact semi-axes at 0.834 of the grid's half-sizes (~55 % of the cells).
@@ -66,7 +79,7 @@ void Solve(benchmark::State& state, bool planar, KernelModel kernel, double Rx, 
   NormalSolverOptions options;
   options.preconditioner =
       state.range(2) == 0 ? CgPreconditioner::kNone : CgPreconditioner::kInverseOperator;
-  bench::TimeNormalSolve(state, g, settings, np, options);
+  bench::TimeNormalSolve(state, g, settings, np, options, structure);
   state.SetLabel(std::string(ToString(options.preconditioner)));
 }
 
@@ -91,9 +104,18 @@ void BM_ConformalSolve(benchmark::State& state) {
 }
 BENCHMARK(BM_ConformalSolve)
     ->Apply([](benchmark::internal::Benchmark* b) {
-      for (int n : {20, 32, 45, 64, 90}) {
+      for (int n : {20, 32, 45, 64, 90, 128, 181, 256}) {
         for (int pc : {0, 1}) b->Args({n, n, pc});
       }
+    })
+    ->Unit(benchmark::kMillisecond);
+
+void BM_ConformalSolveBlocks(benchmark::State& state) {
+  Solve(state, /*planar=*/false, KernelModel::kGolubenko, 0.46, 0.41, SectionStructure::kBlocks);
+}
+BENCHMARK(BM_ConformalSolveBlocks)
+    ->Apply([](benchmark::internal::Benchmark* b) {
+      for (int n : {20, 32, 45, 64, 90, 128}) b->Args({n, n, 1});
     })
     ->Unit(benchmark::kMillisecond);
 
@@ -105,6 +127,55 @@ const Profile& Uic60Canted() {
   static const Profile p = ApplyCant(MakeUic60(), 1.0 / 40.0);
   return p;
 }
+
+// The flange-side conformal patch of S1002 on UIC60 1:40 at shift -4 mm (the candidate with the
+// steepest normal), ds = cell_m and dx such that nx ~ ns, zero yaw.
+PatchGrid ProfilePatchGrid(double cell_m) {
+  WheelPose pose;
+  pose.rolling_radius_m = 0.46;
+  pose.lateral_shift_m = -0.004;
+  const WheelRailGeometry geometry(S1002(), Uic60Canted(), pose);
+  const std::vector<ContactCandidate> candidates = geometry.FindCandidates(1e-4);
+  const ContactCandidate* flange = &candidates.at(0);
+  for (const ContactCandidate& c : candidates) {
+    if (c.normal.normalized().y() > flange->normal.normalized().y()) flange = &c;
+  }
+  PatchGridOptions o;
+  o.geometry = GeometryModel::kConformal;
+  o.threshold_m = 1e-4;
+  o.cell_ds_m = o.cell_dx_m = cell_m;
+  const PatchBuild first = BuildPatchGrid(geometry, *flange, o);
+  o.cell_dx_m = cell_m * first.grid.nx / first.grid.ns;  // lengths in ratio of the extents
+  const PatchBuild b = BuildPatchGrid(geometry, *flange, o);
+  if (!b.valid) throw std::runtime_error("ProfilePatchGrid: no grid");
+  return b.grid;
+}
+
+void BM_ProfilePatchSolve(benchmark::State& state) {
+  const PatchGrid g = ProfilePatchGrid(state.range(0) * 1e-6);
+  InfluenceSettings settings{KernelModel::kGolubenko, {}, kSteel, kSteel};
+  NormalProblem np;
+  np.gap_m = g.gap_m;
+  np.approach_weight.resize(g.cells());
+  for (int j = 0; j < g.ns; ++j) {
+    np.approach_weight.segment(j * g.nx, g.nx).setConstant(-g.normal_yz[j].y());
+  }
+  np.cell_area_m2 = Eigen::VectorXd::Constant(g.cells(), g.CellArea());
+  np.approach_m = 0.5e-4;
+  NormalSolverOptions options;
+  options.preconditioner =
+      state.range(1) == 0 ? CgPreconditioner::kNone : CgPreconditioner::kInverseOperator;
+  bench::TimeNormalSolve(state, g, settings, np, options);
+  state.counters["nx"] = g.nx;
+  state.counters["ns"] = g.ns;
+  state.counters["uniform_arc"] = IsUniformArc(g);
+  state.SetLabel(std::string(ToString(options.preconditioner)));
+}
+BENCHMARK(BM_ProfilePatchSolve)
+    ->Apply([](benchmark::internal::Benchmark* b) {
+      for (int cell_um : {280, 200, 140, 100, 70}) b->Args({cell_um, 1});
+    })
+    ->Unit(benchmark::kMillisecond);
 
 void BM_GaugeCorner(benchmark::State& state) {
   ContactProblem p;

@@ -1,7 +1,10 @@
 // Influence operators: construction time and Apply time against cell count.
 //
 // Planar grid + Boussinesq (the half-space model, 2-D FFT) and circular-arc cross-section of
-// radius 10 mm + Golubenko (the conformal model, x-FFT with an ns x ns block per frequency).
+// radius 10 mm + Golubenko (the conformal model): BM_CurvedGolubenko* with the x-FFT and an
+// ns x ns block per frequency forced (SectionStructure::kBlocks, what every curved grid used
+// before issue 18 point 3), BM_ArcGolubenko* as MakeInfluenceOperator chooses on the uniform
+// arc (the 2-D FFT, Toeplitz in s as well).
 // Grids are built directly (uniform line / arc, 0.1 mm cells, zero gap); E = 210 GPa,
 // nu = 0.28 for both bodies.
 //
@@ -68,22 +71,28 @@ void BM_PlanarBoussinesqApply(benchmark::State& state) {
   SetCounters(state, grid);
 }
 
-void BM_CurvedGolubenkoConstruct(benchmark::State& state) {
+void ArcConstruct(benchmark::State& state, SectionStructure structure) {
   const int n = static_cast<int>(state.range(0));
   const PatchGrid grid = MakeGrid(n, n, false);
   const InfluenceSettings settings = MakeSettings(KernelModel::kGolubenko);
   for (auto _ : state) {
-    auto op = MakeInfluenceOperator(grid, settings);
+    auto op = MakeInfluenceOperator(grid, settings, OperatorProducts::kAuto, structure);
     benchmark::DoNotOptimize(op.get());
   }
   SetCounters(state, grid);
 }
+void BM_CurvedGolubenkoConstruct(benchmark::State& state) {
+  ArcConstruct(state, SectionStructure::kBlocks);
+}
+void BM_ArcGolubenkoConstruct(benchmark::State& state) {
+  ArcConstruct(state, SectionStructure::kAuto);
+}
 
-void BM_CurvedGolubenkoApply(benchmark::State& state) {
+void ArcApply(benchmark::State& state, SectionStructure structure) {
   const int n = static_cast<int>(state.range(0));
   const PatchGrid grid = MakeGrid(n, n, false);
   const auto op = MakeInfluenceOperator(grid, MakeSettings(KernelModel::kGolubenko),
-                                        ProductsArg(state.range(1)));
+                                        ProductsArg(state.range(1)), structure);
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> pressure(0.0, 1e9);
   Eigen::VectorXd p(grid.cells()), u;
@@ -94,6 +103,10 @@ void BM_CurvedGolubenkoApply(benchmark::State& state) {
   }
   SetCounters(state, grid);
 }
+void BM_CurvedGolubenkoApply(benchmark::State& state) {
+  ArcApply(state, SectionStructure::kBlocks);
+}
+void BM_ArcGolubenkoApply(benchmark::State& state) { ArcApply(state, SectionStructure::kAuto); }
 
 // The dense reference on the same curved grids, for the speed-up figure.
 void BM_CurvedGolubenkoDenseApply(benchmark::State& state) {
@@ -144,6 +157,20 @@ BENCHMARK(BM_CurvedGolubenkoApply)
       for (int n : {20, 45, 60, 80, 100}) b->Args({n, 0});
       for (int n : {6, 8, 10, 11, 12, 13, 14, 16, 20, 25}) b->Args({n, 1});
       for (int n : {6, 8, 10, 11, 12, 13, 14, 16, 25}) b->Args({n, 0});
+    })
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ArcGolubenkoConstruct)
+    ->Arg(20)
+    ->Arg(45)
+    ->Arg(60)
+    ->Arg(80)
+    ->Arg(100)
+    ->Arg(181)
+    ->Arg(256)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ArcGolubenkoApply)
+    ->Apply([](benchmark::internal::Benchmark* b) {
+      for (int n : {20, 45, 60, 80, 100, 181, 256}) b->Args({n, 0});
     })
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CurvedGolubenkoDenseApply)->Arg(20)->Arg(45)->Unit(benchmark::kMillisecond);

@@ -3,6 +3,7 @@
 // the FFT operators against the dense reference.
 #include "core/contact/influence_operator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -552,6 +553,112 @@ TEST(InfluenceOperator, FarCellsUseTheFarFieldRuleInsideTheOperators) {
   const PatchGrid arc = MakeArcGrid(40, 24, 1e-4, 2e-4, 10e-3);
   ExpectFastEqualsDense(planar, MakeDissimilarSettings(KernelModel::kBoussinesq));
   ExpectFastEqualsDense(arc, MakeDissimilarSettings(KernelModel::kGolubenko));
+}
+
+// ----- uniform arcs: Toeplitz in s as well (issue 18 point 3) -----------------------------------
+
+// A fixed pseudo-random pressure field, a quarter of it unloaded.
+Eigen::VectorXd RandomPressure(int cells, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> pressure(0.0, 2e9);
+  Eigen::VectorXd p(cells);
+  for (int k = 0; k < p.size(); ++k) p[k] = pressure(rng);
+  p.head(p.size() / 4).setZero();
+  return p;
+}
+
+TEST(InfluenceOperator, UniformArcToeplitzEqualsBlocks) {
+  // On an arc the 2-D FFT (nx ns coefficients, from row 0's frame) and the per-frequency blocks
+  // (nx ns^2 coefficients, each from its source row's frame) are the same operator: products
+  // within kFastVersusDenseTolerance of each other (both are within it of the dense reference),
+  // the same diagonal.
+  struct Case {
+    int nx, ns;
+    double ds, radius;
+  };
+  const Case cases[] = {{12, 17, 4e-4, 10e-3},  // the curved FFT test's arc
+                        {40, 24, 2e-4, 10e-3},  // far-field pairs
+                        {20, 45, 1e-4, -5e-3},  // the other curvature sign, 52 degrees
+                        {11, 11, 2e-4, 10e-3},  // dense products (kAuto at 121 cells)
+                        {7, 2, 2e-4, 10e-3}};   // two rows
+  double worst = 0.0;
+  for (const Case& c : cases) {
+    const PatchGrid grid = MakeArcGrid(c.nx, c.ns, 2e-4, c.ds, c.radius);
+    ASSERT_EQ(ChooseSectionStructure(grid), SectionStructure::kToeplitzXs);
+    for (KernelModel kernel : {KernelModel::kBoussinesq, KernelModel::kGolubenko}) {
+      SCOPED_TRACE(::testing::Message() << "nx=" << c.nx << " ns=" << c.ns << " R=" << c.radius
+                                        << " " << ToString(kernel));
+      const InfluenceSettings settings = MakeDissimilarSettings(kernel);
+      const auto toeplitz = MakeInfluenceOperator(grid, settings);
+      const auto blocks =
+          MakeInfluenceOperator(grid, settings, OperatorProducts::kAuto, SectionStructure::kBlocks);
+      for (unsigned seed : {1u, 2u}) {
+        const Eigen::VectorXd p = RandomPressure(grid.cells(), seed);
+        Eigen::VectorXd u_toeplitz, u_blocks;
+        toeplitz->Apply(p, &u_toeplitz);
+        blocks->Apply(p, &u_blocks);
+        const double difference =
+            (u_toeplitz - u_blocks).cwiseAbs().maxCoeff() / u_blocks.cwiseAbs().maxCoeff();
+        worst = std::max(worst, difference);
+        EXPECT_LT(difference, kFastVersusDenseTolerance);
+      }
+      for (int k = 0; k < grid.cells(); ++k) {
+        EXPECT_NEAR(toeplitz->Diagonal(k), blocks->Diagonal(k),
+                    kFastVersusDenseTolerance * blocks->Diagonal(k));
+      }
+    }
+  }
+  std::cout << "[ figures  ] uniform arcs: largest relative difference of the 2-D FFT's products "
+               "from the blocks' "
+            << worst << "\n";
+}
+
+TEST(InfluenceOperator, NonCircularSectionKeepsTheBlockPath) {
+  // The parabola of CurvedFftEqualsDenseOnNonCircularSection: kAuto builds the blocks, bit for
+  // bit the operator that kBlocks forces.
+  PatchGrid g = MakePlanarGrid(16, 14, 2.5e-4, 4e-4);
+  g.planar = false;
+  for (int j = 0; j < g.ns; ++j) {
+    const double y = g.S(j);
+    g.point_yz_m[j] = {y, y * y / (2.0 * 8e-3)};
+    g.tangent_yz[j] = Eigen::Vector2d(1.0, y / 8e-3).normalized();
+    g.normal_yz[j] = {g.tangent_yz[j].y(), -g.tangent_yz[j].x()};
+  }
+  EXPECT_EQ(ChooseSectionStructure(g), SectionStructure::kBlocks);
+  const InfluenceSettings settings = MakeDissimilarSettings(KernelModel::kGolubenko);
+  const auto automatic = MakeInfluenceOperator(g, settings);
+  const auto blocks =
+      MakeInfluenceOperator(g, settings, OperatorProducts::kAuto, SectionStructure::kBlocks);
+  const Eigen::VectorXd p = RandomPressure(g.cells(), 3);
+  Eigen::VectorXd u_auto, u_blocks, z_auto, z_blocks;
+  automatic->Apply(p, &u_auto);
+  blocks->Apply(p, &u_blocks);
+  EXPECT_EQ(u_auto, u_blocks);
+  ASSERT_TRUE(automatic->ApplyPreconditioner(u_auto, &z_auto));
+  ASSERT_TRUE(blocks->ApplyPreconditioner(u_auto, &z_blocks));
+  EXPECT_EQ(z_auto, z_blocks);
+  // An arc off by one point moved 1e-9 of a cell is off the 2-D path too.
+  PatchGrid arc = MakeArcGrid(16, 14, 2e-4, 4e-4, 10e-3);
+  ASSERT_EQ(ChooseSectionStructure(arc), SectionStructure::kToeplitzXs);
+  arc.point_yz_m[6] += 1e-9 * arc.ds_m * arc.normal_yz[6];
+  EXPECT_EQ(ChooseSectionStructure(arc), SectionStructure::kBlocks);
+  // One row is a uniform arc but keeps its 1 x 1 blocks (the patch builder makes such grids).
+  const PatchGrid row = MakeArcGrid(9, 1, 2e-4, 4e-4, 10e-3);
+  EXPECT_EQ(ChooseSectionStructure(row), SectionStructure::kBlocks);
+  EXPECT_EQ(ChooseSectionStructure(row, SectionStructure::kToeplitzXs),
+            SectionStructure::kToeplitzXs);
+  // Planar grids keep the 2-D path; kBlocks is honoured on any grid.
+  const PatchGrid flat = MakePlanarGrid(6, 7, 2e-4, 3e-4, -0.5);
+  EXPECT_EQ(ChooseSectionStructure(flat), SectionStructure::kToeplitzXs);
+  EXPECT_EQ(ChooseSectionStructure(flat, SectionStructure::kBlocks), SectionStructure::kBlocks);
+}
+
+TEST(InfluenceOperatorDeathTest, ToeplitzInSOnANonCircularSectionAborts) {
+  PatchGrid g = MakeArcGrid(4, 5, 2e-4, 4e-4, 10e-3);
+  g.point_yz_m[2].y() += 1e-6;  // off the arc
+  EXPECT_DEATH(MakeInfluenceOperator(g, MakeSettings(KernelModel::kBoussinesq),
+                                     OperatorProducts::kAuto, SectionStructure::kToeplitzXs),
+               "internal check failed");
 }
 
 // ----- approximate inverses ------------------------------------------------------------------
