@@ -7,7 +7,9 @@
 # curving without an equilibrium on the worn rails: the log's last line says why) is reported up
 # to its last stored step L, at 1, (1 + L) / 2 and L MGT. Too long for a test (tens of minutes).
 #   usage: tests/tools/traffic_study.sh [RAILWEAR] [WORKDIR] [MGT]
-#   (TRAFFIC_STUDY_REUSE=1: analyse WORKDIR/traffic.sqlite of an earlier run without running)
+#   (TRAFFIC_STUDY_REUSE=1: analyse WORKDIR/traffic.sqlite of an earlier run without running;
+#    TRAFFIC_STUDY_SPREAD=adaptive: the adaptive spread rule at its default tolerance instead of the
+#    scene's 3 fixed nodes, TRAFFIC_STUDY_SPREAD=N: N fixed Gauss-Hermite nodes; docs/wear.md)
 set -euo pipefail
 bin=${1:-build/app/railwear}
 work=${2:-$(mktemp -d)}
@@ -15,7 +17,15 @@ total=${3:-10}
 here=$(cd "$(dirname "$0")/../.." && pwd)
 mkdir -p "$work"
 scene="$work/traffic.toml"
-awk -v t="$total" '/^total_MGT = / { print "total_MGT = " t; next } { print }' \
+spread=${TRAFFIC_STUDY_SPREAD:-}
+case "$spread" in
+  "") rule="quadrature_points = 3" ;;
+  adaptive) rule="integration_tolerance = 0.005" ;;
+  *[!0-9]*) echo "TRAFFIC_STUDY_SPREAD = '$spread': expected 'adaptive' or a node count" >&2; exit 2 ;;
+  *) rule="quadrature_points = $spread" ;;
+esac
+awk -v t="$total" -v r="$rule" '/^total_MGT = / { print "total_MGT = " t; next }
+  /^quadrature_points = / { print r; next } { print }' \
   "$here/examples/curve_r600_vehicles.toml" > "$scene"
 db="$work/traffic.sqlite"
 if [ "${TRAFFIC_STUDY_REUSE:-0}" != 1 ]; then
