@@ -827,8 +827,13 @@ std::string NormalSolverOptions::Validate() const {
   return msg.str();
 }
 
-NormalSolution SolveNormal(const NormalProblem& problem, const NormalSolverOptions& options) {
+NormalSolution SolveNormal(const NormalProblem& problem, const NormalSolverOptions& options,
+                           const Eigen::VectorXd* start) {
   ValidateProblem(problem, options);
+  RAILWEAR_CHECK(start == nullptr || (start->size() == problem.gap_m.size() &&
+                                       start->allFinite() && start->minCoeff() >= 0.0));
+  // A start that carries nothing has no shape to begin from: the initial guess instead.
+  if (start != nullptr && !(start->maxCoeff() > 0.0)) start = nullptr;
   const double min_ratio = (problem.gap_m.array() / problem.approach_weight.array()).minCoeff();
   if (problem.force_N) {
     if (*problem.force_N <= 0.0) {
@@ -837,11 +842,11 @@ NormalSolution SolveNormal(const NormalProblem& problem, const NormalSolverOptio
       return NoContact(problem, min_ratio, msg.str());
     }
     PkSolver solver(problem, options);
-    if (!problem.pressure_limit_Pa) return solver.SolveForLoad(*problem.force_N);
+    if (!problem.pressure_limit_Pa) return solver.SolveForLoad(*problem.force_N, start);
     // With a limit: the elastic solve first (unchanged, and the answer when its peak stays
     // below the limit), the bounded one from there.
     solver.SetLimit(std::numeric_limits<double>::infinity());
-    NormalSolution elastic = solver.SolveForLoad(*problem.force_N);
+    NormalSolution elastic = solver.SolveForLoad(*problem.force_N, start);
     if (elastic.status != SolverStatus::kConverged ||
         !(elastic.pressure_Pa.maxCoeff() > *problem.pressure_limit_Pa)) {
       return elastic;
@@ -856,9 +861,9 @@ NormalSolution SolveNormal(const NormalProblem& problem, const NormalSolverOptio
     return NoContact(problem, delta, msg.str());
   }
   PkSolver solver(problem, options);
-  if (!problem.pressure_limit_Pa) return solver.SolveForApproach(delta);
+  if (!problem.pressure_limit_Pa) return solver.SolveForApproach(delta, start);
   solver.SetLimit(std::numeric_limits<double>::infinity());
-  NormalSolution elastic = solver.SolveForApproach(delta);
+  NormalSolution elastic = solver.SolveForApproach(delta, start);
   if (elastic.status != SolverStatus::kConverged ||
       !(elastic.pressure_Pa.maxCoeff() > *problem.pressure_limit_Pa)) {
     return elastic;

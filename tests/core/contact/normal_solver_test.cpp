@@ -251,8 +251,37 @@ TEST(NormalSolver, LoadAndApproachAgree) {
   EXPECT_LE((t.pressure_Pa - s.pressure_Pa).cwiseAbs().maxCoeff(), 1e-8 * s.pressure_Pa.maxCoeff());
 }
 
-// ---------------------------------------------------------------------------------------------
-// Properties.
+TEST(NormalSolver, AStartNearTheSolutionGivesItInFewerIterations) {
+  // What the vertical balance does (normal_tangential_stage.cpp): the load target moves by a
+  // few per cent and the next solve starts from the last pressures. The same problem solved
+  // from the initial guess and from the nearby solution agree to the solver's tolerance (the
+  // 1e-8 of LoadAndApproachAgree: two solutions each within 1e-10 of the gap scale).
+  const GridCase g = MakeHertzGrid(10, 1.5);
+  const FlatBoussinesqOperator op(g.nx, g.ny, g.dx, g.dy, CompliancePerPa());
+  NormalProblem pr = MakeQuadraticProblem(g, &op);
+  pr.force_N = kForce;
+  const NormalSolution near = SolveNormal(pr);
+  ASSERT_EQ(near.status, SolverStatus::kConverged) << near.message;
+  for (const double load : {1.03 * kForce, 0.97 * kForce}) {
+    NormalProblem moved = pr;
+    moved.force_N = load;
+    const NormalSolution cold = SolveNormal(moved);
+    const NormalSolution warm = SolveNormal(moved, {}, &near.pressure_Pa);
+    ASSERT_EQ(cold.status, SolverStatus::kConverged) << cold.message;
+    ASSERT_EQ(warm.status, SolverStatus::kConverged) << warm.message;
+    EXPECT_LE((warm.pressure_Pa - cold.pressure_Pa).cwiseAbs().maxCoeff(),
+              1e-8 * cold.pressure_Pa.maxCoeff());
+    EXPECT_NEAR(warm.force_N, load, kLoadRelTol * load);
+    EXPECT_LT(warm.iterations, cold.iterations);
+    ExpectComplementarity(moved, warm, NormalSolverOptions{}.tolerance);
+    std::printf("[ measured ] load %+.0f %%: %d iterations from the initial guess, %d from the "
+                "nearby solution\n",
+                100.0 * (load / kForce - 1.0), cold.iterations, warm.iterations);
+  }
+  // A start that carries nothing is no start: the initial guess's solve, exactly.
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(pr.gap_m.size());
+  EXPECT_EQ(SolveNormal(pr, {}, &zero).pressure_Pa, near.pressure_Pa);
+}
 
 TEST(NormalSolver, SymmetricGapGivesSymmetricPressure) {
   for (int nx_extra : {0, 1}) {  // even and odd cell counts
