@@ -700,7 +700,7 @@ void ReadWearTable(const Fields& top, Scene* scene) {
     if (*v != std::floor(*v)) t.Fail(key, fmt::format("a whole number from {} to {}", lo, hi));
     return static_cast<int>(*v);
   };
-  o.quadrature_points = whole("quadrature_points", 1, 20, o.quadrature_points);
+  o.quadrature_points = whole("quadrature_points", 1, kMaxQuadraturePoints, o.quadrature_points);
   // The spread rule: fixed Gauss-Hermite nodes when the scene gives quadrature_points, else the
   // adaptive rule at its tolerance (default kDefaultIntegrationTolerance).
   const std::optional<double> tolerance =

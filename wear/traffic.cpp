@@ -8,6 +8,7 @@
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
 #include "wear/collective_traffic.h"
+#include "wear/spread_integration.h"
 
 namespace railwear {
 
@@ -23,8 +24,11 @@ bool TrafficCase::RunsOn(RailSide side) const {
   return rail == side;
 }
 
+static_assert(kMaxQuadraturePoints == kMaxSpreadNodes,
+              "fixed rules as fine as the adaptive rule's finest spread (traffic.h)");
+
 void GaussHermiteProbabilists(int n, std::vector<double>* nodes, std::vector<double>* weights) {
-  RAILWEAR_CHECK(n >= 1 && n <= 20);
+  RAILWEAR_CHECK(n >= 1 && n <= kMaxQuadraturePoints);
   // Golub-Welsch: the Jacobi matrix of the monic probabilists' Hermite polynomials has zero
   // diagonal and off-diagonal sqrt(k); nodes are its eigenvalues, weights the squared first
   // components of its normalised eigenvectors (the total mass of N(0,1) is 1).
@@ -107,9 +111,9 @@ void ValidateTraffic(const std::vector<TrafficCase>& traffic) {
 }
 
 void ValidateQuadraturePoints(int quadrature_points) {
-  if (quadrature_points < 1 || quadrature_points > 20) {
-    throw InputError(
-        fmt::format("wear: quadrature_points = {}: expected 1 to 20", quadrature_points));
+  if (quadrature_points < 1 || quadrature_points > kMaxQuadraturePoints) {
+    throw InputError(fmt::format("wear: quadrature_points = {}: expected 1 to {}",
+                                 quadrature_points, kMaxQuadraturePoints));
   }
 }
 

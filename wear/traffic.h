@@ -151,8 +151,13 @@ inline RailSide RailOfWheel(int wheel) { return (wheel - 1) % 2 == 0 ? RailSide:
 // "ENTRY / wheelset W high" (or low).
 std::string WheelName(const TrafficCase& entry, int wheel);
 
+// The most fixed Gauss-Hermite nodes per spread: as many as the adaptive rule's most nodes per
+// spread (kMaxSpreadNodes, wear/spread_integration.h), so that fixed rules as fine as the adaptive
+// one can be compared with it (issue 16's studies of 15, 20 and 30 fixed nodes). Was 20.
+inline constexpr int kMaxQuadraturePoints = 41;
+
 // Nodes x_k and weights w_k (sum 1) with E[f(X)] ~ sum_k w_k f(x_k) for X ~ N(0, 1), exact for
-// polynomials up to degree 2n - 1. n in [1, 20].
+// polynomials up to degree 2n - 1. n in [1, kMaxQuadraturePoints].
 void GaussHermiteProbabilists(int n, std::vector<double>* nodes, std::vector<double>* weights);
 
 // Checks every entry (positive loads, radii, speeds, friction, shares; std >= 0; finite values;
@@ -160,7 +165,8 @@ void GaussHermiteProbabilists(int n, std::vector<double>* nodes, std::vector<dou
 // and throws InputError naming the entry and the value.
 void ValidateTraffic(const std::vector<TrafficCase>& traffic);
 
-// Throws InputError unless quadrature_points (Gauss-Hermite nodes per entry) is 1 to 20.
+// Throws InputError unless quadrature_points (Gauss-Hermite nodes per entry) is 1 to
+// kMaxQuadraturePoints.
 void ValidateQuadraturePoints(int quadrature_points);
 
 // The load cases of the mix's prescribed entries (vehicle entries give theirs in the wear step,

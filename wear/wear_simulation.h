@@ -77,7 +77,8 @@ struct WearOptions {
   // where the response changes until the step's worn area per pass of every rail is converged
   // to this relative tolerance, in [1e-4, 0.1] (scenes: 0.005 unless they give quadrature_points).
   std::optional<double> integration_tolerance;
-  // Gauss-Hermite nodes per traffic entry with a lateral spread, 1..20 (the fixed rule).
+  // Gauss-Hermite nodes per traffic entry with a lateral spread, 1..kMaxQuadraturePoints (41;
+  // the fixed rule).
   int quadrature_points = 5;
   // Width of the arc-length bins the wear depth is collected on [m], > 0.
   double bin_m = 1e-4;

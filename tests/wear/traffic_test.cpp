@@ -11,8 +11,11 @@ namespace railwear {
 namespace {
 
 TEST(TrafficTest, GaussHermiteIntegratesNormalMoments) {
-  // E[X^2k] of N(0,1) = (2k-1)!!; an n-point rule is exact up to degree 2n-1.
-  for (int n = 1; n <= 9; ++n) {
+  // E[X^2k] of N(0,1) = (2k-1)!!; an n-point rule is exact up to degree 2n-1. Up to the most
+  // fixed nodes a scene takes (kMaxQuadraturePoints, 41: Golub-Welsch stays accurate there).
+  std::vector<int> counts = {15, 20, 30, kMaxQuadraturePoints};
+  for (int n = 1; n <= 9; ++n) counts.push_back(n);
+  for (const int n : counts) {
     std::vector<double> x, w;
     GaussHermiteProbabilists(n, &x, &w);
     double moment[10] = {};
@@ -127,6 +130,8 @@ TEST(TrafficTest, BadEntriesNameTheKey) {
   }
   EXPECT_THROW(ExpandTraffic({}, 5), InputError);
   EXPECT_THROW(ExpandTraffic({MakeCase(1.0, 1.0)}, 0), InputError);
+  EXPECT_THROW(ValidateQuadraturePoints(kMaxQuadraturePoints + 1), InputError);
+  EXPECT_NO_THROW(ValidateQuadraturePoints(kMaxQuadraturePoints));
 }
 
 }  // namespace
