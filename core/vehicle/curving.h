@@ -34,6 +34,11 @@
 // or when a probe within the position tolerances along the Newton direction reverses the sign of
 // every residual above the tolerance (a step in the contact forces, as the worn gauge corner's
 // contact switches between one and two patches: converged in position at the step);
+// when the line search and the Levenberg-Marquardt trials fail above 3x and within 20x the
+// tolerance, a natural-level step (accepted when the trial is nearer the equilibrium in
+// position: its simplified Newton correction shorter than the step) crosses a step in the
+// contact forces that no residual-reducing step crosses, and ends the solve converged in
+// position when that correction is within the position tolerances;
 // otherwise one retry with 4x wider finite differences; and a draft solve stalled within 20x the
 // tolerance goes on once on the standard grid (docs/curving.md).
 // A start with its Jacobian (CurvingStart) uses that Jacobian as the first chord and goes to the
