@@ -52,24 +52,36 @@ std::optional<FastsimMarch> FastsimMarchFromString(std::string_view s) {
 }
 
 bool FastsimOptions::IsValid(std::string* error) const {
+  // The checks first, the message only for a failed one: SolveFastsim validates its options on
+  // every call, and an ostringstream per call was a few per cent of the fast tread path's time.
+  const bool shear_ok = std::isfinite(shear_modulus_Pa) && shear_modulus_Pa > 0.0;
+  const bool poisson_ok =
+      std::isfinite(poisson_ratio) && poisson_ratio >= 0.0 && poisson_ratio <= 0.5;
+  const bool ax_ok = !semi_axis_x_m || (std::isfinite(*semi_axis_x_m) && *semi_axis_x_m > 0.0);
+  const bool as_ok = !semi_axis_s_m || (std::isfinite(*semi_axis_s_m) && *semi_axis_s_m > 0.0);
+  const bool creep_ok = !((xi && !std::isfinite(*xi)) || (eta && !std::isfinite(*eta)) ||
+                          (phi_per_m && !std::isfinite(*phi_per_m)));
+  const bool blend_ok = !blend_flexibilities || flexibility == FlexibilityModel::kThree;
+  if (shear_ok && poisson_ok && ax_ok && as_ok && creep_ok && blend_ok) {
+    if (error != nullptr) error->clear();
+    return true;
+  }
   std::ostringstream msg;
-  if (!std::isfinite(shear_modulus_Pa) || shear_modulus_Pa <= 0.0) {
+  if (!shear_ok) {
     msg << "shear_modulus_Pa = " << shear_modulus_Pa << ", expected finite > 0";
-  } else if (!std::isfinite(poisson_ratio) || poisson_ratio < 0.0 || poisson_ratio > 0.5) {
+  } else if (!poisson_ok) {
     msg << "poisson_ratio = " << poisson_ratio << ", expected in [0, 0.5]";
-  } else if (semi_axis_x_m && !(std::isfinite(*semi_axis_x_m) && *semi_axis_x_m > 0.0)) {
+  } else if (!ax_ok) {
     msg << "semi_axis_x_m = " << *semi_axis_x_m << ", expected finite > 0";
-  } else if (semi_axis_s_m && !(std::isfinite(*semi_axis_s_m) && *semi_axis_s_m > 0.0)) {
+  } else if (!as_ok) {
     msg << "semi_axis_s_m = " << *semi_axis_s_m << ", expected finite > 0";
-  } else if ((xi && !std::isfinite(*xi)) || (eta && !std::isfinite(*eta)) ||
-             (phi_per_m && !std::isfinite(*phi_per_m))) {
+  } else if (!creep_ok) {
     msg << "patch-average creepages xi, eta, phi_per_m must be finite";
-  } else if (blend_flexibilities && flexibility != FlexibilityModel::kThree) {
+  } else {
     msg << "blend_flexibilities needs flexibility = three, got " << ToString(flexibility);
   }
-  const std::string text = msg.str();
-  if (error != nullptr) *error = text;
-  return text.empty();
+  if (error != nullptr) *error = msg.str();
+  return false;
 }
 
 CombinedElastic CombineElastic(const Material& a, const Material& b) {
@@ -80,8 +92,11 @@ CombinedElastic CombineElastic(const Material& a, const Material& b) {
 
 namespace {
 
-void Require(bool ok, const std::string& what) {
-  if (!ok) throw std::invalid_argument("SolveFastsim: " + what);
+// what() makes the message, only when the check fails (SolveFastsim checks its input on every
+// call; formatting the numbers each time was a few per cent of the fast tread path's time).
+template <class Message>
+void Require(bool ok, const Message& what) {
+  if (!ok) throw std::invalid_argument("SolveFastsim: " + what());
 }
 
 }  // namespace
@@ -121,23 +136,29 @@ void CheckFastsimInput(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa
                        const RollingInput& in, const FastsimOptions& opt) {
   const int n = grid.cells();
   Require(grid.nx > 0 && grid.ns > 0 && grid.dx_m > 0.0 && grid.ds_m > 0.0,
-          "grid must have nx, ns >= 1 and dx, ds > 0");
-  Require(static_cast<int>(grid.tangent_yz.size()) == grid.ns,
-          "grid.tangent_yz has " + std::to_string(grid.tangent_yz.size()) +
-              " entries, expected ns = " + std::to_string(grid.ns));
-  Require(pressure_Pa.size() == n, "pressure has " + std::to_string(pressure_Pa.size()) +
-                                       " cells, expected " + std::to_string(n));
-  Require(in.creep_x.size() == n && in.creep_s.size() == n,
-          "creep_x/creep_s have " + std::to_string(in.creep_x.size()) + "/" +
-              std::to_string(in.creep_s.size()) + " cells, expected " + std::to_string(n));
+          [] { return std::string("grid must have nx, ns >= 1 and dx, ds > 0"); });
+  Require(static_cast<int>(grid.tangent_yz.size()) == grid.ns, [&] {
+    return "grid.tangent_yz has " + std::to_string(grid.tangent_yz.size()) +
+           " entries, expected ns = " + std::to_string(grid.ns);
+  });
+  Require(pressure_Pa.size() == n, [&] {
+    return "pressure has " + std::to_string(pressure_Pa.size()) + " cells, expected " +
+           std::to_string(n);
+  });
+  Require(in.creep_x.size() == n && in.creep_s.size() == n, [&] {
+    return "creep_x/creep_s have " + std::to_string(in.creep_x.size()) + "/" +
+           std::to_string(in.creep_s.size()) + " cells, expected " + std::to_string(n);
+  });
   Require(pressure_Pa.allFinite() && in.creep_x.allFinite() && in.creep_s.allFinite(),
-          "pressure and creepages must be finite");
-  Require(std::isfinite(in.speed_m_s) && in.speed_m_s > 0.0,
-          "speed_m_s = " + std::to_string(in.speed_m_s) + ", expected > 0");
-  Require(std::isfinite(in.friction) && in.friction > 0.0,
-          "friction = " + std::to_string(in.friction) + ", expected > 0");
+          [] { return std::string("pressure and creepages must be finite"); });
+  Require(std::isfinite(in.speed_m_s) && in.speed_m_s > 0.0, [&] {
+    return "speed_m_s = " + std::to_string(in.speed_m_s) + ", expected > 0";
+  });
+  Require(std::isfinite(in.friction) && in.friction > 0.0, [&] {
+    return "friction = " + std::to_string(in.friction) + ", expected > 0";
+  });
   std::string error;
-  Require(opt.IsValid(&error), "options: " + error);
+  Require(opt.IsValid(&error), [&] { return "options: " + error; });
 }
 
 // Steps 1 and 2 of SolveFastsim on the contact region: the patch's normal force, centroid and

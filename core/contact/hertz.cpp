@@ -30,11 +30,37 @@ constexpr double kNearCircleRatio = 1e-6;
 constexpr double kAxisRatioRelTol = 1e-14;
 constexpr int kMaxRootIterations = 200;
 
+// K(m) and E(m) together, bit for bit internal::CompleteEllipticK and CompleteEllipticE: below
+// k^2 = 1 - sqrt(eps) GSL's Kcomp(k) is Carlson's R_F(0, 1 - k^2, 1) and its Ecomp(k) is
+// R_F - k^2/3 R_D of the same arguments, so one R_F serves both (above it, their series, from
+// the two functions as before). The axis ratio's root finder calls this a dozen times per Hertz
+// shape; sharing R_F saves a third of its elliptic-integral time. (Checked against Kcomp and
+// Ecomp on 2e6 values of m in [0, 1), down to 1 - 1e-16: all equal.)
+void CompleteEllipticKE(double m, double* K, double* E) {
+  (void)kGslHandlerOff;
+  const double k = std::sqrt(m);
+  if (!(k * k < 1.0 - GSL_SQRT_DBL_EPSILON)) {
+    *K = internal::CompleteEllipticK(m);
+    *E = internal::CompleteEllipticE(m);
+    return;
+  }
+  const double y = 1.0 - k * k;
+  gsl_sf_result rf, rd;
+  const int rf_status = gsl_sf_ellint_RF_e(0.0, y, 1.0, GSL_PREC_DOUBLE, &rf);
+  const int rd_status = gsl_sf_ellint_RD_e(0.0, y, 1.0, GSL_PREC_DOUBLE, &rd);
+  if (rf_status != GSL_SUCCESS || rd_status != GSL_SUCCESS) {
+    throw std::runtime_error("elliptic integrals K, E(m = " + std::to_string(m) + ") failed: " +
+                             gsl_strerror(rf_status != GSL_SUCCESS ? rf_status : rd_status));
+  }
+  *K = rf.val;
+  *E = rf.val - k * k / 3.0 * rd.val;
+}
+
 // (larger curvature)/(smaller curvature) as a function of g = b/a (reference README §1).
 double CurvatureRatio(double g) {
   const double m = (1.0 - g) * (1.0 + g);  // e^2, without cancellation near g = 1
-  const double k = internal::CompleteEllipticK(m);
-  const double e = internal::CompleteEllipticE(m);
+  double k = 0.0, e = 0.0;
+  CompleteEllipticKE(m, &k, &e);
   return (e / (g * g) - k) / (k - e);
 }
 
@@ -146,8 +172,7 @@ HertzShape::HertzShape(double A_per_m, double B_per_m) : A_per_m_(A_per_m), B_pe
   const double large = std::max(A_per_m, B_per_m);
   g_ = internal::HertzAxisRatio(large / small);
   const double m = (1.0 - g_) * (1.0 + g_);
-  k_ = internal::CompleteEllipticK(m);
-  e_ = internal::CompleteEllipticE(m);
+  CompleteEllipticKE(m, &k_, &e_);
 }
 
 HertzSolution HertzShape::Solve(double contact_modulus_Pa, double force_N) const {

@@ -73,6 +73,24 @@ int Stride(const Profile& profile) {
   return std::max(1, static_cast<int>(std::lround(kEnvelopeStep_m / spacing)));
 }
 
+// A profile's point, unit tangent, left normal and curvature at s from one evaluation of its
+// splines: bit for bit Profile::Position, Tangent, LeftNormal and Curvature (profile.cpp), which
+// evaluate them once each (the conformity check below takes all four at ten points).
+struct ProfileFrame {
+  Eigen::Vector2d position, tangent, left_normal;
+  double curvature = 0.0;
+};
+ProfileFrame FrameAt(const Profile& profile, double s) {
+  ProfileFrame f;
+  Eigen::Vector2d d1, d2;
+  profile.Evaluate(s, &f.position, &d1, &d2);
+  f.tangent = d1.normalized();
+  f.left_normal = {-f.tangent.y(), f.tangent.x()};
+  const double speed = d1.norm();
+  f.curvature = (d1.x() * d2.y() - d1.y() * d2.x()) / (speed * speed * speed);
+  return f;
+}
+
 // The rail's upper envelope on every Stride(rail)-th point (and the last), on a lateral grid of
 // kEnvelopeStep_m: its z and the rail parameter under it (the exact top's search starts there),
 // and the rail's orientation. A pure function of the rail profile, so one is kept per rail and
@@ -151,6 +169,7 @@ class TreadGeometry {
         sr_(std::sin(pose.roll_rad)),
         cy_(std::cos(pose.yaw_rad)),
         sy_(std::sin(pose.yaw_rad)),
+        tan_yaw_(std::tan(pose.yaw_rad)),
         envelope_(RailEnvelopeOf(rail)) {
     // The wheel's orientation as CurveLocator's: outward at its lowest point is +z.
     const auto& wp = wheel.points();
@@ -187,7 +206,7 @@ class TreadGeometry {
   Silhouette SilhouetteOf(const Eigen::Vector2d& p_W, const Eigen::Vector2d& n_W) const {
     Silhouette out;
     const double r0 = pose_.rolling_radius_m;
-    const double sin_t = YawedWheelSection::SinTheta(n_W, pose_.yaw_rad);
+    const double sin_t = YawedWheelSection::SinThetaFromTan(n_W, tan_yaw_);
     const double cos_t = std::sqrt(1.0 - sin_t * sin_t);
     const double r = r0 + p_W.y();
     const Eigen::Vector2d q(r * sin_t * sy_ + p_W.x() * cy_, r * cos_t - r0);
@@ -197,10 +216,32 @@ class TreadGeometry {
     out.sin_theta = sin_t;
     return out;
   }
-  Silhouette WheelAt(double s) const {
+  // d1 (optional out): the wheel profile's derivative there, Profile::Derivative's value.
+  Silhouette WheelAt(double s, Eigen::Vector2d* d1_out = nullptr) const {
     Eigen::Vector2d p, d1;
     wheel_.Evaluate(s, &p, &d1, nullptr);
+    if (d1_out) *d1_out = d1;
     return SilhouetteOf(p, wheel_sign_ * Eigen::Vector2d(-d1.y(), d1.x()).normalized());
+  }
+
+  // True when the silhouette point of the wheel-profile point p_W lies off the rail envelope's
+  // lateral extent whatever its normal (CoarseTop would give +inf there), decided without the
+  // normal: with sin(theta) = 0 the point's y in R is cr (y_W cy) - sr z_W + shift, and the
+  // silhouette moves it by cr r sin(theta) sy - sr r (cos(theta) - 1), at most
+  // r (|cr sy| kMaxSinTheta + |sr| (1 - cos(asin(kMaxSinTheta)))); kOffRailSlack_m covers the
+  // rounding. *y_R: that estimate of its y [m].
+  bool OffRail(const Eigen::Vector2d& p_W, double* y_R) const {
+    constexpr double kOffRailSlack_m = 1e-9;
+    const double r = std::abs(pose_.rolling_radius_m + p_W.y());
+    const double s = YawedWheelSection::kMaxSinTheta;
+    const double margin =
+        r * (std::abs(cr_ * sy_) * s + std::abs(sr_) * (1.0 - std::sqrt(1.0 - s * s))) +
+        kOffRailSlack_m;
+    const double y = cr_ * (p_W.x() * cy_) - sr_ * p_W.y() + pose_.lateral_shift_m;
+    *y_R = y;
+    const double y_lo = envelope_->y0_m;
+    const double y_hi = y_lo + kEnvelopeStep_m * static_cast<double>(envelope_->top_z_m.size() - 1);
+    return y + margin < y_lo || y - margin > y_hi;
   }
 
   // The rail envelope's z at y (linear between its samples), +inf off the rail.
@@ -247,7 +288,7 @@ class TreadGeometry {
   const Profile& wheel_;
   const Profile& rail_;
   WheelPose pose_;
-  double cr_, sr_, cy_, sy_;
+  double cr_, sr_, cy_, sy_, tan_yaw_;
   std::shared_ptr<const RailEnvelope> envelope_;
   double wheel_sign_ = 1.0;
 };
@@ -272,7 +313,21 @@ TreadPlacement Place(const TreadGeometry& g) {
   const int n = static_cast<int>(wp.size());
   const int stride = Stride(wheel);
   int& best = out.best;
+  const size_t samples = static_cast<size_t>(n / stride + 2);
+  out.knot.reserve(samples);
+  out.coarse_gap.reserve(samples);
+  out.coarse_y.reserve(samples);
   for (int i = 0; i < n; i += std::min(stride, std::max(1, n - 1 - i))) {
+    // Wheel points off the rail's lateral extent have no gap (+inf, as CoarseTop gives them);
+    // their y (never read where the gap is infinite) is the estimate OffRail makes.
+    double y_off = 0.0;
+    if (g.OffRail(wp[i], &y_off)) {
+      out.knot.push_back(i);
+      out.coarse_gap.push_back(kInf);
+      out.coarse_y.push_back(y_off);
+      if (i == n - 1) break;
+      continue;
+    }
     const Eigen::Vector2d t = wp[std::min(i + 1, n - 1)] - wp[std::max(i - 1, 0)];
     const Eigen::Vector2d normal = g.wheel_sign() * Eigen::Vector2d(-t.y(), t.x()).normalized();
     const auto w = g.SilhouetteOf(wp[i], normal);
@@ -310,16 +365,17 @@ ContactCandidate CandidateOf(const TreadGeometry& g, const TreadPlacement& pl) {
   ContactCandidate c;
   const Profile& rail = g.rail();
   const Profile& wheel = g.wheel();
+  const ProfileFrame fr = FrameAt(rail, pl.rail_s_m);
+  const ProfileFrame fw = FrameAt(wheel, pl.wheel_s_m);
   c.rail_s_m = pl.rail_s_m;
-  c.rail_point_m = rail.Position(pl.rail_s_m);
+  c.rail_point_m = fr.position;
   c.y_m = c.y_lo_m = c.y_hi_m = c.rail_point_m.x();
   c.gap_m = 0.0;
   c.wheel_s_m = pl.wheel_s_m;
-  c.normal = g.rail_sign() * rail.LeftNormal(pl.rail_s_m);
-  c.rail_lateral_curvature = -g.rail_sign() * rail.Curvature(pl.rail_s_m);
-  c.wheel_lateral_curvature = -g.wheel_sign() * wheel.Curvature(pl.wheel_s_m);
-  const Eigen::Vector2d p_W = wheel.Position(pl.wheel_s_m);
-  c.wheel_radius_m = g.pose().rolling_radius_m + p_W.y();
+  c.normal = g.rail_sign() * fr.left_normal;
+  c.rail_lateral_curvature = -g.rail_sign() * fr.curvature;
+  c.wheel_lateral_curvature = -g.wheel_sign() * fw.curvature;
+  c.wheel_radius_m = g.pose().rolling_radius_m + fw.position.y();
   const auto w = g.WheelAt(pl.wheel_s_m);
   c.x_m = w.x_m;
   c.lead_m = c.x_m + w.outline_y_m * std::tan(g.pose().yaw_rad);
@@ -382,25 +438,28 @@ PatchConformity MeasureTreadConformity(const TreadGeometry& g, const TreadPlacem
   const double wdir = g.WheelDirectionToRail(wheel.Tangent(pl.wheel_s_m)).x() >= 0 ? 1.0 : -1.0;
   auto sample = [&](double t) {
     const double s_r = std::clamp(c.rail_s_m + dir * t, 0.0, rail.Length());
-    const Eigen::Vector2d p = rail.Position(s_r);
+    const ProfileFrame fr = FrameAt(rail, s_r);
+    const Eigen::Vector2d& p = fr.position;
     // The silhouette point nearest p: (q(s) - p) . T(s) = 0, |dq/ds| about 1.
     double s_w = std::clamp(pl.wheel_s_m + wdir * t, 0.0, wheel.Length());
     Eigen::Vector2d q;
     for (int it = 0; it < 6; ++it) {
-      const auto w = g.WheelAt(s_w);
+      Eigen::Vector2d d1;
+      const auto w = g.WheelAt(s_w, &d1);
       q = w.yz_R + Eigen::Vector2d(0.0, pl.dz_m);
-      const Eigen::Vector2d T = g.WheelDirectionToRail(wheel.Tangent(s_w));
+      const Eigen::Vector2d T = g.WheelDirectionToRail(d1.normalized());  // Tangent(s_w)
       const double step = (q - p).dot(T);
       s_w = std::clamp(s_w - step, 0.0, wheel.Length());
       if (std::abs(step) < kNewtonTolerance_m) break;
     }
-    const Eigen::Vector2d n_w = g.WheelDirectionToRail(g.wheel_sign() * wheel.LeftNormal(s_w));
+    const ProfileFrame fw = FrameAt(wheel, s_w);
+    const Eigen::Vector2d n_w = g.WheelDirectionToRail(g.wheel_sign() * fw.left_normal);
     ConformitySample out;
-    const Eigen::Vector2d n_rail = g.rail_sign() * rail.LeftNormal(s_r);
+    const Eigen::Vector2d n_rail = g.rail_sign() * fr.left_normal;
     out.normal = ((1.0 - K) * n_rail - K * n_w).normalized();
     out.gap_m = (p - q).dot(n_w);
-    out.k_rail = -g.rail_sign() * rail.Curvature(s_r);
-    out.k_wheel = -g.wheel_sign() * wheel.Curvature(s_w);
+    out.k_rail = -g.rail_sign() * fr.curvature;
+    out.k_wheel = -g.wheel_sign() * fw.curvature;
     return out;
   };
   return ConformityFromSamples(sample, -b, b);

@@ -18,7 +18,10 @@ constexpr int kMaxFoldCuts = 2000;
 }  // namespace
 
 double YawedWheelSection::SinTheta(const Eigen::Vector2d& n, double yaw_rad) {
-  const double t = std::tan(yaw_rad);
+  return SinThetaFromTan(n, std::tan(yaw_rad));
+}
+
+double YawedWheelSection::SinThetaFromTan(const Eigen::Vector2d& n, double t) {
   // n_y tan(psi) / n_z, evaluated without dividing by a vanishing n_z.
   const double num = n.x() * t, den = n.y();
   if (num == 0.0) return 0.0;

@@ -74,6 +74,9 @@ class YawedWheelSection {
   // Closed form for one profile point: sin(theta) from its outward normal (n_y, n_z) in W,
   // clamped to +-kMaxSinTheta.
   static double SinTheta(const Eigen::Vector2d& outward_normal_W, double yaw_rad);
+  // The same with tan(yaw_rad) given (bit for bit SinTheta's value), for callers that evaluate
+  // many points at one yaw (the fast tread path, core/contact/hertz_tread.cpp).
+  static double SinThetaFromTan(const Eigen::Vector2d& outward_normal_W, double tan_yaw);
 
  private:
   Profile outline_;

@@ -145,7 +145,11 @@ TEST(AccuracyCommand, ReferenceFromAFile) {
   EXPECT_TRUE(std::isnan(r.err_force));
 }
 
-TEST(AccuracyCommand, RollingSceneComparesCreepForcesAndLeavesHertzOut) {
+// A rolling scene: creep forces compared; Hertz is the fast tread path (core/contact/hertz_tread.h)
+// and runs per level. At the gauge corner it does not apply (two-point, conformal contact), so
+// its rows are kind auto's fallback at that level, bit for bit, and their patches say which grid
+// model solved them.
+TEST(AccuracyCommand, RollingSceneComparesCreepForcesAndHertzFallsBackAtTheGaugeCorner) {
   AccuracyOptions o = Quick();
   o.models = {"hertz", "halfspace", "auto"};
   o.levels = {"draft"};
@@ -153,7 +157,7 @@ TEST(AccuracyCommand, RollingSceneComparesCreepForcesAndLeavesHertzOut) {
   EXPECT_TRUE(s.rolling);
   EXPECT_EQ(Find(s, "hertz", "analytic"), nullptr);
   ASSERT_EQ(s.notes.size(), 2u);
-  EXPECT_TRUE(Contains(s.notes[0] + s.notes[1], "hertz left out"));
+  EXPECT_TRUE(Contains(s.notes[0] + s.notes[1], "hertz: the scene rolls, so hertz is the fast"));
   EXPECT_TRUE(Contains(s.notes[0] + s.notes[1], "conformal+boussinesq added"));
   EXPECT_TRUE(s.reference.has_creep);
   const AccuracyRow* h = Find(s, "halfspace", "draft");
@@ -161,6 +165,60 @@ TEST(AccuracyCommand, RollingSceneComparesCreepForcesAndLeavesHertzOut) {
   ASSERT_TRUE(h->q.creep_x_N.has_value());
   EXPECT_FALSE(std::isnan(h->err_creep));
   EXPECT_EQ(Find(s, "conformal+boussinesq", "draft")->err_creep, 0.0);
+  const AccuracyRow* hz = Find(s, "hertz", "draft");
+  const AccuracyRow* au = Find(s, "auto", "draft");
+  ASSERT_NE(hz, nullptr);
+  ASSERT_NE(au, nullptr);
+  EXPECT_EQ(hz->patch_models, au->patch_models);
+  EXPECT_FALSE(Contains(hz->patch_models, "hertz"));
+  EXPECT_EQ(hz->cells_per_semi_axis, 4.0);
+  EXPECT_EQ(hz->q.area_m2, au->q.area_m2);
+  EXPECT_EQ(hz->q.p_max_Pa, au->q.p_max_Pa);
+  EXPECT_EQ(*hz->q.creep_x_N, *au->q.creep_x_N);
+  EXPECT_EQ(*hz->q.creep_y_N, *au->q.creep_y_N);
+  EXPECT_EQ(hz->err_creep, au->err_creep);
+}
+
+// On the crown (examples/rolling_tread_hertz.toml, one Hertzian patch) Hertz's rows are the fast
+// tread path at draft and standard, measured against the half-space grid at standard (the
+// reference model asked for; two levels, so its finest level). Tolerances as the core test's
+// (tests/core/contact/hertz_tread_test.cpp), which take the same reference: area 6 %, p_max 2 %,
+// creep forces 2 % of mu Q; the scene's load is 100 kN and mu 0.3. Standard's FASTSIM grid (10
+// cells per semi-axis) is closer to the reference's than draft's (4), so its creep error is
+// within the same bound. About 0.2 s.
+TEST(AccuracyCommand, HertzInARollingSceneIsTheFastTreadPathPerLevel) {
+  AccuracyOptions o = Quick();
+  o.models = {"hertz"};
+  o.reference_model = "halfspace";
+  const AccuracyStudy s = RunAccuracyStudy(LoadScene(kExamples + "rolling_tread_hertz.toml"), o);
+  constexpr double kAreaTolerance = 0.06, kPeakTolerance = 0.02, kCreepTolerance = 0.02;
+  constexpr double kMuQ_N = 0.3 * 100e3;
+  ASSERT_TRUE(s.reference.has_creep);
+  const double f_ref = std::hypot(*s.reference.q.creep_x_N, *s.reference.q.creep_y_N);
+  for (const char* level : {"draft", "standard"}) {
+    SCOPED_TRACE(level);
+    const AccuracyRow* h = Find(s, "hertz", level);
+    ASSERT_NE(h, nullptr);
+    EXPECT_EQ(h->status, SolverStatus::kConverged);
+    EXPECT_EQ(h->patch_models, "hertz");
+    EXPECT_EQ(h->patches, 1);
+    EXPECT_GT(h->cells, 0);  // the FASTSIM grid over the ellipse
+    EXPECT_GT(h->time_median_s, 0.0);
+    EXPECT_LE(h->err_area, kAreaTolerance);
+    EXPECT_LE(h->err_p_max, kPeakTolerance);
+    ASSERT_FALSE(std::isnan(h->err_creep));
+    EXPECT_LE(h->err_creep * f_ref, kCreepTolerance * kMuQ_N);
+  }
+  EXPECT_EQ(Find(s, "hertz", "draft")->cells_per_semi_axis, 4.0);
+  EXPECT_EQ(Find(s, "hertz", "standard")->cells_per_semi_axis, 10.0);
+  EXPECT_GT(Find(s, "hertz", "standard")->cells, Find(s, "hertz", "draft")->cells);
+  EXPECT_TRUE(Contains(FormatAccuracyTable(s), "hertz                 standard"));
+  // Hertz with rolling is no reference.
+  o.reference_model = "hertz";
+  EXPECT_TRUE(Contains(
+      test::InputErrorMessage(
+          [&] { RunAccuracyStudy(LoadScene(kExamples + "rolling_tread_hertz.toml"), o); }),
+      "--reference-model hertz: the scene rolls"));
 }
 
 // --tangential (issue 16): each method per model and level; the exact solver's rows are the

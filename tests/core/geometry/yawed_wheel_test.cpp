@@ -175,5 +175,20 @@ TEST(YawedWheelSection, SteepFacesAreHeldAtTheBound) {
   EXPECT_DOUBLE_EQ(YawedWheelSection::SinTheta({1.0, 0.0}, 0.0), 0.0);
 }
 
+TEST(YawedWheelSection, SinThetaFromTanIsSinThetaBitForBit) {
+  // The fast tread path takes tan(yaw) once per pose (core/contact/hertz_tread.cpp): the same
+  // value as SinTheta's, exactly, for normals all round (steep faces at the bound included) and
+  // yaws of either sign up to the constructor's bound.
+  for (double yaw : {-0.4, -0.02, -5e-3, -1e-6, 0.0, 1e-6, 5e-3, 0.02, 0.4}) {
+    for (int k = 0; k < 360; ++k) {
+      const double a = k * 3.14159265358979323846 / 180.0;
+      const Eigen::Vector2d n(std::sin(a), std::cos(a));
+      EXPECT_EQ(YawedWheelSection::SinThetaFromTan(n, std::tan(yaw)),
+                YawedWheelSection::SinTheta(n, yaw))
+          << "yaw " << yaw << " normal angle " << k << " deg";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace railwear
