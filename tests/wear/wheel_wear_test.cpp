@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iomanip>
 #include <numbers>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "core/geometry/curve_locator.h"
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
 #include "tests/test_support.h"
@@ -228,6 +230,88 @@ TEST(WheelWearTest, ResamplingTheUnwornWheelIsNoWear) {
   const WearMeasures same = CompareWheelWithUnworn(s1002, s1002);
   EXPECT_LT(std::abs(same.max_depth_m), kNoWear_m);
   EXPECT_LT(std::abs(same.worn_area_m2), kNoWear_m * 1e-3);
+}
+
+// CompareWheelWithUnworn's fallback (issue 16): when the feet of the worn profile's points on
+// the unworn curve do not advance (wear deeper than the curve's radius of curvature bunches
+// them; a spline through them could not even be built, Profile refuses duplicate points), it
+// measures the worn profile against the unworn one resampled at the worn profile's number of
+// intervals. The smallest case: a conical tread (1:20, straight, so that its resampling is
+// exact) with a groove of depth kGrooveDepth_m and width kGrooveWidth_m worn into it, whose walls
+// lie along the tread's normal (a step in depth: zero radius). Every point of a wall has the
+// same foot, so the loop over the feet stops at the first wall point and the fallback measures.
+TEST(WheelWearTest, AGrooveWhoseFeetBunchIsMeasuredAgainstTheResampledUnwornWheel) {
+  constexpr double kSpacing_m = 1e-4;       // the points' spacing, on tread, walls and floor
+  constexpr double kHalfLength_m = 20e-3;   // the tread runs from -20 to 20 mm along itself
+  constexpr double kGrooveWidth_m = 4e-3;   // from -2 to 2 mm
+  constexpr double kGrooveDepth_m = 1e-3;
+  // The tread's unit tangent (1:20 cone) and its normal into the wheel's material (-z side).
+  const double alpha = std::atan(1.0 / 20.0);
+  const Eigen::Vector2d t(std::cos(alpha), std::sin(alpha));
+  const Eigen::Vector2d n(std::sin(alpha), -std::cos(alpha));
+  const auto at = [&](double u, double v) -> Eigen::Vector2d { return u * t + v * n; };
+  const int half = static_cast<int>(std::lround(kHalfLength_m / kSpacing_m));       // 200
+  const int groove = static_cast<int>(std::lround(kGrooveWidth_m / 2 / kSpacing_m));  // 20
+  const int wall = static_cast<int>(std::lround(kGrooveDepth_m / kSpacing_m));        // 10
+  std::vector<Eigen::Vector2d> unworn_points, worn_points;
+  for (int i = -half; i <= half; ++i) unworn_points.push_back(at(i * kSpacing_m, 0.0));
+  for (int i = -half; i <= -groove; ++i) worn_points.push_back(at(i * kSpacing_m, 0.0));
+  for (int j = 1; j <= wall; ++j) worn_points.push_back(at(-groove * kSpacing_m, j * kSpacing_m));
+  for (int i = -groove + 1; i <= groove; ++i) worn_points.push_back(at(i * kSpacing_m, kGrooveDepth_m));
+  for (int j = wall - 1; j >= 0; --j) worn_points.push_back(at(groove * kSpacing_m, j * kSpacing_m));
+  for (int i = groove + 1; i <= half; ++i) worn_points.push_back(at(i * kSpacing_m, 0.0));
+  const Profile unworn(unworn_points, "1:20 tread");
+  const Profile worn(worn_points, "1:20 tread with a groove");
+  const int m = worn.size() - 1;  // 420 intervals: 400 along the tread, 2 x 10 down the walls
+
+  // The trigger: the groove's corner and the foot of its left wall's deepest point coincide.
+  const CurveLocator locator(unworn, /*material_toward_plus_z=*/false);
+  const double corner_s = locator.Project(at(-groove * kSpacing_m, 0.0)).s;
+  const double bottom_s = locator.Project(at(-groove * kSpacing_m, kGrooveDepth_m)).s;
+  EXPECT_LE(std::abs(bottom_s - corner_s), Profile::kDuplicateDistance_m);
+
+  const WearMeasures fallback = CompareWheelWithUnworn(unworn, worn);
+  // It is the comparison with the unworn wheel at m uniform intervals (ResampleProfile rounds
+  // length / spacing up, so a spacing of length / (m - 0.5) gives m intervals), bit for bit.
+  const Profile resampled = ResampleProfile(unworn, unworn.Length() / (m - 0.5));
+  ASSERT_EQ(resampled.size(), m + 1);
+  const WearMeasures expected = CompareWheelProfiles(resampled, worn);
+  EXPECT_EQ(fallback.worn_area_m2, expected.worn_area_m2);
+  EXPECT_EQ(fallback.max_depth_m, expected.max_depth_m);
+  EXPECT_EQ(fallback.depth_m.size(), expected.depth_m.size());
+
+  // And it measures the groove: its depth across it, none on the tread beyond the splines'
+  // reach, its area. The natural cubic spline through the worn points rounds the groove's four
+  // corners, and the original's cells (0.1 mm) need not end at the walls: kCornerDepth_m bounds
+  // the spline's bulge at a right-angle corner (measured: see the figure line), kCellArea_m2 the
+  // midpoint rule's error at the two walls plus the bulges (a cell of the groove's depth each).
+  constexpr double kCornerDepth_m = 0.1 * kSpacing_m;
+  constexpr double kCellArea_m2 = 2.0 * kSpacing_m * kGrooveDepth_m;
+  // Beyond 1 mm (10 knots) of a wall a natural spline's disturbance has decayed by 0.27^10.
+  constexpr double kReach_m = 1e-3;
+  double largest_outside = 0.0, smallest_inside = 1.0;
+  int inside = 0;
+  for (size_t i = 0; i < fallback.s_m.size(); ++i) {
+    const double u = fallback.s_m[i] - 0.5 * unworn.Length();  // along the straight tread
+    ASSERT_FALSE(std::isnan(fallback.depth_m[i])) << "u = " << u;
+    if (std::abs(u) < kGrooveWidth_m / 2 - kReach_m) {
+      smallest_inside = std::min(smallest_inside, fallback.depth_m[i]);
+      EXPECT_NEAR(fallback.depth_m[i], kGrooveDepth_m, kCornerDepth_m) << "u = " << u;
+      ++inside;
+    } else if (std::abs(u) > kGrooveWidth_m / 2 + kReach_m) {
+      largest_outside = std::max(largest_outside, std::abs(fallback.depth_m[i]));
+    }
+  }
+  EXPECT_GT(inside, 10);
+  EXPECT_LT(largest_outside, kNoWear_m);
+  EXPECT_NEAR(fallback.max_depth_m, kGrooveDepth_m, kCornerDepth_m);
+  EXPECT_LT(std::abs(fallback.max_depth_y_m - at(0.0, 0.0).x()), kGrooveWidth_m / 2);
+  EXPECT_NEAR(fallback.worn_area_m2, kGrooveWidth_m * kGrooveDepth_m, kCellArea_m2);
+  std::cerr << std::setprecision(9) << "[figure] groove 4 x 1 mm in a 1:20 tread, fallback: area "
+            << fallback.worn_area_m2 * 1e6 << " mm^2 (4 exact), max depth "
+            << fallback.max_depth_m * 1e3 << " mm, depth in the groove's middle >= "
+            << smallest_inside * 1e3 << " mm, largest |depth| on the tread beyond 1 mm of it "
+            << largest_outside << " m\n";
 }
 
 // A wheel worn only at its flange root reports its deepest point there and no depth where no
