@@ -59,12 +59,17 @@ void RunRollingPart(const ContactProblem& problem, const WheelRailGeometry& geom
                     NormalProblem* np, const Eigen::VectorXd& pressure, ContactResult* result) {
   if (!problem.rolling || result->status != SolverStatus::kConverged) return;
   auto t0 = Clock::now();
-  RunRollingStage(problem, geom, result);
+  // The exact solver's set-up and warm start per patch and the pitch search's last solution,
+  // kept across the pitch search's and the normal-tangential loop's repeated solves on the same
+  // grids (rolling_stage.h).
+  RollingStageMemory memory;
+  RunRollingStage(problem, geom, result, &memory);
   AddStage(&result->stages, "tangential", SecondsSince(t0));
   if (result->status == SolverStatus::kConverged &&
       (problem.rolling->coupling || problem.load.vertical_force_N)) {
     t0 = Clock::now();
-    IterateNormalTangential(problem, geom, cands, kept.build, kept.offset, np, pressure, result);
+    IterateNormalTangential(problem, geom, cands, kept.build, kept.offset, np, pressure, result,
+                            &memory);
     AddStage(&result->stages, problem.rolling->coupling ? "coupling" : "balance",
              SecondsSince(t0));
   }

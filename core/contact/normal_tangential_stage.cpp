@@ -52,7 +52,8 @@ namespace {
 bool Iterate(const ContactProblem& problem, const WheelRailGeometry& geom,
              const std::vector<double>& kappa, const std::vector<int>& kept_offset,
              const Eigen::VectorXd& base_gap, bool coupling, BalanceTarget* balance,
-             NormalProblem* np, Eigen::VectorXd* pressure, ContactResult* result) {
+             NormalProblem* np, Eigen::VectorXd* pressure, ContactResult* result,
+             RollingStageMemory* memory) {
   const RollingOptions& o = *problem.rolling;
   const int max_iterations = coupling ? o.coupling_max_iterations : kBalanceMaxIterations;
   // Once the coupling has settled its gap stays as it is, so that the balance's f(T) no longer
@@ -125,7 +126,7 @@ bool Iterate(const ContactProblem& problem, const WheelRailGeometry& geom,
       result->patches[k] = std::move(updated);
     }
     result->approach_m = sol.approach_m;
-    RunRollingStage(problem, geom, result);
+    RunRollingStage(problem, geom, result, memory);
     if (result->status != SolverStatus::kConverged) return false;  // force target not carried
     const double change =
         (sol.pressure_Pa - *pressure).cwiseAbs().maxCoeff() / std::max(pressure->maxCoeff(), 1.0);
@@ -155,7 +156,8 @@ void IterateNormalTangential(const ContactProblem& problem, const WheelRailGeome
                              const std::vector<ContactCandidate>& cands,
                              const std::vector<int>& kept_build,
                              const std::vector<int>& kept_offset, NormalProblem* np,
-                             Eigen::VectorXd pressure, ContactResult* result) {
+                             Eigen::VectorXd pressure, ContactResult* result,
+                             RollingStageMemory* memory) {
   const bool coupling = problem.rolling->coupling;
   std::optional<BalanceTarget> balance;
   if (problem.load.vertical_force_N) {
@@ -168,7 +170,7 @@ void IterateNormalTangential(const ContactProblem& problem, const WheelRailGeome
   // uncoupled solution, so that they are the coupling's own.
   if (balance && !balance->Settled(BalanceError(*result, *problem.load.vertical_force_N)) &&
       !Iterate(problem, geom, {}, kept_offset, base_gap, false, balance_ptr, np, &pressure,
-               result)) {
+               result, memory)) {
     return;
   }
   if (!coupling) return;
@@ -181,7 +183,7 @@ void IterateNormalTangential(const ContactProblem& problem, const WheelRailGeome
                                         problem.rail_material, rail_sign));
   }
   if (!Iterate(problem, geom, kappa, kept_offset, base_gap, true, balance_ptr, np, &pressure,
-               result)) {
+               result, memory)) {
     return;
   }
   const auto [area1, p_max1] = AreaAndPeak(*result);

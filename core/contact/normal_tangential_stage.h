@@ -21,6 +21,7 @@
 #include "core/contact/contact_problem.h"
 #include "core/contact/contact_result.h"
 #include "core/contact/normal_solver.h"
+#include "core/contact/rolling_stage.h"
 #include "core/geometry/wheel_rail_geometry.h"
 
 namespace railwear::internal {
@@ -36,10 +37,13 @@ double BalanceResidual(const ContactResult& result, double load_N);
 // load target are changed) and pressure its solution [Pa], shape [np->gap_m.size()]. Runs when
 // problem.rolling asks for coupling or the load is prescribed; the iterations, the coupling's
 // relative area and peak changes, the balance residual, or kNotConverged go into *result.
+// memory (optional, in/out): what the rolling stage keeps (RunRollingStage), across the loop's
+// repeats of it.
 void IterateNormalTangential(const ContactProblem& problem, const WheelRailGeometry& geom,
                              const std::vector<ContactCandidate>& cands,
                              const std::vector<int>& kept_build,
                              const std::vector<int>& kept_offset, NormalProblem* np,
-                             Eigen::VectorXd pressure, ContactResult* result);
+                             Eigen::VectorXd pressure, ContactResult* result,
+                             RollingStageMemory* memory = nullptr);
 
 }  // namespace railwear::internal

@@ -7,12 +7,14 @@
 
 #include "core/contact/contact_problem.h"
 #include "core/contact/contact_result.h"
+#include "core/contact/tangential_method.h"
 
 namespace railwear::internal {
 
 // patch: a solved patch (grid, pressure_Pa of shape [grid.cells()], normal_force_N, p_max_Pa);
-// in: its per-cell rigid slip (kinematics.h). problem.rolling must be set.
+// in: its per-cell rigid slip (kinematics.h). problem.rolling must be set. reuse (optional):
+// the exact solver's set-up and warm start kept for this patch (tangential_method.h).
 RollingPatch SolveRollingPatch(const ContactProblem& problem, const PatchResult& patch,
-                               const RollingInput& in);
+                               const RollingInput& in, ExactTangentialReuse* reuse = nullptr);
 
 }  // namespace railwear::internal

@@ -20,34 +20,46 @@ namespace {
 // The rolling stage on every numerical patch: rigid slip per cell (from the wheel's motion or
 // prescribed creepages), its patch average, and the tangential solution by the problem's method
 // (the one seam: SolveTangential).
+// reuse (optional): one entry per patch, see internal::RunRollingStage.
 void SolveRolling(const ContactProblem& problem, const WheelRailGeometry& geom,
-                  ContactResult* result) {
+                  ContactResult* result, std::vector<ExactTangentialReuse>* reuse = nullptr) {
   const RollingOptions& o = *problem.rolling;
   result->pitch_velocity_rad_s = o.motion.pitch_velocity_rad_s.value_or(
       -o.motion.speed_m_s / problem.placement.rolling_radius_m);
-  for (PatchResult& patch : result->patches) {
+  if (reuse != nullptr) reuse->resize(result->patches.size());
+  for (size_t k = 0; k < result->patches.size(); ++k) {
+    PatchResult& patch = result->patches[k];
     const RollingInput in = o.creepage
                                 ? RigidSlipFromCreepage(patch.grid, patch.pressure_Pa, *o.creepage,
                                                         o.motion.speed_m_s, o.friction)
                                 : RigidSlipFromMotion(geom, patch.grid, o.motion, o.friction);
-    patch.rolling = internal::SolveRollingPatch(problem, patch, in);
+    patch.rolling = internal::SolveRollingPatch(problem, patch, in,
+                                                reuse != nullptr ? &(*reuse)[k] : nullptr);
   }
 }
 
 // The rolling stage with a prescribed total longitudinal force: the pitch velocity is solved for.
 void SolveRollingForForce(const ContactProblem& problem, const WheelRailGeometry& geom,
-                          ContactResult* result) {
+                          ContactResult* result, RollingStageMemory* memory) {
   ContactProblem trial = problem;
   const RollingOptions& o = *problem.rolling;
   const double target = *o.longitudinal_force_N;
+  std::vector<ExactTangentialReuse>* reuse = memory != nullptr ? &memory->patches : nullptr;
   auto fx = [&](double omega) {
     trial.rolling->motion.pitch_velocity_rad_s = omega;
-    SolveRolling(trial, geom, result);
+    SolveRolling(trial, geom, result, reuse);
     return TotalForceX(*result);
   };
   const double tolerance = 1e-6 * o.friction * TotalNormalForce(*result);
-  const auto omega = SolvePitchVelocityForForce(fx, target, o.motion.speed_m_s,
-                                                problem.placement.rolling_radius_m, tolerance);
+  const double r0 = problem.placement.rolling_radius_m;
+  const bool restart = memory != nullptr && memory->spin_up_creepage.has_value();
+  const auto omega = SolvePitchVelocityForForce(
+      fx, target, o.motion.speed_m_s, r0, tolerance, restart ? *memory->spin_up_creepage : 0.0,
+      restart ? kPitchRestartStep : 1e-4);
+  if (memory != nullptr) {
+    memory->spin_up_creepage.reset();
+    if (omega) memory->spin_up_creepage = -*omega * r0 / o.motion.speed_m_s - 1.0;
+  }
   if (!omega) {
     result->status = SolverStatus::kNotConverged;
     result->message = fmt::format(
@@ -75,18 +87,20 @@ double TotalNormalForce(const ContactResult& r) {
 
 std::optional<double> SolvePitchVelocityForForce(const std::function<double(double)>& fx,
                                                  double target_N, double speed_m_s,
-                                                 double rolling_radius_m, double tolerance_N) {
+                                                 double rolling_radius_m, double tolerance_N,
+                                                 double start_c, double first_step_c) {
+  RAILWEAR_CHECK(first_step_c > 0.0);
   auto omega_of = [&](double c) { return -speed_m_s * (1.0 + c) / rolling_radius_m; };
   auto g = [&](double c) { return fx(omega_of(c)) - target_N; };
-  // Bracket: step the creepage c outward from 0 (doubling) in the direction that moves fx toward
-  // the target, until g changes sign.
-  double a = 0.0, ga = g(0.0);
-  if (std::abs(ga) <= tolerance_N) return omega_of(0.0);
+  // Bracket: step the creepage c outward from start_c (doubling) in the direction that moves fx
+  // toward the target, until g changes sign.
+  double a = start_c, ga = g(start_c);
+  if (std::abs(ga) <= tolerance_N) return omega_of(start_c);
   const double dir = ga < 0 ? 1.0 : -1.0;
   double b = a, gb = ga;
-  for (double step = 1e-4;; step *= 2.0) {
+  for (double step = first_step_c;; step *= 2.0) {
     if (step > 1.0) return std::nullopt;  // beyond adhesion: the force never reaches the target
-    b = dir * step;
+    b = start_c + dir * step;
     gb = g(b);
     if ((gb > 0) != (ga > 0)) break;
     a = b;
@@ -125,12 +139,12 @@ void ApplyRolling(const ContactProblem& problem, const WheelRailGeometry& geomet
 namespace internal {
 
 RollingPatch SolveRollingPatch(const ContactProblem& problem, const PatchResult& patch,
-                               const RollingInput& in) {
+                               const RollingInput& in, ExactTangentialReuse* reuse) {
   RollingPatch rolling;
   rolling.creepage = AverageCreepage(patch.grid, patch.pressure_Pa, in);
   rolling.tangential =
       SolveTangential(problem.tangential, problem.model.accuracy, patch.grid, patch.pressure_Pa,
-                      in, problem.wheel_material, problem.rail_material, &rolling.choice);
+                      in, problem.wheel_material, problem.rail_material, &rolling.choice, reuse);
   // The patch's equivalent ellipse (the semi-axes FASTSIM uses), reported with the patch.
   const ContactEllipse used = EstimateContactEllipse(patch.grid, patch.pressure_Pa);
   rolling.semi_axis_x_m = used.semi_axis_x_m;
@@ -152,11 +166,11 @@ RollingPatch SolveRollingPatch(const ContactProblem& problem, const PatchResult&
 }
 
 void RunRollingStage(const ContactProblem& problem, const WheelRailGeometry& geom,
-                     ContactResult* result) {
+                     ContactResult* result, RollingStageMemory* memory) {
   if (problem.rolling->longitudinal_force_N) {
-    SolveRollingForForce(problem, geom, result);
+    SolveRollingForForce(problem, geom, result, memory);
   } else {
-    SolveRolling(problem, geom, result);
+    SolveRolling(problem, geom, result, memory != nullptr ? &memory->patches : nullptr);
   }
 }
 

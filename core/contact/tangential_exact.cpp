@@ -740,7 +740,8 @@ TangentialSolution NoContactSolution(const PatchGrid& grid) {
 // The solve proper (inputs checked, some cell loaded): steps 2 and 3 of the header comment.
 TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                                   const RollingInput& in, const ExactTangentialSetup::Impl& setup,
-                                  const ExactTangentialOptions& opt);
+                                  const ExactTangentialOptions& opt,
+                                  const TangentialSolution* start = nullptr);
 
 }  // namespace
 
@@ -808,8 +809,16 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
 
 TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                                         const RollingInput& in, const ExactTangentialSetup& setup,
-                                        const ExactTangentialOptions& opt) {
+                                        const ExactTangentialOptions& opt,
+                                        const TangentialSolution* start) {
   CheckInputs(grid, pressure_Pa, in, opt);
+  if (start != nullptr && (start->traction_x_Pa.size() != grid.cells() ||
+                           start->traction_s_Pa.size() != grid.cells())) {
+    std::ostringstream msg;
+    msg << "tangential exact: the warm start has " << start->traction_x_Pa.size() << " and "
+        << start->traction_s_Pa.size() << " tractions, expected grid.cells() = " << grid.cells();
+    throw InputError(msg.str());
+  }
   if (!setup.Fits(grid) || !setup.Serves(opt.method)) {
     std::ostringstream msg;
     msg << "tangential exact: the setup was built for " << setup.impl().nx << " x "
@@ -822,14 +831,15 @@ TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::Vect
     throw InputError(msg.str());
   }
   if (!(pressure_Pa.maxCoeff() > 0.0)) return NoContactSolution(grid);
-  return SolveWithSetup(grid, pressure_Pa, in, setup.impl(), opt);
+  return SolveWithSetup(grid, pressure_Pa, in, setup.impl(), opt, start);
 }
 
 namespace {
 
 TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                                   const RollingInput& in, const ExactTangentialSetup::Impl& setup,
-                                  const ExactTangentialOptions& opt) {
+                                  const ExactTangentialOptions& opt,
+                                  const TangentialSolution* start) {
   const int n = grid.cells();
   const double mu = in.friction;
   TangentialSolution sol = EmptyTangentialSolution(n);
@@ -855,6 +865,12 @@ TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& 
     if (pressure_Pa[k] > 0.0) loaded.push_back(k);
   }
   const int n_loaded = static_cast<int>(loaded.size());
+  if (start != nullptr) {  // the warm start's tractions on the cells loaded now
+    for (int k : loaded) {
+      qx[k] = start->traction_x_Pa[k];
+      qs[k] = start->traction_s_Pa[k];
+    }
+  }
   // The products: the setup's (FFT or full dense), or on small patches the loaded cells' matrix.
   const RollingOperator* op = setup.op.get();
   std::optional<LoadedDenseProduct> loaded_product;

@@ -178,9 +178,16 @@ class ExactTangentialSetup {
 // The same solve with a setup built beforehand for this grid and the materials (wheel, rail of
 // the overload above). Throws InputError as above, and when the setup does not fit the grid or
 // does not serve opt.method.
+// start (optional): a warm start, an earlier solution on a grid of the same shape (a search over
+// creepages or pitch velocities, a vertical balance that moves the pressure a little): the
+// iteration starts from its tractions on the cells loaded now (0 on the others) instead of 0.
+// The fixed point does not depend on the start, so the result is the cold start's to the
+// stopping tolerance, not bit for bit; near solutions need fewer iterations (docs/speed.md,
+// the groove's free rolling). Throws InputError when its tractions are not of grid.cells().
 TangentialSolution SolveTangentialExact(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                                         const RollingInput& in, const ExactTangentialSetup& setup,
-                                        const ExactTangentialOptions& opt = {});
+                                        const ExactTangentialOptions& opt = {},
+                                        const TangentialSolution* start = nullptr);
 
 namespace internal {
 

@@ -21,7 +21,7 @@ namespace {
 using TangentialSolver = TangentialSolution (*)(AccuracyPreset, const PatchGrid&,
                                                 const Eigen::VectorXd&, const RollingInput&,
                                                 const Material&, const Material&,
-                                                TangentialChoice*);
+                                                TangentialChoice*, ExactTangentialReuse*);
 
 FastsimOptions FastsimFor(const Material& wheel, const Material& rail) {
   const CombinedElastic elastic = CombineElastic(wheel, rail);
@@ -34,24 +34,46 @@ FastsimOptions FastsimFor(const Material& wheel, const Material& rail) {
 TangentialSolution SolveByFastsim(AccuracyPreset, const PatchGrid& grid,
                                   const Eigen::VectorXd& pressure_Pa, const RollingInput& input,
                                   const Material& wheel, const Material& rail,
-                                  TangentialChoice* choice) {
+                                  TangentialChoice* choice, ExactTangentialReuse*) {
   choice->method = TangentialMethod::kFastsim;
   return SolveFastsim(grid, pressure_Pa, input, FastsimFor(wheel, rail));
+}
+
+// The exact solver, with the set-up and the warm start kept in `reuse` when there is one.
+TangentialSolution SolveExact(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
+                              const RollingInput& input, const Material& wheel,
+                              const Material& rail, ExactTangentialReuse* reuse) {
+  const ExactTangentialOptions options;
+  if (reuse == nullptr) return SolveTangentialExact(grid, pressure_Pa, input, wheel, rail, options);
+  if (!reuse->setup || !reuse->setup->Fits(grid)) {
+    reuse->setup.emplace(grid, wheel, rail, options.method);
+    reuse->last.reset();
+  }
+  const TangentialSolution* start =
+      reuse->last && reuse->last->traction_x_Pa.size() == grid.cells() ? &*reuse->last : nullptr;
+  TangentialSolution sol =
+      SolveTangentialExact(grid, pressure_Pa, input, *reuse->setup, options, start);
+  if (sol.status == SolverStatus::kConverged) {
+    reuse->last = sol;
+  } else {
+    reuse->last.reset();
+  }
+  return sol;
 }
 
 TangentialSolution SolveByExact(AccuracyPreset, const PatchGrid& grid,
                                 const Eigen::VectorXd& pressure_Pa, const RollingInput& input,
                                 const Material& wheel, const Material& rail,
-                                TangentialChoice* choice) {
+                                TangentialChoice* choice, ExactTangentialReuse* reuse) {
   choice->method = TangentialMethod::kExact;
-  return SolveTangentialExact(grid, pressure_Pa, input, wheel, rail, ExactTangentialOptions{});
+  return SolveExact(grid, pressure_Pa, input, wheel, rail, reuse);
 }
 
 // `auto`: FASTSIM first; its patch fit decides whether the exact solver replaces it.
 TangentialSolution SolveByAuto(AccuracyPreset accuracy, const PatchGrid& grid,
                                const Eigen::VectorXd& pressure_Pa, const RollingInput& input,
                                const Material& wheel, const Material& rail,
-                               TangentialChoice* choice) {
+                               TangentialChoice* choice, ExactTangentialReuse* reuse) {
   const FastsimOptions fo = FastsimFor(wheel, rail);
   FastsimPatch fit;
   TangentialSolution fastsim = SolveFastsim(grid, pressure_Pa, input, fo, &fit);
@@ -65,7 +87,7 @@ TangentialSolution SolveByAuto(AccuracyPreset accuracy, const PatchGrid& grid,
       CalcTangentialIndicators(grid, pressure_Pa, input, fit, fo.poisson_ratio);
   *choice = ChooseTangentialMethod(ind, accuracy);
   if (choice->method == TangentialMethod::kFastsim) return fastsim;
-  return SolveTangentialExact(grid, pressure_Pa, input, wheel, rail, ExactTangentialOptions{});
+  return SolveExact(grid, pressure_Pa, input, wheel, rail, reuse);
 }
 
 // The solver of each method (keyed by the method, like kTangentialMethodNames).
@@ -164,11 +186,14 @@ TangentialChoice ChooseTangentialMethod(const TangentialIndicators& ind, Accurac
 TangentialSolution SolveTangential(TangentialMethod method, AccuracyPreset accuracy,
                                    const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                                    const RollingInput& input, const Material& wheel,
-                                   const Material& rail, TangentialChoice* choice) {
+                                   const Material& rail, TangentialChoice* choice,
+                                   ExactTangentialReuse* reuse) {
   TangentialChoice local;
   TangentialChoice* out = choice != nullptr ? choice : &local;
   for (const auto& e : kTangentialSolvers) {
-    if (e.method == method) return e.solve(accuracy, grid, pressure_Pa, input, wheel, rail, out);
+    if (e.method == method) {
+      return e.solve(accuracy, grid, pressure_Pa, input, wheel, rail, out, reuse);
+    }
   }
   RAILWEAR_CHECK(false && "a TangentialMethod without a solver");
   return {};

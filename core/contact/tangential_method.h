@@ -28,6 +28,7 @@
 
 #include "core/contact/contact_types.h"
 #include "core/contact/fastsim.h"
+#include "core/contact/tangential_exact.h"
 #include "core/contact/tangential_types.h"
 #include "core/geometry/patch_grid.h"
 #include "core/numerics/enum_names.h"
@@ -91,13 +92,31 @@ TangentialIndicators CalcTangentialIndicators(const PatchGrid& grid,
 TangentialChoice ChooseTangentialMethod(const TangentialIndicators& indicators,
                                         AccuracyPreset preset);
 
+// What the exact solver keeps between the solves of one patch when a caller solves it again and
+// again on the same grid (SolveContact's search for the pitch velocity under a prescribed
+// longitudinal force, and its vertical balance, which moves the pressure but not the grid):
+//   setup  the grid's ExactTangentialSetup (rolling operator and kernel tables), rebuilt only
+//          when the grid's shape changes; the results are those of a fresh setup, bit for bit;
+//   last   the last converged exact solution, the warm start of the next solve on a grid of the
+//          same shape (results to the solver's tolerance; docs/speed.md, the groove's free
+//          rolling).
+// For one pair of materials: a caller keeps one per patch for the duration of one contact solve.
+// Not for concurrent use (the setup's scratch buffers).
+struct ExactTangentialReuse {
+  std::optional<ExactTangentialSetup> setup;
+  std::optional<TangentialSolution> last;
+};
+
 // The tangential solution of one patch by `method`: grid and pressure_Pa (per cell, shape
 // [grid.cells()]) of the normal solution, the rigid slip `input` (kinematics.h), and the two
 // bodies' materials (the solvers' elastic constants). `accuracy` is the preset `auto` keeps to
 // (ignored by the fixed methods). choice (optional out): what ran and, for auto, why.
+// reuse (optional, in/out): the exact solver's set-up and warm start kept from the previous
+// solve of this patch (the same materials), updated by this one; FASTSIM does not use it.
 TangentialSolution SolveTangential(TangentialMethod method, AccuracyPreset accuracy,
                                    const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                                    const RollingInput& input, const Material& wheel,
-                                   const Material& rail, TangentialChoice* choice = nullptr);
+                                   const Material& rail, TangentialChoice* choice = nullptr,
+                                   ExactTangentialReuse* reuse = nullptr);
 
 }  // namespace railwear

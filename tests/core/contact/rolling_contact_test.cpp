@@ -7,6 +7,8 @@
 
 #include "core/contact/contact_solver.h"
 #include "core/contact/kinematics.h"
+#include "core/contact/placement_stage.h"
+#include "core/contact/rolling_stage.h"
 #include "core/geometry/wheel_rail_geometry.h"
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
@@ -118,6 +120,90 @@ TEST(RollingContact, DamageOnlyWhenAskedAndNeedsShearYield) {
                          r.patches[0].rolling->tangential.force_s_N) /
                   r.patches[0].normal_force_N,
               1e-9);
+}
+
+TEST(RollingContact, PitchSearchFromANearbyStartFindsTheSameRoot) {
+  // SolvePitchVelocityForForce started at a guess with a small first step (the restart of
+  // RollingStageMemory): the same root to the force tolerance from a near guess, from a guess on
+  // the wrong side and from one far off, in fewer evaluations from the near one. The force is a
+  // saturating creep curve, F = mu Fn tanh(c / c_s) (Kalker's linear slope, then full slip).
+  const double mu_fn = 3e3, c_s = 2e-3, v = 20.0, r0 = 0.46, tol = 1e-6 * mu_fn;
+  for (const double target : {0.0, 0.4 * mu_fn, -0.9 * mu_fn}) {
+    int calls = 0;
+    auto fx = [&](double omega) {
+      ++calls;
+      const double c = -omega * r0 / v - 1.0;
+      return mu_fn * std::tanh(c / c_s);
+    };
+    const double root = c_s * std::atanh(target / mu_fn);
+    const auto cold = SolvePitchVelocityForForce(fx, target, v, r0, tol);
+    const int cold_calls = calls;
+    ASSERT_TRUE(cold.has_value());
+    for (const double guess : {root + 3e-7, root - 5e-6, root + 0.05}) {
+      calls = 0;
+      const auto warm =
+          SolvePitchVelocityForForce(fx, target, v, r0, tol, guess, kPitchRestartStep);
+      ASSERT_TRUE(warm.has_value()) << target << " " << guess;
+      EXPECT_NEAR(fx(*warm), target, tol) << target << " " << guess;
+      // Both within tol of the target in force: 2 tol over the curve's slope at the root in c.
+      const double slope = mu_fn / c_s * (1.0 - (target / mu_fn) * (target / mu_fn));
+      EXPECT_NEAR(*warm, *cold, 2.0 * tol / slope * v / r0) << target << " " << guess;
+      // (the cold search finds a zero target at its first evaluation, c = 0)
+      if (guess == root + 3e-7 && target != 0.0) {
+        EXPECT_LT(calls, cold_calls) << target;
+      }
+    }
+  }
+}
+
+TEST(RollingContact, RollingStageMemoryAgreesWithFreshSolves) {
+  // RollingStageMemory (rolling_stage.h): the exact solver's set-up kept per patch, its warm
+  // start and the pitch search restarted at the last solution. On the conformal example under a
+  // prescribed longitudinal force (the exact solver; the stage alone on the normal solution), the
+  // rolling stage run with the memory of an earlier run agrees with a fresh run (set-ups rebuilt,
+  // cold starts, the search from c = 0) to the pitch search's force tolerance; repeated on the same
+  // pressure it finds the root at its first evaluation and needs no sweep there.
+  ContactProblem p = ConformalExample();
+  p.tangential = TangentialMethod::kExact;
+  p.rolling->motion.lateral_velocity_m_s = 0.0;
+  p.rolling->motion.pitch_velocity_rad_s.reset();
+  const ContactResult normal_only = [&] {
+    ContactProblem q = p;
+    q.rolling.reset();
+    return SolveContact(q);
+  }();
+  ASSERT_EQ(normal_only.status, SolverStatus::kConverged) << normal_only.message;
+  double fn = 0.0;
+  for (const auto& patch : normal_only.patches) fn += patch.normal_force_N;
+  const double mu_fn = p.rolling->friction * fn;
+  const double tol = 1e-6 * mu_fn;  // SolvePitchVelocityForForce's tolerance in the stage
+  p.rolling->longitudinal_force_N = 0.4 * mu_fn;
+  const WheelRailGeometry geom = internal::PlaceWheel(p);
+  ContactResult fresh = normal_only;
+  internal::RunRollingStage(p, geom, &fresh);
+  ASSERT_EQ(fresh.status, SolverStatus::kConverged) << fresh.message;
+  ContactResult kept = normal_only;
+  RollingStageMemory memory;
+  internal::RunRollingStage(p, geom, &kept, &memory);
+  ASSERT_TRUE(memory.spin_up_creepage.has_value());
+  ASSERT_EQ(memory.patches.size(), kept.patches.size());
+  for (const auto& m : memory.patches) EXPECT_TRUE(m.setup.has_value() && m.last.has_value());
+  internal::RunRollingStage(p, geom, &kept, &memory);  // again, from the memory
+  ASSERT_EQ(kept.status, SolverStatus::kConverged) << kept.message;
+  EXPECT_NEAR(TotalForceX(fresh), 0.4 * mu_fn, tol);
+  EXPECT_NEAR(TotalForceX(kept), 0.4 * mu_fn, tol);
+  // The pitch velocities: within the force tolerance over the creep curve's slope, at least
+  // mu Fn / 1 (the search's whole range of c); measured far closer.
+  const double v = p.rolling->motion.speed_m_s, r0 = p.placement.rolling_radius_m;
+  EXPECT_NEAR(kept.pitch_velocity_rad_s, fresh.pitch_velocity_rad_s, 2.0 * tol / mu_fn * v / r0);
+  ASSERT_EQ(kept.patches.size(), fresh.patches.size());
+  for (size_t k = 0; k < kept.patches.size(); ++k) {
+    const TangentialSolution& a = kept.patches[k].rolling->tangential;
+    const TangentialSolution& b = fresh.patches[k].rolling->tangential;
+    EXPECT_EQ(a.iterations, 0) << k;  // the warm start is the solution already
+    EXPECT_NEAR(a.force_x_N, b.force_x_N, 2.0 * tol) << k;
+    EXPECT_NEAR(a.force_s_N, b.force_s_N, 2.0 * tol) << k;
+  }
 }
 
 }  // namespace

@@ -294,6 +294,62 @@ TEST(TangentialExact, ReusedSetupGivesTheFreshSolveBitForBit) {
   }
 }
 
+TEST(TangentialExact, WarmStartGivesTheColdSolveToTheTolerance) {
+  // A warm start (tangential_exact.h) changes where the iteration starts, not its fixed point:
+  // started from the solution of a neighbouring creepage (a pitch search's previous evaluation)
+  // or of a lighter load (a vertical balance's previous pressure), the result is the cold
+  // solve's within the bound between two convergent iterations; started from its own solution
+  // the solve stops at the first check, with no sweep (the tractions returned are then the
+  // check's local solutions, equal to the start's to the tolerance, not bit for bit). Both operator paths: the loaded cells'
+  // matrix (72 cells) and the FFT products (288).
+  for (const int n : {6, 12}) {
+    const Case c = MakeCase(n);
+    const ExactTangentialSetup setup(c.grid, SteelG(), SteelG());
+    const double qmax = kMu * c.p.maxCoeff();
+    const Eigen::VectorXd light = HertzPressure(c.grid, 0.8 * kA_m, 0.8 * kB_m, 0.5 * kFn_N);
+    for (const auto& [xi, eta, phi] :
+         {std::tuple{1e-4, -6.25e-4, 0.625}, {3e-3, 1e-3, 0.0}, {-1e-4, 2e-4, -1.0}}) {
+      SCOPED_TRACE(::testing::Message()
+                   << "n " << n << ", xi " << xi << ", eta " << eta << ", phi " << phi);
+      const RollingInput in = Creepage(c.grid, xi, eta, phi);
+      const TangentialSolution cold = SolveTangentialExact(c.grid, c.p, in, setup);
+      ASSERT_EQ(cold.status, SolverStatus::kConverged) << cold.message;
+      const TangentialSolution near =
+          SolveTangentialExact(c.grid, c.p, Creepage(c.grid, 1.1 * xi + 1e-5, eta, phi), setup);
+      const TangentialSolution lighter = SolveTangentialExact(c.grid, light, in, setup);
+      for (const TangentialSolution* start : {&near, &lighter, &cold}) {
+        const TangentialSolution warm =
+            SolveTangentialExact(c.grid, c.p, in, setup, ExactTangentialOptions{}, start);
+        ASSERT_EQ(warm.status, SolverStatus::kConverged) << warm.message;
+        EXPECT_LE((warm.traction_x_Pa - cold.traction_x_Pa).cwiseAbs().maxCoeff(),
+                  kFastVersusDenseTolerance * qmax);
+        EXPECT_LE((warm.traction_s_Pa - cold.traction_s_Pa).cwiseAbs().maxCoeff(),
+                  kFastVersusDenseTolerance * qmax);
+        EXPECT_EQ(warm.stick, cold.stick);
+        EXPECT_NEAR(warm.force_x_N, cold.force_x_N, kFastVersusDenseTolerance * kMu * kFn_N);
+        EXPECT_NEAR(warm.force_s_N, cold.force_s_N, kFastVersusDenseTolerance * kMu * kFn_N);
+        if (start == &cold) {
+          EXPECT_EQ(warm.iterations, 0);
+        }
+      }
+    }
+  }
+  // Tractions of another grid's size are an input error that names both sizes.
+  const Case c = MakeCase(4);
+  const TangentialSolution other = EmptyTangentialSolution(c.grid.cells() + 1);
+  try {
+    SolveTangentialExact(c.grid, c.p, Creepage(c.grid, 1e-4, 0, 0),
+                         ExactTangentialSetup(c.grid, SteelG(), SteelG()), ExactTangentialOptions{},
+                         &other);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the warm start has 33 and 33 tractions, expected "
+                                         "grid.cells() = 32"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(TangentialExact, SetupThatDoesNotFitIsAnInputError) {
   const Case c = MakeCase(4);
   const Case other = MakeCase(5);
