@@ -36,7 +36,9 @@ double BalanceResidual(const ContactResult& result, double load_N);
 // load target are changed) and pressure its solution [Pa], shape [np->gap_m.size()]. Runs when
 // problem.rolling asks for coupling or the load is prescribed; the iterations, the coupling's
 // relative area and peak changes, the balance residual, or kNotConverged go into *result.
-void IterateNormalTangential(const ContactProblem& problem, const WheelRailGeometry& geom,
+// Returns the pressure [Pa] of *result's patches as the stage leaves them (the last normal
+// solve's, or `pressure` when none ran), with np->force_N that solve's load target.
+Eigen::VectorXd IterateNormalTangential(const ContactProblem& problem, const WheelRailGeometry& geom,
                              const std::vector<ContactCandidate>& cands,
                              const std::vector<int>& kept_build,
                              const std::vector<int>& kept_offset, NormalProblem* np,
