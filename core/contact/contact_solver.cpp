@@ -121,16 +121,19 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
     NormalProblem np = part->assembly.np;  // its blocks are the kept operators
     AddStage(&continued.stages, "normal reused", SecondsSince(t0));
     memo->CountReuse();
-    // A warm memo: the balance starts from the last balanced state instead of the load.
+    // A warm memo: the balance starts from the last balanced state instead of the load (and
+    // from the load after all when that fails).
     const BalancedPart* warm = WarmBalanceApplies(problem, memo) ? memo->Balanced(geom) : nullptr;
     if (warm) {
-      continued.patches = warm->patches;
-      continued.approach_m = warm->approach_m;
-      np.force_N = warm->target_N;
+      ContactResult from_warm = continued;
+      from_warm.patches = warm->patches;
+      from_warm.approach_m = warm->approach_m;
+      NormalProblem warm_np = np;
+      warm_np.force_N = warm->target_N;
       memo->CountWarmBalance();
       const Eigen::VectorXd pressure = warm->pressure;  // (KeepBalanced replaces *warm)
-      RunRollingPart(problem, geom, part->cands, part->kept, &np, pressure, &continued, memo);
-      return finish(std::move(continued));
+      RunRollingPart(problem, geom, part->cands, part->kept, &warm_np, pressure, &from_warm, memo);
+      if (from_warm.status == SolverStatus::kConverged) return finish(std::move(from_warm));
     }
     RunRollingPart(problem, geom, part->cands, part->kept, &np, part->pressure, &continued, memo);
     return finish(std::move(continued));

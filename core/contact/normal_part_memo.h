@@ -17,10 +17,11 @@
 // solves each time, although the last solve's balanced target differs from the new one only by
 // the change of the creep forces' vertical part. A warm memo also keeps the last balanced state
 // (its patches, load target and pressures) and the next solve's balance starts from there: one
-// or two normal solves, often none. The result is then not the full solve's bit for bit but the
-// same balance to its tolerance (|V_p + V_c - Q| <= kBalanceTolerance Q) from another start, so
-// it differs within that tolerance and the normal solver's (normal_part_memo_test.cpp measures
-// it). Not with coupling (the balance's gap changes there).
+// or two normal solves, often none (a warm balance that fails is run again from the load). The
+// result is then not the full solve's bit for bit but the same balance to its tolerance
+// (|V_p + V_c - Q| <= kBalanceTolerance Q) from another start, so it differs within that
+// tolerance and the normal solver's (normal_part_memo_test.cpp measures it). Not with coupling
+// (the balance's gap changes there).
 //
 // Contract: a memo serves the solves of one ContactProblem (the same profiles, placement, load,
 // model, materials, solver options and pressure limit; rolling present) on one WheelRailGeometry
