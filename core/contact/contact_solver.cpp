@@ -52,11 +52,20 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
 
 namespace {
 
+// Whether a solve's vertical balance can start from a warm memo's last balanced state
+// (normal_part_memo.h): a prescribed load without coupling.
+bool WarmBalanceApplies(const ContactProblem& problem, const NormalPartMemo* memo) {
+  return memo && memo->warm_balance() && problem.rolling && !problem.rolling->coupling &&
+         problem.load.vertical_force_N;
+}
+
 // 5. Rolling, then coupling and the vertical balance, from the normal part's result, candidates,
-// kept patches, normal problem *np (changed by the balance) and solution.
+// kept patches, normal problem *np (changed by the balance) and solution. A warm memo
+// (WarmBalanceApplies) keeps the balanced state for the next solve.
 void RunRollingPart(const ContactProblem& problem, const WheelRailGeometry& geom,
                     const std::vector<ContactCandidate>& cands, const KeptPatches& kept,
-                    NormalProblem* np, const Eigen::VectorXd& pressure, ContactResult* result) {
+                    NormalProblem* np, const Eigen::VectorXd& pressure, ContactResult* result,
+                    NormalPartMemo* memo) {
   if (!problem.rolling || result->status != SolverStatus::kConverged) return;
   auto t0 = Clock::now();
   // The exact solver's set-up and warm start per patch and the pitch search's last solution,
@@ -68,10 +77,14 @@ void RunRollingPart(const ContactProblem& problem, const WheelRailGeometry& geom
   if (result->status == SolverStatus::kConverged &&
       (problem.rolling->coupling || problem.load.vertical_force_N)) {
     t0 = Clock::now();
-    IterateNormalTangential(problem, geom, cands, kept.build, kept.offset, np, pressure, result,
-                            &memory);
+    Eigen::VectorXd balanced = IterateNormalTangential(
+        problem, geom, cands, kept.build, kept.offset, np, pressure, result, &memory);
     AddStage(&result->stages, problem.rolling->coupling ? "coupling" : "balance",
              SecondsSince(t0));
+    if (WarmBalanceApplies(problem, memo) && result->status == SolverStatus::kConverged &&
+        np->force_N) {
+      memo->KeepBalanced({result->patches, result->approach_m, *np->force_N, std::move(balanced)});
+    }
   }
 }
 
@@ -112,7 +125,21 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
     NormalProblem np = part->assembly.np;  // its blocks are the kept operators
     AddStage(&continued.stages, "normal reused", SecondsSince(t0));
     memo->CountReuse();
-    RunRollingPart(problem, geom, part->cands, part->kept, &np, part->pressure, &continued);
+    // A warm memo: the balance starts from the last balanced state instead of the load (and
+    // from the load after all when that fails).
+    const BalancedPart* warm = WarmBalanceApplies(problem, memo) ? memo->Balanced(geom) : nullptr;
+    if (warm) {
+      ContactResult from_warm = continued;
+      from_warm.patches = warm->patches;
+      from_warm.approach_m = warm->approach_m;
+      NormalProblem warm_np = np;
+      warm_np.force_N = warm->target_N;
+      memo->CountWarmBalance();
+      const Eigen::VectorXd pressure = warm->pressure;  // (KeepBalanced replaces *warm)
+      RunRollingPart(problem, geom, part->cands, part->kept, &warm_np, pressure, &from_warm, memo);
+      if (from_warm.status == SolverStatus::kConverged) return finish(std::move(from_warm));
+    }
+    RunRollingPart(problem, geom, part->cands, part->kept, &np, part->pressure, &continued, memo);
     return finish(std::move(continued));
   }
 
@@ -174,11 +201,14 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
       auto part = std::make_unique<NormalPart>(
           NormalPart{result, builds.cands, kept, std::move(assembly), sol.pressure_Pa});
       NormalProblem np = part->assembly.np;
-      RunRollingPart(problem, geom, part->cands, part->kept, &np, part->pressure, &result);
-      memo->Keep(geom, std::move(part));
+      const NormalPart& kept_part = *part;
+      memo->Keep(geom, std::move(part));  // (before the balance: a warm memo keeps its state)
+      RunRollingPart(problem, geom, kept_part.cands, kept_part.kept, &np, kept_part.pressure,
+                     &result, memo);
       return finish(result);
     }
-    RunRollingPart(problem, geom, builds.cands, kept, &assembly.np, sol.pressure_Pa, &result);
+    RunRollingPart(problem, geom, builds.cands, kept, &assembly.np, sol.pressure_Pa, &result,
+                   nullptr);
     return finish(result);
   }
   result.status = SolverStatus::kNotConverged;

@@ -11,6 +11,18 @@
 // solve and the next call on the same geometry continues from a copy of it with the rolling
 // stage, so its result is the one a full solve gives, bit for bit (contact_solver_test.cpp).
 //
+// Warm balance (opt-in, NormalPartMemo(kWarmBalance); SolveWheelset's axle-force rounds): under
+// a prescribed load the vertical balance with the creep forces (normal_tangential_stage.h) ran
+// again from the kept normal part's target (the load) at every new pitch velocity, 2-5 normal
+// solves each time, although the last solve's balanced target differs from the new one only by
+// the change of the creep forces' vertical part. A warm memo also keeps the last balanced state
+// (its patches, load target and pressures) and the next solve's balance starts from there: one
+// or two normal solves, often none (a warm balance that fails is run again from the load). The
+// result is then not the full solve's bit for bit but the same balance to its tolerance
+// (|V_p + V_c - Q| <= kBalanceTolerance Q) from another start, so it differs within that
+// tolerance and the normal solver's (normal_part_memo_test.cpp measures it). Not with coupling
+// (the balance's gap changes there).
+//
 // Contract: a memo serves the solves of one ContactProblem (the same profiles, placement, load,
 // model, materials, solver options and pressure limit; rolling present) on one WheelRailGeometry
 // object, in which only rolling->motion.pitch_velocity_rad_s changes between calls. A memo is
@@ -39,8 +51,21 @@ struct NormalPart {
   Eigen::VectorXd pressure;  // the normal solution [Pa]
 };
 
+// The state a balanced solve left (warm balance): the patches as its last normal solve gave them,
+// that solve's load target for the pressure and its pressures [Pa] (np's cell order).
+struct BalancedPart {
+  std::vector<PatchResult> patches;
+  double approach_m = 0.0;
+  double target_N = 0.0;
+  Eigen::VectorXd pressure;
+};
+
 class NormalPartMemo {
  public:
+  enum Balance { kExact, kWarmBalance };
+  NormalPartMemo() = default;
+  explicit NormalPartMemo(Balance balance) : warm_(balance == kWarmBalance) {}
+
   // The part kept by a solve on `geom` (compared by address), or nullptr.
   const NormalPart* Find(const WheelRailGeometry& geom) const {
     return part_ && geom_ == &geom ? part_.get() : nullptr;
@@ -48,21 +73,36 @@ class NormalPartMemo {
   void Keep(const WheelRailGeometry& geom, std::unique_ptr<const NormalPart> part) {
     geom_ = &geom;
     part_ = std::move(part);
+    balanced_.reset();
   }
+  bool warm_balance() const { return warm_; }
+  // The balanced state of the last solve on the kept part (warm balance only), or nullptr.
+  const BalancedPart* Balanced(const WheelRailGeometry& geom) const {
+    return warm_ && Find(geom) ? balanced_.get() : nullptr;
+  }
+  void KeepBalanced(BalancedPart balanced) {
+    if (warm_ && part_) balanced_ = std::make_unique<BalancedPart>(std::move(balanced));
+  }
+  int warm_balances() const { return warm_balances_; }  // solves whose balance started warm
+  void CountWarmBalance() { ++warm_balances_; }
   int reuses() const { return reuses_; }  // solves that continued from the kept part
   void CountReuse() { ++reuses_; }
 
  private:
   const WheelRailGeometry* geom_ = nullptr;
   std::unique_ptr<const NormalPart> part_;
-  int reuses_ = 0;
+  std::unique_ptr<const BalancedPart> balanced_;
+  bool warm_ = false;
+  int reuses_ = 0, warm_balances_ = 0;
 };
 
 // SolveContact(problem, placed, placement_s) with a memo (nullptr: none): continues from the
 // memo's part when it holds one for `placed`, else solves in full and, when the problem is
 // rolling and the normal solve converged, keeps its normal part there. The result is the same
 // bit for bit either way; only its stages differ (a continued solve reports "normal reused"
-// instead of the stages of the normal part).
+// instead of the stages of the normal part). A warm memo (kWarmBalance) also keeps each
+// balanced solve's state and starts the next one's balance from it (above): the same result to
+// the balance's and the normal solver's tolerances.
 ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometry& placed,
                            double placement_s, NormalPartMemo* memo);
 

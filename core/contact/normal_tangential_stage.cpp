@@ -152,12 +152,13 @@ bool Iterate(const ContactProblem& problem, const WheelRailGeometry& geom,
 
 }  // namespace
 
-void IterateNormalTangential(const ContactProblem& problem, const WheelRailGeometry& geom,
-                             const std::vector<ContactCandidate>& cands,
-                             const std::vector<int>& kept_build,
-                             const std::vector<int>& kept_offset, NormalProblem* np,
-                             Eigen::VectorXd pressure, ContactResult* result,
-                             RollingStageMemory* memory) {
+Eigen::VectorXd IterateNormalTangential(const ContactProblem& problem,
+                                        const WheelRailGeometry& geom,
+                                        const std::vector<ContactCandidate>& cands,
+                                        const std::vector<int>& kept_build,
+                                        const std::vector<int>& kept_offset, NormalProblem* np,
+                                        Eigen::VectorXd pressure, ContactResult* result,
+                                        RollingStageMemory* memory) {
   const bool coupling = problem.rolling->coupling;
   std::optional<BalanceTarget> balance;
   if (problem.load.vertical_force_N) {
@@ -171,9 +172,9 @@ void IterateNormalTangential(const ContactProblem& problem, const WheelRailGeome
   if (balance && !balance->Settled(BalanceError(*result, *problem.load.vertical_force_N)) &&
       !Iterate(problem, geom, {}, kept_offset, base_gap, false, balance_ptr, np, &pressure,
                result, memory)) {
-    return;
+    return pressure;
   }
-  if (!coupling) return;
+  if (!coupling) return pressure;
   const auto [area0, p_max0] = AreaAndPeak(*result);
   std::vector<double> kappa;
   for (int b : kept_build) {
@@ -184,11 +185,12 @@ void IterateNormalTangential(const ContactProblem& problem, const WheelRailGeome
   }
   if (!Iterate(problem, geom, kappa, kept_offset, base_gap, true, balance_ptr, np, &pressure,
                result, memory)) {
-    return;
+    return pressure;
   }
   const auto [area1, p_max1] = AreaAndPeak(*result);
   result->coupling_area_change = area1 / area0 - 1.0;
   result->coupling_p_max_change = p_max1 / p_max0 - 1.0;
+  return pressure;
 }
 
 }  // namespace railwear::internal

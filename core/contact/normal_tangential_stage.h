@@ -39,7 +39,9 @@ double BalanceResidual(const ContactResult& result, double load_N);
 // relative area and peak changes, the balance residual, or kNotConverged go into *result.
 // memory (optional, in/out): what the rolling stage keeps (RunRollingStage), across the loop's
 // repeats of it.
-void IterateNormalTangential(const ContactProblem& problem, const WheelRailGeometry& geom,
+// Returns the pressure [Pa] of *result's patches as the stage leaves them (the last normal
+// solve's, or `pressure` when none ran), with np->force_N that solve's load target.
+Eigen::VectorXd IterateNormalTangential(const ContactProblem& problem, const WheelRailGeometry& geom,
                              const std::vector<ContactCandidate>& cands,
                              const std::vector<int>& kept_build,
                              const std::vector<int>& kept_offset, NormalProblem* np,

@@ -104,8 +104,11 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cac
   const WheelRailGeometry& left_geom = place(PlacementCache::kLeft, left, l, &own_left);
   // Each wheel's normal part (the grids, operators and normal solves, which do not depend on
   // the pitch velocity) kept for the solves of the balance rounds below (normal_part_memo.h);
-  // only an axle force target has such rounds.
-  internal::NormalPartMemo right_memo, left_memo;
+  // only an axle force target has such rounds. Each round's vertical balance starts from the
+  // last round's balanced state (warm balance): the same balance to its tolerance in fewer
+  // normal solves.
+  internal::NormalPartMemo right_memo(internal::NormalPartMemo::kWarmBalance),
+      left_memo(internal::NormalPartMemo::kWarmBalance);
   out.right = internal::SolveContact(right, right_geom, 0.0, target ? &right_memo : nullptr);
   out.left = internal::SolveContact(left, left_geom, 0.0, target ? &left_memo : nullptr);
   if (!target || out.right.status != SolverStatus::kConverged ||

@@ -8,7 +8,8 @@
 // mirrored yaw and roll. Prescribed creepages (RollingOptions::creepage) apply to each wheel in its
 // own frame. Under a prescribed load each wheel is balanced vertically with its creep forces
 // (SolveContact); with an axle force target the balanced solves and the pitch-velocity search
-// alternate until both hold. Each wheel's FlangeClimbCheck (L/V, Nadal) is in its own rail frame.
+// alternate until both hold, each round's balance starting from the last round's balanced state
+// (a warm NormalPartMemo, normal_part_memo.h: the balance to its tolerance from a nearer start). Each wheel's FlangeClimbCheck (L/V, Nadal) is in its own rail frame.
 #pragma once
 
 #include "core/contact/contact_solver.h"
