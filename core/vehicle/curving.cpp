@@ -259,6 +259,14 @@ class Equilibrium {
     return ok;
   }
 
+  // The residual at *trial with the frames and the body projected onto it (Project): false when
+  // a wheelset is beyond the lateral limit (no contact solved) or a contact failed.
+  bool TrialResidual(Eigen::VectorXd* trial, std::vector<CurvedWheelset>* ws,
+                     Eigen::VectorXd* r) {
+    Project(trial);
+    return WithinBounds(*trial) && Residual(*trial, ws, r);
+  }
+
   // The largest scaled residual (the convergence test) and the scaled 2-norm (the line search's
   // merit: the Newton direction descends on it, not always on the largest component).
   double Norm(const Eigen::VectorXd& r) const {
@@ -300,11 +308,9 @@ class Equilibrium {
         double alpha = 1.0;
         for (int k = 0; k <= halvings; ++k, alpha *= 0.5) {
           Eigen::VectorXd trial = *q + alpha * d;
-          Project(&trial);
-          if (!WithinBounds(trial)) continue;
           std::vector<CurvedWheelset> trial_ws;
           Eigen::VectorXd trial_r;
-          if (!Residual(trial, &trial_ws, &trial_r)) continue;
+          if (!TrialResidual(&trial, &trial_ws, &trial_r)) continue;
           if (Merit(trial_r) < (1.0 - 1e-4 * alpha) * before) {
             BroydenUpdate(&J, trial - *q, trial_r - *r);
             *q = trial;
@@ -475,11 +481,9 @@ class Equilibrium {
       if (!d.allFinite()) return false;
       Limited(&d);
       Eigen::VectorXd trial = *q + d;
-      Project(&trial);
       std::vector<CurvedWheelset> trial_ws;
       Eigen::VectorXd trial_r;
-      if (!WithinBounds(trial) || !Residual(trial, &trial_ws, &trial_r) ||
-          Merit(trial_r) > 2.0 * Merit(*r)) {
+      if (!TrialResidual(&trial, &trial_ws, &trial_r) || Merit(trial_r) > 2.0 * Merit(*r)) {
         if (Cancelled()) return false;
         sigma *= 4.0;
         J = Jacobian(*q, *ws, 1.0);
@@ -527,11 +531,9 @@ class Equilibrium {
     if (!(full > 0.0)) return false;
     for (double alpha : {1.0, 0.5, 0.25}) {
       Eigen::VectorXd trial = *q + alpha * step;
-      Project(&trial);
-      if (!WithinBounds(trial)) continue;
       std::vector<CurvedWheelset> trial_ws;
       Eigen::VectorXd trial_r;
-      if (!Residual(trial, &trial_ws, &trial_r)) continue;
+      if (!TrialResidual(&trial, &trial_ws, &trial_r)) continue;
       const Eigen::VectorXd c = lu.solve(-trial_r);
       if (!c.allFinite()) return false;
       // Deuflhard's restricted monotonicity test.
@@ -567,11 +569,9 @@ class Equilibrium {
       }
     }
     Eigen::VectorXd trial = *q + alpha * d;
-    Project(&trial);
-    if (!WithinBounds(trial)) return -1;
     std::vector<CurvedWheelset> trial_ws;
     Eigen::VectorXd trial_r;
-    if (!Residual(trial, &trial_ws, &trial_r)) return -1;
+    if (!TrialResidual(&trial, &trial_ws, &trial_r)) return -1;
     // The components above the tolerance, and whether each one changes sign.
     std::string changed;
     bool bracketed = true;
@@ -782,7 +782,8 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
   auto contexts = [&](const ModelOptions& model) {
     std::vector<WheelsetContext> ctx(layout.wheelsets);
     for (int i = 0; i < layout.wheelsets; ++i) {
-      ctx[i] = {&p, model, q0 + transfer, q0 - transfer, q0, p.wheels.empty() ? nullptr : &p.wheels[i]};
+      ctx[i] = {&p, model, q0 + transfer, q0 - transfer, q0,
+                p.wheels.empty() ? nullptr : &p.wheels[i]};
     }
     return ctx;
   };
