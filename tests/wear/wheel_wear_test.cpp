@@ -360,7 +360,9 @@ TEST(WheelWearTest, AWheelWornInTheMiddleReportsItsDepthThereAndNoneAtItsEnds) {
       // resampled profile, which moves the curve by the splines' representation error where its
       // samples shifted along it (measured: 9e-9 m at 0.18 mm of wear, 4e-12 at 1.3e-7 m): the
       // profile's own change, a rail's too, and far below its wear.
-      if (step.state.step == 1) EXPECT_LT(off_band, kNoWear_m);
+      if (step.state.step == 1) {
+        EXPECT_LT(off_band, kNoWear_m);
+      }
       EXPECT_LT(off_band, kResampling * m.max_depth_m);
     }
   }
