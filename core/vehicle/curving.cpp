@@ -498,15 +498,14 @@ class Equilibrium {
     return false;
   }
 
-  // Scales d down so that no wheelset moves by more than the step limits; returns the factor.
-  double Limited(Eigen::VectorXd* d) const {
+  // Scales d down so that no wheelset moves by more than the step limits.
+  void Limited(Eigen::VectorXd* d) const {
     double shrink = 1.0;
     for (int k = 0; k < 2 * l_.wheelsets; ++k) {
       const double limit = k % 2 == 0 ? kMaxStepY_m : kMaxStepYaw_rad;
       if (std::abs((*d)[k]) > limit) shrink = std::min(shrink, limit / std::abs((*d)[k]));
     }
     *d *= shrink;
-    return shrink;
   }
 
   // The largest wheelset move in d, in units of the position tolerances (1: at a tolerance).
