@@ -90,7 +90,8 @@ struct rw_problem {
   // same profiles (core/contact/placement_cache.h): exact, so results do not depend on it.
   railwear::PlacementCache placement_cache;
   // The fast tread path's wheel-frame contact point of the last calculate (RW_MODEL_HERTZ with
-  // rolling contact on a single wheel, core/contact/hertz_tread.h); empty for any other solve.
+  // rolling contact on a single wheel, core/contact/hertz_tread.h); empty for any other solve (a
+  // wheelset's are in its result, WheelsetResult::right_tread_point and left_tread_point).
   std::optional<railwear::HertzTreadPoint> tread_point;
 
   std::optional<ContactCaseResult> result;
@@ -632,18 +633,12 @@ rw_status rw_set_model(rw_problem* problem, const rw_model* model) {
                                        : model->kind == RW_MODEL_HALFSPACE ? ModelKind::kHalfspace
                                                                            : ModelKind::kConformal);
     }
-    // Since 1.3 the Hertz model rolls on a single wheel: the fast tread path
-    // (core/contact/hertz_tread.h); coupling and a wheelset need a grid model.
+    // Since 1.3 the Hertz model rolls on a single wheel, since 1.4 on a wheelset too: the fast
+    // tread path (core/contact/hertz_tread.h); coupling needs a grid model.
     if (m.kind == ModelKind::kHertz && (model->effects & RW_EFFECT_COUPLING)) {
       Fail(RW_ERROR_INVALID_VALUE,
            "rw_model.kind = RW_MODEL_HERTZ with RW_EFFECT_COUPLING: the "
            "coupling effect needs a patch grid (use HALFSPACE, CONFORMAL or AUTO)");
-    }
-    if (m.kind == ModelKind::kHertz && model->effects != 0 &&
-        problem->kind == RW_PROBLEM_WHEELSET) {
-      Fail(RW_ERROR_WRONG_KIND,
-           "rw_model.kind = RW_MODEL_HERTZ with effects: rolling contact with the Hertz model is "
-           "the single wheel's fast tread path; a wheelset needs HALFSPACE, CONFORMAL or AUTO");
     }
     m.accuracy = static_cast<AccuracyPreset>(model->accuracy);
     if (explicit_cells) {
@@ -979,11 +974,15 @@ rw_status rw_get_patch(rw_problem* problem, int index, rw_patch* out) {
     }
     o.cells = p.cells;
     o.cells_in_contact = p.cells_in_contact;
-    if (problem->tread_point && p.model == "hertz") {
+    const std::optional<railwear::HertzTreadPoint>& tread_point =
+        !problem->result->wheelset ? problem->tread_point
+        : ref.wheel == 0           ? problem->result->wheelset->right_tread_point
+                                   : problem->result->wheelset->left_tread_point;
+    if (tread_point && p.model == "hertz") {
       // The fast tread path placed the wheel itself: its contact point on the wheel.
-      o.contact_wheel_x_m = problem->tread_point->wheel_x_m;
-      o.contact_wheel_y_m = problem->tread_point->wheel_y_m;
-      o.contact_wheel_z_m = problem->tread_point->wheel_z_m;
+      o.contact_wheel_x_m = tread_point->wheel_x_m;
+      o.contact_wheel_y_m = tread_point->wheel_y_m;
+      o.contact_wheel_z_m = tread_point->wheel_z_m;
     } else {
       // The wheel frame: the pressure centre in the wheel's placed geometry of this solve (the
       // handle's placement cache holds each wheel's last one, core/contact/placement_cache.h).

@@ -548,14 +548,12 @@ void ReadWheelset(const Fields& top, Scene* scene) {
 void CheckRolling(const Fields& top, const Scene& scene) {
   if (!scene.tangential) return;
   if (const auto model = top.Table("model", "a table")) {
-    // kind = "hertz" rolls on the single wheel's fast tread path (core/contact/hertz_tread.h,
-    // docs/library.md): not with coupling, not on a wheelset.
-    if (scene.problem.model.kind == ModelKind::kHertz &&
-        (scene.wheelset || HasEffect(scene, "coupling"))) {
+    // kind = "hertz" rolls on the fast tread path (core/contact/hertz_tread.h, a single wheel or
+    // both wheels of a wheelset, docs/library.md): not with coupling.
+    if (scene.problem.model.kind == ModelKind::kHertz && HasEffect(scene, "coupling")) {
       model->Fail("kind",
-                  "\"halfspace\", \"conformal\" or \"auto\" with a wheelset or the coupling "
-                  "effect (the hertz model rolls only on a single wheel's fast tread path, "
-                  "without coupling)");
+                  "\"halfspace\", \"conformal\" or \"auto\" with the coupling effect (the hertz "
+                  "model rolls only on the fast tread path, without coupling)");
     }
   }
   if (scene.damage && !(scene.problem.rail_material.shear_yield_Pa > 0)) {

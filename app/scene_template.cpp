@@ -50,7 +50,8 @@ accuracy = "standard"         # "draft" | "standard" | "reference" | "fine"; def
 # cell_mm = [0.2, 0.2]        # explicit cell size [dx, ds] in mm (> 0); overrides accuracy
 tangential = "fastsim"        # "fastsim" | "exact" | "auto"; default "fastsim": the tangential
                               # solver of the "tangential" effect (kind = "hertz": on the
-                              # fast tread path's ellipse, a single wheel, docs/library.md);
+                              # fast tread path's ellipse, one wheel or a wheelset's both,
+                              # docs/library.md);
                               # "auto": per patch exact where spin or the patch's shape takes
                               # FASTSIM beyond the accuracy's creep-force tolerance
                               # (docs/rolling_contact.md)

@@ -1,6 +1,8 @@
 // Placed geometries kept between solves (placement_cache.h).
 #include "core/contact/placement_cache.h"
 
+#include "core/geometry/wheelset.h"
+
 namespace railwear {
 
 namespace {
@@ -28,6 +30,16 @@ const WheelRailGeometry& PlacementCache::Get(Slot slot, const Profile& wheel, co
   e.pose = pose;
   e.geometry = std::make_unique<const WheelRailGeometry>(*e.wheel, *e.rail, pose);
   return *e.geometry;
+}
+
+Eigen::Vector2d PlacementCache::GaugePoint(Slot slot, const Profile& rail, double gauge_height_m) {
+  GaugeEntry& e = gauge_[slot];
+  if (e.rail && e.height_m == gauge_height_m && e.rail->points() == rail.points()) return e.point;
+  const Eigen::Vector2d point = RailGaugePoint(rail, gauge_height_m);  // throws: nothing kept
+  e.rail = std::make_unique<const Profile>(rail);
+  e.height_m = gauge_height_m;
+  e.point = point;
+  return point;
 }
 
 }  // namespace railwear

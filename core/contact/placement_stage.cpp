@@ -40,8 +40,8 @@ void CheckContactProblem(const ContactProblem& problem) {
 void CheckRollingProblem(const ContactProblem& problem, bool hertz_tread) {
   if (problem.rolling && problem.model.kind == ModelKind::kHertz && !hertz_tread) {
     throw InputError(
-        "rolling contact with the hertz model is the single wheel's fast tread path; a wheelset "
-        "needs a patch grid: use the halfspace, conformal or auto model");
+        "rolling contact with the hertz model is the fast tread path (hertz_tread.h); a patch "
+        "grid needs the halfspace, conformal or auto model");
   }
   if (problem.rolling && problem.damage && !(problem.rail_material.shear_yield_Pa > 0)) {
     throw InputError(

@@ -16,8 +16,8 @@ namespace railwear::internal {
 void CheckContactProblem(const ContactProblem& problem);
 
 // Throws InputError for a rolling stage the problem cannot run: rolling contact asked of the
-// Hertz model on a grid path (the Hertz model rolls only on the single wheel's fast tread path,
-// hertz_tread.h, which passes hertz_tread = true), damage without the rail's shear yield stress,
+// Hertz model on a grid path (the Hertz model rolls only on the fast tread path, hertz_tread.h,
+// which passes hertz_tread = true), damage without the rail's shear yield stress,
 // speed or friction <= 0. Nothing to check without problem.rolling.
 void CheckRollingProblem(const ContactProblem& problem, bool hertz_tread = false);
 

@@ -7,7 +7,9 @@
 #include <fmt/format.h>
 
 #include "core/contact/contact_forces.h"
+#include "core/contact/hertz_tread.h"
 #include "core/contact/normal_part_memo.h"
+#include "core/contact/rolling_stage.h"
 #include "core/numerics/input_error.h"
 
 namespace railwear {
@@ -16,6 +18,77 @@ namespace {
 // Rounds of (balanced solve at the pitch velocity, pitch-velocity search) for an axle force
 // target under a prescribed load.
 constexpr int kBalanceRounds = 8;
+
+// The status message of an axle force target friction cannot carry.
+std::string AxleForceNotCarried(double target_N, double reached_N, double mu_fn_N) {
+  return fmt::format(
+      "the axle's longitudinal force {:.1f} N cannot be carried: friction limits it to about "
+      "{:.1f} N here (mu F_n = {:.1f} N)",
+      target_N, std::abs(reached_N), mu_fn_N);
+}
+
+// Both wheels on the fast tread path (hertz_tread.h), each wheel's problem (*right_wheel,
+// *left_wheel) placed and moving as SolveWheelset set it up, the axle force target (if any) already taken out
+// of them. Every evaluation is the fast path's whole solve (placement, Hertz's ellipse, the
+// tangential solution and the vertical balance), so the pitch search needs no balance rounds:
+// its root is the balanced wheels'. False, with the wheel and the reason in *why_not, when
+// either contact is not one Hertzian patch at the axle's pitch velocities the search tries.
+bool SolveTreadWheels(ContactProblem* right_wheel, ContactProblem* left_wheel,
+                      std::optional<double> target, const WheelsetProblem& problem,
+                      WheelsetResult* out, std::string* why_not) {
+  ContactProblem& right = *right_wheel;  // (their pitch velocities change with the search)
+  ContactProblem& left = *left_wheel;
+  auto solve = [&](const ContactProblem& wheel, const char* side, ContactResult* result,
+                   HertzTreadPoint* point) {
+    std::string why;
+    auto fast = SolveHertzTread(wheel, &why, point);
+    if (!fast) {
+      *why_not = fmt::format("{} wheel: {}", side, why);
+      return false;
+    }
+    *result = std::move(*fast);
+    return true;
+  };
+  HertzTreadPoint right_point, left_point;
+  auto both = [&](std::optional<double> omega) {
+    if (omega) {
+      right.rolling->motion.pitch_velocity_rad_s = *omega;
+      left.rolling->motion.pitch_velocity_rad_s = *omega;
+    }
+    return solve(right, "right", &out->right, &right_point) &&
+           solve(left, "left", &out->left, &left_point);
+  };
+  if (!both(std::nullopt)) return false;
+  if (target && out->right.status == SolverStatus::kConverged &&
+      out->left.status == SolverStatus::kConverged) {
+    bool valid = true;
+    double last_N = TotalForceX(out->right) + TotalForceX(out->left);
+    auto fx = [&](double omega) {
+      if (valid && both(omega)) last_N = TotalForceX(out->right) + TotalForceX(out->left);
+      else valid = false;
+      return last_N;
+    };
+    const double mu_fn =
+        right.rolling->friction * (TotalNormalForce(out->right) + TotalNormalForce(out->left));
+    const double tolerance_N = problem.axle_force_tolerance_N.value_or(1e-6 * mu_fn);
+    const auto omega =
+        SolvePitchVelocityForForce(fx, *target, problem.wheel_rail.rolling->motion.speed_m_s,
+                                   problem.wheelset.rolling_radius_m, tolerance_N);
+    if (!valid) return false;
+    if (!omega) {
+      const std::string message = AxleForceNotCarried(*target, last_N, mu_fn);
+      for (ContactResult* r : {&out->right, &out->left}) {
+        r->status = SolverStatus::kNotConverged;
+        r->message = message;
+      }
+      return true;
+    }
+    if (!both(*omega)) return false;  // the wheels at the root, balanced
+  }
+  out->right_tread_point = right_point;
+  out->left_tread_point = left_point;
+  return true;
+}
 }  // namespace
 
 WheelMotions CurveWheelMotions(const WheelMotion& axle, const WheelsetPlacement& placed,
@@ -47,15 +120,20 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cac
   const Profile& right_rail = problem.wheel_rail.rail_profile;
   const Profile& left_rail =
       problem.left_rail_profile ? *problem.left_rail_profile : problem.wheel_rail.rail_profile;
+  // Each rail's gauge point (PlaceWheelset's), kept by the cache across calls on the same rails.
+  auto gauge_point = [&](PlacementCache::Slot slot, const Profile& rail) {
+    const double h = problem.track.gauge_height_m;
+    return (cache ? cache->GaugePoint(slot, rail, h) : RailGaugePoint(rail, h)).x();
+  };
   if (problem.gauge_points) {
     out.placement = PlaceWheelsetAt(*problem.gauge_points, problem.track, problem.wheelset);
   } else if (problem.left_rail_profile) {
-    const double h = problem.track.gauge_height_m;
-    out.placement =
-        PlaceWheelsetAt({RailGaugePoint(right_rail, h).x(), RailGaugePoint(left_rail, h).x()},
-                        problem.track, problem.wheelset);
+    out.placement = PlaceWheelsetAt({gauge_point(PlacementCache::kRight, right_rail),
+                                     gauge_point(PlacementCache::kLeft, left_rail)},
+                                    problem.track, problem.wheelset);
   } else {
-    out.placement = PlaceWheelset(right_rail, problem.track, problem.wheelset);
+    const double y_g = gauge_point(PlacementCache::kRight, right_rail);
+    out.placement = PlaceWheelsetAt({y_g, y_g}, problem.track, problem.wheelset);
   }
   const WheelPose& r = out.placement.right;
   const WheelPose& l = out.placement.left;
@@ -91,6 +169,22 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cac
     target = right.rolling->longitudinal_force_N;
     right.rolling->longitudinal_force_N.reset();
     left.rolling->longitudinal_force_N.reset();
+  }
+  // kind = hertz with rolling contact: both wheels on the fast tread path, or the whole wheelset
+  // on its fallback (kind = auto at the same accuracy), each patch's model_reason saying why.
+  if (IsHertzRolling(problem.wheel_rail)) {
+    std::string why_not;
+    if (SolveTreadWheels(&right, &left, target, problem, &out, &why_not)) return out;
+    WheelsetProblem fallback = problem;
+    fallback.wheel_rail.model = HertzTreadFallbackModel(problem.wheel_rail.model);
+    WheelsetResult full = SolveWheelset(fallback, cache);
+    for (ContactResult* wheel : {&full.right, &full.left}) {
+      for (PatchResult& patch : wheel->patches) {
+        patch.model_reason = "fast tread path not valid: " + why_not +
+                             (patch.model_reason.empty() ? "" : "; full path: " + patch.model_reason);
+      }
+    }
+    return full;
   }
   // Each wheel's placed geometry, built once for all its solves and the trials of the search
   // (or kept from an earlier solve at the same pose: PlacementCache).
@@ -129,10 +223,8 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cac
       SolvePitchVelocityForForce(fx, *target, problem.wheel_rail.rolling->motion.speed_m_s,
                                  problem.wheelset.rolling_radius_m, tolerance_N);
   if (!omega) {
-    const std::string message = fmt::format(
-        "the axle's longitudinal force {:.1f} N cannot be carried: friction limits it to about "
-        "{:.1f} N here (mu F_n = {:.1f} N)",
-        *target, std::abs(TotalForceX(out.right) + TotalForceX(out.left)), mu_fn);
+    const std::string message =
+        AxleForceNotCarried(*target, TotalForceX(out.right) + TotalForceX(out.left), mu_fn);
     for (ContactResult* r : {&out.right, &out.left}) {
       r->status = SolverStatus::kNotConverged;
       r->message = message;

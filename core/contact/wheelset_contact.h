@@ -10,9 +10,17 @@
 // (SolveContact); with an axle force target the balanced solves and the pitch-velocity search
 // alternate until both hold, each round's balance starting from the last round's balanced state
 // (a warm NormalPartMemo, normal_part_memo.h: the balance to its tolerance from a nearer start). Each wheel's FlangeClimbCheck (L/V, Nadal) is in its own rail frame.
+//
+// kind = hertz with rolling contact puts both wheels on the fast tread path (hertz_tread.h): each
+// wheel is placed, solved and balanced as a single wheel's fast path does it, and an axle force
+// target is met by a pitch search over those whole solves. When either wheel's contact is not one
+// Hertzian patch (at the search's pitch velocities too), the whole wheelset is solved by the full
+// path with kind = auto at the same accuracy, and every patch's model_reason starts with "fast
+// tread path not valid: " and the wheel and reason.
 #pragma once
 
 #include "core/contact/contact_solver.h"
+#include "core/contact/hertz_tread.h"
 #include "core/contact/placement_cache.h"
 #include "core/geometry/wheelset.h"
 
@@ -52,6 +60,9 @@ struct WheelsetResult {
   WheelsetPlacement placement;
   ContactResult right;
   ContactResult left;
+  // Each wheel's contact point in its wheel frame when the wheelset took the fast tread path
+  // (kind = hertz with rolling: hertz_tread.h); absent on every other path.
+  std::optional<HertzTreadPoint> right_tread_point, left_tread_point;
 };
 
 // Each wheel's motion on a curve of the given curvature (1/R, turning toward -Y), with the

@@ -51,7 +51,7 @@ extern "C" {
  * size this header writes. rw_api_version() gives the library's (major * 10000 + minor * 100 +
  * patch), for a check at run time. */
 #define RW_API_VERSION_MAJOR 1
-#define RW_API_VERSION_MINOR 3
+#define RW_API_VERSION_MINOR 4
 #define RW_API_VERSION_PATCH 0
 #define RW_API_VERSION \
   (RW_API_VERSION_MAJOR * 10000 + RW_API_VERSION_MINOR * 100 + RW_API_VERSION_PATCH)
@@ -133,10 +133,11 @@ RW_API rw_status rw_set_materials(rw_problem* problem, const rw_material* wheel,
 
 typedef int rw_model_kind;
 enum {
-  RW_MODEL_HERTZ = 0,     /* analytic, no grid; since 1.3 with RW_EFFECT_TANGENTIAL (single
-                             wheel): the fast tread path, Hertz's ellipse and FASTSIM on it,
-                             where the contact is one Hertzian patch, else RW_MODEL_AUTO
-                             (rw_get_patch_model says which and why; docs/library.md) */
+  RW_MODEL_HERTZ = 0,     /* analytic, no grid; since 1.3 with RW_EFFECT_TANGENTIAL (a single
+                             wheel; since 1.4 a wheelset too, both wheels or neither): the fast
+                             tread path, Hertz's ellipse and FASTSIM on it, where the contact
+                             is one Hertzian patch, else RW_MODEL_AUTO (rw_get_patch_model
+                             says which and why; docs/library.md) */
   RW_MODEL_HALFSPACE = 1, /* planar grid, Boussinesq kernel */
   RW_MODEL_CONFORMAL = 2, /* conformal grid, the seed's kernel (eq. 4); the default */
   RW_MODEL_CUSTOM = 3,    /* the given geometry and kernel */

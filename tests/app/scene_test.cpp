@@ -444,6 +444,27 @@ speed_m_s = 2.0
   EXPECT_TRUE(Contains(ErrorOf(no_load), "key 'wheelset.vertical_load_per_wheel_N' is missing"));
 }
 
+// kind = "hertz" rolls on the fast tread path on a wheelset too (both wheels, or the whole
+// wheelset on the auto model's fallback: core/contact/wheelset_contact.h); the coupling effect
+// still needs a patch grid.
+TEST(SceneTest, HertzRollsOnAWheelsetButNotWithCoupling) {
+  std::ifstream in(RAILWEAR_SOURCE_DIR "/examples/wheelset.toml");
+  std::string hertz((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string kind = "kind = \"conformal\"", effects = "\"tangential\"]";
+  ASSERT_NE(hertz.find(kind), std::string::npos);
+  hertz.replace(hertz.find(kind), kind.size(), "kind = \"hertz\"");
+  const Scene s = ParseScene(hertz, "wheelset.toml");
+  EXPECT_EQ(s.problem.model.kind, ModelKind::kHertz);
+  ASSERT_TRUE(s.wheelset.has_value());
+  EXPECT_TRUE(s.tangential);
+  std::string coupled = hertz;
+  ASSERT_NE(coupled.find(effects), std::string::npos);
+  coupled.replace(coupled.find(effects), effects.size(), "\"tangential\", \"coupling\"]");
+  EXPECT_TRUE(Contains(ErrorOf(coupled, "wheelset.toml"),
+                       "key 'model.kind' = \"hertz\": expected \"halfspace\", \"conformal\" or "
+                       "\"auto\" with the coupling effect"));
+}
+
 TEST(SceneTest, WearTablesNeedTheWearEffect) {
   for (const std::string table : {"[wear]\nk = 1e-4\n", "[[traffic]]\nshare = 1\n"}) {
     const std::string msg = ErrorOf(std::string(kMinimal) + table);

@@ -20,6 +20,10 @@
 //   BM_CrownNewPosition/<model>/<accuracy>: the same wheel at -20 mm, 5 mrad (on the rail's
 //     crown, one Hertzian patch), a new lateral position every call: model 0 RW_MODEL_HERTZ (the
 //     fast tread path), 1 halfspace, 4 auto; accuracy 0 draft, 1 standard.
+//   BM_WheelsetTreadNewPosition/<model>: a wheelset of those wheels displaced 4 mm to the left,
+//     1 mrad (the right wheel on the crown at -14.5 mm, the left one on the 80 mm radius at
+//     -6.5 mm: both single Hertzian patches), draft, a new displacement every call: model 0
+//     RW_MODEL_HERTZ (both wheels on the fast tread path, API 1.4), 1 halfspace, 4 auto.
 // Run: build/tests/benchmarks/api_bench --benchmark_repetitions=5
 //      --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -114,6 +118,18 @@ BENCHMARK(BM_CrownNewPosition)
     ->Args({RW_MODEL_HERTZ, RW_ACCURACY_STANDARD})
     ->Args({RW_MODEL_HALFSPACE, RW_ACCURACY_DRAFT})
     ->Args({RW_MODEL_AUTO, RW_ACCURACY_DRAFT})
+    ->Unit(benchmark::kMicrosecond);
+
+void BM_WheelsetTreadNewPosition(benchmark::State& state) {
+  RunChangingSteps(state,
+                   railwear::test::MakeRollingS1002Wheel(static_cast<int>(state.range(0)),
+                                                         RW_ACCURACY_DRAFT, RW_PROBLEM_WHEELSET),
+                   [](long k) { return State(-4e-3 + 1e-7 * static_cast<double>(k % 16), 1e-3); });
+}
+BENCHMARK(BM_WheelsetTreadNewPosition)
+    ->Arg(RW_MODEL_HERTZ)
+    ->Arg(RW_MODEL_HALFSPACE)
+    ->Arg(RW_MODEL_AUTO)
     ->Unit(benchmark::kMicrosecond);
 
 }  // namespace

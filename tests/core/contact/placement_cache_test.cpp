@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/contact/contact_case.h"
+#include "core/geometry/wheelset.h"
 #include "core/profile/builtin_profiles.h"
 #include "tests/core/contact/same_result.h"
 
@@ -76,6 +77,27 @@ TEST(PlacementCache, WheelsetSolvesEqualFreshOnesBitForBit) {
   }
   EXPECT_EQ(cache.misses(), 2);  // both wheels placed once
   EXPECT_EQ(cache.hits(), 2);    // and reused by the second step
+}
+
+// A wheelset's gauge points kept per slot: RailGaugePoint's, bit for bit, for the kept rail and
+// height; another rail (one point moved by 1 um) or height is computed anew.
+TEST(PlacementCache, KeepsGaugePointsOnlyForTheSameRailAndHeight) {
+  PlacementCache cache;
+  const Profile rail = ApplyCant(MakeUic60(), 1.0 / 40.0);
+  const Eigen::Vector2d fresh = RailGaugePoint(rail, 14e-3);
+  EXPECT_EQ(cache.GaugePoint(PlacementCache::kRight, rail, 14e-3), fresh);
+  EXPECT_EQ(cache.GaugePoint(PlacementCache::kRight, rail, 14e-3), fresh);
+  EXPECT_EQ(cache.GaugePoint(PlacementCache::kRight, rail, 15e-3), RailGaugePoint(rail, 15e-3));
+  std::vector<Eigen::Vector2d> points = rail.points();
+  for (Eigen::Vector2d& p : points) {
+    if (p.y() > fresh.y() - 1e-3 && p.y() < fresh.y() + 1e-3) p.x() -= 1e-6;  // gauge face
+  }
+  const Profile moved(points, "moved");
+  const Eigen::Vector2d other = cache.GaugePoint(PlacementCache::kRight, moved, 14e-3);
+  EXPECT_EQ(other, RailGaugePoint(moved, 14e-3));
+  EXPECT_NE(other.x(), fresh.x());
+  // The other slot is its own.
+  EXPECT_EQ(cache.GaugePoint(PlacementCache::kLeft, rail, 14e-3), fresh);
 }
 
 }  // namespace
