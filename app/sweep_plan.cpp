@@ -543,9 +543,9 @@ double SweepLineCost(const Scene& scene) {
   if (!scene.wear) return 0.0;
   const WearStudy& study = *scene.wear;
   const WearOptions& o = study.options;
-  // Nodes per spread: the fixed rule's, or the adaptive rule's typical count (5 to start, a few
+  // Nodes per spread: the fixed rule's, or the adaptive rule's typical count (7 to start, a few
   // midpoints added).
-  constexpr double kAdaptiveNodes = 9.0;
+  constexpr double kAdaptiveNodes = 11.0;
   const double nodes = o.integration_tolerance ? kAdaptiveNodes : o.quadrature_points;
   double cases = 0.0;
   for (const TrafficCase& t : study.traffic) {

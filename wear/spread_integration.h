@@ -5,7 +5,7 @@
 //
 // Rule. The position is x in standard-normal units (lateral shift = mean + std x). The response
 // a(x) is known at sorted nodes x_0 < ... < x_m; between nodes it is taken as linear, beyond the
-// outer nodes constant, and that piecewise-linear function is integrated exactly against the
+// outer nodes (+-5) constant, and that piecewise-linear function is integrated exactly against the
 // normal density phi (closed forms in Phi and phi), so the weights are positive, sum to 1 and
 // the rule is nested: adding a node changes only the weights of its interval's two ends. The
 // rule is exact for piecewise-linear a (with kinks at nodes); a jump inside an interval costs
@@ -36,13 +36,19 @@
 
 namespace railwear {
 
-// The first nodes of every unit [standard-normal units]: the median, the shoulders and the
-// tails (beyond +-3 the response is taken constant: 0.13 % of the probability on each side).
-inline constexpr std::array<double, 5> kSpreadInitialNodes = {-3.0, -1.5, 0.0, 1.5, 3.0};
-// The most nodes one unit takes in a step (5 first nodes and 36 bisections).
+// The first nodes of every unit [standard-normal units]: the median, the shoulders, +-3 and the
+// far tails at +-5, beyond which the response is taken constant (2.9e-7 of the probability on
+// each side). The tails are not negligible: where a wheel's flange meets the rail only beyond
+// +3 std, its flange contact wears 5-25 times more per pass than the tread and gauge corner
+// inside, and the 1.35e-3 of probability beyond +3 carried 8-22 % of the step's worn area in the
+// default study's 10 MGT run with 30 Gauss-Hermite nodes (docs/wear.md, "The tails"); with the
+// first nodes at +-3 only, the rule took the response at +3 for all of it.
+inline constexpr std::array<double, 7> kSpreadInitialNodes = {-5.0, -3.0, -1.5, 0.0,
+                                                                1.5,  3.0,  5.0};
+// The most nodes one unit takes in a step (7 first nodes and 34 bisections).
 inline constexpr int kMaxSpreadNodes = 41;
 // The narrowest interval that is bisected [standard-normal units]: six halvings of the first
-// 1.5 (0.023 std: 23 um at a 1 mm spread, below every contact grid's cell).
+// nodes' 1.5 (0.023 std: 23 um at a 1 mm spread, below every contact grid's cell).
 inline constexpr double kMinSpreadInterval = 1.5 / 64;
 // Intervals wider than this [standard-normal units] (the first two levels of bisection) keep
 // the monotone bound as a floor of their estimate.

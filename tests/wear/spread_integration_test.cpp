@@ -1,7 +1,7 @@
 // The adaptive rule over a traffic entry's lateral spread (issue 16 point 5): its weights against
-// closed forms, its refinement on a jump and on a smooth response, and on the default study and a
-// vehicle: the step-1 worn area per pass within 1 % of the fixed 20-node Gauss-Hermite rule,
-// deterministic, and independent of the thread count.
+// closed forms, its refinement on a jump, on a flange onset in the tail and on a smooth response,
+// and on the default study: the step-1 worn area per pass and depth field against a fine fixed
+// reference, deterministic, and independent of the thread count.
 #include "wear/spread_integration.h"
 
 #include <cmath>
@@ -16,6 +16,13 @@
 
 namespace railwear {
 namespace {
+
+// The step-1 depth field per pass of the adaptive rule against the fine reference's, relative
+// L2 over the bins: measured 3.8 % on the default study at draft (20 fixed Gauss-Hermite nodes
+// 6.1 %). Not the rule's 0.5 %: the rule converges the worn area, and a bin's depth keeps the
+// draft grid's noise of the few nodes that put their patch on it (5-10 % between neighbouring
+// positions at the flange), which the area averages over the profile; 5 % leaves that margin.
+constexpr double kDepthFieldTolerance = 0.05;
 
 double Phi(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 double Density(double x) { return std::exp(-0.5 * x * x) / std::sqrt(2.0 * M_PI); }
@@ -94,8 +101,40 @@ TEST(SpreadIntegrationTest, ConvergesOnASwitchBetweenNodes) {
   EXPECT_LT(nodes, kMaxSpreadNodes);
 }
 
+// A flange onset in the tail: a(x) = 1 (tread) below x = 3.4, rising to 100 (flange) at 3.6 and
+// constant beyond, the shape of the default study's freight response after 1 MGT (its flange
+// contact starts near +3.2 std and wears 25-100 times the step's mean; docs/wear.md, "The
+// tails"). First nodes at +-3 only took the response at +3 for the whole tail (E = 1, 2.3 %
+// low); with the first nodes at +-5 the rule bisects [3, 5] down to the onset.
+TEST(SpreadIntegrationTest, ConvergesOnAFlangeOnsetInTheTail) {
+  const double lo = 3.4, hi = 3.6, top = 100.0;
+  const auto onset = [&](double x) {
+    return x < lo ? 1.0 : x > hi ? top : 1.0 + (top - 1.0) * (x - lo) / (hi - lo);
+  };
+  // E = 1 + (top - 1) [P(X > hi) + int_lo^hi (x - lo) / (hi - lo) phi(x) dx]
+  const double ramp = ((Density(lo) - Density(hi)) - lo * (Phi(hi) - Phi(lo))) / (hi - lo);
+  const double exact = 1.0 + (top - 1.0) * ((1.0 - Phi(hi)) + ramp);
+  // The old first nodes, +-3 std, and the rule's weights on them.
+  const std::vector<double> old_first = {-3.0, -1.5, 0.0, 1.5, 3.0};
+  const std::vector<double> w = LinearGaussianWeights(old_first);
+  double old_rule = 0.0;
+  for (size_t k = 0; k < old_first.size(); ++k) old_rule += w[k] * onset(old_first[k]);
+  int nodes = 0;
+  bool converged = false;
+  const double adaptive = IntegrateAdaptively(onset, 0.005, &nodes, &converged);
+  std::printf(
+      "[ measured ] flange onset at +3.5 std: exact %.6f, first nodes at +-3 only %.6f (%.2f "
+      "%%), adaptive %.6f (%.3f %%) with %d nodes\n",
+      exact, old_rule, 100 * (old_rule / exact - 1), adaptive, 100 * (adaptive / exact - 1),
+      nodes);
+  EXPECT_LT(old_rule / exact - 1.0, -0.02);  // what the tail fix is for
+  EXPECT_TRUE(converged);
+  EXPECT_LT(std::abs(adaptive / exact - 1.0), 0.005);
+  EXPECT_LT(nodes, kMaxSpreadNodes);
+}
+
 // A smooth response growing toward the flange, a(x) = exp(x / 2): E = exp(1/8), less the part
-// the constant tails beyond +-3 leave out (0.1 %); the adaptive rule lands within 0.5 % of it.
+// the constant tails beyond +-5 leave out (1e-6); the adaptive rule lands within 0.5 % of it.
 TEST(SpreadIntegrationTest, ConvergesOnASmoothResponse) {
   int nodes = 0;
   bool converged = false;
@@ -127,15 +166,32 @@ double StepOneArea(const WearStudy& study, StepResult* out = nullptr) {
   return area;
 }
 
-// A fixed reference finer than any rule under test: the piecewise-linear rule on 128 nodes per
-// spread at x = (k + 1/2) 3/64, k = -64..63 (to +-2.98 std), as one step whose traffic has an
-// entry without spread per node and entry, weighted by share x node weight. On the default
-// study at draft the contact grid's noise between neighbouring positions (5-10 % at the flange)
-// scatters fixed rules with the node offset: 32 nodes by +-1.5 %, 64 by +-0.7 %, 128 by
-// +-0.16 % around the same rule on 257 nodes (measured once from a 257-position scan, 50 s).
-double FineReferenceArea(WearStudy study) {
+// The relative L2 distance of a step's depth per pass (per bin of the same grid) from the
+// reference's: ||d - d_ref||_2 / ||d_ref||_2.
+double DepthFieldDistance(const StepResult& step, const StepResult& reference) {
+  EXPECT_EQ(step.depth_per_pass_m.size(), reference.depth_per_pass_m.size());
+  double diff = 0.0, norm = 0.0;
+  for (size_t b = 0; b < reference.depth_per_pass_m.size(); ++b) {
+    const double r = reference.depth_per_pass_m[b];
+    diff += (step.depth_per_pass_m[b] - r) * (step.depth_per_pass_m[b] - r);
+    norm += r * r;
+  }
+  return std::sqrt(diff / norm);
+}
+
+// A fixed reference finer than any rule under test: the piecewise-linear rule on 160 nodes per
+// spread, 128 at x = (k + 1/2) 3/64, k = -64..63 (to +-2.98 std), and 16 in each tail at
+// +-(3 + j/8), j = 1..16 (to +-5 std, as far as the adaptive rule's first nodes), as one step
+// whose traffic has an entry without spread per node and entry, weighted by share x node
+// weight. On the default study at draft the contact grid's noise between neighbouring positions
+// (5-10 % at the flange) scatters fixed rules with the node offset: 32 nodes by +-1.5 %, 64 by
+// +-0.7 %, 128 by +-0.16 % around the same rule on 257 nodes within +-3 std (measured once from
+// a 257-position scan, 50 s).
+double FineReference(WearStudy study, StepResult* out) {
   std::vector<double> x;
+  for (int j = 16; j >= 1; --j) x.push_back(-3.0 - j / 8.0);
   for (int k = -64; k < 64; ++k) x.push_back((k + 0.5) * 3.0 / 64.0);
+  for (int j = 1; j <= 16; ++j) x.push_back(3.0 + j / 8.0);
   const std::vector<double> w = LinearGaussianWeights(x);
   std::vector<TrafficCase> fixed;
   for (const TrafficCase& c : study.traffic) {
@@ -148,7 +204,7 @@ double FineReferenceArea(WearStudy study) {
     }
   }
   study.traffic = fixed;
-  return StepOneArea(study);
+  return StepOneArea(study, out);
 }
 
 // Issue 16's must-show, on the default study's load collective (examples/wear_high_rail.toml:
@@ -158,39 +214,51 @@ double FineReferenceArea(WearStudy study) {
 // spread (the flange's onset at +0.7 and +1.2 std) that make fixed nodes miss.
 // - The adaptive rule (default tolerance) is within 1 % of the fine fixed reference above.
 // - The issue asked for 1 % of a 20-node Gauss-Hermite reference. At draft that reference is
-//   itself 2.9 % below the fine one (its nodes are 0.3-0.5 std apart across the flange's
+//   itself 2-3 % below the fine one (its nodes are 0.3-0.5 std apart across the flange's
 //   onset), so the test checks that the adaptive rule is closer to the fine reference than the
 //   20 fixed nodes are, and prints both (docs/wear.md).
+// - The step's depth field (W2 is a depth at one height, so the shape matters, not only the
+//   area): the adaptive rule's depth per pass per bin within kDepthFieldTolerance (relative L2)
+//   of the fine reference's, and closer to it than the 20 fixed nodes' (docs/wear.md).
 TEST(SpreadIntegrationTest, DefaultStudyStepOneConvergedAgainstFixedReferences) {
   WearStudy study = DefaultStudy(WearLawKind::kKthContinuous);
-  const double fine = FineReferenceArea(study);
+  StepResult fine_step, twenty_step, step;
+  const double fine = FineReference(study, &fine_step);
   study.options.quadrature_points = 20;
-  const double twenty = StepOneArea(study);
+  const double twenty = StepOneArea(study, &twenty_step);
   study.options.integration_tolerance = kDefaultIntegrationTolerance;
-  StepResult step;
   const double adaptive = StepOneArea(study, &step);
+  const double twenty_field = DepthFieldDistance(twenty_step, fine_step);
+  const double adaptive_field = DepthFieldDistance(step, fine_step);
   std::printf(
       "[ measured ] default study (draft), step 1 worn area per pass: fine fixed "
-      "reference (2 x 128 nodes) %.6e mm2, 20 Gauss-Hermite nodes %.6e (%+.2f %%), adaptive "
+      "reference (2 x 160 nodes) %.6e mm2, 20 Gauss-Hermite nodes %.6e (%+.2f %%), adaptive "
       "%.6e (%+.3f %%) with nodes %d + %d in %d rounds, last change %.3f %%, estimates "
+      "%.2f %%; depth field against the reference's (relative L2): 20 nodes %.2f %%, adaptive "
       "%.2f %%\n",
       fine * 1e6, twenty * 1e6, 100 * (twenty / fine - 1), adaptive * 1e6,
       100 * (adaptive / fine - 1), step.integration.nodes[0], step.integration.nodes[1],
       step.integration.rounds, 100 * step.integration.last_change[0],
-      100 * step.integration.estimated_error[0]);
+      100 * step.integration.estimated_error[0], 100 * twenty_field, 100 * adaptive_field);
   EXPECT_LT(std::abs(adaptive / fine - 1.0), 0.01);
   EXPECT_LT(std::abs(adaptive / fine - 1.0), std::abs(twenty / fine - 1.0));
+  EXPECT_LT(adaptive_field, kDepthFieldTolerance);
+  EXPECT_LT(adaptive_field, twenty_field);
   // What was used is recorded: per entry, and each case's node and weight.
   ASSERT_EQ(step.integration.nodes.size(), 2u);
   EXPECT_TRUE(step.integration.adaptive);
   EXPECT_TRUE(step.integration.converged);
   EXPECT_LE(step.integration.last_change[0], kDefaultIntegrationTolerance);
+  // Every spread reaches its far tails: a node at -5 and one at +5 std per entry.
+  int tails = 0;
   int cases = 0;
   double weight = 0.0;
   for (const LoadCaseSummary& c : step.cases) {
     ++cases;
     weight += c.load_case.weight;
+    tails += std::abs(std::abs(c.load_case.spread_x) - 5.0) < 1e-12 ? 1 : 0;
   }
+  EXPECT_EQ(tails, 4);
   EXPECT_EQ(cases, step.integration.nodes[0] + step.integration.nodes[1]);
   EXPECT_NEAR(weight, 1.0, 1e-12);
   // In StepLoadCases order: by entry, then by node position.

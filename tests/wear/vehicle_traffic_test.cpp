@@ -160,7 +160,7 @@ TEST(VehicleTrafficTest, CancelInTheCurvingSolveDropsTheStepAndResumesExactly) {
 }
 
 // The adaptive rule applies to vehicle traffic: each wheelset's spread around its equilibrium is
-// refined on its own (more nodes than the first five), what it used is recorded, and both rails'
+// refined on its own (more nodes than the first seven), what it used is recorded, and both rails'
 // case weights sum to 1. The step's worn area per pass is printed against the fixed 20-node
 // Gauss-Hermite rule's but not compared: this wheelset runs on its treads (1e-6 mm^2 per pass)
 // where the draft grid's worn area jumps by up to 2.7x between positions 0.05 std apart (measured
