@@ -76,9 +76,11 @@ class ToeplitzXsFftOperator final : public InfluenceOperator {
     // which every row shares up to a rotation), even extension into an lx by ls circulant
     // generator (x fastest).
     std::vector<double> generator(static_cast<size_t>(lx) * ls, 0.0);
+    std::vector<double> row(nx_);
     for (int e = 0; e < ns_; ++e) {
+      internal::CellInfluenceRow(grid, coefficients, e, 0, row.data());
       for (int d = 0; d < nx_; ++d) {
-        const double c = internal::CellInfluence(grid, coefficients, d, e, 0, 0);
+        const double c = row[d];
         if (d == 0 && e == 0) diagonal_ = c;
         for (int ee : {e, (ls - e) % ls}) {
           for (int dd : {d, (lx - d) % lx}) generator[static_cast<size_t>(ee) * lx + dd] = c;
@@ -174,14 +176,15 @@ class CurvedFftOperator final : public InfluenceOperator {
         padded_out_(static_cast<size_t>(ns_) * lx_),
         p_hat_(static_cast<size_t>(ns_) * 2 * hx_),
         u_hat_(static_cast<size_t>(ns_) * 2 * hx_) {
-    // Kernel on x offsets d >= 0 (nx * ns^2 evaluations): values(js * ns + is, d).
+    // Kernel on x offsets d >= 0 (nx * ns^2 values, a row of offsets per pair of s indices:
+    // CellInfluenceRow): values(js * ns + is, d).
     const int pairs = ns_ * ns_;
     Eigen::MatrixXd values(pairs, nx_);
-    for (int d = 0; d < nx_; ++d) {
-      for (int js = 0; js < ns_; ++js) {
-        for (int is = 0; is < ns_; ++is) {
-          values(js * ns_ + is, d) = internal::CellInfluence(grid, coefficients, d, is, 0, js);
-        }
+    std::vector<double> row(nx_);
+    for (int js = 0; js < ns_; ++js) {
+      for (int is = 0; is < ns_; ++is) {
+        internal::CellInfluenceRow(grid, coefficients, is, js, row.data());
+        for (int d = 0; d < nx_; ++d) values(js * ns_ + is, d) = row[d];
       }
     }
     for (int j = 0; j < ns_; ++j) diagonal_[j] = values(j * ns_ + j, 0);

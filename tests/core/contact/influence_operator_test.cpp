@@ -555,6 +555,56 @@ TEST(InfluenceOperator, FarCellsUseTheFarFieldRuleInsideTheOperators) {
   ExpectFastEqualsDense(arc, MakeDissimilarSettings(KernelModel::kGolubenko));
 }
 
+// CellInfluenceRow (the FFT operators' kernel rows, corner terms shared between neighbouring x
+// offsets where they round alike) against CellInfluence cell by cell, bit for bit, for every pair
+// of s indices, on a planar, a circular and a non-circular section, near and far cells (40
+// columns reach past the far-field switch), both kernels.
+TEST(CellInfluenceRow, EqualsCellInfluenceBitForBit) {
+  PatchGrid parabola = MakePlanarGrid(40, 11, 2.5e-4, 4e-4);
+  parabola.planar = false;
+  for (int j = 0; j < parabola.ns; ++j) {
+    const double y = parabola.S(j);
+    const double slope = y / 8e-3;
+    parabola.point_yz_m[j] = {y, y * y / (2.0 * 8e-3)};
+    parabola.tangent_yz[j] = Eigen::Vector2d(1.0, slope).normalized();
+    parabola.normal_yz[j] = {parabola.tangent_yz[j].y(), -parabola.tangent_yz[j].x()};
+  }
+  const PatchGrid grids[] = {MakePlanarGrid(40, 12, 1e-4, 1.5e-4, 0.3, {1e-3, -2e-3}),
+                             MakeArcGrid(40, 24, 1.1e-4, 2e-4, 10e-3), parabola,
+                             MakeArcGrid(1, 3, 2e-4, 4e-4, 10e-3),
+                             MakeArcGrid(33, 30, 0.7141e-3, 0.8107e-3, 40e-3)};
+  int far = 0, shared = 0;
+  for (const PatchGrid& grid : grids) {
+    for (KernelModel kernel : {KernelModel::kBoussinesq, KernelModel::kGolubenko}) {
+      const internal::KernelCoefficients c =
+          internal::MakeKernelCoefficients(MakeDissimilarSettings(kernel));
+      std::vector<double> row(grid.nx);
+      for (int js = 0; js < grid.ns; ++js) {
+        for (int is = 0; is < grid.ns; ++is) {
+          internal::CellInfluenceRow(grid, c, is, js, row.data());
+          for (int d = 0; d < grid.nx; ++d) {
+            ASSERT_EQ(row[d], internal::CellInfluence(grid, c, d, is, 0, js))
+                << "nx " << grid.nx << " ns " << grid.ns << " d " << d << " is " << is << " js "
+                << js;
+            const Eigen::Vector2d d_yz = grid.point_yz_m[is] - grid.point_yz_m[js];
+            const double r = std::hypot(d * grid.dx_m, d_yz.norm());
+            const double h = std::hypot(grid.dx_m, grid.ds_m);
+            if (r > internal::kFarFieldDiagonals * h) ++far;
+            // A near offset after a near one whose corners round alike: a shared corner.
+            const double x = d * grid.dx_m, x_prev = (d - 1) * grid.dx_m;
+            if (d > 0 && r < internal::kFarFieldDiagonals * h &&
+                x - 0.5 * grid.dx_m == x_prev + 0.5 * grid.dx_m) {
+              ++shared;
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(far, 1000);     // the far branch is covered
+  EXPECT_GT(shared, 1000);  // and so is the sharing
+}
+
 // ----- uniform arcs: Toeplitz in s as well (issue 18 point 3) -----------------------------------
 
 // A fixed pseudo-random pressure field, a quarter of it unloaded.
