@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include <Eigen/Cholesky>
 #include <gtest/gtest.h>
 
 #include "core/contact/influence_kernels.h"
@@ -775,6 +776,44 @@ TEST(InfluenceOperator, PreconditionerInvertsApplyOnSmoothFields) {
                            MakeDissimilarSettings(KernelModel::kGolubenko));
   ExpectApproximateInverse(MakeArcGrid(24, 40, 2e-4, 1e-4, 5e-3),
                            MakeDissimilarSettings(KernelModel::kGolubenko));
+}
+
+// The curved operator's preconditioner solves with the Cholesky factor of sym K_k per x frequency
+// by plain substitutions (influence_operator.cpp, SolveFactored). On a single column of cells
+// (nx = 1) every frequency's block is the cross-section's matrix C itself, so M = (sym C)^-1
+// exactly: against an LLT solve of the dense matrix, on a circular and a non-circular section,
+// several ns (odd and even: the backward pass's two partial sums). Tolerance: rounding of the
+// substitutions and of the kernel's two evaluations (CellInfluenceRow against CellInfluence,
+// 1e-13) times the blocks' condition number (below 1e2 on these grids: 1e-10 leaves margin).
+constexpr double kFactoredSolveTolerance = 1e-10;
+
+TEST(InfluenceOperator, PreconditionerSolvesEachFrequencysBlockExactly) {
+  for (int ns : {1, 2, 7, 30}) {
+    PatchGrid parabola = MakePlanarGrid(1, ns, 2.5e-4, 4e-4);
+    parabola.planar = false;
+    for (int j = 0; j < parabola.ns; ++j) {
+      const double y = parabola.S(j);
+      parabola.point_yz_m[j] = {y, y * y / (2.0 * 8e-3)};
+      parabola.tangent_yz[j] = Eigen::Vector2d(1.0, y / 8e-3).normalized();
+      parabola.normal_yz[j] = {parabola.tangent_yz[j].y(), -parabola.tangent_yz[j].x()};
+    }
+    for (const PatchGrid& grid : {MakeArcGrid(1, ns, 2e-4, 4e-4, 10e-3), parabola}) {
+      const InfluenceSettings settings = MakeDissimilarSettings(KernelModel::kGolubenko);
+      const auto op =
+          MakeInfluenceOperator(grid, settings, OperatorProducts::kFft, SectionStructure::kBlocks);
+      const Eigen::MatrixXd c = AssembleDenseInfluence(grid, settings);
+      const Eigen::MatrixXd sym = 0.5 * (c + c.transpose());
+      std::mt19937 rng(ns);
+      std::uniform_real_distribution<double> value(-1e-6, 1e-6);
+      Eigen::VectorXd r(grid.cells()), z;
+      for (int k = 0; k < r.size(); ++k) r[k] = value(rng);
+      ASSERT_TRUE(op->ApplyPreconditioner(r, &z));
+      const Eigen::VectorXd expected = sym.llt().solve(r);
+      EXPECT_LT((z - expected).cwiseAbs().maxCoeff(),
+                kFactoredSolveTolerance * expected.cwiseAbs().maxCoeff())
+          << "ns " << ns;
+    }
+  }
 }
 
 TEST(InfluenceOperator, HighestFrequencySymbolIsAboutHalfTheSelfTerm) {
