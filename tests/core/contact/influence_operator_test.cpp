@@ -308,6 +308,21 @@ PatchGrid MakeArcGrid(int nx, int ns, double dx, double ds, double radius) {
   return g;
 }
 
+// A cross-section of varying curvature: the parabola z = y^2 / (2 * 8 mm) through the points of
+// MakePlanarGrid's flat section (arc-length spaced approximately), with its tangents and normals.
+PatchGrid MakeParabolaGrid(int nx, int ns, double dx, double ds) {
+  PatchGrid g = MakePlanarGrid(nx, ns, dx, ds);
+  g.planar = false;
+  for (int j = 0; j < g.ns; ++j) {
+    const double y = g.S(j);
+    const double slope = y / 8e-3;
+    g.point_yz_m[j] = {y, y * y / (2.0 * 8e-3)};
+    g.tangent_yz[j] = Eigen::Vector2d(1.0, slope).normalized();
+    g.normal_yz[j] = {g.tangent_yz[j].y(), -g.tangent_yz[j].x()};
+  }
+  return g;
+}
+
 InfluenceSettings MakeSettings(KernelModel kernel, double nu = 0.28) {
   InfluenceSettings s;
   s.kernel = kernel;
@@ -534,15 +549,7 @@ TEST(InfluenceOperatorDeathTest, PlanarFlagOnCurvedSectionAborts) {
 TEST(InfluenceOperator, CurvedFftEqualsDenseOnNonCircularSection) {
   // A cross-section of varying curvature (parabola z = y^2 / (2 * 8 mm), arc-length spaced
   // approximately): nothing in the curved operator may rely on constant curvature.
-  PatchGrid g = MakePlanarGrid(9, 11, 2.5e-4, 4e-4);
-  g.planar = false;
-  for (int j = 0; j < g.ns; ++j) {
-    const double y = g.S(j);
-    const double slope = y / 8e-3;
-    g.point_yz_m[j] = {y, y * y / (2.0 * 8e-3)};
-    g.tangent_yz[j] = Eigen::Vector2d(1.0, slope).normalized();
-    g.normal_yz[j] = {g.tangent_yz[j].y(), -g.tangent_yz[j].x()};
-  }
+  const PatchGrid g = MakeParabolaGrid(9, 11, 2.5e-4, 4e-4);
   ExpectFastEqualsDense(g, MakeDissimilarSettings(KernelModel::kGolubenko));
   ExpectFastEqualsDense(g, MakeDissimilarSettings(KernelModel::kBoussinesq));
 }
@@ -561,17 +568,9 @@ TEST(InfluenceOperator, FarCellsUseTheFarFieldRuleInsideTheOperators) {
 // of s indices, on a planar, a circular and a non-circular section, near and far cells (40
 // columns reach past the far-field switch), both kernels.
 TEST(CellInfluenceRow, EqualsCellInfluenceBitForBit) {
-  PatchGrid parabola = MakePlanarGrid(40, 11, 2.5e-4, 4e-4);
-  parabola.planar = false;
-  for (int j = 0; j < parabola.ns; ++j) {
-    const double y = parabola.S(j);
-    const double slope = y / 8e-3;
-    parabola.point_yz_m[j] = {y, y * y / (2.0 * 8e-3)};
-    parabola.tangent_yz[j] = Eigen::Vector2d(1.0, slope).normalized();
-    parabola.normal_yz[j] = {parabola.tangent_yz[j].y(), -parabola.tangent_yz[j].x()};
-  }
   const PatchGrid grids[] = {MakePlanarGrid(40, 12, 1e-4, 1.5e-4, 0.3, {1e-3, -2e-3}),
-                             MakeArcGrid(40, 24, 1.1e-4, 2e-4, 10e-3), parabola,
+                             MakeArcGrid(40, 24, 1.1e-4, 2e-4, 10e-3),
+                             MakeParabolaGrid(40, 11, 2.5e-4, 4e-4),
                              MakeArcGrid(1, 3, 2e-4, 4e-4, 10e-3),
                              MakeArcGrid(33, 30, 0.7141e-3, 0.8107e-3, 40e-3)};
   int far = 0, shared = 0;
@@ -789,15 +788,8 @@ constexpr double kFactoredSolveTolerance = 1e-10;
 
 TEST(InfluenceOperator, PreconditionerSolvesEachFrequencysBlockExactly) {
   for (int ns : {1, 2, 7, 30}) {
-    PatchGrid parabola = MakePlanarGrid(1, ns, 2.5e-4, 4e-4);
-    parabola.planar = false;
-    for (int j = 0; j < parabola.ns; ++j) {
-      const double y = parabola.S(j);
-      parabola.point_yz_m[j] = {y, y * y / (2.0 * 8e-3)};
-      parabola.tangent_yz[j] = Eigen::Vector2d(1.0, y / 8e-3).normalized();
-      parabola.normal_yz[j] = {parabola.tangent_yz[j].y(), -parabola.tangent_yz[j].x()};
-    }
-    for (const PatchGrid& grid : {MakeArcGrid(1, ns, 2e-4, 4e-4, 10e-3), parabola}) {
+    for (const PatchGrid& grid :
+         {MakeArcGrid(1, ns, 2e-4, 4e-4, 10e-3), MakeParabolaGrid(1, ns, 2.5e-4, 4e-4)}) {
       const InfluenceSettings settings = MakeDissimilarSettings(KernelModel::kGolubenko);
       const auto op =
           MakeInfluenceOperator(grid, settings, OperatorProducts::kFft, SectionStructure::kBlocks);
