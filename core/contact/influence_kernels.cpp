@@ -126,6 +126,59 @@ double CellInfluence(const PatchGrid& grid, const KernelCoefficients& coefficien
   return coefficients.inv_r * inv_r + coefficients.n2_r3 * n2_r3;
 }
 
+void CellInfluenceRow(const PatchGrid& grid, const KernelCoefficients& coefficients, int field_is,
+                      int source_is, double* out) {
+  // The offsets as CellInfluence computes them.
+  const Eigen::Vector2d d_yz = grid.point_yz_m[field_is] - grid.point_yz_m[source_is];
+  const double ds = d_yz.dot(grid.tangent_yz[source_is]);
+  const double dn = d_yz.dot(grid.normal_yz[source_is]);
+  const double hx = grid.dx_m, hs = grid.ds_m;
+  const double far2 = kFarFieldDiagonals * kFarFieldDiagonals * (hx * hx + hs * hs);
+  const double ss[2] = {ds - 0.5 * hs, ds + 0.5 * hs};
+  // RectangleIntegralsClosedForm's corner terms at one x corner xi: f's term and the atan, for
+  // both s corners.
+  struct Corner {
+    double xi;
+    double f[2], a[2];
+  };
+  auto corner = [&](double xi) {
+    Corner c{xi, {}, {}};
+    for (int is = 0; is < 2; ++is) {
+      c.f[is] = XiAsinh(xi, ss[is], dn) + XiAsinh(ss[is], xi, dn);
+      c.a[is] = CornerAtan(xi, ss[is], dn);
+    }
+    return c;
+  };
+  Corner upper{};  // the last offset's upper x corner
+  for (int d = 0; d < grid.nx; ++d) {
+    const double x = d * hx;
+    double inv_r = 0.0;
+    double n2_r3 = 0.0;
+    if (x * x + ds * ds + dn * dn > far2) {  // RectangleIntegrals' test, its r2 bit for bit
+      RectangleIntegralsFarField(x, ds, dn, hx, hs, &inv_r, &n2_r3);
+    } else {
+      // RectangleIntegralsClosedForm(x, ds, dn, hx, hs) with its corners, terms and sums in its
+      // order; the lower corner is the last offset's upper one when both round alike.
+      const double x_lo = x - 0.5 * hx, x_hi = x + 0.5 * hx;
+      const Corner lower = d > 0 && upper.xi == x_lo ? upper : corner(x_lo);
+      upper = corner(x_hi);
+      const Corner* xs[2] = {&lower, &upper};
+      double f = 0.0;
+      double a = 0.0;
+      for (int ix = 0; ix < 2; ++ix) {
+        for (int is = 0; is < 2; ++is) {
+          const double sign = (ix == is) ? 1.0 : -1.0;
+          f += sign * xs[ix]->f[is];
+          a += sign * xs[ix]->a[is];
+        }
+      }
+      inv_r = f - dn * a;
+      n2_r3 = dn * a;
+    }
+    out[d] = coefficients.inv_r * inv_r + coefficients.n2_r3 * n2_r3;
+  }
+}
+
 void CheckGrid(const PatchGrid& grid) {
   RAILWEAR_CHECK(grid.nx >= 1 && grid.ns >= 1);
   RAILWEAR_CHECK(grid.dx_m > 0.0 && grid.ds_m > 0.0);

@@ -45,6 +45,16 @@ void RectangleIntegralsFarField(double x, double s, double n, double hx, double 
 double CellInfluence(const PatchGrid& grid, const KernelCoefficients& coefficients, int field_ix,
                      int field_is, int source_ix, int source_is);
 
+// CellInfluence(grid, coefficients, d, field_is, 0, source_is) for every x offset d = 0 .. nx - 1
+// into out[d] (out holds grid.nx values), bit for bit: the row of x offsets the FFT operators
+// need per pair of s indices. A near cell's closed forms take four corner terms, and the upper x
+// corner of offset d, d dx + dx / 2, is the lower one of offset d + 1, (d + 1) dx - dx / 2, when
+// both round to the same double (about half the offsets): the row computes such a corner once,
+// the same function of the same arguments, and sums the terms in RectangleIntegralsClosedForm's
+// order (influence_operator_test.cpp, CellInfluenceRow.*).
+void CellInfluenceRow(const PatchGrid& grid, const KernelCoefficients& coefficients, int field_is,
+                      int source_is, double* out);
+
 // Aborts unless the grid is well formed (sizes, positive cell lengths).
 void CheckGrid(const PatchGrid& grid);
 

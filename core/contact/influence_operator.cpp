@@ -76,9 +76,11 @@ class ToeplitzXsFftOperator final : public InfluenceOperator {
     // which every row shares up to a rotation), even extension into an lx by ls circulant
     // generator (x fastest).
     std::vector<double> generator(static_cast<size_t>(lx) * ls, 0.0);
+    std::vector<double> row(nx_);
     for (int e = 0; e < ns_; ++e) {
+      internal::CellInfluenceRow(grid, coefficients, e, 0, row.data());
       for (int d = 0; d < nx_; ++d) {
-        const double c = internal::CellInfluence(grid, coefficients, d, e, 0, 0);
+        const double c = row[d];
         if (d == 0 && e == 0) diagonal_ = c;
         for (int ee : {e, (ls - e) % ls}) {
           for (int dd : {d, (lx - d) % lx}) generator[static_cast<size_t>(ee) * lx + dd] = c;
@@ -174,14 +176,15 @@ class CurvedFftOperator final : public InfluenceOperator {
         padded_out_(static_cast<size_t>(ns_) * lx_),
         p_hat_(static_cast<size_t>(ns_) * 2 * hx_),
         u_hat_(static_cast<size_t>(ns_) * 2 * hx_) {
-    // Kernel on x offsets d >= 0 (nx * ns^2 evaluations): values(js * ns + is, d).
+    // Kernel on x offsets d >= 0 (nx * ns^2 values, a row of offsets per pair of s indices:
+    // CellInfluenceRow): values(js * ns + is, d).
     const int pairs = ns_ * ns_;
     Eigen::MatrixXd values(pairs, nx_);
-    for (int d = 0; d < nx_; ++d) {
-      for (int js = 0; js < ns_; ++js) {
-        for (int is = 0; is < ns_; ++is) {
-          values(js * ns_ + is, d) = internal::CellInfluence(grid, coefficients, d, is, 0, js);
-        }
+    std::vector<double> row(nx_);
+    for (int js = 0; js < ns_; ++js) {
+      for (int is = 0; is < ns_; ++is) {
+        internal::CellInfluenceRow(grid, coefficients, is, js, row.data());
+        for (int d = 0; d < nx_; ++d) values(js * ns_ + is, d) = row[d];
       }
     }
     for (int j = 0; j < ns_; ++j) diagonal_[j] = values(j * ns_ + j, 0);
@@ -269,6 +272,47 @@ class CurvedFftOperator final : public InfluenceOperator {
     }
   }
 
+  // L L^T z = y for the two columns a and b (the real and imaginary parts of one frequency,
+  // ns values each, overwritten with z), L the lower triangle of the column-major ns x ns block
+  // l. Plain substitutions rather than Eigen's triangularView solves: on a 2-column right-hand
+  // side those run the blocked matrix path (packing the block on every call, gebp_kernel), a
+  // quarter of a gauge-corner call's normal solve (docs/library.md). The forward pass walks the
+  // columns of L (contiguous: an axpy per column), the backward pass takes column j of L as row j
+  // of L^T (a dot product, in two partial sums per right-hand side). The same factor, other
+  // rounding: the preconditioner agrees with the blocked solve to rounding
+  // (influence_operator_test.cpp, PreconditionerSolvesEachFrequencysBlockExactly).
+  void SolveFactored(const double* __restrict l, double* __restrict a,
+                     double* __restrict b) const {
+    const int n = ns_;
+    for (int j = 0; j < n; ++j) {
+      const double* lj = l + static_cast<size_t>(j) * n;
+      const double aj = a[j] / lj[j], bj = b[j] / lj[j];
+      a[j] = aj;
+      b[j] = bj;
+      for (int i = j + 1; i < n; ++i) {
+        a[i] -= lj[i] * aj;
+        b[i] -= lj[i] * bj;
+      }
+    }
+    for (int j = n - 1; j >= 0; --j) {
+      const double* lj = l + static_cast<size_t>(j) * n;
+      double a0 = 0.0, a1 = 0.0, b0 = 0.0, b1 = 0.0;
+      int i = j + 1;
+      for (; i + 1 < n; i += 2) {
+        a0 += lj[i] * a[i];
+        a1 += lj[i + 1] * a[i + 1];
+        b0 += lj[i] * b[i];
+        b1 += lj[i + 1] * b[i + 1];
+      }
+      if (i < n) {
+        a0 += lj[i] * a[i];
+        b0 += lj[i] * b[i];
+      }
+      a[j] = (a[j] - (a0 + a1)) / lj[j];
+      b[j] = (b[j] - (b0 + b1)) / lj[j];
+    }
+  }
+
   // out = crop_x(IFFT_x(B_k FFT_x(pad_x(in)))) with B_k = K_k (inverse = false) or
   // (sym K_k)^-1 (inverse = true) per x frequency k. Apply multiplies each constant block with
   // the real and the imaginary column separately (two matrix-vector products): Eigen treats a
@@ -291,10 +335,8 @@ class CurvedFftOperator final : public InfluenceOperator {
       // L L^T z = p / lx (the unscaled inverse FFT's factor), both columns at once.
       u_hat = p_hat * (1.0 / lx_);
       for (int k = 0; k < hx_; ++k) {
-        const Eigen::Map<const Eigen::MatrixXd> l_k(factor_.col(k).data(), ns_, ns_);
-        auto z_k = u_hat.middleCols<2>(2 * k);
-        l_k.triangularView<Eigen::Lower>().solveInPlace(z_k);
-        l_k.transpose().triangularView<Eigen::Upper>().solveInPlace(z_k);
+        SolveFactored(factor_.col(k).data(), u_hat_.data() + static_cast<size_t>(2 * k) * ns_,
+                      u_hat_.data() + static_cast<size_t>(2 * k + 1) * ns_);
       }
     } else {
       for (int k = 0; k < hx_; ++k) {

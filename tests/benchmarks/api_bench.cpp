@@ -4,6 +4,9 @@
 //     corner (lateral -5.6 mm, no yaw: two patches, the gauge corner's at 16.5 degrees and the
 //     tread's at 7 degrees), 100 kN, rolling at 20 m/s, FASTSIM tractions, conformal model;
 //     accuracy 0 draft .. 3 fine. The counter `patches` shows the two.
+//   BM_GaugeCornerWheelNewPosition/<accuracy>: the same at a new lateral position every call
+//     (0.1 um apart, as BM_TreadFastsimNewPosition): what a co-simulation's time loop pays there;
+//     accuracy 0 draft, 1 standard.
 //   BM_TreadFastsim/<model>: the same wheel on its tread (-10.4 mm, 5 mrad of yaw), the cheapest
 //     rolling call: draft accuracy, model 1 halfspace (planar Boussinesq grid), 4 auto.
 //   The handle keeps the placed geometry of its last call and reuses it at the same pose
@@ -68,6 +71,14 @@ void BM_GaugeCornerWheel(benchmark::State& state) {
       State(-5.6e-3, 0.0));
 }
 BENCHMARK(BM_GaugeCornerWheel)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+
+void BM_GaugeCornerWheelNewPosition(benchmark::State& state) {
+  RunChangingSteps(
+      state,
+      railwear::test::MakeRollingS1002Wheel(RW_MODEL_CONFORMAL, static_cast<int>(state.range(0))),
+      [](long k) { return State(-5.6e-3 + 1e-7 * static_cast<double>(k % 16), 0.0); });
+}
+BENCHMARK(BM_GaugeCornerWheelNewPosition)->DenseRange(0, 1)->Unit(benchmark::kMillisecond);
 
 void BM_TreadFastsim(benchmark::State& state) {
   RunSteps(

@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include <Eigen/Cholesky>
 #include <gtest/gtest.h>
 
 #include "core/contact/influence_kernels.h"
@@ -307,6 +308,21 @@ PatchGrid MakeArcGrid(int nx, int ns, double dx, double ds, double radius) {
   return g;
 }
 
+// A cross-section of varying curvature: the parabola z = y^2 / (2 * 8 mm) through the points of
+// MakePlanarGrid's flat section (arc-length spaced approximately), with its tangents and normals.
+PatchGrid MakeParabolaGrid(int nx, int ns, double dx, double ds) {
+  PatchGrid g = MakePlanarGrid(nx, ns, dx, ds);
+  g.planar = false;
+  for (int j = 0; j < g.ns; ++j) {
+    const double y = g.S(j);
+    const double slope = y / 8e-3;
+    g.point_yz_m[j] = {y, y * y / (2.0 * 8e-3)};
+    g.tangent_yz[j] = Eigen::Vector2d(1.0, slope).normalized();
+    g.normal_yz[j] = {g.tangent_yz[j].y(), -g.tangent_yz[j].x()};
+  }
+  return g;
+}
+
 InfluenceSettings MakeSettings(KernelModel kernel, double nu = 0.28) {
   InfluenceSettings s;
   s.kernel = kernel;
@@ -533,15 +549,7 @@ TEST(InfluenceOperatorDeathTest, PlanarFlagOnCurvedSectionAborts) {
 TEST(InfluenceOperator, CurvedFftEqualsDenseOnNonCircularSection) {
   // A cross-section of varying curvature (parabola z = y^2 / (2 * 8 mm), arc-length spaced
   // approximately): nothing in the curved operator may rely on constant curvature.
-  PatchGrid g = MakePlanarGrid(9, 11, 2.5e-4, 4e-4);
-  g.planar = false;
-  for (int j = 0; j < g.ns; ++j) {
-    const double y = g.S(j);
-    const double slope = y / 8e-3;
-    g.point_yz_m[j] = {y, y * y / (2.0 * 8e-3)};
-    g.tangent_yz[j] = Eigen::Vector2d(1.0, slope).normalized();
-    g.normal_yz[j] = {g.tangent_yz[j].y(), -g.tangent_yz[j].x()};
-  }
+  const PatchGrid g = MakeParabolaGrid(9, 11, 2.5e-4, 4e-4);
   ExpectFastEqualsDense(g, MakeDissimilarSettings(KernelModel::kGolubenko));
   ExpectFastEqualsDense(g, MakeDissimilarSettings(KernelModel::kBoussinesq));
 }
@@ -553,6 +561,48 @@ TEST(InfluenceOperator, FarCellsUseTheFarFieldRuleInsideTheOperators) {
   const PatchGrid arc = MakeArcGrid(40, 24, 1e-4, 2e-4, 10e-3);
   ExpectFastEqualsDense(planar, MakeDissimilarSettings(KernelModel::kBoussinesq));
   ExpectFastEqualsDense(arc, MakeDissimilarSettings(KernelModel::kGolubenko));
+}
+
+// CellInfluenceRow (the FFT operators' kernel rows, corner terms shared between neighbouring x
+// offsets where they round alike) against CellInfluence cell by cell, bit for bit, for every pair
+// of s indices, on a planar, a circular and a non-circular section, near and far cells (40
+// columns reach past the far-field switch), both kernels.
+TEST(CellInfluenceRow, EqualsCellInfluenceBitForBit) {
+  const PatchGrid grids[] = {MakePlanarGrid(40, 12, 1e-4, 1.5e-4, 0.3, {1e-3, -2e-3}),
+                             MakeArcGrid(40, 24, 1.1e-4, 2e-4, 10e-3),
+                             MakeParabolaGrid(40, 11, 2.5e-4, 4e-4),
+                             MakeArcGrid(1, 3, 2e-4, 4e-4, 10e-3),
+                             MakeArcGrid(33, 30, 0.7141e-3, 0.8107e-3, 40e-3)};
+  int far = 0, shared = 0;
+  for (const PatchGrid& grid : grids) {
+    for (KernelModel kernel : {KernelModel::kBoussinesq, KernelModel::kGolubenko}) {
+      const internal::KernelCoefficients c =
+          internal::MakeKernelCoefficients(MakeDissimilarSettings(kernel));
+      std::vector<double> row(grid.nx);
+      for (int js = 0; js < grid.ns; ++js) {
+        for (int is = 0; is < grid.ns; ++is) {
+          internal::CellInfluenceRow(grid, c, is, js, row.data());
+          for (int d = 0; d < grid.nx; ++d) {
+            ASSERT_EQ(row[d], internal::CellInfluence(grid, c, d, is, 0, js))
+                << "nx " << grid.nx << " ns " << grid.ns << " d " << d << " is " << is << " js "
+                << js;
+            const Eigen::Vector2d d_yz = grid.point_yz_m[is] - grid.point_yz_m[js];
+            const double r = std::hypot(d * grid.dx_m, d_yz.norm());
+            const double h = std::hypot(grid.dx_m, grid.ds_m);
+            if (r > internal::kFarFieldDiagonals * h) ++far;
+            // A near offset after a near one whose corners round alike: a shared corner.
+            const double x = d * grid.dx_m, x_prev = (d - 1) * grid.dx_m;
+            if (d > 0 && r < internal::kFarFieldDiagonals * h &&
+                x - 0.5 * grid.dx_m == x_prev + 0.5 * grid.dx_m) {
+              ++shared;
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(far, 1000);     // the far branch is covered
+  EXPECT_GT(shared, 1000);  // and so is the sharing
 }
 
 // ----- uniform arcs: Toeplitz in s as well (issue 18 point 3) -----------------------------------
@@ -725,6 +775,37 @@ TEST(InfluenceOperator, PreconditionerInvertsApplyOnSmoothFields) {
                            MakeDissimilarSettings(KernelModel::kGolubenko));
   ExpectApproximateInverse(MakeArcGrid(24, 40, 2e-4, 1e-4, 5e-3),
                            MakeDissimilarSettings(KernelModel::kGolubenko));
+}
+
+// The curved operator's preconditioner solves with the Cholesky factor of sym K_k per x frequency
+// by plain substitutions (influence_operator.cpp, SolveFactored). On a single column of cells
+// (nx = 1) every frequency's block is the cross-section's matrix C itself, so M = (sym C)^-1
+// exactly: against an LLT solve of the dense matrix, on a circular and a non-circular section,
+// several ns (odd and even: the backward pass's two partial sums). Tolerance: rounding of the
+// substitutions and of the kernel's two evaluations (CellInfluenceRow against CellInfluence,
+// 1e-13) times the blocks' condition number (below 1e2 on these grids: 1e-10 leaves margin).
+constexpr double kFactoredSolveTolerance = 1e-10;
+
+TEST(InfluenceOperator, PreconditionerSolvesEachFrequencysBlockExactly) {
+  for (int ns : {1, 2, 7, 30}) {
+    for (const PatchGrid& grid :
+         {MakeArcGrid(1, ns, 2e-4, 4e-4, 10e-3), MakeParabolaGrid(1, ns, 2.5e-4, 4e-4)}) {
+      const InfluenceSettings settings = MakeDissimilarSettings(KernelModel::kGolubenko);
+      const auto op =
+          MakeInfluenceOperator(grid, settings, OperatorProducts::kFft, SectionStructure::kBlocks);
+      const Eigen::MatrixXd c = AssembleDenseInfluence(grid, settings);
+      const Eigen::MatrixXd sym = 0.5 * (c + c.transpose());
+      std::mt19937 rng(ns);
+      std::uniform_real_distribution<double> value(-1e-6, 1e-6);
+      Eigen::VectorXd r(grid.cells()), z;
+      for (int k = 0; k < r.size(); ++k) r[k] = value(rng);
+      ASSERT_TRUE(op->ApplyPreconditioner(r, &z));
+      const Eigen::VectorXd expected = sym.llt().solve(r);
+      EXPECT_LT((z - expected).cwiseAbs().maxCoeff(),
+                kFactoredSolveTolerance * expected.cwiseAbs().maxCoeff())
+          << "ns " << ns;
+    }
+  }
 }
 
 TEST(InfluenceOperator, HighestFrequencySymbolIsAboutHalfTheSelfTerm) {
