@@ -130,8 +130,18 @@ TEST(NormalStopCriterion, IterationLimitGivesNotConvergedWithTheUpdate) {
 TEST(NormalStopCriterion, Names) {
   EXPECT_EQ(ToString(NormalStopCriterion::kGapResidual), "gap-residual");
   EXPECT_EQ(ToString(NormalStopCriterion::kPressureUpdate), "pressure-update");
-  EXPECT_EQ(NormalSolverOptions{}.criterion, NormalStopCriterion::kGapResidual);
-  EXPECT_EQ(NormalSolverOptions{}.tolerance, 1e-10);
+}
+
+// The default since issue 18 point 4 is the pressure update at 1e-4 (4 digits with margin); the
+// strict setting is the gap residual at 1e-10, the other options as by default.
+TEST(NormalStopCriterion, DefaultIsThePressureUpdateAndStrictIsTheGapResidual) {
+  EXPECT_EQ(NormalSolverOptions{}.criterion, NormalStopCriterion::kPressureUpdate);
+  EXPECT_EQ(NormalSolverOptions{}.tolerance, 1e-4);
+  const NormalSolverOptions strict = StrictNormalSolverOptions();
+  EXPECT_EQ(strict.criterion, NormalStopCriterion::kGapResidual);
+  EXPECT_EQ(strict.tolerance, 1e-10);
+  EXPECT_EQ(strict.max_iterations, NormalSolverOptions{}.max_iterations);
+  EXPECT_EQ(strict.preconditioner, NormalSolverOptions{}.preconditioner);
 }
 
 }  // namespace
