@@ -465,10 +465,8 @@ nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r, bool 
   j["scene"] = scene.name;
   j["scene_file"] = scene.path;
   j["model"] = ModelJson(r.model);
-  if (scene.problem.solver.criterion == NormalStopCriterion::kPressureUpdate) {
-    // only with [model] normal_tolerance: the JSON of other scenes is unchanged
-    j["model"]["normal_tolerance"] = scene.problem.solver.tolerance;
-  }
+  j["model"]["normal_criterion"] = ToString(scene.problem.solver.criterion);
+  j["model"]["normal_tolerance"] = scene.problem.solver.tolerance;
   j["approach_mm"] = r.approach_m * kToMm;
   j["iterations"] = r.iterations;
   j["time_ms"] = r.time_s * kToMs;

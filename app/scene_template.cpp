@@ -59,11 +59,15 @@ tangential = "fastsim"        # "fastsim" | "exact" | "auto"; default "fastsim":
                               # elastic-perfectly-plastic contact, p <= the softer body's
                               # hardness_MPa (docs/contact_plasticity.md; not with "hertz")
 # pressure_limit_MPa = 2600   # or the limit itself, in [1, 1e6] MPa (not with pressure_limit)
-# normal_tolerance = 1e-4     # the normal solver stops when its last step changed the
-                              # pressures by at most this share of their RMS and left the
-                              # contact set unchanged (CONTACT's criterion and EPS; about
-                              # this relative error in p_max and F_n), in [1e-13, 1e-2].
-                              # Default: none, the gap residual at 1e-10 (docs/speed.md)
+# normal_criterion = "pressure-update"  # or "gap-residual" (the strict one); default
+                              # "pressure-update": the normal solver stops when its last step
+                              # changed the pressures by at most normal_tolerance of their RMS
+                              # and left the contact set unchanged (CONTACT's criterion; about
+                              # that relative error in p_max and F_n). "gap-residual": when the
+                              # deformed gap's residual is within normal_tolerance of the
+                              # largest elastic displacement (docs/speed.md)
+# normal_tolerance = 1e-4     # in [1e-13, 1e-2]; default 1e-4 (4 significant digits with
+                              # margin) for "pressure-update", 1e-10 for "gap-residual"
 
 [materials]                   # optional table; without it both bodies are steel,
                               # E_MPa = 210000 and nu = 0.28. With it, give both bodies.

@@ -827,6 +827,13 @@ std::string NormalSolverOptions::Validate() const {
   return msg.str();
 }
 
+NormalSolverOptions StrictNormalSolverOptions() {
+  NormalSolverOptions o;
+  o.criterion = NormalStopCriterion::kGapResidual;
+  o.tolerance = kStrictNormalTolerance;
+  return o;
+}
+
 NormalSolution SolveNormal(const NormalProblem& problem, const NormalSolverOptions& options,
                            const Eigen::VectorXd* start) {
   ValidateProblem(problem, options);

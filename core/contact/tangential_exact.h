@@ -93,6 +93,8 @@ namespace railwear {
 // tangential_exact_bench's BM_TangentialExactSmallPatch (docs/speed.md): the loaded cells' matrix
 // is faster than the FFT products up to 225 loaded cells and slower at 349. Defined in the .cpp.
 extern const int kLoadedDenseMaxCells;
+// ExactTangentialOptions::tolerance's default (tangential_exact.cpp).
+extern const double kDefaultExactTangentialTolerance;
 
 struct ExactTangentialOptions {
   // How the rolling operator B is applied.
@@ -110,7 +112,9 @@ struct ExactTangentialOptions {
   // Stopping criterion (dimensionless, > 0): the largest change of any cell's traction that one
   // exact local solve would make, with a freshly applied operator, relative to mu * max(p):
   //   max_k |q_k - LocalSolve_k(q)| <= tolerance * mu * max_k p_k.
-  double tolerance = 1e-9;
+  // The default, kDefaultExactTangentialTolerance, is defined in tangential_exact.cpp (its
+  // value and what it keeps are documented there).
+  double tolerance = kDefaultExactTangentialTolerance;
   // Outer iterations (one operator product and one sweep each) before giving up with
   // kNotConverged. >= 1.
   int max_iterations = 2000;

@@ -283,17 +283,28 @@ TEST(SceneTest, TangentialAutoIsAMethod) {
   EXPECT_EQ(ParseScene(kMinimal, "a.toml").problem.tangential, TangentialMethod::kFastsim);
 }
 
-// [model] normal_tolerance (issue 18 point 4): CONTACT's pressure-update criterion at the given
-// tolerance; absent, the default criterion and tolerance; outside [1e-13, 1e-2] or not a number
-// refused with the key, the value and the range.
-TEST(SceneTest, NormalToleranceSelectsThePressureUpdateCriterion) {
+// [model] normal_criterion and normal_tolerance (issue 18 point 4): absent, the default (the
+// pressure update at 1e-4); "gap-residual" the strict setting (1e-10); normal_tolerance sets the
+// chosen criterion's tolerance. A tolerance outside [1e-13, 1e-2] or not a number, or another
+// criterion, refused with the key, the value and what was expected.
+TEST(SceneTest, NormalCriterionAndToleranceSelectTheNormalSolversStop) {
   const Scene d = ParseScene(kMinimal, "a.toml");
-  EXPECT_EQ(d.problem.solver.criterion, NormalStopCriterion::kGapResidual);
-  EXPECT_EQ(d.problem.solver.tolerance, NormalSolverOptions{}.tolerance);
+  EXPECT_EQ(d.problem.solver.criterion, NormalStopCriterion::kPressureUpdate);
+  EXPECT_EQ(d.problem.solver.tolerance, 1e-4);
   const Scene s =
-      ParseScene(std::string(kMinimal) + "[model]\nnormal_tolerance = 1e-4\n", "a.toml");
+      ParseScene(std::string(kMinimal) + "[model]\nnormal_tolerance = 1e-6\n", "a.toml");
   EXPECT_EQ(s.problem.solver.criterion, NormalStopCriterion::kPressureUpdate);
-  EXPECT_EQ(s.problem.solver.tolerance, 1e-4);
+  EXPECT_EQ(s.problem.solver.tolerance, 1e-6);
+  const Scene strict = ParseScene(
+      std::string(kMinimal) + "[model]\nnormal_criterion = \"gap-residual\"\n", "a.toml");
+  EXPECT_EQ(strict.problem.solver.criterion, NormalStopCriterion::kGapResidual);
+  EXPECT_EQ(strict.problem.solver.tolerance, 1e-10);
+  const Scene strict12 = ParseScene(std::string(kMinimal) +
+                                        "[model]\nnormal_criterion = \"gap-residual\"\n"
+                                        "normal_tolerance = 1e-12\n",
+                                    "a.toml");
+  EXPECT_EQ(strict12.problem.solver.criterion, NormalStopCriterion::kGapResidual);
+  EXPECT_EQ(strict12.problem.solver.tolerance, 1e-12);
   const std::string m = std::string(kMinimal) + "[model]\n";
   EXPECT_TRUE(Contains(ErrorOf(m + "normal_tolerance = 0.1\n"),
                        "scene.toml:12: key 'model.normal_tolerance' = 0.1: expected a number in "
@@ -304,6 +315,9 @@ TEST(SceneTest, NormalToleranceSelectsThePressureUpdateCriterion) {
   EXPECT_TRUE(Contains(ErrorOf(m + "normal_tolerance = nan\n"), "key 'model.normal_tolerance'"));
   EXPECT_TRUE(Contains(ErrorOf(m + "normal_tolerance = \"tight\"\n"),
                        "key 'model.normal_tolerance' = \"tight\""));
+  EXPECT_TRUE(Contains(ErrorOf(m + "normal_criterion = \"strict\"\n"),
+                       "key 'model.normal_criterion' = \"strict\": expected one of "
+                       "'pressure-update', 'gap-residual'"));
 }
 
 TEST(SceneTest, RollingRadiusAndLoadMustBePositive) {

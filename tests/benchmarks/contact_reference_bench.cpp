@@ -156,6 +156,14 @@ NormalSolverOptions PerfcSolverOptions(int64_t criterion, int64_t exponent, std:
   return o;
 }
 
+// The exact tangential solver's options with tolerance 10^-exponent, appended to the label.
+ExactTangentialOptions TangentialOptions(int64_t exponent, std::string* label) {
+  ExactTangentialOptions o;
+  o.tolerance = std::pow(10.0, -static_cast<double>(exponent));
+  *label += ", tangential 1e-" + std::to_string(exponent);
+  return o;
+}
+
 // Args: level, criterion, tolerance exponent.
 void BM_PerfcNormal(benchmark::State& state) {
   const PatchGrid g = MakePerfcGrid(static_cast<int>(state.range(0)));
@@ -191,9 +199,10 @@ void AddContactSpinOffset(const PatchGrid& g, double phi_per_m, RollingInput* in
 // w_y = eta + phi x, railwear's RollingInput for a planar patch, plus AddContactSpinOffset).
 // CONTACT's reference run: 1,872 / 7,735 cells in slip, 56 / 90 iterations (ItGS, its EPS 1e-7);
 // the input's comment quotes F_x / (mu F_n) = -0.573 and F_y / (mu F_n) = -0.327. Times operator
-// construction, the normal solve and the exact tangential solve (railwear's defaults; args: level,
-// then the normal criterion and tolerance exponent as BM_PerfcNormal). Extra counters: in_slip,
-// tang_iterations, fx_rel and fy_rel (F / (mu F_n)).
+// construction, the normal solve and the exact tangential solve (args: level, then the normal
+// criterion and tolerance exponent as BM_PerfcNormal, then the exact tangential solver's
+// tolerance 10^-exponent, ExactTangentialOptions). Extra counters: in_slip, tang_iterations,
+// fx_rel, fy_rel (F / (mu F_n)) and mz_rel (M_z / (mu F_n c), c = 1 mm).
 constexpr double kPerfcCksi = 0.0005, kPerfcCeta = 0.0, kPerfcCphi_per_mm = 0.0003;
 constexpr double kPerfcFriction = 0.3, kPerfcSpeed_m_s = 30.0;
 
@@ -202,6 +211,7 @@ void BM_PerfcRolling(benchmark::State& state) {
   const InfluenceSettings settings{KernelModel::kBoussinesq, {}, kPerfcSteel, kPerfcSteel};
   std::string label;
   const NormalSolverOptions options = PerfcSolverOptions(state.range(1), state.range(2), &label);
+  const ExactTangentialOptions tangential = TangentialOptions(state.range(3), &label);
   NormalProblem np = MakePerfcNormalProblem(g);
   RollingInput in = testing::KalkerCreepage(g, kPerfcCksi, kPerfcCeta, kPerfcCphi_per_mm * 1e3,
                                             kPerfcSpeed_m_s, kPerfcFriction);
@@ -212,7 +222,7 @@ void BM_PerfcRolling(benchmark::State& state) {
     const auto op = MakeInfluenceOperator(g, settings);
     np.blocks = {op.get()};
     normal = SolveNormal(np, options);
-    tang = SolveTangentialExact(g, normal.pressure_Pa, in, kPerfcSteel, kPerfcSteel);
+    tang = SolveTangentialExact(g, normal.pressure_Pa, in, kPerfcSteel, kPerfcSteel, tangential);
     benchmark::DoNotOptimize(tang.traction_x_Pa.data());
   }
   int in_contact = 0, in_slip = 0;
@@ -230,14 +240,20 @@ void BM_PerfcRolling(benchmark::State& state) {
   state.counters["Fn_kN"] = normal.force_N * 1e-3;
   state.counters["fx_rel"] = tang.force_x_N / (kPerfcFriction * normal.force_N);
   state.counters["fy_rel"] = tang.force_s_N / (kPerfcFriction * normal.force_N);
+  state.counters["mz_rel"] = tang.spin_moment_Nm / (kPerfcFriction * normal.force_N * 1e-3);
   state.SetLabel(label);
 }
-BENCHMARK(BM_PerfcRolling)
-    ->Args({1, 0, 10})
-    ->Args({2, 0, 10})
-    ->Args({1, 1, 7})
-    ->Args({2, 1, 7})
-    ->Unit(benchmark::kMillisecond);
+// The strict settings (gap residual 1e-10, tangential 1e-9), CONTACT's criterion and EPS, and the
+// defaults (issue 18 point 4: pressure update 1e-4) with the tangential tolerance from 1e-9 to
+// 1e-5 (what a 4-digit tangential default keeps; docs/speed.md).
+void PerfcRollingArgs(benchmark::internal::Benchmark* b) {
+  for (const int level : {1, 2}) {
+    b->Args({level, 0, 10, 9});
+    b->Args({level, 1, 7, 9});
+    for (const int exponent : {9, 7, 6, 5}) b->Args({level, 1, 4, exponent});
+  }
+}
+BENCHMARK(BM_PerfcRolling)->Apply(PerfcRollingArgs)->Unit(benchmark::kMillisecond);
 
 // src/test_table.f90 (CONTACT's creep-table test; reference forces for 11 x 11 in
 // testbank/test_table_mx11.ref_fx): 3,220 Hertzian cases of steady rolling, one pass of the
@@ -249,8 +265,8 @@ BENCHMARK(BM_PerfcRolling)
 // creepages xi = m mu cos(t) c / rho, eta = m mu sin(t) c / rho, phi = mu spin / rho (c =
 // sqrt(aa bb), rho = 2 / (A1 + B1)) over spin = 0, 0.5, 1, 2, t = -90 .. 90 deg in steps of 30
 // and m = 0 .. 12 (23 values), CONTACT's order of the cases. CONTACT solves at EPS = 1e-6; the
-// normal solve here runs at the criterion of the args (mx, normal criterion, exponent, reuse), the
-// tangential one at railwear's default. reuse: 0 builds everything for every case, as CONTACT's
+// normal solve here runs at the criterion of the args (mx, normal criterion, exponent, reuse,
+// tangential exponent), the tangential one at 10^-(tangential exponent). reuse: 0 builds everything for every case, as CONTACT's
 // test_table does (its flags C = 2, I = 0: influence coefficients computed and the normal problem
 // solved from the undeformed distance in every case); 1 builds the influence operator and the
 // exact solver's ExactTangentialSetup once per ellipse (the 644 cases of an ellipse share one
@@ -303,6 +319,7 @@ void BM_CreepTable(benchmark::State& state) {
   const int mx = static_cast<int>(state.range(0));
   std::string label;
   const NormalSolverOptions options = PerfcSolverOptions(state.range(1), state.range(2), &label);
+  const ExactTangentialOptions tangential = TangentialOptions(state.range(4), &label);
   const double aa_mm[] = {4.0, 6.0, 9.0, 12.0, 20.0}, ellip[] = {0.2, 0.5, 1.0, 2.0, 5.0};
   const double spin[] = {0.0, 0.5, 1.0, 2.0};
   const double magn[] = {0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.7, 0.9, 1.1, 1.4, 1.7, 2.0,
@@ -379,9 +396,10 @@ void BM_CreepTable(benchmark::State& state) {
       // of the same direction and spin (not at m = 0, whose solution is no traction).
       const bool warm = reuse >= 3 && c % std::size(magn) != 0;
       TangentialSolution t =
-          reuse >= 1 ? SolveTangentialExact(g, normal.pressure_Pa, in, *setup,
-                                            ExactTangentialOptions{}, warm ? &last : nullptr)
-                     : SolveTangentialExact(g, normal.pressure_Pa, in, kPerfcSteel, kPerfcSteel);
+          reuse >= 1 ? SolveTangentialExact(g, normal.pressure_Pa, in, *setup, tangential,
+                                            warm ? &last : nullptr)
+                     : SolveTangentialExact(g, normal.pressure_Pa, in, kPerfcSteel, kPerfcSteel,
+                                            tangential);
       not_converged +=
           normal.status != SolverStatus::kConverged || t.status != SolverStatus::kConverged;
       tang_iterations += t.iterations;
@@ -421,10 +439,14 @@ void BM_CreepTable(benchmark::State& state) {
     state.counters["dmz_max"] = worst[2];
   }
 }
+// The last argument: the exact tangential solver's tolerance 10^-exponent (ExactTangentialOptions;
+// 9 the strict setting). The defaults of issue 18 point 4 (pressure update 1e-4) with tangential
+// 1e-9 to 1e-5, for what a 4-digit tangential default keeps (docs/speed.md).
 void CreepTableArgs(benchmark::internal::Benchmark* b) {
   for (const int mx : {11, 15, 25}) {
-    for (const int reuse : {0, 1, 2, 3}) b->Args({mx, 0, 10, reuse});
-    for (const int reuse : {0, 2}) b->Args({mx, 1, 6, reuse});
+    for (const int reuse : {0, 1, 2, 3}) b->Args({mx, 0, 10, reuse, 9});
+    for (const int reuse : {0, 2}) b->Args({mx, 1, 6, reuse, 9});
+    for (const int exponent : {9, 7, 6, 5}) b->Args({mx, 1, 4, 2, exponent});
   }
 }
 BENCHMARK(BM_CreepTable)->Apply(CreepTableArgs)->Iterations(1)->Unit(benchmark::kMillisecond);
@@ -500,6 +522,8 @@ BENCHMARK(BM_Groove)
     ->Args({1, 0, 10})
     ->Args({0, 1, 7})
     ->Args({1, 1, 7})
+    ->Args({0, 1, 4})  // the default (issue 18 point 4)
+    ->Args({1, 1, 4})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
