@@ -36,30 +36,45 @@ std::vector<double> SplineArcLengths(const std::vector<double>& t, const CubicSp
 
 }  // namespace
 
-Profile::Profile(std::vector<Eigen::Vector2d> points_m, std::string source)
-    : points_(std::move(points_m)), source_(std::move(source)) {
-  const std::string where = source_.empty() ? std::string("profile") : source_;
-  if (points_.size() < 4) {
+std::shared_ptr<const Profile::Data> Profile::Empty() {
+  static const std::shared_ptr<const Data> empty = std::make_shared<const Data>();
+  return empty;
+}
+
+void Profile::set_source(std::string source) {
+  auto d = std::make_shared<Data>(*d_);
+  d->source = std::move(source);
+  d_ = std::move(d);
+}
+
+Profile::Profile(std::vector<Eigen::Vector2d> points_m, std::string source) {
+  auto d = std::make_shared<Data>();
+  d->points = std::move(points_m);
+  d->source = std::move(source);
+  const std::vector<Eigen::Vector2d>& points = d->points;
+  const std::string& name = d->source;
+  const std::string where = name.empty() ? std::string("profile") : name;
+  if (points.size() < 4) {
     throw InputError(fmt::format("{}: {} point(s) read; a profile needs at least 4 points", where,
-                                 points_.size()));
+                                 points.size()));
   }
-  for (size_t i = 0; i < points_.size(); ++i) {
-    if (!std::isfinite(points_[i].x()) || !std::isfinite(points_[i].y())) {
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (!std::isfinite(points[i].x()) || !std::isfinite(points[i].y())) {
       throw InputError(fmt::format("{}: point {} has a non-finite coordinate (y = {}, z = {} mm)",
-                                   where, i + 1, points_[i].x() * 1e3, points_[i].y() * 1e3));
+                                   where, i + 1, points[i].x() * 1e3, points[i].y() * 1e3));
     }
-    if (std::abs(points_[i].x()) > kMaxCoordinate_m ||
-        std::abs(points_[i].y()) > kMaxCoordinate_m) {
+    if (std::abs(points[i].x()) > kMaxCoordinate_m ||
+        std::abs(points[i].y()) > kMaxCoordinate_m) {
       throw InputError(
           fmt::format("{}: point {} (y = {}, z = {} mm) lies beyond {} mm of the origin; expected "
                       "coordinates within +-{} mm",
-                      where, i + 1, points_[i].x() * 1e3, points_[i].y() * 1e3,
+                      where, i + 1, points[i].x() * 1e3, points[i].y() * 1e3,
                       kMaxCoordinate_m * 1e3, kMaxCoordinate_m * 1e3));
     }
   }
-  if (const auto defect = FindProfileDefect(points_)) {
+  if (const auto defect = FindProfileDefect(points)) {
     const auto mm = [&](int i) {
-      return fmt::format("(y = {:.6f}, z = {:.6f} mm)", points_[i].x() * 1e3, points_[i].y() * 1e3);
+      return fmt::format("(y = {:.6f}, z = {:.6f} mm)", points[i].x() * 1e3, points[i].y() * 1e3);
     };
     const int a = defect->a, b = defect->b;
     switch (defect->kind) {
@@ -81,22 +96,24 @@ Profile::Profile(std::vector<Eigen::Vector2d> points_m, std::string source)
             defect->crossing.x() * 1e3, defect->crossing.y() * 1e3));
     }
   }
-  Build();
+  Build(d.get());
+  d_ = std::move(d);
 }
 
-void Profile::Build() {
+void Profile::Build(Data* d) {
+  const std::vector<Eigen::Vector2d>& points = d->points;
   // Spline knots: the points, plus chord points on any segment much longer than a neighbour.
   // A steep wall sampled at a fixed lateral step gives such segments (0.1 mm next to 1.27 mm in
   // the shared groove files), and a natural spline through them swings out by a sizeable part of
   // the long segment (0.22 mm there) instead of following the wall.
-  const size_t n = points_.size();
+  const size_t n = points.size();
   std::vector<double> seg(n - 1);
-  for (size_t i = 0; i + 1 < n; ++i) seg[i] = (points_[i + 1] - points_[i]).norm();
+  for (size_t i = 0; i + 1 < n; ++i) seg[i] = (points[i + 1] - points[i]).norm();
   std::vector<Eigen::Vector2d> knots;
   std::vector<int> point_knot(n);
   for (size_t i = 0; i + 1 < n; ++i) {
     point_knot[i] = static_cast<int>(knots.size());
-    knots.push_back(points_[i]);
+    knots.push_back(points[i]);
     double neighbour = std::numeric_limits<double>::infinity();
     if (i > 0) neighbour = std::min(neighbour, seg[i - 1]);
     if (i + 2 < n) neighbour = std::min(neighbour, seg[i + 1]);
@@ -104,12 +121,12 @@ void Profile::Build() {
       const int pieces =
           std::min(kMaxSubdivision, static_cast<int>(std::ceil(seg[i] / (2.0 * neighbour))));
       for (int k = 1; k < pieces; ++k) {
-        knots.push_back(points_[i] + (points_[i + 1] - points_[i]) * (double(k) / pieces));
+        knots.push_back(points[i] + (points[i + 1] - points[i]) * (double(k) / pieces));
       }
     }
   }
   point_knot[n - 1] = static_cast<int>(knots.size());
-  knots.push_back(points_[n - 1]);
+  knots.push_back(points[n - 1]);
 
   const size_t m = knots.size();
   std::vector<double> t(m, 0.0), y(m), z(m);
@@ -122,27 +139,29 @@ void Profile::Build() {
   // parameter an arc length to far below the point spacing's second order).
   CubicSpline yc(t, y), zc(t, z);
   const std::vector<double> knot_s = SplineArcLengths(t, yc, zc);
-  y_of_s_ = CubicSpline(knot_s, y);
-  z_of_s_ = CubicSpline(knot_s, z);
-  knot_s_.resize(n);
-  for (size_t i = 0; i < n; ++i) knot_s_[i] = knot_s[point_knot[i]];
-  length_ = knot_s.back();
+  d->y_of_s = CubicSpline(knot_s, y);
+  d->z_of_s = CubicSpline(knot_s, z);
+  d->knot_s.resize(n);
+  for (size_t i = 0; i < n; ++i) d->knot_s[i] = knot_s[point_knot[i]];
+  d->length = knot_s.back();
 }
 
 void Profile::Evaluate(double s, Eigen::Vector2d* position, Eigen::Vector2d* d1,
                        Eigen::Vector2d* d2) const {
   double y, yd, ydd, z, zd, zdd;
-  y_of_s_.Evaluate(s, &y, &yd, &ydd);
-  z_of_s_.Evaluate(s, &z, &zd, &zdd);
+  d_->y_of_s.Evaluate(s, &y, &yd, &ydd);
+  d_->z_of_s.Evaluate(s, &z, &zd, &zdd);
   if (position) *position = {y, z};
   if (d1) *d1 = {yd, zd};
   if (d2) *d2 = {ydd, zdd};
 }
 
-Eigen::Vector2d Profile::Position(double s) const { return {y_of_s_.Value(s), z_of_s_.Value(s)}; }
+Eigen::Vector2d Profile::Position(double s) const {
+  return {d_->y_of_s.Value(s), d_->z_of_s.Value(s)};
+}
 
 Eigen::Vector2d Profile::Derivative(double s) const {
-  return {y_of_s_.Derivative(s), z_of_s_.Derivative(s)};
+  return {d_->y_of_s.Derivative(s), d_->z_of_s.Derivative(s)};
 }
 
 Eigen::Vector2d Profile::Tangent(double s) const { return Derivative(s).normalized(); }
@@ -160,8 +179,9 @@ double Profile::Curvature(double s) const {
 }
 
 Profile::Bounds Profile::bounds() const {
-  Bounds b{points_[0].x(), points_[0].x(), points_[0].y(), points_[0].y()};
-  for (const auto& p : points_) {
+  const std::vector<Eigen::Vector2d>& points = d_->points;
+  Bounds b{points[0].x(), points[0].x(), points[0].y(), points[0].y()};
+  for (const auto& p : points) {
     b.y_min = std::min(b.y_min, p.x());
     b.y_max = std::max(b.y_max, p.x());
     b.z_min = std::min(b.z_min, p.y());
@@ -171,19 +191,19 @@ Profile::Bounds Profile::bounds() const {
 }
 
 Profile Profile::Mirrored() const {
-  std::vector<Eigen::Vector2d> pts(points_.rbegin(), points_.rend());
+  std::vector<Eigen::Vector2d> pts(d_->points.rbegin(), d_->points.rend());
   for (auto& p : pts) p.x() = -p.x();
-  return Profile(std::move(pts), source_);
+  return Profile(std::move(pts), d_->source);
 }
 
 Profile Profile::Transformed(double angle_rad, const Eigen::Vector2d& shift_m) const {
   const double c = std::cos(angle_rad), s = std::sin(angle_rad);
-  std::vector<Eigen::Vector2d> pts(points_);
+  std::vector<Eigen::Vector2d> pts(d_->points);
   for (auto& p : pts) {
     const Eigen::Vector2d q(c * p.x() - s * p.y(), s * p.x() + c * p.y());
     p = q + shift_m;
   }
-  return Profile(std::move(pts), source_);
+  return Profile(std::move(pts), d_->source);
 }
 
 }  // namespace railwear

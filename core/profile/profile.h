@@ -6,6 +6,7 @@
 // wheel radius equals the nominal rolling radius. SI inside (metres); files use millimetres.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -40,16 +41,16 @@ class Profile {
   static constexpr double kMaxSegmentRatio = 4.0;
   static constexpr int kMaxSubdivision = 64;
 
-  int size() const { return static_cast<int>(points_.size()); }
-  const std::vector<Eigen::Vector2d>& points() const { return points_; }
-  const std::string& source() const { return source_; }
-  void set_source(std::string source) { source_ = std::move(source); }
+  int size() const { return static_cast<int>(d_->points.size()); }
+  const std::vector<Eigen::Vector2d>& points() const { return d_->points; }
+  const std::string& source() const { return d_->source; }
+  void set_source(std::string source);
 
   // Arc-length parameter s in [0, Length()] (metres). The knots carry the arc length of the
   // interpolating spline itself (Gauss-Legendre per interval), so s is a true arc length.
-  double Length() const { return length_; }
+  double Length() const { return d_->length; }
   // Arc length of point i.
-  double KnotS(int i) const { return knot_s_[i]; }
+  double KnotS(int i) const { return d_->knot_s[i]; }
 
   // Position (y, z) [m], first and second derivative with respect to s, at parameter s.
   // s outside [0, Length()] extrapolates the end cubic (callers should stay inside).
@@ -75,12 +76,20 @@ class Profile {
   Profile Transformed(double angle_rad, const Eigen::Vector2d& shift_m) const;
 
  private:
-  void Build();
-  std::vector<Eigen::Vector2d> points_;
-  std::string source_;
-  std::vector<double> knot_s_;  // arc length of each point
-  double length_ = 0.0;
-  CubicSpline y_of_s_, z_of_s_;
+  // A profile's data, immutable once built and shared by its copies: a Profile is a value, and
+  // copying one is O(1) (a wheelset call copied the wheel and rail profiles six times, each a
+  // block of some 100 kB that glibc mapped afresh on every call: docs/library.md, "Wheelsets on
+  // the fast tread path"). set_source copies the data first.
+  struct Data {
+    std::vector<Eigen::Vector2d> points;
+    std::string source;
+    std::vector<double> knot_s;  // arc length of each point
+    double length = 0.0;
+    CubicSpline y_of_s, z_of_s;
+  };
+  static std::shared_ptr<const Data> Empty();
+  static void Build(Data* d);
+  std::shared_ptr<const Data> d_ = Empty();
 };
 
 }  // namespace railwear

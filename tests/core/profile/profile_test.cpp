@@ -95,6 +95,23 @@ TEST(Profile, Bounds) {
   EXPECT_EQ(b.z_max, 4e-3);
 }
 
+// A copy shares the original's data (O(1), no 100 kB block per copy); set_source gives the copy
+// its own, leaving the original as it was; a default Profile is empty.
+TEST(Profile, CopiesShareTheirDataAndSetSourceCopiesIt) {
+  const Profile p({{-1e-3, 2e-3}, {0, 0}, {1e-3, 1e-3}, {3e-3, 4e-3}}, "original");
+  Profile q = p;
+  EXPECT_EQ(&q.points(), &p.points());
+  EXPECT_EQ(q.Position(0.5 * p.Length()), p.Position(0.5 * p.Length()));
+  q.set_source("renamed");
+  EXPECT_EQ(q.source(), "renamed");
+  EXPECT_EQ(p.source(), "original");
+  EXPECT_NE(&q.points(), &p.points());
+  EXPECT_EQ(q.points(), p.points());
+  EXPECT_EQ(q.Length(), p.Length());
+  EXPECT_EQ(Profile().size(), 0);
+  EXPECT_TRUE(Profile().points().empty());
+}
+
 TEST(Profile, MirroredFlipsYAndKeepsTheSenseOfTraversal) {
   const Profile p(Arc({1e-3, 0}, kR, 200 * kPi / 180, 300 * kPi / 180, 100), "arc");
   const Profile m = p.Mirrored();
