@@ -28,8 +28,8 @@ std::string AxleForceNotCarried(double target_N, double reached_N, double mu_fn_
 }
 
 // Both wheels on the fast tread path (hertz_tread.h), each wheel's problem (*right_wheel,
-// *left_wheel) placed and moving as SolveWheelset set it up, the axle force target (if any) already taken out
-// of them. Every evaluation is the fast path's whole solve (placement, Hertz's ellipse, the
+// *left_wheel) placed and moving as SolveWheelset set it up, the axle force target (if any)
+// already taken out of them. Every evaluation is the fast path's whole solve (placement, Hertz's ellipse, the
 // tangential solution and the vertical balance), so the pitch search needs no balance rounds:
 // its root is the balanced wheels'. False, with the wheel and the reason in *why_not, when
 // either contact is not one Hertzian patch at the axle's pitch velocities the search tries.
@@ -64,8 +64,11 @@ bool SolveTreadWheels(ContactProblem* right_wheel, ContactProblem* left_wheel,
     bool valid = true;
     double last_N = TotalForceX(out->right) + TotalForceX(out->left);
     auto fx = [&](double omega) {
-      if (valid && both(omega)) last_N = TotalForceX(out->right) + TotalForceX(out->left);
-      else valid = false;
+      if (valid && both(omega)) {
+        last_N = TotalForceX(out->right) + TotalForceX(out->left);
+      } else {
+        valid = false;
+      }
       return last_N;
     };
     const double mu_fn =
@@ -81,14 +84,17 @@ bool SolveTreadWheels(ContactProblem* right_wheel, ContactProblem* left_wheel,
         r->status = SolverStatus::kNotConverged;
         r->message = message;
       }
-      return true;
+    } else if (!both(*omega)) {  // the wheels at the root, balanced
+      return false;
     }
-    if (!both(*omega)) return false;  // the wheels at the root, balanced
   }
+  // Each wheel's point of the results returned (the C API's wheel-frame location: without it
+  // rw_get_patch would look for a placed geometry the fast path never built).
   out->right_tread_point = right_point;
   out->left_tread_point = left_point;
   return true;
 }
+
 }  // namespace
 
 WheelMotions CurveWheelMotions(const WheelMotion& axle, const WheelsetPlacement& placed,

@@ -135,6 +135,16 @@ TEST(ApiHertzTread, WheelsetTakesItOnBothWheels) {
       EXPECT_NEAR(q.contact_wheel_y_m, q.contact_y_m - summary.wheelset_lateral_m, 1e-5);
     }
   }
+  // An axle force beyond adhesion: not converged, and the patches still carry the fast path's
+  // wheel-frame points (there is no placed geometry to find them on).
+  rw_state beyond = s;
+  beyond.longitudinal_force_N = 1.5 * 0.3 * 2 * 100e3;
+  ASSERT_EQ(rw_set_state(p, &beyond), RW_OK) << rw_last_error(p);
+  EXPECT_EQ(rw_calculate(p), RW_ERROR_NOT_CONVERGED);
+  rw_patch q{};
+  q.struct_size = sizeof q;
+  ASSERT_EQ(rw_get_patch(p, 0, &q), RW_OK) << rw_last_error(p);
+  EXPECT_NEAR(q.contact_wheel_y_m, q.contact_y_m - summary.wheelset_lateral_m, 1e-5);
   rw_destroy(p);
 }
 

@@ -293,6 +293,8 @@ TEST(HertzTread, WheelsetCarriesAnAxleForceTarget) {
   w.wheel_rail.rolling->longitudinal_force_N = 1.5 * kFriction * 2 * kLoad_N;
   const WheelsetResult beyond = SolveWheelset(w);
   EXPECT_EQ(beyond.right.status, SolverStatus::kNotConverged);
+  EXPECT_TRUE(beyond.right_tread_point.has_value());  // still the fast path's wheels
+  EXPECT_TRUE(beyond.left_tread_point.has_value());
   EXPECT_NE(beyond.right.message.find("cannot be carried"), std::string::npos)
       << beyond.right.message;
 }
