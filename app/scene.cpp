@@ -214,8 +214,8 @@ void ReadModel(const Fields& top, Scene* scene) {
   const auto t = top.Table("model", "a table");
   if (!t) return;
   t->AllowOnly({"kind", "geometry", "kernel", "constants", "influence_constants", "accuracy",
-                "cell_mm", "tangential", "pressure_limit", "pressure_limit_MPa",
-                "normal_criterion", "normal_tolerance"});
+                "cell_mm", "tangential", "pressure_limit", "pressure_limit_MPa", "normal_criterion",
+                "normal_tolerance"});
   if (const auto kind = t->Choice("kind", EnumChoices(kModelKindNames))) {
     const InfluenceConstants constants = model.constants;
     model = MakeModelOptions(*ModelKindFromString(*kind));

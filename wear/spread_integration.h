@@ -17,13 +17,13 @@
 // bound while the interval is wider than kSpreadBoundWidth: a midpoint on the chord must not
 // hide a switch). Each round bisects, in all units of the step at once (their contact solves
 // run in parallel), the intervals with the largest estimates until they hold half of each
-// unconverged rail's estimates (Doerfler marking). The step stops when the estimates left are within tolerance x the step's worn area
-// per pass on every rail, or when the worn area per pass of every rail changed by at most that in
-// two successive rounds (the estimates sum the contact grid's noise between neighbouring
-// positions, which the integral averages out: on the default study at draft the estimates stay
-// at about 6 % while the integral is within 0.4 % of a 128-node reference). Intervals narrower
-// than kMinSpreadInterval and units with kMaxSpreadNodes are not bisected; a step that runs out of
-// intervals before either test is not converged.
+// unconverged rail's estimates (Doerfler marking). The step stops when the estimates left are
+// within tolerance x the step's worn area per pass on every rail, or when the worn area per pass of
+// every rail changed by at most that in two successive rounds (the estimates sum the contact grid's
+// noise between neighbouring positions, which the integral averages out: on the default study at
+// draft the estimates stay at about 6 % while the integral is within 0.4 % of a 128-node
+// reference). Intervals narrower than kMinSpreadInterval and units with kMaxSpreadNodes are not
+// bisected; a step that runs out of intervals before either test is not converged.
 //
 // A unit is one spread: a prescribed entry's, or one wheelset of a vehicle entry (each wheelset
 // has its own equilibrium, so its switches lie elsewhere). Everything is deterministic: the
@@ -43,8 +43,7 @@ namespace railwear {
 // inside, and the 1.35e-3 of probability beyond +3 carried 8-22 % of the step's worn area in the
 // default study's 10 MGT run with 30 Gauss-Hermite nodes (docs/wear.md, "The tails"); with the
 // first nodes at +-3 only, the rule took the response at +3 for all of it.
-inline constexpr std::array<double, 7> kSpreadInitialNodes = {-5.0, -3.0, -1.5, 0.0,
-                                                                1.5,  3.0,  5.0};
+inline constexpr std::array<double, 7> kSpreadInitialNodes = {-5.0, -3.0, -1.5, 0.0, 1.5, 3.0, 5.0};
 // The most nodes one unit takes in a step (7 first nodes and 34 bisections).
 inline constexpr int kMaxSpreadNodes = 41;
 // The narrowest interval that is bisected [standard-normal units]: six halvings of the first

@@ -77,8 +77,8 @@ void RunRollingPart(const ContactProblem& problem, const WheelRailGeometry& geom
   if (result->status == SolverStatus::kConverged &&
       (problem.rolling->coupling || problem.load.vertical_force_N)) {
     t0 = Clock::now();
-    Eigen::VectorXd balanced = IterateNormalTangential(
-        problem, geom, cands, kept.build, kept.offset, np, pressure, result, &memory);
+    Eigen::VectorXd balanced = IterateNormalTangential(problem, geom, cands, kept.build,
+                                                       kept.offset, np, pressure, result, &memory);
     AddStage(&result->stages, problem.rolling->coupling ? "coupling" : "balance",
              SecondsSince(t0));
     if (WarmBalanceApplies(problem, memo) && result->status == SolverStatus::kConverged &&

@@ -687,6 +687,13 @@ std::optional<ContactResult> SolveHertzTread(const ContactProblem& problem, std:
   return result;
 }
 
+void MarkTreadFallback(const std::string& why, ContactResult* result) {
+  for (PatchResult& patch : result->patches) {
+    patch.model_reason = "fast tread path not valid: " + why +
+                         (patch.model_reason.empty() ? "" : "; full path: " + patch.model_reason);
+  }
+}
+
 ContactResult SolveHertzRolling(const ContactProblem& problem, const FullContactSolve& full,
                                 std::optional<HertzTreadPoint>* point) {
   const auto t0 = Clock::now();
@@ -701,10 +708,7 @@ ContactResult SolveHertzRolling(const ContactProblem& problem, const FullContact
   ContactProblem fallback = problem;
   fallback.model = HertzTreadFallbackModel(problem.model);
   ContactResult r = full(fallback);
-  for (PatchResult& patch : r.patches) {
-    patch.model_reason = "fast tread path not valid: " + why +
-                         (patch.model_reason.empty() ? "" : "; full path: " + patch.model_reason);
-  }
+  MarkTreadFallback(why, &r);
   AddStage(&r.stages, "hertz tread check", check_s);
   r.time_s += check_s;
   return r;

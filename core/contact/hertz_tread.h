@@ -68,6 +68,10 @@ ModelOptions HertzTreadFallbackModel(const ModelOptions& hertz);
 // A full solve of a problem (SolveContact, or SolveContactCase's with its placement cache).
 using FullContactSolve = std::function<ContactResult(const ContactProblem&)>;
 
+// A fallback's result marked as such: each patch's model_reason becomes "fast tread path not
+// valid: " + why, then "; full path: " and the full path's own reason when it gave one.
+void MarkTreadFallback(const std::string& why, ContactResult* result);
+
 // kind = hertz with rolling contact: the fast path, or when it does not apply `full` on the
 // problem with HertzTreadFallbackModel, its patches' model_reason saying why (file comment).
 // point (optional out): set to the fast path's wheel-frame point, reset on the fallback.

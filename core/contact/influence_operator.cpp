@@ -281,8 +281,7 @@ class CurvedFftOperator final : public InfluenceOperator {
   // of L^T (a dot product, in two partial sums per right-hand side). The same factor, other
   // rounding: the preconditioner agrees with the blocked solve to rounding
   // (influence_operator_test.cpp, PreconditionerSolvesEachFrequencysBlockExactly).
-  void SolveFactored(const double* __restrict l, double* __restrict a,
-                     double* __restrict b) const {
+  void SolveFactored(const double* __restrict l, double* __restrict a, double* __restrict b) const {
     const int n = ns_;
     for (int j = 0; j < n; ++j) {
       const double* lj = l + static_cast<size_t>(j) * n;

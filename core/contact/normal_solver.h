@@ -55,9 +55,10 @@ std::string_view ToString(CgPreconditioner p);
 //                    4 digits and for callers that difference solutions at small steps.
 //   kPressureUpdate: the default (1e-4, issue 18 point 4: 4 significant digits of p_max and
 //                    F_n with margin, docs/speed.md). CONTACT's NormCG criterion (E.A.H.
-//                    Vollebregt, CONTACT's src/m_solvpn.f90, its EPS): the last step neither moved a cell into or out of the contact set
-//                    and changed the pressures by at most tolerance times their size, both as
-//                    RMS values over the contact set (cells with 0 < p < p_lim) before the step:
+//                    Vollebregt, CONTACT's src/m_solvpn.f90, its EPS): the last step neither moved
+//                    a cell into or out of the contact set and changed the pressures by at most
+//                    tolerance times their size, both as RMS values over the contact set (cells
+//                    with 0 < p < p_lim) before the step:
 //                      rms_k(tau t_k) <= tolerance * rms_k(p_k),
 //                    with rms(p) taken after the step and, as in CONTACT, refreshed only in
 //                    iterations 1, 2, 3 and every 10th. The tolerance is thereby stated in the

@@ -49,8 +49,8 @@ double InitialBalanceSlope(const ContactResult& r) {
 // contact (SolveContact's normal stage) runs at the default criterion.
 NormalSolverOptions LoopSolverOptions(const NormalSolverOptions& o) {
   NormalSolverOptions strict = o;
-  const bool tighter = o.criterion == NormalStopCriterion::kGapResidual &&
-                       o.tolerance < kStrictNormalTolerance;
+  const bool tighter =
+      o.criterion == NormalStopCriterion::kGapResidual && o.tolerance < kStrictNormalTolerance;
   strict.criterion = NormalStopCriterion::kGapResidual;
   if (!tighter) strict.tolerance = kStrictNormalTolerance;
   return strict;
@@ -188,8 +188,8 @@ Eigen::VectorXd IterateNormalTangential(const ContactProblem& problem,
   // The balance first, alone: the coupling's changes are measured against the balanced
   // uncoupled solution, so that they are the coupling's own.
   if (balance && !balance->Settled(BalanceError(*result, *problem.load.vertical_force_N)) &&
-      !Iterate(problem, geom, {}, kept_offset, base_gap, false, balance_ptr, np, &pressure,
-               result, memory)) {
+      !Iterate(problem, geom, {}, kept_offset, base_gap, false, balance_ptr, np, &pressure, result,
+               memory)) {
     return pressure;
   }
   if (!coupling) return pressure;

@@ -41,11 +41,12 @@ double BalanceResidual(const ContactResult& result, double load_N);
 // repeats of it.
 // Returns the pressure [Pa] of *result's patches as the stage leaves them (the last normal
 // solve's, or `pressure` when none ran), with np->force_N that solve's load target.
-Eigen::VectorXd IterateNormalTangential(const ContactProblem& problem, const WheelRailGeometry& geom,
-                             const std::vector<ContactCandidate>& cands,
-                             const std::vector<int>& kept_build,
-                             const std::vector<int>& kept_offset, NormalProblem* np,
-                             Eigen::VectorXd pressure, ContactResult* result,
-                             RollingStageMemory* memory = nullptr);
+Eigen::VectorXd IterateNormalTangential(const ContactProblem& problem,
+                                        const WheelRailGeometry& geom,
+                                        const std::vector<ContactCandidate>& cands,
+                                        const std::vector<int>& kept_build,
+                                        const std::vector<int>& kept_offset, NormalProblem* np,
+                                        Eigen::VectorXd pressure, ContactResult* result,
+                                        RollingStageMemory* memory = nullptr);
 
 }  // namespace railwear::internal

@@ -33,8 +33,8 @@ void SolveRolling(const ContactProblem& problem, const WheelRailGeometry& geom,
                                 ? RigidSlipFromCreepage(patch.grid, patch.pressure_Pa, *o.creepage,
                                                         o.motion.speed_m_s, o.friction)
                                 : RigidSlipFromMotion(geom, patch.grid, o.motion, o.friction);
-    patch.rolling = internal::SolveRollingPatch(problem, patch, in,
-                                                reuse != nullptr ? &(*reuse)[k] : nullptr);
+    patch.rolling =
+        internal::SolveRollingPatch(problem, patch, in, reuse != nullptr ? &(*reuse)[k] : nullptr);
   }
 }
 
@@ -53,9 +53,9 @@ void SolveRollingForForce(const ContactProblem& problem, const WheelRailGeometry
   const double tolerance = 1e-6 * o.friction * TotalNormalForce(*result);
   const double r0 = problem.placement.rolling_radius_m;
   const bool restart = memory != nullptr && memory->spin_up_creepage.has_value();
-  const auto omega = SolvePitchVelocityForForce(
-      fx, target, o.motion.speed_m_s, r0, tolerance, restart ? *memory->spin_up_creepage : 0.0,
-      restart ? kPitchRestartStep : 1e-4);
+  const auto omega = SolvePitchVelocityForForce(fx, target, o.motion.speed_m_s, r0, tolerance,
+                                                restart ? *memory->spin_up_creepage : 0.0,
+                                                restart ? kPitchRestartStep : 1e-4);
   if (memory != nullptr) {
     memory->spin_up_creepage.reset();
     if (omega) memory->spin_up_creepage = -*omega * r0 / o.motion.speed_m_s - 1.0;
@@ -143,8 +143,8 @@ RollingPatch SolveRollingPatch(const ContactProblem& problem, const PatchResult&
   RollingPatch rolling;
   rolling.creepage = AverageCreepage(patch.grid, patch.pressure_Pa, in);
   rolling.tangential =
-      SolveTangential(problem.tangential, problem.model.accuracy, patch.grid, patch.pressure_Pa,
-                      in, problem.wheel_material, problem.rail_material, &rolling.choice, reuse);
+      SolveTangential(problem.tangential, problem.model.accuracy, patch.grid, patch.pressure_Pa, in,
+                      problem.wheel_material, problem.rail_material, &rolling.choice, reuse);
   // The patch's equivalent ellipse (the semi-axes FASTSIM uses), reported with the patch.
   const ContactEllipse used = EstimateContactEllipse(patch.grid, patch.pressure_Pa);
   rolling.semi_axis_x_m = used.semi_axis_x_m;

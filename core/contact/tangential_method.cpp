@@ -20,8 +20,8 @@ namespace {
 
 using TangentialSolver = TangentialSolution (*)(AccuracyPreset, const PatchGrid&,
                                                 const Eigen::VectorXd&, const RollingInput&,
-                                                const Material&, const Material&,
-                                                TangentialChoice*, ExactTangentialReuse*);
+                                                const Material&, const Material&, TangentialChoice*,
+                                                ExactTangentialReuse*);
 
 FastsimOptions FastsimFor(const Material& wheel, const Material& rail) {
   const CombinedElastic elastic = CombineElastic(wheel, rail);

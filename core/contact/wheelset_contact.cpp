@@ -29,9 +29,9 @@ std::string AxleForceNotCarried(double target_N, double reached_N, double mu_fn_
 
 // Both wheels on the fast tread path (hertz_tread.h), each wheel's problem (*right_wheel,
 // *left_wheel) placed and moving as SolveWheelset set it up, the axle force target (if any)
-// already taken out of them. Every evaluation is the fast path's whole solve (placement, Hertz's ellipse, the
-// tangential solution and the vertical balance), so the pitch search needs no balance rounds:
-// its root is the balanced wheels'. False, with the wheel and the reason in *why_not, when
+// already taken out of them. Every evaluation is the fast path's whole solve (placement, Hertz's
+// ellipse, the tangential solution and the vertical balance), so the pitch search needs no balance
+// rounds: its root is the balanced wheels'. False, with the wheel and the reason in *why_not, when
 // either contact is not one Hertzian patch at the axle's pitch velocities the search tries.
 bool SolveTreadWheels(ContactProblem* right_wheel, ContactProblem* left_wheel,
                       std::optional<double> target, const WheelsetProblem& problem,
@@ -184,12 +184,8 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cac
     WheelsetProblem fallback = problem;
     fallback.wheel_rail.model = HertzTreadFallbackModel(problem.wheel_rail.model);
     WheelsetResult full = SolveWheelset(fallback, cache);
-    for (ContactResult* wheel : {&full.right, &full.left}) {
-      for (PatchResult& patch : wheel->patches) {
-        patch.model_reason = "fast tread path not valid: " + why_not +
-                             (patch.model_reason.empty() ? "" : "; full path: " + patch.model_reason);
-      }
-    }
+    MarkTreadFallback(why_not, &full.right);
+    MarkTreadFallback(why_not, &full.left);
     return full;
   }
   // Each wheel's placed geometry, built once for all its solves and the trials of the search

@@ -9,7 +9,8 @@
 // own frame. Under a prescribed load each wheel is balanced vertically with its creep forces
 // (SolveContact); with an axle force target the balanced solves and the pitch-velocity search
 // alternate until both hold, each round's balance starting from the last round's balanced state
-// (a warm NormalPartMemo, normal_part_memo.h: the balance to its tolerance from a nearer start). Each wheel's FlangeClimbCheck (L/V, Nadal) is in its own rail frame.
+// (a warm NormalPartMemo, normal_part_memo.h: the balance to its tolerance from a nearer start).
+// Each wheel's FlangeClimbCheck (L/V, Nadal) is in its own rail frame.
 //
 // kind = hertz with rolling contact puts both wheels on the fast tread path (hertz_tread.h): each
 // wheel is placed, solved and balanced as a single wheel's fast path does it, and an axle force

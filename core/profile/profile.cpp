@@ -63,8 +63,7 @@ Profile::Profile(std::vector<Eigen::Vector2d> points_m, std::string source) {
       throw InputError(fmt::format("{}: point {} has a non-finite coordinate (y = {}, z = {} mm)",
                                    where, i + 1, points[i].x() * 1e3, points[i].y() * 1e3));
     }
-    if (std::abs(points[i].x()) > kMaxCoordinate_m ||
-        std::abs(points[i].y()) > kMaxCoordinate_m) {
+    if (std::abs(points[i].x()) > kMaxCoordinate_m || std::abs(points[i].y()) > kMaxCoordinate_m) {
       throw InputError(
           fmt::format("{}: point {} (y = {}, z = {} mm) lies beyond {} mm of the origin; expected "
                       "coordinates within +-{} mm",

@@ -261,8 +261,7 @@ class Equilibrium {
 
   // The residual at *trial with the frames and the body projected onto it (Project): false when
   // a wheelset is beyond the lateral limit (no contact solved) or a contact failed.
-  bool TrialResidual(Eigen::VectorXd* trial, std::vector<CurvedWheelset>* ws,
-                     Eigen::VectorXd* r) {
+  bool TrialResidual(Eigen::VectorXd* trial, std::vector<CurvedWheelset>* ws, Eigen::VectorXd* r) {
     Project(trial);
     return WithinBounds(*trial) && Residual(*trial, ws, r);
   }
@@ -327,8 +326,7 @@ class Equilibrium {
       // within 0.15 mm of y and steps by 1-2 kN as cells enter its patch, so no step meets the
       // force tolerance while the position is settled. A fresh Jacobian's Newton correction
       // within the position tolerances (and a residual near the tolerance) is the equilibrium.
-      if (!accepted && fresh && Norm(*r) <= kNearStall * o.tolerance &&
-          PositionNorm(step) <= 1.0) {
+      if (!accepted && fresh && Norm(*r) <= kNearStall * o.tolerance && PositionNorm(step) <= 1.0) {
         *message = fmt::format(
             "converged in position: the Newton correction moves no wheelset more than {:.3f} mm "
             "and {:.3f} mrad; largest scaled residual {:.1e} (tolerance {:.1e}), the contact "
@@ -523,8 +521,8 @@ class Equilibrium {
   // its state and *correction its simplified Newton correction in position tolerances (1: at a
   // tolerance); false: nothing changed.
   bool NaturalLevelStep(const Eigen::FullPivLU<Eigen::MatrixXd>& lu, Eigen::VectorXd step,
-                          Eigen::VectorXd* q, std::vector<CurvedWheelset>* ws, Eigen::VectorXd* r,
-                          double* correction) {
+                        Eigen::VectorXd* q, std::vector<CurvedWheelset>* ws, Eigen::VectorXd* r,
+                        double* correction) {
     Limited(&step);
     const double full = PositionNorm(step);
     if (!(full > 0.0)) return false;
@@ -781,8 +779,8 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
   auto contexts = [&](const ModelOptions& model) {
     std::vector<WheelsetContext> ctx(layout.wheelsets);
     for (int i = 0; i < layout.wheelsets; ++i) {
-      ctx[i] = {&p, model, q0 + transfer, q0 - transfer, q0,
-                p.wheels.empty() ? nullptr : &p.wheels[i]};
+      ctx[i] = {
+          &p, model, q0 + transfer, q0 - transfer, q0, p.wheels.empty() ? nullptr : &p.wheels[i]};
     }
     return ctx;
   };
@@ -845,8 +843,10 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
     if (relaxed && !eq.Relax(&q, &ws, &r) && eq.cancelled()) break;
     iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
     if (relaxed) {
-      out.message = "the centred start relaxed toward the equilibrium first (pseudo-transient "
-                    "continuation)" + (out.message.empty() ? "" : "; " + out.message);
+      out.message =
+          "the centred start relaxed toward the equilibrium first (pseudo-transient "
+          "continuation)" +
+          (out.message.empty() ? "" : "; " + out.message);
     }
     if (two_phases) {
       out.predictor_iterations += std::max(iterations, 0);

@@ -215,10 +215,10 @@ TEST(AccuracyCommand, HertzInARollingSceneIsTheFastTreadPathPerLevel) {
   EXPECT_TRUE(Contains(FormatAccuracyTable(s), "hertz                 standard"));
   // Hertz with rolling is no reference.
   o.reference_model = "hertz";
-  EXPECT_TRUE(Contains(
-      test::InputErrorMessage(
-          [&] { RunAccuracyStudy(LoadScene(kExamples + "rolling_tread_hertz.toml"), o); }),
-      "--reference-model hertz: the scene rolls"));
+  EXPECT_TRUE(Contains(test::InputErrorMessage([&] {
+                         RunAccuracyStudy(LoadScene(kExamples + "rolling_tread_hertz.toml"), o);
+                       }),
+                       "--reference-model hertz: the scene rolls"));
 }
 
 // --tangential (issue 16): each method per model and level; the exact solver's rows are the

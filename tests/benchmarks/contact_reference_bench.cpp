@@ -266,19 +266,20 @@ BENCHMARK(BM_PerfcRolling)->Apply(PerfcRollingArgs)->Unit(benchmark::kMillisecon
 // sqrt(aa bb), rho = 2 / (A1 + B1)) over spin = 0, 0.5, 1, 2, t = -90 .. 90 deg in steps of 30
 // and m = 0 .. 12 (23 values), CONTACT's order of the cases. CONTACT solves at EPS = 1e-6; the
 // normal solve here runs at the criterion of the args (mx, normal criterion, exponent, reuse,
-// tangential exponent), the tangential one at 10^-(tangential exponent). reuse: 0 builds everything for every case, as CONTACT's
-// test_table does (its flags C = 2, I = 0: influence coefficients computed and the normal problem
-// solved from the undeformed distance in every case); 1 builds the influence operator and the
-// exact solver's ExactTangentialSetup once per ellipse (the 644 cases of an ellipse share one
-// grid) and solves the normal problem in every case; 2 also solves the normal problem once per
-// ellipse (it is the same problem in all its cases). The three give the same numbers bit for bit
-// (reuse of identical inputs). 3 is 2 with each tangential solve warm-started from the previous
-// case's solution when that is the previous creepage magnitude in the same direction and spin
-// (CONTACT's I = 1; results to the tangential tolerance, not bit for bit). Counters: ms_per_case, cells (mx^2, for the growth
-// exponent), tang_iterations (the tangential solves' mean); with RAILWEAR_CONTACT_TABLE_REF naming
-// CONTACT's reference file (e.g. testbank/test_table_mx11.ref_fx for mx = 11) also the largest
-// differences of F_x / (mu F_n), F_y / (mu F_n) and M_z / (mu F_n c) from it (dfx_max, dfy_max,
-// dmz_max); with RAILWEAR_CONTACT_TABLE_OUT naming a file, railwear's values in CONTACT's format.
+// tangential exponent), the tangential one at 10^-(tangential exponent). reuse: 0 builds everything
+// for every case, as CONTACT's test_table does (its flags C = 2, I = 0: influence coefficients
+// computed and the normal problem solved from the undeformed distance in every case); 1 builds the
+// influence operator and the exact solver's ExactTangentialSetup once per ellipse (the 644 cases of
+// an ellipse share one grid) and solves the normal problem in every case; 2 also solves the normal
+// problem once per ellipse (it is the same problem in all its cases). The three give the same
+// numbers bit for bit (reuse of identical inputs). 3 is 2 with each tangential solve warm-started
+// from the previous case's solution when that is the previous creepage magnitude in the same
+// direction and spin (CONTACT's I = 1; results to the tangential tolerance, not bit for bit).
+// Counters: ms_per_case, cells (mx^2, for the growth exponent), tang_iterations (the tangential
+// solves' mean); with RAILWEAR_CONTACT_TABLE_REF naming CONTACT's reference file (e.g.
+// testbank/test_table_mx11.ref_fx for mx = 11) also the largest differences of F_x / (mu F_n), F_y
+// / (mu F_n) and M_z / (mu F_n c) from it (dfx_max, dfy_max, dmz_max); with
+// RAILWEAR_CONTACT_TABLE_OUT naming a file, railwear's values in CONTACT's format.
 constexpr int kTableCases = 5 * 4 * 7 * 23;
 constexpr double kTableFn_N = 82000.0, kTableFriction = 0.3, kTableSpeed_m_s = 10.0;
 
@@ -395,11 +396,11 @@ void BM_CreepTable(benchmark::State& state) {
       // reuse 3: warm-started from the previous case when it is the previous creepage magnitude
       // of the same direction and spin (not at m = 0, whose solution is no traction).
       const bool warm = reuse >= 3 && c % std::size(magn) != 0;
-      TangentialSolution t =
-          reuse >= 1 ? SolveTangentialExact(g, normal.pressure_Pa, in, *setup, tangential,
-                                            warm ? &last : nullptr)
-                     : SolveTangentialExact(g, normal.pressure_Pa, in, kPerfcSteel, kPerfcSteel,
-                                            tangential);
+      TangentialSolution t = reuse >= 1
+                                 ? SolveTangentialExact(g, normal.pressure_Pa, in, *setup,
+                                                        tangential, warm ? &last : nullptr)
+                                 : SolveTangentialExact(g, normal.pressure_Pa, in, kPerfcSteel,
+                                                        kPerfcSteel, tangential);
       not_converged +=
           normal.status != SolverStatus::kConverged || t.status != SolverStatus::kConverged;
       tang_iterations += t.iterations;

@@ -191,7 +191,11 @@ BENCHMARK(BM_ArcGolubenkoApply)
       for (int n : {20, 45, 60, 80, 100, 181, 256}) b->Args({n, 0});
     })
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_CurvedGolubenkoPreconditioner)->Arg(30)->Arg(45)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CurvedGolubenkoPreconditioner)
+    ->Arg(30)
+    ->Arg(45)
+    ->Arg(100)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CurvedGolubenkoDenseApply)->Arg(20)->Arg(45)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -125,8 +125,7 @@ TEST(SpreadIntegrationTest, ConvergesOnAFlangeOnsetInTheTail) {
   std::printf(
       "[ measured ] flange onset at +3.5 std: exact %.6f, first nodes at +-3 only %.6f (%.2f "
       "%%), adaptive %.6f (%.3f %%) with %d nodes\n",
-      exact, old_rule, 100 * (old_rule / exact - 1), adaptive, 100 * (adaptive / exact - 1),
-      nodes);
+      exact, old_rule, 100 * (old_rule / exact - 1), adaptive, 100 * (adaptive / exact - 1), nodes);
   EXPECT_LT(old_rule / exact - 1.0, -0.02);  // what the tail fix is for
   EXPECT_TRUE(converged);
   EXPECT_LT(std::abs(adaptive / exact - 1.0), 0.005);

@@ -241,24 +241,26 @@ TEST(WheelWearTest, ResamplingTheUnwornWheelIsNoWear) {
 // lie along the tread's normal (a step in depth: zero radius). Every point of a wall has the
 // same foot, so the loop over the feet stops at the first wall point and the fallback measures.
 TEST(WheelWearTest, AGrooveWhoseFeetBunchIsMeasuredAgainstTheResampledUnwornWheel) {
-  constexpr double kSpacing_m = 1e-4;       // the points' spacing, on tread, walls and floor
-  constexpr double kHalfLength_m = 20e-3;   // the tread runs from -20 to 20 mm along itself
-  constexpr double kGrooveWidth_m = 4e-3;   // from -2 to 2 mm
+  constexpr double kSpacing_m = 1e-4;      // the points' spacing, on tread, walls and floor
+  constexpr double kHalfLength_m = 20e-3;  // the tread runs from -20 to 20 mm along itself
+  constexpr double kGrooveWidth_m = 4e-3;  // from -2 to 2 mm
   constexpr double kGrooveDepth_m = 1e-3;
   // The tread's unit tangent (1:20 cone) and its normal into the wheel's material (-z side).
   const double alpha = std::atan(1.0 / 20.0);
   const Eigen::Vector2d t(std::cos(alpha), std::sin(alpha));
   const Eigen::Vector2d n(std::sin(alpha), -std::cos(alpha));
   const auto at = [&](double u, double v) -> Eigen::Vector2d { return u * t + v * n; };
-  const int half = static_cast<int>(std::lround(kHalfLength_m / kSpacing_m));       // 200
+  const int half = static_cast<int>(std::lround(kHalfLength_m / kSpacing_m));         // 200
   const int groove = static_cast<int>(std::lround(kGrooveWidth_m / 2 / kSpacing_m));  // 20
   const int wall = static_cast<int>(std::lround(kGrooveDepth_m / kSpacing_m));        // 10
   std::vector<Eigen::Vector2d> unworn_points, worn_points;
   for (int i = -half; i <= half; ++i) unworn_points.push_back(at(i * kSpacing_m, 0.0));
   for (int i = -half; i <= -groove; ++i) worn_points.push_back(at(i * kSpacing_m, 0.0));
   for (int j = 1; j <= wall; ++j) worn_points.push_back(at(-groove * kSpacing_m, j * kSpacing_m));
-  for (int i = -groove + 1; i <= groove; ++i) worn_points.push_back(at(i * kSpacing_m, kGrooveDepth_m));
-  for (int j = wall - 1; j >= 0; --j) worn_points.push_back(at(groove * kSpacing_m, j * kSpacing_m));
+  for (int i = -groove + 1; i <= groove; ++i)
+    worn_points.push_back(at(i * kSpacing_m, kGrooveDepth_m));
+  for (int j = wall - 1; j >= 0; --j)
+    worn_points.push_back(at(groove * kSpacing_m, j * kSpacing_m));
   for (int i = groove + 1; i <= half; ++i) worn_points.push_back(at(i * kSpacing_m, 0.0));
   const Profile unworn(unworn_points, "1:20 tread");
   const Profile worn(worn_points, "1:20 tread with a groove");
@@ -309,9 +311,9 @@ TEST(WheelWearTest, AGrooveWhoseFeetBunchIsMeasuredAgainstTheResampledUnwornWhee
   EXPECT_NEAR(fallback.worn_area_m2, kGrooveWidth_m * kGrooveDepth_m, kCellArea_m2);
   std::cerr << std::setprecision(9) << "[figure] groove 4 x 1 mm in a 1:20 tread, fallback: area "
             << fallback.worn_area_m2 * 1e6 << " mm^2 (4 exact), max depth "
-            << fallback.max_depth_m * 1e3 << " mm, depth in the groove's middle >= "
-            << smallest_inside * 1e3 << " mm, largest |depth| on the tread beyond 1 mm of it "
-            << largest_outside << " m\n";
+            << fallback.max_depth_m * 1e3
+            << " mm, depth in the groove's middle >= " << smallest_inside * 1e3
+            << " mm, largest |depth| on the tread beyond 1 mm of it " << largest_outside << " m\n";
 }
 
 // A wheel worn only at its flange root reports its deepest point there and no depth where no

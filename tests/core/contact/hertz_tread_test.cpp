@@ -233,9 +233,9 @@ ContactProblem WheelOf(const WheelsetProblem& w, const WheelsetResult& r, bool r
 
 // Displaced 4 mm to the left, the right wheel runs on the crown (-14.5 mm) and the left one on
 // the 80 mm radius (-6.5 mm), both single Hertzian patches at 100 kN (at 3 mm the left wheel's gap
-// departs from Hertz's quadratic by 43 %, at 5 mm it touches at two points): each wheel is the single wheel's fast
-// path on its own pose and motion, bit for bit, with its wheel-frame point; against the full
-// path (the half-space grid at standard, as above) within the same tolerances.
+// departs from Hertz's quadratic by 43 %, at 5 mm it touches at two points): each wheel is the
+// single wheel's fast path on its own pose and motion, bit for bit, with its wheel-frame point;
+// against the full path (the half-space grid at standard, as above) within the same tolerances.
 TEST(HertzTread, WheelsetTakesTheFastPathOnBothWheels) {
   const WheelsetProblem w = TreadWheelset(-4e-3, 1e-3);
   const WheelsetResult r = SolveWheelset(w);
@@ -316,9 +316,8 @@ TEST(HertzTread, WheelsetFallsBackAsAWhole) {
     ASSERT_FALSE(wheel->patches.empty());
     for (const PatchResult& p : wheel->patches) {
       EXPECT_NE(p.model, "hertz");
-      EXPECT_EQ(p.model_reason.rfind("fast tread path not valid: right wheel: non-Hertzian patch",
-                                     0),
-                0u)
+      EXPECT_EQ(
+          p.model_reason.rfind("fast tread path not valid: right wheel: non-Hertzian patch", 0), 0u)
           << p.model_reason;
     }
   }

@@ -11,8 +11,8 @@
 #include <random>
 #include <vector>
 
-#include <Eigen/Cholesky>
 #include <gtest/gtest.h>
+#include <Eigen/Cholesky>
 
 #include "core/contact/influence_kernels.h"
 #include "core/contact/normal_solver.h"
@@ -568,11 +568,10 @@ TEST(InfluenceOperator, FarCellsUseTheFarFieldRuleInsideTheOperators) {
 // of s indices, on a planar, a circular and a non-circular section, near and far cells (40
 // columns reach past the far-field switch), both kernels.
 TEST(CellInfluenceRow, EqualsCellInfluenceBitForBit) {
-  const PatchGrid grids[] = {MakePlanarGrid(40, 12, 1e-4, 1.5e-4, 0.3, {1e-3, -2e-3}),
-                             MakeArcGrid(40, 24, 1.1e-4, 2e-4, 10e-3),
-                             MakeParabolaGrid(40, 11, 2.5e-4, 4e-4),
-                             MakeArcGrid(1, 3, 2e-4, 4e-4, 10e-3),
-                             MakeArcGrid(33, 30, 0.7141e-3, 0.8107e-3, 40e-3)};
+  const PatchGrid grids[] = {
+      MakePlanarGrid(40, 12, 1e-4, 1.5e-4, 0.3, {1e-3, -2e-3}),
+      MakeArcGrid(40, 24, 1.1e-4, 2e-4, 10e-3), MakeParabolaGrid(40, 11, 2.5e-4, 4e-4),
+      MakeArcGrid(1, 3, 2e-4, 4e-4, 10e-3), MakeArcGrid(33, 30, 0.7141e-3, 0.8107e-3, 40e-3)};
   int far = 0, shared = 0;
   for (const PatchGrid& grid : grids) {
     for (KernelModel kernel : {KernelModel::kBoussinesq, KernelModel::kGolubenko}) {

@@ -85,8 +85,10 @@ double LargestForceDifference(const ContactResult& a, const ContactResult& b) {
     const double n = q.normal_force_N;
     d = std::max(d, std::abs(p.normal_force_N - n) / n);
     if (p.rolling && q.rolling) {
-      d = std::max(d, std::abs(p.rolling->tangential.force_x_N - q.rolling->tangential.force_x_N) / n);
-      d = std::max(d, std::abs(p.rolling->tangential.force_s_N - q.rolling->tangential.force_s_N) / n);
+      d = std::max(d,
+                   std::abs(p.rolling->tangential.force_x_N - q.rolling->tangential.force_x_N) / n);
+      d = std::max(d,
+                   std::abs(p.rolling->tangential.force_s_N - q.rolling->tangential.force_s_N) / n);
     }
   }
   return d;
@@ -124,9 +126,10 @@ TEST(NormalPartMemo, WarmBalanceGivesTheFullSolveToTheBalanceTolerance) {
     warm_balance_solves += warm.balance_iterations;
     full_balance_solves += full.balance_iterations;
   }
-  std::printf("warm balance: largest relative force difference %.1e; balance solves %d warm, %d "
-              "from the load\n",
-              largest, warm_balance_solves, full_balance_solves);
+  std::printf(
+      "warm balance: largest relative force difference %.1e; balance solves %d warm, %d "
+      "from the load\n",
+      largest, warm_balance_solves, full_balance_solves);
   EXPECT_EQ(memo.reuses(), 5);
   EXPECT_EQ(memo.warm_balances(), 5);
   EXPECT_LT(warm_balance_solves, full_balance_solves);

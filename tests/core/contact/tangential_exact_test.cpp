@@ -131,10 +131,10 @@ TEST(TangentialExact, LinearTheoryAtSmallCreepage) {
   const Case c = MakeCase(kFineCells);
   const double c2 = kA_m * kB_m, c3 = std::pow(c2, 1.5);
   const double phi = kSmallCreepage / kA_m;
-  const TangentialSolution sx =
-      SolveTangentialExact(c.grid, c.p, Creepage(c.grid, kSmallCreepage, 0, 0), SteelG(), SteelG(), Strict());
-  const TangentialSolution sy =
-      SolveTangentialExact(c.grid, c.p, Creepage(c.grid, 0, kSmallCreepage, 0), SteelG(), SteelG(), Strict());
+  const TangentialSolution sx = SolveTangentialExact(
+      c.grid, c.p, Creepage(c.grid, kSmallCreepage, 0, 0), SteelG(), SteelG(), Strict());
+  const TangentialSolution sy = SolveTangentialExact(
+      c.grid, c.p, Creepage(c.grid, 0, kSmallCreepage, 0), SteelG(), SteelG(), Strict());
   const TangentialSolution sp =
       SolveTangentialExact(c.grid, c.p, Creepage(c.grid, 0, 0, phi), SteelG(), SteelG(), Strict());
   for (const TangentialSolution* s : {&sx, &sy, &sp}) {
@@ -155,8 +155,8 @@ TEST(TangentialExact, LinearTheoryAtSmallCreepage) {
 
 TEST(TangentialExact, FullSlipSaturatesAndRespectsTheBound) {
   const Case c = MakeCase(16);
-  const TangentialSolution s =
-      SolveTangentialExact(c.grid, c.p, Creepage(c.grid, 0.03, -0.04, 0), SteelG(), SteelG(), Strict());
+  const TangentialSolution s = SolveTangentialExact(c.grid, c.p, Creepage(c.grid, 0.03, -0.04, 0),
+                                                    SteelG(), SteelG(), Strict());
   ASSERT_EQ(s.status, SolverStatus::kConverged) << s.message;
   const double fn = c.p.sum() * c.grid.CellArea();
   EXPECT_NEAR(std::hypot(s.force_x_N, s.force_s_N) / (kMu * fn), 1.0, kFullSlipTolerance);
@@ -193,10 +193,10 @@ TEST(TangentialExact, ReadmeCheckCase) {
 TEST(TangentialExact, MirroredCreepageMirrorsForces) {
   const Case c = MakeCase(10);
   const double eta = -6.25e-4, phi = 0.625;
-  const TangentialSolution a =
-      SolveTangentialExact(c.grid, c.p, Creepage(c.grid, 2e-4, eta, phi), SteelG(), SteelG(), Strict());
-  const TangentialSolution b =
-      SolveTangentialExact(c.grid, c.p, Creepage(c.grid, -2e-4, -eta, -phi), SteelG(), SteelG(), Strict());
+  const TangentialSolution a = SolveTangentialExact(c.grid, c.p, Creepage(c.grid, 2e-4, eta, phi),
+                                                    SteelG(), SteelG(), Strict());
+  const TangentialSolution b = SolveTangentialExact(
+      c.grid, c.p, Creepage(c.grid, -2e-4, -eta, -phi), SteelG(), SteelG(), Strict());
   ASSERT_EQ(a.status, SolverStatus::kConverged);
   ASSERT_EQ(b.status, SolverStatus::kConverged);
   const double scale = kMu * kFn_N;
@@ -224,8 +224,10 @@ TEST(TangentialExact, FftAgreesWithDenseReference) {
   ExactTangentialOptions fft;  // forced: kAuto would use the loaded cells' matrix on this grid
   fft.method = ExactTangentialOptions::Method::kFft;
   const RollingInput in = Creepage(c.grid, 1e-4, -6.25e-4, 0.625);
-  const TangentialSolution f = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(fft));
-  const TangentialSolution d = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(dense));
+  const TangentialSolution f =
+      SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(fft));
+  const TangentialSolution d =
+      SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(dense));
   ASSERT_EQ(f.status, SolverStatus::kConverged);
   ASSERT_EQ(d.status, SolverStatus::kConverged);
   const double qmax = kMu * c.p.maxCoeff();
@@ -245,8 +247,10 @@ TEST(TangentialExact, LoadedCellsMatrixAgreesWithFftAndDense) {
   ExactTangentialOptions dense, fft;
   dense.method = ExactTangentialOptions::Method::kDense;
   fft.method = ExactTangentialOptions::Method::kFft;
-  const TangentialSolution d = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(dense));
-  const TangentialSolution f = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(fft));
+  const TangentialSolution d =
+      SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(dense));
+  const TangentialSolution f =
+      SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(fft));
   const double qmax = kMu * c.p.maxCoeff();
   for (int block : {0, 2}) {
     ExactTangentialOptions automatic;
@@ -308,8 +312,8 @@ TEST(TangentialExact, WarmStartGivesTheColdSolveToTheTolerance) {
   // or of a lighter load (a vertical balance's previous pressure), the result is the cold
   // solve's within the bound between two convergent iterations; started from its own solution
   // the solve stops at the first check, with no sweep (the tractions returned are then the
-  // check's local solutions, equal to the start's to the tolerance, not bit for bit). Both operator paths: the loaded cells'
-  // matrix (72 cells) and the FFT products (288).
+  // check's local solutions, equal to the start's to the tolerance, not bit for bit). Both operator
+  // paths: the loaded cells' matrix (72 cells) and the FFT products (288).
   for (const int n : {6, 12}) {
     const Case c = MakeCase(n);
     const ExactTangentialSetup setup(c.grid, SteelG(), SteelG());
@@ -322,8 +326,8 @@ TEST(TangentialExact, WarmStartGivesTheColdSolveToTheTolerance) {
       const RollingInput in = Creepage(c.grid, xi, eta, phi);
       const TangentialSolution cold = SolveTangentialExact(c.grid, c.p, in, setup, Strict());
       ASSERT_EQ(cold.status, SolverStatus::kConverged) << cold.message;
-      const TangentialSolution near =
-          SolveTangentialExact(c.grid, c.p, Creepage(c.grid, 1.1 * xi + 1e-5, eta, phi), setup, Strict());
+      const TangentialSolution near = SolveTangentialExact(
+          c.grid, c.p, Creepage(c.grid, 1.1 * xi + 1e-5, eta, phi), setup, Strict());
       const TangentialSolution lighter = SolveTangentialExact(c.grid, light, in, setup, Strict());
       for (const TangentialSolution* start : {&near, &lighter, &cold}) {
         const TangentialSolution warm =
@@ -389,14 +393,16 @@ TEST(TangentialExact, BlockSweepAgreesWithDenseReference) {
   ExactTangentialOptions dense;
   dense.method = ExactTangentialOptions::Method::kDense;
   const RollingInput in = Creepage(c.grid, 1e-4, -6.25e-4, 0.625);
-  const TangentialSolution d = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(dense));
+  const TangentialSolution d =
+      SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(dense));
   ASSERT_EQ(d.status, SolverStatus::kConverged);
   const double qmax = kMu * c.p.maxCoeff();
   for (int block : {1, 3, 5}) {
     ExactTangentialOptions fft;
     fft.method = ExactTangentialOptions::Method::kFft;  // the FFT products between blocks
     fft.block_columns = block;
-    const TangentialSolution f = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(fft));
+    const TangentialSolution f =
+        SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(fft));
     ASSERT_EQ(f.status, SolverStatus::kConverged) << "block " << block;
     EXPECT_EQ(f.iterations, d.iterations) << "block " << block;
     EXPECT_LE((f.traction_x_Pa - d.traction_x_Pa).cwiseAbs().maxCoeff(),
@@ -416,7 +422,8 @@ TEST(TangentialExact, AccelerationKeepsTheSolutionAndSavesSweeps) {
   ExactTangentialOptions plain;
   plain.anderson_depth = 0;
   plain.relaxation = 0.3;
-  const TangentialSolution p = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(plain));
+  const TangentialSolution p =
+      SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict(plain));
   const TangentialSolution a = SolveTangentialExact(c.grid, c.p, in, SteelG(), SteelG(), Strict());
   ASSERT_EQ(p.status, SolverStatus::kConverged) << p.message;
   ASSERT_EQ(a.status, SolverStatus::kConverged) << a.message;
@@ -435,8 +442,8 @@ TEST(TangentialExact, AccelerationKeepsTheSolutionAndSavesSweeps) {
 // (measured 45 sweeps) and the forces oppose the creepage.
 TEST(TangentialExact, AcceleratedSweepConvergesWherePlainStalls) {
   const Case c = MakeCase(32);
-  const TangentialSolution s =
-      SolveTangentialExact(c.grid, c.p, Creepage(c.grid, 1e-4, -1e-4, 0), SteelG(), SteelG(), Strict());
+  const TangentialSolution s = SolveTangentialExact(c.grid, c.p, Creepage(c.grid, 1e-4, -1e-4, 0),
+                                                    SteelG(), SteelG(), Strict());
   ASSERT_EQ(s.status, SolverStatus::kConverged) << s.message;
   EXPECT_LT(s.iterations, kAcceleratedSweepBound);
   EXPECT_LT(s.force_x_N, 0.0);
@@ -448,10 +455,10 @@ TEST(TangentialExact, AcceleratedSweepConvergesWherePlainStalls) {
 TEST(TangentialExact, NoContactAndBadInput) {
   const Case c = MakeCase(4);
   const RollingInput in = Creepage(c.grid, 1e-4, 0, 0);
-  EXPECT_EQ(
-      SolveTangentialExact(c.grid, Eigen::VectorXd::Zero(c.grid.cells()), in, SteelG(), SteelG(), Strict())
-          .status,
-      SolverStatus::kNoContact);
+  EXPECT_EQ(SolveTangentialExact(c.grid, Eigen::VectorXd::Zero(c.grid.cells()), in, SteelG(),
+                                 SteelG(), Strict())
+                .status,
+            SolverStatus::kNoContact);
   RollingInput bad = in;
   bad.friction = 0.0;
   try {
