@@ -1,7 +1,8 @@
 // railwear command-line entry point. Exit codes: 0 ok, 1 runtime or numerical failure,
 // 2 bad input or usage, 3 a sweep or merge whose every line ended but some runs failed (named;
 // app/sweep_command.h), 130 / 143 a `wear` run stopped by SIGINT / SIGTERM (its run marked
-// interrupted, resumable). Errors go to stderr as "railwear: error: MESSAGE".
+// interrupted, resumable). Errors go to stderr as "railwear: error: MESSAGE". A failed internal
+// check (a bug) prints "railwear: internal check failed: ..." and aborts (app/internal_error_exit.h).
 #include <exception>
 #include <iostream>
 
@@ -14,6 +15,7 @@
 #include "app/fem_reference_command.h"
 #include "app/history_command.h"
 #include "app/init_command.h"
+#include "app/internal_error_exit.h"
 #include "app/interrupt_signals.h"
 #include "app/merge_command.h"
 #include "app/profile_command.h"
@@ -70,6 +72,8 @@ int main(int argc, char** argv) {
     return railwear::app::kExitSomeRunsFailed;
   } catch (const railwear::InputError& e) {
     return Fail(e.what(), kExitBadInput);
+  } catch (const railwear::InternalError& e) {
+    railwear::app::AbortOnInternalError(e);
   } catch (const std::exception& e) {
     return Fail(e.what(), kExitFailure);
   }

@@ -19,6 +19,7 @@
 #include "app/sweep_slurm.h"
 #include "app/toml_fields.h"
 #include "app/wear_command.h"
+#include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
 #include "profiles_db/profile_store.h"
 
@@ -347,6 +348,8 @@ void RunSweepCommand(const SweepCommandOptions& options, SweepMpiRunner mpi) {
     } catch (const Interrupted&) {
       throw;
     } catch (const InputError&) {
+      throw;
+    } catch (const InternalError&) {  // a bug ends the sweep (app/main.cpp), as the check did
       throw;
     } catch (const std::exception& e) {
       // A run that failed and says so in its database is a result: the sweep goes on.

@@ -16,6 +16,7 @@
 
 #include <fmt/format.h>
 
+#include "app/internal_error_exit.h"
 #include "app/interrupt_signals.h"
 #include "app/sweep_plan.h"
 #include "core/numerics/input_error.h"
@@ -97,6 +98,8 @@ int RunOne(const SweepPlan& plan, int index, const SweepCommandOptions& options,
     std::cerr << fmt::format("railwear: error: rank {}, sweep line {} ({}): {}\n", rank, index,
                              line.id, e.what());
     return 2;
+  } catch (const InternalError& e) {  // a bug: the rank ends as the check ended it before
+    AbortOnInternalError(e);
   } catch (const std::exception& e) {
     std::cerr << fmt::format("railwear: error: rank {}, sweep line {} ({}): {}\n", rank, index,
                              line.id, e.what());

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@
 
 #include "core/contact/influence_kernels.h"
 #include "core/contact/normal_solver.h"
+#include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
 #include "tests/core/contact/hertz_grid.h"
 #include "tests/core/contact/same_result.h"
@@ -537,13 +539,27 @@ TEST(InfluenceOperator, CurvedFftEqualsDenseOnFlatSectionNotFlaggedPlanar) {
   ExpectFastEqualsDense(g, MakeDissimilarSettings(KernelModel::kBoussinesq));
 }
 
-TEST(InfluenceOperatorDeathTest, PlanarFlagOnCurvedSectionAborts) {
+// What a failed internal check throws (core/numerics/check.h): an InternalError naming the
+// broken condition, never an InputError (bad input is the caller's, a broken invariant a bug).
+void ExpectInternalError(const std::function<void()>& f, const std::string& condition) {
+  try {
+    f();
+    ADD_FAILURE() << "no InternalError";
+  } catch (const InternalError& e) {
+    EXPECT_NE(std::string(e.what()).find("internal check failed: "), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.expression()).find(condition), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.file()).find("influence_operator.cpp"), std::string::npos);
+  }
+}
+
+TEST(InfluenceOperator, PlanarFlagOnCurvedSectionFailsAnInternalCheck) {
   // grid.planar promises a straight, uniformly spaced cross-section; breaking it is a bug in
   // the grid builder, not bad input.
   PatchGrid g = MakeArcGrid(4, 5, 2e-4, 4e-4, 10e-3);
   g.planar = true;
-  EXPECT_DEATH(MakeInfluenceOperator(g, MakeSettings(KernelModel::kBoussinesq)),
-               "internal check failed");
+  ExpectInternalError([&] { MakeInfluenceOperator(g, MakeSettings(KernelModel::kBoussinesq)); },
+                      "kPlanarGridTolerance");
 }
 
 TEST(InfluenceOperator, CurvedFftEqualsDenseOnNonCircularSection) {
@@ -702,12 +718,15 @@ TEST(InfluenceOperator, NonCircularSectionKeepsTheBlockPath) {
   EXPECT_EQ(ChooseSectionStructure(flat, SectionStructure::kBlocks), SectionStructure::kBlocks);
 }
 
-TEST(InfluenceOperatorDeathTest, ToeplitzInSOnANonCircularSectionAborts) {
+TEST(InfluenceOperator, ToeplitzInSOnANonCircularSectionFailsAnInternalCheck) {
   PatchGrid g = MakeArcGrid(4, 5, 2e-4, 4e-4, 10e-3);
   g.point_yz_m[2].y() += 1e-6;  // off the arc
-  EXPECT_DEATH(MakeInfluenceOperator(g, MakeSettings(KernelModel::kBoussinesq),
-                                     OperatorProducts::kAuto, SectionStructure::kToeplitzXs),
-               "internal check failed");
+  ExpectInternalError(
+      [&] {
+        MakeInfluenceOperator(g, MakeSettings(KernelModel::kBoussinesq), OperatorProducts::kAuto,
+                              SectionStructure::kToeplitzXs);
+      },
+      "IsUniformArc(grid)");
 }
 
 // ----- approximate inverses ------------------------------------------------------------------
