@@ -20,6 +20,7 @@
 #include "core/contact/contact_forces.h"
 #include "core/contact/hertz_tread.h"
 #include "core/contact/influence_constant_sets.h"
+#include "core/contact/normal_solver.h"
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
@@ -60,6 +61,8 @@ constexpr double kMinCell_m = 0.01e-3, kMaxCell_m = 20e-3;
 constexpr size_t kMaxProfilePoints = 1000000;
 constexpr uint32_t kKnownEffects = RW_EFFECT_TANGENTIAL | RW_EFFECT_DAMAGE | RW_EFFECT_COUPLING;
 constexpr uint32_t kKnownStateFlags = RW_STATE_CREEPAGE;
+// The scene reader's range of [model] normal_tolerance (app/scene.cpp, ReadNormalSolver).
+constexpr double kMinNormalTolerance = 1e-13, kMaxNormalTolerance = 1e-2;
 
 }  // namespace
 
@@ -73,6 +76,7 @@ struct rw_problem {
   railwear::Material wheel_material, rail_material;
   ModelOptions model = railwear::MakeModelOptions(ModelKind::kConformal);
   TangentialMethod tangential = TangentialMethod::kFastsim;
+  railwear::NormalSolverOptions normal_solver;  // rw_model's stopping rule (since 1.5)
   uint32_t effects = 0;
   std::optional<double> friction;
   railwear::PressureLimit pressure_limit;
@@ -113,6 +117,19 @@ void Assign(std::string* to, const char* text) noexcept {
   }
 }
 
+void Invalidate(rw_problem* p) noexcept;
+
+// After an internal failure (RW_ERROR_INTERNAL: a failed RAILWEAR_CHECK, core/numerics/check.h,
+// or another unexpected exception) the handle drops what the failed call may have left half
+// made: the results and the placed geometries it reuses (an exact cache, placement_cache.h, so
+// dropping it changes no result). The set-up, the state and the depth field stay (each call
+// stores them only when it has computed everything), so the handle stays usable: the next
+// rw_calculate solves afresh.
+void DropDerived(rw_problem* p) noexcept {
+  Invalidate(p);
+  p->placement_cache = railwear::PlacementCache();
+}
+
 // Runs `body` for an entry point: the status it returns, or the status of what it threw, with the
 // message kept on the handle. Nothing escapes.
 template <class Body>
@@ -130,6 +147,10 @@ rw_status Guard(rw_problem* p, Body&& body) noexcept {
   } catch (const std::bad_alloc&) {
     status = RW_ERROR_OUT_OF_MEMORY;
     Assign(&message, "out of memory");
+  } catch (const railwear::InternalError& e) {
+    // "internal check failed: EXPR (FILE:LINE)": the check, its file and line.
+    status = RW_ERROR_INTERNAL;
+    Assign(&message, e.what());
   } catch (const std::exception& e) {
     status = RW_ERROR_INTERNAL;
     Assign(&message, "internal error: ");
@@ -142,6 +163,7 @@ rw_status Guard(rw_problem* p, Body&& body) noexcept {
     Assign(&message, "internal error: an unknown exception");
   }
   if (p != nullptr) {
+    if (status == RW_ERROR_INTERNAL) DropDerived(p);
     if (status == RW_OK) {
       p->last_error.clear();
     } else {
@@ -228,7 +250,7 @@ const rw_problem::PatchRef& PatchAt(const rw_problem* p, int index) {
 }
 
 // Every set-up or state change makes the previous results stale.
-void Invalidate(rw_problem* p) {
+void Invalidate(rw_problem* p) noexcept {
   p->result.reset();
   p->patches.clear();
   p->tread_point.reset();
@@ -251,14 +273,22 @@ void ResetDepth(rw_problem* p) {
   }
 }
 
-void ApplyCant(rw_problem* p) {
-  p->canted_rail.reset();
-  p->canted_left_rail.reset();
-  const double cant = p->geometry.rail_cant;
-  for (auto [from, to] : {std::pair{&p->rail_profile, &p->canted_rail},
-                          std::pair{&p->left_rail_profile, &p->canted_left_rail}}) {
-    if (*from) *to = cant != 0.0 ? railwear::ApplyCant(**from, cant) : **from;
-  }
+// Sets the rails (before cant; either may be empty) and the cant: the canted rails are computed
+// before anything of the handle changes, so a failure there (ApplyCant throws) leaves the handle
+// as it was, never a rail without its canted copy (which rw_calculate reads).
+void SetRails(rw_problem* p, std::optional<Profile> rail, std::optional<Profile> left,
+              double cant) {
+  auto canted = [cant](const std::optional<Profile>& from) -> std::optional<Profile> {
+    if (!from) return std::nullopt;
+    return cant != 0.0 ? railwear::ApplyCant(*from, cant) : *from;
+  };
+  std::optional<Profile> canted_rail = canted(rail), canted_left = canted(left);
+  Invalidate(p);
+  p->rail_profile = std::move(rail);
+  p->left_rail_profile = std::move(left);
+  p->canted_rail = std::move(canted_rail);
+  p->canted_left_rail = std::move(canted_left);
+  p->geometry.rail_cant = cant;
   ResetDepth(p);
 }
 
@@ -269,13 +299,16 @@ void SetProfile(rw_problem* p, rw_body body, Profile profile) {
          "body = RW_BODY_LEFT_RAIL: a left rail needs a wheelset handle "
          "(RW_PROBLEM_WHEELSET)");
   }
-  Invalidate(p);
   if (body == RW_BODY_WHEEL) {
+    Invalidate(p);
     p->wheel_profile = std::move(profile);
     return;
   }
-  (body == RW_BODY_RAIL ? p->rail_profile : p->left_rail_profile) = std::move(profile);
-  ApplyCant(p);
+  if (body == RW_BODY_RAIL) {
+    SetRails(p, std::move(profile), p->left_rail_profile, p->geometry.rail_cant);
+  } else {
+    SetRails(p, p->rail_profile, std::move(profile), p->geometry.rail_cant);
+  }
 }
 
 railwear::Material ToMaterial(const rw_material* m, const char* what) {
@@ -335,6 +368,7 @@ ContactCase MakeCase(const rw_problem* p) {
   problem.rail_material = p->rail_material;
   problem.model = p->model;
   problem.tangential = p->tangential;
+  problem.solver = p->normal_solver;
   problem.damage = (p->effects & RW_EFFECT_DAMAGE) != 0;
   problem.pressure_limit = p->pressure_limit;
   // The wheel and the (canted) rail: lent by rw_calculate (LentProfiles), not copied.
@@ -431,6 +465,18 @@ rw_status WorstStatus(const rw_problem* p, std::string* message) {
     }
   }
   return worst;
+}
+
+// The caller's rw_model of this version or of 1.0-1.4 (RW_MODEL_SIZE_1_4, without the stopping
+// rule) as this version's, the fields it lacks at their defaults (rw_init_model's).
+rw_model ModelOfAnySize(const rw_model* model) {
+  RequireNonNull(model, "rw_model");
+  if (model->struct_size != RW_MODEL_SIZE_1_4) RequireSize(model, "rw_model");
+  rw_model m{};
+  m.normal_criterion = RW_NORMAL_PRESSURE_UPDATE;
+  m.normal_tolerance = 0.0;
+  std::memcpy(&m, model, model->struct_size);
+  return m;
 }
 
 double OrNaN(const std::optional<double>& v) {
@@ -565,23 +611,25 @@ rw_status rw_set_materials(rw_problem* problem, const rw_material* wheel, const 
 
 rw_status rw_init_model(rw_model* model) {
   return Guard(nullptr, [&] {
-    RequireSize(model, "rw_model");
-    model->kind = RW_MODEL_CONFORMAL;
-    model->geometry = RW_GEOMETRY_DEFAULT;
-    model->kernel = RW_KERNEL_DEFAULT;
-    model->accuracy = RW_ACCURACY_STANDARD;
-    model->tangential = RW_TANGENTIAL_FASTSIM;
-    model->effects = 0;
-    model->cell_dx_m = 0.0;
-    model->cell_ds_m = 0.0;
+    rw_model m = ModelOfAnySize(model);
+    m.kind = RW_MODEL_CONFORMAL;
+    m.geometry = RW_GEOMETRY_DEFAULT;
+    m.kernel = RW_KERNEL_DEFAULT;
+    m.accuracy = RW_ACCURACY_STANDARD;
+    m.tangential = RW_TANGENTIAL_FASTSIM;
+    m.effects = 0;
+    m.cell_dx_m = 0.0;
+    m.cell_ds_m = 0.0;
+    std::memcpy(model, &m, model->struct_size);  // a 1.4 caller's struct up to its size
     return RW_OK;
   });
 }
 
-rw_status rw_set_model(rw_problem* problem, const rw_model* model) {
+rw_status rw_set_model(rw_problem* problem, const rw_model* caller_model) {
   return Guard(problem, [&] {
     RequireHandle(problem);
-    RequireSize(model, "rw_model");
+    const rw_model model_of_any_size = ModelOfAnySize(caller_model);
+    const rw_model* model = &model_of_any_size;
     RequireEnum(model->kind, RW_MODEL_HERTZ, RW_MODEL_AUTO, "rw_model.kind");
     RequireEnum(model->geometry, RW_GEOMETRY_DEFAULT, RW_GEOMETRY_CONFORMAL, "rw_model.geometry");
     RequireEnum(model->kernel, RW_KERNEL_DEFAULT, RW_KERNEL_GOLUBENKO, "rw_model.kernel");
@@ -645,7 +693,20 @@ rw_status rw_set_model(rw_problem* problem, const rw_model* model) {
       m.cell_dx_m = model->cell_dx_m;
       m.cell_ds_m = model->cell_ds_m;
     }
+    // The stopping rule as the scene reader maps normal_criterion and normal_tolerance
+    // (app/scene.cpp ReadNormalSolver): the criterion's own options, then the tolerance if given.
+    RequireEnum(model->normal_criterion, RW_NORMAL_PRESSURE_UPDATE, RW_NORMAL_GAP_RESIDUAL,
+                "rw_model.normal_criterion");
+    railwear::NormalSolverOptions solver = model->normal_criterion == RW_NORMAL_GAP_RESIDUAL
+                                               ? railwear::StrictNormalSolverOptions()
+                                               : railwear::NormalSolverOptions{};
+    if (model->normal_tolerance != 0.0) {
+      RequireInRange(model->normal_tolerance, kMinNormalTolerance, kMaxNormalTolerance,
+                     "rw_model.normal_tolerance");
+      solver.tolerance = model->normal_tolerance;
+    }
     Invalidate(problem);
+    problem->normal_solver = solver;
     m.constants = problem->model.constants;  // set apart, by rw_set_influence_constants
     problem->model = m;
     problem->tangential = static_cast<TangentialMethod>(model->tangential);
@@ -745,10 +806,12 @@ rw_status rw_set_geometry(rw_problem* problem, const rw_geometry* g) {
     RequireInRange(g->gauge_height_m, 0.0, 0.05, "rw_geometry.gauge_height_m");
     RequirePositive(g->flange_back_distance_m, "rw_geometry.flange_back_distance_m");
     RequireFinite(g->flange_back_position_m, "rw_geometry.flange_back_position_m");
+    // A new cant turns the rails first (SetRails: a refused cant leaves the handle as it was).
+    if (g->rail_cant != problem->geometry.rail_cant) {
+      SetRails(problem, problem->rail_profile, problem->left_rail_profile, g->rail_cant);
+    }
     Invalidate(problem);
-    const bool cant_changed = g->rail_cant != problem->geometry.rail_cant;
     problem->geometry = *g;
-    if (cant_changed) ApplyCant(problem);
     return RW_OK;
   });
 }

@@ -102,12 +102,15 @@ const Fields<rw_material> kMaterial{{{"youngs_modulus_Pa", &rw_material::youngs_
                                     {},
                                     {}};
 const Fields<rw_model> kModel{
-    {{"cell_dx_m", &rw_model::cell_dx_m}, {"cell_ds_m", &rw_model::cell_ds_m}},
+    {{"cell_dx_m", &rw_model::cell_dx_m},
+     {"cell_ds_m", &rw_model::cell_ds_m},
+     {"normal_tolerance", &rw_model::normal_tolerance}},
     {{"kind", &rw_model::kind},
      {"geometry", &rw_model::geometry},
      {"kernel", &rw_model::kernel},
      {"accuracy", &rw_model::accuracy},
-     {"tangential", &rw_model::tangential}},
+     {"tangential", &rw_model::tangential},
+     {"normal_criterion", &rw_model::normal_criterion}},
     {{"effects", &rw_model::effects}}};
 const Fields<rw_influence_constants> kConstants{
     {{"c_f", &rw_influence_constants::c_f},
@@ -351,6 +354,8 @@ PYBIND11_MODULE(railwear, m) {
   RW_CONSTANT(PRESSURE_LIMIT_NONE);
   RW_CONSTANT(PRESSURE_LIMIT_HARDNESS);
   RW_CONSTANT(PRESSURE_LIMIT_VALUE);
+  RW_CONSTANT(NORMAL_PRESSURE_UPDATE);
+  RW_CONSTANT(NORMAL_GAP_RESIDUAL);
 #undef RW_CONSTANT
 
   py::class_<Problem>(m, "Problem", "One contact problem (rw_problem): a wheel or a wheelset.")
@@ -364,7 +369,8 @@ PYBIND11_MODULE(railwear, m) {
            "shear_yield_Pa.")
       .def("set_model", &Problem::set_model,
            "rw_model fields: kind, geometry, kernel, accuracy, tangential, effects, cell_dx_m, "
-           "cell_ds_m.")
+           "cell_ds_m, normal_criterion (NORMAL_PRESSURE_UPDATE, the default, or "
+           "NORMAL_GAP_RESIDUAL, the strict setting), normal_tolerance (0: the criterion's own).")
       .def("set_influence_constants", &Problem::set_influence_constants,
            "rw_influence_constants fields: c_f, c_z, c_s, separate, convex_*, concave_*.")
       .def("set_friction", &Problem::set_friction, py::arg("friction"))

@@ -610,6 +610,10 @@ class PkSolver {
         // the load's rest). Only PK's rules below change the sets, at the scale of the
         // operator's diagonal (a cell's own compliance).
         no_direction = true;  // PK's rules below at each cell's own compliance
+        // The diagonal is made by SetLimit for a bounded solve only: an elastic solve without a
+        // direction read it empty, a segmentation fault (a wheel of 300 mm lateral radius on the
+        // edge of a 20 mm groove, half-space model: ApiCrashes.HalfspaceWheelOnAGrooveEdge).
+        if (diag_.size() != n_) diag_ = op_.Diagonal();
       } else if (!(rt > 0.0) || !std::isfinite(gt)) {
         if (beta != 0.0) {  // lost conjugacy (nearly symmetric operator): restart
           reset = true;
@@ -762,7 +766,8 @@ class PkSolver {
   Eigen::VectorXd z_, masked_;
   double min_ratio_ = 0.0;
   double p_lim_;              // pressure limit [Pa], +inf without one
-  Eigen::VectorXd diag_;      // the operator's diagonal C_kk [m/Pa], with a finite limit
+  Eigen::VectorXd diag_;      // the operator's diagonal C_kk [m/Pa]: with a finite limit, or once
+                              // a step has no direction
   int total_iterations_ = 0;  // over every solve of this solver
   bool grid_full_ = false;    // every cell at the limit and the load still not carried
   double delta_ = 0.0;

@@ -51,7 +51,7 @@ extern "C" {
  * size this header writes. rw_api_version() gives the library's (major * 10000 + minor * 100 +
  * patch), for a check at run time. */
 #define RW_API_VERSION_MAJOR 1
-#define RW_API_VERSION_MINOR 4
+#define RW_API_VERSION_MINOR 5
 #define RW_API_VERSION_PATCH 0
 #define RW_API_VERSION \
   (RW_API_VERSION_MAJOR * 10000 + RW_API_VERSION_MINOR * 100 + RW_API_VERSION_PATCH)
@@ -74,7 +74,11 @@ enum {
                                    inconsistent set-up): the message names it */
   RW_ERROR_NOT_CONVERGED = 9,   /* the solve ran but did not converge; results are readable */
   RW_ERROR_NO_CONTACT = 10,     /* the bodies do not touch; results are readable (no patch) */
-  RW_ERROR_INTERNAL = 11,       /* an unexpected failure inside the engine (a bug) */
+  RW_ERROR_INTERNAL = 11,       /* an unexpected failure inside the engine (a bug): a failed
+                                   internal check ("internal check failed: EXPR (FILE:LINE)") or
+                                   another unexpected exception. The handle stays usable: its
+                                   results are cleared and its reuse cache dropped, its set-up,
+                                   state and depth field kept (docs/library.md) */
   RW_ERROR_OUT_OF_MEMORY = 12,
   RW_ERROR_WRONG_KIND = 13      /* a wheelset-only call on a single-wheel handle or back */
 };
@@ -159,6 +163,18 @@ enum { RW_TANGENTIAL_FASTSIM = 0, RW_TANGENTIAL_EXACT = 1, RW_TANGENTIAL_AUTO = 
 #define RW_EFFECT_DAMAGE 0x2u     /* T-gamma, WLRM, FI_surf per patch */
 #define RW_EFFECT_COUPLING 0x4u   /* normal-tangential coupling iteration */
 
+/* Since 1.5. The normal solver's stopping rule, a scene's [model] normal_criterion (docs/speed.md
+ * "The 4-digit defaults"). */
+typedef int rw_normal_criterion;
+enum {
+  RW_NORMAL_PRESSURE_UPDATE = 0, /* "pressure-update", the default: the last step changed the
+                                    pressures by at most the tolerance of their RMS and left the
+                                    contact set as it was (1e-4: 4 significant digits) */
+  RW_NORMAL_GAP_RESIDUAL = 1     /* "gap-residual", the strict setting: the deformed gap's
+                                    residual within the tolerance (1e-10) of the largest elastic
+                                    displacement */
+};
+
 typedef struct rw_model {
   size_t struct_size;
   rw_model_kind kind;         /* default RW_MODEL_CONFORMAL */
@@ -170,7 +186,16 @@ typedef struct rw_model {
   uint32_t effects;           /* RW_EFFECT_* flags; default 0: normal contact only */
   double cell_dx_m;           /* explicit cell size along x and s [m] > 0, replacing the */
   double cell_ds_m;           /* accuracy preset; 0 (the default): from the preset */
+  /* Since 1.5 (a caller of 1.4 passes struct_size = RW_MODEL_SIZE_1_4 and gets the defaults): */
+  rw_normal_criterion normal_criterion; /* default RW_NORMAL_PRESSURE_UPDATE */
+  double normal_tolerance;    /* the criterion's tolerance in [1e-13, 1e-2] (a scene's [model]
+                                 normal_tolerance), or 0 (the default): the criterion's own,
+                                 1e-4 or 1e-10 */
 } rw_model;
+
+/* rw_model's size in API 1.0 to 1.4 (before the normal solver's stopping rule), still accepted
+ * by rw_init_model and rw_set_model. */
+#define RW_MODEL_SIZE_1_4 offsetof(rw_model, normal_criterion)
 
 RW_API rw_status rw_init_model(rw_model* model);
 RW_API rw_status rw_set_model(rw_problem* problem, const rw_model* model);

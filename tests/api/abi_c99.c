@@ -17,6 +17,7 @@ size_t rw_test_c_sizeof(int which) {
     case 6: return sizeof(rw_patch);
     case 7: return sizeof(rw_wear);
     case 8: return RW_PATCH_SIZE_1_1;
+    case 9: return RW_MODEL_SIZE_1_4;
     default: return 0;
   }
 }

@@ -173,6 +173,40 @@ TEST(ApiPressureLimit, CApiEqualsTheCliBitForBit) {
   ExpectParity(scene, "pressure_limit = hardness");
 }
 
+// The normal solver's stopping rule (API 1.5; issue 18's open point: the C API had no switch for
+// the strict setting): the rolling gauge-corner example with the scene's [model] normal_criterion
+// = "gap-residual" (rw_model.normal_criterion with tolerance 0, the criterion's own 1e-10) and
+// with normal_tolerance = 1e-12 besides (an explicit rw_model.normal_tolerance), and the default
+// with normal_tolerance = 1e-6: each equals the CLI's solve bit for bit (SetUpFromScene maps the
+// keys). The strict setting changes p_max from the default's, so the switch reaches the solver.
+TEST(ApiNormalCriterion, CApiEqualsTheCliWithTheSceneKeyBitForBit) {
+  const fs::path path = fs::path(RAILWEAR_SOURCE_DIR) / "examples" / "rolling_gauge_corner.toml";
+  const std::string text = Slurp(path);
+  const std::string model = "[model]\n";
+  ASSERT_NE(text.find(model), std::string::npos);
+  auto with_keys = [&](const std::string& keys) {
+    std::string t = text;
+    t.replace(t.find(model), model.size(), model + keys);
+    return app::ParseScene(t, path.string());
+  };
+  const app::Scene strict = with_keys("normal_criterion = \"gap-residual\"\n");
+  ASSERT_EQ(strict.problem.solver.criterion, NormalStopCriterion::kGapResidual);
+  ExpectParity(strict, "gap-residual");
+  const app::Scene strict_12 =
+      with_keys("normal_criterion = \"gap-residual\"\nnormal_tolerance = 1e-12\n");
+  ASSERT_EQ(strict_12.problem.solver.tolerance, 1e-12);
+  ExpectParity(strict_12, "gap-residual at 1e-12");
+  const app::Scene default_6 = with_keys("normal_tolerance = 1e-6\n");
+  ASSERT_EQ(default_6.problem.solver.criterion, NormalStopCriterion::kPressureUpdate);
+  ExpectParity(default_6, "pressure-update at 1e-6");
+
+  const ContactCaseResult a = SolveContactCase(app::ToContactCase(app::LoadScene(path.string())));
+  const ContactCaseResult b = SolveContactCase(app::ToContactCase(strict));
+  ASSERT_FALSE(a.wheel.patches.empty());
+  ASSERT_EQ(a.wheel.patches.size(), b.wheel.patches.size());
+  EXPECT_NE(a.wheel.patches[0].p_max_Pa, b.wheel.patches[0].p_max_Pa);
+}
+
 // The same through the railwear executable itself: `railwear contact SCENE --json FILE` gives per
 // patch the numbers the C API gives (the JSON's doubles round-trip exactly; its unit factors are
 // applied to the C API's values the same way). The top-level examples only, to keep this fast.

@@ -5,8 +5,10 @@ API, tests/api/parity_test.cpp; the module only translates). Run by ctest as
     python3 tests/api/python_module_test.py RAILWEAR_BINARY EXAMPLES_DIR
 with PYTHONPATH holding the built module."""
 import json
+import os
 import subprocess
 import sys
+import tempfile
 import unittest
 
 import numpy as np
@@ -54,6 +56,44 @@ class PythonModule(unittest.TestCase):
             self.assertEqual(len(cells["pressure_Pa"]), patch["cells"])
             self.assertEqual(int(np.count_nonzero(cells["pressure_Pa"] > 0)),
                              patch["cells_in_contact"])
+
+    def test_the_strict_normal_solver_equals_the_cli_with_the_scene_key(self):
+        # API 1.5: rw_model's normal_criterion and normal_tolerance are the scene's [model]
+        # normal_criterion and normal_tolerance (docs/speed.md "The 4-digit defaults"): the
+        # gauge-corner example with the key, through the CLI and through the module, bit for bit.
+        with open(EXAMPLES + "/gauge_corner.toml") as f:
+            text = f.read()
+        cases = [('normal_criterion = "gap-residual"\n',
+                  {"normal_criterion": railwear.NORMAL_GAP_RESIDUAL}),
+                 ('normal_criterion = "gap-residual"\nnormal_tolerance = 1e-12\n',
+                  {"normal_criterion": railwear.NORMAL_GAP_RESIDUAL, "normal_tolerance": 1e-12})]
+        p_max = {}
+        for key, model in cases:
+            with tempfile.TemporaryDirectory() as tmp:
+                scene = os.path.join(tmp, "strict.toml")
+                with open(scene, "w") as f:
+                    f.write(text.replace("[model]\n", "[model]\n" + key, 1))
+                out = subprocess.run([RAILWEAR, "contact", scene, "--json", "-"], check=True,
+                                     capture_output=True, text=True).stdout
+            cli = json.loads(out)
+            self.assertEqual(cli["model"]["normal_criterion"], "gap-residual")
+            p = gauge_corner(**model)
+            self.assertEqual(p.calculate(), railwear.OK)
+            self.assertEqual(p.get_patch_count(), len(cli["patches"]))
+            for i, q in enumerate(cli["patches"]):
+                patch = p.get_patch(i)
+                self.assertEqual(patch["normal_force_N"], q["normal_force_N"])
+                self.assertEqual(patch["p_max_Pa"] * 1e-6, q["p_max_MPa"])
+                self.assertEqual(patch["area_m2"] * 1e6, q["area_mm2"])
+            p_max[key] = p.get_patch(0)["p_max_Pa"]
+        # The switch acts: the default (4 digits) stops earlier than the strict setting.
+        default = gauge_corner()
+        default.calculate()
+        self.assertNotEqual(default.get_patch(0)["p_max_Pa"], p_max[cases[0][0]])
+        with self.assertRaises(railwear.Error) as e:
+            gauge_corner(normal_tolerance=0.5)
+        self.assertEqual(e.exception.status_name, "RW_ERROR_INVALID_VALUE")
+        self.assertIn("rw_model.normal_tolerance = 0.5", str(e.exception))
 
     def test_profile_points_from_numpy(self):
         p = railwear.Problem()

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "app/scene.h"
+#include "core/contact/normal_solver.h"
 #include "railwear/railwear.h"
 
 namespace railwear::test {
@@ -95,6 +96,12 @@ inline void SetUpFromScene(rw_problem* p, const app::Scene& scene) {
   if (problem.rolling && problem.rolling->coupling) m.effects |= RW_EFFECT_COUPLING;
   if (mo.cell_dx_m) m.cell_dx_m = *mo.cell_dx_m;
   if (mo.cell_ds_m) m.cell_ds_m = *mo.cell_ds_m;
+  // The normal solver's stopping rule (API 1.5): the criterion, and the tolerance only when it is
+  // not the criterion's own (0 stands for that), as a caller would set them.
+  const bool strict = problem.solver.criterion == NormalStopCriterion::kGapResidual;
+  m.normal_criterion = strict ? RW_NORMAL_GAP_RESIDUAL : RW_NORMAL_PRESSURE_UPDATE;
+  const double own_tolerance = strict ? kStrictNormalTolerance : kDefaultNormalTolerance;
+  if (problem.solver.tolerance != own_tolerance) m.normal_tolerance = problem.solver.tolerance;
   RW_EXPECT_OK(p, rw_set_model(p, &m));
 
   rw_influence_constants k{};
