@@ -620,6 +620,8 @@ rw_status rw_init_model(rw_model* model) {
     m.effects = 0;
     m.cell_dx_m = 0.0;
     m.cell_ds_m = 0.0;
+    m.normal_criterion = RW_NORMAL_PRESSURE_UPDATE;  // beyond a 1.4 caller's size: not copied back
+    m.normal_tolerance = 0.0;
     std::memcpy(model, &m, model->struct_size);  // a 1.4 caller's struct up to its size
     return RW_OK;
   });

@@ -1059,7 +1059,9 @@ void ExpectDocumentedStatus(rw_problem* p, rw_status s, const std::string& call)
   EXPECT_TRUE(s == RW_OK || s == RW_ERROR_NOT_CONVERGED || s == RW_ERROR_NO_CONTACT ||
               s == RW_ERROR_CALL_ORDER || s == RW_ERROR_INDEX)
       << rw_status_name(s) << ": " << rw_last_error(p);
-  if (s != RW_OK) EXPECT_STRNE(rw_last_error(p), "") << rw_status_name(s);
+  if (s != RW_OK) {
+    EXPECT_STRNE(rw_last_error(p), "") << rw_status_name(s);
+  }
 }
 
 // Every query of the C API on the handle's last results (as a host's time loop reads them).
