@@ -602,8 +602,10 @@ LocalResult LocalSolveAt(const PatchGrid& grid, const SweepTables& tables,
 // cell (*1) and of the virtual cell beyond the chain end (*2). Compiled twice, for AVX2 (4
 // doubles per instruction, chosen at load time on CPUs that have it) and for the baseline (SSE2,
 // 2 doubles): the loop is element-wise and AVX2 without the "fma" target keeps every multiply
-// and add separately rounded, so both clones give the same bits.
-#if defined(__x86_64__) && defined(__GNUC__)
+// and add separately rounded, so both clones give the same bits. Not under ThreadSanitizer
+// (RAILWEAR_SANITIZE=thread): GCC instruments the clones' load-time resolver, which then runs
+// before the sanitizer's runtime is set up and crashes the program while librailwear loads.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_THREAD__)
 __attribute__((target_clones("avx2", "default")))
 #endif
 void RefreshColumn(int len, const double* __restrict xx1, const double* __restrict xx2,
