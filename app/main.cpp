@@ -2,7 +2,8 @@
 // 2 bad input or usage, 3 a sweep or merge whose every line ended but some runs failed (named;
 // app/sweep_command.h), 130 / 143 a `wear` run stopped by SIGINT / SIGTERM (its run marked
 // interrupted, resumable). Errors go to stderr as "railwear: error: MESSAGE". A failed internal
-// check (a bug) prints "railwear: internal check failed: ..." and aborts (app/internal_error_exit.h).
+// check (a bug) prints "railwear: internal check failed: ..." and aborts
+// (app/internal_error_exit.h).
 #include <exception>
 #include <iostream>
 

@@ -101,17 +101,16 @@ const Fields<rw_material> kMaterial{{{"youngs_modulus_Pa", &rw_material::youngs_
                                      {"shear_yield_Pa", &rw_material::shear_yield_Pa}},
                                     {},
                                     {}};
-const Fields<rw_model> kModel{
-    {{"cell_dx_m", &rw_model::cell_dx_m},
-     {"cell_ds_m", &rw_model::cell_ds_m},
-     {"normal_tolerance", &rw_model::normal_tolerance}},
-    {{"kind", &rw_model::kind},
-     {"geometry", &rw_model::geometry},
-     {"kernel", &rw_model::kernel},
-     {"accuracy", &rw_model::accuracy},
-     {"tangential", &rw_model::tangential},
-     {"normal_criterion", &rw_model::normal_criterion}},
-    {{"effects", &rw_model::effects}}};
+const Fields<rw_model> kModel{{{"cell_dx_m", &rw_model::cell_dx_m},
+                               {"cell_ds_m", &rw_model::cell_ds_m},
+                               {"normal_tolerance", &rw_model::normal_tolerance}},
+                              {{"kind", &rw_model::kind},
+                               {"geometry", &rw_model::geometry},
+                               {"kernel", &rw_model::kernel},
+                               {"accuracy", &rw_model::accuracy},
+                               {"tangential", &rw_model::tangential},
+                               {"normal_criterion", &rw_model::normal_criterion}},
+                              {{"effects", &rw_model::effects}}};
 const Fields<rw_influence_constants> kConstants{
     {{"c_f", &rw_influence_constants::c_f},
      {"c_z", &rw_influence_constants::c_z},

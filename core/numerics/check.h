@@ -42,9 +42,9 @@ namespace internal {
 }  // namespace internal
 }  // namespace railwear
 
-#define RAILWEAR_CHECK(cond)                                                     \
-  do {                                                                           \
-    if (!(cond)) [[unlikely]] {                                                  \
-      ::railwear::internal::CheckFailed(#cond, __FILE__, __LINE__);              \
-    }                                                                            \
+#define RAILWEAR_CHECK(cond)                                        \
+  do {                                                              \
+    if (!(cond)) [[unlikely]] {                                     \
+      ::railwear::internal::CheckFailed(#cond, __FILE__, __LINE__); \
+    }                                                               \
   } while (false)

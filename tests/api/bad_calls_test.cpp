@@ -1029,7 +1029,8 @@ struct Sequence {
   rw_problem_kind kind;
   rw_model_kind model;
   uint32_t effects;
-  int motion;  // 0 pure rolling, 1 a longitudinal force of 1.5 mu N (per axle: 1.5 mu 2N), 2 creepages
+  // 0 pure rolling, 1 a longitudinal force of 1.5 mu N (per axle 1.5 mu 2N), 2 creepages.
+  int motion;
   std::string Name() const {
     return std::string(kind == RW_PROBLEM_WHEELSET ? "wheelset" : "wheel") + " model " +
            std::to_string(model) + " effects " + std::to_string(effects) + " motion " +
@@ -1086,11 +1087,11 @@ void QueryEverything(rw_problem* p, const std::string& where) {
     ExpectDocumentedStatus(p, rw_get_cell_count(p, i, &cells), patch + " rw_get_cell_count");
     std::vector<double> b(7 * cells + 7);
     double* c = b.data();
-    ExpectDocumentedStatus(p,
-                           rw_get_cells(p, i, cells, c, c + cells + 1, c + 2 * (cells + 1),
-                                        c + 3 * (cells + 1), c + 4 * (cells + 1),
-                                        c + 5 * (cells + 1), c + 6 * (cells + 1)),
-                           patch + " rw_get_cells");
+    ExpectDocumentedStatus(
+        p,
+        rw_get_cells(p, i, cells, c, c + cells + 1, c + 2 * (cells + 1), c + 3 * (cells + 1),
+                     c + 4 * (cells + 1), c + 5 * (cells + 1), c + 6 * (cells + 1)),
+        patch + " rw_get_cells");
   }
   ExpectDocumentedStatus(p, rw_accumulate(p, 1.0), where + ": rw_accumulate");
   for (int rail : {0, 1}) {

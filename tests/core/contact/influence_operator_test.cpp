@@ -546,8 +546,7 @@ void ExpectInternalError(const std::function<void()>& f, const std::string& cond
     f();
     ADD_FAILURE() << "no InternalError";
   } catch (const InternalError& e) {
-    EXPECT_NE(std::string(e.what()).find("internal check failed: "), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("internal check failed: "), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.expression()).find(condition), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.file()).find("influence_operator.cpp"), std::string::npos);
   }

@@ -39,8 +39,8 @@ TEST(Check, BrokenConditionThrowsInternalErrorNamingItsPlace) {
     EXPECT_NE(std::string(e.file()).find("check_test.cpp"), std::string::npos) << e.file();
     EXPECT_EQ(e.line(), line);
     // The text the check printed before it threw, which the CLI still prints.
-    EXPECT_EQ(std::string(e.what()), std::string("internal check failed: n % 2 == 0 (") +
-                                         e.file() + ":" + std::to_string(line) + ")");
+    EXPECT_EQ(std::string(e.what()), std::string("internal check failed: n % 2 == 0 (") + e.file() +
+                                         ":" + std::to_string(line) + ")");
   }
 }
 
