@@ -18,9 +18,9 @@ TEST(ApiAbi, VersionNumbersArePinned) {
   // 1.1: rw_set_pressure_limit added; 1.2: rw_patch's wheel-frame location appended; 1.3:
   // RW_MODEL_HERTZ with rolling contact (the fast tread path) and rw_get_patch_model; 1.4: the
   // fast tread path on a wheelset handle too.
-  EXPECT_EQ(RW_API_VERSION_MINOR, 4);
+  EXPECT_EQ(RW_API_VERSION_MINOR, 5);
   EXPECT_EQ(RW_API_VERSION_PATCH, 0);
-  EXPECT_EQ(RW_API_VERSION, 10400);
+  EXPECT_EQ(RW_API_VERSION, 10500);
   EXPECT_EQ(rw_api_version(), RW_API_VERSION);  // the library is the header's
 }
 
