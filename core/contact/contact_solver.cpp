@@ -187,8 +187,8 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
         if (from) return std::nullopt;
         return out;
       }
-      if (from && (builds.unremembered > 0 ||
-                   static_cast<int>(builds.builds.size()) != from->candidates)) {
+      if (from &&
+          (builds.unremembered > 0 || static_cast<int>(builds.builds.size()) != from->candidates)) {
         return std::nullopt;
       }
 
@@ -215,8 +215,8 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
       out.message = sol.message;
       out.approach_m = sol.approach_m;
       out.iterations = total_iterations;
-      const KeptPatches kept = CollectPatches(geom, &builds, sol, m.is_auto(),
-                                              assembly.np.pressure_limit_Pa, &out);
+      const KeptPatches kept =
+          CollectPatches(geom, &builds, sol, m.is_auto(), assembly.np.pressure_limit_Pa, &out);
       if (review.grow) {
         out.message += (out.message.empty() ? "" : "; ");
         out.message += "pressure reaches the edge of the potential contact area";

@@ -49,8 +49,8 @@ class ContactWarmStart {
   void Clear();
   bool empty() const { return state_ == nullptr; }
 
-  int warm_calls() const { return warm_; }  // calls whose warm first attempt fitted
-  int cold_calls() const { return cold_; }  // calls solved cold (the first, and every fallback)
+  int warm_calls() const { return warm_; }      // calls whose warm first attempt fitted
+  int cold_calls() const { return cold_; }      // calls solved cold (the first, and every fallback)
   int fallbacks() const { return fallbacks_; }  // warm attempts that did not fit (solved cold)
 
   // SolveContact's (internal): the kept state (null when empty), and a call's new one.

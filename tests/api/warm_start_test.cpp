@@ -67,7 +67,7 @@ TEST(ApiWarmStart, FirstCalculateIsTheColdOneBitForBit) {
 TEST(ApiWarmStart, ASetUpCallMakesTheNextCalculateCold) {
   Handles h;
   ASSERT_TRUE(h.Step(-5.6e-3));
-  ASSERT_TRUE(h.Step(-5.65e-3));  // warm: near the cold one (not compared here)
+  ASSERT_TRUE(h.Step(-5.65e-3));                   // warm: near the cold one (not compared here)
   ASSERT_EQ(rw_set_friction(h.warm, 0.3), RW_OK);  // the same friction: still a set-up call
   ASSERT_TRUE(h.Step(-5.7e-3));
   ExpectSamePatches(Patches(h.warm), Patches(h.cold));
