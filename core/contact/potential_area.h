@@ -110,9 +110,13 @@ class PotentialArea {
     double trim_approach_m;
   };
   Measured measured() const { return {threshold_, cell_memory_, trim_approach_}; }
+  // A planar patch's plane stays where the last call re-centred it, and its count of
+  // re-centrings starts again, so that the review checks it against this call's pressure centre
+  // (and the warm attempt falls back when the contact has moved by more than half a cell).
   void TakeOver(const Measured& m) {
     threshold_ = m.threshold_m;
     cell_memory_ = m.cells;
+    for (CellMemory& c : cell_memory_) c.recentred = 0;
     trim_approach_ = m.trim_approach_m;
   }
 

@@ -131,6 +131,36 @@ TEST(ContactWarmStart, AJumpFallsBackToTheColdCallBitForBit) {
   EXPECT_EQ(warm.cold_calls(), 3);
 }
 
+TEST(ContactWarmStart, APlanarPatchsPlaneFollowsTheContact) {
+  // The half-space model's planar grid on the tread (-10.4 mm, 5 mrad, draft): its tangent plane
+  // is re-centred on the solved pressure centre (potential_area.h); a warm call starts from the
+  // last call's plane and the review checks it again, so over steps of 0.05 mm the pressure
+  // centre stays within a cell of the cold call's and the contact angle with it.
+  PlacementCache cache;
+  ContactWarmStart warm;
+  auto tread = [](double lateral_m) {
+    ContactCase c = GaugeCorner(lateral_m);
+    c.problem.model = MakeModelOptions(ModelKind::kHalfspace);
+    c.problem.model.accuracy = AccuracyPreset::kDraft;
+    c.problem.placement.yaw_rad = 5e-3;
+    return c;
+  };
+  for (int k = 0; k < 6; ++k) {
+    const ContactCase c = tread(-10.4e-3 + 0.05e-3 * k);
+    const ContactResult w = Solve(c, &cache, &warm);
+    const ContactResult cold = SolveContactCase(c).wheel;
+    ASSERT_EQ(w.patches.size(), 1u) << k;
+    ASSERT_EQ(cold.patches.size(), 1u) << k;
+    const PatchResult& pw = w.patches[0];
+    const PatchResult& pc = cold.patches[0];
+    // Each pressure centre within half a cell of its own plane's point: one cell apart at most.
+    EXPECT_NEAR(pw.contact_point_yz_m.x(), pc.contact_point_yz_m.x(), pc.grid.ds_m) << k;
+    // The rail's profile turns by at most a cell over its smallest radius on the tread (80 mm).
+    EXPECT_NEAR(pw.contact_angle_rad, pc.contact_angle_rad, pc.grid.ds_m / 0.08) << k;
+  }
+  EXPECT_GE(warm.warm_calls(), 1);
+}
+
 TEST(ContactWarmStart, ClearedItIsColdAgain) {
   PlacementCache cache;
   ContactWarmStart warm;
