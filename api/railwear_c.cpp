@@ -18,6 +18,7 @@
 
 #include "core/contact/contact_case.h"
 #include "core/contact/contact_forces.h"
+#include "core/contact/contact_warm_start.h"
 #include "core/contact/hertz_tread.h"
 #include "core/contact/influence_constant_sets.h"
 #include "core/contact/normal_solver.h"
@@ -93,6 +94,10 @@ struct rw_problem {
   // The placed geometries of the last calculate, reused by the next one at the same pose on the
   // same profiles (core/contact/placement_cache.h): exact, so results do not depend on it.
   railwear::PlacementCache placement_cache;
+  // rw_set_warm_start: the single wheel's last measured patch and balance, the next
+  // calculate's start (core/contact/contact_warm_start.h); off by default.
+  bool warm_start_on = false;
+  railwear::ContactWarmStart warm_start;
   // The fast tread path's wheel-frame contact point of the last calculate (RW_MODEL_HERTZ with
   // rolling contact on a single wheel, core/contact/hertz_tread.h); empty for any other solve (a
   // wheelset's are in its result, WheelsetResult::right_tread_point and left_tread_point).
@@ -256,6 +261,13 @@ void Invalidate(rw_problem* p) noexcept {
   p->tread_point.reset();
 }
 
+// A set-up change (anything but the state) also ends the warm start's sequence: the next
+// calculate is cold (core/contact/contact_warm_start.h's contract).
+void SetUpChanged(rw_problem* p) {
+  Invalidate(p);
+  p->warm_start.Clear();
+}
+
 // The canted rail each wheel of the handle runs on: rail 0 (single or right), 1 (left: its own
 // profile when set, else the right one's); null before the rail is set.
 const Profile* CantedRail(const rw_problem* p, int rail) {
@@ -283,7 +295,7 @@ void SetRails(rw_problem* p, std::optional<Profile> rail, std::optional<Profile>
     return cant != 0.0 ? railwear::ApplyCant(*from, cant) : *from;
   };
   std::optional<Profile> canted_rail = canted(rail), canted_left = canted(left);
-  Invalidate(p);
+  SetUpChanged(p);
   p->rail_profile = std::move(rail);
   p->left_rail_profile = std::move(left);
   p->canted_rail = std::move(canted_rail);
@@ -300,7 +312,7 @@ void SetProfile(rw_problem* p, rw_body body, Profile profile) {
          "(RW_PROBLEM_WHEELSET)");
   }
   if (body == RW_BODY_WHEEL) {
-    Invalidate(p);
+    SetUpChanged(p);
     p->wheel_profile = std::move(profile);
     return;
   }
@@ -602,7 +614,7 @@ rw_status rw_set_materials(rw_problem* problem, const rw_material* wheel, const 
     RequireHandle(problem);
     const railwear::Material w = ToMaterial(wheel, "wheel");
     const railwear::Material r = ToMaterial(rail, "rail");
-    Invalidate(problem);
+    SetUpChanged(problem);
     problem->wheel_material = w;
     problem->rail_material = r;
     return RW_OK;
@@ -707,7 +719,7 @@ rw_status rw_set_model(rw_problem* problem, const rw_model* caller_model) {
                      "rw_model.normal_tolerance");
       solver.tolerance = model->normal_tolerance;
     }
-    Invalidate(problem);
+    SetUpChanged(problem);
     problem->normal_solver = solver;
     m.constants = problem->model.constants;  // set apart, by rw_set_influence_constants
     problem->model = m;
@@ -763,7 +775,7 @@ rw_status rw_set_influence_constants(rw_problem* problem, const rw_influence_con
       k.c_z = one.c_z;
       k.c_s = one.c_s;
     }
-    Invalidate(problem);
+    SetUpChanged(problem);
     problem->model.constants = k;
     return RW_OK;
   });
@@ -776,7 +788,7 @@ rw_status rw_set_friction(rw_problem* problem, double friction) {
       Fail(RW_ERROR_INVALID_VALUE,
            fmt::format("friction = {}: expected a coefficient in (0, {}]", friction, kMaxFriction));
     }
-    Invalidate(problem);
+    SetUpChanged(problem);
     problem->friction = friction;
     return RW_OK;
   });
@@ -812,7 +824,7 @@ rw_status rw_set_geometry(rw_problem* problem, const rw_geometry* g) {
     if (g->rail_cant != problem->geometry.rail_cant) {
       SetRails(problem, problem->rail_profile, problem->left_rail_profile, g->rail_cant);
     }
-    Invalidate(problem);
+    SetUpChanged(problem);
     problem->geometry = *g;
     return RW_OK;
   });
@@ -838,7 +850,7 @@ rw_status rw_set_pressure_limit(rw_problem* problem, rw_pressure_limit kind, dou
       limit.kind = kind == RW_PRESSURE_LIMIT_HARDNESS ? railwear::PressureLimitKind::kHardness
                                                        : railwear::PressureLimitKind::kNone;
     }
-    Invalidate(problem);
+    SetUpChanged(problem);
     problem->pressure_limit = limit;
     return RW_OK;
   });
@@ -924,6 +936,19 @@ rw_status rw_set_state(rw_problem* problem, const rw_state* s) {
   });
 }
 
+rw_status rw_set_warm_start(rw_problem* problem, int enable) {
+  return Guard(problem, [&] {
+    RequireHandle(problem);
+    if (enable != 0 && enable != 1) {
+      Fail(RW_ERROR_INVALID_VALUE,
+           fmt::format("enable = {}: expected 0 (every calculate cold, the default) or 1", enable));
+    }
+    problem->warm_start_on = enable == 1;
+    problem->warm_start.Clear();
+    return RW_OK;
+  });
+}
+
 rw_status rw_calculate(rw_problem* problem) {
   std::string message;
   return Guard(problem, [&] {
@@ -933,7 +958,8 @@ rw_status rw_calculate(rw_problem* problem) {
     {
       const LentProfiles lent(problem, &c);
       problem->result =
-          railwear::SolveContactCase(c, &problem->placement_cache, &problem->tread_point);
+          railwear::SolveContactCase(c, &problem->placement_cache, &problem->tread_point,
+                                     problem->warm_start_on ? &problem->warm_start : nullptr);
     }
     const ContactCaseResult& r = *problem->result;
     auto add = [&](int wheel, const ContactResult& contact) {

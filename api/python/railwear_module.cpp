@@ -219,6 +219,7 @@ class Problem {
     Check(p_, rw_set_influence_constants(p_, &c));
   }
   void set_friction(double mu) { Check(p_, rw_set_friction(p_, mu)); }
+  void set_warm_start(bool enable) { Check(p_, rw_set_warm_start(p_, enable ? 1 : 0)); }
   void set_pressure_limit(int kind, double value_Pa) {
     Check(p_, rw_set_pressure_limit(p_, kind, value_Pa));
   }
@@ -376,6 +377,8 @@ PYBIND11_MODULE(railwear, m) {
       .def("set_pressure_limit", &Problem::set_pressure_limit, py::arg("kind"),
            py::arg("value_Pa") = std::numeric_limits<double>::quiet_NaN(),
            "PRESSURE_LIMIT_NONE, _HARDNESS (the smaller hardness), or _VALUE with value_Pa.")
+      .def("set_warm_start", &Problem::set_warm_start, py::arg("enable"),
+           "rw_set_warm_start: start each calculate from the last one's measured patch.")
       .def("set_geometry", &Problem::set_geometry,
            "rw_geometry fields: rolling_radius_m, rail_cant, gauge_m, gauge_height_m, "
            "flange_back_distance_m, flange_back_position_m.")

@@ -4,6 +4,7 @@
 
 #include "core/contact/contact_forces.h"
 #include "core/contact/hertz_tread.h"
+#include "core/contact/normal_part_memo.h"
 #include "core/contact/placement_stage.h"
 
 namespace railwear {
@@ -21,7 +22,8 @@ ContactCaseResult SolveContactCase(const ContactCase& c, PlacementCache* cache) 
 }
 
 ContactCaseResult SolveContactCase(const ContactCase& c, PlacementCache* cache,
-                                   std::optional<HertzTreadPoint>* tread_point) {
+                                   std::optional<HertzTreadPoint>* tread_point,
+                                   ContactWarmStart* warm) {
   ContactCaseResult out;
   if (tread_point) tread_point->reset();
   if (c.wheelset) {
@@ -31,16 +33,18 @@ ContactCaseResult SolveContactCase(const ContactCase& c, PlacementCache* cache,
     return out;
   }
   auto solve_full = [&](const ContactProblem& problem) {
-    if (!cache) return SolveContact(problem);
+    if (!cache && !warm) return SolveContact(problem);
     // SolveContact(problem)'s own order: the checks, then the placement, timed.
     internal::CheckContactProblem(problem);
     const auto t0 = std::chrono::steady_clock::now();
+    std::optional<WheelRailGeometry> own;
     const WheelRailGeometry& geom =
-        cache->Get(PlacementCache::kRight, problem.wheel_profile, problem.rail_profile,
-                   internal::PoseOf(problem));
+        cache ? cache->Get(PlacementCache::kRight, problem.wheel_profile, problem.rail_profile,
+                           internal::PoseOf(problem))
+              : own.emplace(internal::PlaceWheel(problem));
     const double placement_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return SolveContact(problem, geom, placement_s);
+    return internal::SolveContact(problem, geom, placement_s, nullptr, warm);
   };
   // kind = hertz with rolling contact: the fast tread path, or the full path's fallback
   // (hertz_tread.h).

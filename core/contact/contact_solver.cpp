@@ -93,7 +93,7 @@ void RunRollingPart(const ContactProblem& problem, const WheelRailGeometry& geom
 namespace internal {
 
 ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometry& geom,
-                           double placement_s, NormalPartMemo* memo) {
+                           double placement_s, NormalPartMemo* memo, ContactWarmStart* warm_start) {
   const auto t_start = Clock::now();
   auto finish = [&](ContactResult r) {
     r = FinishResult(std::move(r), placement_s + SecondsSince(t_start));
@@ -159,61 +159,116 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
   }
 
   // 3. Grids, operators and the normal solve, until the potential area fits the solution.
-  PotentialArea area(problem, first, stiffness_ratio_K);
-  double approach_now = first.delta;  // the best estimate of the approach so far
-  int total_iterations = 0;
-  for (int attempt = 0; attempt < 12; ++attempt) {
-    PatchBuilds builds;
-    auto t0 = Clock::now();
-    if (!area.Build(geom, &models, approach_now, &builds, &result)) return finish(result);
-
-    t0 = Clock::now();
-    NormalAssembly assembly = AssembleNormalProblem(builds, problem);
-    AddStage(&result.stages, "influence", SecondsSince(t0));
-
-    const NormalSolution sol = SolveNormalStage(assembly.np, problem.solver, &result.stages);
-    total_iterations += sol.iterations;
-    const bool converged = sol.status == SolverStatus::kConverged;
-    if (converged) approach_now = sol.approach_m;
-    const AreaReview review = area.Review(&builds, sol, assembly.np.cell_area_m2, &models);
-    // A plastic patch larger than the whole grid (every cell at the pressure limit, the load not
-    // carried) grows the grid like a converged one whose pressure reaches its edge.
-    if ((converged || sol.load_above_limit) && review.Again() && attempt < 11) {
-      area.Widen(review, sol);
-      continue;
+  // From a warm start's state (contact_warm_start.h) one attempt only, on the last call's
+  // measured patch: nullopt when it does not fit (the call is then solved cold).
+  auto solve_grids = [&](const WarmStartState* from) -> std::optional<ContactResult> {
+    ContactResult out = result;
+    // (a warm attempt on its own models: a fallback starts from the untouched ones)
+    std::optional<PatchModelMemory> warm_models;
+    if (from) warm_models.emplace(geom, problem, estar, stiffness_ratio_K, first);
+    PatchModelMemory& m = from ? *warm_models : models;
+    PotentialArea area(problem, first, stiffness_ratio_K);
+    double approach_now = first.delta;  // the best estimate of the approach so far
+    // A warm attempt under a prescribed load with a balance: the pressure's target is the last
+    // call's balanced one, scaled to this call's load.
+    std::optional<double> warm_target_N;
+    if (from) {
+      area.TakeOver(from->area);
+      approach_now = from->approach_m;
+      if (from->target_N && from->load_N && problem.load.vertical_force_N) {
+        warm_target_N = *from->target_N * (*problem.load.vertical_force_N / *from->load_N);
+      }
     }
+    int total_iterations = 0;
+    for (int attempt = 0; attempt < (from ? 1 : 12); ++attempt) {
+      PatchBuilds builds;
+      auto t0 = Clock::now();
+      if (!area.Build(geom, &m, approach_now, &builds, &out)) {
+        if (from) return std::nullopt;
+        return out;
+      }
+      if (from &&
+          (builds.unremembered > 0 || static_cast<int>(builds.builds.size()) != from->candidates)) {
+        return std::nullopt;
+      }
 
-    // 4. Patch results.
-    result.status = sol.status;
-    result.message = sol.message;
-    result.approach_m = sol.approach_m;
-    result.iterations = total_iterations;
-    const KeptPatches kept = CollectPatches(geom, &builds, sol, models.is_auto(),
-                                            assembly.np.pressure_limit_Pa, &result);
-    if (review.grow) {
-      result.message += (result.message.empty() ? "" : "; ");
-      result.message += "pressure reaches the edge of the potential contact area";
-    }
+      t0 = Clock::now();
+      NormalAssembly assembly = AssembleNormalProblem(builds, problem);
+      if (warm_target_N) assembly.np.force_N = *warm_target_N;
+      AddStage(&out.stages, "influence", SecondsSince(t0));
 
-    // 5. Rolling, then coupling and the vertical balance; with a memo, the normal part is
-    // kept for the next solve first (the balance changes the normal problem: it runs on a copy).
-    if (memo && problem.rolling && result.status == SolverStatus::kConverged) {
-      auto part = std::make_unique<NormalPart>(
-          NormalPart{result, builds.cands, kept, std::move(assembly), sol.pressure_Pa});
-      NormalProblem np = part->assembly.np;
-      const NormalPart& kept_part = *part;
-      memo->Keep(geom, std::move(part));  // (before the balance: a warm memo keeps its state)
-      RunRollingPart(problem, geom, kept_part.cands, kept_part.kept, &np, kept_part.pressure,
-                     &result, memo);
-      return finish(result);
+      const NormalSolution sol = SolveNormalStage(assembly.np, problem.solver, &out.stages);
+      total_iterations += sol.iterations;
+      const bool converged = sol.status == SolverStatus::kConverged;
+      if (converged) approach_now = sol.approach_m;
+      const AreaReview review = area.Review(&builds, sol, assembly.np.cell_area_m2, &m);
+      if (from && (!converged || review.Again())) return std::nullopt;
+      // A plastic patch larger than the whole grid (every cell at the pressure limit, the load
+      // not carried) grows the grid like a converged one whose pressure reaches its edge.
+      if ((converged || sol.load_above_limit) && review.Again() && attempt < 11) {
+        area.Widen(review, sol);
+        continue;
+      }
+
+      // 4. Patch results.
+      out.status = sol.status;
+      out.message = sol.message;
+      out.approach_m = sol.approach_m;
+      out.iterations = total_iterations;
+      const KeptPatches kept =
+          CollectPatches(geom, &builds, sol, m.is_auto(), assembly.np.pressure_limit_Pa, &out);
+      if (review.grow) {
+        out.message += (out.message.empty() ? "" : "; ");
+        out.message += "pressure reaches the edge of the potential contact area";
+      }
+
+      // 5. Rolling, then coupling and the vertical balance; with a memo, the normal part is
+      // kept for the next solve first (the balance changes the normal problem: it runs on a
+      // copy).
+      if (memo && problem.rolling && out.status == SolverStatus::kConverged) {
+        auto part = std::make_unique<NormalPart>(
+            NormalPart{out, builds.cands, kept, std::move(assembly), sol.pressure_Pa});
+        NormalProblem np = part->assembly.np;
+        const NormalPart& kept_part = *part;
+        memo->Keep(geom, std::move(part));  // (before the balance: a warm memo keeps its state)
+        RunRollingPart(problem, geom, kept_part.cands, kept_part.kept, &np, kept_part.pressure,
+                       &out, memo);
+        return out;
+      }
+      RunRollingPart(problem, geom, builds.cands, kept, &assembly.np, sol.pressure_Pa, &out,
+                     nullptr);
+      if (from && out.status != SolverStatus::kConverged) return std::nullopt;
+      if (warm_start && out.status == SolverStatus::kConverged) {
+        auto state = std::make_unique<WarmStartState>();
+        state->area = area.measured();
+        state->candidates = static_cast<int>(builds.builds.size());
+        state->approach_m = out.approach_m;
+        // The balance's target (without coupling: the coupling's balance is on another gap).
+        if (problem.rolling && !problem.rolling->coupling && problem.load.vertical_force_N &&
+            assembly.np.force_N) {
+          state->load_N = *problem.load.vertical_force_N;
+          state->target_N = *assembly.np.force_N;
+        }
+        warm_start->Keep(std::move(state));
+      }
+      return out;
     }
-    RunRollingPart(problem, geom, builds.cands, kept, &assembly.np, sol.pressure_Pa, &result,
-                   nullptr);
-    return finish(result);
+    out.status = SolverStatus::kNotConverged;
+    out.message = "the potential contact area did not settle";
+    return out;
+  };
+  if (warm_start && memo) warm_start = nullptr;  // (the memo's solves are of one geometry)
+  if (warm_start && warm_start->state()) {
+    if (std::optional<ContactResult> warm_result = solve_grids(warm_start->state())) {
+      warm_start->CountWarm();
+      return finish(std::move(*warm_result));
+    }
+    warm_start->CountFallback();
   }
-  result.status = SolverStatus::kNotConverged;
-  result.message = "the potential contact area did not settle";
-  return finish(result);
+  if (warm_start) warm_start->CountCold();
+  std::optional<ContactResult> cold = solve_grids(nullptr);
+  if (warm_start && cold->status != SolverStatus::kConverged) warm_start->Clear();
+  return finish(std::move(*cold));
 }
 
 }  // namespace internal

@@ -81,10 +81,14 @@ ContactResult SolveHertzRolling(const ContactProblem& problem, const FullContact
 struct ContactCase;
 struct ContactCaseResult;
 class PlacementCache;
+class ContactWarmStart;
 // SolveContactCase (contact_case.h) that also gives the fast tread path's wheel-frame point: set
 // when the single wheel took the fast path, reset otherwise (the C API reports it as rw_patch's
 // wheel-frame location, which it finds on the placed geometry for every other solve).
+// warm (optional, in/out): a single wheel's grid solve starts from the last call's measured
+// patch and balance and keeps its own (contact_warm_start.h); a wheelset's does not use it.
 ContactCaseResult SolveContactCase(const ContactCase& c, PlacementCache* cache,
-                                   std::optional<HertzTreadPoint>* tread_point);
+                                   std::optional<HertzTreadPoint>* tread_point,
+                                   ContactWarmStart* warm = nullptr);
 
 }  // namespace railwear

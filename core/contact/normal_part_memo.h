@@ -36,6 +36,7 @@
 
 #include "core/contact/contact_problem.h"
 #include "core/contact/contact_result.h"
+#include "core/contact/contact_warm_start.h"
 #include "core/contact/normal_stage.h"
 #include "core/contact/operator_stage.h"
 #include "core/geometry/wheel_rail_geometry.h"
@@ -103,7 +104,11 @@ class NormalPartMemo {
 // instead of the stages of the normal part). A warm memo (kWarmBalance) also keeps each
 // balanced solve's state and starts the next one's balance from it (above): the same result to
 // the balance's and the normal solver's tolerances.
+// warm (optional, in/out; contact_warm_start.h): the last call's measured patch and balance to
+// start from (when it holds one and the attempt fits; else solved as without it), updated with
+// this call's. Not with a memo.
 ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometry& placed,
-                           double placement_s, NormalPartMemo* memo);
+                           double placement_s, NormalPartMemo* memo,
+                           ContactWarmStart* warm = nullptr);
 
 }  // namespace railwear::internal

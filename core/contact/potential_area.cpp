@@ -48,8 +48,12 @@ bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* model
   const std::vector<ContactCandidate> cands = geom.FindCandidates(threshold_);
   for (const auto& found : cands) {
     CellMemory memory{found.y_lo_m, found.y_hi_m, cell_, std::nullopt, 0};
+    bool remembered = false;
     for (const auto& m : cell_memory_) {
-      if (found.y_m >= m.y_lo_m && found.y_m <= m.y_hi_m) memory = m;
+      if (found.y_m >= m.y_lo_m && found.y_m <= m.y_hi_m) {
+        memory = m;
+        remembered = true;
+      }
     }
     const CellSize cc = memory.cell;
     PatchModelChoice choice = models->ChooseFor(found, approach_now);
@@ -86,6 +90,7 @@ bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* model
       return false;
     }
     if (b.valid) {
+      if (!remembered) ++out->unremembered;
       out->builds.push_back(std::move(b));
       out->cells.push_back({c.y_lo_m, c.y_hi_m, cc, memory.plane_y_m, memory.recentred});
       out->cands.push_back(c);

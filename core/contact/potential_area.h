@@ -48,6 +48,9 @@ struct PatchBuilds {
   std::vector<CellMemory> cells;
   std::vector<ContactCandidate> cands;
   std::vector<PatchModelChoice> choices;
+  // Candidates whose cell size no earlier attempt (or, warm, no earlier call) measured: they
+  // start from the first estimate's cells.
+  int unremembered = 0;
 };
 
 // How the grids of an attempt fit its solution.
@@ -97,6 +100,26 @@ class PotentialArea {
   // Widens the threshold for the next attempt after a review that asks for one.
   void Widen(const AreaReview& review, const NormalSolution& sol);
 
+  // What the attempts have measured (the threshold, each patch's cell size and plane, the crop),
+  // and the same taken over by a new PotentialArea of the next call at a nearby position
+  // (warm start, contact_warm_start.h): its first attempt is then the last call's final one,
+  // on the grids of the new position.
+  struct Measured {
+    double threshold_m;
+    std::vector<CellMemory> cells;
+    double trim_approach_m;
+  };
+  Measured measured() const { return {threshold_, cell_memory_, trim_approach_}; }
+  // A planar patch's plane stays where the last call re-centred it, and its count of
+  // re-centrings starts again, so that the review checks it against this call's pressure centre
+  // (and the warm attempt falls back when the contact has moved by more than half a cell).
+  void TakeOver(const Measured& m) {
+    threshold_ = m.threshold_m;
+    cell_memory_ = m.cells;
+    for (CellMemory& c : cell_memory_) c.recentred = 0;
+    trim_approach_ = m.trim_approach_m;
+  }
+
  private:
   const ContactProblem& problem_;
   double stiffness_ratio_K_;
@@ -113,6 +136,17 @@ class PotentialArea {
   // Grids are cropped to the cells an approach of trim_approach could close (patch_builder.h):
   // unbounded until a solve has measured the approach, then kTrimFactor times the last one.
   double trim_approach_ = std::numeric_limits<double>::infinity();
+};
+
+// A wheel's contact as the last call left it, for the next call's warm start
+// (contact_warm_start.h): its potential area as measured, the candidates it gridded, its
+// approach, and under a prescribed load with a vertical balance the load Q and the pressure's
+// balanced target T.
+struct WarmStartState {
+  PotentialArea::Measured area;
+  int candidates = 0;
+  double approach_m = 0.0;
+  std::optional<double> load_N, target_N;
 };
 
 }  // namespace railwear::internal

@@ -285,6 +285,20 @@ typedef struct rw_state {
 RW_API rw_status rw_init_state(rw_state* state);
 RW_API rw_status rw_set_state(rw_problem* problem, const rw_state* state);
 
+/* Since 1.5. Warm start across calls (enable 1; 0, the default, solves every calculate cold).
+ * A single wheel's grid solve then starts from the previous calculate's measured contact patch
+ * (the cell sizes and extent of its grids, its approach and vertical balance), as an MBS time
+ * loop calls at nearby positions: the attempts that only measure the patch are skipped (on the
+ * gauge corner at standard accuracy most of a call's work). When that patch does not fit the
+ * new position (pressure at its edge, a new contact point, a jump) the call is solved cold,
+ * exactly as without the option. A warm result differs from the cold one at the same position
+ * by about the accuracy preset's discretization error (docs/library.md, "Warm start"), so
+ * results depend on the calls before: leave it off where runs must be reproducible call by
+ * call. The first calculate, and the first after any set-up call (every rw_set_* but
+ * rw_set_state and rw_set_wear) or rw_set_warm_start itself, is cold. Wheelsets are always
+ * solved cold. */
+RW_API rw_status rw_set_warm_start(rw_problem* problem, int enable);
+
 /* Solves the contact of the current set-up and state. RW_ERROR_NOT_CONVERGED and
  * RW_ERROR_NO_CONTACT leave the results readable; other errors clear them. */
 RW_API rw_status rw_calculate(rw_problem* problem);

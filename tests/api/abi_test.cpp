@@ -19,7 +19,8 @@ TEST(ApiAbi, VersionNumbersArePinned) {
   // 1.1: rw_set_pressure_limit added; 1.2: rw_patch's wheel-frame location appended; 1.3:
   // RW_MODEL_HERTZ with rolling contact (the fast tread path) and rw_get_patch_model; 1.4: the
   // fast tread path on a wheelset handle too; 1.5: rw_model's normal solver stopping rule
-  // appended (the strict setting), and a failed internal check returns RW_ERROR_INTERNAL.
+  // appended (the strict setting), a failed internal check returns RW_ERROR_INTERNAL, and
+  // rw_set_warm_start.
   EXPECT_EQ(RW_API_VERSION_MINOR, 5);
   EXPECT_EQ(RW_API_VERSION_PATCH, 0);
   EXPECT_EQ(RW_API_VERSION, 10500);

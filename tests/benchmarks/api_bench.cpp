@@ -7,6 +7,10 @@
 //   BM_GaugeCornerWheelNewPosition/<accuracy>: the same at a new lateral position every call
 //     (0.1 um apart, as BM_TreadFastsimNewPosition): what a co-simulation's time loop pays there;
 //     accuracy 0 draft, 1 standard.
+//   BM_GaugeCornerWheelTimeStep/<warm>: the gauge-corner wheel at standard accuracy stepped as
+//     an MBS time loop does, +0.01 mm per call from -5.6 mm, wrapping back after 40 calls
+//     (0.4 mm); warm 0 every call cold, 1 rw_set_warm_start (API 1.5: each call starts from the
+//     last one's measured patch, core/contact/contact_warm_start.h).
 //   BM_TreadFastsim/<model>: the same wheel on its tread (-10.4 mm, 5 mrad of yaw), the cheapest
 //     rolling call: draft accuracy, model 1 halfspace (planar Boussinesq grid), 4 auto.
 //   The handle keeps the placed geometry of its last call and reuses it at the same pose
@@ -35,6 +39,9 @@
 #include "tests/api/rolling_wheel.h"
 
 namespace {
+
+// BM_GaugeCornerWheelTimeStep's steps before it wraps to its first position.
+constexpr long kTimeSteps = 40;
 
 rw_state State(double lateral_m, double yaw_rad) {
   return railwear::test::RollingState(lateral_m, yaw_rad);
@@ -79,6 +86,15 @@ void BM_GaugeCornerWheelNewPosition(benchmark::State& state) {
       [](long k) { return State(-5.6e-3 + 1e-7 * static_cast<double>(k % 16), 0.0); });
 }
 BENCHMARK(BM_GaugeCornerWheelNewPosition)->DenseRange(0, 1)->Unit(benchmark::kMillisecond);
+
+void BM_GaugeCornerWheelTimeStep(benchmark::State& state) {
+  rw_problem* p = railwear::test::MakeRollingS1002Wheel(RW_MODEL_CONFORMAL, RW_ACCURACY_STANDARD);
+  if (p && state.range(0) == 1) rw_set_warm_start(p, 1);
+  RunChangingSteps(state, p, [](long k) {
+    return State(-5.6e-3 + 1e-5 * static_cast<double>(k % kTimeSteps), 0.0);
+  });
+}
+BENCHMARK(BM_GaugeCornerWheelTimeStep)->DenseRange(0, 1)->Unit(benchmark::kMillisecond);
 
 void BM_TreadFastsim(benchmark::State& state) {
   RunSteps(
