@@ -12,6 +12,11 @@
 //   BM_CurvingExampleContinuation/V/A  the same vehicle 0.5 m/s faster, started from the solution
 //                           at the scene's speed and its Jacobian (CurvingResult::Start): what
 //                           each wear step's curving costs (it starts from the step before's).
+//   BM_CurvingExampleTable/V/A  as BM_CurvingExample with the table predictor
+//                           (CurvingPredictor::kTable: the contact table built, its equilibrium
+//                           finished with the full model); also reports the table's build time,
+//                           its evaluations and whether it fell back to the model predictor.
+//   BM_ContactTableBuild/V  the contact table of vehicle V's wheels on the main job's rails.
 // Each reports the wheelset contact solves it needed. Run:
 //   build/tests/benchmarks/curving_bench --benchmark_repetitions=3
 //   --benchmark_report_aggregates_only=true
@@ -34,6 +39,9 @@ void Run(benchmark::State& state, const CurvingProblem& p) {
   state.counters["predictor_iterations"] = r.predictor_iterations;
   state.counters["full_iterations"] = r.full_iterations;
   state.counters["residual"] = r.largest_scaled_residual;
+  state.counters["table_evaluations"] = r.table_evaluations;
+  state.counters["table_build_s"] = r.table_build_s;
+  state.counters["table_fell_back"] = r.table_predictor == TablePredictorOutcome::kFellBack;
 }
 
 void BM_CurvingFreeWheelset(benchmark::State& state) {
@@ -88,6 +96,38 @@ BENCHMARK(BM_CurvingExampleContinuation)
     ->ArgsProduct({{0, 1}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
+
+void BM_CurvingExampleTable(benchmark::State& state) {
+  CurvingProblem p = ExampleProblem(static_cast<int>(state.range(0)), state.range(1) == 1);
+  p.options.cold_predictor = CurvingPredictor::kTable;
+  Run(state, p);
+}
+BENCHMARK(BM_CurvingExampleTable)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+void BM_ContactTableBuild(benchmark::State& state) {
+  const CurvingProblem p = ExampleProblem(static_cast<int>(state.range(0)), false);
+  ContactTableGeometry g;
+  g.high_wheel = p.vehicle.wheel_profile;
+  g.low_wheel = p.vehicle.wheel_profile;
+  g.high_rail = p.high_rail;
+  g.low_rail = p.low_rail;
+  const double h = p.track.gauge_height_m;
+  g.gauge_points = p.gauge_points ? *p.gauge_points
+                                  : RailGaugePoints{RailGaugePoint(p.high_rail, h).x(),
+                                                    RailGaugePoint(p.low_rail, h).x()};
+  g.track = p.track;
+  g.wheelset = p.vehicle.WheelsetAt(0.0, 0.0, 0.0);
+  ContactTableOptions o = p.options.table;
+  o.threads = p.options.threads;
+  for (auto _ : state) {
+    const ContactTable table(g, o);
+    benchmark::DoNotOptimize(table.size());
+  }
+}
+BENCHMARK(BM_ContactTableBuild)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace railwear
