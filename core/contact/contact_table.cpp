@@ -22,6 +22,8 @@ namespace railwear {
 
 namespace {
 
+constexpr double kRollSampling_m = 2e-4;  // the roll's fixed-point steps (the curving's as well)
+
 // Shen, Hedrick and Elkins' saturation (Vehicle System Dynamics 12, 1983): the linear creep
 // force F' of magnitude u mu N becomes mu N (u - u^2/3 + u^3/27) up to u = 3, mu N beyond; the
 // factor on F'.
@@ -103,10 +105,11 @@ ContactTable::ContactTable(const ContactTableGeometry& geometry, const ContactTa
     for (int step = 0; step < 3; ++step) {
       ws.roll_rad = roll;
       const WheelsetPlacement placed = PlaceWheelsetAt(geometry_.gauge_points, geometry_.track, ws);
+      // The roll's steps on a coarse sampling (a height to a micrometre is 1e-6 / 1.5 m of roll).
+      const double sampling = step < 2 ? std::max(o.sampling_m, kRollSampling_m) : o.sampling_m;
       const WheelRailGeometry high(geometry_.high_wheel, geometry_.high_rail, placed.right,
-                                   o.sampling_m);
-      const WheelRailGeometry low(geometry_.low_wheel, geometry_.low_rail, placed.left,
-                                  o.sampling_m);
+                                   sampling);
+      const WheelRailGeometry low(geometry_.low_wheel, geometry_.low_rail, placed.left, sampling);
       if (!high.has_overlap() || !low.has_overlap()) return;
       if (step < 2) {
         roll = std::asin(std::clamp((high.dz_m() - low.dz_m()) / (2.0 * half_span), -0.1, 0.1));

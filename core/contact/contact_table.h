@@ -47,9 +47,14 @@
 namespace railwear {
 
 struct ContactTableOptions {
-  double half_range_m = 0.012;    // nodes over [-half_range, half_range] of the wheelset's y
-  double node_spacing_m = 1e-4;   // between nodes
-  double sampling_m = 1e-4;       // WheelRailGeometry's lateral sampling of the gap (build)
+  // Nodes over [-half_range, half_range] of the wheelset's y (S1002 on UIC60 1:40 is in flange
+  // contact from about 6 mm); their spacing; the placed geometries' lateral sampling of the gap
+  // (the roll's two steps sample at 0.2 mm, as the curving's kinematic roll does). 0.1 mm and
+  // 0.1 mm: 0.2 mm each took the main job's cold solves from 16-20 wheelset solves to 20-44
+  // (docs/curving.md "Cost").
+  double half_range_m = 0.012;
+  double node_spacing_m = 1e-4;
+  double sampling_m = 1e-4;
   // Candidates up to this gap at first contact are kept (a wheel load's approach is 50-100 um).
   double candidate_threshold_m = 3e-4;
   int threads = 0;  // of the build (nodes are independent): 0 = the hardware threads

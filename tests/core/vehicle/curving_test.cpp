@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include <Eigen/Dense>
 #include <gtest/gtest.h>
 
 #include "core/contact/kalker_coefficients.h"
