@@ -37,10 +37,10 @@ double SaturationFactor(double linear_N, double limit_N) {
 // One loaded candidate of an evaluation: its Hertz ellipse and where it lies.
 struct LoadedPoint {
   double normal_N = 0.0;
-  double a_m = 0.0, b_m = 0.0;   // semi-axes along x and laterally
-  Eigen::Vector3d point_m;       // contact point, R (x the lead under yaw)
-  Eigen::Vector3d normal;        // rail outward normal, R
-  Eigen::Vector3d tangent;       // lateral tangent (0, n_z, -n_y), R
+  double a_m = 0.0, b_m = 0.0;  // semi-axes along x and laterally
+  Eigen::Vector3d point_m;      // contact point, R (x the lead under yaw)
+  Eigen::Vector3d normal;       // rail outward normal, R
+  Eigen::Vector3d tangent;      // lateral tangent (0, n_z, -n_y), R
 };
 
 struct PreparedWheel {
@@ -51,8 +51,8 @@ struct PreparedWheel {
 };
 
 // The rail's force on the wheel at one point, R, for pitch velocity omega.
-Eigen::Vector3d PointForce(const LoadedPoint& p, const WheelRigidMotion& m, double omega,
-                           double G, double nu, double friction) {
+Eigen::Vector3d PointForce(const LoadedPoint& p, const WheelRigidMotion& m, double omega, double G,
+                           double nu, double friction) {
   WheelRigidMotion mo = m;
   mo.pitch_velocity_rad_s = omega;
   const double V = mo.speed_m_s;
@@ -65,7 +65,8 @@ Eigen::Vector3d PointForce(const LoadedPoint& p, const WheelRigidMotion& m, doub
       omega * mo.axle_direction + Eigen::Vector3d(0.0, 0.0, mo.yaw_velocity_rad_s);
   const double phi = w.cross(Eigen::Vector3d::UnitX()).dot(p.tangent) / V;
   const LinearCreepForces lin = CalcLinearCreepForces(p.a_m, p.b_m, G, nu, xi, eta, phi);
-  const double f = SaturationFactor(std::hypot(lin.force_x_N, lin.force_y_N), friction * p.normal_N);
+  const double f =
+      SaturationFactor(std::hypot(lin.force_x_N, lin.force_y_N), friction * p.normal_N);
   return p.normal_N * p.normal + f * lin.force_x_N * Eigen::Vector3d::UnitX() +
          f * lin.force_y_N * p.tangent;
 }
@@ -78,16 +79,17 @@ ContactTable::ContactTable(const ContactTableGeometry& geometry, const ContactTa
   const ContactTableOptions& o = options_;
   if (!(o.node_spacing_m > 0.0) || !(o.half_range_m > 0.0) || !(o.sampling_m > 0.0) ||
       !(o.candidate_threshold_m > 0.0)) {
-    throw InputError(fmt::format(
-        "contact table: node_spacing_m = {}, half_range_m = {}, sampling_m = {}, "
-        "candidate_threshold_m = {}: expected each > 0",
-        o.node_spacing_m, o.half_range_m, o.sampling_m, o.candidate_threshold_m));
+    throw InputError(
+        fmt::format("contact table: node_spacing_m = {}, half_range_m = {}, sampling_m = {}, "
+                    "candidate_threshold_m = {}: expected each > 0",
+                    o.node_spacing_m, o.half_range_m, o.sampling_m, o.candidate_threshold_m));
   }
   const int n = 2 * static_cast<int>(std::lround(o.half_range_m / o.node_spacing_m)) + 1;
   if (n < 3) {
-    throw InputError(fmt::format("contact table: half_range_m = {} with node_spacing_m = {} gives "
-                                 "{} nodes: expected at least 3",
-                                 o.half_range_m, o.node_spacing_m, n));
+    throw InputError(
+        fmt::format("contact table: half_range_m = {} with node_spacing_m = {} gives "
+                    "{} nodes: expected at least 3",
+                    o.half_range_m, o.node_spacing_m, n));
   }
   nodes_.resize(n);
   const WheelsetSpec& base = geometry_.wheelset;
@@ -223,8 +225,8 @@ ContactTableForces ContactTable::EvaluateNode(int i, double yaw_rad,
       const Eigen::Vector3d f_rail_frame = PointForce(p, w.motion, omega, G, nu, load.friction);
       const Eigen::Vector3d f = RailToTrackFrame(f_rail_frame, w.left);
       const double y_rail = p.point_m.y();
-      const double Y = w.left ? placed.left_rail_origin_Y_m - y_rail
-                              : placed.right_rail_origin_Y_m + y_rail;
+      const double Y =
+          w.left ? placed.left_rail_origin_Y_m - y_rail : placed.right_rail_origin_Y_m + y_rail;
       const double x = (w.left ? half_span : -half_span) + p.point_m.x();
       out.force_N += f;
       out.yaw_moment_Nm += x * f.y() - Y * f.x();

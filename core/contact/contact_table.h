@@ -83,8 +83,8 @@ struct ContactTableLoad {
 
 // One wheel's contact in a table evaluation.
 struct ContactTableWheelForces {
-  double normal_force_N = 0.0;        // all candidates
-  double lateral_force_on_rail_N = 0.0;  // the wheel's on its rail, rail frame y (field side +)
+  double normal_force_N = 0.0;             // all candidates
+  double lateral_force_on_rail_N = 0.0;    // the wheel's on its rail, rail frame y (field side +)
   double largest_contact_angle_rad = 0.0;  // of the loaded candidates
   int loaded_points = 0;
 };

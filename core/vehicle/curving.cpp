@@ -902,9 +902,11 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
       g.wheelset = v.WheelsetAt(0.0, 0.0, 0.0);
       tables.push_back(std::make_unique<ContactTable>(g, topt));
     }
-    out.table_build_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.table_build_s +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::vector<WheelsetContext> ctx = contexts(p.contact.model);
-    for (int i = 0; i < layout.wheelsets; ++i) ctx[i].table = tables[p.wheels.empty() ? 0 : i].get();
+    for (int i = 0; i < layout.wheelsets; ++i)
+      ctx[i].table = tables[p.wheels.empty() ? 0 : i].get();
     return ctx;
   };
   std::string table_note;  // why the table's start failed
@@ -945,10 +947,10 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
       // Fall back to the model predictor's starts; a limit or a failure found on the table is
       // the table's, not the vehicle's.
       out.table_predictor = TablePredictorOutcome::kFellBack;
-      table_note = fmt::format("the table predictor's start failed ({}: {}); solved with the "
-                               "model predictor",
-                               table_phase_failed ? "on the table" : "in the full model's finish",
-                               out.message);
+      table_note = fmt::format(
+          "the table predictor's start failed ({}: {}); solved with the "
+          "model predictor",
+          table_phase_failed ? "on the table" : "in the full model's finish", out.message);
       no_equilibrium = false;
       if (table_phase_failed) continue;  // the states are the table's: no candidate for `best`
     }
@@ -1008,7 +1010,8 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
     return out;
   }
   if (iterations < 0 && !no_equilibrium && best) take(*best);
-  if (!table_note.empty()) out.message = table_note + (out.message.empty() ? "" : "; " + out.message);
+  if (!table_note.empty())
+    out.message = table_note + (out.message.empty() ? "" : "; " + out.message);
   out.table_evaluations = eq.table_evaluations();
   if (r.size() == q.size()) out.largest_scaled_residual = eq.Norm(r);
   out.contact_solves = eq.solves();

@@ -72,7 +72,8 @@ struct CurvingStart {
 
 // The cold solve's predictor: the iterates' contact model before the full model finishes.
 enum class CurvingPredictor {
-  kModel,  // a grid contact model: CurvingOptions::predictor, or the problem's own on the draft grid
+  // A grid contact model: CurvingOptions::predictor, or the problem's own on the draft grid.
+  kModel,
   // Tabulated rigid contact geometry with Hertz and Kalker (core/contact/contact_table.h), built
   // once per wheel and rail pair; its equilibrium is then finished with the full model. A start
   // with its Jacobian still goes to the full model directly; when the table's start fails, the

@@ -143,8 +143,8 @@ void BM_ContactTableEvaluate(benchmark::State& state) {
   g.high_rail = p.high_rail;
   g.low_rail = p.low_rail;
   const double h = p.track.gauge_height_m;
-  g.gauge_points = RailGaugePoints{RailGaugePoint(p.high_rail, h).x(),
-                                   RailGaugePoint(p.low_rail, h).x()};
+  g.gauge_points =
+      RailGaugePoints{RailGaugePoint(p.high_rail, h).x(), RailGaugePoint(p.low_rail, h).x()};
   g.track = p.track;
   g.wheelset = p.vehicle.WheelsetAt(0.0, 0.0, 0.0);
   const ContactTable table(g, p.options.table);

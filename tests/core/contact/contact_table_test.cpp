@@ -38,11 +38,17 @@ ContactTableLoad Load() {
   return l;
 }
 
+// The default table's options over +-half_range with nodes `spacing` apart [m].
+ContactTableOptions Nodes(double half_range_m, double spacing_m) {
+  ContactTableOptions o;
+  o.half_range_m = half_range_m;
+  o.node_spacing_m = spacing_m;
+  return o;
+}
+
 TEST(ContactTable, NodesAreThePlacedGeometrysAtTheNodesRoll) {
   const ContactTableGeometry g = S1002OnUic60();
-  ContactTableOptions o;
-  o.half_range_m = 8e-3;
-  o.node_spacing_m = 1e-3;
+  const ContactTableOptions o = Nodes(8e-3, 1e-3);
   const ContactTable table(g, o);
   ASSERT_EQ(table.size(), 17);
   double d_point = 0.0, d_radius = 0.0, d_angle = 0.0;
@@ -88,9 +94,10 @@ TEST(ContactTable, NodesAreThePlacedGeometrysAtTheNodesRoll) {
                                            std::atan2(f[0].normal.x(), -f[0].normal.y())));
     }
   }
-  std::printf("table nodes (%.2f mm sampling) against the 20 um placed geometry: first contact "
-              "point within %.3f mm, rolling radius %.2f um, contact angle %.3f mrad\n",
-              o.sampling_m * 1e3, d_point * 1e3, d_radius * 1e6, d_angle * 1e3);
+  std::printf(
+      "table nodes (%.2f mm sampling) against the 20 um placed geometry: first contact "
+      "point within %.3f mm, rolling radius %.2f um, contact angle %.3f mrad\n",
+      o.sampling_m * 1e3, d_point * 1e3, d_radius * 1e6, d_angle * 1e3);
   // Within 1.5 samples of the gap in position (measured 0.101 mm at 0.1 mm sampling, at the
   // flange root where two candidates' gaps nearly tie); the radius follows the point along the
   // flange's slope (tan 70 deg = 2.7: 0.1 mm of point is 0.27 mm of radius; measured 95 um).
@@ -128,9 +135,10 @@ TEST(ContactTable, ForcesBetweenNodesWithinTheInterpolationBound) {
       EXPECT_LE(e, 0.5 * std::abs(f2 - f0) + 1.0) << "y " << y * 1e3 << " mm";
     }
   }
-  std::printf("lateral force between nodes %.2f mm apart: largest error %.0f N within 3 mm of "
-              "the centre, %.0f N anywhere in +-10 mm (wheel load 60 kN)\n",
-              coarse.node_spacing_m * 1e3, tread, anywhere);
+  std::printf(
+      "lateral force between nodes %.2f mm apart: largest error %.0f N within 3 mm of "
+      "the centre, %.0f N anywhere in +-10 mm (wheel load 60 kN)\n",
+      coarse.node_spacing_m * 1e3, tread, anywhere);
   // Within 3 mm of the centre (the tread) within 2 % of the wheel load: measured 838 N, 1.4 %,
   // where the S1002 tread's contact point moves fast as the profiles' curvatures nearly match.
   EXPECT_LT(tread, 0.02 * load.high_load_N);
@@ -144,10 +152,7 @@ TEST(ContactTable, ForcesBetweenNodesWithinTheInterpolationBound) {
 // about 0.1 of the adhesion limit, and Shen-Hedrick-Elkins' slope there is 1 - 2u/3).
 TEST(ContactTable, SmallYawGivesKalkersLinearLateralForce) {
   const ContactTableGeometry g = S1002OnUic60();
-  ContactTableOptions o;
-  o.half_range_m = 1e-3;
-  o.node_spacing_m = 1e-3;
-  const ContactTable table(g, o);
+  const ContactTable table(g, Nodes(1e-3, 1e-3));
   ContactTableLoad load = Load();
   load.friction = 1e3;
   const double yaw = 1e-4;
@@ -163,24 +168,22 @@ TEST(ContactTable, SmallYawGivesKalkersLinearLateralForce) {
     const double cos_gamma = -c.normal.y();
     const double A = cos_gamma / (2.0 * c.wheel_radius_m);
     const double B = 0.5 * (c.rail_lateral_curvature + c.wheel_lateral_curvature);
-    const HertzSolution h = SolveHertz(A, B, ContactModulus(load.wheel_material, load.rail_material),
-                                       60e3 / cos_gamma);
+    const HertzSolution h =
+        SolveHertz(A, B, ContactModulus(load.wheel_material, load.rail_material), 60e3 / cos_gamma);
     const double G = 210e9 / (2.0 * 1.28);
-    const LinearCreepForces f =
-        CalcLinearCreepForces(h.semi_axis_x_m, h.semi_axis_y_m, G, 0.28, 0.0, -yaw / cos_gamma, 0.0);
+    const LinearCreepForces f = CalcLinearCreepForces(h.semi_axis_x_m, h.semi_axis_y_m, G, 0.28,
+                                                      0.0, -yaw / cos_gamma, 0.0);
     expected += f.force_y_N * cos_gamma;  // the lateral tangent's Y part
   }
   const double got = at.force_N.y() - at0.force_N.y();
-  std::printf("yaw 0.1 mrad at the centre: lateral creep force %.1f N, Kalker linear %.1f N\n",
-              got, expected);
+  std::printf("yaw 0.1 mrad at the centre: lateral creep force %.1f N, Kalker linear %.1f N\n", got,
+              expected);
   EXPECT_NEAR(got, expected, 0.02 * std::abs(expected));
 }
 
 TEST(ContactTable, OutsideTheTableIsNotValidAndBadOptionsThrow) {
   const ContactTableGeometry g = S1002OnUic60();
-  ContactTableOptions o;
-  o.half_range_m = 1e-3;
-  o.node_spacing_m = 5e-4;
+  ContactTableOptions o = Nodes(1e-3, 5e-4);
   const ContactTable table(g, o);
   const ContactTableForces f = table.Evaluate(1.5e-3, 0.0, Load());
   EXPECT_FALSE(f.valid);

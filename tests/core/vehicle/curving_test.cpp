@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include "core/contact/kalker_coefficients.h"
 #include "core/numerics/input_error.h"
@@ -462,7 +462,8 @@ TEST(CurvingTest, TablePredictorReachesTheModelPredictorsEquilibrium) {
     EXPECT_NEAR(table.state[2 * i], model.state[2 * i], spread[2 * i]) << i;
     EXPECT_NEAR(table.state[2 * i + 1], model.state[2 * i + 1], spread[2 * i + 1]) << i;
     off_y = std::max(off_y, std::abs(table.predictor_state[2 * i] - table.state[2 * i]));
-    off_psi = std::max(off_psi, std::abs(table.predictor_state[2 * i + 1] - table.state[2 * i + 1]));
+    off_psi =
+        std::max(off_psi, std::abs(table.predictor_state[2 * i + 1] - table.state[2 * i + 1]));
   }
   std::printf(
       "coach R 600 m, 25 m/s, cold: model predictor %d + %d iterations, %d solves, %.2f s; table "
@@ -472,8 +473,7 @@ TEST(CurvingTest, TablePredictorReachesTheModelPredictorsEquilibrium) {
       model.predictor_iterations, model.full_iterations, model.contact_solves, model.time_s,
       table.predictor_iterations, table.full_iterations, table.contact_solves,
       table.table_evaluations, table.table_build_s, table.time_s, off_y * 1e3, off_psi * 1e3,
-      table.finish_start_residual, p.options.tolerance, model.state[0] * 1e3,
-      table.state[0] * 1e3);
+      table.finish_start_residual, p.options.tolerance, model.state[0] * 1e3, table.state[0] * 1e3);
 }
 
 // Hard cases with the table predictor: a single S1002 wheelset on R 150 m in flange contact
@@ -497,13 +497,14 @@ TEST(CurvingTest, TablePredictorHardCasesConvergeOrFallBack) {
     p.options.cold_predictor = CurvingPredictor::kTable;
     p.options.max_iterations = c.wheelset ? 8 : 40;  // bounds a case that does not settle
     const CurvingResult r = SolveCurving(p);
-    std::printf("table predictor, %s: %s, table %s (%s), lead y %.2f mm, psi %.2f mrad, %d + %d "
-                "iterations, %d solves, %d table evaluations, %.1f s\n",
-                c.what, std::string(ToString(r.status)).c_str(),
-                std::string(ToString(r.table_predictor)).c_str(), r.message.c_str(),
-                r.wheelsets.empty() ? 0.0 : r.wheelsets[0].lateral_m * 1e3,
-                r.wheelsets.empty() ? 0.0 : r.wheelsets[0].yaw_rad * 1e3, r.predictor_iterations,
-                r.full_iterations, r.contact_solves, r.table_evaluations, r.time_s);
+    std::printf(
+        "table predictor, %s: %s, table %s (%s), lead y %.2f mm, psi %.2f mrad, %d + %d "
+        "iterations, %d solves, %d table evaluations, %.1f s\n",
+        c.what, std::string(ToString(r.status)).c_str(),
+        std::string(ToString(r.table_predictor)).c_str(), r.message.c_str(),
+        r.wheelsets.empty() ? 0.0 : r.wheelsets[0].lateral_m * 1e3,
+        r.wheelsets.empty() ? 0.0 : r.wheelsets[0].yaw_rad * 1e3, r.predictor_iterations,
+        r.full_iterations, r.contact_solves, r.table_evaluations, r.time_s);
     EXPECT_NE(r.table_predictor, TablePredictorOutcome::kNotUsed) << c.what;
     if (r.table_predictor == TablePredictorOutcome::kFellBack) {
       EXPECT_NE(r.message.find("table predictor's start failed"), std::string::npos) << c.what;
