@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include <fmt/format.h>
 #include <Eigen/Dense>
@@ -132,9 +133,43 @@ struct WheelsetContext {
   double q0_N = 0.0;  // the static wheel load, the scale of the tolerance
   // This wheelset's own wheels (CurvingProblem::wheels), null: the vehicle's wheel_profile.
   const WheelsetWheels* wheels = nullptr;
+  // The table predictor's contact functions (CurvingPredictor::kTable), null: `model`.
+  const ContactTable* table = nullptr;
 };
 
+// A wheelset's forces from the contact table (the table predictor's phase): its lateral force,
+// yaw moment and pitch velocity; the contact results stay empty (only the full model's states
+// are returned), their status converged unless the table could not place the wheelset.
+CurvedWheelset EvaluateFromTable(const WheelsetContext& ctx, double y, double yaw) {
+  const CurvingProblem& p = *ctx.problem;
+  ContactTableLoad load;
+  load.high_load_N = ctx.high_load_N;
+  load.low_load_N = ctx.low_load_N;
+  load.speed_m_s = p.speed_m_s;
+  load.curvature_per_m = p.curve.curvature_per_m();
+  load.friction = p.friction;
+  load.axle_force_N = p.vehicle.traction_N_per_axle;
+  load.wheel_material = p.contact.wheel_material;
+  load.rail_material = p.contact.rail_material;
+  const ContactTableForces f = ctx.table->Evaluate(y, yaw, load);
+  CurvedWheelset out;
+  out.lateral_m = y;
+  out.yaw_rad = yaw;
+  out.high_load_N = ctx.high_load_N;
+  out.low_load_N = ctx.low_load_N;
+  const SolverStatus status = f.valid ? SolverStatus::kConverged : SolverStatus::kNotConverged;
+  out.contact.right.status = status;
+  out.contact.left.status = status;
+  out.roll_rad = f.roll_rad;
+  out.pitch_velocity_rad_s = f.pitch_velocity_rad_s;
+  out.force_N = f.force_N;
+  out.yaw_moment_Nm = f.yaw_moment_Nm;
+  out.high_lateral_N = f.high.lateral_force_on_rail_N;
+  return out;
+}
+
 CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw) {
+  if (ctx.table) return EvaluateFromTable(ctx, y, yaw);
   const CurvingProblem& p = *ctx.problem;
   const VehicleSpec& v = p.vehicle;
   WheelsetProblem wp;
@@ -248,7 +283,7 @@ class Equilibrium {
     ws->resize(l_.wheelsets);
     ParallelFor(l_.wheelsets, p_.options.threads,
                 [&](int i) { (*ws)[i] = EvaluateWheelset(ctx_[i], q[2 * i], q[2 * i + 1]); });
-    solves_ += l_.wheelsets;
+    Count(l_.wheelsets);
     bool ok = true;
     for (int i = 0; i < l_.wheelsets; ++i) {
       (*ws)[i].x_m = l_.wheelset_x[i];
@@ -280,6 +315,7 @@ class Equilibrium {
     message->clear();
     Project(q);
     if (!Residual(*q, ws, r)) return Fail("a wheel's contact did not converge", message);
+    first_norm_ = Norm(*r);
     // The Jacobian of the last phase (the predictor's) starts the next one as a chord.
     Eigen::MatrixXd& J = jacobian_;
     bool fresh = false;  // J was evaluated at the current q
@@ -624,7 +660,7 @@ class Equilibrium {
       stepped[t] = t % 2 == 0 ? EvaluateWheelset(ctx_[i], q[2 * i] + step_y, q[2 * i + 1])
                               : EvaluateWheelset(ctx_[i], q[2 * i], q[2 * i + 1] + step_yaw);
     });
-    solves_ += 2 * l_.wheelsets;
+    Count(2 * l_.wheelsets);
     for (int i = 0; i < l_.wheelsets; ++i) {
       const CurvedWheelset& dy = stepped[2 * i];
       const CurvedWheelset& dpsi = stepped[2 * i + 1];
@@ -655,6 +691,9 @@ class Equilibrium {
   }
 
   int solves() const { return solves_; }
+  int table_evaluations() const { return table_evaluations_; }
+  // The largest scaled residual at the start of the last Solve.
+  double first_norm() const { return first_norm_; }
   // CurvingOptions::cancel returned true (once it has, it is not asked again).
   bool Cancelled() {
     cancelled_ = cancelled_ || (p_.options.cancel && p_.options.cancel());
@@ -692,6 +731,8 @@ class Equilibrium {
     }
     return false;
   }
+  // Counts n wheelset evaluations: contact solves, or the table's.
+  void Count(int n) { (ctx_.empty() || !ctx_[0].table ? solves_ : table_evaluations_) += n; }
   static int Fail(std::string text, std::string* message) {
     *message = std::move(text);
     return -1;
@@ -705,7 +746,8 @@ class Equilibrium {
   Eigen::FullPivLU<Eigen::MatrixXd> frames_;  // the frames' and body's block of the suspension
   Eigen::VectorXd frame_constant_;
   Eigen::VectorXd suspension_offset_, scale_;
-  int solves_ = 0;
+  int solves_ = 0, table_evaluations_ = 0;
+  double first_norm_ = 0.0;
   bool cancelled_ = false;
 };
 
@@ -801,6 +843,7 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
     CurvingStart start;
     bool full_directly = false;
     bool relaxed = false;  // pseudo-transient continuation first (Equilibrium::Relax)
+    bool table = false;    // the contact table's phase first (CurvingPredictor::kTable)
   };
   // The predictor's phase, then the full model's; one phase when they are the same model.
   const ModelOptions predictor =
@@ -813,6 +856,11 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
     // (Without a predictor both attempts would be the same solve.)
     if (has_jacobian && has_predictor) starts.push_back({*p.options.start, true});
     starts.push_back({*p.options.start, false});
+  }
+  // The table predictor: from the centred start through the contact table's equilibrium; when
+  // that fails, the model predictor's centred start below is the fallback.
+  if (p.options.cold_predictor == CurvingPredictor::kTable) {
+    starts.push_back({{centred, {}}, false, false, true});
   }
   starts.push_back({{centred, {}}, false});
   // Last, when no start has converged nor stopped within the usable residual: the centred start
@@ -835,11 +883,39 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
     std::string message;
   };
   std::optional<Attempt> best;
-  for (const auto& [start, full_directly, relaxed] : starts) {
+  // The contact tables, one per distinct wheel pair (one for all wheelsets without
+  // CurvingProblem::wheels), built when a table start is reached.
+  std::vector<std::unique_ptr<ContactTable>> tables;
+  auto table_contexts = [&]() {
+    const auto t0 = std::chrono::steady_clock::now();
+    const int n = p.wheels.empty() ? 1 : layout.wheelsets;
+    ContactTableOptions topt = p.options.table;
+    topt.threads = p.options.threads;
+    for (int i = static_cast<int>(tables.size()); i < n; ++i) {
+      ContactTableGeometry g;
+      g.high_wheel = p.wheels.empty() ? v.wheel_profile : p.wheels[i].high;
+      g.low_wheel = p.wheels.empty() ? v.wheel_profile : p.wheels[i].low;
+      g.high_rail = p.high_rail;
+      g.low_rail = p.low_rail;
+      g.gauge_points = *p.gauge_points;
+      g.track = p.track;
+      g.wheelset = v.WheelsetAt(0.0, 0.0, 0.0);
+      tables.push_back(std::make_unique<ContactTable>(g, topt));
+    }
+    out.table_build_s +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::vector<WheelsetContext> ctx = contexts(p.contact.model);
+    for (int i = 0; i < layout.wheelsets; ++i)
+      ctx[i].table = tables[p.wheels.empty() ? 0 : i].get();
+    return ctx;
+  };
+  std::string table_note;  // why the table's start failed
+  for (const auto& [start, full_directly, relaxed, table] : starts) {
     q = start.state;
     no_equilibrium = false;
-    const bool two_phases = has_predictor && !full_directly;
-    eq.Restart(contexts(two_phases ? predictor : p.contact.model), start.jacobian);
+    const bool two_phases = (has_predictor || table) && !full_directly;
+    eq.Restart(table ? table_contexts() : contexts(two_phases ? predictor : p.contact.model),
+               start.jacobian);
     if (relaxed && !eq.Relax(&q, &ws, &r) && eq.cancelled()) break;
     iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
     if (relaxed) {
@@ -848,17 +924,37 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
           "continuation)" +
           (out.message.empty() ? "" : "; " + out.message);
     }
+    bool table_phase_failed = false;
     if (two_phases) {
       out.predictor_iterations += std::max(iterations, 0);
+      table_phase_failed = table && iterations < 0;
       if (iterations >= 0) {
+        out.predictor_state = q;
         eq.set_contexts(contexts(p.contact.model));
         iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium);
         out.full_iterations += std::max(iterations, 0);
+        out.finish_start_residual = eq.first_norm();
       }
     } else {
       out.full_iterations += std::max(iterations, 0);
     }
-    if (iterations >= 0 || no_equilibrium || eq.cancelled()) break;
+    if (table) {
+      if (iterations >= 0 && !eq.cancelled()) {
+        out.table_predictor = TablePredictorOutcome::kUsed;
+        break;
+      }
+      if (eq.cancelled()) break;
+      // Fall back to the model predictor's starts; a limit or a failure found on the table is
+      // the table's, not the vehicle's.
+      out.table_predictor = TablePredictorOutcome::kFellBack;
+      table_note = fmt::format(
+          "the table predictor's start failed ({}: {}); solved with the "
+          "model predictor",
+          table_phase_failed ? "on the table" : "in the full model's finish", out.message);
+      no_equilibrium = false;
+      if (table_phase_failed) continue;  // the states are the table's: no candidate for `best`
+    }
+    if (!table && (iterations >= 0 || no_equilibrium || eq.cancelled())) break;
     if (AllConverged(ws, layout.wheelsets) && r.size() == q.size() &&
         (!best || eq.Norm(r) < eq.Norm(best->r))) {
       best = Attempt{q, r, ws, eq.jacobian(), out.message};
@@ -914,6 +1010,9 @@ CurvingResult SolveCurving(const CurvingProblem& problem_in) {
     return out;
   }
   if (iterations < 0 && !no_equilibrium && best) take(*best);
+  if (!table_note.empty())
+    out.message = table_note + (out.message.empty() ? "" : "; " + out.message);
+  out.table_evaluations = eq.table_evaluations();
   if (r.size() == q.size()) out.largest_scaled_residual = eq.Norm(r);
   out.contact_solves = eq.solves();
   out.wheelsets = ws;

@@ -54,6 +54,7 @@
 
 #include <Eigen/Core>
 
+#include "core/contact/contact_table.h"
 #include "core/contact/wheelset_contact.h"
 #include "core/vehicle/curve.h"
 #include "core/vehicle/vehicle.h"
@@ -69,7 +70,44 @@ struct CurvingStart {
   Eigen::MatrixXd jacobian;
 };
 
+// The cold solve's predictor: the iterates' contact model before the full model finishes.
+enum class CurvingPredictor {
+  // A grid contact model: CurvingOptions::predictor, or the problem's own on the draft grid.
+  kModel,
+  // Tabulated rigid contact geometry with Hertz and Kalker (core/contact/contact_table.h), built
+  // once per wheel and rail pair; its equilibrium is then finished with the full model. A start
+  // with its Jacobian still goes to the full model directly; when the table's start fails, the
+  // solve falls back to the model predictor (CurvingResult::table_predictor says so).
+  kTable,
+};
+inline constexpr std::array<EnumName<CurvingPredictor>, 2> kCurvingPredictorNames = {{
+    {CurvingPredictor::kModel, "model"},
+    {CurvingPredictor::kTable, "table"},
+}};
+inline std::string_view ToString(CurvingPredictor p) {
+  return EnumToString(kCurvingPredictorNames, p);
+}
+
+// What became of the table predictor in a solve.
+enum class TablePredictorOutcome {
+  kNotUsed,   // CurvingPredictor::kModel, or the solve ended before a table start
+  kUsed,      // the table's equilibrium, finished with the full model, is the solution
+  kFellBack,  // the table's start failed (table or finish): solved with the model predictor
+};
+inline constexpr std::array<EnumName<TablePredictorOutcome>, 3> kTablePredictorOutcomeNames = {{
+    {TablePredictorOutcome::kNotUsed, "not_used"},
+    {TablePredictorOutcome::kUsed, "used"},
+    {TablePredictorOutcome::kFellBack, "fell_back"},
+}};
+inline std::string_view ToString(TablePredictorOutcome o) {
+  return EnumToString(kTablePredictorOutcomeNames, o);
+}
+
 struct CurvingOptions {
+  // The predictor of a solve that does not continue from a start with its Jacobian.
+  CurvingPredictor cold_predictor = CurvingPredictor::kModel;
+  // The contact table's nodes when cold_predictor is kTable (its build threads: `threads`).
+  ContactTableOptions table;
   // The contact model of the iterates (the predictor's phase): this model when given, otherwise
   // the problem's own model on the draft grid (PredictorFor), so that a problem at draft accuracy
   // is solved in one phase; the problem's own model here: the full model throughout (slower, no
@@ -212,7 +250,16 @@ struct CurvingResult {
   double largest_scaled_residual = 0.0;
   int predictor_iterations = 0;  // of the predictor's phase (none when it is the full model)
   int full_iterations = 0;       // of the full model's phase
-  int contact_solves = 0;        // wheelset contact solves, all phases
+  int contact_solves = 0;        // wheelset contact solves, all phases (not the table's)
+  // The table predictor (CurvingOptions::cold_predictor): what became of it, its wheelset
+  // evaluations, and the tables' build time [s] (one table per distinct wheelset wheel pair).
+  TablePredictorOutcome table_predictor = TablePredictorOutcome::kNotUsed;
+  // Where the last predictor phase ended (its own equilibrium, the start of the full model's
+  // finish; empty without one), and the full model's largest scaled residual there.
+  Eigen::VectorXd predictor_state;
+  double finish_start_residual = 0.0;
+  int table_evaluations = 0;
+  double table_build_s = 0.0;
   double time_s = 0.0;
 
   // This solution as the start of a nearby solve (CurvingOptions::start).

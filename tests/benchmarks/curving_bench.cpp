@@ -12,6 +12,13 @@
 //   BM_CurvingExampleContinuation/V/A  the same vehicle 0.5 m/s faster, started from the solution
 //                           at the scene's speed and its Jacobian (CurvingResult::Start): what
 //                           each wear step's curving costs (it starts from the step before's).
+//   BM_CurvingExampleTable/V/A/T  as BM_CurvingExample with the table predictor
+//                           (CurvingPredictor::kTable: the contact table built, its equilibrium
+//                           finished with the full model); also reports the table's build time,
+//                           its evaluations and whether it fell back to the model predictor;
+//                           T = 0 the default table (nodes 0.1 mm apart, sampled at 0.1 mm),
+//                           1 its nodes 0.2 mm apart, 2 also sampled at 0.2 mm.
+//   BM_ContactTableBuild/V  the contact table of vehicle V's wheels on the main job's rails.
 // Each reports the wheelset contact solves it needed. Run:
 //   build/tests/benchmarks/curving_bench --benchmark_repetitions=3
 //   --benchmark_report_aggregates_only=true
@@ -34,6 +41,9 @@ void Run(benchmark::State& state, const CurvingProblem& p) {
   state.counters["predictor_iterations"] = r.predictor_iterations;
   state.counters["full_iterations"] = r.full_iterations;
   state.counters["residual"] = r.largest_scaled_residual;
+  state.counters["table_evaluations"] = r.table_evaluations;
+  state.counters["table_build_s"] = r.table_build_s;
+  state.counters["table_fell_back"] = r.table_predictor == TablePredictorOutcome::kFellBack;
 }
 
 void BM_CurvingFreeWheelset(benchmark::State& state) {
@@ -88,6 +98,64 @@ BENCHMARK(BM_CurvingExampleContinuation)
     ->ArgsProduct({{0, 1}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
+
+void BM_CurvingExampleTable(benchmark::State& state) {
+  CurvingProblem p = ExampleProblem(static_cast<int>(state.range(0)), state.range(1) == 1);
+  p.options.cold_predictor = CurvingPredictor::kTable;
+  // T (third argument): 0 the default table (0.1 mm nodes and sampling); 1 nodes 0.2 mm apart;
+  // 2 nodes and sampling 0.2 mm.
+  if (state.range(2) >= 1) p.options.table.node_spacing_m = 2e-4;
+  if (state.range(2) >= 2) p.options.table.sampling_m = 2e-4;
+  Run(state, p);
+}
+BENCHMARK(BM_CurvingExampleTable)
+    ->ArgsProduct({{0, 1}, {0, 1}, {0, 1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+void BM_ContactTableBuild(benchmark::State& state) {
+  const CurvingProblem p = ExampleProblem(static_cast<int>(state.range(0)), false);
+  ContactTableGeometry g;
+  g.high_wheel = p.vehicle.wheel_profile;
+  g.low_wheel = p.vehicle.wheel_profile;
+  g.high_rail = p.high_rail;
+  g.low_rail = p.low_rail;
+  const double h = p.track.gauge_height_m;
+  g.gauge_points = p.gauge_points ? *p.gauge_points
+                                  : RailGaugePoints{RailGaugePoint(p.high_rail, h).x(),
+                                                    RailGaugePoint(p.low_rail, h).x()};
+  g.track = p.track;
+  g.wheelset = p.vehicle.WheelsetAt(0.0, 0.0, 0.0);
+  ContactTableOptions o = p.options.table;
+  o.threads = p.options.threads;
+  for (auto _ : state) {
+    const ContactTable table(g, o);
+    benchmark::DoNotOptimize(table.size());
+  }
+}
+BENCHMARK(BM_ContactTableBuild)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// One wheelset evaluation on the coach's table: y 6 mm (flange contact on R 600 m), 2 mrad.
+void BM_ContactTableEvaluate(benchmark::State& state) {
+  const CurvingProblem p = ExampleProblem(0, false);
+  ContactTableGeometry g;
+  g.high_wheel = g.low_wheel = p.vehicle.wheel_profile;
+  g.high_rail = p.high_rail;
+  g.low_rail = p.low_rail;
+  const double h = p.track.gauge_height_m;
+  g.gauge_points =
+      RailGaugePoints{RailGaugePoint(p.high_rail, h).x(), RailGaugePoint(p.low_rail, h).x()};
+  g.track = p.track;
+  g.wheelset = p.vehicle.WheelsetAt(0.0, 0.0, 0.0);
+  const ContactTable table(g, p.options.table);
+  ContactTableLoad load;
+  load.high_load_N = load.low_load_N = 0.5 * p.vehicle.axle_load_N;
+  load.speed_m_s = p.speed_m_s;
+  load.curvature_per_m = p.curve.curvature_per_m();
+  load.friction = p.friction;
+  for (auto _ : state) benchmark::DoNotOptimize(table.Evaluate(6.05e-3, 2e-3, load));
+}
+BENCHMARK(BM_ContactTableEvaluate)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace railwear

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include "core/contact/kalker_coefficients.h"
 #include "core/numerics/input_error.h"
@@ -419,6 +420,105 @@ TEST(CurvingTest, BogieVehicleOnTangentTrackSettlesCentred) {
     EXPECT_LT(w.high_climb.l_over_v, 0.1);  // tread contact, no flange force
   }
   EXPECT_LE(r.largest_scaled_residual, 3.0 * p.options.tolerance);
+}
+
+}  // namespace
+}  // namespace railwear
+
+namespace railwear {
+namespace {
+
+// How far two solutions of the same full model may lie apart when each meets the residual
+// tolerance: to first order |J^-1| times twice the tolerance's force and moment (|J^-1| the
+// elementwise absolute inverse of the equilibrium Jacobian), per unknown.
+Eigen::VectorXd ToleranceSpread(const CurvingResult& r, const CurvingProblem& p) {
+  const double q0 = 0.5 * p.vehicle.axle_load_N;
+  Eigen::VectorXd allowed(r.state.size());
+  for (int k = 0; k < allowed.size(); ++k) {
+    allowed[k] = 2.0 * p.options.tolerance * q0 * (k % 2 == 0 ? 1.0 : 0.75);
+  }
+  return r.jacobian.inverse().cwiseAbs() * allowed;
+}
+
+// The table predictor (CurvingPredictor::kTable): the S1002 coach's cold solve on R 600 m with
+// 100 mm cant at 25 m/s (the main job's passenger case) through the contact table's equilibrium
+// ends at the same equilibrium of the full model as through the draft model predictor, within
+// the spread that the residual tolerance allows (ToleranceSpread); the figures are printed
+// (docs/curving.md "Cost").
+TEST(CurvingTest, TablePredictorReachesTheModelPredictorsEquilibrium) {
+  CurvingProblem p = S1002Coach(600.0, 0.10, 25.0);
+  const CurvingResult model = SolveCurving(p);
+  ASSERT_EQ(model.status, CurvingStatus::kConverged) << model.message;
+  p.options.cold_predictor = CurvingPredictor::kTable;
+  const CurvingResult table = SolveCurving(p);
+  ASSERT_EQ(table.status, CurvingStatus::kConverged) << table.message;
+  EXPECT_EQ(table.table_predictor, TablePredictorOutcome::kUsed) << table.message;
+  EXPECT_EQ(model.table_predictor, TablePredictorOutcome::kNotUsed);
+  EXPECT_LE(table.largest_scaled_residual, 3.0 * p.options.tolerance);
+  ASSERT_EQ(table.predictor_state.size(), table.state.size());
+  const Eigen::VectorXd spread = ToleranceSpread(model, p);
+  double off_y = 0.0, off_psi = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(table.state[2 * i], model.state[2 * i], spread[2 * i]) << i;
+    EXPECT_NEAR(table.state[2 * i + 1], model.state[2 * i + 1], spread[2 * i + 1]) << i;
+    off_y = std::max(off_y, std::abs(table.predictor_state[2 * i] - table.state[2 * i]));
+    off_psi =
+        std::max(off_psi, std::abs(table.predictor_state[2 * i + 1] - table.state[2 * i + 1]));
+  }
+  std::printf(
+      "coach R 600 m, 25 m/s, cold: model predictor %d + %d iterations, %d solves, %.2f s; table "
+      "%d + %d iterations, %d solves, %d table evaluations, build %.3f s, %.2f s; the table's "
+      "equilibrium %.3f mm and %.3f mrad off, full-model residual there %.1e (tolerance %.0e); "
+      "lead y %.3f / %.3f mm\n",
+      model.predictor_iterations, model.full_iterations, model.contact_solves, model.time_s,
+      table.predictor_iterations, table.full_iterations, table.contact_solves,
+      table.table_evaluations, table.table_build_s, table.time_s, off_y * 1e3, off_psi * 1e3,
+      table.finish_start_residual, p.options.tolerance, model.state[0] * 1e3, table.state[0] * 1e3);
+}
+
+// Hard cases with the table predictor: a single S1002 wheelset on R 150 m in flange contact
+// (two-point contact at the flange root) and the coach on R 300 m deficient: each converges
+// through the table, or falls back to the model predictor and says so, or ends with a named
+// status; never an exception.
+TEST(CurvingTest, TablePredictorHardCasesConvergeOrFallBack) {
+  struct Case {
+    const char* what;
+    double radius_m, cant_m, speed_m_s;
+    bool wheelset;
+  };
+  const Case cases[] = {
+      {"wheelset R 150 m, balanced", 150.0, 0.0, 5.0, true},
+      {"wheelset R 150 m, 1.2 m/s^2 deficient", 150.0, 0.0, 13.4, true},
+      {"coach R 300 m, 103 mm deficient", 300.0, 0.10, 20.0, false},
+  };
+  for (const Case& c : cases) {
+    CurvingProblem p = S1002Coach(c.radius_m, c.cant_m, c.speed_m_s);
+    if (c.wheelset) p.vehicle.kind = VehicleKind::kWheelset;
+    p.options.cold_predictor = CurvingPredictor::kTable;
+    p.options.max_iterations = c.wheelset ? 8 : 40;  // bounds a case that does not settle
+    const CurvingResult r = SolveCurving(p);
+    std::printf(
+        "table predictor, %s: %s, table %s (%s), lead y %.2f mm, psi %.2f mrad, %d + %d "
+        "iterations, %d solves, %d table evaluations, %.1f s\n",
+        c.what, std::string(ToString(r.status)).c_str(),
+        std::string(ToString(r.table_predictor)).c_str(), r.message.c_str(),
+        r.wheelsets.empty() ? 0.0 : r.wheelsets[0].lateral_m * 1e3,
+        r.wheelsets.empty() ? 0.0 : r.wheelsets[0].yaw_rad * 1e3, r.predictor_iterations,
+        r.full_iterations, r.contact_solves, r.table_evaluations, r.time_s);
+    EXPECT_NE(r.table_predictor, TablePredictorOutcome::kNotUsed) << c.what;
+    if (r.table_predictor == TablePredictorOutcome::kFellBack) {
+      EXPECT_NE(r.message.find("table predictor's start failed"), std::string::npos) << c.what;
+    }
+    if (r.status != CurvingStatus::kConverged) EXPECT_FALSE(r.message.empty()) << c.what;
+    EXPECT_TRUE(std::isfinite(r.largest_scaled_residual)) << c.what;
+    if (!c.wheelset) {
+      ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
+      // Flange contact on the leading high wheel, below Nadal's limit.
+      EXPECT_GT(r.wheelsets[0].high_climb.contact_angle_rad, 50.0 * M_PI / 180.0);
+      ASSERT_TRUE(r.wheelsets[0].high_climb.nadal_limit);
+      EXPECT_LT(r.wheelsets[0].high_climb.l_over_v, *r.wheelsets[0].high_climb.nadal_limit);
+    }
+  }
 }
 
 }  // namespace
