@@ -1,7 +1,8 @@
 // Adaptive integration over a traffic entry's lateral spread (issue 16 point 5): the expectation
 // of a wheel's worn area per pass over its normally distributed lateral position, refined where
 // the response changes (the tread / gauge-corner / flange switches) until the step's worn area
-// per pass of every rail is converged to a relative tolerance.
+// per pass of every rail is converged to a relative tolerance (and, when the nodes carry their
+// depth fields, the step's depth field: see SpreadUnit).
 //
 // Rule. The position is x in standard-normal units (lateral shift = mean + std x). The response
 // a(x) is known at sorted nodes x_0 < ... < x_m; between nodes it is taken as linear, beyond the
