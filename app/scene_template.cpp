@@ -146,7 +146,7 @@ speed_m_s = 20.0              # (0, 150]; needed by the "tangential" effect
 # total_MGT = 10.0             # or total_passes = 1e6 (exactly one)
 # integration_tolerance = 0.005  # spreads: adaptive nodes until the step's worn area is within
 #                              # this relative tolerance, [0.0001, 0.1] (the default rule)
-# quadrature_points = 5        # or fixed Gauss-Hermite nodes per spread, 1-41 (not both)
+# quadrature_points = 5        # or fixed Gauss-Hermite nodes per spread, 1-81 (not both)
 # smoothing_mm = 1.0           # smoothing length of the per-pass depth (lambda = l^4)
 # bin_mm = 0.1                 # arc-length bins the depth is collected on
 # profile_spacing_mm = 0.2     # point spacing of the updated rail profile

@@ -51,23 +51,66 @@ std::array<double, 2> SpreadUnit::Integral() const {
   return sum;
 }
 
+std::vector<double> SpreadUnit::FieldIntegral(int r) const {
+  if (field.empty()) return {};
+  const std::vector<double> w = LinearGaussianWeights(x);
+  std::vector<double> sum(field[0][r].size(), 0.0);
+  for (size_t k = 0; k < x.size(); ++k) {
+    const std::vector<double>& f = field[k][r];
+    RAILWEAR_CHECK(f.size() == sum.size());
+    for (size_t b = 0; b < f.size(); ++b) sum[b] += w[k] * f[b];
+  }
+  return sum;
+}
+
+double SpreadUnit::Difference(int r, double a, const std::vector<double>* fa, double b,
+                              const std::vector<double>* fb) const {
+  if (field.empty() || !fa || !fb) return std::abs(a - b);
+  RAILWEAR_CHECK(fa->size() == fb->size());
+  double l1 = 0.0;
+  for (size_t k = 0; k < fa->size(); ++k) l1 += std::abs((*fa)[k] - (*fb)[k]);
+  // Never below the area's change (rounding of a field whose bins all moved the same way).
+  return std::max(std::abs(a - b), bin_m[r] * l1);
+}
+
 void SpreadUnit::SetInitialErrors() {
   error.assign(x.size() - 1, {0.0, 0.0});
   frozen.assign(x.size() - 1, 0);
+  RAILWEAR_CHECK(field.empty() || field.size() == x.size());
   for (size_t i = 0; i + 1 < x.size(); ++i) {
     const double mass = NormalMass(x[i], x[i + 1]);
-    for (int r = 0; r < 2; ++r) error[i][r] = mass * std::abs(value[i + 1][r] - value[i][r]);
+    for (int r = 0; r < 2; ++r) {
+      const bool f = !field.empty();
+      error[i][r] = mass * Difference(r, value[i + 1][r], f ? &field[i + 1][r] : nullptr,
+                                      value[i][r], f ? &field[i][r] : nullptr);
+    }
   }
 }
 
-void SpreadUnit::Bisect(int interval, const std::array<double, 2>& midpoint_value) {
+void SpreadUnit::Bisect(int interval, const SpreadResponse& midpoint) {
   RAILWEAR_CHECK(interval >= 0 && interval + 1 < static_cast<int>(x.size()));
+  const bool fields = !field.empty();
   const std::array<double, 2> before = Integral();
+  std::array<std::vector<double>, 2> field_before;
+  if (fields) {
+    for (int r = 0; r < 2; ++r) {
+      RAILWEAR_CHECK(midpoint.field[r].size() == field[0][r].size());
+      field_before[r] = FieldIntegral(r);
+    }
+  }
   x.insert(x.begin() + interval + 1, 0.5 * (x[interval] + x[interval + 1]));
-  value.insert(value.begin() + interval + 1, midpoint_value);
+  value.insert(value.begin() + interval + 1, midpoint.value);
+  if (fields) field.insert(field.begin() + interval + 1, midpoint.field);
   const std::array<double, 2> after = Integral();
   std::array<double, 2> half;
-  for (int r = 0; r < 2; ++r) half[r] = 0.5 * std::abs(after[r] - before[r]);
+  for (int r = 0; r < 2; ++r) {
+    if (fields) {
+      const std::vector<double> field_after = FieldIntegral(r);
+      half[r] = 0.5 * Difference(r, after[r], &field_after, before[r], &field_before[r]);
+    } else {
+      half[r] = 0.5 * std::abs(after[r] - before[r]);
+    }
+  }
   error[interval] = half;
   error.insert(error.begin() + interval + 1, half);
   frozen.insert(frozen.begin() + interval + 1, 0);
@@ -77,7 +120,10 @@ void SpreadUnit::Bisect(int interval, const std::array<double, 2>& midpoint_valu
     if (x[i + 1] - x[i] > kSpreadBoundWidth * (1.0 + 1e-9)) {
       const double mass = NormalMass(x[i], x[i + 1]);
       for (int r = 0; r < 2; ++r) {
-        error[i][r] = std::max(error[i][r], mass * std::abs(value[i + 1][r] - value[i][r]));
+        const double d =
+            Difference(r, value[i + 1][r], fields ? &field[i + 1][r] : nullptr, value[i][r],
+                       fields ? &field[i][r] : nullptr);
+        error[i][r] = std::max(error[i][r], mass * d);
       }
     }
   }
@@ -163,12 +209,29 @@ SpreadIntegrationSummary RefineSpreads(std::vector<SpreadUnit>* units,
     }
     return sum;
   };
+  // The rail's depth field summed over the units (empty when they have none): the change of a
+  // round is measured on it when the units carry fields.
+  const bool fields = !units->empty() && !(*units)[0].field.empty();
+  const auto field_totals = [&] {
+    std::array<std::vector<double>, 2> sum;
+    if (!fields) return sum;
+    for (const SpreadUnit& u : *units) {
+      for (int r = 0; r < 2; ++r) {
+        const std::vector<double> f = u.FieldIntegral(r);
+        if (sum[r].empty()) sum[r].assign(f.size(), 0.0);
+        RAILWEAR_CHECK(f.size() == sum[r].size());
+        for (size_t b = 0; b < f.size(); ++b) sum[r][b] += f[b];
+      }
+    }
+    return sum;
+  };
   SpreadIntegrationSummary summary;
   summary.adaptive = true;
   summary.tolerance = tolerance;
   int quiet_rounds = 0;  // successive rounds that changed no rail's total above tolerance
   while (true) {
     const std::array<double, 2> before = totals();
+    const std::array<std::vector<double>, 2> field_before = field_totals();
     bool converged = false;
     const std::vector<SpreadInterval> chosen =
         SelectSpreadIntervals(*units, before, tolerance, &converged);
@@ -182,22 +245,29 @@ SpreadIntegrationSummary RefineSpreads(std::vector<SpreadUnit>* units,
       const SpreadUnit& u = (*units)[c.unit];
       midpoints.push_back(0.5 * (u.x[c.interval] + u.x[c.interval + 1]));
     }
-    const std::vector<std::array<double, 2>> values = evaluate(chosen, midpoints);
+    const std::vector<SpreadResponse> values = evaluate(chosen, midpoints);
     RAILWEAR_CHECK(values.size() == chosen.size());
     // Bisect from the last interval of each unit back, so the indices before stay valid.
     for (int k = static_cast<int>(chosen.size()) - 1; k >= 0; --k) {
       SpreadUnit& u = (*units)[chosen[k].unit];
-      if (std::isnan(values[k][0]) || std::isnan(values[k][1])) {
+      if (std::isnan(values[k].value[0]) || std::isnan(values[k].value[1])) {
         u.frozen[chosen[k].interval] = 1;
       } else {
         u.Bisect(chosen[k].interval, values[k]);
       }
     }
     const std::array<double, 2> after = totals();
+    const std::array<std::vector<double>, 2> field_after = field_totals();
     bool quiet = true;
     for (int r = 0; r < 2; ++r) {
       summary.last_change[r] = after[r] > 0.0 ? std::abs(after[r] - before[r]) / after[r] : 0.0;
       quiet = quiet && summary.last_change[r] <= tolerance;
+      if (fields && after[r] > 0.0) {
+        double l1 = 0.0;
+        for (size_t b = 0; b < field_after[r].size(); ++b)
+          l1 += std::abs(field_after[r][b] - field_before[r][b]);
+        quiet = quiet && (*units)[0].bin_m[r] * l1 <= kSpreadFieldChangeFactor * tolerance * after[r];
+      }
     }
     quiet_rounds = quiet ? quiet_rounds + 1 : 0;
     if (quiet_rounds >= 2) {

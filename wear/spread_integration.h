@@ -1,7 +1,8 @@
 // Adaptive integration over a traffic entry's lateral spread (issue 16 point 5): the expectation
 // of a wheel's worn area per pass over its normally distributed lateral position, refined where
 // the response changes (the tread / gauge-corner / flange switches) until the step's worn area
-// per pass of every rail is converged to a relative tolerance.
+// per pass of every rail is converged to a relative tolerance (and, when the nodes carry their
+// depth fields, the step's depth field: see SpreadUnit).
 //
 // Rule. The position is x in standard-normal units (lateral shift = mean + std x). The response
 // a(x) is known at sorted nodes x_0 < ... < x_m; between nodes it is taken as linear, beyond the
@@ -44,14 +45,23 @@ namespace railwear {
 // default study's 10 MGT run with 30 Gauss-Hermite nodes (docs/wear.md, "The tails"); with the
 // first nodes at +-3 only, the rule took the response at +3 for all of it.
 inline constexpr std::array<double, 7> kSpreadInitialNodes = {-5.0, -3.0, -1.5, 0.0, 1.5, 3.0, 5.0};
-// The most nodes one unit takes in a step (7 first nodes and 34 bisections).
-inline constexpr int kMaxSpreadNodes = 41;
+// The most nodes one unit takes in a step (7 first nodes and 74 bisections; 41 until the
+// depth-field criterion, which needs more where a wheelset's contact sweeps across the gauge
+// corner: docs/wear.md, "Why the depth field does not converge on the curve").
+inline constexpr int kMaxSpreadNodes = 81;
 // The narrowest interval that is bisected [standard-normal units]: six halvings of the first
 // nodes' 1.5 (0.023 std: 23 um at a 1 mm spread, below every contact grid's cell).
 inline constexpr double kMinSpreadInterval = 1.5 / 64;
 // Intervals wider than this [standard-normal units] (the first two levels of bisection) keep
 // the monotone bound as a floor of their estimate.
 inline constexpr double kSpreadBoundWidth = 0.375;
+// With depth fields (SpreadUnit), a round is quiet when, besides the worn area's change, the
+// L1 change of each rail's depth field times its bin width is at most this many times the
+// tolerance x the rail's worn area per pass: the field's change sums the contact grid's noise
+// of the new nodes' patches bin by bin (5-10 % between neighbouring positions at the flange on
+// the draft grid), which the area averages out, so the area's tolerance would drive every spread
+// to kMaxSpreadNodes.
+inline constexpr double kSpreadFieldChangeFactor = 4.0;
 // The share of the estimates a round bisects (Doerfler's marking parameter).
 inline constexpr double kSpreadMarkingShare = 0.5;
 // The range of the adaptive rule's relative tolerance: below 1e-4 the contact grid's own noise
@@ -66,9 +76,29 @@ inline constexpr double kDefaultIntegrationTolerance = 0.005;
 // of a at the strictly increasing nodes `x` (shape [m]), constant beyond the outer nodes.
 std::vector<double> LinearGaussianWeights(const std::vector<double>& x);
 
+// A node's response per rail ([0] high, [1] low): its worn area per pass times its cases' weights
+// without the node weight [m^2] and, optionally (empty: not given), its depth field per pass on
+// that rail's bins with the same weights [m], shape [the rail's bins].
+struct SpreadResponse {
+  std::array<double, 2> value = {0.0, 0.0};
+  std::array<std::vector<double>, 2> field;
+};
+
 // One spread being integrated: its nodes and, per node and rail ([0] high, [1] low), the
 // response (the node's worn area per pass on that rail times its cases' weights without the
 // node weight [m^2]), and per interval and rail the error estimate [m^2].
+//
+// The depth field (when every node has one: `field` and `bin_m` set). On a vehicle curve a
+// wheelset's contact sweeps across the gauge corner as the wheelset moves: 15 mm of the rail's arc
+// length within 1.5 std of a 1 mm spread, a patch 2-4 mm wide (docs/wear.md, "Why the depth
+// field does not converge on the curve"). The worn area per pass changes little along the sweep,
+// so a rule that converges the area leaves the depth field a comb of the nodes' separate patches.
+// With fields, every difference the rule measures is the depth field's L1 norm times the bin
+// width, bin_m sum_b |f_b - g_b| [m^2] instead of |a - b|: never less than the area's change
+// (the two are equal where one field lies wholly above the other), and as large as both areas
+// together where two nodes' patches do not overlap; so an interval is bisected until its two
+// nodes' patches overlap, and the step stops when the depth field (not only its area) changed
+// by at most kSpreadFieldChangeFactor x the tolerance in two successive rounds.
 struct SpreadUnit {
   int traffic_index = 0;
   int wheelset = 0;                          // vehicle entries: the wheelset; else 0
@@ -76,13 +106,23 @@ struct SpreadUnit {
   std::vector<std::array<double, 2>> value;  // shape [m]
   std::vector<std::array<double, 2>> error;  // shape [m - 1]
   std::vector<char> frozen;  // per interval: its midpoint failed, never bisected; shape [m - 1]
+  // Optional: per node and rail the depth field per pass [m] (shape [m], or empty: the area
+  // alone), and per rail the bin width [m] (see above).
+  std::vector<std::array<std::vector<double>, 2>> field;
+  std::array<double, 2> bin_m = {0.0, 0.0};
   // The integral per rail: sum_k w_k value_k.
   std::array<double, 2> Integral() const;
+  // The depth field's integral on rail r, sum_k w_k field_k[r] (empty without fields).
+  std::vector<double> FieldIntegral(int r) const;
+  // What the rule measures between two responses of this unit on rail r: the depth fields' L1
+  // distance times the bin width when the unit has fields, else |a - b| [m^2].
+  double Difference(int r, double a, const std::vector<double>* fa, double b,
+                    const std::vector<double>* fb) const;
   // Sets every interval's estimate to the monotone bound mass_i |value_i+1 - value_i|.
   void SetInitialErrors();
-  // Inserts the midpoint of interval i with its response; its two intervals get half the change
-  // of the integral each.
-  void Bisect(int interval, const std::array<double, 2>& midpoint_value);
+  // Inserts the midpoint of interval i with its response (its field when the unit has fields);
+  // its two intervals get half the change of the integral (Difference) each.
+  void Bisect(int interval, const SpreadResponse& midpoint);
 };
 
 // How a step integrated its traffic entries' spreads (StepResult::integration).
@@ -122,15 +162,18 @@ std::vector<SpreadInterval> SelectSpreadIntervals(const std::vector<SpreadUnit>&
 
 // The responses of new nodes: for each (unit, interval being bisected) and its midpoint x, the
 // unit's response there per rail, in the order given; NaN for a node that could not be solved
-// (its interval is then frozen: kept as it is, never bisected).
-using SpreadEvaluator = std::function<std::vector<std::array<double, 2>>(
+// (its interval is then frozen: kept as it is, never bisected). With fields (SpreadUnit::field)
+// every response carries its fields.
+using SpreadEvaluator = std::function<std::vector<SpreadResponse>(
     const std::vector<SpreadInterval>& where, const std::vector<double>& x)>;
 
 // The rounds of the adaptive rule on `units` (their first nodes evaluated, SetInitialErrors
 // done): each round bisects SelectSpreadIntervals' choice, evaluated together, until the
 // estimates meet the tolerance, or every rail's total (`fixed_total`, the parts without spread,
-// plus the units' integrals) changed by at most tolerance x itself in two successive rounds, or
-// nothing is left to bisect. Returns the summary without `nodes`.
+// plus the units' integrals) changed by at most tolerance x itself in two successive rounds (with
+// fields also the L1 change of the rail's summed depth field times its bin width, by at most
+// kSpreadFieldChangeFactor x that), or nothing is left to bisect. Returns the summary without
+// `nodes`; its last_change is the worn area's.
 SpreadIntegrationSummary RefineSpreads(std::vector<SpreadUnit>* units,
                                        const std::array<double, 2>& fixed_total, double tolerance,
                                        const SpreadEvaluator& evaluate);

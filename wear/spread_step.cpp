@@ -16,7 +16,8 @@ SpreadStep IntegrateSpreads(const WearStudy& study, const Profile& high_rail_tra
                             const std::optional<Profile>& low_rail_track,
                             const std::vector<CurvingStart>& curving_starts,
                             std::vector<CurvingStart>* curving_solved, double tolerance,
-                            const SolveCaseBatch& solve) {
+                            const SolveCaseBatch& solve,
+                            const std::optional<SpreadRailBins>& bins) {
   RAILWEAR_CHECK(tolerance > 0.0);
   const std::vector<TrafficCase>& traffic = study.traffic;
   const int n_traffic = static_cast<int>(traffic.size());
@@ -29,7 +30,7 @@ SpreadStep IntegrateSpreads(const WearStudy& study, const Profile& high_rail_tra
   std::vector<int> case_unit;                // per case: its unit, -1 for a case without spread
   std::vector<double> base_weight;           // per case: its weight without the node weight
   std::array<double, 2> fixed = {0.0, 0.0};  // the cases without spread, per rail
-  std::vector<std::map<double, std::array<double, 2>>> response;  // per unit: x -> value
+  std::vector<std::map<double, SpreadResponse>> response;  // per unit: x -> response
   std::vector<LoadCase> batch;
   std::vector<int> batch_unit;
 
@@ -59,23 +60,35 @@ SpreadStep IntegrateSpreads(const WearStudy& study, const Profile& high_rail_tra
   // Solves the batch and books each case's response.
   std::vector<char> dropped;  // per case: its node failed (a refinement node not converged)
   const auto run_batch = [&](bool refinement) {
-    const std::vector<double> areas = solve(batch, refinement);
-    RAILWEAR_CHECK(areas.size() == batch.size());
+    const std::vector<SolvedCase> solved = solve(batch, refinement);
+    RAILWEAR_CHECK(solved.size() == batch.size());
     // A node failed when any of its cases did (a vehicle node has two).
     std::map<std::pair<int, double>, bool> node_failed;
     for (size_t i = 0; i < batch.size(); ++i) {
-      if (std::isnan(areas[i])) node_failed[{batch_unit[i], batch[i].spread_x}] = true;
+      if (std::isnan(solved[i].worn_area_per_pass_m2))
+        node_failed[{batch_unit[i], batch[i].spread_x}] = true;
     }
     for (size_t i = 0; i < batch.size(); ++i) {
       const LoadCase& c = batch[i];
       const int r = static_cast<int>(c.rail);
       const bool failed = node_failed.count({batch_unit[i], c.spread_x}) > 0;
       if (failed) {
-        response[batch_unit[i]][c.spread_x][r] = std::nan("");
+        response[batch_unit[i]][c.spread_x].value[r] = std::nan("");
       } else if (batch_unit[i] < 0) {
-        fixed[r] += c.weight * areas[i];
+        fixed[r] += c.weight * solved[i].worn_area_per_pass_m2;
       } else {
-        response[batch_unit[i]][c.spread_x][r] += c.weight * areas[i];
+        SpreadResponse& node = response[batch_unit[i]][c.spread_x];
+        node.value[r] += c.weight * solved[i].worn_area_per_pass_m2;
+        if (bins) {
+          // Both rails' fields on their bins (zero where the node has no case), so that every
+          // node of every unit has fields of the same shapes.
+          for (int q = 0; q < 2; ++q) {
+            if (node.field[q].empty()) node.field[q].assign(bins->count[q], 0.0);
+          }
+          const std::vector<double>& d = solved[i].depth_per_pass_m;
+          RAILWEAR_CHECK(static_cast<int>(d.size()) == bins->count[r]);
+          for (size_t b = 0; b < d.size(); ++b) node.field[r][b] += c.weight * d[b];
+        }
       }
       out.cases.push_back(c);
       case_unit.push_back(batch_unit[i]);
@@ -116,14 +129,16 @@ SpreadStep IntegrateSpreads(const WearStudy& study, const Profile& high_rail_tra
     }
   }
   run_batch(/*refinement=*/false);
-  const auto take_responses = [&](SpreadUnit* unit,
-                                  const std::map<double, std::array<double, 2>>& r) {
+  const auto take_responses = [&](SpreadUnit* unit, const std::map<double, SpreadResponse>& r) {
     unit->x.clear();
     unit->value.clear();
+    unit->field.clear();
     for (const auto& [x, v] : r) {
       unit->x.push_back(x);
-      unit->value.push_back(v);
+      unit->value.push_back(v.value);
+      if (bins) unit->field.push_back(v.field);
     }
+    if (bins) unit->bin_m = bins->width_m;
   };
   for (size_t u = 0; u < units.size(); ++u) {
     take_responses(&units[u], response[u]);
@@ -137,7 +152,7 @@ SpreadStep IntegrateSpreads(const WearStudy& study, const Profile& high_rail_tra
                       for (size_t k = 0; k < where.size(); ++k)
                         add(node_cases(where[k].unit, x[k]), where[k].unit);
                       run_batch(/*refinement=*/true);
-                      std::vector<std::array<double, 2>> values;
+                      std::vector<SpreadResponse> values;
                       for (size_t k = 0; k < where.size(); ++k)
                         values.push_back(response[where[k].unit].at(x[k]));
                       return values;
@@ -172,7 +187,7 @@ SpreadStep IntegrateSpreads(const WearStudy& study, const Profile& high_rail_tra
   }
   summary.failed_nodes = 0;
   for (const auto& r : response) {
-    for (const auto& [x, v] : r) summary.failed_nodes += std::isnan(v[0]) ? 1 : 0;
+    for (const auto& [x, v] : r) summary.failed_nodes += std::isnan(v.value[0]) ? 1 : 0;
   }
   std::stable_sort(out.order.begin(), out.order.end(),
                    [&](int a, int b) { return key(a) < key(b); });

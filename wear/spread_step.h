@@ -3,6 +3,7 @@
 // pass is not yet converged, each round's new cases solved together.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <vector>
@@ -14,13 +15,26 @@
 
 namespace railwear {
 
+// A solved case: its worn area per pass [m^2] and its depth per pass on its rail's bins [m].
+struct SolvedCase {
+  double worn_area_per_pass_m2 = 0.0;
+  std::vector<double> depth_per_pass_m;
+};
+
 // Solves a batch of load cases (the caller keeps their outcomes, in the order given, after those
-// of the batches before) and returns each one's worn area per pass [m^2]. In a refinement batch
-// (`refinement`) a case whose contact does not converge is NaN instead of an exception: its node
-// is left out (the interval it would have split is not bisected) and the case never reaches the
-// step.
+// of the batches before) and returns each one's worn area per pass and depth field. In a
+// refinement batch (`refinement`) a case whose contact does not converge has a NaN area instead
+// of an exception: its node is left out (the interval it would have split is not bisected) and
+// the case never reaches the step.
 using SolveCaseBatch =
-    std::function<std::vector<double>(const std::vector<LoadCase>& batch, bool refinement)>;
+    std::function<std::vector<SolvedCase>(const std::vector<LoadCase>& batch, bool refinement)>;
+
+// The rails' bins the depth fields are on, per rail ([0] high, [1] low): their count (0 for a
+// rail the study does not have) and width [m].
+struct SpreadRailBins {
+  std::array<int, 2> count = {0, 0};
+  std::array<double, 2> width_m = {0.0, 0.0};
+};
 
 // The adaptive rule's cases of a step.
 struct SpreadStep {
@@ -35,11 +49,14 @@ struct SpreadStep {
 
 // The step's cases on these rails (as internal::StepLoadCases: the track-frame rails, each
 // vehicle entry's curving from `curving_starts`, its solution left in `curving_solved`),
-// integrated over every spread by the adaptive rule to `tolerance` (relative, > 0).
+// integrated over every spread by the adaptive rule to `tolerance` (relative, > 0), on the depth
+// field of `bins` (SpreadUnit's depth-field criterion) unless `bins` is absent (the worn area
+// alone, the rule before the criterion).
 SpreadStep IntegrateSpreads(const WearStudy& study, const Profile& high_rail_track,
                             const std::optional<Profile>& low_rail_track,
                             const std::vector<CurvingStart>& curving_starts,
                             std::vector<CurvingStart>* curving_solved, double tolerance,
-                            const SolveCaseBatch& solve);
+                            const SolveCaseBatch& solve,
+                            const std::optional<SpreadRailBins>& bins = std::nullopt);
 
 }  // namespace railwear

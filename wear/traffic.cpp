@@ -24,7 +24,7 @@ bool TrafficCase::RunsOn(RailSide side) const {
   return rail == side;
 }
 
-static_assert(kMaxQuadraturePoints == kMaxSpreadNodes,
+static_assert(kMaxQuadraturePoints >= kMaxSpreadNodes,
               "fixed rules as fine as the adaptive rule's finest spread (traffic.h)");
 
 void GaussHermiteProbabilists(int n, std::vector<double>* nodes, std::vector<double>* weights) {

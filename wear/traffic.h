@@ -151,10 +151,11 @@ inline RailSide RailOfWheel(int wheel) { return (wheel - 1) % 2 == 0 ? RailSide:
 // "ENTRY / wheelset W high" (or low).
 std::string WheelName(const TrafficCase& entry, int wheel);
 
-// The most fixed Gauss-Hermite nodes per spread: as many as the adaptive rule's most nodes per
+// The most fixed Gauss-Hermite nodes per spread: at least the adaptive rule's most nodes per
 // spread (kMaxSpreadNodes, wear/spread_integration.h), so that fixed rules as fine as the adaptive
-// one can be compared with it (issue 16's studies of 15, 20 and 30 fixed nodes). Was 20.
-inline constexpr int kMaxQuadraturePoints = 41;
+// one can be compared with it (issue 16's studies of 15 to 61 fixed nodes, docs/wear.md). Was 20,
+// then 41.
+inline constexpr int kMaxQuadraturePoints = 81;
 
 // Nodes x_k and weights w_k (sum 1) with E[f(X)] ~ sum_k w_k f(x_k) for X ~ N(0, 1), exact for
 // polynomials up to degree 2n - 1. n in [1, kMaxQuadraturePoints].

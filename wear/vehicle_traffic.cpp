@@ -9,6 +9,7 @@
 
 #include "core/geometry/wheel_rail_geometry.h"
 #include "core/profile/builtin_profiles.h"
+#include "wear/spread_integration.h"
 
 namespace railwear {
 
@@ -206,7 +207,10 @@ std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index
       SolveVehicleEquilibrium(study, traffic_index, high_track, low_track, start);
   if (solved) *solved = eq.result.Start();
   std::vector<double> nodes = {0.0}, weights = {1.0};
-  if (c.lateral_shift_std_m > 0.0) {
+  if (c.lateral_shift_std_m > 0.0 && !study.options.spread_nodes.empty()) {
+    nodes = study.options.spread_nodes;  // a study's piecewise-linear rule (WearOptions)
+    weights = LinearGaussianWeights(nodes);
+  } else if (c.lateral_shift_std_m > 0.0) {
     GaussHermiteProbabilists(study.options.quadrature_points, &nodes, &weights);
   }
   std::vector<LoadCase> cases;

@@ -366,6 +366,12 @@ void ValidateWearStudy(const WearStudy& study) {
   RequirePositive("profile_spacing_mm", o.profile_spacing_m * 1e3);
   if (o.damage_layer_m) RequirePositive("damage_layer_mm", *o.damage_layer_m * 1e3);
   ValidateQuadraturePoints(o.quadrature_points);
+  for (size_t k = 0; k < o.spread_nodes.size(); ++k) {
+    if (!std::isfinite(o.spread_nodes[k]) || (k > 0 && !(o.spread_nodes[k] > o.spread_nodes[k - 1]))) {
+      throw InputError(fmt::format("wear: spread_nodes[{}] = {}: expected finite nodes in strictly "
+                                   "increasing order", k, o.spread_nodes[k]));
+    }
+  }
   if (o.integration_tolerance && !(*o.integration_tolerance >= kMinIntegrationTolerance &&
                                    *o.integration_tolerance <= kMaxIntegrationTolerance)) {
     throw InputError(fmt::format("wear: integration_tolerance = {}: expected {} to {}",
@@ -747,14 +753,19 @@ StepResult RunWearStep(const WearStudy& given, const UnwornRails& unworn, const 
           std::vector<char> failed;
           std::vector<CaseOutcome> more =
               SolveLoadCases(study, targets, batch, refinement ? &failed : nullptr);
-          std::vector<double> areas;
+          std::vector<SolvedCase> out;
           for (size_t i = 0; i < more.size(); ++i) {
-            areas.push_back(refinement && failed[i] ? std::nan("")
-                                                    : more[i].summary.worn_area_per_pass_m2);
+            if (refinement && failed[i]) {
+              out.push_back({std::nan(""), {}});
+            } else {
+              out.push_back({more[i].summary.worn_area_per_pass_m2, more[i].depth_per_pass_m});
+            }
             solved.push_back(std::move(more[i]));
           }
-          return areas;
-        });
+          return out;
+        },
+        SpreadRailBins{{high.grid.n, low ? low->grid.n : 0},
+                       {high.grid.h_m, low ? low->grid.h_m : 0.0}});
     for (const int i : spread.order) {
       cases.push_back(spread.cases[i]);
       outcomes.push_back(std::move(solved[i]));
@@ -768,7 +779,10 @@ StepResult RunWearStep(const WearStudy& given, const UnwornRails& unworn, const 
     step.integration = FixedRuleSummary(study, cases);
   }
 
-  for (const CaseOutcome& c : outcomes) step.cases.push_back(c.summary);
+  for (const CaseOutcome& c : outcomes) {
+    step.cases.push_back(c.summary);
+    step.cases.back().depth_per_pass_m = c.depth_per_pass_m;
+  }
   high.Collect(outcomes, cases, o.smoothing);
   if (low) low->Collect(outcomes, cases, o.smoothing);
   for (WheelWork& w : wheels) w.Collect(outcomes, cases, o.smoothing);

@@ -80,6 +80,13 @@ struct WearOptions {
   // Gauss-Hermite nodes per traffic entry with a lateral spread, 1..kMaxQuadraturePoints (41;
   // the fixed rule).
   int quadrature_points = 5;
+  // Studies of the spread rule only (no scene key): when not empty, the fixed rule of every
+  // vehicle entry's wheelsets is the piecewise-linear rule (LinearGaussianWeights,
+  // wear/spread_integration.h) on these strictly increasing nodes [standard-normal units] instead
+  // of quadrature_points Gauss-Hermite nodes (prescribed entries keep Gauss-Hermite): the fine
+  // references of the depth-field study on the vehicle curve (docs/wear.md), which no
+  // Gauss-Hermite rule up to 61 nodes converges.
+  std::vector<double> spread_nodes;
   // Width of the arc-length bins the wear depth is collected on [m], > 0.
   double bin_m = 1e-4;
   // Arc-length spacing of the rail profile's points after each update [m], > 0.
@@ -224,6 +231,10 @@ struct LoadCaseSummary {
   double wheel_worn_area_per_pass_m2 = 0.0;
   double contact_angle_rad = 0.0;      // of the most loaded patch
   double contact_y_m = 0.0;            // its pressure centre on the rail (track frame)
+  // The case's own depth per pass on its rail's bins (unweighted: the step's field is the sum of
+  // weight x this over the rail's cases) [m], shape [that rail's grid.n]: what studies of the
+  // spread rule compare per wheelset (tests/tools/spread_depth_study.cpp).
+  std::vector<double> depth_per_pass_m;
 };
 
 // What a step did to one rail (the low rail's part of StepResult; the high rail's are the fields

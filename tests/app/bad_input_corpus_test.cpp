@@ -109,12 +109,12 @@ std::vector<CorpusCase> Corpus() {
                "wear s.toml --db s.sqlite",
                2,
                {"s.toml:", "key 'wear.integration_tolerance'", "not both"}});
-  // The fixed rule's node count: 1 to 41 (the adaptive rule's most nodes per spread).
+  // The fixed rule's node count: 1 to 81 (at least the adaptive rule's most nodes per spread).
   c.push_back({"quadrature_points_out_of_range",
-               {{"s.toml", Replace(wear, "quadrature_points = 3\n", "quadrature_points = 42\n")}},
+               {{"s.toml", Replace(wear, "quadrature_points = 3\n", "quadrature_points = 82\n")}},
                "wear s.toml --db s.sqlite",
                2,
-               {"s.toml:", "key 'wear.quadrature_points' = 42", "[1, 42)"}});
+               {"s.toml:", "key 'wear.quadrature_points' = 82", "[1, 82)"}});
   // [model] tangential (issue 16 point 4: "auto" joined the choices).
   c.push_back({"tangential_unknown",
                {{"s.toml", Replace(tread, "accuracy = \"standard\"",

@@ -12,8 +12,8 @@ namespace {
 
 TEST(TrafficTest, GaussHermiteIntegratesNormalMoments) {
   // E[X^2k] of N(0,1) = (2k-1)!!; an n-point rule is exact up to degree 2n-1. Up to the most
-  // fixed nodes a scene takes (kMaxQuadraturePoints, 41: Golub-Welsch stays accurate there).
-  std::vector<int> counts = {15, 20, 30, kMaxQuadraturePoints};
+  // fixed nodes a scene takes (kMaxQuadraturePoints, 81: Golub-Welsch stays accurate there).
+  std::vector<int> counts = {15, 20, 30, 41, 61, kMaxQuadraturePoints};
   for (int n = 1; n <= 9; ++n) counts.push_back(n);
   for (const int n : counts) {
     std::vector<double> x, w;
