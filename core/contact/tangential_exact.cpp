@@ -196,8 +196,7 @@ struct CellKernelTable {
 struct RollingGenerator {
   int nx = 0, ns = 0;
   std::vector<double> xx, xs, ss;
-  RollingGenerator(const PatchGrid& grid, const CellKernelTable& table)
-      : nx(grid.nx), ns(grid.ns) {
+  RollingGenerator(const PatchGrid& grid, const CellKernelTable& table) : nx(grid.nx), ns(grid.ns) {
     const size_t size = static_cast<size_t>(2 * nx - 1) * (2 * ns - 1);
     xx.resize(size);
     xs.resize(size);
@@ -401,8 +400,15 @@ class CroppedRollingProduct final : public RollingOperator {
  public:
   CroppedRollingProduct(const PatchGrid& grid, const RollingGenerator& generator, int x0, int mx,
                         int s0, int ms)
-      : nx_(grid.nx), n_(grid.cells()), x0_(x0), mx_(mx), s0_(s0), ms_(ms),
-        inner_(mx, ms, generator), qx_(mx * ms), qs_(mx * ms) {}
+      : nx_(grid.nx),
+        n_(grid.cells()),
+        x0_(x0),
+        mx_(mx),
+        s0_(s0),
+        ms_(ms),
+        inner_(mx, ms, generator),
+        qx_(mx * ms),
+        qs_(mx * ms) {}
   bool Covers(int x0, int mx, int s0, int ms) const {
     return x0 == x0_ && mx == mx_ && s0 == s0_ && ms == ms_;
   }

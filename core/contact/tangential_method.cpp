@@ -43,8 +43,7 @@ TangentialSolution SolveByFastsim(AccuracyPreset, const PatchGrid& grid,
 // warm start kept in `reuse` when there is one.
 TangentialSolution SolveExact(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                               const RollingInput& input, const Material& wheel,
-                              const Material& rail, ExactTangentialReuse* reuse,
-                              double tolerance) {
+                              const Material& rail, ExactTangentialReuse* reuse, double tolerance) {
   ExactTangentialOptions options;
   options.tolerance = tolerance;
   if (reuse == nullptr) return SolveTangentialExact(grid, pressure_Pa, input, wheel, rail, options);

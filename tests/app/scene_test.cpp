@@ -327,9 +327,9 @@ TEST(SceneTest, TangentialToleranceSetsTheExactSolversStop) {
   EXPECT_EQ(ParseScene(kMinimal, "a.toml").problem.tangential_tolerance,
             kDefaultExactTangentialTolerance);
   EXPECT_EQ(kDefaultExactTangentialTolerance, 1e-6);
-  const Scene s = ParseScene(std::string(kMinimal) +
-                                 "[model]\ntangential = \"exact\"\ntangential_tolerance = 1e-9\n",
-                             "a.toml");
+  const Scene s = ParseScene(
+      std::string(kMinimal) + "[model]\ntangential = \"exact\"\ntangential_tolerance = 1e-9\n",
+      "a.toml");
   EXPECT_EQ(s.problem.tangential_tolerance, 1e-9);
   const std::string m = std::string(kMinimal) + "[model]\n";
   EXPECT_TRUE(Contains(ErrorOf(m + "tangential_tolerance = 0.1\n"),
@@ -340,8 +340,8 @@ TEST(SceneTest, TangentialToleranceSetsTheExactSolversStop) {
   EXPECT_TRUE(Contains(ErrorOf(m + "tangential_tolerance = -1e-6\n"),
                        "key 'model.tangential_tolerance' = -1e-06: expected a number > 0"));
   EXPECT_TRUE(Contains(ErrorOf(m + "tangential_tolerance = 1e-12\n"), "[1e-10, 0.01]"));
-  EXPECT_TRUE(Contains(ErrorOf(m + "tangential_tolerance = inf\n"),
-                       "key 'model.tangential_tolerance'"));
+  EXPECT_TRUE(
+      Contains(ErrorOf(m + "tangential_tolerance = inf\n"), "key 'model.tangential_tolerance'"));
   EXPECT_TRUE(Contains(ErrorOf(m + "tangential_tolerance = \"loose\"\n"),
                        "key 'model.tangential_tolerance' = \"loose\""));
 }
