@@ -467,6 +467,7 @@ nlohmann::json MakeContactJson(const Scene& scene, const ContactResult& r, bool 
   j["model"] = ModelJson(r.model);
   j["model"]["normal_criterion"] = ToString(scene.problem.solver.criterion);
   j["model"]["normal_tolerance"] = scene.problem.solver.tolerance;
+  j["model"]["tangential_tolerance"] = scene.problem.tangential_tolerance;
   j["approach_mm"] = r.approach_m * kToMm;
   j["iterations"] = r.iterations;
   j["time_ms"] = r.time_s * kToMs;

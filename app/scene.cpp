@@ -205,6 +205,20 @@ void ReadNormalSolver(const Fields& t, NormalSolverOptions* solver) {
   }
 }
 
+// [model] tangential_tolerance = eps: the exact tangential solver's stop, the largest change one
+// local solve would make to any cell's traction relative to mu p_max (ExactTangentialOptions::
+// tolerance; 1e-6 unless given, 4 significant digits of the creep forces with margin,
+// docs/speed.md). From 1e-10 (a tenth of the strict 1e-9 the solver's tests use, far above the
+// FFT products' rounding) to 1e-2 (2 digits).
+constexpr double kMinTangentialTolerance = 1e-10, kMaxTangentialTolerance = 1e-2;
+
+void ReadTangentialTolerance(const Fields& t, ContactSetup* setup) {
+  if (const auto v = t.Number("tangential_tolerance", Positive(),
+                              Closed(kMinTangentialTolerance, kMaxTangentialTolerance))) {
+    setup->tangential_tolerance = *v;
+  }
+}
+
 void ReadModel(const Fields& top, Scene* scene) {
   ModelOptions& model = scene->problem.model;
   model = MakeModelOptions(ModelKind::kConformal);
@@ -215,7 +229,7 @@ void ReadModel(const Fields& top, Scene* scene) {
   if (!t) return;
   t->AllowOnly({"kind", "geometry", "kernel", "constants", "influence_constants", "accuracy",
                 "cell_mm", "tangential", "pressure_limit", "pressure_limit_MPa", "normal_criterion",
-                "normal_tolerance"});
+                "normal_tolerance", "tangential_tolerance"});
   if (const auto kind = t->Choice("kind", EnumChoices(kModelKindNames))) {
     const InfluenceConstants constants = model.constants;
     model = MakeModelOptions(*ModelKindFromString(*kind));
@@ -232,6 +246,7 @@ void ReadModel(const Fields& top, Scene* scene) {
   }
   ReadInfluenceConstants(*t, scene->path, scene);
   ReadNormalSolver(*t, &scene->problem.solver);
+  ReadTangentialTolerance(*t, &scene->problem);
 }
 
 // [model] pressure_limit = "none" | "hardness", or pressure_limit_MPa = p_lim: the elastic-

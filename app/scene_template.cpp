@@ -68,6 +68,10 @@ tangential = "fastsim"        # "fastsim" | "exact" | "auto"; default "fastsim":
                               # largest elastic displacement (docs/speed.md)
 # normal_tolerance = 1e-4     # in [1e-13, 1e-2]; default 1e-4 (4 significant digits with
                               # margin) for "pressure-update", 1e-10 for "gap-residual"
+# tangential_tolerance = 1e-6 # in [1e-10, 1e-2]; default 1e-6: the exact tangential solver
+                              # stops when one more local solve would change no cell's traction
+                              # by more than this times mu p_max (4 significant digits of the
+                              # creep forces with margin; docs/speed.md). FASTSIM ignores it
 
 [materials]                   # optional table; without it both bodies are steel,
                               # E_MPa = 210000 and nu = 0.28. With it, give both bodies.

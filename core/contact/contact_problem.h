@@ -40,6 +40,11 @@ struct ContactSetup {
   NormalSolverOptions solver;
   // The rolling stage's tangential solver (used when a problem carries RollingOptions).
   TangentialMethod tangential = TangentialMethod::kFastsim;
+  // The exact tangential solver's stopping tolerance, relative to mu p_max (the largest change
+  // one local solve would make to any cell's traction; ExactTangentialOptions::tolerance), > 0.
+  // The default keeps the creep forces' 4 significant digits with margin (tangential_exact.cpp);
+  // FASTSIM ignores it. A scene's [model] tangential_tolerance.
+  double tangential_tolerance = kDefaultExactTangentialTolerance;
   // The elastic-perfectly-plastic pressure limit of the normal solve (contact_types.h); none by
   // default. Needs a grid model (not kind = hertz).
   PressureLimit pressure_limit;

@@ -144,7 +144,8 @@ RollingPatch SolveRollingPatch(const ContactProblem& problem, const PatchResult&
   rolling.creepage = AverageCreepage(patch.grid, patch.pressure_Pa, in);
   rolling.tangential =
       SolveTangential(problem.tangential, problem.model.accuracy, patch.grid, patch.pressure_Pa, in,
-                      problem.wheel_material, problem.rail_material, &rolling.choice, reuse);
+                      problem.wheel_material, problem.rail_material, &rolling.choice, reuse,
+                      problem.tangential_tolerance);
   // The patch's equivalent ellipse (the semi-axes FASTSIM uses), reported with the patch.
   const ContactEllipse used = EstimateContactEllipse(patch.grid, patch.pressure_Pa);
   rolling.semi_axis_x_m = used.semi_axis_x_m;

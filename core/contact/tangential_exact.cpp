@@ -148,36 +148,68 @@ class RollingKernel {
 
 // Columns per block of the sweep (see the header): balances the direct refreshes inside a block
 // (about cells_loaded * (block / 2) * mean loaded column length multiply-adds per sweep) against
-// the FFT products between blocks (nx / block per sweep, each about lx ls log2(lx ls) work for
-// the padded lx by ls transforms); kBlockCostRatio, measured on the benchmark grids (40 x 20 to
-// 70 x 80, best block 16 to 24 columns), converts the FFT work to refresh units.
+// the FFT products between blocks (span / block per sweep, span the x-columns from the first to
+// the last loaded one, each about lx ls log2(lx ls) work for the padded lx by ls transforms of
+// the whole nx by ns grid); kBlockCostRatio, measured on the benchmark grids (40 x 20 to 70 x 80,
+// best block 16 to 24 columns), converts the FFT work to refresh units. The blocks then share the
+// span evenly: ceil(span / k) blocks of equal width (to one column) instead of blocks of k with a
+// remainder, which keeps the products and lowers the refreshes (they grow as the square of a
+// block's width).
 constexpr double kBlockCostRatio = 2.0;
-int FftBlockColumns(int nx, int ns, int cells_loaded, double mean_column_length) {
+int FftBlockColumns(int nx, int ns, int span, int cells_loaded, double mean_column_length) {
   const double lx = internal::RealFftSize(nx), ls = internal::ComplexFftSize(ns);
   const double product = lx * ls * std::log2(lx * ls);
   const double refresh = std::max(1.0, 0.5 * cells_loaded * mean_column_length);
-  const double k = std::sqrt(kBlockCostRatio * nx * product / refresh);
-  return std::clamp(static_cast<int>(std::lround(k)), 1, nx);
+  const double k = std::sqrt(kBlockCostRatio * span * product / refresh);
+  const int width = std::clamp(static_cast<int>(std::lround(k)), 1, span);
+  const int blocks = (span + width - 1) / width;
+  return (span + blocks - 1) / blocks;
 }
+
+// The cell kernel A(d dx, e ds) (CerrutiCellInfluence, not divided by dx) on the offsets
+// d in [-nx, nx], e in (-ns, ns), d fastest: evaluated once per set-up, the source of both the
+// rolling operator's generator and the sweeps' tables. Each entry is the very call RollingKernel
+// and the tables made before (the same arguments), so the set-up's results are unchanged bit for
+// bit; it evaluates the closed forms once per offset instead of three times (twice for B's
+// difference, once for the tables).
+struct CellKernelTable {
+  int nx = 0, ns = 0, tx = 0;
+  std::vector<TangentialBlock> a;
+  CellKernelTable(const PatchGrid& grid, const internal::CerrutiCoefficients& c)
+      : nx(grid.nx), ns(grid.ns), tx(2 * grid.nx + 1) {
+    a.resize(static_cast<size_t>(tx) * (2 * ns - 1));
+    for (int e = -(ns - 1); e <= ns - 1; ++e) {
+      for (int d = -nx; d <= nx; ++d) {
+        a[At(d, e)] =
+            internal::CerrutiCellInfluence(c, d * grid.dx_m, e * grid.ds_m, grid.dx_m, grid.ds_m);
+      }
+    }
+  }
+  size_t At(int d, int e) const {
+    return static_cast<size_t>(e + ns - 1) * tx + static_cast<size_t>(d + nx);
+  }
+};
 
 // The rolling operator's blocks B(d, e) on the offsets of the grid, d in (-nx, nx), e in (-ns, ns)
 // (d fastest): the generator of the FFT products and the source of the loaded cells' dense
-// matrix (LoadedDenseProduct).
+// matrix (LoadedDenseProduct). B(d, e) = (A(d, e) - A(d + 1, e)) / dx, as RollingKernel.
 struct RollingGenerator {
   int nx = 0, ns = 0;
   std::vector<double> xx, xs, ss;
-  RollingGenerator(const PatchGrid& grid, const RollingKernel& kernel) : nx(grid.nx), ns(grid.ns) {
+  RollingGenerator(const PatchGrid& grid, const CellKernelTable& table) : nx(grid.nx), ns(grid.ns) {
     const size_t size = static_cast<size_t>(2 * nx - 1) * (2 * ns - 1);
     xx.resize(size);
     xs.resize(size);
     ss.resize(size);
+    const double dx = grid.dx_m;
     for (int e = -(ns - 1); e <= ns - 1; ++e) {
       for (int d = -(nx - 1); d <= nx - 1; ++d) {
-        const TangentialBlock b = kernel(d, e);
+        const TangentialBlock& a = table.a[table.At(d, e)];
+        const TangentialBlock& b = table.a[table.At(d + 1, e)];
         const size_t k = At(d, e);
-        xx[k] = b.xx;
-        xs[k] = b.xs;
-        ss[k] = b.ss;
+        xx[k] = (a.xx - b.xx) / dx;
+        xs[k] = (a.xs - b.xs) / dx;
+        ss[k] = (a.ss - b.ss) / dx;
       }
     }
   }
@@ -234,16 +266,19 @@ class DenseRollingOperator final : public RollingOperator {
 // s-major [ks * hx + kx].
 class FftRollingOperator final : public RollingOperator {
  public:
-  FftRollingOperator(const PatchGrid& grid, const RollingGenerator& generator)
-      : nx_(grid.nx),
-        ns_(grid.ns),
-        fft_(grid.nx, grid.ns),
+  // The products on an nx by ns grid (at most the generator's: the products of a sub-rectangle
+  // of that size anywhere in the generator's grid, CroppedRollingProduct).
+  FftRollingOperator(int nx, int ns, const RollingGenerator& generator)
+      : nx_(nx),
+        ns_(ns),
+        fft_(nx, ns),
         spec_xx_(fft_.NewSpectrum()),
         spec_xs_(fft_.NewSpectrum()),
         spec_ss_(fft_.NewSpectrum()),
         qx_hat_(fft_.NewSpectrum()),
         qs_hat_(fft_.NewSpectrum()),
-        out_hat_(fft_.NewSpectrum()) {
+        out_hat_(fft_.NewSpectrum()),
+        out_s_hat_(fft_.NewSpectrum()) {
     const int lx = fft_.lx(), ls = fft_.ls();
     const size_t size = static_cast<size_t>(lx) * ls;
     std::vector<double> gxx(size, 0.0), gxs(size, 0.0), gss(size, 0.0);
@@ -269,15 +304,31 @@ class FftRollingOperator final : public RollingOperator {
              Eigen::VectorXd* ss) const override {
     fft_.Forward(qx.data(), qx_hat_.data());
     fft_.Forward(qs.data(), qs_hat_.data());
+    // out_x = xx qx + xs qs and out_s = xs qx + ss qs per frequency, in one pass over the
+    // spectra. Written out in real arithmetic: the same products and sums, in the same order,
+    // as std::complex's operator* and operator+ (so the same bits), without their NaN
+    // recovery branch, which kept the loop from vectorising (no spectrum here is NaN).
     const size_t n = out_hat_.size();
-    for (size_t k = 0; k < n; ++k)
-      out_hat_[k] = spec_xx_[k] * qx_hat_[k] + spec_xs_[k] * qs_hat_[k];
+    const double* __restrict a = reinterpret_cast<const double*>(spec_xx_.data());
+    const double* __restrict b = reinterpret_cast<const double*>(spec_xs_.data());
+    const double* __restrict c = reinterpret_cast<const double*>(spec_ss_.data());
+    const double* __restrict u = reinterpret_cast<const double*>(qx_hat_.data());
+    const double* __restrict v = reinterpret_cast<const double*>(qs_hat_.data());
+    double* __restrict ox = reinterpret_cast<double*>(out_hat_.data());
+    double* __restrict os = reinterpret_cast<double*>(out_s_hat_.data());
+    for (size_t k = 0; k < n; ++k) {
+      const double ar = a[2 * k], ai = a[2 * k + 1], br = b[2 * k], bi = b[2 * k + 1];
+      const double cr = c[2 * k], ci = c[2 * k + 1], ur = u[2 * k], ui = u[2 * k + 1];
+      const double vr = v[2 * k], vi = v[2 * k + 1];
+      ox[2 * k] = (ar * ur - ai * ui) + (br * vr - bi * vi);
+      ox[2 * k + 1] = (ar * ui + ai * ur) + (br * vi + bi * vr);
+      os[2 * k] = (br * ur - bi * ui) + (cr * vr - ci * vi);
+      os[2 * k + 1] = (br * ui + bi * ur) + (cr * vi + ci * vr);
+    }
     if (sx->size() != nx_ * ns_) sx->resize(nx_ * ns_);
     fft_.Inverse(out_hat_.data(), sx->data());
-    for (size_t k = 0; k < n; ++k)
-      out_hat_[k] = spec_xs_[k] * qx_hat_[k] + spec_ss_[k] * qs_hat_[k];
     if (ss->size() != nx_ * ns_) ss->resize(nx_ * ns_);
-    fft_.Inverse(out_hat_.data(), ss->data());
+    fft_.Inverse(out_s_hat_.data(), ss->data());
   }
 
  private:
@@ -286,7 +337,7 @@ class FftRollingOperator final : public RollingOperator {
   internal::PaddedFft2d fft_;
   Spectrum spec_xx_, spec_xs_, spec_ss_;  // [hx * ls], scaled by 1/(lx ls)
   // Scratch (hence mutable; not for concurrent use).
-  mutable Spectrum qx_hat_, qs_hat_, out_hat_;
+  mutable Spectrum qx_hat_, qs_hat_, out_hat_, out_s_hat_;
 };
 
 // The rolling operator restricted to the m loaded cells, a dense 2m x 2m matrix [Bxx Bxs; Bsx Bss]
@@ -336,6 +387,52 @@ class LoadedDenseProduct final : public RollingOperator {
   const std::vector<int>& loaded_;
   Eigen::MatrixXd b_;
   mutable Eigen::VectorXd q_, s_;  // scratch
+};
+
+// The FFT products on the loaded cells' bounding rectangle: columns x0 .. x0 + mx - 1 and rows
+// s0 .. s0 + ms - 1 of the grid, the smallest rectangle holding every loaded cell. B is
+// Toeplitz, so the rectangle's operator is the generator's on its own offsets, and the padded
+// transforms shrink with it (lengths for mx and ms instead of nx and ns; the potential contact
+// area of a conformal patch is often twice as long as its contact). Tractions outside the
+// rectangle are 0 (unloaded) and the slip there is never read (set to 0 here), so the products
+// agree with the whole grid's to rounding.
+class CroppedRollingProduct final : public RollingOperator {
+ public:
+  CroppedRollingProduct(const PatchGrid& grid, const RollingGenerator& generator, int x0, int mx,
+                        int s0, int ms)
+      : nx_(grid.nx),
+        n_(grid.cells()),
+        x0_(x0),
+        mx_(mx),
+        s0_(s0),
+        ms_(ms),
+        inner_(mx, ms, generator),
+        qx_(mx * ms),
+        qs_(mx * ms) {}
+  bool Covers(int x0, int mx, int s0, int ms) const {
+    return x0 == x0_ && mx == mx_ && s0 == s0_ && ms == ms_;
+  }
+  void Apply(const Eigen::VectorXd& qx, const Eigen::VectorXd& qs, Eigen::VectorXd* sx,
+             Eigen::VectorXd* ss) const override {
+    for (int j = 0; j < ms_; ++j) {
+      const int from = (s0_ + j) * nx_ + x0_;
+      qx_.segment(j * mx_, mx_) = qx.segment(from, mx_);
+      qs_.segment(j * mx_, mx_) = qs.segment(from, mx_);
+    }
+    inner_.Apply(qx_, qs_, &sx_, &ss_);
+    sx->setZero(n_);
+    ss->setZero(n_);
+    for (int j = 0; j < ms_; ++j) {
+      const int to = (s0_ + j) * nx_ + x0_;
+      sx->segment(to, mx_) = sx_.segment(j * mx_, mx_);
+      ss->segment(to, mx_) = ss_.segment(j * mx_, mx_);
+    }
+  }
+
+ private:
+  int nx_, n_, x0_, mx_, s0_, ms_;
+  FftRollingOperator inner_;
+  mutable Eigen::VectorXd qx_, qs_, sx_, ss_;  // scratch
 };
 
 // Anderson acceleration (type II, Walker & Ni 2011) of the fixed-point map x -> G(x) of one
@@ -471,6 +568,9 @@ struct SweepTables {
   std::vector<int> chain_end;
   // Loaded span of each x-column [first, last] in s.
   std::vector<int> first_loaded_col, last_loaded_col;
+  // The first and the last x-column with a loaded cell (the sweeps visit these and the columns
+  // between them only).
+  int col_lo = 0, col_hi = -1;
 
   double Table(const std::vector<double>& t, int d, int e) const {
     return t[static_cast<size_t>(e + ns - 1) * kernel->tx + (d + nx)];
@@ -483,15 +583,13 @@ struct SweepTables {
   }
 };
 
-KernelTables MakeKernelTables(const PatchGrid& grid,
-                              const internal::CerrutiCoefficients& coefficients) {
+KernelTables MakeKernelTables(const PatchGrid& grid, const CellKernelTable& cells) {
   const int tx = 2 * grid.nx + 1;  // table row length (d = -nx .. nx)
   const int ts = 2 * grid.ns - 1;
   std::vector<double> a_xx(static_cast<size_t>(tx) * ts), a_xs(a_xx.size()), a_ss(a_xx.size());
   for (int e = -(grid.ns - 1); e <= grid.ns - 1; ++e) {
     for (int d = -grid.nx; d <= grid.nx; ++d) {
-      const TangentialBlock b = internal::CerrutiCellInfluence(coefficients, d * grid.dx_m,
-                                                               e * grid.ds_m, grid.dx_m, grid.ds_m);
+      const TangentialBlock& b = cells.a[cells.At(d, e)];
       const size_t k = static_cast<size_t>(e + grid.ns - 1) * tx + (d + grid.nx);
       a_xx[k] = b.xx / grid.dx_m;
       a_xs[k] = b.xs / grid.dx_m;
@@ -560,19 +658,28 @@ SweepTables MakeSweepTables(const PatchGrid& grid, const KernelTables& kernel,
   out.chain_end = std::move(chain_end);
   out.first_loaded_col = std::move(first_loaded_col);
   out.last_loaded_col = std::move(last_loaded_col);
+  out.col_lo = grid.nx;
+  for (int ix = 0; ix < grid.nx; ++ix) {
+    if (out.last_loaded_col[ix] < 0) continue;
+    out.col_lo = std::min(out.col_lo, ix);
+    out.col_hi = ix;
+  }
   return out;
 }
 
-// The x-columns per block of a sweep.
+// The x-columns per block of a sweep (some cell loaded). The blocks cover the loaded columns'
+// span (tables.col_lo .. col_hi) only: columns outside it hold nothing to sweep, and a product
+// after the last block that holds loaded cells would refresh a slip no later block reads.
 int ChooseBlockColumns(const PatchGrid& grid, const SweepTables& tables, bool dense,
                        const ExactTangentialOptions& opt) {
   const std::vector<int>& first_loaded_col = tables.first_loaded_col;
   const std::vector<int>& last_loaded_col = tables.last_loaded_col;
+  const int span = tables.col_hi - tables.col_lo + 1;
   // Blocks of the sweep: with the dense operator a product costs as much as a sweep of direct
-  // refreshes, so one block spans the grid (the plain sweep).
-  int block_columns = grid.nx;
+  // refreshes, so one block spans the loaded columns (the plain sweep).
+  int block_columns = span;
   if (!dense && opt.block_columns > 0) {
-    block_columns = std::min(opt.block_columns, grid.nx);
+    block_columns = std::min(opt.block_columns, span);
   } else if (!dense) {
     int cells_loaded = 0, columns_loaded = 0;
     for (int ix = 0; ix < grid.nx; ++ix) {
@@ -580,7 +687,7 @@ int ChooseBlockColumns(const PatchGrid& grid, const SweepTables& tables, bool de
       ++columns_loaded;
       cells_loaded += last_loaded_col[ix] - first_loaded_col[ix] + 1;
     }
-    block_columns = FftBlockColumns(grid.nx, grid.ns, cells_loaded,
+    block_columns = FftBlockColumns(grid.nx, grid.ns, span, cells_loaded,
                                     static_cast<double>(cells_loaded) / columns_loaded);
   }
   return block_columns;
@@ -763,6 +870,10 @@ struct ExactTangentialSetup::Impl {
   ExactTangentialOptions::Method method = ExactTangentialOptions::Method::kAuto;
   std::unique_ptr<RollingGenerator> generator;  // with kFft only
   std::unique_ptr<RollingOperator> op;
+  // The products on the last solve's loaded rectangle when it pads to shorter transforms than
+  // the grid (kFft only): kept for the next solve with the same rectangle (the solves of a
+  // pitch search or a vertical balance on one patch), built anew for another.
+  mutable std::unique_ptr<CroppedRollingProduct> cropped;
   KernelTables kernel_tables;
 };
 
@@ -782,14 +893,14 @@ ExactTangentialSetup::ExactTangentialSetup(const PatchGrid& grid, const Material
   impl_->dx_m = grid.dx_m;
   impl_->ds_m = grid.ds_m;
   impl_->method = method;
-  const RollingKernel kernel(grid, coefficients);
+  const CellKernelTable cells(grid, coefficients);
   if (method == ExactTangentialOptions::Method::kDense) {
-    impl_->op = std::make_unique<DenseRollingOperator>(grid, kernel);
+    impl_->op = std::make_unique<DenseRollingOperator>(grid, RollingKernel(grid, coefficients));
   } else {
-    impl_->generator = std::make_unique<RollingGenerator>(grid, kernel);
-    impl_->op = std::make_unique<FftRollingOperator>(grid, *impl_->generator);
+    impl_->generator = std::make_unique<RollingGenerator>(grid, cells);
+    impl_->op = std::make_unique<FftRollingOperator>(grid.nx, grid.ns, *impl_->generator);
   }
-  impl_->kernel_tables = MakeKernelTables(grid, coefficients);
+  impl_->kernel_tables = MakeKernelTables(grid, cells);
 }
 
 ExactTangentialSetup::~ExactTangentialSetup() = default;
@@ -887,6 +998,23 @@ TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& 
       n_loaded <= kLoadedDenseMaxCells) {
     loaded_product.emplace(grid, *setup.generator, loaded);
     op = &*loaded_product;
+  } else if (setup.generator) {
+    // The loaded cells' bounding rectangle: its products when they pad to shorter transforms.
+    int s0 = grid.ns, s1 = -1;
+    for (int ix = tables.col_lo; ix <= tables.col_hi; ++ix) {
+      if (tables.last_loaded_col[ix] < 0) continue;
+      s0 = std::min(s0, tables.first_loaded_col[ix]);
+      s1 = std::max(s1, tables.last_loaded_col[ix]);
+    }
+    const int x0 = tables.col_lo, mx = tables.col_hi - tables.col_lo + 1, ms = s1 - s0 + 1;
+    if (internal::RealFftSize(mx) < internal::RealFftSize(grid.nx) ||
+        internal::ComplexFftSize(ms) < internal::ComplexFftSize(grid.ns)) {
+      if (!setup.cropped || !setup.cropped->Covers(x0, mx, s0, ms)) {
+        setup.cropped =
+            std::make_unique<CroppedRollingProduct>(grid, *setup.generator, x0, mx, s0, ms);
+      }
+      op = setup.cropped.get();
+    }
   }
   AndersonMixer mixer(opt.anderson_depth, 2 * n_loaded);
   Eigen::VectorXd x_start(2 * n_loaded), x_next(2 * n_loaded);  // before and after a sweep
@@ -928,13 +1056,13 @@ TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& 
     }
     ++iteration;
     gather(&x_start);
-    for (int block_hi = grid.nx - 1; block_hi >= 0; block_hi -= block_columns) {
-      const int block_lo = std::max(0, block_hi - block_columns + 1);
+    for (int block_hi = tables.col_hi; block_hi >= tables.col_lo; block_hi -= block_columns) {
+      const int block_lo = std::max(tables.col_lo, block_hi - block_columns + 1);
       SweepBlock(grid, tables, pressure_Pa, mu, w, block_lo, block_hi, sx, ss, &qx, &qs, &sx_col,
                  &ss_col);
       // The exact slip of the rest (one operator product); the last block needs none, the next
       // iteration starts with one.
-      if (block_lo > 0) {
+      if (block_lo > tables.col_lo) {
         op->Apply(qx, qs, &sx, &ss);
         sx += in.creep_x;
         ss += in.creep_s;

@@ -69,9 +69,13 @@
 // product and visited cells not again in the sweep, so every local solve sees the exact slip of
 // the current iterate: the iterates are those of the plain sweep with a full refresh after every
 // update (to rounding), at a cost per sweep of about N_contact * (block / 2) * (loaded column
-// length) multiply-adds plus nx / block products. The block width balances the two
-// (FftBlockColumns in the .cpp: 18 to 26 columns on the benchmark grids), or
-// ExactTangentialOptions::block_columns sets it. With the dense operator a product costs a full
+// length) multiply-adds plus span / block products, span the x-columns from the first to the last
+// loaded one (the blocks cover those only, in equal widths). The block width balances the two
+// (FftBlockColumns in the .cpp: 17 and 22 columns on CONTACT's tang_problm_1c / 2c grids), or
+// ExactTangentialOptions::block_columns sets it. The FFT products run on the loaded cells'
+// bounding rectangle when its padded transforms are shorter than the grid's
+// (CroppedRollingProduct in the .cpp; a conformal patch's potential contact area can be twice its
+// contact's length), with the same result to rounding. With the dense operator a product costs a full
 // sweep of refreshes, so there one block spans the grid (the plain sweep, O(N_contact N)).
 // Measured (tangential_exact_bench, README check case, one core, median of 5): 70 x 80 cells
 // 0.69 s before acceleration (relaxation 0.3, 109 sweeps), 0.30 s with it (46 sweeps, ratio

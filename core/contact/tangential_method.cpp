@@ -21,7 +21,7 @@ namespace {
 using TangentialSolver = TangentialSolution (*)(AccuracyPreset, const PatchGrid&,
                                                 const Eigen::VectorXd&, const RollingInput&,
                                                 const Material&, const Material&, TangentialChoice*,
-                                                ExactTangentialReuse*);
+                                                ExactTangentialReuse*, double);
 
 FastsimOptions FastsimFor(const Material& wheel, const Material& rail) {
   const CombinedElastic elastic = CombineElastic(wheel, rail);
@@ -34,16 +34,18 @@ FastsimOptions FastsimFor(const Material& wheel, const Material& rail) {
 TangentialSolution SolveByFastsim(AccuracyPreset, const PatchGrid& grid,
                                   const Eigen::VectorXd& pressure_Pa, const RollingInput& input,
                                   const Material& wheel, const Material& rail,
-                                  TangentialChoice* choice, ExactTangentialReuse*) {
+                                  TangentialChoice* choice, ExactTangentialReuse*, double) {
   choice->method = TangentialMethod::kFastsim;
   return SolveFastsim(grid, pressure_Pa, input, FastsimFor(wheel, rail));
 }
 
-// The exact solver, with the set-up and the warm start kept in `reuse` when there is one.
+// The exact solver at `tolerance` (ExactTangentialOptions::tolerance), with the set-up and the
+// warm start kept in `reuse` when there is one.
 TangentialSolution SolveExact(const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                               const RollingInput& input, const Material& wheel,
-                              const Material& rail, ExactTangentialReuse* reuse) {
-  const ExactTangentialOptions options;
+                              const Material& rail, ExactTangentialReuse* reuse, double tolerance) {
+  ExactTangentialOptions options;
+  options.tolerance = tolerance;
   if (reuse == nullptr) return SolveTangentialExact(grid, pressure_Pa, input, wheel, rail, options);
   if (!reuse->setup || !reuse->setup->Fits(grid)) {
     reuse->setup.emplace(grid, wheel, rail, options.method);
@@ -64,16 +66,18 @@ TangentialSolution SolveExact(const PatchGrid& grid, const Eigen::VectorXd& pres
 TangentialSolution SolveByExact(AccuracyPreset, const PatchGrid& grid,
                                 const Eigen::VectorXd& pressure_Pa, const RollingInput& input,
                                 const Material& wheel, const Material& rail,
-                                TangentialChoice* choice, ExactTangentialReuse* reuse) {
+                                TangentialChoice* choice, ExactTangentialReuse* reuse,
+                                double exact_tolerance) {
   choice->method = TangentialMethod::kExact;
-  return SolveExact(grid, pressure_Pa, input, wheel, rail, reuse);
+  return SolveExact(grid, pressure_Pa, input, wheel, rail, reuse, exact_tolerance);
 }
 
 // `auto`: FASTSIM first; its patch fit decides whether the exact solver replaces it.
 TangentialSolution SolveByAuto(AccuracyPreset accuracy, const PatchGrid& grid,
                                const Eigen::VectorXd& pressure_Pa, const RollingInput& input,
                                const Material& wheel, const Material& rail,
-                               TangentialChoice* choice, ExactTangentialReuse* reuse) {
+                               TangentialChoice* choice, ExactTangentialReuse* reuse,
+                               double exact_tolerance) {
   const FastsimOptions fo = FastsimFor(wheel, rail);
   FastsimPatch fit;
   TangentialSolution fastsim = SolveFastsim(grid, pressure_Pa, input, fo, &fit);
@@ -87,7 +91,7 @@ TangentialSolution SolveByAuto(AccuracyPreset accuracy, const PatchGrid& grid,
       CalcTangentialIndicators(grid, pressure_Pa, input, fit, fo.poisson_ratio);
   *choice = ChooseTangentialMethod(ind, accuracy);
   if (choice->method == TangentialMethod::kFastsim) return fastsim;
-  return SolveExact(grid, pressure_Pa, input, wheel, rail, reuse);
+  return SolveExact(grid, pressure_Pa, input, wheel, rail, reuse, exact_tolerance);
 }
 
 // The solver of each method (keyed by the method, like kTangentialMethodNames).
@@ -187,12 +191,12 @@ TangentialSolution SolveTangential(TangentialMethod method, AccuracyPreset accur
                                    const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                                    const RollingInput& input, const Material& wheel,
                                    const Material& rail, TangentialChoice* choice,
-                                   ExactTangentialReuse* reuse) {
+                                   ExactTangentialReuse* reuse, double exact_tolerance) {
   TangentialChoice local;
   TangentialChoice* out = choice != nullptr ? choice : &local;
   for (const auto& e : kTangentialSolvers) {
     if (e.method == method) {
-      return e.solve(accuracy, grid, pressure_Pa, input, wheel, rail, out, reuse);
+      return e.solve(accuracy, grid, pressure_Pa, input, wheel, rail, out, reuse, exact_tolerance);
     }
   }
   RAILWEAR_CHECK(false && "a TangentialMethod without a solver");

@@ -113,10 +113,14 @@ struct ExactTangentialReuse {
 // (ignored by the fixed methods). choice (optional out): what ran and, for auto, why.
 // reuse (optional, in/out): the exact solver's set-up and warm start kept from the previous
 // solve of this patch (the same materials), updated by this one; FASTSIM does not use it.
+// exact_tolerance: the exact solver's stopping tolerance relative to mu p_max
+// (ExactTangentialOptions::tolerance, > 0; ContactSetup::tangential_tolerance); FASTSIM
+// ignores it.
 TangentialSolution SolveTangential(TangentialMethod method, AccuracyPreset accuracy,
                                    const PatchGrid& grid, const Eigen::VectorXd& pressure_Pa,
                                    const RollingInput& input, const Material& wheel,
                                    const Material& rail, TangentialChoice* choice = nullptr,
-                                   ExactTangentialReuse* reuse = nullptr);
+                                   ExactTangentialReuse* reuse = nullptr,
+                                   double exact_tolerance = kDefaultExactTangentialTolerance);
 
 }  // namespace railwear

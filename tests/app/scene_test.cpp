@@ -320,6 +320,32 @@ TEST(SceneTest, NormalCriterionAndToleranceSelectTheNormalSolversStop) {
                        "'pressure-update', 'gap-residual'"));
 }
 
+// [model] tangential_tolerance (issue 18): absent, the exact solver's default (1e-6 of mu p_max,
+// kDefaultExactTangentialTolerance); given, taken as it is. Outside [1e-10, 1e-2] or not a
+// number refused with the key, the value and what was expected.
+TEST(SceneTest, TangentialToleranceSetsTheExactSolversStop) {
+  EXPECT_EQ(ParseScene(kMinimal, "a.toml").problem.tangential_tolerance,
+            kDefaultExactTangentialTolerance);
+  EXPECT_EQ(kDefaultExactTangentialTolerance, 1e-6);
+  const Scene s = ParseScene(
+      std::string(kMinimal) + "[model]\ntangential = \"exact\"\ntangential_tolerance = 1e-9\n",
+      "a.toml");
+  EXPECT_EQ(s.problem.tangential_tolerance, 1e-9);
+  const std::string m = std::string(kMinimal) + "[model]\n";
+  EXPECT_TRUE(Contains(ErrorOf(m + "tangential_tolerance = 0.1\n"),
+                       "scene.toml:12: key 'model.tangential_tolerance' = 0.1: expected a number "
+                       "in [1e-10, 0.01]"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "tangential_tolerance = 0\n"),
+                       "key 'model.tangential_tolerance' = 0: expected a number > 0"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "tangential_tolerance = -1e-6\n"),
+                       "key 'model.tangential_tolerance' = -1e-06: expected a number > 0"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "tangential_tolerance = 1e-12\n"), "[1e-10, 0.01]"));
+  EXPECT_TRUE(
+      Contains(ErrorOf(m + "tangential_tolerance = inf\n"), "key 'model.tangential_tolerance'"));
+  EXPECT_TRUE(Contains(ErrorOf(m + "tangential_tolerance = \"loose\"\n"),
+                       "key 'model.tangential_tolerance' = \"loose\""));
+}
+
 TEST(SceneTest, RollingRadiusAndLoadMustBePositive) {
   std::string text = kMinimal;
   text.replace(text.find("460"), 3, "0");

@@ -268,6 +268,42 @@ TEST(TangentialExact, LoadedCellsMatrixAgreesWithFftAndDense) {
   }
 }
 
+// A grid twice the contact's size along x and s (a conformal patch's potential contact area is
+// often so), the pressure cut off on one side so that the loaded cells' rectangle sits off the
+// grid's centre: the FFT products run on that rectangle's shorter transforms
+// (CroppedRollingProduct) and give the full dense reference's solution to rounding, and a setup
+// reused after a solve on another rectangle gives the fresh solve bit for bit.
+TEST(TangentialExact, LoadedRectangleProductsAgreeWithDense) {
+  const PatchGrid g = MakeHertzGrid(2.0 * kA_m, 2.0 * kB_m, 48, 24);
+  Eigen::VectorXd p = HertzPressure(g, kA_m, kB_m, kFn_N);
+  for (int j = 0; j < g.ns; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      if (g.S(j) < -0.5 * kB_m || g.X(i) > 0.75 * kA_m) p[g.Index(i, j)] = 0.0;
+    }
+  }
+  const RollingInput in = Creepage(g, 1e-4, -6.25e-4, 0.625);
+  ExactTangentialOptions dense, fft;
+  dense.method = ExactTangentialOptions::Method::kDense;
+  fft.method = ExactTangentialOptions::Method::kFft;
+  const TangentialSolution d = SolveTangentialExact(g, p, in, SteelG(), SteelG(), Strict(dense));
+  const TangentialSolution f = SolveTangentialExact(g, p, in, SteelG(), SteelG(), Strict(fft));
+  ASSERT_EQ(f.status, SolverStatus::kConverged) << f.message;
+  ASSERT_EQ(d.status, SolverStatus::kConverged) << d.message;
+  const double qmax = kMu * p.maxCoeff();
+  EXPECT_LE((f.traction_x_Pa - d.traction_x_Pa).cwiseAbs().maxCoeff(),
+            kFastVersusDenseTolerance * qmax);
+  EXPECT_LE((f.traction_s_Pa - d.traction_s_Pa).cwiseAbs().maxCoeff(),
+            kFastVersusDenseTolerance * qmax);
+  EXPECT_EQ(f.stick, d.stick);
+  const ExactTangentialSetup setup(g, SteelG(), SteelG(), ExactTangentialOptions::Method::kFft);
+  const Eigen::VectorXd wider = HertzPressure(g, 1.5 * kA_m, 1.5 * kB_m, kFn_N);
+  SolveTangentialExact(g, wider, in, setup, Strict(fft));  // another rectangle first
+  const TangentialSolution again = SolveTangentialExact(g, p, in, setup, Strict(fft));
+  EXPECT_EQ(again.traction_x_Pa, f.traction_x_Pa);
+  EXPECT_EQ(again.traction_s_Pa, f.traction_s_Pa);
+  EXPECT_EQ(again.iterations, f.iterations);
+}
+
 // One setup serves many solves on its grid: each equals, bit for bit, the solve that builds its
 // own setup, whatever was solved with the setup before (the FFT products' scratch, the loaded
 // cells' matrix per solve). Pressures of two loads (different loaded sets), creepages from stick

@@ -48,6 +48,34 @@ TEST(TangentialMethodNames, AutoIsAMethod) {
   EXPECT_FALSE(TangentialMethodFromString("kalker").has_value());
 }
 
+// SolveTangential's exact_tolerance (ContactSetup::tangential_tolerance, a scene's [model]
+// tangential_tolerance) is the exact solver's ExactTangentialOptions::tolerance: by default the
+// solver's default, bit for bit; a tighter one the solve with that option, bit for bit, and more
+// iterations; `auto` passes it on when it takes the exact solver.
+TEST(TangentialMethodExact, ToleranceReachesTheExactSolver) {
+  const double a = 6e-3, b = 4e-3, fn = 80e3;
+  const PatchGrid g = testing::MakeHertzGrid(a, b, 20, 20);
+  const Eigen::VectorXd p = HertzPressure(g, a, b, fn);
+  const RollingInput in = testing::KalkerCreepage(g, 1e-3, 0.0, 0.5, 20.0, kMu);
+  const TangentialSolution by_default = SolveTangential(
+      TangentialMethod::kExact, AccuracyPreset::kStandard, g, p, in, Steel(), Steel());
+  const TangentialSolution direct = SolveTangentialExact(g, p, in, Steel(), Steel());
+  EXPECT_EQ(by_default.force_x_N, direct.force_x_N);
+  EXPECT_EQ(by_default.iterations, direct.iterations);
+  ExactTangentialOptions tight;
+  tight.tolerance = 1e-10;
+  const TangentialSolution tight_direct = SolveTangentialExact(g, p, in, Steel(), Steel(), tight);
+  for (TangentialMethod m : {TangentialMethod::kExact, TangentialMethod::kAuto}) {
+    const TangentialSolution s = SolveTangential(m, AccuracyPreset::kReference, g, p, in, Steel(),
+                                                 Steel(), nullptr, nullptr, 1e-10);
+    ASSERT_EQ(s.status, SolverStatus::kConverged) << s.message;
+    EXPECT_EQ(s.force_x_N, tight_direct.force_x_N) << ToString(m);
+    EXPECT_EQ(s.force_s_N, tight_direct.force_s_N) << ToString(m);
+    EXPECT_EQ(s.iterations, tight_direct.iterations) << ToString(m);
+  }
+  EXPECT_GT(tight_direct.iterations, by_default.iterations);
+}
+
 TEST(TangentialAuto, RuleFollowsThePresetsLimit) {
   // Standard: spin share up to 0.1, times a/b below 1.
   auto at = [](double share, double ab, AccuracyPreset p) {
