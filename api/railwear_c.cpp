@@ -62,8 +62,10 @@ constexpr double kMinCell_m = 0.01e-3, kMaxCell_m = 20e-3;
 constexpr size_t kMaxProfilePoints = 1000000;
 constexpr uint32_t kKnownEffects = RW_EFFECT_TANGENTIAL | RW_EFFECT_DAMAGE | RW_EFFECT_COUPLING;
 constexpr uint32_t kKnownStateFlags = RW_STATE_CREEPAGE;
-// The scene reader's range of [model] normal_tolerance (app/scene.cpp, ReadNormalSolver).
+// The scene reader's ranges of [model] normal_tolerance and tangential_tolerance (app/scene.cpp,
+// ReadNormalSolver and ReadTangentialTolerance).
 constexpr double kMinNormalTolerance = 1e-13, kMaxNormalTolerance = 1e-2;
+constexpr double kMinTangentialTolerance = 1e-10, kMaxTangentialTolerance = 1e-2;
 
 }  // namespace
 
@@ -78,6 +80,8 @@ struct rw_problem {
   ModelOptions model = railwear::MakeModelOptions(ModelKind::kConformal);
   TangentialMethod tangential = TangentialMethod::kFastsim;
   railwear::NormalSolverOptions normal_solver;  // rw_model's stopping rule (since 1.5)
+  // rw_model's exact tangential stop (since 1.5), relative to mu p_max.
+  double tangential_tolerance = railwear::kDefaultExactTangentialTolerance;
   uint32_t effects = 0;
   std::optional<double> friction;
   railwear::PressureLimit pressure_limit;
@@ -381,6 +385,7 @@ ContactCase MakeCase(const rw_problem* p) {
   problem.model = p->model;
   problem.tangential = p->tangential;
   problem.solver = p->normal_solver;
+  problem.tangential_tolerance = p->tangential_tolerance;
   problem.damage = (p->effects & RW_EFFECT_DAMAGE) != 0;
   problem.pressure_limit = p->pressure_limit;
   // The wheel and the (canted) rail: lent by rw_calculate (LentProfiles), not copied.
@@ -487,6 +492,7 @@ rw_model ModelOfAnySize(const rw_model* model) {
   rw_model m{};
   m.normal_criterion = RW_NORMAL_PRESSURE_UPDATE;
   m.normal_tolerance = 0.0;
+  m.tangential_tolerance = 0.0;
   std::memcpy(&m, model, model->struct_size);
   return m;
 }
@@ -634,6 +640,7 @@ rw_status rw_init_model(rw_model* model) {
     m.cell_ds_m = 0.0;
     m.normal_criterion = RW_NORMAL_PRESSURE_UPDATE;  // beyond a 1.4 caller's size: not copied back
     m.normal_tolerance = 0.0;
+    m.tangential_tolerance = 0.0;
     std::memcpy(model, &m, model->struct_size);  // a 1.4 caller's struct up to its size
     return RW_OK;
   });
@@ -719,8 +726,15 @@ rw_status rw_set_model(rw_problem* problem, const rw_model* caller_model) {
                      "rw_model.normal_tolerance");
       solver.tolerance = model->normal_tolerance;
     }
+    double tangential_tolerance = railwear::kDefaultExactTangentialTolerance;
+    if (model->tangential_tolerance != 0.0) {
+      RequireInRange(model->tangential_tolerance, kMinTangentialTolerance,
+                     kMaxTangentialTolerance, "rw_model.tangential_tolerance");
+      tangential_tolerance = model->tangential_tolerance;
+    }
     SetUpChanged(problem);
     problem->normal_solver = solver;
+    problem->tangential_tolerance = tangential_tolerance;
     m.constants = problem->model.constants;  // set apart, by rw_set_influence_constants
     problem->model = m;
     problem->tangential = static_cast<TangentialMethod>(model->tangential);

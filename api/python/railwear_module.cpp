@@ -103,7 +103,8 @@ const Fields<rw_material> kMaterial{{{"youngs_modulus_Pa", &rw_material::youngs_
                                     {}};
 const Fields<rw_model> kModel{{{"cell_dx_m", &rw_model::cell_dx_m},
                                {"cell_ds_m", &rw_model::cell_ds_m},
-                               {"normal_tolerance", &rw_model::normal_tolerance}},
+                               {"normal_tolerance", &rw_model::normal_tolerance},
+                               {"tangential_tolerance", &rw_model::tangential_tolerance}},
                               {{"kind", &rw_model::kind},
                                {"geometry", &rw_model::geometry},
                                {"kernel", &rw_model::kernel},
@@ -370,7 +371,8 @@ PYBIND11_MODULE(railwear, m) {
       .def("set_model", &Problem::set_model,
            "rw_model fields: kind, geometry, kernel, accuracy, tangential, effects, cell_dx_m, "
            "cell_ds_m, normal_criterion (NORMAL_PRESSURE_UPDATE, the default, or "
-           "NORMAL_GAP_RESIDUAL, the strict setting), normal_tolerance (0: the criterion's own).")
+           "NORMAL_GAP_RESIDUAL, the strict setting), normal_tolerance (0: the criterion's own), "
+           "tangential_tolerance (the exact solver's stop relative to mu p_max; 0: 1e-6).")
       .def("set_influence_constants", &Problem::set_influence_constants,
            "rw_influence_constants fields: c_f, c_z, c_s, separate, convex_*, concave_*.")
       .def("set_friction", &Problem::set_friction, py::arg("friction"))

@@ -191,6 +191,9 @@ typedef struct rw_model {
   double normal_tolerance;    /* the criterion's tolerance in [1e-13, 1e-2] (a scene's [model]
                                  normal_tolerance), or 0 (the default): the criterion's own,
                                  1e-4 or 1e-10 */
+  double tangential_tolerance; /* the exact tangential solver's stop, relative to mu p_max, in
+                                  [1e-10, 1e-2] (a scene's [model] tangential_tolerance), or 0
+                                  (the default): 1e-6. FASTSIM ignores it */
 } rw_model;
 
 /* rw_model's size in API 1.0 to 1.4 (before the normal solver's stopping rule), still accepted

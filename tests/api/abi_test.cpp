@@ -98,6 +98,7 @@ TEST(ApiAbi, AModelOfVersion14StillWorks) {
   ASSERT_EQ(rw_init_model(&now), RW_OK);
   EXPECT_EQ(now.normal_criterion, RW_NORMAL_PRESSURE_UPDATE);
   EXPECT_EQ(now.normal_tolerance, 0.0);
+  EXPECT_EQ(now.tangential_tolerance, 0.0);
   now.kind = RW_MODEL_HALFSPACE;
   now.accuracy = RW_ACCURACY_DRAFT;
   double p_max[2] = {-1.0, -1.0};

@@ -590,6 +590,14 @@ std::vector<BadCall> Table() {
       return rw_set_model(p, &m);
     });
   }
+  // The exact tangential solver's stop (API 1.5): 0 (1e-6) or in the scene's [1e-10, 1e-2].
+  for (double v : {-1e-6, kNaN, kInf, 1e-11, 0.1}) {
+    add("model: tangential_tolerance " + Num(v), RW_ERROR_INVALID_VALUE, [v](rw_problem* p) {
+      rw_model m = ValidModel();
+      m.tangential_tolerance = v;
+      return rw_set_model(p, &m);
+    });
+  }
   for (size_t size : {RW_MODEL_SIZE_1_4 - 8, RW_MODEL_SIZE_1_4 + 8, sizeof(rw_model) + 8}) {
     add("rw_model between versions struct_size " + std::to_string(size), RW_ERROR_STRUCT_SIZE,
         [size](rw_problem* p) {

@@ -207,6 +207,35 @@ TEST(ApiNormalCriterion, CApiEqualsTheCliWithTheSceneKeyBitForBit) {
   EXPECT_NE(a.wheel.patches[0].p_max_Pa, b.wheel.patches[0].p_max_Pa);
 }
 
+// The exact tangential solver's stop (API 1.5, a scene's [model] tangential_tolerance): the rolling
+// gauge-corner example on the exact solver at 1e-9 and at 1e-3 equals the CLI's solve bit for bit
+// through rw_model.tangential_tolerance; the two differ in F_x, so the field reaches the solver.
+TEST(ApiTangentialTolerance, CApiEqualsTheCliWithTheSceneKeyBitForBit) {
+  const fs::path path = fs::path(RAILWEAR_SOURCE_DIR) / "examples" / "rolling_gauge_corner.toml";
+  const std::string text = Slurp(path);
+  const std::string fastsim = "tangential = \"fastsim\"\n";
+  ASSERT_NE(text.find(fastsim), std::string::npos);
+  auto with_tolerance = [&](const std::string& tolerance) {
+    std::string t = text;
+    t.replace(t.find(fastsim), fastsim.size(),
+              "tangential = \"exact\"\ntangential_tolerance = " + tolerance + "\n");
+    return app::ParseScene(t, path.string());
+  };
+  const app::Scene tight = with_tolerance("1e-9");
+  ASSERT_EQ(tight.problem.tangential_tolerance, 1e-9);
+  ExpectParity(tight, "exact at 1e-9");
+  const app::Scene loose = with_tolerance("1e-3");
+  ExpectParity(loose, "exact at 1e-3");
+
+  const ContactCaseResult a = SolveContactCase(app::ToContactCase(tight));
+  const ContactCaseResult b = SolveContactCase(app::ToContactCase(loose));
+  ASSERT_FALSE(a.wheel.patches.empty());
+  ASSERT_EQ(a.wheel.patches.size(), b.wheel.patches.size());
+  ASSERT_TRUE(a.wheel.patches[0].rolling && b.wheel.patches[0].rolling);
+  EXPECT_NE(a.wheel.patches[0].rolling->tangential.force_x_N,
+            b.wheel.patches[0].rolling->tangential.force_x_N);
+}
+
 // The same through the railwear executable itself: `railwear contact SCENE --json FILE` gives per
 // patch the numbers the C API gives (the JSON's doubles round-trip exactly; its unit factors are
 // applied to the C API's values the same way). The top-level examples only, to keep this fast.

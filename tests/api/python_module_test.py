@@ -94,6 +94,13 @@ class PythonModule(unittest.TestCase):
             gauge_corner(normal_tolerance=0.5)
         self.assertEqual(e.exception.status_name, "RW_ERROR_INVALID_VALUE")
         self.assertIn("rw_model.normal_tolerance = 0.5", str(e.exception))
+        # The exact tangential solver's stop (API 1.5, [model] tangential_tolerance) by the same
+        # name: checked as the C API checks it (its parity with the CLI: tests/api/parity_test.cpp).
+        with self.assertRaises(railwear.Error) as e:
+            gauge_corner(tangential_tolerance=0.5)
+        self.assertEqual(e.exception.status_name, "RW_ERROR_INVALID_VALUE")
+        self.assertIn("rw_model.tangential_tolerance = 0.5", str(e.exception))
+        self.assertEqual(gauge_corner(tangential_tolerance=1e-9).calculate(), railwear.OK)
 
     def test_profile_points_from_numpy(self):
         p = railwear.Problem()

@@ -102,6 +102,9 @@ inline void SetUpFromScene(rw_problem* p, const app::Scene& scene) {
   m.normal_criterion = strict ? RW_NORMAL_GAP_RESIDUAL : RW_NORMAL_PRESSURE_UPDATE;
   const double own_tolerance = strict ? kStrictNormalTolerance : kDefaultNormalTolerance;
   if (problem.solver.tolerance != own_tolerance) m.normal_tolerance = problem.solver.tolerance;
+  if (problem.tangential_tolerance != kDefaultExactTangentialTolerance) {
+    m.tangential_tolerance = problem.tangential_tolerance;
+  }
   RW_EXPECT_OK(p, rw_set_model(p, &m));
 
   rw_influence_constants k{};
