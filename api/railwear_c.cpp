@@ -728,8 +728,8 @@ rw_status rw_set_model(rw_problem* problem, const rw_model* caller_model) {
     }
     double tangential_tolerance = railwear::kDefaultExactTangentialTolerance;
     if (model->tangential_tolerance != 0.0) {
-      RequireInRange(model->tangential_tolerance, kMinTangentialTolerance,
-                     kMaxTangentialTolerance, "rw_model.tangential_tolerance");
+      RequireInRange(model->tangential_tolerance, kMinTangentialTolerance, kMaxTangentialTolerance,
+                     "rw_model.tangential_tolerance");
       tangential_tolerance = model->tangential_tolerance;
     }
     SetUpChanged(problem);

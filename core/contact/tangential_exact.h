@@ -75,8 +75,8 @@
 // ExactTangentialOptions::block_columns sets it. The FFT products run on the loaded cells'
 // bounding rectangle when its padded transforms are shorter than the grid's
 // (CroppedRollingProduct in the .cpp; a conformal patch's potential contact area can be twice its
-// contact's length), with the same result to rounding. With the dense operator a product costs a full
-// sweep of refreshes, so there one block spans the grid (the plain sweep, O(N_contact N)).
+// contact's length), with the same result to rounding. With the dense operator a product costs a
+// full sweep of refreshes, so there one block spans the grid (the plain sweep, O(N_contact N)).
 // Measured (tangential_exact_bench, README check case, one core, median of 5): 70 x 80 cells
 // 0.69 s before acceleration (relaxation 0.3, 109 sweeps), 0.30 s with it (46 sweeps, ratio
 // 0.44); about 6.5 ms per sweep, 55 % of it the in-block refreshes and 40 % the FFT products.
