@@ -540,9 +540,10 @@ class IntegrationTally {
                          fmt::join(entries, ", "));
     }
     return fmt::format(
-        "spread integration: adaptive to {:.2g} % of the step's worn area, nodes per step: {}; "
-        "largest last change {:.2g} % (high rail){}{}\n",
-        100.0 * first_.tolerance, fmt::join(entries, ", "), 100.0 * largest_change_[0],
+        "spread integration: adaptive to {:.2g} % of the step's worn area and {:.2g} % of its "
+        "depth field, nodes per step: {}; largest last change {:.2g} % (high rail){}{}\n",
+        100.0 * first_.tolerance, 100.0 * kSpreadFieldChangeFactor * first_.tolerance,
+        fmt::join(entries, ", "), 100.0 * largest_change_[0],
         study.low_rail_profile ? fmt::format(", {:.2g} % (low rail)", 100.0 * largest_change_[1])
                                : std::string(),
         all_converged_ ? "" : "; NOT converged in every step (see the warnings)");

@@ -72,8 +72,8 @@ TEST_F(WearCommandTest, AdaptiveSpreadNodesAreLoggedSummarisedAndStored) {
   EXPECT_TRUE(Contains(o.err, "railwear: step 1: spread nodes: traffic[0] ")) << o.err;
   EXPECT_TRUE(Contains(o.err, "(adaptive, ")) << o.err;
   EXPECT_TRUE(Contains(o.out,
-                       "spread integration: adaptive to 0.5 % of the step's worn area, "
-                       "nodes per step: traffic[0] "))
+                       "spread integration: adaptive to 0.5 % of the step's worn area and 2 % "
+                       "of its depth field, nodes per step: traffic[0] "))
       << o.out;
   ProfileStore store = ProfileStore::Open((dir_ / "a.sqlite").string());
   const auto run = store.FindRun("small study");
