@@ -14,6 +14,7 @@
 #include "app/stored_study.h"
 #include "app/toml_fields.h"
 #include "core/contact/contact_forces.h"
+#include "core/numerics/enum_names.h"
 #include "core/numerics/input_error.h"
 #include "core/numerics/units.h"
 #include "core/profile/builtin_profiles.h"
@@ -46,10 +47,14 @@ void Print(const TrafficCase& c, const CurvingProblem& p, const CurvingResult& r
   }
   std::cout << fmt::format(
       "  status {}{}; residuals: lateral {:.1f} N, yaw {:.1f} N m, longitudinal {:.1f} N; "
-      "{} + {} iterations, {} wheelset contact solves, {:.1f} s\n",
+      "{} + {} iterations, {} wheelset contact solves, {:.1f} s{}\n",
       ToString(r.status), r.message.empty() ? "" : " (" + r.message + ")", r.lateral_residual_N,
       r.yaw_residual_Nm, r.longitudinal_residual_N, r.predictor_iterations, r.full_iterations,
-      r.contact_solves, r.time_s);
+      r.contact_solves, r.time_s,
+      p.options.cold_predictor == CurvingPredictor::kTable
+          ? fmt::format("; table predictor {} ({} evaluations, built in {:.2f} s)",
+                        ToString(r.table_predictor), r.table_evaluations, r.table_build_s)
+          : std::string());
 }
 
 nlohmann::json Json(const TrafficCase& c, const CurvingProblem& p, const CurvingResult& r) {
@@ -67,6 +72,8 @@ nlohmann::json Json(const TrafficCase& c, const CurvingProblem& p, const Curving
                         {"longitudinal_N", r.longitudinal_residual_N}}},
                       {"largest_scaled_residual", r.largest_scaled_residual},
                       {"contact_solves", r.contact_solves},
+                      {"predictor", ToString(p.options.cold_predictor)},
+                      {"table_predictor", ToString(r.table_predictor)},
                       {"time_s", r.time_s}};
   for (const CurvedWheelset& w : r.wheelsets) {
     j["wheelsets"].push_back(
@@ -143,6 +150,12 @@ void SetupCurving(CLI::App& app) {
                                     "from its stored curving (read only)");
   cmd->add_option("--run", o->run, "With --db: the run (default: the scene's name)")->needs(db);
   cmd->add_option("--step", o->step, "With --db: the step (default: the run's last)")->needs(db);
+  cmd->add_option("--predictor", o->predictor,
+                  "A cold solve's predictor: model (the draft grid) or table (tabulated rigid "
+                  "contact geometry with Hertz and Kalker; docs/curving.md \"The table "
+                  "predictor\")")
+      ->check(CLI::IsMember(EnumChoiceStrings(kCurvingPredictorNames)))
+      ->capture_default_str();
   cmd->callback([o]() { RunCurving(*o); });
 }
 
@@ -174,6 +187,7 @@ void RunCurving(const CurvingOptions& o) {
         t < static_cast<int>(stored.state.curving.size()) ? &stored.state.curving[t] : nullptr;
     CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low, start);
     p.options.cancel = [] { return InterruptSignals::Received() != 0; };
+    p.options.cold_predictor = *EnumFromString(kCurvingPredictorNames, o.predictor);
     std::cerr << fmt::format("railwear: curving: solving traffic entry '{}'\n", c.name);
     const CurvingResult r = SolveCurving(p);
     if (const int signal = InterruptSignals::Received()) {
