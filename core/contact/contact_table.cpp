@@ -93,51 +93,45 @@ ContactTable::ContactTable(const ContactTableGeometry& geometry, const ContactTa
   }
   nodes_.resize(n);
   const WheelsetSpec& base = geometry_.wheelset;
-  const double half_span = 0.5 * base.flange_back_distance_m - base.flange_back_position_m;
   ParallelFor(n, o.threads, [&](int i) {
     Node& node = nodes_[i];
     node.y_m = (i - (n - 1) / 2) * o.node_spacing_m;
     WheelsetSpec ws = base;
     ws.lateral_displacement_m = node.y_m;
     ws.yaw_rad = 0.0;
-    // The roll from both wheels touching their rails: two fixed-point steps on the wheels'
-    // heights (the roll moves them by roll x the wheel's lateral slope, a contraction of about
-    // 0.05), then the geometry at that roll.
-    double roll = 0.0;
-    for (int step = 0; step < 3; ++step) {
-      ws.roll_rad = roll;
-      const WheelsetPlacement placed = PlaceWheelsetAt(geometry_.gauge_points, geometry_.track, ws);
-      // The roll's steps on a coarse sampling (a height to a micrometre is 1e-6 / 1.5 m of roll).
-      const double sampling = step < 2 ? std::max(o.sampling_m, kRollSampling_m) : o.sampling_m;
-      const WheelRailGeometry high(geometry_.high_wheel, geometry_.high_rail, placed.right,
-                                   sampling);
-      const WheelRailGeometry low(geometry_.low_wheel, geometry_.low_rail, placed.left, sampling);
-      if (!high.has_overlap() || !low.has_overlap()) return;
-      if (step < 2) {
-        roll = std::asin(std::clamp((high.dz_m() - low.dz_m()) / (2.0 * half_span), -0.1, 0.1));
-        continue;
+    // The roll from both wheels touching their rails (wheelset.h's KinematicRoll, on a coarse
+    // sampling: a height to a micrometre is 1e-6 / 1.5 m of roll), then the geometry at that roll.
+    const KinematicRollResult kinematic = KinematicRoll(
+        geometry_.high_wheel, geometry_.high_rail, geometry_.low_wheel, geometry_.low_rail,
+        geometry_.gauge_points, geometry_.track, ws, std::max(o.sampling_m, kRollSampling_m));
+    if (!kinematic.both_touch) return;
+    const double roll = kinematic.roll_rad;
+    ws.roll_rad = roll;
+    const WheelsetPlacement placed = PlaceWheelsetAt(geometry_.gauge_points, geometry_.track, ws);
+    const WheelRailGeometry high(geometry_.high_wheel, geometry_.high_rail, placed.right,
+                                 o.sampling_m);
+    const WheelRailGeometry low(geometry_.low_wheel, geometry_.low_rail, placed.left, o.sampling_m);
+    if (!high.has_overlap() || !low.has_overlap()) return;
+    node.roll_rad = roll;
+    node.placement = placed;
+    auto fill = [&](const WheelRailGeometry& g, Wheel* w) {
+      w->pose = g.pose();
+      w->candidates = g.FindCandidates(o.candidate_threshold_m);
+      w->contact = !w->candidates.empty();
+      w->axle_yz_m = g.WheelToRail({0.0, -g.pose().rolling_radius_m});
+      w->origin_yz_m = g.WheelToRail({0.0, 0.0});
+      for (const ContactCandidate& c : w->candidates) {
+        // A body of revolution yawed by psi touches a prismatic rail where its normal has no
+        // x part: at x = -psi (y_w + rho drho/dy_w) to first order (y_w along the axle, rho
+        // the radius; drho/dy_w the profile's slope in W, from the contact normal).
+        const double y_w = g.RailToWheel(c.rail_point_m).x();
+        const Eigen::Vector2d n_w = g.RailDirectionToWheel(c.normal);
+        const double slope = std::abs(n_w.y()) > 1e-9 ? -n_w.x() / n_w.y() : 0.0;
+        w->dx_dpsi_m.push_back(-(y_w + c.wheel_radius_m * slope));
       }
-      node.roll_rad = roll;
-      node.placement = placed;
-      auto fill = [&](const WheelRailGeometry& g, Wheel* w) {
-        w->pose = g.pose();
-        w->candidates = g.FindCandidates(o.candidate_threshold_m);
-        w->contact = !w->candidates.empty();
-        w->axle_yz_m = g.WheelToRail({0.0, -g.pose().rolling_radius_m});
-        w->origin_yz_m = g.WheelToRail({0.0, 0.0});
-        for (const ContactCandidate& c : w->candidates) {
-          // A body of revolution yawed by psi touches a prismatic rail where its normal has no
-          // x part: at x = -psi (y_w + rho drho/dy_w) to first order (y_w along the axle, rho
-          // the radius; drho/dy_w the profile's slope in W, from the contact normal).
-          const double y_w = g.RailToWheel(c.rail_point_m).x();
-          const Eigen::Vector2d n_w = g.RailDirectionToWheel(c.normal);
-          const double slope = std::abs(n_w.y()) > 1e-9 ? -n_w.x() / n_w.y() : 0.0;
-          w->dx_dpsi_m.push_back(-(y_w + c.wheel_radius_m * slope));
-        }
-      };
-      fill(high, &node.high);
-      fill(low, &node.low);
-    }
+    };
+    fill(high, &node.high);
+    fill(low, &node.low);
   });
   build_time_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }

@@ -1,6 +1,7 @@
 // Wheelset placement on a track (see wheelset.h).
 #include "core/geometry/wheelset.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -75,6 +76,29 @@ WheelsetPlacement PlaceWheelsetAt(const RailGaugePoints& gauge_points, const Tra
   out.left.lateral_shift_m = half_span - ws.lateral_displacement_m + out.left_rail_origin_Y_m;
   out.left.roll_rad = -ws.roll_rad;
   out.left.yaw_rad = -ws.yaw_rad;
+  return out;
+}
+
+KinematicRollResult KinematicRoll(const Profile& right_wheel, const Profile& right_rail,
+                                  const Profile& left_wheel, const Profile& left_rail,
+                                  const RailGaugePoints& gauge_points, const TrackSpec& track,
+                                  WheelsetSpec wheelset, double sampling_m) {
+  wheelset.yaw_rad = 0.0;
+  const double half_span = 0.5 * wheelset.flange_back_distance_m - wheelset.flange_back_position_m;
+  KinematicRollResult out;
+  for (int step = 0; step < 2; ++step) {
+    wheelset.roll_rad = out.roll_rad;
+    const WheelsetPlacement placed = PlaceWheelsetAt(gauge_points, track, wheelset);
+    const WheelRailGeometry right(right_wheel, right_rail, placed.right, sampling_m);
+    const WheelRailGeometry left(left_wheel, left_rail, placed.left, sampling_m);
+    if (!right.has_overlap() || !left.has_overlap()) {
+      out.both_touch = false;
+      return out;
+    }
+    // z is down: the right wheel's origin lower by dz_R - dz_L over the span 2 half_span.
+    out.roll_rad =
+        std::asin(std::clamp((right.dz_m() - left.dz_m()) / (2.0 * half_span), -0.1, 0.1));
+  }
   return out;
 }
 

@@ -61,4 +61,19 @@ WheelsetPlacement PlaceWheelset(const Profile& rail, const TrackSpec& track,
 WheelsetPlacement PlaceWheelsetAt(const RailGaugePoints& gauge_points, const TrackSpec& track,
                                   const WheelsetSpec& wheelset);
 
+// The wheelset's kinematic roll: the roll at which both wheels touch their rails, at the
+// wheelset's lateral displacement and yaw 0 (its roll and yaw are not read). Two fixed-point
+// steps on the wheels' heights from roll 0 (the roll moves them by roll x the wheel's lateral
+// slope, a contraction of about 0.05), each on both wheels' placed geometries sampled at
+// sampling_m. both_touch is false when a wheel has no overlap with its rail at a step; roll_rad
+// is then the roll reached before it.
+struct KinematicRollResult {
+  double roll_rad = 0.0;
+  bool both_touch = true;
+};
+KinematicRollResult KinematicRoll(const Profile& right_wheel, const Profile& right_rail,
+                                  const Profile& left_wheel, const Profile& left_rail,
+                                  const RailGaugePoints& gauge_points, const TrackSpec& track,
+                                  WheelsetSpec wheelset, double sampling_m);
+
 }  // namespace railwear

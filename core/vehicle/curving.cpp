@@ -97,32 +97,18 @@ Eigen::VectorXd SuspensionForces(const VehicleSpec& v, const Layout& l, double k
   return f;
 }
 
-// The wheelset's roll from both wheels touching their rails: each wheel lowered onto its rail
-// (WheelRailGeometry's dz), the axle through both wheel origins. Taken without the yaw (its
-// effect on the wheels' heights is of order yaw^2), on a coarse lateral sampling (dz to a
-// micrometre is 1e-6 / 1.5 m of roll), in two fixed-point steps (the roll moves dz by
-// roll x the wheel's lateral slope, a contraction of about 0.05).
-double KinematicRoll(const WheelsetProblem& p) {
+// The wheelset's roll from both wheels touching their rails (wheelset.h's KinematicRoll): taken
+// without the yaw (its effect on the wheels' heights is of order yaw^2), on a coarse lateral
+// sampling (dz to a micrometre is 1e-6 / 1.5 m of roll).
+double WheelsetKinematicRoll(const WheelsetProblem& p) {
   constexpr double kSampling_m = 2e-4;
-  WheelsetSpec ws = p.wheelset;
-  ws.yaw_rad = 0.0;
   const Profile& right_rail = p.wheel_rail.rail_profile;
   const Profile& left_rail = p.left_rail_profile ? *p.left_rail_profile : right_rail;
   const Profile& left_wheel =
       p.left_wheel_profile ? *p.left_wheel_profile : p.wheel_rail.wheel_profile;
-  const double half_span = 0.5 * ws.flange_back_distance_m - ws.flange_back_position_m;
-  double roll = 0.0;
-  for (int k = 0; k < 2; ++k) {
-    ws.roll_rad = roll;
-    const WheelsetPlacement placed = PlaceWheelsetAt(*p.gauge_points, p.track, ws);
-    const WheelRailGeometry right(p.wheel_rail.wheel_profile, right_rail, placed.right,
-                                  kSampling_m);
-    const WheelRailGeometry left(left_wheel, left_rail, placed.left, kSampling_m);
-    if (!right.has_overlap() || !left.has_overlap()) return roll;
-    // z is down: the right wheel's origin lower by dz_R - dz_L over the span 2 half_span.
-    roll = std::asin(std::clamp((right.dz_m() - left.dz_m()) / (2.0 * half_span), -0.1, 0.1));
-  }
-  return roll;
+  return KinematicRoll(p.wheel_rail.wheel_profile, right_rail, left_wheel, left_rail,
+                       *p.gauge_points, p.track, p.wheelset, kSampling_m)
+      .roll_rad;
 }
 
 // What one wheelset's contact solve needs besides its (y, psi).
@@ -192,7 +178,7 @@ CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw
   wp.curvature_per_m = p.curve.curvature_per_m();
   // The axle's F_x to a twentieth of the equilibrium's tolerance (every round solves both wheels).
   wp.axle_force_tolerance_N = 0.05 * p.options.tolerance * ctx.q0_N;
-  wp.wheelset.roll_rad = KinematicRoll(wp);
+  wp.wheelset.roll_rad = WheelsetKinematicRoll(wp);
 
   CurvedWheelset out;
   out.lateral_m = y;
