@@ -29,7 +29,9 @@
 namespace {
 
 std::mt19937_64 generator;
-double Uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(generator); }
+double Uniform(double a, double b) {
+  return std::uniform_real_distribution<double>(a, b)(generator);
+}
 int Pick(int n) { return std::uniform_int_distribution<int>(0, n - 1)(generator); }
 
 void Log(const char* call, int status, rw_problem* p) {
@@ -100,7 +102,8 @@ void Sequence(int n) {
     Log("profile points",
         rw_set_profile_points(p, Pick(2) ? RW_BODY_RAIL : RW_BODY_WHEEL, yz.data(), points), p);
   }
-  if (kind && Pick(4) == 0) Log("left rail", rw_set_profile_file(p, RW_BODY_LEFT_RAIL, rails[Pick(6)]), p);
+  if (kind && Pick(4) == 0)
+    Log("left rail", rw_set_profile_file(p, RW_BODY_LEFT_RAIL, rails[Pick(6)]), p);
   rw_geometry g{};
   g.struct_size = sizeof g;
   rw_init_geometry(&g);
@@ -130,7 +133,8 @@ void Sequence(int n) {
   const unsigned effects[] = {0, RW_EFFECT_TANGENTIAL, RW_EFFECT_TANGENTIAL,
                               RW_EFFECT_TANGENTIAL | RW_EFFECT_DAMAGE, RW_EFFECT_COUPLING};
   m.effects = effects[Pick(5)];
-  if (m.kind == RW_MODEL_HERTZ && (m.effects & RW_EFFECT_COUPLING)) m.effects = RW_EFFECT_TANGENTIAL;
+  if (m.kind == RW_MODEL_HERTZ && (m.effects & RW_EFFECT_COUPLING))
+    m.effects = RW_EFFECT_TANGENTIAL;
   m.tangential = Pick(3);
   if (Pick(4) == 0 && m.kind != RW_MODEL_HERTZ) {
     m.cell_dx_m = std::pow(10.0, Uniform(-4.3, -1.7));
