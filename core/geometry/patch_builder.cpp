@@ -259,6 +259,36 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
   const int j_hi = static_cast<int>(std::ceil(arc[k_hi] / o.cell_ds_m - 0.5));
   grid.ns = std::max(1, j_hi - j_lo + 1);
   grid.s0_m = j_lo * o.cell_ds_m;
+  // A row of cells at s lies on the reference curve's segment k (linear between samples; rows up
+  // to half a cell beyond the sampled range extrapolate the end segment), with that segment's
+  // normal on n0's side.
+  auto segment_at = [&](double s) {
+    return std::clamp(
+        static_cast<int>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin()) - 1, 0, m - 2);
+  };
+  auto segment_normal = [&](int k) {
+    const Eigen::Vector2d t = (curve[k + 1] - curve[k]).normalized();
+    Eigen::Vector2d n(-t.y(), t.x());
+    if (n.dot(n0) < 0) n = -n;
+    return n;
+  };
+  // The range above is judged on the samples' central differences; a row at its end takes the
+  // segment beyond, whose normal can turn past horizontal on a rippled profile (a cell a
+  // vertical approach cannot close, which the normal solver refuses: tests/tools/
+  // api_call_search's sequence 2104). The grid ends before such a row.
+  if (!planar) {
+    auto closable = [&](int j) { return -segment_normal(segment_at(grid.S(j))).y() > 0.0; };
+    const int j_contact = std::clamp(-j_lo, 0, grid.ns - 1);  // the row at s = 0
+    if (!closable(j_contact)) return build;
+    int first = j_contact, last = j_contact;
+    while (first > 0 && closable(first - 1)) --first;
+    while (last < grid.ns - 1 && closable(last + 1)) ++last;
+    if (first > 0 || last < grid.ns - 1) {
+      grid.s0_m = grid.S(first);
+      grid.ns = last - first + 1;
+      build.lateral_limited = true;
+    }
+  }
   double r_max = c.wheel_radius_m;
   for (int k = k_lo; k <= k_hi; ++k) {
     const double r =
@@ -283,17 +313,12 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
   for (int j = 0; j < grid.ns; ++j) {
     const double s = grid.S(j);
     // Locate s on the sampled reference curve (linear between samples).
-    const int k = std::clamp(
-        static_cast<int>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin()) - 1, 0, m - 2);
-    // Cell centres up to half a cell beyond the sampled range extrapolate the end segment.
+    const int k = segment_at(s);
     const double f = (s - arc[k]) / (arc[k + 1] - arc[k]);
     grid.point_yz_m[j] = planar ? Eigen::Vector2d(pc + s * t0)
                                 : Eigen::Vector2d(curve[k] + f * (curve[k + 1] - curve[k]));
-    const Eigen::Vector2d t = (curve[k + 1] - curve[k]).normalized();
-    grid.tangent_yz[j] = planar ? t0 : t;
-    Eigen::Vector2d n(-t.y(), t.x());
-    if (n.dot(n0) < 0) n = -n;
-    grid.normal_yz[j] = planar ? n0 : n;
+    grid.tangent_yz[j] = planar ? t0 : Eigen::Vector2d((curve[k + 1] - curve[k]).normalized());
+    grid.normal_yz[j] = planar ? n0 : segment_normal(k);
     rail_s[j] = sections[k].rail_s;
     // The wheel search windows are on the wheel profile (the body of revolution), whose
     // parameter differs from the yawed outline's that the sections walked along.

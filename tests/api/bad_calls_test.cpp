@@ -1208,4 +1208,58 @@ TEST(ApiCrashes, HalfspaceWheelOnAGrooveEdge) {
   }
 }
 
+// The first internal check reached through the C API since internal checks became a status
+// (API 1.5), found by tests/tools/api_call_search (sequence 2104): a wheelset whose wheels are a
+// rippled parabola (58 points, a 3.7 mm ripple of 9.6 mm wavelength), on rails canted -0.2, at an
+// extreme load. The conformal grid's last row of cells, half a cell beyond the last accepted
+// section, took the next segment's normal, which had turned past vertical: a cell with a negative
+// approach weight, refused by the normal solver's check ("approach_weight.minCoeff() > 0.0").
+// The grid now ends before a row whose normal a vertical approach cannot close
+// (core/geometry/patch_builder.cpp); the call returns a documented status, here with the load
+// carried.
+TEST(ApiInternal, ARippledWheelsGridEndsBeforeItsNormalTurnsPastVertical) {
+  rw_problem* p = nullptr;
+  ASSERT_EQ(rw_create(RW_PROBLEM_WHEELSET, &p), RW_OK);
+  std::vector<double> yz;
+  const int points = 58;
+  for (int i = 0; i < points; ++i) {
+    const double y = -0.03 + 0.06 * i / (points - 1);
+    yz.push_back(y);
+    yz.push_back(y * y / (2 * 0.3729378497607343) +
+                 0.0037363534647153035 * std::sin(655.94537830005891 * y));
+  }
+  ASSERT_EQ(rw_set_profile_points(p, RW_BODY_WHEEL, yz.data(), points), RW_OK) << rw_last_error(p);
+  ASSERT_EQ(rw_set_profile_file(p, RW_BODY_RAIL, "builtin:UIC60"), RW_OK) << rw_last_error(p);
+  rw_geometry g = ValidGeometry();
+  g.rail_cant = -0.2;
+  g.rolling_radius_m = 0.37529780669159857;
+  g.gauge_m = 1.5753714597308157;
+  ASSERT_EQ(rw_set_geometry(p, &g), RW_OK) << rw_last_error(p);
+  rw_material steel = ValidMaterial();
+  steel.hardness_Pa = 3e9;
+  steel.shear_yield_Pa = 300e6;
+  ASSERT_EQ(rw_set_materials(p, &steel, &steel), RW_OK) << rw_last_error(p);
+  rw_model m = ValidModel();
+  m.accuracy = RW_ACCURACY_DRAFT;
+  m.effects = RW_EFFECT_TANGENTIAL | RW_EFFECT_DAMAGE;
+  m.tangential = RW_TANGENTIAL_AUTO;
+  ASSERT_EQ(rw_set_model(p, &m), RW_OK) << rw_last_error(p);
+  ASSERT_EQ(rw_set_friction(p, 0.05137833391231051), RW_OK) << rw_last_error(p);
+  rw_state s = ValidState();
+  s.lateral_m = 0.011507484597176966;
+  s.yaw_rad = -0.0098600314878167818;
+  s.vertical_force_N = 2501251.3183990479;
+  s.speed_m_s = 58.342061990048308;
+  s.lateral_velocity_m_s = 0.69516603296294699;
+  s.flags = RW_STATE_CREEPAGE;
+  s.creepage_xi = 0.088170995658535034;
+  s.creepage_eta = -0.27948010145847579;
+  s.creepage_spin_per_m = 15.95876557917552;
+  ASSERT_EQ(rw_set_state(p, &s), RW_OK) << rw_last_error(p);
+  const rw_status status = rw_calculate(p);
+  ExpectDocumentedStatus(p, status, "rw_calculate");
+  QueryEverything(p, "after the solve");
+  rw_destroy(p);
+}
+
 }  // namespace

@@ -99,8 +99,11 @@ void Sequence(int n) {
       yz.push_back(y);
       yz.push_back(y * y / (2 * radius) + amplitude * std::sin(wavenumber * y));
     }
-    Log("profile points",
-        rw_set_profile_points(p, Pick(2) ? RW_BODY_RAIL : RW_BODY_WHEEL, yz.data(), points), p);
+    const int body = Pick(2) ? RW_BODY_RAIL : RW_BODY_WHEEL;
+    std::printf(
+        "  profile points on body %d: %d points, ripple %.17g m at %.17g rad/m, radius %.17g m\n",
+        body, points, amplitude, wavenumber, radius);
+    Log("profile points", rw_set_profile_points(p, body, yz.data(), points), p);
   }
   if (kind && Pick(4) == 0)
     Log("left rail", rw_set_profile_file(p, RW_BODY_LEFT_RAIL, rails[Pick(6)]), p);
@@ -114,7 +117,11 @@ void Sequence(int n) {
   if (Pick(4) == 0) g.gauge_height_m = Uniform(0, 0.05);
   if (Pick(3) == 0) g.flange_back_distance_m = Uniform(0.9, 1.8);
   if (Pick(4) == 0) g.flange_back_position_m = Uniform(-0.2, 0.2);
-  std::printf("  cant %g\n", g.rail_cant);
+  std::printf(
+      "  geometry cant %.17g rolling radius %.17g gauge %.17g gauge height %.17g flange back "
+      "distance %.17g position %.17g\n",
+      g.rail_cant, g.rolling_radius_m, g.gauge_m, g.gauge_height_m, g.flange_back_distance_m,
+      g.flange_back_position_m);
   Log("geometry", rw_set_geometry(p, &g), p);
   rw_material wheel_steel{}, rail_steel{};
   wheel_steel.struct_size = rail_steel.struct_size = sizeof wheel_steel;
@@ -140,20 +147,23 @@ void Sequence(int n) {
     m.cell_dx_m = std::pow(10.0, Uniform(-4.3, -1.7));
     m.cell_ds_m = std::pow(10.0, Uniform(-4.3, -1.7));
   }
-  std::printf("  model %d accuracy %d effects %u tangential %d cells %g %g\n", m.kind, m.accuracy,
-              m.effects, m.tangential, m.cell_dx_m, m.cell_ds_m);
+  std::printf("  model %d accuracy %d effects %u tangential %d cells %.17g %.17g\n", m.kind,
+              m.accuracy, m.effects, m.tangential, m.cell_dx_m, m.cell_ds_m);
   Log("model", rw_set_model(p, &m), p);
-  Log("friction",
-      rw_set_friction(p, Pick(3) == 0 ? std::pow(10.0, Uniform(-6, 0.3)) : Uniform(0.05, 0.6)), p);
+  const double friction = Pick(3) == 0 ? std::pow(10.0, Uniform(-6, 0.3)) : Uniform(0.05, 0.6);
+  std::printf("  friction %.17g\n", friction);
+  Log("friction", rw_set_friction(p, friction), p);
   if (Pick(6) == 0) {
-    Log("pressure limit",
-        rw_set_pressure_limit(p, RW_PRESSURE_LIMIT_VALUE, std::pow(10.0, Uniform(6, 10))), p);
+    const double limit_Pa = std::pow(10.0, Uniform(6, 10));
+    std::printf("  pressure limit %.17g Pa\n", limit_Pa);
+    Log("pressure limit", rw_set_pressure_limit(p, RW_PRESSURE_LIMIT_VALUE, limit_Pa), p);
   }
   if (Pick(4) == 0) {
     rw_wear law{};
     law.struct_size = sizeof law;
     rw_init_wear(&law);
     law.law = Pick(4);
+    std::printf("  wear law %d\n", law.law);
     Log("wear", rw_set_wear(p, &law), p);
   }
   const int steps = 1 + Pick(3);
@@ -186,11 +196,13 @@ void Sequence(int n) {
     }
     if (kind && Pick(3) == 0) s.curvature_per_m = Uniform(0, 0.1);
     std::printf(
-        "  state lateral %g yaw %g roll %g load %g approach %g left load %g speed %g "
-        "lateral velocity %g yaw velocity %g mode %d axle force %g curvature %g\n",
+        "  state lateral %.17g yaw %.17g roll %.17g load %.17g approach %.17g left load %.17g "
+        "speed %.17g lateral velocity %.17g yaw velocity %.17g mode %d axle force %.17g "
+        "curvature %.17g creepages %.17g %.17g %.17g pitch velocity %.17g\n",
         s.lateral_m, s.yaw_rad, s.roll_rad, s.vertical_force_N, s.approach_m,
         s.left_vertical_force_N, s.speed_m_s, s.lateral_velocity_m_s, s.yaw_velocity_rad_s, mode,
-        s.longitudinal_force_N, s.curvature_per_m);
+        s.longitudinal_force_N, s.curvature_per_m, s.creepage_xi, s.creepage_eta,
+        s.creepage_spin_per_m, s.pitch_velocity_rad_s);
     std::fflush(stdout);
     int status = rw_set_state(p, &s);
     if (status) {
@@ -203,6 +215,7 @@ void Sequence(int n) {
     QueryAll(p, m.effects != 0);
     if (Pick(4) == 0) {
       g.rail_cant = cants[Pick(6)];
+      std::printf("  geometry again: cant %.17g\n", g.rail_cant);
       Log("geometry again", rw_set_geometry(p, &g), p);
     }
   }
