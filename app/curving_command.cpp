@@ -186,7 +186,9 @@ void RunCurving(const CurvingOptions& o) {
         t < static_cast<int>(stored.state.curving.size()) ? &stored.state.curving[t] : nullptr;
     CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low, start);
     p.options.cancel = [] { return InterruptSignals::Received() != 0; };
-    if (o.predictor) p.options.cold_predictor = *EnumFromString(kCurvingPredictorNames, *o.predictor);
+    if (o.predictor) {
+      p.options.cold_predictor = *EnumFromString(kCurvingPredictorNames, *o.predictor);
+    }
     std::cerr << fmt::format("railwear: curving: solving traffic entry '{}'\n", c.name);
     const CurvingResult r = SolveCurving(p);
     if (const int signal = InterruptSignals::Received()) {

@@ -14,7 +14,8 @@
 // --predictor table: a cold solve (on the unworn rails, or a stored step without a curving
 // solution) iterates on the contact-table predictor (core/contact/contact_table.h; docs/curving.md
 // "The table predictor") before the full model finishes it; default: the scene's [curving]
-// predictor (itself `model`, the draft grid, by default). A continued solve (a stored step's solution) goes to the full model directly either way.
+// predictor (itself `model`, the draft grid, by default). A continued solve (a stored step's
+// solution) goes to the full model directly either way.
 //
 // SIGINT / SIGTERM (issue 17) stop the solve in flight within one contact evaluation and end the
 // command with exit 130 / 143 and a message naming the entry; nothing is written (--json

@@ -121,7 +121,8 @@ std::vector<CorpusCase> Corpus() {
                {{"s.toml", std::string(kWheelsetCurveScene) + "[curving]\npredictor = \"grid\"\n"}},
                "wear s.toml --db s.sqlite",
                2,
-               {"s.toml:", "key 'curving.predictor' = \"grid\"", "expected one of 'model', 'table'"}});
+               {"s.toml:", "key 'curving.predictor' = \"grid\"",
+                "expected one of 'model', 'table'"}});
   c.push_back({"curving_predictor_not_a_string",
                {{"s.toml", std::string(kWheelsetCurveScene) + "[curving]\npredictor = 1\n"}},
                "curving s.toml",
