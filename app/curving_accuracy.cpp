@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <ostream>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -33,14 +34,24 @@ CurvingAccuracyStudy RunCurvingAccuracyStudy(
     const TrafficCase& c = study.traffic[t];
     if (!c.is_vehicle()) continue;
     std::vector<CurvingResult> results;
-    for (AccuracyPreset a : presets) {
+    // The scene's predictor at every level, then the other one at the finest.
+    const CurvingPredictor own = study.curving_predictor;
+    const CurvingPredictor other =
+        own == CurvingPredictor::kTable ? CurvingPredictor::kModel : CurvingPredictor::kTable;
+    std::vector<std::pair<AccuracyPreset, CurvingPredictor>> runs;
+    for (AccuracyPreset a : presets) runs.emplace_back(a, own);
+    runs.emplace_back(presets.back(), other);
+    for (const auto& [a, predictor] : runs) {
       CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low);
       p.contact.model.accuracy = a;
+      p.options.cold_predictor = predictor;
       results.push_back(SolveCurving(p));
       const CurvingResult& r = results.back();
       CurvingAccuracyRow row;
       row.traffic = c.name;
       row.level = std::string(ToString(a));
+      row.predictor = std::string(ToString(predictor));
+      if (r.table_predictor == TablePredictorOutcome::kFellBack) row.predictor += " (fell_back)";
       row.status = std::string(ToString(r.status));
       row.time_s = r.time_s;
       row.solves = r.contact_solves;
@@ -52,13 +63,17 @@ CurvingAccuracyStudy RunCurvingAccuracyStudy(
         row.lead_l_over_v = lead.high_climb.l_over_v;
       }
       if (progress) {
-        progress(fmt::format("{}: {}: {} in {:.1f} s, {} wheelset solves", c.name, row.level,
-                             row.status, row.time_s, row.solves));
+        progress(fmt::format("{}: {}, {} predictor: {} in {:.1f} s, {} wheelset solves{}",
+                             c.name, row.level, row.predictor, row.status, row.time_s, row.solves,
+                             predictor == CurvingPredictor::kTable
+                                 ? fmt::format(", {} table evaluations, table built in {:.2f} s",
+                                               r.table_evaluations, r.table_build_s)
+                                 : std::string()));
       }
       out.rows.push_back(row);
     }
-    // Against the finest level's solution of this entry.
-    const CurvingResult& ref = results.back();
+    // Against the finest level's solution of this entry with the scene's predictor.
+    const CurvingResult& ref = results[presets.size() - 1];
     const size_t first = out.rows.size() - results.size();
     for (size_t k = 0; k < results.size(); ++k) {
       CurvingAccuracyRow& row = out.rows[first + k];
@@ -77,17 +92,19 @@ CurvingAccuracyStudy RunCurvingAccuracyStudy(
 
 std::string FormatCurvingAccuracyTable(const CurvingAccuracyStudy& s) {
   std::string t = fmt::format(
-      "steady-state curving at each accuracy level: {} (reference: {}; lead = wheelset 0; "
+      "steady-state curving at each accuracy level: {} (reference: {} with the scene's cold "
+      "predictor; the last row of each entry: the other predictor; lead = wheelset 0; "
       "errors: largest over the wheelsets against the reference)\n",
       s.scene_path, s.levels.back());
-  t += fmt::format("{:<24} {:<10} {:<14} {:>8} {:>7} {:>8} {:>9} {:>9} {:>7} {:>8} {:>9} {:>9}\n",
-                   "traffic", "level", "status", "time_s", "solves", "lead_y", "lead_psi",
-                   "lead_Yhi", "L/V", "err_y_mm", "err_psi", "err_Y_kN");
+  t += fmt::format(
+      "{:<24} {:<10} {:<18} {:<14} {:>8} {:>7} {:>8} {:>9} {:>9} {:>7} {:>8} {:>9} {:>9}\n",
+      "traffic", "level", "predictor", "status", "time_s", "solves", "lead_y", "lead_psi",
+      "lead_Yhi", "L/V", "err_y_mm", "err_psi", "err_Y_kN");
   for (const CurvingAccuracyRow& r : s.rows) {
     t += fmt::format(
-        "{:<24} {:<10} {:<14} {:8.2f} {:7d} {:8.3f} {:9.3f} {:9.2f} {:7.3f} {:8.3f} {:9.3f} "
-        "{:9.2f}\n",
-        r.traffic.substr(0, 24), r.level, r.status, r.time_s, r.solves, r.lead_y_mm,
+        "{:<24} {:<10} {:<18} {:<14} {:8.2f} {:7d} {:8.3f} {:9.3f} {:9.2f} {:7.3f} {:8.3f} "
+        "{:9.3f} {:9.2f}\n",
+        r.traffic.substr(0, 24), r.level, r.predictor, r.status, r.time_s, r.solves, r.lead_y_mm,
         r.lead_psi_mrad, r.lead_y_high_kN, r.lead_l_over_v, r.err_y_mm, r.err_psi_mrad,
         r.err_y_high_kN);
   }
@@ -96,12 +113,13 @@ std::string FormatCurvingAccuracyTable(const CurvingAccuracyStudy& s) {
 
 void WriteCurvingAccuracyCsv(const CurvingAccuracyStudy& s, std::ostream& out) {
   out << "traffic,level,status,time_s,solves,lead_y_mm,lead_psi_mrad,lead_y_high_kN,"
-         "lead_l_over_v,err_y_mm,err_psi_mrad,err_y_high_kN\n";
+         "lead_l_over_v,err_y_mm,err_psi_mrad,err_y_high_kN,predictor\n";
   for (const CurvingAccuracyRow& r : s.rows) {
-    out << fmt::format("\"{}\",{},{},{:.6g},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
-                       r.traffic, r.level, r.status, r.time_s, r.solves, r.lead_y_mm,
-                       r.lead_psi_mrad, r.lead_y_high_kN, r.lead_l_over_v, r.err_y_mm,
-                       r.err_psi_mrad, r.err_y_high_kN);
+    out << fmt::format(
+        "\"{}\",{},{},{:.6g},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},\"{}\"\n",
+        r.traffic, r.level, r.status, r.time_s, r.solves, r.lead_y_mm, r.lead_psi_mrad,
+        r.lead_y_high_kN, r.lead_l_over_v, r.err_y_mm, r.err_psi_mrad, r.err_y_high_kN,
+        r.predictor);
   }
 }
 

@@ -5,7 +5,11 @@
 // level in one phase. Per run the wall time, the wheelset contact solves, the status, the
 // leading wheelset's state (y, angle of attack, the high rail's lateral force from its high
 // wheel, L/V) and the largest difference over all wheelsets from the finest level's run of the
-// same entry (the reference): |dy| [mm], |dpsi| [mrad], |dY_high| [kN]. Nothing is stored.
+// same entry (the reference): |dy| [mm], |dpsi| [mrad], |dY_high| [kN]. Each entry's levels use
+// the scene's cold predictor ([curving] predictor, CurvingOptions::cold_predictor); one more row
+// per entry solves the finest level with the other predictor (model or table): what the
+// predictor choice costs and gains in time and solves, and how far its equilibrium lies from
+// the reference's (the same full model, reached through the other predictor). Nothing is stored.
 // Prints a table; with --out DIR writes DIR/curving_accuracy.csv.
 #pragma once
 
@@ -21,6 +25,8 @@ namespace railwear::app {
 struct CurvingAccuracyRow {
   std::string traffic;  // the traffic entry's name
   std::string level;    // accuracy preset name
+  // The cold predictor ("model" or "table"; "table (fell_back)" when the table's start failed).
+  std::string predictor;
   std::string status;   // CurvingStatus name
   double time_s = 0.0;  // wall time of the solve
   int solves = 0;       // wheelset contact solves
@@ -33,7 +39,9 @@ struct CurvingAccuracyRow {
 struct CurvingAccuracyStudy {
   std::string scene_path;
   std::vector<std::string> levels;       // coarse to fine; the last is the reference
-  std::vector<CurvingAccuracyRow> rows;  // per vehicle entry, its levels coarse to fine
+  // Per vehicle entry: its levels coarse to fine with the scene's predictor, then the finest
+  // level with the other predictor.
+  std::vector<CurvingAccuracyRow> rows;
 };
 
 // Runs the study on the levels given (names of kAccuracyLevels, any order, run coarse to fine).

@@ -153,9 +153,8 @@ void SetupCurving(CLI::App& app) {
   cmd->add_option("--predictor", o->predictor,
                   "A cold solve's predictor: model (the draft grid) or table (tabulated rigid "
                   "contact geometry with Hertz and Kalker; docs/curving.md \"The table "
-                  "predictor\")")
-      ->check(CLI::IsMember(EnumChoiceStrings(kCurvingPredictorNames)))
-      ->capture_default_str();
+                  "predictor\"); default: the scene's [curving] predictor")
+      ->check(CLI::IsMember(EnumChoiceStrings(kCurvingPredictorNames)));
   cmd->callback([o]() { RunCurving(*o); });
 }
 
@@ -187,7 +186,9 @@ void RunCurving(const CurvingOptions& o) {
         t < static_cast<int>(stored.state.curving.size()) ? &stored.state.curving[t] : nullptr;
     CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low, start);
     p.options.cancel = [] { return InterruptSignals::Received() != 0; };
-    p.options.cold_predictor = *EnumFromString(kCurvingPredictorNames, o.predictor);
+    if (o.predictor) {
+      p.options.cold_predictor = *EnumFromString(kCurvingPredictorNames, *o.predictor);
+    }
     std::cerr << fmt::format("railwear: curving: solving traffic entry '{}'\n", c.name);
     const CurvingResult r = SolveCurving(p);
     if (const int signal = InterruptSignals::Received()) {

@@ -13,8 +13,9 @@
 //
 // --predictor table: a cold solve (on the unworn rails, or a stored step without a curving
 // solution) iterates on the contact-table predictor (core/contact/contact_table.h; docs/curving.md
-// "The table predictor") before the full model finishes it; default `model` (the draft grid). A
-// continued solve (a stored step's solution) goes to the full model directly either way.
+// "The table predictor") before the full model finishes it; default: the scene's [curving]
+// predictor (itself `model`, the draft grid, by default). A continued solve (a stored step's
+// solution) goes to the full model directly either way.
 //
 // SIGINT / SIGTERM (issue 17) stop the solve in flight within one contact evaluation and end the
 // command with exit 130 / 143 and a message naming the entry; nothing is written (--json
@@ -36,7 +37,8 @@ struct CurvingOptions {
   std::optional<std::string> db;    // a wear run's database: its step's worn rails
   std::optional<std::string> run;   // default: the scene's name
   std::optional<int> step;          // default: the run's last stored step
-  std::string predictor = "model";  // the cold solve's: "model" or "table"
+  // The cold solve's: "model" or "table"; absent: the scene's [curving] predictor.
+  std::optional<std::string> predictor;
 };
 
 void SetupCurving(CLI::App& app);

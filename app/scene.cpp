@@ -770,6 +770,23 @@ void ReadLateralShift(const Fields& t, TrafficCase* c) {
   c->lateral_shift_mean_m = t.RequiredNumber("lateral_shift_mm", AnyFinite(), LateralRange()) * kMm;
 }
 
+// [curving] (issue 15): how the vehicles' steady-state curving is solved. predictor: the cold
+// solve's predictor (CurvingOptions::cold_predictor): "model" (the draft grid) or "table" (the
+// contact table, docs/curving.md "The table predictor"). Only beside [[vehicle]] tables.
+void ReadCurvingTable(const Fields& top, Scene* scene) {
+  const auto t = top.Table("curving", "a table { predictor }");
+  if (!t) return;
+  t->AllowOnly({"predictor"});
+  if (scene->wear->vehicles.empty()) {
+    top.Fail("curving",
+             "a [curving] table only beside [[vehicle]] tables (it sets how their curving is "
+             "solved)");
+  }
+  if (const auto name = t->Choice("predictor", EnumChoices(kCurvingPredictorNames))) {
+    scene->wear->curving_predictor = *EnumFromString(kCurvingPredictorNames, *name);
+  }
+}
+
 // [[vehicle]]: the vehicles that vehicle traffic names (core/vehicle/vehicle.h). Units as in
 // the literature: stiffnesses in MN/m and kN m/rad, lengths in m, profile positions in mm.
 void ReadVehicles(const Fields& top, Scene* scene) {
@@ -1237,6 +1254,7 @@ void ReadWearScene(const Fields& top, Scene* scene) {
   }
   ReadWearTable(top, scene);
   ReadVehicles(top, scene);
+  ReadCurvingTable(top, scene);
   ReadTraffic(top, scene);
   if (scene->problem.model.kind == ModelKind::kHertz) {
     const auto model = top.Table("model", "a table");
@@ -1281,13 +1299,13 @@ Scene ParseScene(const std::string& text, const std::string& path) {
   const toml::table root = ParseToml(text, path);
   const Fields top(root, "", path);
   top.AllowOnly({"scene", "model", "materials", "wheel", "rail", "load", "track", "wheelset",
-                 "wear", "traffic", "vehicle"});
+                 "wear", "traffic", "vehicle", "curving"});
   Scene scene;
   scene.path = path;
   scene.text = text;
   ReadSceneTable(top, &scene);
   if (!HasEffect(scene, "wear")) {
-    for (const std::string_view key : {"wear", "traffic"}) {
+    for (const std::string_view key : {"wear", "traffic", "curving"}) {
       if (top.Has(key)) {
         throw InputError(fmt::format(
             "{}: expected [{}] only in a wear scene: add \"wear\" to scene.effects to run the "

@@ -86,6 +86,7 @@ CurvingProblem VehicleCurvingProblem(const WearStudy& study, int traffic_index,
   p.speed_m_s = c.speed_m_s;
   p.friction = c.friction;
   p.options.threads = study.options.threads;
+  p.options.cold_predictor = study.curving_predictor;
   p.options.cancel = study.options.cancel;  // a signal stops the solve, not only the step after it
   if (start && start->state.size() > 0) {
     p.options.start = *start;

@@ -131,6 +131,10 @@ struct WearStudy : ContactSetup {
   std::vector<VehicleSpec> vehicles;
   TrackSpec track;
   CurveSpec curve;
+  // The cold predictor of every vehicle entry's curving (CurvingOptions::cold_predictor): the
+  // solves on the unworn rails, and a step's fallback from the centred start (scenes: [curving]
+  // predictor).
+  CurvingPredictor curving_predictor = CurvingPredictor::kModel;
   // Per traffic entry, the curving solution on the unworn rails (empty, or an empty entry: the
   // centred start): the start of a step whose state carries none (WearState::curving). RunWear
   // fills it with each vehicle's equilibrium on the unworn rails of step 0 when its start state

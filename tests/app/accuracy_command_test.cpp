@@ -282,11 +282,16 @@ TEST(AccuracyCommand, CurvingAtDraftAndStandard) {
   const Scene scene = ParseScene(test::kWheelsetCurveScene, "wheelset.toml");
   const CurvingAccuracyStudy s =
       RunCurvingAccuracyStudy(scene, {"standard", "draft"}, nullptr);  // run coarse to fine
-  ASSERT_EQ(s.rows.size(), 2u);
+  // Both levels with the scene's predictor (model), then the finest with the other (table).
+  ASSERT_EQ(s.rows.size(), 3u);
   EXPECT_EQ(s.rows[0].level, "draft");
   EXPECT_EQ(s.rows[1].level, "standard");
+  EXPECT_EQ(s.rows[2].level, "standard");
+  EXPECT_EQ(s.rows[0].predictor, "model");
+  EXPECT_EQ(s.rows[1].predictor, "model");
+  EXPECT_EQ(s.rows[2].predictor, "table");
   for (const CurvingAccuracyRow& r : s.rows) {
-    EXPECT_EQ(r.status, "converged") << r.level;
+    EXPECT_EQ(r.status, "converged") << r.level << " " << r.predictor;
     EXPECT_GT(r.solves, 0);
     EXPECT_GT(r.time_s, 0.0);
     EXPECT_GT(r.lead_y_mm, 0.0);  // pushed toward the high rail
@@ -296,13 +301,21 @@ TEST(AccuracyCommand, CurvingAtDraftAndStandard) {
   EXPECT_LT(s.rows[0].err_y_mm, 0.1);
   EXPECT_LT(s.rows[0].err_psi_mrad, 0.1);
   EXPECT_NEAR(s.rows[0].err_y_mm, std::abs(s.rows[0].lead_y_mm - s.rows[1].lead_y_mm), 1e-12);
+  // The same full model's equilibrium through the table predictor: within the curving's position
+  // tolerances (CurvingOptions::position_tolerance_m, yaw_tolerance_rad: 0.05 mm, 0.05 mrad).
+  EXPECT_LT(s.rows[2].err_y_mm, 0.05);
+  EXPECT_LT(s.rows[2].err_psi_mrad, 0.05);
   const std::string table = FormatCurvingAccuracyTable(s);
+  EXPECT_TRUE(Contains(table, "predictor"));
   EXPECT_TRUE(Contains(table, "reference: standard"));
-  EXPECT_TRUE(Contains(table, "traffic[0]               draft"));
+  EXPECT_TRUE(Contains(table, "traffic[0]               draft      model"));
+  EXPECT_TRUE(Contains(table, "traffic[0]               standard   table"));
   std::ostringstream csv;
   WriteCurvingAccuracyCsv(s, csv);
   EXPECT_TRUE(Contains(csv.str(), "traffic,level,status,time_s,solves,lead_y_mm"));
   EXPECT_TRUE(Contains(csv.str(), "\"traffic[0]\",standard,converged,"));
+  EXPECT_TRUE(Contains(csv.str(), ",predictor\n"));
+  EXPECT_TRUE(Contains(csv.str(), ",\"table\"\n"));
 
   const Scene contact = LoadScene(kExamples + "gauge_corner.toml");
   EXPECT_TRUE(Contains(

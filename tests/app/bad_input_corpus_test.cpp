@@ -115,6 +115,29 @@ std::vector<CorpusCase> Corpus() {
                "wear s.toml --db s.sqlite",
                2,
                {"s.toml:", "key 'wear.quadrature_points' = 82", "[1, 82)"}});
+  // [curving] predictor (issue 15): a name it does not know, the table without vehicles, and
+  // in a contact scene.
+  c.push_back({"curving_predictor_unknown",
+               {{"s.toml", std::string(kWheelsetCurveScene) + "[curving]\npredictor = \"grid\"\n"}},
+               "wear s.toml --db s.sqlite",
+               2,
+               {"s.toml:", "key 'curving.predictor' = \"grid\"",
+                "expected one of 'model', 'table'"}});
+  c.push_back({"curving_predictor_not_a_string",
+               {{"s.toml", std::string(kWheelsetCurveScene) + "[curving]\npredictor = 1\n"}},
+               "curving s.toml",
+               2,
+               {"s.toml:", "key 'curving.predictor' = 1", "'model', 'table'"}});
+  c.push_back({"curving_without_vehicles",
+               {{"s.toml", wear + "\n[curving]\npredictor = \"table\"\n"}},
+               "wear s.toml --db s.sqlite",
+               2,
+               {"s.toml:", "key 'curving'", "only beside [[vehicle]] tables"}});
+  c.push_back({"curving_in_a_contact_scene",
+               {{"s.toml", tread + "\n[curving]\npredictor = \"table\"\n"}},
+               "contact s.toml",
+               2,
+               {"s.toml:", "expected [curving] only in a wear scene"}});
   // [model] tangential (issue 16 point 4: "auto" joined the choices).
   c.push_back({"tangential_unknown",
                {{"s.toml", Replace(tread, "accuracy = \"standard\"",

@@ -19,9 +19,14 @@
 //                           T = 0 the default table (nodes 0.1 mm apart, sampled at 0.1 mm),
 //                           1 its nodes 0.2 mm apart, 2 also sampled at 0.2 mm.
 //   BM_ContactTableBuild/V  the contact table of vehicle V's wheels on the main job's rails.
-// Each reports the wheelset contact solves it needed. Run:
+// Each reports the wheelset contact solves it needed, and where its predictor's phase ended
+// against the solution (predictor_off_y_mm, predictor_off_psi_mrad, the largest over the
+// wheelsets; finish_start_residual, the full model's largest scaled residual there). Run:
 //   build/tests/benchmarks/curving_bench --benchmark_repetitions=3
 //   --benchmark_report_aggregates_only=true
+#include <algorithm>
+#include <cmath>
+
 #include <benchmark/benchmark.h>
 
 #include "app/scene.h"
@@ -44,6 +49,18 @@ void Run(benchmark::State& state, const CurvingProblem& p) {
   state.counters["table_evaluations"] = r.table_evaluations;
   state.counters["table_build_s"] = r.table_build_s;
   state.counters["table_fell_back"] = r.table_predictor == TablePredictorOutcome::kFellBack;
+  // Where the predictor's phase ended against the solution (the largest over the wheelsets) and
+  // the full model's largest scaled residual there: how far the finish had to go.
+  double off_y = 0.0, off_psi = 0.0;
+  if (r.predictor_state.size() == r.state.size()) {
+    for (int i = 0; i < static_cast<int>(r.wheelsets.size()); ++i) {
+      off_y = std::max(off_y, std::abs(r.predictor_state[2 * i] - r.state[2 * i]));
+      off_psi = std::max(off_psi, std::abs(r.predictor_state[2 * i + 1] - r.state[2 * i + 1]));
+    }
+  }
+  state.counters["predictor_off_y_mm"] = off_y * 1e3;
+  state.counters["predictor_off_psi_mrad"] = off_psi * 1e3;
+  state.counters["finish_start_residual"] = r.finish_start_residual;
 }
 
 void BM_CurvingFreeWheelset(benchmark::State& state) {
