@@ -57,6 +57,50 @@ TEST(PatchBuilder, ConformalGapIsTheSumOfOrthogonalDistances) {
               x * x / (2 * pose.rolling_radius_m), 1e-3 * x * x / (2 * pose.rolling_radius_m));
 }
 
+TEST(PatchBuilder, UpdatedConformalGapsAreTheMovedWheelsOnTheSameCells) {
+  // The groove of the test above; the grid's gaps computed again (UpdateConformalGaps) on the
+  // same placed geometry are BuildPatchGrid's bit for bit, and on a geometry whose wheel moved
+  // 5 um across (and was lowered to first contact again) they are seed eq. 2's exact gaps of the
+  // moved wheel circle at the same cells.
+  const double R1 = 0.010, R2 = 0.01025;
+  const Profile wheel = testing::ArcProfile(R1, -1.0);
+  const Profile rail = testing::ArcProfile(R2, -1.0);
+  WheelPose pose;
+  pose.rolling_radius_m = 0.46;
+  const WheelRailGeometry g(wheel, rail, pose);
+  const auto cands = g.FindCandidates(2e-5);
+  ASSERT_EQ(cands.size(), 1u);
+  PatchGridOptions o;
+  o.geometry = GeometryModel::kConformal;
+  o.cell_dx_m = 2e-4;
+  o.cell_ds_m = 2e-4;
+  o.threshold_m = 2e-5;
+  const PatchBuild b = BuildPatchGrid(g, cands[0], o);
+  ASSERT_TRUE(b.valid);
+  PatchBuild again = b;
+  ASSERT_TRUE(UpdateConformalGaps(g, &again));
+  for (int k = 0; k < b.grid.cells(); ++k) EXPECT_EQ(again.grid.gap_m[k], b.grid.gap_m[k]) << k;
+
+  WheelPose moved_pose = pose;
+  moved_pose.lateral_shift_m = 5e-6;
+  const WheelRailGeometry moved(wheel, rail, moved_pose);
+  PatchBuild updated = b;
+  ASSERT_TRUE(UpdateConformalGaps(moved, &updated));
+  const Eigen::Vector2d c1 = moved.WheelToRail(g.RailToWheel({0.0, -R1})), c2(0.0, -R2);
+  EXPECT_NEAR(std::abs(c1.x()), 5e-6, 1e-12);  // (the wheel did move)
+  const PatchGrid& grid = updated.grid;
+  const int ic = (grid.nx - 1) / 2;
+  for (int j = 0; j < grid.ns; ++j) {
+    const Eigen::Vector2d p = grid.point_yz_m[j];
+    const double exact = (R2 - (p - c2).norm()) + ((p - c1).norm() - R1);
+    EXPECT_NEAR(grid.gap_m[grid.Index(ic, j)], exact, kGapTolerance_m) << j;
+  }
+  // A planar build has nothing to update.
+  o.geometry = GeometryModel::kPlanar;
+  PatchBuild planar = BuildPatchGrid(g, cands[0], o);
+  EXPECT_FALSE(UpdateConformalGaps(g, &planar));
+}
+
 TEST(PatchBuilder, PlanarGapIsQuadraticNearFirstContact) {
   // Laterally flat wheel of radius r0 on a 300 mm crown: along the plane normal the gap is
   // x^2/(2 r0) + s^2/(2 R) + higher order terms (relative size ~ s^2/R^2 ~ 1e-4 here).
