@@ -98,10 +98,11 @@ struct rw_problem {
   // The placed geometries of the last calculate, reused by the next one at the same pose on the
   // same profiles (core/contact/placement_cache.h): exact, so results do not depend on it.
   railwear::PlacementCache placement_cache;
-  // rw_set_warm_start: the single wheel's last measured patch and balance, the next
-  // calculate's start (core/contact/contact_warm_start.h); off by default.
+  // rw_set_warm_start: the single wheel's (a wheelset's right wheel's) last measured patch and
+  // balance, the next calculate's start (core/contact/contact_warm_start.h), and a wheelset's
+  // left wheel's; off by default.
   bool warm_start_on = false;
-  railwear::ContactWarmStart warm_start;
+  railwear::ContactWarmStart warm_start, warm_start_left;
   // The fast tread path's wheel-frame contact point of the last calculate (RW_MODEL_HERTZ with
   // rolling contact on a single wheel, core/contact/hertz_tread.h); empty for any other solve (a
   // wheelset's are in its result, WheelsetResult::right_tread_point and left_tread_point).
@@ -270,6 +271,7 @@ void Invalidate(rw_problem* p) noexcept {
 void SetUpChanged(rw_problem* p) {
   Invalidate(p);
   p->warm_start.Clear();
+  p->warm_start_left.Clear();
 }
 
 // The canted rail each wheel of the handle runs on: rail 0 (single or right), 1 (left: its own
@@ -959,6 +961,7 @@ rw_status rw_set_warm_start(rw_problem* problem, int enable) {
     }
     problem->warm_start_on = enable == 1;
     problem->warm_start.Clear();
+    problem->warm_start_left.Clear();
     return RW_OK;
   });
 }
@@ -973,7 +976,8 @@ rw_status rw_calculate(rw_problem* problem) {
       const LentProfiles lent(problem, &c);
       problem->result =
           railwear::SolveContactCase(c, &problem->placement_cache, &problem->tread_point,
-                                     problem->warm_start_on ? &problem->warm_start : nullptr);
+                                     problem->warm_start_on ? &problem->warm_start : nullptr,
+                                     problem->warm_start_on ? &problem->warm_start_left : nullptr);
     }
     const ContactCaseResult& r = *problem->result;
     auto add = [&](int wheel, const ContactResult& contact) {

@@ -23,13 +23,13 @@ ContactCaseResult SolveContactCase(const ContactCase& c, PlacementCache* cache) 
 
 ContactCaseResult SolveContactCase(const ContactCase& c, PlacementCache* cache,
                                    std::optional<HertzTreadPoint>* tread_point,
-                                   ContactWarmStart* warm) {
+                                   ContactWarmStart* warm, ContactWarmStart* left_warm) {
   ContactCaseResult out;
   if (tread_point) tread_point->reset();
   if (c.wheelset) {
     WheelsetProblem problem = *c.wheelset;
     problem.wheel_rail = c.problem;
-    out.wheelset = SolveWheelset(problem, cache);
+    out.wheelset = SolveWheelset(problem, cache, warm, left_warm);
     return out;
   }
   auto solve_full = [&](const ContactProblem& problem) {

@@ -183,7 +183,10 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
     for (int attempt = 0; attempt < (from ? 1 : 12); ++attempt) {
       PatchBuilds builds;
       auto t0 = Clock::now();
-      if (!area.Build(geom, &m, approach_now, &builds, &out)) {
+      // A warm attempt keeps the last call's grids (and operators) where the wheel has hardly
+      // moved (KeptGrid).
+      const std::vector<KeptGrid>* kept_grids = from ? &from->kept_grids : nullptr;
+      if (!area.Build(geom, &m, approach_now, &builds, &out, kept_grids)) {
         if (from) return std::nullopt;
         return out;
       }
@@ -193,11 +196,19 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
       }
 
       t0 = Clock::now();
-      NormalAssembly assembly = AssembleNormalProblem(builds, problem);
+      NormalAssembly assembly = AssembleNormalProblem(builds, problem, kept_grids);
       if (warm_target_N) assembly.np.force_N = *warm_target_N;
       AddStage(&out.stages, "influence", SecondsSince(t0));
 
-      const NormalSolution sol = SolveNormalStage(assembly.np, problem.solver, &out.stages);
+      // A warm attempt under a prescribed load starts from the last call's pressures on the new
+      // grids (under a prescribed approach an unscaled start can take more iterations,
+      // normal_solver.h).
+      std::optional<Eigen::VectorXd> start;
+      if (from && assembly.np.force_N && !from->grids.empty()) {
+        start = WarmPressureStart(*from, builds);
+      }
+      const NormalSolution sol = SolveNormalStage(assembly.np, problem.solver, &out.stages,
+                                                  start ? &*start : nullptr);
       total_iterations += sol.iterations;
       const bool converged = sol.status == SolverStatus::kConverged;
       if (converged) approach_now = sol.approach_m;
@@ -208,6 +219,21 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
       if ((converged || sol.load_above_limit) && review.Again() && attempt < 11) {
         area.Widen(review, sol);
         continue;
+      }
+
+      // The grids and operators for the next call's warm start (before CollectPatches takes
+      // the grids); a grid kept again keeps the pose it was built at, so that the wheel's moves
+      // add up against kMaxKeptGridMove.
+      std::vector<KeptGrid> next_kept;
+      if (warm_start && !memo) {
+        for (size_t k = 0; k < builds.builds.size(); ++k) {
+          const PatchBuild& b = builds.builds[k];
+          if (kept_grids && builds.kept[k] >= 0) {
+            next_kept.push_back((*kept_grids)[builds.kept[k]]);
+          } else if (!b.grid.planar && !b.rail_s_m.empty()) {
+            next_kept.push_back(KeepGrid(geom, builds, k, assembly.ops[k]));
+          }
+        }
       }
 
       // 4. Patch results.
@@ -249,6 +275,12 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
           state->load_N = *problem.load.vertical_force_N;
           state->target_N = *assembly.np.force_N;
         }
+        for (const PatchResult& patch : out.patches) {
+          state->grids.push_back(patch.grid);
+          state->grids.back().gap_m.resize(0);  // (not needed)
+          state->pressures_Pa.push_back(patch.pressure_Pa);
+        }
+        state->kept_grids = std::move(next_kept);
         warm_start->Keep(std::move(state));
       }
       return out;

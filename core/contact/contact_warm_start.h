@@ -9,7 +9,14 @@
 // prescribed load the vertical balance's pressure target) and the next call's first attempt
 // is the last call's final one on the grids of the new position: the preset's cells on the
 // measured patch, solved at the last balanced target (scaled by the new load over the old),
-// and the balance starts from there.
+// and the balance starts from there. Two more things carry over (potential_area.h):
+//  - the pressures: under a prescribed load the attempt's normal solve starts from the last
+//    call's final pressures, interpolated onto the new grids (WarmPressureStart), instead of
+//    the solver's initial guess;
+//  - the grids and their influence operators: while the wheel stays within kMaxKeptGridMove of
+//    a cell (0.1) of where a grid was built, a later call keeps that grid's cells (its gaps
+//    projected anew on the moved wheel, UpdateConformalGaps) and its operator, instead of
+//    walking the cross-section and integrating the operator again (conformal grids).
 //
 // Fallback: when that attempt does not fit (pressure at a grid's edge, another cell size by
 // more than the review's 30 %, a candidate more or fewer or not found where the last call had
@@ -26,8 +33,9 @@
 // Contract: a warm start serves the calls of one problem set-up on one wheel (the same
 // profiles, materials, model, solver options, friction and pressure limit) between which only
 // the wheel's pose and motion and the load change; the caller clears it when anything else
-// changes (the C API's handle does on every set-up call). A wheelset's calls do not use it.
-// It is used by one thread.
+// changes (the C API's handle does on every set-up call). A wheelset keeps one per wheel
+// (SolveWheelset's right_warm and left_warm; not with an axle force target). It is used by one
+// thread.
 #pragma once
 
 #include <memory>

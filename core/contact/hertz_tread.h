@@ -86,9 +86,12 @@ class ContactWarmStart;
 // when the single wheel took the fast path, reset otherwise (the C API reports it as rw_patch's
 // wheel-frame location, which it finds on the placed geometry for every other solve).
 // warm (optional, in/out): a single wheel's grid solve starts from the last call's measured
-// patch and balance and keeps its own (contact_warm_start.h); a wheelset's does not use it.
+// patch and balance and keeps its own (contact_warm_start.h); a wheelset's right wheel uses it,
+// and its left wheel left_warm, as SolveWheelset's right_warm and left_warm (without an axle
+// force target).
 ContactCaseResult SolveContactCase(const ContactCase& c, PlacementCache* cache,
                                    std::optional<HertzTreadPoint>* tread_point,
-                                   ContactWarmStart* warm = nullptr);
+                                   ContactWarmStart* warm = nullptr,
+                                   ContactWarmStart* left_warm = nullptr);
 
 }  // namespace railwear

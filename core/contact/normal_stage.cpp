@@ -9,9 +9,9 @@
 namespace railwear::internal {
 
 NormalSolution SolveNormalStage(const NormalProblem& np, const NormalSolverOptions& options,
-                                std::vector<StageTime>* stages) {
+                                std::vector<StageTime>* stages, const Eigen::VectorXd* start) {
   const auto t0 = Clock::now();
-  NormalSolution sol = SolveNormal(np, options);
+  NormalSolution sol = SolveNormal(np, options, start);
   AddStage(stages, "solve", SecondsSince(t0));
   return sol;
 }

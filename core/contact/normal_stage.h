@@ -13,9 +13,10 @@
 
 namespace railwear::internal {
 
-// SolveNormal, timed as the stage "solve".
+// SolveNormal (from `start` when given, SolveNormal's), timed as the stage "solve".
 NormalSolution SolveNormalStage(const NormalProblem& np, const NormalSolverOptions& options,
-                                std::vector<StageTime>* stages);
+                                std::vector<StageTime>* stages,
+                                const Eigen::VectorXd* start = nullptr);
 
 // Which grid of the attempt each patch of the result came from, and where its cells start in
 // the NormalProblem's vectors.

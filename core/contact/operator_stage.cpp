@@ -3,7 +3,8 @@
 
 namespace railwear::internal {
 
-NormalAssembly AssembleNormalProblem(const PatchBuilds& builds, const ContactProblem& problem) {
+NormalAssembly AssembleNormalProblem(const PatchBuilds& builds, const ContactProblem& problem,
+                                     const std::vector<KeptGrid>* kept) {
   const InfluenceSettings settings{problem.model.kernel, problem.model.constants,
                                    problem.wheel_material, problem.rail_material};
   NormalAssembly out;
@@ -21,7 +22,12 @@ NormalAssembly AssembleNormalProblem(const PatchBuilds& builds, const ContactPro
     patch_settings.wheel_curvature_sign =
         BodyCurvatureSign(builds.cands[k].wheel_lateral_curvature);
     patch_settings.rail_curvature_sign = BodyCurvatureSign(builds.cands[k].rail_lateral_curvature);
-    out.ops.push_back(MakeInfluenceOperator(b.grid, patch_settings));
+    const int kept_index = k < builds.kept.size() ? builds.kept[k] : -1;
+    if (kept && kept_index >= 0) {
+      out.ops.push_back((*kept)[kept_index].op);
+    } else {
+      out.ops.push_back(MakeInfluenceOperator(b.grid, patch_settings));
+    }
     np.blocks.push_back(out.ops.back().get());
     np.gap_m.segment(offset, b.grid.cells()) = b.grid.gap_m;
     for (int j = 0; j < b.grid.ns; ++j) {

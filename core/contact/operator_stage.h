@@ -15,12 +15,15 @@ namespace railwear::internal {
 
 // The operators and the problem that points at them (np.blocks[k] == ops[k].get()).
 struct NormalAssembly {
-  std::vector<std::unique_ptr<InfluenceOperator>> ops;
+  std::vector<std::shared_ptr<const InfluenceOperator>> ops;
   NormalProblem np;
 };
 
 // The grids' operators and the normal problem: per cell the gap, the approach weight (the
 // normal's vertical component) and the cell area, patch after patch; problem's load.
-NormalAssembly AssembleNormalProblem(const PatchBuilds& builds, const ContactProblem& problem);
+// kept (optional): a warm start's kept grids; a build that reuses one (builds.kept) takes its
+// operator instead of making it again (the same grid and settings: the same operator).
+NormalAssembly AssembleNormalProblem(const PatchBuilds& builds, const ContactProblem& problem,
+                                     const std::vector<KeptGrid>* kept = nullptr);
 
 }  // namespace railwear::internal

@@ -42,10 +42,59 @@ PotentialArea::PotentialArea(const ContactProblem& problem, const FirstContactEs
       n_per_axis_(CellsPerSemiAxis(problem.model.accuracy)),
       cell_fixed_(problem.model.cell_dx_m.has_value() || problem.model.cell_ds_m.has_value()) {}
 
+namespace {
+
+// Whether the kept grid kg applies to candidate c (model `choice`, cells cc) on geom: the same
+// candidate (its interval then held c's smallest gap), model, kernel and cells, and the wheel
+// moved by at most kMaxKeptGridMove of a cell at the grid's first and last rows (the yaw's move
+// at its ends in x included).
+bool KeptGridApplies(const KeptGrid& kg, const WheelRailGeometry& geom, const ContactCandidate& c,
+                     const PatchModelChoice& choice, const CellSize& cc) {
+  const PatchGrid& g = kg.build.grid;
+  if (choice.geometry != GeometryModel::kConformal || g.planar ||
+      kg.choice.geometry != GeometryModel::kConformal || choice.kernel != kg.choice.kernel ||
+      choice.label != kg.choice.label || cc.dx_m != g.dx_m || cc.ds_m != g.ds_m ||
+      c.y_m < kg.y_lo_m || c.y_m > kg.y_hi_m ||
+      BodyCurvatureSign(c.wheel_lateral_curvature) != kg.wheel_sign ||
+      BodyCurvatureSign(c.rail_lateral_curvature) != kg.rail_sign ||
+      geom.pose().rolling_radius_m != kg.rolling_radius_m) {
+    return false;
+  }
+  const double half_length = 0.5 * g.nx * g.dx_m + std::abs(g.XCentre());
+  const double move = std::max((geom.WheelToRail(kg.wheel_first_W) - kg.rail_first_R).norm(),
+                               (geom.WheelToRail(kg.wheel_last_W) - kg.rail_last_R).norm()) +
+                      std::abs(geom.pose().yaw_rad - kg.yaw_rad) * half_length;
+  return move <= kMaxKeptGridMove * std::min(g.dx_m, g.ds_m);
+}
+
+}  // namespace
+
+KeptGrid KeepGrid(const WheelRailGeometry& geom, const PatchBuilds& builds, size_t k,
+                  std::shared_ptr<const InfluenceOperator> op) {
+  const PatchBuild& b = builds.builds[k];
+  const PatchGrid& g = b.grid;
+  KeptGrid kg{b,
+              builds.cands[k].y_lo_m,
+              builds.cands[k].y_hi_m,
+              builds.choices[k],
+              BodyCurvatureSign(builds.cands[k].wheel_lateral_curvature),
+              BodyCurvatureSign(builds.cands[k].rail_lateral_curvature),
+              std::move(op),
+              geom.RailToWheel(g.point_yz_m.front()),
+              geom.RailToWheel(g.point_yz_m.back()),
+              g.point_yz_m.front(),
+              g.point_yz_m.back(),
+              geom.pose().yaw_rad,
+              geom.pose().rolling_radius_m};
+  return kg;
+}
+
 bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* models,
-                          double approach_now, PatchBuilds* out, ContactResult* result) const {
+                          double approach_now, PatchBuilds* out, ContactResult* result,
+                          const std::vector<KeptGrid>* kept) const {
   const auto t0 = Clock::now();
   const std::vector<ContactCandidate> cands = geom.FindCandidates(threshold_);
+  std::vector<bool> kept_used(kept ? kept->size() : 0, false);  // (each grid serves one patch)
   for (const auto& found : cands) {
     CellMemory memory{found.y_lo_m, found.y_hi_m, cell_, std::nullopt, 0};
     bool remembered = false;
@@ -58,10 +107,9 @@ bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* model
     const CellSize cc = memory.cell;
     PatchModelChoice choice = models->ChooseFor(found, approach_now);
     // A planar grid re-centred on its solved pressure centre (Review).
-    const ContactCandidate c =
-        choice.geometry == GeometryModel::kPlanar && memory.plane_y_m
-            ? geom.CandidateAt(found, *memory.plane_y_m)
-            : found;
+    const ContactCandidate c = choice.geometry == GeometryModel::kPlanar && memory.plane_y_m
+                                   ? geom.CandidateAt(found, *memory.plane_y_m)
+                                   : found;
     PatchGridOptions o;
     o.geometry = choice.geometry;
     o.cell_dx_m = cc.dx_m;
@@ -74,7 +122,22 @@ bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* model
              !(static_cast<double>(sized.nx) * sized.ns > kMaxGridCells) &&
              sized.nx <= kMaxCellsAlongAxis && sized.ns <= kMaxCellsAlongAxis;
     };
-    PatchBuild b = BuildPatchGrid(geom, c, o);
+    // A warm start's kept grid of this candidate: the same cells, gaps projected anew.
+    int kept_index = -1;
+    for (size_t k = 0; kept && k < kept->size(); ++k) {
+      if (!kept_used[k] && KeptGridApplies((*kept)[k], geom, c, choice, cc)) {
+        kept_index = static_cast<int>(k);
+        kept_used[k] = true;
+        break;
+      }
+    }
+    PatchBuild b;
+    if (kept_index >= 0) {
+      b = (*kept)[kept_index].build;
+      UpdateConformalGaps(geom, &b);
+    } else {
+      b = BuildPatchGrid(geom, c, o);
+    }
     if (b.too_large) {
       // A status, not std::bad_alloc, when a grid outgrows memory (the cell rules of the
       // re-gridding below keep within it; an explicit cell_mm may not).
@@ -84,8 +147,7 @@ bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* model
           "along each axis and {:.0g} in all), whose influence operator would take {:.1f} GB "
           "(at most {:.0f} GB): choose a coarser model.accuracy or a larger model.cell_mm",
           b.grid.nx, b.grid.ns, static_cast<double>(b.grid.nx) * b.grid.ns, kMaxCellsAlongAxis,
-          kMaxGridCells,
-          EstimateOperatorBytes(b.grid.nx, b.grid.ns, b.grid.planar) / 1e9,
+          kMaxGridCells, EstimateOperatorBytes(b.grid.nx, b.grid.ns, b.grid.planar) / 1e9,
           kMaxOperatorBytes / 1e9);
       return false;
     }
@@ -95,6 +157,7 @@ bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* model
       out->cells.push_back({c.y_lo_m, c.y_hi_m, cc, memory.plane_y_m, memory.recentred});
       out->cands.push_back(c);
       out->choices.push_back(std::move(choice));
+      out->kept.push_back(kept_index);
     }
   }
   AddStage(&result->stages, "grid", SecondsSince(t0));
@@ -142,8 +205,8 @@ AreaReview PotentialArea::Review(PatchBuilds* builds, const NormalSolution& sol,
     }
     if (e.touches_x_edge || (e.touches_s_edge && !b.lateral_limited)) review.grow = true;
     // The planar grid's plane onto the rail point under the solved pressure centre.
-    if (b.grid.planar && sol.status == SolverStatus::kConverged &&
-        mem.recentred < kMaxRecentres && builds->choices[k].geometry == GeometryModel::kPlanar) {
+    if (b.grid.planar && sol.status == SolverStatus::kConverged && mem.recentred < kMaxRecentres &&
+        builds->choices[k].geometry == GeometryModel::kPlanar) {
       double weight = 0.0, y = 0.0;
       for (int j = 0; j < b.grid.ns; ++j) {
         const double column = p_k.segment(b.grid.Index(0, j), b.grid.nx).sum();

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -24,6 +25,7 @@
 #include "core/contact/contact_result.h"
 #include "core/contact/grid_resolution.h"
 #include "core/contact/hertz_estimate.h"
+#include "core/contact/influence_operator.h"
 #include "core/contact/model_selection.h"
 #include "core/contact/normal_solver.h"
 #include "core/contact/patch_model_memory.h"
@@ -42,6 +44,30 @@ struct CellMemory {
   int recentred = 0;
 };
 
+// A grid of a warm start's last call (contact_warm_start.h), kept with its influence operator
+// for the next call: when that call's wheel has moved by at most kMaxKeptGridMove of a cell
+// from where the grid was built, and its candidate is found again with the same cell size and
+// model, the grid is used again with its gaps projected anew (UpdateConformalGaps) and so is its
+// operator (the same cells: the same operator).
+struct KeptGrid {
+  PatchBuild build;           // conformal; the gaps are recomputed
+  double y_lo_m, y_hi_m;      // the candidate's interval when the grid was built
+  PatchModelChoice choice;    // its geometry, kernel and labels
+  int wheel_sign, rail_sign;  // the operator's curvature signs
+  std::shared_ptr<const InfluenceOperator> op;
+  // Where the wheel was when the grid was built: the wheel-frame points under the first and
+  // last rows' points and those points in the rail frame, and the pose's yaw.
+  Eigen::Vector2d wheel_first_W, wheel_last_W, rail_first_R, rail_last_R;
+  double yaw_rad, rolling_radius_m;
+};
+// The largest move of the wheel, in cells (of the smaller side), for which a kept grid is used
+// again: its cells then lie within a tenth of a cell (and its reference cross-section, the
+// intermediate surface of seed eq. 2, within K of that) of where a grid built at the new pose
+// would put them, a tenth of the grid placement's own variation between a warm call and a
+// cold one (a warm attempt's grid is placed from the last call's measurement of the patch),
+// and the gaps are computed exactly for those cells. Measured in docs/library.md, "Warm start".
+inline constexpr double kMaxKeptGridMove = 0.1;
+
 // The grids of one attempt, one entry per usable candidate.
 struct PatchBuilds {
   std::vector<PatchBuild> builds;
@@ -51,6 +77,8 @@ struct PatchBuilds {
   // Candidates whose cell size no earlier attempt (or, warm, no earlier call) measured: they
   // start from the first estimate's cells.
   int unremembered = 0;
+  // Per build: the kept grid (an index of the KeptGrids Build was given) it reuses, or -1.
+  std::vector<int> kept;
 };
 
 // How the grids of an attempt fit its solution.
@@ -88,8 +116,10 @@ class PotentialArea {
   // The grids at the current threshold, each candidate with its remembered cell size and its
   // model from *models. false (status and message in *result) when a grid outgrows memory,
   // no candidate gives a usable grid, or a cell starts inside the rail.
+  // kept (optional): a warm start's last grids, reused where they apply (KeptGrid).
   bool Build(const WheelRailGeometry& geom, PatchModelMemory* models, double approach_now,
-             PatchBuilds* out, ContactResult* result) const;
+             PatchBuilds* out, ContactResult* result,
+             const std::vector<KeptGrid>* kept = nullptr) const;
 
   // Checks the grids against the solution sol (cell_area_m2 per cell of all grids, as in the
   // NormalProblem), remembers each patch's cell size, rechecks auto's planar patches and moves
@@ -147,6 +177,24 @@ struct WarmStartState {
   int candidates = 0;
   double approach_m = 0.0;
   std::optional<double> load_N, target_N;
+  // The last call's patches in contact: their grids (without the gaps) and final pressures,
+  // the warm attempt's first pressures once interpolated onto its grids (WarmPressureStart).
+  std::vector<PatchGrid> grids;
+  std::vector<Eigen::VectorXd> pressures_Pa;
+  // Every grid of the last call's final attempt, with its operator (KeptGrid).
+  std::vector<KeptGrid> kept_grids;
 };
+
+// A KeptGrid of build k of `builds` on `geom`, with its operator.
+KeptGrid KeepGrid(const WheelRailGeometry& geom, const PatchBuilds& builds, size_t k,
+                  std::shared_ptr<const InfluenceOperator> op);
+
+// The warm attempt's starting pressures on the grids of `builds` (cells in the NormalProblem's
+// order): the last call's pressures (`state`) interpolated bilinearly, in x between columns and
+// along the cross-section between the rail-frame points of the last grids' rows, onto each new
+// cell centre; cells off every last grid (more than half a cell beyond its ends, or farther than
+// a cell from its cross-section) start at 0. Only a starting point: the solve (SolveNormal's
+// `start`, scaled to the load) converges to the same solution to its tolerance.
+Eigen::VectorXd WarmPressureStart(const WarmStartState& state, const PatchBuilds& builds);
 
 }  // namespace railwear::internal

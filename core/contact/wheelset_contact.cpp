@@ -121,7 +121,8 @@ WheelMotions CurveWheelMotions(const WheelMotion& axle, const WheelsetPlacement&
   return out;
 }
 
-WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cache) {
+WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cache,
+                             ContactWarmStart* right_warm, ContactWarmStart* left_warm) {
   WheelsetResult out;
   const Profile& right_rail = problem.wheel_rail.rail_profile;
   const Profile& left_rail =
@@ -205,8 +206,10 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cac
   // normal solves.
   internal::NormalPartMemo right_memo(internal::NormalPartMemo::kWarmBalance),
       left_memo(internal::NormalPartMemo::kWarmBalance);
-  out.right = internal::SolveContact(right, right_geom, 0.0, target ? &right_memo : nullptr);
-  out.left = internal::SolveContact(left, left_geom, 0.0, target ? &left_memo : nullptr);
+  // Without a target each wheel may start warm (SolveContact ignores a warm start beside a memo).
+  out.right =
+      internal::SolveContact(right, right_geom, 0.0, target ? &right_memo : nullptr, right_warm);
+  out.left = internal::SolveContact(left, left_geom, 0.0, target ? &left_memo : nullptr, left_warm);
   if (!target || out.right.status != SolverStatus::kConverged ||
       out.left.status != SolverStatus::kConverged) {
     return out;

@@ -83,6 +83,12 @@ WheelMotions CurveWheelMotions(const WheelMotion& axle, const WheelsetPlacement&
 // Throws InputError as SolveContact does, and when the rail is too shallow for the gauge height.
 // `cache` (optional) keeps both wheels' placed geometries between calls (placement_cache.h):
 // the same results, bit for bit.
-WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cache = nullptr);
+// right_warm, left_warm (optional, in/out, both or neither): each wheel's grid solve starts
+// from its last call's measured patch and balance as a single wheel's does
+// (contact_warm_start.h) and keeps its own; not used with an axle force target (whose rounds
+// keep their own memo of the normal part) nor on the fast tread path.
+WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cache = nullptr,
+                             ContactWarmStart* right_warm = nullptr,
+                             ContactWarmStart* left_warm = nullptr);
 
 }  // namespace railwear

@@ -139,6 +139,41 @@ bool TrimToClosableCells(double approach_m, PatchGrid* grid) {
   return true;
 }
 
+// Search windows of the gap projections in profile arc length: wide for the first cell of a
+// column, narrow for warm starts from the neighbouring cell (the closest point moves by much
+// less than a cell).
+double ProjectionWindow(const PatchGrid& grid) { return 3 * grid.ds_m + 1e-3; }
+double WarmProjectionWindow(const PatchGrid& grid) {
+  return 1e-4 + 0.5 * std::max(grid.dx_m, grid.ds_m);
+}
+
+// Step 4 of BuildPatchGrid for the conformal model: seed eq. 2, every cell's signed distance to
+// the rail (prismatic) plus to the wheel (revolution), row j's projections searched about
+// rail_s[j] and wheel_s[j], marching outward along x from the column ic (at x_contact_m).
+void FillConformalGaps(const WheelRailGeometry& g, double x_contact_m, int ic,
+                       const std::vector<double>& rail_s, const std::vector<double>& wheel_s,
+                       PatchGrid* out) {
+  PatchGrid& grid = *out;
+  const double window = ProjectionWindow(grid);
+  const double warm_window = WarmProjectionWindow(grid);
+  grid.gap_m.resize(grid.cells());
+  for (int j = 0; j < grid.ns; ++j) {
+    const Eigen::Vector2d p = grid.point_yz_m[j];
+    const auto pr = g.ProjectOnRail(p, rail_s[j] - window, rail_s[j] + window);
+    const double s_centre =
+        g.ProjectOnWheel({x_contact_m, p.x(), p.y()}, wheel_s[j] - window, wheel_s[j] + window).s;
+    for (int dir : {+1, -1}) {
+      double sg = s_centre;
+      for (int i = (dir > 0 ? ic : ic - 1); i >= 0 && i < grid.nx; i += dir) {
+        const Eigen::Vector3d q(grid.X(i), p.x(), p.y());
+        const auto pw = g.ProjectOnWheel(q, sg - warm_window, sg + warm_window);
+        sg = pw.s;
+        grid.gap_m[grid.Index(i, j)] = pr.signed_distance + pw.signed_distance;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
@@ -329,31 +364,16 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
 
   // 4. Initial separation per cell.
   grid.gap_m.resize(grid.cells());
-  // Search windows in profile arc length: wide for the first cell of a column, narrow for warm
-  // starts from the neighbouring cell (the closest point moves by much less than a cell).
-  const double window = 3 * o.cell_ds_m + 1e-3;
-  const double warm_window = 1e-4 + 0.5 * std::max(o.cell_dx_m, o.cell_ds_m);
+  const double window = ProjectionWindow(grid);
+  const double warm_window = WarmProjectionWindow(grid);
   const int ic = half_cells;  // the column through the contact point (x = c.x_m)
   // x of the lowest point of the wheel's parallel circle through the contact point: the axle
   // line there (the contact point leads it by c.lead_m; both 0 without yaw).
   const double x_axle = c.x_m - c.lead_m;
-  for (int j = 0; j < grid.ns; ++j) {
-    const Eigen::Vector2d p = grid.point_yz_m[j];
-    if (!planar) {
-      // Seed eq. 2: signed distance to the rail (prismatic) plus to the wheel (revolution).
-      const auto pr = g.ProjectOnRail(p, rail_s[j] - window, rail_s[j] + window);
-      const double s_centre =
-          g.ProjectOnWheel({c.x_m, p.x(), p.y()}, wheel_s[j] - window, wheel_s[j] + window).s;
-      for (int dir : {+1, -1}) {
-        double sg = s_centre;
-        for (int i = (dir > 0 ? ic : ic - 1); i >= 0 && i < grid.nx; i += dir) {
-          const Eigen::Vector3d q(grid.X(i), p.x(), p.y());
-          const auto pw = g.ProjectOnWheel(q, sg - warm_window, sg + warm_window);
-          sg = pw.s;
-          grid.gap_m[grid.Index(i, j)] = pr.signed_distance + pw.signed_distance;
-        }
-      }
-    } else {
+  if (!planar) {
+    FillConformalGaps(g, c.x_m, ic, rail_s, wheel_s, &grid);
+  } else {
+    for (int j = 0; j < grid.ns; ++j) {
       // Model A: gap along n0 between the rail line crossing and the wheel surface at x.
       const Eigen::Vector2d b = pc + (grid.S(j)) * t0;
       const auto rail_cross = g.rail().IntersectLine(b, n0, rail_s[j] - window, rail_s[j] + window);
@@ -402,12 +422,30 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
       }
     }
   }
+
+  const double s0_untrimmed = grid.s0_m;
   if (std::isfinite(o.trim_approach_m)) {
     if (!TrimToClosableCells(o.trim_approach_m, &grid)) return build;  // nothing can touch
     build.trimmed = true;
   }
+  if (!planar) {
+    const int j0 = static_cast<int>(std::lround((grid.s0_m - s0_untrimmed) / grid.ds_m));
+    build.rail_s_m.assign(rail_s.begin() + j0, rail_s.begin() + j0 + grid.ns);
+    build.wheel_s_m.assign(wheel_s.begin() + j0, wheel_s.begin() + j0 + grid.ns);
+    build.x_contact_m = c.x_m;
+  }
   build.valid = true;
   return build;
+}
+
+bool UpdateConformalGaps(const WheelRailGeometry& g, PatchBuild* build) {
+  PatchGrid& grid = build->grid;
+  if (!build->valid || grid.planar || static_cast<int>(build->rail_s_m.size()) != grid.ns) {
+    return false;
+  }
+  FillConformalGaps(g, build->x_contact_m, (grid.nx - 1) / 2, build->rail_s_m, build->wheel_s_m,
+                    &grid);
+  return true;
 }
 
 }  // namespace railwear

@@ -60,9 +60,22 @@ struct PatchBuild {
   bool lateral_limited = false;  // the lateral range stopped at a profile end or a steep normal
   bool trimmed = false;          // trim_approach_m cropped the grid
   bool too_large = false;        // size_accepted refused it: not built (valid is false)
+  // Conformal grids: per row j the rail and wheel profile parameters [m] the gap projections'
+  // search windows were centred on, and x of the grid's centre column's contact point, so that
+  // UpdateConformalGaps can project the same cells again.
+  std::vector<double> rail_s_m, wheel_s_m;
+  double x_contact_m = 0.0;
 };
 
 PatchBuild BuildPatchGrid(const WheelRailGeometry& geometry, const ContactCandidate& candidate,
                           const PatchGridOptions& options);
+
+// The initial separation of every cell of a valid conformal grid that BuildPatchGrid made,
+// computed again on another placed geometry of the same profiles (the wheel moved a little):
+// the same cells (reference cross-section, x columns, crop) and the same projections as
+// BuildPatchGrid's step 4, their search windows centred on the build's. Only the gaps change,
+// so an influence operator made for the grid still applies. false when the build is not a
+// conformal one.
+bool UpdateConformalGaps(const WheelRailGeometry& geometry, PatchBuild* build);
 
 }  // namespace railwear

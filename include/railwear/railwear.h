@@ -298,8 +298,9 @@ RW_API rw_status rw_set_state(rw_problem* problem, const rw_state* state);
  * by about the accuracy preset's discretization error (docs/library.md, "Warm start"), so
  * results depend on the calls before: leave it off where runs must be reproducible call by
  * call. The first calculate, and the first after any set-up call (every rw_set_* but
- * rw_set_state and rw_set_wear) or rw_set_warm_start itself, is cold. Wheelsets are always
- * solved cold. */
+ * rw_set_state and rw_set_wear) or rw_set_warm_start itself, is cold. A wheelset's two wheels
+ * each start warm from their own last calculate, except with an axle force target (then
+ * solved cold). */
 RW_API rw_status rw_set_warm_start(rw_problem* problem, int enable);
 
 /* Solves the contact of the current set-up and state. RW_ERROR_NOT_CONVERGED and

@@ -77,6 +77,41 @@ TEST(ApiWarmStart, ASetUpCallMakesTheNextCalculateCold) {
   ExpectSamePatches(Patches(h.warm), Patches(h.cold));
 }
 
+TEST(ApiWarmStart, AWheelsetsFirstCalculateIsColdAndItsNextOnesWarm) {
+  // A wheelset toward its right rail's gauge corner (each wheel keeps its own warm start:
+  // core/contact/contact_warm_start.h; their accuracy: ContactWarmStart.AWheelsets*): the first
+  // calculate and the first after a set-up call equal a cold handle's bit for bit, a step of
+  // 0.05 mm starts warm (it differs from the cold handle's) with every patch of both wheels.
+  rw_problem* warm =
+      MakeRollingS1002Wheel(RW_MODEL_CONFORMAL, RW_ACCURACY_DRAFT, RW_PROBLEM_WHEELSET);
+  rw_problem* cold =
+      MakeRollingS1002Wheel(RW_MODEL_CONFORMAL, RW_ACCURACY_DRAFT, RW_PROBLEM_WHEELSET);
+  ASSERT_NE(warm, nullptr);
+  ASSERT_NE(cold, nullptr);
+  ASSERT_EQ(rw_set_warm_start(warm, 1), RW_OK);
+  auto step = [&](double lateral_m) {
+    const rw_state s = RollingState(lateral_m, 0.0);
+    return rw_set_state(warm, &s) == RW_OK && rw_calculate(warm) == RW_OK &&
+           rw_set_state(cold, &s) == RW_OK && rw_calculate(cold) == RW_OK;
+  };
+  ASSERT_TRUE(step(4.9e-3));
+  ExpectSamePatches(Patches(warm), Patches(cold));
+  ASSERT_TRUE(step(4.95e-3));
+  const std::vector<rw_patch> w = Patches(warm), c = Patches(cold);
+  ASSERT_EQ(w.size(), c.size());
+  bool differs = false;
+  for (size_t i = 0; i < w.size(); ++i) {
+    differs = differs || w[i].p_max_Pa != c[i].p_max_Pa || w[i].area_m2 != c[i].area_m2 ||
+              w[i].creep_force_x_N != c[i].creep_force_x_N;
+  }
+  EXPECT_TRUE(differs);
+  ASSERT_EQ(rw_set_friction(warm, 0.3), RW_OK);  // a set-up call: the next calculate cold
+  ASSERT_TRUE(step(5.0e-3));
+  ExpectSamePatches(Patches(warm), Patches(cold));
+  rw_destroy(warm);
+  rw_destroy(cold);
+}
+
 TEST(ApiWarmStart, RefusesBadCalls) {
   EXPECT_EQ(rw_set_warm_start(nullptr, 1), RW_ERROR_NULL_ARGUMENT);
   Handles h;

@@ -11,6 +11,9 @@
 //     an MBS time loop does, +0.01 mm per call from -5.6 mm, wrapping back after 40 calls
 //     (0.4 mm); warm 0 every call cold, 1 rw_set_warm_start (API 1.5: each call starts from the
 //     last one's measured patch, core/contact/contact_warm_start.h).
+//   BM_WheelsetGaugeCornerTimeStep/<warm>: a wheelset of those wheels stepped the same way,
+//     displaced +0.01 mm per call from 4.9 mm toward the right rail (its right wheel on the gauge
+//     corner, the left one on its rail's crown), standard; warm 0 cold, 1 both wheels warm.
 //   BM_TreadFastsim/<model>: the same wheel on its tread (-10.4 mm, 5 mrad of yaw), the cheapest
 //     rolling call: draft accuracy, model 1 halfspace (planar Boussinesq grid), 4 auto.
 //   The handle keeps the placed geometry of its last call and reuses it at the same pose
@@ -95,6 +98,16 @@ void BM_GaugeCornerWheelTimeStep(benchmark::State& state) {
   });
 }
 BENCHMARK(BM_GaugeCornerWheelTimeStep)->DenseRange(0, 1)->Unit(benchmark::kMillisecond);
+
+void BM_WheelsetGaugeCornerTimeStep(benchmark::State& state) {
+  rw_problem* p = railwear::test::MakeRollingS1002Wheel(RW_MODEL_CONFORMAL, RW_ACCURACY_STANDARD,
+                                                        RW_PROBLEM_WHEELSET);
+  if (p && state.range(0) == 1) rw_set_warm_start(p, 1);
+  RunChangingSteps(state, p, [](long k) {
+    return State(4.9e-3 + 1e-5 * static_cast<double>(k % kTimeSteps), 0.0);
+  });
+}
+BENCHMARK(BM_WheelsetGaugeCornerTimeStep)->DenseRange(0, 1)->Unit(benchmark::kMillisecond);
 
 void BM_TreadFastsim(benchmark::State& state) {
   RunSteps(

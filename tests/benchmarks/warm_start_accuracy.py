@@ -4,7 +4,9 @@
 The benchmark's wheel (tests/api/rolling_wheel.h: S1002 on UIC60 1:40, 100 kN, 20 m/s, FASTSIM,
 mu 0.3, conformal) stepped laterally from -3 to -7 mm as a time loop does, in steps cycling
 through 0.05, 0.10, 0.15, 0.20 and 0.25 mm (28 positions; "--uniform": 17 positions 0.25 mm
-apart, the sequence of the table "patch sized on draft cells"). At each position: a handle with
+apart, the sequence of the table "patch sized on draft cells"; "--fine": 17 positions 0.01 mm
+apart from -5.6 mm, the steps of api_bench's BM_GaugeCornerWheelTimeStep, where a warm call
+keeps its grid for several steps). At each position: a handle with
 rw_set_warm_start(1) that has solved every earlier position, a cold handle at the preset, and a
 cold handle at the reference preset. Prints a Markdown table of the largest and mean
 differences (area and p_max relative, F_x and F_y of the net force on the rail in % of the load)
@@ -12,7 +14,7 @@ of the cold and the warm calls against the reference and of the warm against the
 CPU seconds the standard handles spent (time.process_time around their calculates).
 
 Run from the repository root with the module on the path:
-  PYTHONPATH=build/api/python python3 tests/benchmarks/warm_start_accuracy.py [--uniform]
+  PYTHONPATH=build/api/python python3 tests/benchmarks/warm_start_accuracy.py [--uniform|--fine]
       [--accuracy standard|draft]
 """
 import sys
@@ -24,7 +26,9 @@ LOAD_N = 100e3
 STEPS_MM = [0.05, 0.10, 0.15, 0.20, 0.25]
 
 
-def positions_mm(uniform):
+def positions_mm(uniform, fine=False):
+    if fine:
+        return [round(-5.6 - 0.01 * k, 6) for k in range(17)]
     if uniform:
         return [-3.0 - 0.25 * k for k in range(17)]
     out, y, k = [-3.0], -3.0, 0
@@ -83,7 +87,7 @@ def main():
                        handle(accuracy, True))
     rows = {"cold vs reference": [], "warm vs reference": [], "warm vs cold": []}
     cpu = {"cold": 0.0, "warm": 0.0}
-    ys = positions_mm(uniform)
+    ys = positions_mm(uniform, "--fine" in sys.argv)
     for y in ys:
         r, c, w = solve(ref, y), solve(cold, y), solve(warm, y)
         cpu["cold"] += c["cpu"]

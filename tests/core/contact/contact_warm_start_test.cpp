@@ -12,6 +12,7 @@
 #include "core/contact/influence_constant_sets.h"
 #include "core/contact/normal_tangential_stage.h"
 #include "core/contact/placement_cache.h"
+#include "core/contact/potential_area.h"
 #include "core/profile/builtin_profiles.h"
 #include "tests/core/contact/same_result.h"
 
@@ -80,6 +81,39 @@ constexpr double kPeakTolerance = 0.062;  // twice p_max's 3.1 %: it depends on 
 constexpr double kFxTolerance = 0.012;    // of the load
 constexpr double kFyTolerance = 0.024;    // of the load
 
+// p_max at the flange root where the cold call's own p_max is far from the reference preset's
+// (p_max on a cell grid depends on where the cells fall under the peak): there a warm call that
+// keeps its last grid differs from the cold call by about the cold call's error. Measured with
+// the Python module, cold handles at the standard and reference presets: the single wheel at
+// -5.61, -5.62, -5.63 mm cold 10.8, 16.5, 21.9 % below the reference (1609, 1469, 1329 against
+// 1803, 1759, 1702 MPa), warm on the kept grid 5.1, 4.6, 3.4 % (docs/library.md, "Warm start");
+// this wheelset's right wheel at 4.9 mm cold 23.5 % (1296 against 1694 MPa), at 4.95 mm warm on
+// the 4.9 mm grid 1451 MPa against the cold 1900 and the reference 1865. The tolerance: that
+// error plus the 6.2 % above.
+constexpr double kFlangeRootPeakTolerance = 0.30;
+
+// A warm result w against the cold one at the same position, within the errors above; the
+// vertical balance holds to its own tolerance, warm or cold.
+void ExpectWithinTheDiscretizationError(const ContactResult& w, const ContactResult& cold,
+                                        double load_N, const std::string& where,
+                                        double peak_tolerance = kPeakTolerance) {
+  ASSERT_EQ(w.status, SolverStatus::kConverged) << where << ": " << w.message;
+  ASSERT_EQ(w.patches.size(), cold.patches.size()) << where;
+  double area_w = 0, area_c = 0, peak_w = 0, peak_c = 0;
+  for (size_t k = 0; k < w.patches.size(); ++k) {
+    area_w += w.patches[k].area_m2;
+    area_c += cold.patches[k].area_m2;
+    peak_w = std::max(peak_w, w.patches[k].p_max_Pa);
+    peak_c = std::max(peak_c, cold.patches[k].p_max_Pa);
+  }
+  const Eigen::Vector3d fw = TotalForcesOnRail(w).Net(), fc = TotalForcesOnRail(cold).Net();
+  EXPECT_NEAR(area_w / area_c, 1.0, kAreaTolerance) << where;
+  EXPECT_NEAR(peak_w / peak_c, 1.0, peak_tolerance) << where << Describe(w, cold);
+  EXPECT_NEAR(fw.x(), fc.x(), kFxTolerance * load_N) << where;
+  EXPECT_NEAR(fw.y(), fc.y(), kFyTolerance * load_N) << where;
+  EXPECT_LE(w.balance_residual, internal::kBalanceTolerance) << where;
+}
+
 TEST(ContactWarmStart, NearbyPositionsStartWarmWithinTheDiscretizationError) {
   // A time loop's lateral positions, steps of 0.05 to 0.25 mm.
   const double steps_mm[] = {0.05, 0.10, 0.15, 0.20, 0.25, 0.05, 0.10, 0.15};
@@ -92,23 +126,8 @@ TEST(ContactWarmStart, NearbyPositionsStartWarmWithinTheDiscretizationError) {
     y_mm -= step;
     const ContactCase c = GaugeCorner(y_mm * 1e-3);
     const ContactResult w = Solve(c, &cache, &warm);
-    const ContactResult cold = SolveContactCase(c).wheel;
-    ASSERT_EQ(w.status, SolverStatus::kConverged) << y_mm << " mm: " << w.message;
-    ASSERT_EQ(w.patches.size(), cold.patches.size()) << y_mm << " mm";
-    double area_w = 0, area_c = 0, peak_w = 0, peak_c = 0;
-    for (size_t k = 0; k < w.patches.size(); ++k) {
-      area_w += w.patches[k].area_m2;
-      area_c += cold.patches[k].area_m2;
-      peak_w = std::max(peak_w, w.patches[k].p_max_Pa);
-      peak_c = std::max(peak_c, cold.patches[k].p_max_Pa);
-    }
-    const Eigen::Vector3d fw = TotalForcesOnRail(w).Net(), fc = TotalForcesOnRail(cold).Net();
-    EXPECT_NEAR(area_w / area_c, 1.0, kAreaTolerance) << y_mm << " mm";
-    EXPECT_NEAR(peak_w / peak_c, 1.0, kPeakTolerance) << y_mm << " mm" << Describe(w, cold);
-    EXPECT_NEAR(fw.x(), fc.x(), kFxTolerance * load_N) << y_mm << " mm";
-    EXPECT_NEAR(fw.y(), fc.y(), kFyTolerance * load_N) << y_mm << " mm";
-    // The vertical balance holds to its own tolerance, warm or cold.
-    EXPECT_LE(w.balance_residual, internal::kBalanceTolerance) << y_mm << " mm";
+    ExpectWithinTheDiscretizationError(w, SolveContactCase(c).wheel, load_N,
+                                       std::to_string(y_mm) + " mm");
   }
   // Most of the steps started warm (the rest fell back, solved cold).
   EXPECT_GE(warm.warm_calls(), 6);
@@ -159,6 +178,167 @@ TEST(ContactWarmStart, APlanarPatchsPlaneFollowsTheContact) {
     EXPECT_NEAR(pw.contact_angle_rad, pc.contact_angle_rad, pc.grid.ds_m / 0.08) << k;
   }
   EXPECT_GE(warm.warm_calls(), 1);
+}
+
+TEST(ContactWarmStart, ATimeStepsSmallMovesKeepTheGridUntilTheyAddUpToATenthOfACell) {
+  // Steps of 0.01 mm from -5.6 mm (the benchmark's time loop; cells of about 0.7 x 0.8 mm): the
+  // warm calls keep the first call's grid (the same cells, their gaps projected anew, and its
+  // operator) while the wheel stays within kMaxKeptGridMove of a cell of where it was built,
+  // within the preset's measured errors of the cold call; 0.1 mm from there a new grid is built.
+  PlacementCache cache;
+  ContactWarmStart warm;
+  const ContactResult first = Solve(GaugeCorner(-5.6e-3), &cache, &warm);
+  ASSERT_EQ(first.patches.size(), 1u);
+  const PatchGrid& built = first.patches[0].grid;
+  for (const double y_mm : {-5.61, -5.62, -5.63}) {
+    const ContactCase c = GaugeCorner(y_mm * 1e-3);
+    const ContactResult w = Solve(c, &cache, &warm);
+    ASSERT_EQ(w.patches.size(), 1u) << y_mm;
+    const PatchGrid& g = w.patches[0].grid;
+    EXPECT_EQ(g.nx, built.nx) << y_mm;
+    EXPECT_EQ(g.x0_m, built.x0_m) << y_mm;
+    EXPECT_EQ(g.point_yz_m, built.point_yz_m) << y_mm;  // the same cells, bit for bit
+    EXPECT_NE(g.gap_m, built.gap_m) << y_mm;            // on the moved wheel
+    ExpectWithinTheDiscretizationError(w, SolveContactCase(c).wheel, 100e3,
+                                       std::to_string(y_mm) + " mm", kFlangeRootPeakTolerance);
+  }
+  const ContactResult far = Solve(GaugeCorner(-5.7e-3), &cache, &warm);
+  ASSERT_EQ(far.patches.size(), 1u);
+  EXPECT_NE(far.patches[0].grid.point_yz_m, built.point_yz_m);
+  EXPECT_EQ(warm.warm_calls(), 4);
+}
+
+// A grid of nx x ns cells on a straight cross-section through (y0, z0) along (cos a, sin a) in
+// the rail frame.
+PatchGrid LineGrid(int nx, int ns, double dx, double ds, double x0, double y0, double z0,
+                   double a) {
+  PatchGrid g;
+  g.nx = nx;
+  g.ns = ns;
+  g.dx_m = dx;
+  g.ds_m = ds;
+  g.x0_m = x0;
+  const Eigen::Vector2d t(std::cos(a), std::sin(a));
+  for (int j = 0; j < ns; ++j) {
+    g.point_yz_m.push_back(Eigen::Vector2d(y0, z0) + j * ds * t);
+    g.tangent_yz.push_back(t);
+    g.normal_yz.push_back(Eigen::Vector2d(t.y(), -t.x()));
+  }
+  return g;
+}
+
+PatchBuild ValidBuild(PatchGrid grid) {
+  PatchBuild b;
+  b.grid = std::move(grid);
+  b.valid = true;
+  return b;
+}
+
+TEST(ContactWarmStart, PressureStartInterpolatesTheLastPressuresOntoTheNewGrid) {
+  // A pressure linear in x and in the rail-frame position along the section is reproduced
+  // (bilinear interpolation is exact on it) on a grid moved by fractions of a cell, with other
+  // cells, and on the same grid; cells more than half a cell beyond the last grid start at 0.
+  const double a = -0.4;  // the section's inclination (a gauge corner's)
+  internal::WarmStartState state;
+  state.grids.push_back(LineGrid(9, 7, 0.7e-3, 0.8e-3, -2.8e-3, 0.0, 0.0, a));
+  const PatchGrid& old = state.grids[0];
+  auto linear = [&](double x, const Eigen::Vector2d& q) {
+    const double along = (q - old.point_yz_m[0]).dot(old.tangent_yz[0]);
+    return 1e9 + 2e11 * x + 3e11 * along;  // > 0 over the grids below
+  };
+  Eigen::VectorXd p(old.cells());
+  for (int j = 0; j < old.ns; ++j) {
+    for (int i = 0; i < old.nx; ++i) p[old.Index(i, j)] = linear(old.X(i), old.point_yz_m[j]);
+  }
+  state.pressures_Pa.push_back(p);
+  // (the pressure's size: rounding of the interpolation is relative to it)
+  constexpr double kRounding = 1e-12 * 3e9;
+
+  internal::PatchBuilds same;
+  same.builds.push_back(ValidBuild(old));
+  const Eigen::VectorXd on_same = internal::WarmPressureStart(state, same);
+  for (int k = 0; k < old.cells(); ++k) EXPECT_NEAR(on_same[k], p[k], kRounding) << k;
+
+  // Moved by 0.3 cells in x and 0.45 along the section, cells of 0.6 x 0.7 mm.
+  const Eigen::Vector2d t(std::cos(a), std::sin(a));
+  const Eigen::Vector2d q0 = 0.45 * 0.8e-3 * t;
+  internal::PatchBuilds moved;
+  moved.builds.push_back(
+      ValidBuild(LineGrid(12, 10, 0.6e-3, 0.7e-3, -3.3e-3 + 0.3 * 0.7e-3, q0.x(), q0.y(), a)));
+  const PatchGrid& g = moved.builds[0].grid;
+  const Eigen::VectorXd on_moved = internal::WarmPressureStart(state, moved);
+  int inside = 0, outside = 0;
+  for (int j = 0; j < g.ns; ++j) {
+    const double along = (g.point_yz_m[j] - old.point_yz_m[0]).dot(t) / old.ds_m;
+    for (int i = 0; i < g.nx; ++i) {
+      const double r = (g.X(i) - old.x0_m) / old.dx_m;
+      const double value = on_moved[g.Index(i, j)];
+      if (r < -0.5 || r > old.nx - 0.5 || along < -0.5 || along > old.ns - 0.5) {
+        EXPECT_EQ(value, 0.0) << i << ", " << j;
+        ++outside;
+      } else if (r >= 0 && r <= old.nx - 1 && along >= 0 && along <= old.ns - 1) {
+        EXPECT_NEAR(value, linear(g.X(i), g.point_yz_m[j]), kRounding) << i << ", " << j;
+        ++inside;
+      }
+    }
+  }
+  EXPECT_GT(inside, 30);
+  EXPECT_GT(outside, 10);
+
+  // A grid on another cross-section (a patch elsewhere on the rail) takes nothing from it.
+  internal::PatchBuilds elsewhere;
+  elsewhere.builds.push_back(ValidBuild(LineGrid(5, 5, 0.7e-3, 0.8e-3, -1.4e-3, 0.02, 0.0, a)));
+  EXPECT_EQ(internal::WarmPressureStart(state, elsewhere).maxCoeff(), 0.0);
+}
+
+TEST(ContactWarmStart, AWheelsetsWheelsStartWarmEachFromTheirOwnLastCall) {
+  // The wheelset of the benchmark's wheels displaced toward the right rail's gauge corner (the
+  // right wheel at the flange root, the left one on its rail's crown), stepped as a time loop
+  // does: the first call is the cold one bit for bit, later ones start warm on both wheels and
+  // stay within the standard preset's measured errors of the cold call; with an axle force
+  // target (its rounds keep their own memo) the call is the cold one bit for bit.
+  auto at = [](double displacement_m) {
+    ContactCase c = GaugeCorner(0.0);
+    c.problem.placement = {};
+    c.wheelset.emplace().wheelset.lateral_displacement_m = displacement_m;
+    return c;
+  };
+  PlacementCache cache;
+  ContactWarmStart right, left;
+  auto solve = [&](const ContactCase& c) {
+    return *SolveContactCase(c, &cache, nullptr, &right, &left).wheelset;
+  };
+  double d_mm = 4.9;
+  {
+    const WheelsetResult first = solve(at(d_mm * 1e-3));
+    const WheelsetResult cold = *SolveContactCase(at(d_mm * 1e-3)).wheelset;
+    ExpectSameResult(first.right, cold.right);
+    ExpectSameResult(first.left, cold.left);
+  }
+  for (const double step : {0.05, 0.10, 0.15, 0.20}) {
+    d_mm += step;
+    const ContactCase c = at(d_mm * 1e-3);
+    const WheelsetResult w = solve(c);
+    const WheelsetResult cold = *SolveContactCase(c).wheelset;
+    ExpectWithinTheDiscretizationError(w.right, cold.right, 100e3,
+                                       "right, " + std::to_string(d_mm) + " mm",
+                                       kFlangeRootPeakTolerance);
+    ExpectWithinTheDiscretizationError(w.left, cold.left, 100e3,
+                                       "left, " + std::to_string(d_mm) + " mm");
+  }
+  EXPECT_GE(right.warm_calls(), 3);
+  EXPECT_GE(left.warm_calls(), 3);
+  EXPECT_EQ(right.cold_calls(), 1 + right.fallbacks());
+  EXPECT_EQ(left.cold_calls(), 1 + left.fallbacks());
+
+  ContactCase target = at(d_mm * 1e-3);
+  target.problem.rolling->longitudinal_force_N = 5e3;
+  const int right_calls = right.warm_calls() + right.cold_calls();
+  const WheelsetResult with_target = solve(target);
+  const WheelsetResult cold = *SolveContactCase(target).wheelset;
+  ExpectSameResult(with_target.right, cold.right);
+  ExpectSameResult(with_target.left, cold.left);
+  EXPECT_EQ(right.warm_calls() + right.cold_calls(), right_calls);  // not used
 }
 
 TEST(ContactWarmStart, ClearedItIsColdAgain) {

@@ -15,23 +15,36 @@ namespace {
 // the gap itself is exact for the point used, so compare gaps to 1e-10 m.
 constexpr double kGapTolerance_m = 1e-10;
 
-TEST(PatchBuilder, ConformalGapIsTheSumOfOrthogonalDistances) {
-  // A 10 mm convex wheel in a 10.25 mm groove, both touching at the origin. At x = 0 the gap of
-  // seed eq. 2 is exact: d = (R2 - |P - C2|) + (|P - C1| - R1), C1 = (0, -R1), C2 = (0, -R2).
-  const double R1 = 0.010, R2 = 0.01025;
+// A 10 mm convex wheel in a 10.25 mm groove, both touching at the origin, and a conformal grid
+// of 0.2 mm cells on it. At x = 0 the gap of seed eq. 2 is exact:
+// d = (R2 - |P - C2|) + (|P - C1| - R1), C1 = (0, -R1), C2 = (0, -R2).
+struct Groove {
+  static constexpr double R1 = 0.010, R2 = 0.01025;
   const Profile wheel = testing::ArcProfile(R1, -1.0);
   const Profile rail = testing::ArcProfile(R2, -1.0);
-  WheelPose pose;
-  pose.rolling_radius_m = 0.46;
-  const WheelRailGeometry g(wheel, rail, pose);
+  static WheelPose Pose() {
+    WheelPose pose;
+    pose.rolling_radius_m = 0.46;
+    return pose;
+  }
+  static PatchGridOptions Options() {
+    PatchGridOptions o;
+    o.geometry = GeometryModel::kConformal;
+    o.cell_dx_m = 2e-4;
+    o.cell_ds_m = 2e-4;
+    o.threshold_m = 2e-5;
+    return o;
+  }
+};
+
+TEST(PatchBuilder, ConformalGapIsTheSumOfOrthogonalDistances) {
+  const Groove groove;
+  const double R1 = Groove::R1, R2 = Groove::R2;
+  const WheelPose pose = Groove::Pose();
+  const WheelRailGeometry g(groove.wheel, groove.rail, pose);
   const auto cands = g.FindCandidates(2e-5);
   ASSERT_EQ(cands.size(), 1u);
-  PatchGridOptions o;
-  o.geometry = GeometryModel::kConformal;
-  o.cell_dx_m = 2e-4;
-  o.cell_ds_m = 2e-4;
-  o.threshold_m = 2e-5;
-  const PatchBuild b = BuildPatchGrid(g, cands[0], o);
+  const PatchBuild b = BuildPatchGrid(g, cands[0], Groove::Options());
   ASSERT_TRUE(b.valid);
   const PatchGrid& grid = b.grid;
   EXPECT_FALSE(grid.planar);
@@ -55,6 +68,44 @@ TEST(PatchBuilder, ConformalGapIsTheSumOfOrthogonalDistances) {
   const double x = grid.X(grid.nx - 1);
   EXPECT_NEAR(grid.gap_m[grid.Index(grid.nx - 1, j0)] - grid.gap_m[grid.Index(ic, j0)],
               x * x / (2 * pose.rolling_radius_m), 1e-3 * x * x / (2 * pose.rolling_radius_m));
+}
+
+TEST(PatchBuilder, UpdatedConformalGapsAreTheMovedWheelsOnTheSameCells) {
+  // The groove; the grid's gaps computed again (UpdateConformalGaps) on the
+  // same placed geometry are BuildPatchGrid's bit for bit, and on a geometry whose wheel moved
+  // 5 um across (and was lowered to first contact again) they are seed eq. 2's exact gaps of the
+  // moved wheel circle at the same cells.
+  const Groove groove;
+  const double R1 = Groove::R1, R2 = Groove::R2;
+  const WheelPose pose = Groove::Pose();
+  const WheelRailGeometry g(groove.wheel, groove.rail, pose);
+  const auto cands = g.FindCandidates(2e-5);
+  ASSERT_EQ(cands.size(), 1u);
+  PatchGridOptions o = Groove::Options();
+  const PatchBuild b = BuildPatchGrid(g, cands[0], o);
+  ASSERT_TRUE(b.valid);
+  PatchBuild again = b;
+  ASSERT_TRUE(UpdateConformalGaps(g, &again));
+  for (int k = 0; k < b.grid.cells(); ++k) EXPECT_EQ(again.grid.gap_m[k], b.grid.gap_m[k]) << k;
+
+  WheelPose moved_pose = pose;
+  moved_pose.lateral_shift_m = 5e-6;
+  const WheelRailGeometry moved(groove.wheel, groove.rail, moved_pose);
+  PatchBuild updated = b;
+  ASSERT_TRUE(UpdateConformalGaps(moved, &updated));
+  const Eigen::Vector2d c1 = moved.WheelToRail(g.RailToWheel({0.0, -R1})), c2(0.0, -R2);
+  EXPECT_NEAR(std::abs(c1.x()), 5e-6, 1e-12);  // (the wheel did move)
+  const PatchGrid& grid = updated.grid;
+  const int ic = (grid.nx - 1) / 2;
+  for (int j = 0; j < grid.ns; ++j) {
+    const Eigen::Vector2d p = grid.point_yz_m[j];
+    const double exact = (R2 - (p - c2).norm()) + ((p - c1).norm() - R1);
+    EXPECT_NEAR(grid.gap_m[grid.Index(ic, j)], exact, kGapTolerance_m) << j;
+  }
+  // A planar build has nothing to update.
+  o.geometry = GeometryModel::kPlanar;
+  PatchBuild planar = BuildPatchGrid(g, cands[0], o);
+  EXPECT_FALSE(UpdateConformalGaps(g, &planar));
 }
 
 TEST(PatchBuilder, PlanarGapIsQuadraticNearFirstContact) {
