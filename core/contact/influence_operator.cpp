@@ -63,7 +63,7 @@ void CheckPlanarGrid(const PatchGrid& grid) {
 // ---------------------------------------------------------------------------------------------
 // Planar grid or uniform arc (IsUniformArc): C depends on |i_x - j_x| and |i_s - j_s|. 2-D
 // linear convolution by FFT (PaddedFft2d: real FFTs along x, complex along s, half spectrum
-// stored s-major [ks * hx + kx]).
+// stored x-major [kx * ls + ks]).
 class ToeplitzXsFftOperator final : public InfluenceOperator {
  public:
   // The caller has checked that the grid is planar (grid.planar: checked here) or a uniform arc.
@@ -132,7 +132,7 @@ class ToeplitzXsFftOperator final : public InfluenceOperator {
   }
 
  private:
-  // out = crop(IFFT2(FFT2(pad(in)) * multiplier)); multiplier [hx * ls], s-major, with the
+  // out = crop(IFFT2(FFT2(pad(in)) * multiplier)); multiplier [hx * ls], x-major, with the
   // inverse FFTs' scaling folded in.
   void Convolve(const Eigen::VectorXd& in, const std::vector<double>& multiplier,
                 Eigen::VectorXd* out) const {
@@ -145,7 +145,7 @@ class ToeplitzXsFftOperator final : public InfluenceOperator {
 
   int nx_, ns_;
   double diagonal_ = 0.0;
-  std::vector<double> spectrum_;          // [hx * ls], s-major, scaled by 1/(lx ls)
+  std::vector<double> spectrum_;          // [hx * ls], x-major, scaled by 1/(lx ls)
   std::vector<double> inverse_spectrum_;  // [hx * ls], 1 / max(spectrum, floor), scaled
   Eigen::MatrixXd dense_;                 // [N x N] for dense products, else empty [m/Pa]
 

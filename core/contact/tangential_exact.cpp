@@ -263,7 +263,7 @@ class DenseRollingOperator final : public RollingOperator {
 // is wrapped into an lx by ls circulant (lx >= 2 nx - 1, ls >= 2 ns - 1: linear, not periodic,
 // convolution). B is not even in d, so the spectra are complex. internal::PaddedFft2d (FFTW):
 // real FFTs along x (half spectrum, hx = lx/2 + 1 bins), complex FFTs along s; spectra stored
-// s-major [ks * hx + kx].
+// x-major [kx * ls + ks].
 class FftRollingOperator final : public RollingOperator {
  public:
   // The products on an nx by ns grid (at most the generator's: the products of a sub-rectangle

@@ -56,27 +56,29 @@ PaddedFft2d::PaddedFft2d(int nx, int ns)
       x_spectrum_(spectrum_size()) {
   // Every transform runs through the new-array interface (the plans are shared, fftw.h); plan
   // them on buffers of the same alignment. The descriptions: a kind number, then the numbers
-  // of the planner call.
+  // of the planner call. The spectra are x-major (fftw.h): the real transforms along x write
+  // (read) bin kx of row j at kx * ls + j, so the complex transforms along s run on contiguous
+  // columns. (Kinds 1-4 were the s-major layout's transforms until 2026-11-29.)
   const int lx[] = {lx_}, ls[] = {ls_};
   std::optional<FftwBuffer<FftwComplex>> planning;
   auto planning_data = [&] {
     if (!planning) planning.emplace(spectrum_size());
     return AsFftw(planning->data());
   };
-  x_forward_ = SharedPlan({1, lx_, ns_, hx_}, [&] {
+  x_forward_ = SharedPlan({11, lx_, ns_, ls_}, [&] {
     return fftw_plan_many_dft_r2c(1, lx, ns_, padded_in_.data(), nullptr, 1, lx_,
-                                  AsFftw(x_spectrum_.data()), nullptr, 1, hx_, FFTW_ESTIMATE);
+                                  AsFftw(x_spectrum_.data()), nullptr, ls_, 1, FFTW_ESTIMATE);
   });
-  s_forward_ = SharedPlan({2, ls_, hx_}, [&] {
-    return fftw_plan_many_dft(1, ls, hx_, AsFftw(x_spectrum_.data()), nullptr, hx_, 1,
-                              planning_data(), nullptr, hx_, 1, FFTW_FORWARD, FFTW_ESTIMATE);
+  s_forward_ = SharedPlan({12, ls_, hx_}, [&] {
+    return fftw_plan_many_dft(1, ls, hx_, AsFftw(x_spectrum_.data()), nullptr, 1, ls_,
+                              planning_data(), nullptr, 1, ls_, FFTW_FORWARD, FFTW_ESTIMATE);
   });
-  s_inverse_ = SharedPlan({3, ls_, hx_}, [&] {  // in place
-    return fftw_plan_many_dft(1, ls, hx_, planning_data(), nullptr, hx_, 1, planning_data(),
-                              nullptr, hx_, 1, FFTW_BACKWARD, FFTW_ESTIMATE);
+  s_inverse_ = SharedPlan({13, ls_, hx_}, [&] {  // in place
+    return fftw_plan_many_dft(1, ls, hx_, planning_data(), nullptr, 1, ls_, planning_data(),
+                              nullptr, 1, ls_, FFTW_BACKWARD, FFTW_ESTIMATE);
   });
-  x_inverse_ = SharedPlan({4, lx_, ns_, hx_}, [&] {
-    return fftw_plan_many_dft_c2r(1, lx, ns_, planning_data(), nullptr, 1, hx_,
+  x_inverse_ = SharedPlan({14, lx_, ns_, ls_}, [&] {
+    return fftw_plan_many_dft_c2r(1, lx, ns_, planning_data(), nullptr, ls_, 1,
                                   padded_out_.data(), nullptr, 1, lx_, FFTW_ESTIMATE);
   });
 }
@@ -84,13 +86,20 @@ PaddedFft2d::PaddedFft2d(int nx, int ns)
 void PaddedFft2d::ForwardGenerator(const double* g, FftwComplex* spectrum) const {
   FftwBuffer<double> generator(static_cast<size_t>(ls_) * lx_);
   std::copy(g, g + generator.size(), generator.data());
-  // Planned on a spectrum buffer of its own: the caller's has the same alignment (NewSpectrum).
+  // FFTW's 2-D real transform (s-major output, planned on a buffer of its own: the one it
+  // runs on has the same alignment), transposed into the x-major layout: the same values.
+  FftwBuffer<FftwComplex> s_major = NewSpectrum();
   const SharedFftwPlan plan = SharedPlan({5, ls_, lx_}, [&] {
     FftwBuffer<FftwComplex> planning = NewSpectrum();
     return fftw_plan_dft_r2c_2d(ls_, lx_, generator.data(), AsFftw(planning.data()),
                                 FFTW_ESTIMATE);
   });
-  fftw_execute_dft_r2c(plan->get(), generator.data(), AsFftw(spectrum));
+  fftw_execute_dft_r2c(plan->get(), generator.data(), AsFftw(s_major.data()));
+  for (int kx = 0; kx < hx_; ++kx) {
+    for (int ks = 0; ks < ls_; ++ks) {
+      spectrum[static_cast<size_t>(kx) * ls_ + ks] = s_major[static_cast<size_t>(ks) * hx_ + kx];
+    }
+  }
 }
 
 void PaddedFft2d::Forward(const double* in, FftwComplex* spectrum) const {

@@ -73,6 +73,43 @@ TEST(PaddedFft2d, IsALinearConvolution) {
   }
 }
 
+// The spectrum's layout (x-major, bin (kx, ks) at kx * ls + ks) against the 2-D DFT summed
+// directly, for Forward (the batched strided transforms) and ForwardGenerator (FFTW's 2-D
+// transform, transposed): callers multiply the two bin by bin, so both must use it.
+TEST(PaddedFft2d, SpectraAreXMajorFromBothTransforms) {
+  constexpr double kPi = 3.14159265358979323846;
+  const int nx = 5, ns = 4;
+  const PaddedFft2d fft(nx, ns);
+  const int lx = fft.lx(), hx = fft.hx(), ls = fft.ls();
+  ASSERT_NE(lx, ls);  // a transposed layout would not pass unnoticed
+  const std::vector<double> in = RandomField(nx * ns, 7);
+  std::vector<double> padded(static_cast<size_t>(lx) * ls, 0.0);
+  for (int j = 0; j < ns; ++j) {
+    for (int i = 0; i < nx; ++i) padded[static_cast<size_t>(j) * lx + i] = in[j * nx + i];
+  }
+  FftwBuffer<FftwComplex> forward = fft.NewSpectrum(), generator = fft.NewSpectrum();
+  fft.Forward(in.data(), forward.data());
+  fft.ForwardGenerator(padded.data(), generator.data());
+  double scale = 0.0;
+  for (double v : in) scale += std::abs(v);
+  for (int kx = 0; kx < hx; ++kx) {
+    for (int ks = 0; ks < ls; ++ks) {
+      FftwComplex direct = 0.0;
+      for (int j = 0; j < ns; ++j) {
+        for (int i = 0; i < nx; ++i) {
+          const double phase = -2.0 * kPi * (static_cast<double>(kx) * i / lx +
+                                             static_cast<double>(ks) * j / ls);
+          direct += in[j * nx + i] * FftwComplex(std::cos(phase), std::sin(phase));
+        }
+      }
+      const size_t bin = static_cast<size_t>(kx) * ls + ks;
+      EXPECT_LE(std::abs(forward[bin] - direct), kConvolutionTolerance * scale) << kx << ", " << ks;
+      EXPECT_LE(std::abs(generator[bin] - direct), kConvolutionTolerance * scale)
+          << kx << ", " << ks;
+    }
+  }
+}
+
 TEST(PaddedFft2d, ReusedAndRebuiltTransformsAreBitIdentical) {
   const int nx = 23, ns = 17;
   const std::vector<double> in = RandomField(nx * ns, 7);
