@@ -40,7 +40,9 @@
 // contact forces that no residual-reducing step crosses, and ends the solve converged in
 // position when that correction is within the position tolerances;
 // otherwise one retry with 4x wider finite differences; and a draft solve stalled within 20x the
-// tolerance goes on once on the standard grid (docs/curving.md). When every start fails, the
+// tolerance goes on once on the standard grid (docs/curving.md). A start that is not the last
+// gives up when its merit fell by less than 5 % in 6 iterations while it was never within 20x
+// the tolerance (stalled far off: the next start is tried). When every start fails, the
 // centred start is tried once more, first relaxed toward the equilibrium by pseudo-transient
 // continuation (each wheelset moved along its residual force, then Newton), said in the message.
 // A start with its Jacobian (CurvingStart) uses that Jacobian as the first chord and goes to the

@@ -36,6 +36,7 @@ enum class NewtonEvent {
   kNaturalLevelFailed,        // ... and refused every trial
   kProbeMoved,                // ProbeForceStep did not bracket but reduced the residual
   kProbeFailed,               // ProbeForceStep neither bracketed nor reduced it
+  kStalled,                   // a start that was not the last gave up, stalled far off
   kEnded,                     // a rule ended the solve (CurvingResult::ending names it)
 };
 

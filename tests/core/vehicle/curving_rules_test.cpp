@@ -204,3 +204,48 @@ TEST(CurvingRulesTest, EachRuleReportsItsNamedEnding) {
 
 }  // namespace
 }  // namespace railwear
+
+namespace railwear {
+namespace {
+
+// A start stalled far from the equilibrium gives up for the next one. A worn tread whose
+// lateral stiffness has the wrong sign about the centre (the residual 20 kN + 10 kN tanh(y / 2 mm)
+// + 2e4 N/m y: Newton from the centre steps away from the flange, 2 mm an iteration, toward a
+// residual that falls 40 N a step and never below 0.2 Q0) and a flange of 1e7 N/m from 6 mm (the
+// equilibrium at 9 mm). Without the stall rule the centred start walked to the 20 mm lateral
+// limit and the solve ended `no_equilibrium` (measured with the rule disabled, 2026-11-29),
+// although the wheelset has one on its flange; with it the centred start gives up after 6
+// iterations (kStalled), and the relaxed centred start (the last) moves the wheelset along its
+// residual onto the flange.
+TEST(CurvingRulesTest, CentredStartStalledFarOffGivesUpForTheRelaxedStart) {
+  auto lateral_N = [](double y) {
+    return 20e3 + 10e3 * std::tanh(y / 2e-3) + 2e4 * y - (y > 6e-3 ? 1e7 * (y - 6e-3) : 0.0);
+  };
+  CurvingProblem p = BaseProblem(MakeCone(0.1), 0.0);
+  p.options.predictor = p.contact.model;
+  p.options.threads = 1;
+  std::vector<NewtonEvent> events;
+  const CurvingResult r = internal::SolveCurvingWith(
+      p,
+      [&](int, double y, double psi) {
+        WheelsetForces f;
+        f.lateral_N = lateral_N(y);
+        f.yaw_moment_Nm = -kYawStiffness * psi;
+        return f;
+      },
+      &events);
+  std::printf("stalled centred start: %s (%s), %d evaluations\n",
+              std::string(ToString(r.status)).c_str(), r.message.c_str(), r.contact_solves);
+  ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
+  EXPECT_TRUE(Has(events, NewtonEvent::kStalled));
+  EXPECT_NE(r.message.find("relaxed"), std::string::npos) << r.message;
+  // The flange's root, to the force tolerance over the flange's stiffness (150 N / 1e7 N/m =
+  // 15 um).
+  double root = 9e-3;
+  for (int k = 0; k < 20; ++k) root -= lateral_N(root) / (-1e7 + 2e4);
+  EXPECT_NEAR(lateral_N(root), 0.0, 1e-6);
+  EXPECT_NEAR(r.wheelsets[0].lateral_m, root, 2e-5);
+}
+
+}  // namespace
+}  // namespace railwear
