@@ -40,7 +40,9 @@
 // contact forces that no residual-reducing step crosses, and ends the solve converged in
 // position when that correction is within the position tolerances;
 // otherwise one retry with 4x wider finite differences; and a draft solve stalled within 20x the
-// tolerance goes on once on the standard grid (docs/curving.md). When every start fails, the
+// tolerance goes on once on the standard grid (docs/curving.md). A start that is not the last
+// gives up when its merit fell by less than 5 % in 6 iterations while it was never within 20x
+// the tolerance (stalled far off: the next start is tried). When every start fails, the
 // centred start is tried once more, first relaxed toward the equilibrium by pseudo-transient
 // continuation (each wheelset moved along its residual force, then Newton), said in the message.
 // A start with its Jacobian (CurvingStart) uses that Jacobian as the first chord and goes to the
@@ -202,6 +204,26 @@ inline constexpr std::array<EnumName<CurvingStatus>, 5> kCurvingStatusNames = {{
 }};
 inline std::string_view ToString(CurvingStatus s) { return EnumToString(kCurvingStatusNames, s); }
 
+// The Newton rule that ended the solve of the returned state (docs/curving.md, "The Newton
+// rules"); its message says the same in words. Not written by `railwear curving --json`.
+enum class CurvingEnding {
+  kNone,            // no solve ended on a rule: not converged, no equilibrium, cancelled
+  kTolerance,       // every residual below the tolerance
+  kGridNoise,       // no step reduced a residual within 3x the tolerance: the grid's noise
+  kPosition,        // a fresh Newton correction within the position tolerances (<= 20x)
+  kNaturalLevel,    // the natural-level step's correction within the position tolerances
+  kForceStepProbe,  // a probe within the position tolerances reversed every residual's sign
+};
+inline constexpr std::array<EnumName<CurvingEnding>, 6> kCurvingEndingNames = {{
+    {CurvingEnding::kNone, "none"},
+    {CurvingEnding::kTolerance, "tolerance"},
+    {CurvingEnding::kGridNoise, "grid_noise"},
+    {CurvingEnding::kPosition, "position"},
+    {CurvingEnding::kNaturalLevel, "natural_level"},
+    {CurvingEnding::kForceStepProbe, "force_step_probe"},
+}};
+inline std::string_view ToString(CurvingEnding e) { return EnumToString(kCurvingEndingNames, e); }
+
 // One wheelset's steady state.
 struct CurvedWheelset {
   double x_m = 0.0;        // position from the car body's centre (0 for a single wheelset)
@@ -227,6 +249,7 @@ struct CurvedWheelset {
 
 struct CurvingResult {
   CurvingStatus status = CurvingStatus::kNotConverged;
+  CurvingEnding ending = CurvingEnding::kNone;  // converged and flange_climb: the rule that ended
   std::string message;
   double unbalanced_acceleration_m_s2 = 0.0;
   double cant_deficiency_m = 0.0;
