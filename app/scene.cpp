@@ -693,6 +693,8 @@ void ReadWearTable(const Fields& top, Scene* scene) {
                "total_MGT",
                "quadrature_points",
                "integration_tolerance",
+               "spread_rule",
+               "spread_nodes",
                "bin_mm",
                "profile_spacing_mm",
                "smoothing_mm",
@@ -723,17 +725,43 @@ void ReadWearTable(const Fields& top, Scene* scene) {
     return static_cast<int>(*v);
   };
   o.quadrature_points = whole("quadrature_points", 1, kMaxQuadraturePoints, o.quadrature_points);
-  // The spread rule: fixed Gauss-Hermite nodes when the scene gives quadrature_points, else the
-  // adaptive rule at its tolerance (default kDefaultIntegrationTolerance).
+  // The spread rule (wear/spread_integration.h, SpreadRule): spread_rule names it; without it,
+  // fixed Gauss-Hermite nodes when the scene gives quadrature_points, else the adaptive rule at
+  // its tolerance (default kDefaultIntegrationTolerance), as every scene before spread_rule.
+  // Each rule's own key: integration_tolerance (adaptive), quadrature_points (gauss_hermite),
+  // spread_nodes (piecewise_linear, required); another rule's key is an error.
   const std::optional<double> tolerance =
       t.Number("integration_tolerance", Closed(kMinIntegrationTolerance, kMaxIntegrationTolerance));
-  if (tolerance && t.Has("quadrature_points")) {
+  const std::optional<std::string> rule_name = t.Choice("spread_rule", EnumChoices(kSpreadRuleNames));
+  SpreadRule rule = t.Has("quadrature_points") ? SpreadRule::kGaussHermite : SpreadRule::kAdaptive;
+  if (rule_name) rule = *EnumFromString(kSpreadRuleNames, *rule_name);
+  const auto refuse = [&](std::string_view key, SpreadRule owner) {
+    if (!t.Has(key) || rule == owner) return;
+    if (rule_name) {
+      t.Fail(key, fmt::format("no '{}' with spread_rule = \"{}\" (it is the \"{}\" rule's key)",
+                              key, ToString(rule), ToString(owner)));
+    }
+    if (owner == SpreadRule::kPiecewiseLinear) {
+      t.Fail(key, "spread_rule = \"piecewise_linear\" beside it (its node count)");
+    }
     t.Fail("integration_tolerance",
            "either 'wear.quadrature_points' (the fixed Gauss-Hermite rule) or "
            "'wear.integration_tolerance' (the adaptive rule), not both");
-  }
-  if (!t.Has("quadrature_points")) {
+  };
+  refuse("integration_tolerance", SpreadRule::kAdaptive);
+  refuse("quadrature_points", SpreadRule::kGaussHermite);
+  refuse("spread_nodes", SpreadRule::kPiecewiseLinear);
+  if (rule == SpreadRule::kAdaptive) {
     o.integration_tolerance = tolerance.value_or(kDefaultIntegrationTolerance);
+  } else if (rule == SpreadRule::kPiecewiseLinear) {
+    const std::string expected =
+        fmt::format("a multiple of 8 from {} to {} (the piecewise-linear rule's nodes within +-3 "
+                    "std; m/8 more in each tail)",
+                    kMinLinearSpreadNodes, kMaxLinearSpreadNodes);
+    if (!t.Has("spread_nodes")) t.FailMissing("spread_nodes", expected);
+    const int m = whole("spread_nodes", kMinLinearSpreadNodes, kMaxLinearSpreadNodes, 0);
+    if (m % 8 != 0) t.Fail("spread_nodes", expected);
+    o.spread_nodes = LinearSpreadNodes(m);
   }
   o.threads = whole("threads", 0, 256, o.threads);
   // Bins and profile points finer than 10 um are below every contact grid (the finest preset's
@@ -1140,7 +1168,10 @@ void ReadTraffic(const Fields& top, Scene* scene) {
   // node. 100 000 entries once ran out of memory at 8 GB.
   // The adaptive rule counts its most nodes per spread (kMaxSpreadNodes).
   const bool adaptive = scene->wear->options.integration_tolerance.has_value();
-  const int nodes = adaptive ? kMaxSpreadNodes : scene->wear->options.quadrature_points;
+  const WearOptions& wo = scene->wear->options;
+  const int nodes = adaptive                   ? kMaxSpreadNodes
+                    : !wo.spread_nodes.empty() ? static_cast<int>(wo.spread_nodes.size())
+                                               : wo.quadrature_points;
   const auto refuse = [&](size_t cases) {
     throw InputError(fmt::format(
         "{}: {} [[traffic]] entries give up to {} load cases per wear step (each a contact "
@@ -1150,7 +1181,9 @@ void ReadTraffic(const Fields& top, Scene* scene) {
         adaptive ? fmt::format("give 'wear.quadrature_points' (the fixed rule; the adaptive "
                                "rule takes up to {} nodes per spread)",
                                kMaxSpreadNodes)
-                 : fmt::format("lower 'wear.quadrature_points' (now {})", nodes)));
+                 : !wo.spread_nodes.empty()
+                     ? fmt::format("lower 'wear.spread_nodes' (now {} nodes per spread)", nodes)
+                     : fmt::format("lower 'wear.quadrature_points' (now {})", nodes)));
   };
   if (entries.size() > kMaxLoadCasesPerStep) refuse(entries.size());
   size_t cases = 0;

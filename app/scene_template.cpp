@@ -151,6 +151,10 @@ speed_m_s = 20.0              # (0, 150]; needed by the "tangential" effect
 # integration_tolerance = 0.005  # spreads: adaptive nodes until the step's worn area is within
 #                              # this relative tolerance, [0.0001, 0.1] (the default rule)
 # quadrature_points = 5        # or fixed Gauss-Hermite nodes per spread, 1-81 (not both)
+# spread_rule = "adaptive"     # "adaptive" | "gauss_hermite" | "piecewise_linear" (default: by
+#                              # the key given above; each rule takes only its own key)
+# spread_nodes = 128           # "piecewise_linear": m nodes within +-3 std, m/8 more per tail
+#                              # to +-5 std; a multiple of 8 from 8 to 512 (the curve's reference)
 # smoothing_mm = 1.0           # smoothing length of the per-pass depth (lambda = l^4)
 # bin_mm = 0.1                 # arc-length bins the depth is collected on
 # profile_spacing_mm = 0.2     # point spacing of the updated rail profile

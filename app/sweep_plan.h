@@ -159,8 +159,9 @@ Scene SweepLineScene(const SweepPlan& plan, const SweepLine& line);
 
 // The expected cost of a line's run, in arbitrary units, for ordering the runs (largest first;
 // `sweep --mpi`): total MGT x load cases per step x grid cells per contact patch, where
-// - load cases per step: per traffic entry, its spread's nodes (quadrature_points; 9 under the
-//   adaptive rule, its typical count, 5 to start and a few refinements; 1 without spread), times
+// - load cases per step: per traffic entry, its spread's nodes (quadrature_points, or the
+//   piecewise-linear rule's spread_nodes; 11 under the adaptive rule, its typical count, 7 to
+//   start and a few refinements; 1 without spread), times
 //   the wheelsets of a vehicle entry (4 for a bogie vehicle, 1 for a wheelset) on both rails, or
 //   an imported collective's bins;
 // - grid cells: CellsPerSemiAxis(accuracy)^2 (the standard preset's for explicit cell sizes).

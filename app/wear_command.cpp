@@ -81,12 +81,32 @@ json WearLawJson(const WearStudy& study) {
                         {"tolerance", *study.options.integration_tolerance},
                         {"first_nodes", kSpreadInitialNodes},
                         {"max_nodes", kMaxSpreadNodes}};
+  } else if (!study.options.spread_nodes.empty()) {
+    // The piecewise-linear rule: its scene key's m when the nodes are LinearSpreadNodes(m).
+    const std::vector<double>& x = study.options.spread_nodes;
+    json rule = {{"rule", "piecewise-linear"},
+                 {"nodes", x.size()},
+                 {"first_node", x.front()},
+                 {"last_node", x.back()}};
+    const int m = static_cast<int>(x.size()) * 4 / 5;
+    if (m % 8 == 0 && m >= kMinLinearSpreadNodes && m <= kMaxLinearSpreadNodes &&
+        LinearSpreadNodes(m) == x) {
+      rule["spread_nodes"] = m;
+    }
+    j["integration"] = rule;
   } else {
     j["quadrature_points"] = study.options.quadrature_points;
     j["integration"] = {{"rule", "gauss-hermite"},
                         {"quadrature_points", study.options.quadrature_points}};
   }
   return j;
+}
+
+// The fixed spread rule's name in the integration lines: " (fixed Gauss-Hermite)" or
+// " (fixed piecewise-linear)".
+std::string FixedRuleName(const WearStudy& study) {
+  return study.options.spread_nodes.empty() ? " (fixed Gauss-Hermite)"
+                                            : " (fixed piecewise-linear)";
 }
 
 // A step's spread integration, one line: each spread entry's nodes (summed over a vehicle's
@@ -99,7 +119,7 @@ std::string IntegrationLine(const StepResult& step, const WearStudy& study) {
   }
   if (entries.empty()) return {};
   std::string line = fmt::format("spread nodes: {}", fmt::join(entries, ", "));
-  if (!g.adaptive) return line + " (fixed Gauss-Hermite)";
+  if (!g.adaptive) return line + FixedRuleName(study);
   line += fmt::format(" (adaptive, {} rounds, last change of the worn area {:.2g} %", g.rounds,
                       100.0 * g.last_change[0]);
   if (study.low_rail_profile) line += fmt::format(" high, {:.2g} % low", 100.0 * g.last_change[1]);
@@ -536,7 +556,8 @@ class IntegrationTally {
     }
     if (steps_ == 0 || entries.empty()) return {};
     if (!first_.adaptive) {
-      return fmt::format("spread integration: fixed Gauss-Hermite rule, nodes per step: {}\n",
+      return fmt::format("spread integration: fixed {} rule, nodes per step: {}\n",
+                         study.options.spread_nodes.empty() ? "Gauss-Hermite" : "piecewise-linear",
                          fmt::join(entries, ", "));
     }
     return fmt::format(

@@ -22,6 +22,8 @@ double NormalDensity(double x) { return std::exp(-0.5 * x * x) / std::sqrt(2.0 *
 
 }  // namespace
 
+std::string_view ToString(SpreadRule v) { return EnumToString(kSpreadRuleNames, v); }
+
 std::vector<double> LinearGaussianWeights(const std::vector<double>& x) {
   const int m = static_cast<int>(x.size());
   RAILWEAR_CHECK(m >= 1);
@@ -40,6 +42,16 @@ std::vector<double> LinearGaussianWeights(const std::vector<double>& x) {
     w[i + 1] += std::max(0.0, (m1 - a * m0) / h);
   }
   return w;
+}
+
+std::vector<double> LinearSpreadNodes(int m) {
+  RAILWEAR_CHECK(m >= kMinLinearSpreadNodes && m <= kMaxLinearSpreadNodes && m % 8 == 0);
+  std::vector<double> x;
+  x.reserve(static_cast<size_t>(m + m / 4));
+  for (int j = m / 8; j >= 1; --j) x.push_back(-3.0 - 16.0 * j / m);
+  for (int k = -m / 2; k < m / 2; ++k) x.push_back((k + 0.5) * 6.0 / m);
+  for (int j = 1; j <= m / 8; ++j) x.push_back(3.0 + 16.0 * j / m);
+  return x;
 }
 
 std::array<double, 2> SpreadUnit::Integral() const {

@@ -33,7 +33,10 @@
 
 #include <array>
 #include <functional>
+#include <string_view>
 #include <vector>
+
+#include "core/numerics/enum_names.h"
 
 namespace railwear {
 
@@ -72,9 +75,35 @@ inline constexpr double kMaxIntegrationTolerance = 0.1;
 // The tolerance scenes use unless they give one (or quadrature_points, the fixed rule).
 inline constexpr double kDefaultIntegrationTolerance = 0.005;
 
+// The rules over a spread (a scene's wear.spread_rule; WearOptions chooses by its fields, see
+// SpreadRuleOf in wear/wear_simulation.h):
+//   kAdaptive:        this file's rule, nodes added until the step is converged (the default);
+//   kGaussHermite:    quadrature_points fixed Gauss-Hermite nodes;
+//   kPiecewiseLinear: the fixed piecewise-linear rule on LinearSpreadNodes(m) (the converged
+//                     reference on the vehicle curve, docs/wear.md).
+enum class SpreadRule { kAdaptive, kGaussHermite, kPiecewiseLinear };
+inline constexpr std::array<EnumName<SpreadRule>, 3> kSpreadRuleNames = {{
+    {SpreadRule::kAdaptive, "adaptive"},
+    {SpreadRule::kGaussHermite, "gauss_hermite"},
+    {SpreadRule::kPiecewiseLinear, "piecewise_linear"},
+}};
+std::string_view ToString(SpreadRule v);
+
 // Weights w_k (sum 1, all >= 0) of E[a(X)], X ~ N(0, 1), for the piecewise-linear interpolant
 // of a at the strictly increasing nodes `x` (shape [m]), constant beyond the outer nodes.
 std::vector<double> LinearGaussianWeights(const std::vector<double>& x);
+
+// The fixed piecewise-linear rule's nodes (a scene's spread_rule = "piecewise_linear", the converged
+// reference on the vehicle curve: docs/wear.md, "The converged fixed reference"): m uniform nodes
+// within +-3 std at (k + 1/2) 6/m, k = -m/2..m/2-1, and m/8 in each tail at +-(3 + 16 j/m),
+// j = 1..m/8, up to +-5 std (the adaptive rule's outer first nodes), strictly increasing, 1.25 m
+// in all; with LinearGaussianWeights. m = 128 is the draft test's fine reference (nodes 0.047 std
+// apart). m is a multiple of 8 from kMinLinearSpreadNodes to kMaxLinearSpreadNodes.
+std::vector<double> LinearSpreadNodes(int m);
+// The range of LinearSpreadNodes' m: 8 puts the inner nodes 0.75 std apart (a coarse rule, still
+// positive weights); 512 (640 nodes per spread) is four times the curve's converged reference.
+inline constexpr int kMinLinearSpreadNodes = 8;
+inline constexpr int kMaxLinearSpreadNodes = 512;
 
 // A node's response per rail ([0] high, [1] low): its worn area per pass times its cases' weights
 // without the node weight [m^2] and, optionally (empty: not given), its depth field per pass on

@@ -149,10 +149,16 @@ LoadCase PrescribedNodeCase(const std::vector<TrafficCase>& traffic, int t,
 }
 
 std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic,
-                                         int quadrature_points) {
+                                         int quadrature_points,
+                                         const std::vector<double>& linear_nodes) {
   const std::array<double, 2> total_share = RailShareTotals(traffic);
   std::vector<double> nodes, weights;
-  GaussHermiteProbabilists(quadrature_points, &nodes, &weights);
+  if (linear_nodes.empty()) {
+    GaussHermiteProbabilists(quadrature_points, &nodes, &weights);
+  } else {
+    nodes = linear_nodes;
+    weights = LinearGaussianWeights(nodes);
+  }
   std::vector<LoadCase> cases;
   for (int t = 0; t < static_cast<int>(traffic.size()); ++t) {
     const TrafficCase& c = traffic[t];
@@ -161,7 +167,7 @@ std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic
       cases.push_back(PrescribedNodeCase(traffic, t, total_share, 0.0, 0, 1.0));
       continue;
     }
-    for (int k = 0; k < quadrature_points; ++k) {
+    for (int k = 0; k < static_cast<int>(nodes.size()); ++k) {
       cases.push_back(PrescribedNodeCase(traffic, t, total_share, nodes[k], k, weights[k]));
     }
   }

@@ -178,9 +178,12 @@ std::vector<LoadCase> ExpandTraffic(const std::vector<TrafficCase>& traffic, int
 
 namespace internal {
 // ExpandTraffic without its checks, for the wear loop, whose study was validated once at its
-// entry (ValidateWearStudy): the traffic is not checked again at every step.
+// entry (ValidateWearStudy): the traffic is not checked again at every step. With linear_nodes
+// (WearOptions::spread_nodes, not empty) every spread takes the piecewise-linear rule on those
+// nodes (LinearGaussianWeights) instead of quadrature_points Gauss-Hermite nodes.
 std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic,
-                                         int quadrature_points);
+                                         int quadrature_points,
+                                         const std::vector<double>& linear_nodes = {});
 
 // The load case of prescribed entry traffic[t] at the spread node x [standard-normal units]:
 // lateral shift mean + std x, numbered `node`, weighted by the entry's share over its rail's

@@ -209,7 +209,7 @@ std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index
   if (solved) *solved = eq.result.Start();
   std::vector<double> nodes = {0.0}, weights = {1.0};
   if (c.lateral_shift_std_m > 0.0 && !study.options.spread_nodes.empty()) {
-    nodes = study.options.spread_nodes;  // a study's piecewise-linear rule (WearOptions)
+    nodes = study.options.spread_nodes;  // the piecewise-linear rule (WearOptions)
     weights = LinearGaussianWeights(nodes);
   } else if (c.lateral_shift_std_m > 0.0) {
     GaussHermiteProbabilists(study.options.quadrature_points, &nodes, &weights);

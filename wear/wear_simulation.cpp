@@ -294,6 +294,11 @@ std::vector<Eigen::Vector2d> MoveAlongInwardNormal(const Profile& body, const We
 
 }  // namespace
 
+SpreadRule SpreadRuleOf(const WearOptions& o) {
+  if (o.integration_tolerance) return SpreadRule::kAdaptive;
+  return o.spread_nodes.empty() ? SpreadRule::kGaussHermite : SpreadRule::kPiecewiseLinear;
+}
+
 void ValidateWearStudy(const WearStudy& study) {
   const WearOptions& o = study.options;
   ValidateWearLaw(o.law);
@@ -371,6 +376,12 @@ void ValidateWearStudy(const WearStudy& study) {
       throw InputError(fmt::format("wear: spread_nodes[{}] = {}: expected finite nodes in strictly "
                                    "increasing order", k, o.spread_nodes[k]));
     }
+  }
+  if (o.integration_tolerance && !o.spread_nodes.empty()) {
+    throw InputError(fmt::format(
+        "wear: integration_tolerance = {} with {} spread_nodes: expected either the adaptive rule "
+        "or the fixed piecewise-linear rule, not both",
+        *o.integration_tolerance, o.spread_nodes.size()));
   }
   if (o.integration_tolerance && !(*o.integration_tolerance >= kMinIntegrationTolerance &&
                                    *o.integration_tolerance <= kMaxIntegrationTolerance)) {
@@ -499,7 +510,8 @@ std::vector<LoadCase> StepLoadCases(const WearStudy& study, const Profile& high_
                                     std::vector<CurvingStart>* curving_solved) {
   // Prescribed traffic and imported collectives: positions fixed in each rail's unworn track
   // frame, so the current profiles are not needed. Vehicle entries: curving on the current rails.
-  std::vector<LoadCase> cases = ExpandValidTraffic(study.traffic, study.options.quadrature_points);
+  std::vector<LoadCase> cases = ExpandValidTraffic(study.traffic, study.options.quadrature_points,
+                                                  study.options.spread_nodes);
   const int n_traffic = static_cast<int>(study.traffic.size());
   if (curving_solved) curving_solved->assign(n_traffic, CurvingStart{});
   for (int t = 0; t < n_traffic; ++t) {

@@ -80,12 +80,12 @@ struct WearOptions {
   // Gauss-Hermite nodes per traffic entry with a lateral spread, 1..kMaxQuadraturePoints (41;
   // the fixed rule).
   int quadrature_points = 5;
-  // Studies of the spread rule only (no scene key): when not empty, the fixed rule of every
-  // vehicle entry's wheelsets is the piecewise-linear rule (LinearGaussianWeights,
-  // wear/spread_integration.h) on these strictly increasing nodes [standard-normal units] instead
-  // of quadrature_points Gauss-Hermite nodes (prescribed entries keep Gauss-Hermite): the fine
-  // references of the depth-field study on the vehicle curve (docs/wear.md), which no
-  // Gauss-Hermite rule up to 61 nodes converges.
+  // When not empty (without integration_tolerance), the fixed rule of every spread (a prescribed
+  // entry's and each wheelset's of a vehicle entry) is the piecewise-linear rule
+  // (LinearGaussianWeights, wear/spread_integration.h) on these strictly increasing nodes
+  // [standard-normal units] instead of quadrature_points Gauss-Hermite nodes: the converged
+  // reference on the vehicle curve (docs/wear.md), which no Gauss-Hermite rule up to 61 nodes
+  // converges. Scenes: spread_rule = "piecewise_linear" with spread_nodes = m, LinearSpreadNodes(m).
   std::vector<double> spread_nodes;
   // Width of the arc-length bins the wear depth is collected on [m], > 0.
   double bin_m = 1e-4;
@@ -107,6 +107,10 @@ struct WearOptions {
   // signal handler: app/ sets the flag from its own.
   std::function<bool()> cancel = {};
 };
+
+// The spread rule the options choose: the adaptive rule with integration_tolerance, the
+// piecewise-linear rule with spread_nodes, else quadrature_points Gauss-Hermite nodes.
+SpreadRule SpreadRuleOf(const WearOptions& o);
 
 // Thrown by RunWearStep when WearOptions::cancel returned true during the step (RunWear catches
 // it and reports WearRunSummary::cancelled).

@@ -138,6 +138,45 @@ std::vector<CorpusCase> Corpus() {
                "contact s.toml",
                2,
                {"s.toml:", "expected [curving] only in a wear scene"}});
+  // The spread rule by name (spread_rule): an unknown name, the piecewise-linear rule's node
+  // count (required, a multiple of 8 in [8, 512]), and another rule's key beside a named rule.
+  c.push_back({"spread_rule_unknown",
+               {{"s.toml", Replace(wear, "quadrature_points = 3\n", "spread_rule = \"simpson\"\n")}},
+               "wear s.toml --db s.sqlite",
+               2,
+               {"s.toml:", "key 'wear.spread_rule' = \"simpson\"", "piecewise_linear"}});
+  c.push_back({"spread_rule_linear_without_nodes",
+               {{"s.toml", Replace(wear, "quadrature_points = 3\n",
+                                   "spread_rule = \"piecewise_linear\"\n")}},
+               "wear s.toml --db s.sqlite",
+               2,
+               {"s.toml:", "key 'wear.spread_nodes' is missing", "a multiple of 8"}});
+  c.push_back({"spread_nodes_not_a_multiple_of_8",
+               {{"s.toml", Replace(wear, "quadrature_points = 3\n",
+                                   "spread_rule = \"piecewise_linear\"\nspread_nodes = 100\n")}},
+               "wear s.toml --db s.sqlite",
+               2,
+               {"s.toml:", "key 'wear.spread_nodes' = 100", "a multiple of 8 from 8 to 512"}});
+  c.push_back({"spread_nodes_out_of_range",
+               {{"s.toml", Replace(wear, "quadrature_points = 3\n",
+                                   "spread_rule = \"piecewise_linear\"\nspread_nodes = 1024\n")}},
+               "wear s.toml --db s.sqlite",
+               2,
+               {"s.toml:", "key 'wear.spread_nodes' = 1024", "[8, 513)"}});
+  c.push_back({"spread_rule_with_another_rules_key",
+               {{"s.toml", Replace(wear, "quadrature_points = 3\n",
+                                   "quadrature_points = 3\nspread_rule = \"piecewise_linear\"\n"
+                                   "spread_nodes = 64\n")}},
+               "wear s.toml --db s.sqlite",
+               2,
+               {"s.toml:", "key 'wear.quadrature_points' = 3",
+                "no 'quadrature_points' with spread_rule = \"piecewise_linear\"",
+                "\"gauss_hermite\" rule's key"}});
+  c.push_back({"spread_nodes_without_spread_rule",
+               {{"s.toml", Replace(wear, "quadrature_points = 3\n", "spread_nodes = 64\n")}},
+               "wear s.toml --db s.sqlite",
+               2,
+               {"s.toml:", "key 'wear.spread_nodes' = 64", "spread_rule = \"piecewise_linear\""}});
   // [model] tangential (issue 16 point 4: "auto" joined the choices).
   c.push_back({"tangential_unknown",
                {{"s.toml", Replace(tread, "accuracy = \"standard\"",

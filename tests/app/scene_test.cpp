@@ -756,6 +756,36 @@ TEST(SceneTest, DamageLayerIsOptIn) {
   EXPECT_NEAR(*s.wear->options.damage_layer_m, 0.5e-3, 1e-18);
 }
 
+// The spread rule: without spread_rule as every scene before it (the adaptive rule at 0.005, or
+// Gauss-Hermite with quadrature_points); by name each rule with its own key, the
+// piecewise-linear rule on LinearSpreadNodes(spread_nodes). (Bad values: the bad-input corpus.)
+TEST(SceneTest, SpreadRuleSelectsTheRuleAndKeepsOldScenes) {
+  const auto options = [](const std::string& keys) {
+    std::string scene = kWearScene;
+    scene.insert(scene.find("max_depth_per_step_mm"), keys);
+    return ParseScene(scene, "dir/wear.toml").wear->options;
+  };
+  const WearOptions old_default = options("");
+  EXPECT_EQ(SpreadRuleOf(old_default), SpreadRule::kAdaptive);
+  EXPECT_EQ(*old_default.integration_tolerance, kDefaultIntegrationTolerance);
+  const WearOptions old_fixed = options("quadrature_points = 20\n");
+  EXPECT_EQ(SpreadRuleOf(old_fixed), SpreadRule::kGaussHermite);
+  EXPECT_EQ(old_fixed.quadrature_points, 20);
+  const WearOptions adaptive = options("spread_rule = \"adaptive\"\nintegration_tolerance = 0.01\n");
+  EXPECT_EQ(SpreadRuleOf(adaptive), SpreadRule::kAdaptive);
+  EXPECT_EQ(*adaptive.integration_tolerance, 0.01);
+  const WearOptions gh = options("spread_rule = \"gauss_hermite\"\n");
+  EXPECT_EQ(SpreadRuleOf(gh), SpreadRule::kGaussHermite);
+  EXPECT_EQ(gh.quadrature_points, WearOptions{}.quadrature_points);
+  const WearOptions linear = options("spread_rule = \"piecewise_linear\"\nspread_nodes = 128\n");
+  EXPECT_EQ(SpreadRuleOf(linear), SpreadRule::kPiecewiseLinear);
+  EXPECT_FALSE(linear.integration_tolerance.has_value());
+  EXPECT_EQ(linear.spread_nodes, LinearSpreadNodes(128));
+  EXPECT_THROW(options("spread_rule = \"adaptive\"\nquadrature_points = 5\n"), InputError);
+  EXPECT_THROW(options("spread_rule = \"gauss_hermite\"\nintegration_tolerance = 0.01\n"),
+               InputError);
+}
+
 TEST(SceneTest, WearSceneErrorsNameTheKey) {
   const std::string scene = kWearScene;
   const auto with = [&](const std::string& from, const std::string& to) {

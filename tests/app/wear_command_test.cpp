@@ -89,6 +89,30 @@ TEST_F(WearCommandTest, AdaptiveSpreadNodesAreLoggedSummarisedAndStored) {
   }
 }
 
+// The fixed piecewise-linear rule by name (spread_rule = "piecewise_linear", spread_nodes = 8:
+// 8 nodes within +-3 std and one per tail, 10 per spread): the log and the summary name the
+// rule, the run's parameters store it with its node count, and the step has a case per node.
+TEST_F(WearCommandTest, PiecewiseLinearSpreadRuleIsNamedAndStored) {
+  std::string scene = kStudy;
+  const std::string gh = "quadrature_points = 3\n";
+  scene.replace(scene.find(gh), gh.size(), "spread_rule = \"piecewise_linear\"\nspread_nodes = 8\n");
+  Write("study.toml", scene);
+  const Outcome o = Run("wear study.toml --db a.sqlite --steps 1");
+  ASSERT_EQ(o.exit_code, 0) << o.err;
+  EXPECT_TRUE(Contains(o.err, "railwear: step 1: spread nodes: traffic[0] 10 (fixed piecewise-linear)"))
+      << o.err;
+  EXPECT_TRUE(Contains(o.out, "spread integration: fixed piecewise-linear rule, nodes per step: "
+                              "traffic[0] 10"))
+      << o.out;
+  ProfileStore store = ProfileStore::Open((dir_ / "a.sqlite").string());
+  const auto run = store.FindRun("small study");
+  ASSERT_TRUE(run.has_value());
+  EXPECT_TRUE(Contains(run->wear_law_json, R"("rule":"piecewise-linear")")) << run->wear_law_json;
+  EXPECT_TRUE(Contains(run->wear_law_json, R"("spread_nodes":8)")) << run->wear_law_json;
+  EXPECT_TRUE(Contains(run->wear_law_json, R"("nodes":10)")) << run->wear_law_json;
+  EXPECT_EQ(store.LoadStep(run->id, 1).load_cases_json.size(), 10u);
+}
+
 TEST_F(WearCommandTest, KilledRunResumesToTheSameProfile) {
   Write("study.toml", kStudy);
   const Outcome whole = Run("wear study.toml --db whole.sqlite --threads 1");

@@ -15,6 +15,7 @@
 //                   spread settings; the rails, curving starts and wheels are the step's)
 //   The node responses go to stderr as CSV lines starting with "node,".
 // A study tool, not a test: it prints (tests/tools, like traffic_study.sh).
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -26,6 +27,7 @@
 
 #include "app/scene.h"
 #include "app/stored_study.h"
+#include "wear/spread_integration.h"
 #include "wear/wear_simulation.h"
 
 namespace {
@@ -80,6 +82,17 @@ struct Rule {
   Fields fields;
 };
 
+// A rule's cost in the step: its load cases (contact solves) and the step's wall time (not a
+// benchmark: the machine is shared; compare rules run one after the other).
+void PrintCost(const std::string& label, const std::string& rule, const StepResult& step,
+               std::chrono::steady_clock::time_point start) {
+  const double s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fprintf(stdout, "%s: %s: %zu load cases, %.1f s wall\n", label.c_str(), rule.c_str(),
+               step.cases.size(), s);
+  std::fflush(stdout);
+}
+
 void Study(WearStudy study, const UnwornRails& unworn, const WearState& state,
            const std::vector<std::string>& nodes, double adaptive_tolerance,
            const std::string& label) {
@@ -90,23 +103,23 @@ void Study(WearStudy study, const UnwornRails& unworn, const WearState& state,
     study.options.spread_nodes.clear();
     std::string name;
     if (rule[0] == 'L') {
-      const int m = std::stoi(rule.substr(1));
-      std::vector<double>& x = study.options.spread_nodes;
-      for (int j = m / 8; j >= 1; --j) x.push_back(-3.0 - 16.0 * j / m);
-      for (int k = -m / 2; k < m / 2; ++k) x.push_back((k + 0.5) * 6.0 / m);
-      for (int j = 1; j <= m / 8; ++j) x.push_back(3.0 + 16.0 * j / m);
+      study.options.spread_nodes = LinearSpreadNodes(std::stoi(rule.substr(1)));
       name = rule + " linear";
     } else {
       study.options.quadrature_points = std::stoi(rule);
       name = rule + " GH";
     }
+    const auto start = std::chrono::steady_clock::now();
     Rule r{name, RunWearStep(study, unworn, state, 1e30), {}};
+    PrintCost(label, name, r.step, start);
     r.fields = WheelsetFields(r.step);
     rules.push_back(std::move(r));
   }
   if (adaptive_tolerance > 0.0) {
     study.options.integration_tolerance = adaptive_tolerance;
+    const auto start = std::chrono::steady_clock::now();
     Rule r{"adaptive", RunWearStep(study, unworn, state, 1e30), {}};
+    PrintCost(label, "adaptive", r.step, start);
     r.fields = WheelsetFields(r.step);
     std::fprintf(stdout, "%s: adaptive: %d rounds, last change %.3g %% high %.3g %% low, nodes",
                  label.c_str(), r.step.integration.rounds, 100 * r.step.integration.last_change[0],

@@ -64,6 +64,24 @@ TEST(SpreadIntegrationTest, WeightsArePositiveAndSumToOne) {
   EXPECT_NEAR(LinearGaussianWeights({0.3})[0], 1.0, 1e-15);
 }
 
+// The piecewise-linear rule's nodes (spread_rule = "piecewise_linear"): m uniform nodes 6/m apart
+// within +-3 std, symmetric, m/8 per tail to +-5 std, strictly increasing, 1.25 m in all.
+TEST(SpreadIntegrationTest, LinearSpreadNodesAreUniformWithTails) {
+  for (const int m : {kMinLinearSpreadNodes, 64, 128, kMaxLinearSpreadNodes}) {
+    const std::vector<double> x = LinearSpreadNodes(m);
+    ASSERT_EQ(x.size(), static_cast<size_t>(m + m / 4)) << m;
+    EXPECT_DOUBLE_EQ(x.front(), -5.0);
+    EXPECT_DOUBLE_EQ(x.back(), 5.0);
+    for (size_t k = 0; k < x.size(); ++k) {
+      EXPECT_NEAR(x[k], -x[x.size() - 1 - k], 1e-14);
+      if (k > 0) EXPECT_GT(x[k], x[k - 1]);
+    }
+    const size_t inner = static_cast<size_t>(m / 8);  // the first inner node
+    EXPECT_NEAR(x[inner], -3.0 + 3.0 / m, 1e-14);
+    EXPECT_NEAR(x[inner + 1] - x[inner], 6.0 / m, 1e-14);
+  }
+}
+
 // The rule integrates the piecewise-linear interpolant exactly: a(x) = max(0, min(x, 3)) has its
 // kinks at the nodes 0 and 3, so E[a] = phi(0) - phi(3) + 3 (1 - Phi(3)) to rounding.
 TEST(SpreadIntegrationTest, ExactForPiecewiseLinearResponses) {
@@ -300,10 +318,7 @@ double DepthFieldDistance(const StepResult& step, const StepResult& reference) {
 // +-0.7 %, 128 by +-0.16 % around the same rule on 257 nodes within +-3 std (measured once from
 // a 257-position scan, 50 s).
 double FineReference(WearStudy study, StepResult* out) {
-  std::vector<double> x;
-  for (int j = 16; j >= 1; --j) x.push_back(-3.0 - j / 8.0);
-  for (int k = -64; k < 64; ++k) x.push_back((k + 0.5) * 3.0 / 64.0);
-  for (int j = 1; j <= 16; ++j) x.push_back(3.0 + j / 8.0);
+  const std::vector<double> x = LinearSpreadNodes(128);
   const std::vector<double> w = LinearGaussianWeights(x);
   std::vector<TrafficCase> fixed;
   for (const TrafficCase& c : study.traffic) {

@@ -6,6 +6,7 @@
 
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
+#include "wear/spread_integration.h"
 
 namespace railwear {
 namespace {
@@ -61,6 +62,27 @@ TEST(TrafficTest, ExpandWeightsSumToOneAndMeanIsKept) {
   EXPECT_NEAR(sum, 1.0, 1e-14);
   EXPECT_NEAR(mean0, -4e-3, 1e-15);
   EXPECT_NEAR(var0, 1.5e-3 * 1.5e-3, 1e-18);
+  EXPECT_NEAR(cases.back().weight, 0.3, 1e-15);
+}
+
+// The piecewise-linear rule (spread_rule = "piecewise_linear") on a prescribed entry: a case per
+// node at mean + std x with the entry's share times the node's LinearGaussianWeights weight; the
+// entry without spread keeps its one case.
+TEST(TrafficTest, LinearNodesExpandPrescribedSpreads) {
+  const std::vector<TrafficCase> traffic = {MakeCase(0.7, 1.5), MakeCase(0.3, 0.0)};
+  const std::vector<double> x = LinearSpreadNodes(8);
+  const std::vector<double> w = LinearGaussianWeights(x);
+  const std::vector<LoadCase> cases = internal::ExpandValidTraffic(traffic, 5, x);
+  ASSERT_EQ(cases.size(), x.size() + 1);
+  double sum = 0.0;
+  for (size_t k = 0; k < x.size(); ++k) {
+    EXPECT_EQ(cases[k].node, static_cast<int>(k));
+    EXPECT_EQ(cases[k].spread_x, x[k]);
+    EXPECT_NEAR(cases[k].placement.lateral_shift_m, -4e-3 + 1.5e-3 * x[k], 1e-18);
+    EXPECT_NEAR(cases[k].weight, 0.7 * w[k], 1e-16);
+    sum += cases[k].weight;
+  }
+  EXPECT_NEAR(sum, 0.7, 1e-14);
   EXPECT_NEAR(cases.back().weight, 0.3, 1e-15);
 }
 
