@@ -63,8 +63,8 @@ CurvingAccuracyStudy RunCurvingAccuracyStudy(
         row.lead_l_over_v = lead.high_climb.l_over_v;
       }
       if (progress) {
-        progress(fmt::format("{}: {}, {} predictor: {} in {:.1f} s, {} wheelset solves{}",
-                             c.name, row.level, row.predictor, row.status, row.time_s, row.solves,
+        progress(fmt::format("{}: {}, {} predictor: {} in {:.1f} s, {} wheelset solves{}", c.name,
+                             row.level, row.predictor, row.status, row.time_s, row.solves,
                              predictor == CurvingPredictor::kTable
                                  ? fmt::format(", {} table evaluations, table built in {:.2f} s",
                                                r.table_evaluations, r.table_build_s)

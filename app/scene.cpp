@@ -732,7 +732,8 @@ void ReadWearTable(const Fields& top, Scene* scene) {
   // spread_nodes (piecewise_linear, required); another rule's key is an error.
   const std::optional<double> tolerance =
       t.Number("integration_tolerance", Closed(kMinIntegrationTolerance, kMaxIntegrationTolerance));
-  const std::optional<std::string> rule_name = t.Choice("spread_rule", EnumChoices(kSpreadRuleNames));
+  const std::optional<std::string> rule_name =
+      t.Choice("spread_rule", EnumChoices(kSpreadRuleNames));
   SpreadRule rule = t.Has("quadrature_points") ? SpreadRule::kGaussHermite : SpreadRule::kAdaptive;
   if (rule_name) rule = *EnumFromString(kSpreadRuleNames, *rule_name);
   const auto refuse = [&](std::string_view key, SpreadRule owner) {
@@ -754,10 +755,10 @@ void ReadWearTable(const Fields& top, Scene* scene) {
   if (rule == SpreadRule::kAdaptive) {
     o.integration_tolerance = tolerance.value_or(kDefaultIntegrationTolerance);
   } else if (rule == SpreadRule::kPiecewiseLinear) {
-    const std::string expected =
-        fmt::format("a multiple of 8 from {} to {} (the piecewise-linear rule's nodes within +-3 "
-                    "std; m/8 more in each tail)",
-                    kMinLinearSpreadNodes, kMaxLinearSpreadNodes);
+    const std::string expected = fmt::format(
+        "a multiple of 8 from {} to {} (the piecewise-linear rule's nodes within +-3 "
+        "std; m/8 more in each tail)",
+        kMinLinearSpreadNodes, kMaxLinearSpreadNodes);
     if (!t.Has("spread_nodes")) t.FailMissing("spread_nodes", expected);
     const int m = whole("spread_nodes", kMinLinearSpreadNodes, kMaxLinearSpreadNodes, 0);
     if (m % 8 != 0) t.Fail("spread_nodes", expected);
@@ -1181,9 +1182,9 @@ void ReadTraffic(const Fields& top, Scene* scene) {
         adaptive ? fmt::format("give 'wear.quadrature_points' (the fixed rule; the adaptive "
                                "rule takes up to {} nodes per spread)",
                                kMaxSpreadNodes)
-                 : !wo.spread_nodes.empty()
-                     ? fmt::format("lower 'wear.spread_nodes' (now {} nodes per spread)", nodes)
-                     : fmt::format("lower 'wear.quadrature_points' (now {})", nodes)));
+        : !wo.spread_nodes.empty()
+            ? fmt::format("lower 'wear.spread_nodes' (now {} nodes per spread)", nodes)
+            : fmt::format("lower 'wear.quadrature_points' (now {})", nodes)));
   };
   if (entries.size() > kMaxLoadCasesPerStep) refuse(entries.size());
   size_t cases = 0;

@@ -546,7 +546,7 @@ double SweepLineCost(const Scene& scene) {
   // Nodes per spread: the fixed rule's, or the adaptive rule's typical count (7 to start, a few
   // midpoints added).
   constexpr double kAdaptiveNodes = 11.0;
-  const double nodes = o.integration_tolerance      ? kAdaptiveNodes
+  const double nodes = o.integration_tolerance   ? kAdaptiveNodes
                        : !o.spread_nodes.empty() ? static_cast<double>(o.spread_nodes.size())
                                                  : o.quadrature_points;
   double cases = 0.0;

@@ -93,12 +93,13 @@ std::string_view ToString(SpreadRule v);
 // of a at the strictly increasing nodes `x` (shape [m]), constant beyond the outer nodes.
 std::vector<double> LinearGaussianWeights(const std::vector<double>& x);
 
-// The fixed piecewise-linear rule's nodes (a scene's spread_rule = "piecewise_linear", the converged
-// reference on the vehicle curve: docs/wear.md, "The converged fixed reference"): m uniform nodes
-// within +-3 std at (k + 1/2) 6/m, k = -m/2..m/2-1, and m/8 in each tail at +-(3 + 16 j/m),
-// j = 1..m/8, up to +-5 std (the adaptive rule's outer first nodes), strictly increasing, 1.25 m
-// in all; with LinearGaussianWeights. m = 128 is the draft test's fine reference (nodes 0.047 std
-// apart). m is a multiple of 8 from kMinLinearSpreadNodes to kMaxLinearSpreadNodes.
+// The fixed piecewise-linear rule's nodes (a scene's spread_rule = "piecewise_linear", the
+// converged reference on the vehicle curve: docs/wear.md, "The converged fixed reference"): m
+// uniform nodes within +-3 std at (k + 1/2) 6/m, k = -m/2..m/2-1, and m/8 in each tail at +-(3 + 16
+// j/m), j = 1..m/8, up to +-5 std (the adaptive rule's outer first nodes), strictly
+// increasing, 1.25 m in all; with LinearGaussianWeights. m = 128 is the draft test's fine reference
+// (nodes 0.047 std apart). m is a multiple of 8 from kMinLinearSpreadNodes to
+// kMaxLinearSpreadNodes.
 std::vector<double> LinearSpreadNodes(int m);
 // The range of LinearSpreadNodes' m: 8 puts the inner nodes 0.75 std apart (a coarse rule, still
 // positive weights); 512 (640 nodes per spread) is four times the curve's converged reference.

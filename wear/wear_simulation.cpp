@@ -511,7 +511,7 @@ std::vector<LoadCase> StepLoadCases(const WearStudy& study, const Profile& high_
   // Prescribed traffic and imported collectives: positions fixed in each rail's unworn track
   // frame, so the current profiles are not needed. Vehicle entries: curving on the current rails.
   std::vector<LoadCase> cases = ExpandValidTraffic(study.traffic, study.options.quadrature_points,
-                                                  study.options.spread_nodes);
+                                                   study.options.spread_nodes);
   const int n_traffic = static_cast<int>(study.traffic.size());
   if (curving_solved) curving_solved->assign(n_traffic, CurvingStart{});
   for (int t = 0; t < n_traffic; ++t) {

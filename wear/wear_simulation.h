@@ -85,7 +85,8 @@ struct WearOptions {
   // (LinearGaussianWeights, wear/spread_integration.h) on these strictly increasing nodes
   // [standard-normal units] instead of quadrature_points Gauss-Hermite nodes: the converged
   // reference on the vehicle curve (docs/wear.md), which no Gauss-Hermite rule up to 61 nodes
-  // converges. Scenes: spread_rule = "piecewise_linear" with spread_nodes = m, LinearSpreadNodes(m).
+  // converges. Scenes: spread_rule = "piecewise_linear" with spread_nodes = m,
+  // LinearSpreadNodes(m).
   std::vector<double> spread_nodes;
   // Width of the arc-length bins the wear depth is collected on [m], > 0.
   double bin_m = 1e-4;

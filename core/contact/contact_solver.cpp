@@ -207,8 +207,8 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
       if (from && assembly.np.force_N && !from->grids.empty()) {
         start = WarmPressureStart(*from, builds);
       }
-      const NormalSolution sol = SolveNormalStage(assembly.np, problem.solver, &out.stages,
-                                                  start ? &*start : nullptr);
+      const NormalSolution sol =
+          SolveNormalStage(assembly.np, problem.solver, &out.stages, start ? &*start : nullptr);
       total_iterations += sol.iterations;
       const bool converged = sol.status == SolverStatus::kConverged;
       if (converged) approach_now = sol.approach_m;

@@ -78,8 +78,8 @@ PaddedFft2d::PaddedFft2d(int nx, int ns)
                               nullptr, 1, ls_, FFTW_BACKWARD, FFTW_ESTIMATE);
   });
   x_inverse_ = SharedPlan({14, lx_, ns_, ls_}, [&] {
-    return fftw_plan_many_dft_c2r(1, lx, ns_, planning_data(), nullptr, ls_, 1,
-                                  padded_out_.data(), nullptr, 1, lx_, FFTW_ESTIMATE);
+    return fftw_plan_many_dft_c2r(1, lx, ns_, planning_data(), nullptr, ls_, 1, padded_out_.data(),
+                                  nullptr, 1, lx_, FFTW_ESTIMATE);
   });
 }
 

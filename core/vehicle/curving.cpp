@@ -336,7 +336,7 @@ class Equilibrium {
     // A Jacobian given (the start's, or the last phase's) is first used as it is.
     double last_ratio = 0.0;
     double step_factor = 1.0;  // of the finite-difference steps
-    std::vector<double> merits;  // at the start of each iteration
+    std::vector<double> merits;    // at the start of each iteration
     double least_norm = Norm(*r);  // the smallest largest scaled residual of this solve
     for (int it = 0; it < o.max_iterations; ++it) {
       if (Cancelled()) return Fail("cancelled", message);
@@ -344,12 +344,13 @@ class Equilibrium {
       merits.push_back(Merit(*r));
       least_norm = std::min(least_norm, Norm(*r));
       // Stalled far from the equilibrium (never within the position rules' band: a natural-level
-      // step may raise the residual for an iteration on the way), where another start follows: on the worn rails of the R 600 m curve at 8.5 MGT (20 spread nodes, step 105)
-      // the coach's centred start stepped away from the flange and spent 252 wheelset solves at
-      // 0.52 Q0, its merit falling 4 % in 9 iterations, before the relaxed start (the last)
-      // converged in 188. A free wheelset's centred start on R 150 m plateaus for 3 iterations
-      // (5-8 %) before it rounds onto the flange (CurvingTest.HardCasesConvergeOrNameTheirStatus),
-      // hence 6 iterations and 5 %.
+      // step may raise the residual for an iteration on the way), where another start follows: on
+      // the worn rails of the R 600 m curve at 8.5 MGT (20 spread nodes, step 105) the coach's
+      // centred start stepped away from the flange and spent 252 wheelset solves at 0.52 Q0, its
+      // merit falling 4 % in 9 iterations, before the relaxed start (the last) converged in 188. A
+      // free wheelset's centred start on R 150 m plateaus for 3 iterations (5-8 %) before it rounds
+      // onto the flange (CurvingTest.HardCasesConvergeOrNameTheirStatus), hence 6 iterations and 5
+      // %.
       if (give_up_on_stall && it >= kStallWindow && least_norm > kNearStall * o.tolerance &&
           merits[it] > kStallRatio * merits[it - kStallWindow]) {
         Note(internal::NewtonEvent::kStalled);
@@ -889,9 +890,15 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
   auto contexts = [&](const ModelOptions& model) {
     std::vector<WheelsetContext> ctx(layout.wheelsets);
     for (int i = 0; i < layout.wheelsets; ++i) {
-      ctx[i] = {&p,          model,   q0 + transfer, q0 - transfer,
-                q0,          p.wheels.empty() ? nullptr : &p.wheels[i],
-                nullptr,     force_model, i};
+      ctx[i] = {&p,
+                model,
+                q0 + transfer,
+                q0 - transfer,
+                q0,
+                p.wheels.empty() ? nullptr : &p.wheels[i],
+                nullptr,
+                force_model,
+                i};
     }
     return ctx;
   };

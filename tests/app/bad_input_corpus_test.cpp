@@ -117,12 +117,12 @@ std::vector<CorpusCase> Corpus() {
                {"s.toml:", "key 'wear.quadrature_points' = 82", "[1, 82)"}});
   // [curving] predictor (issue 15): a name it does not know, the table without vehicles, and
   // in a contact scene.
-  c.push_back({"curving_predictor_unknown",
-               {{"s.toml", std::string(kWheelsetCurveScene) + "[curving]\npredictor = \"grid\"\n"}},
-               "wear s.toml --db s.sqlite",
-               2,
-               {"s.toml:", "key 'curving.predictor' = \"grid\"",
-                "expected one of 'model', 'table'"}});
+  c.push_back(
+      {"curving_predictor_unknown",
+       {{"s.toml", std::string(kWheelsetCurveScene) + "[curving]\npredictor = \"grid\"\n"}},
+       "wear s.toml --db s.sqlite",
+       2,
+       {"s.toml:", "key 'curving.predictor' = \"grid\"", "expected one of 'model', 'table'"}});
   c.push_back({"curving_predictor_not_a_string",
                {{"s.toml", std::string(kWheelsetCurveScene) + "[curving]\npredictor = 1\n"}},
                "curving s.toml",
@@ -140,14 +140,15 @@ std::vector<CorpusCase> Corpus() {
                {"s.toml:", "expected [curving] only in a wear scene"}});
   // The spread rule by name (spread_rule): an unknown name, the piecewise-linear rule's node
   // count (required, a multiple of 8 in [8, 512]), and another rule's key beside a named rule.
-  c.push_back({"spread_rule_unknown",
-               {{"s.toml", Replace(wear, "quadrature_points = 3\n", "spread_rule = \"simpson\"\n")}},
-               "wear s.toml --db s.sqlite",
-               2,
-               {"s.toml:", "key 'wear.spread_rule' = \"simpson\"", "piecewise_linear"}});
+  c.push_back(
+      {"spread_rule_unknown",
+       {{"s.toml", Replace(wear, "quadrature_points = 3\n", "spread_rule = \"simpson\"\n")}},
+       "wear s.toml --db s.sqlite",
+       2,
+       {"s.toml:", "key 'wear.spread_rule' = \"simpson\"", "piecewise_linear"}});
   c.push_back({"spread_rule_linear_without_nodes",
-               {{"s.toml", Replace(wear, "quadrature_points = 3\n",
-                                   "spread_rule = \"piecewise_linear\"\n")}},
+               {{"s.toml",
+                 Replace(wear, "quadrature_points = 3\n", "spread_rule = \"piecewise_linear\"\n")}},
                "wear s.toml --db s.sqlite",
                2,
                {"s.toml:", "key 'wear.spread_nodes' is missing", "a multiple of 8"}});

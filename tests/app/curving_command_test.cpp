@@ -10,10 +10,10 @@
 #include "app/scene.h"
 #include "app/stored_study.h"
 #include "profiles_db/profile_store.h"
-#include "wear/vehicle_traffic.h"
 #include "tests/app/cli_runner.h"
 #include "tests/app/wear_scenes.h"
 #include "tests/sqlite_test_support.h"
+#include "wear/vehicle_traffic.h"
 
 namespace railwear::test {
 namespace {
@@ -186,8 +186,8 @@ TEST_F(CurvingCommandTest, TablePredictorOnWornRailsReachesTheModelPredictorsEqu
   const ProfileStore db = ProfileStore::OpenReadOnly((data / "r600_10mgt_step66.sqlite").string());
   CurvingResult results[2];
   for (int k = 0; k < 2; ++k) {
-    const app::Scene scene = app::ParseScene(
-        k == 0 ? text : text + "\n[curving]\npredictor = \"table\"\n", "s.toml");
+    const app::Scene scene =
+        app::ParseScene(k == 0 ? text : text + "\n[curving]\npredictor = \"table\"\n", "s.toml");
     const WearStudy& study = *scene.wear;
     const int64_t run = db.FindRun(scene.name)->id;
     const WearState unworn = app::StateFromStore(db, run, 0);

@@ -771,7 +771,8 @@ TEST(SceneTest, SpreadRuleSelectsTheRuleAndKeepsOldScenes) {
   const WearOptions old_fixed = options("quadrature_points = 20\n");
   EXPECT_EQ(SpreadRuleOf(old_fixed), SpreadRule::kGaussHermite);
   EXPECT_EQ(old_fixed.quadrature_points, 20);
-  const WearOptions adaptive = options("spread_rule = \"adaptive\"\nintegration_tolerance = 0.01\n");
+  const WearOptions adaptive =
+      options("spread_rule = \"adaptive\"\nintegration_tolerance = 0.01\n");
   EXPECT_EQ(SpreadRuleOf(adaptive), SpreadRule::kAdaptive);
   EXPECT_EQ(*adaptive.integration_tolerance, 0.01);
   const WearOptions gh = options("spread_rule = \"gauss_hermite\"\n");

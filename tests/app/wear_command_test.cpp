@@ -95,14 +95,17 @@ TEST_F(WearCommandTest, AdaptiveSpreadNodesAreLoggedSummarisedAndStored) {
 TEST_F(WearCommandTest, PiecewiseLinearSpreadRuleIsNamedAndStored) {
   std::string scene = kStudy;
   const std::string gh = "quadrature_points = 3\n";
-  scene.replace(scene.find(gh), gh.size(), "spread_rule = \"piecewise_linear\"\nspread_nodes = 8\n");
+  scene.replace(scene.find(gh), gh.size(),
+                "spread_rule = \"piecewise_linear\"\nspread_nodes = 8\n");
   Write("study.toml", scene);
   const Outcome o = Run("wear study.toml --db a.sqlite --steps 1");
   ASSERT_EQ(o.exit_code, 0) << o.err;
-  EXPECT_TRUE(Contains(o.err, "railwear: step 1: spread nodes: traffic[0] 10 (fixed piecewise-linear)"))
+  EXPECT_TRUE(
+      Contains(o.err, "railwear: step 1: spread nodes: traffic[0] 10 (fixed piecewise-linear)"))
       << o.err;
-  EXPECT_TRUE(Contains(o.out, "spread integration: fixed piecewise-linear rule, nodes per step: "
-                              "traffic[0] 10"))
+  EXPECT_TRUE(Contains(o.out,
+                       "spread integration: fixed piecewise-linear rule, nodes per step: "
+                       "traffic[0] 10"))
       << o.out;
   ProfileStore store = ProfileStore::Open((dir_ / "a.sqlite").string());
   const auto run = store.FindRun("small study");

@@ -86,8 +86,7 @@ struct Rule {
 // benchmark: the machine is shared; compare rules run one after the other).
 void PrintCost(const std::string& label, const std::string& rule, const StepResult& step,
                std::chrono::steady_clock::time_point start) {
-  const double s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stdout, "%s: %s: %zu load cases, %.1f s wall\n", label.c_str(), rule.c_str(),
                step.cases.size(), s);
   std::fflush(stdout);

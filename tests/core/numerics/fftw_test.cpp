@@ -97,8 +97,8 @@ TEST(PaddedFft2d, SpectraAreXMajorFromBothTransforms) {
       FftwComplex direct = 0.0;
       for (int j = 0; j < ns; ++j) {
         for (int i = 0; i < nx; ++i) {
-          const double phase = -2.0 * kPi * (static_cast<double>(kx) * i / lx +
-                                             static_cast<double>(ks) * j / ls);
+          const double phase =
+              -2.0 * kPi * (static_cast<double>(kx) * i / lx + static_cast<double>(ks) * j / ls);
           direct += in[j * nx + i] * FftwComplex(std::cos(phase), std::sin(phase));
         }
       }
