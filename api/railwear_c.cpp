@@ -22,6 +22,7 @@
 #include "core/contact/hertz_tread.h"
 #include "core/contact/influence_constant_sets.h"
 #include "core/contact/normal_solver.h"
+#include "core/contact/tangential_exact.h"
 #include "core/numerics/check.h"
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
@@ -62,10 +63,6 @@ constexpr double kMinCell_m = 0.01e-3, kMaxCell_m = 20e-3;
 constexpr size_t kMaxProfilePoints = 1000000;
 constexpr uint32_t kKnownEffects = RW_EFFECT_TANGENTIAL | RW_EFFECT_DAMAGE | RW_EFFECT_COUPLING;
 constexpr uint32_t kKnownStateFlags = RW_STATE_CREEPAGE;
-// The scene reader's ranges of [model] normal_tolerance and tangential_tolerance (app/scene.cpp,
-// ReadNormalSolver and ReadTangentialTolerance).
-constexpr double kMinNormalTolerance = 1e-13, kMaxNormalTolerance = 1e-2;
-constexpr double kMinTangentialTolerance = 1e-10, kMaxTangentialTolerance = 1e-2;
 
 }  // namespace
 
@@ -724,14 +721,14 @@ rw_status rw_set_model(rw_problem* problem, const rw_model* caller_model) {
                                                ? railwear::StrictNormalSolverOptions()
                                                : railwear::NormalSolverOptions{};
     if (model->normal_tolerance != 0.0) {
-      RequireInRange(model->normal_tolerance, kMinNormalTolerance, kMaxNormalTolerance,
-                     "rw_model.normal_tolerance");
+      RequireInRange(model->normal_tolerance, railwear::kMinNormalTolerance,
+                     railwear::kMaxNormalTolerance, "rw_model.normal_tolerance");
       solver.tolerance = model->normal_tolerance;
     }
     double tangential_tolerance = railwear::kDefaultExactTangentialTolerance;
     if (model->tangential_tolerance != 0.0) {
-      RequireInRange(model->tangential_tolerance, kMinTangentialTolerance, kMaxTangentialTolerance,
-                     "rw_model.tangential_tolerance");
+      RequireInRange(model->tangential_tolerance, railwear::kMinExactTangentialTolerance,
+                     railwear::kMaxExactTangentialTolerance, "rw_model.tangential_tolerance");
       tangential_tolerance = model->tangential_tolerance;
     }
     SetUpChanged(problem);

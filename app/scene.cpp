@@ -15,6 +15,8 @@
 #include "app/paths.h"
 #include "app/toml_fields.h"
 #include "core/contact/contact_case.h"
+#include "core/contact/normal_solver.h"
+#include "core/contact/tangential_exact.h"
 #include "core/numerics/enum_names.h"
 #include "core/numerics/input_error.h"
 #include "core/numerics/units.h"
@@ -185,8 +187,7 @@ void ReadCellSize(const Fields& t, ModelOptions* model) {
 // contact set and left the set as it was (CONTACT's criterion; about eps relative in p_max and
 // F_n, docs/speed.md), eps = 1e-4 unless given (4 significant digits with margin).
 // "gap-residual" is the strict setting: the deformed gap's residual at eps (1e-10 unless given)
-// of the largest elastic displacement.
-constexpr double kMinNormalTolerance = 1e-13, kMaxNormalTolerance = 1e-2;
+// of the largest elastic displacement. Its range: kMinNormalTolerance to kMaxNormalTolerance.
 
 void ReadNormalSolver(const Fields& t, NormalSolverOptions* solver) {
   const std::string pressure_update(ToString(NormalStopCriterion::kPressureUpdate));
@@ -197,8 +198,6 @@ void ReadNormalSolver(const Fields& t, NormalSolverOptions* solver) {
     solver->criterion = chosen.criterion;
     solver->tolerance = chosen.tolerance;
   }
-  // From 1e-13 (a few hundred times double rounding of the pressures' RMS: a step below that is
-  // rounding and may never come) to 1e-2 (2 digits; looser stops before the contact set settles).
   if (const auto v = t.Number("normal_tolerance", Positive(),
                               Closed(kMinNormalTolerance, kMaxNormalTolerance))) {
     solver->tolerance = *v;
@@ -208,13 +207,11 @@ void ReadNormalSolver(const Fields& t, NormalSolverOptions* solver) {
 // [model] tangential_tolerance = eps: the exact tangential solver's stop, the largest change one
 // local solve would make to any cell's traction relative to mu p_max (ExactTangentialOptions::
 // tolerance; 1e-6 unless given, 4 significant digits of the creep forces with margin,
-// docs/speed.md). From 1e-10 (a tenth of the strict 1e-9 the solver's tests use, far above the
-// FFT products' rounding) to 1e-2 (2 digits).
-constexpr double kMinTangentialTolerance = 1e-10, kMaxTangentialTolerance = 1e-2;
+// docs/speed.md), in kMinExactTangentialTolerance to kMaxExactTangentialTolerance.
 
 void ReadTangentialTolerance(const Fields& t, ContactSetup* setup) {
   if (const auto v = t.Number("tangential_tolerance", Positive(),
-                              Closed(kMinTangentialTolerance, kMaxTangentialTolerance))) {
+                              Closed(kMinExactTangentialTolerance, kMaxExactTangentialTolerance))) {
     setup->tangential_tolerance = *v;
   }
 }

@@ -132,9 +132,8 @@ void SpreadUnit::Bisect(int interval, const SpreadResponse& midpoint) {
     if (x[i + 1] - x[i] > kSpreadBoundWidth * (1.0 + 1e-9)) {
       const double mass = NormalMass(x[i], x[i + 1]);
       for (int r = 0; r < 2; ++r) {
-        const double d =
-            Difference(r, value[i + 1][r], fields ? &field[i + 1][r] : nullptr, value[i][r],
-                       fields ? &field[i][r] : nullptr);
+        const double d = Difference(r, value[i + 1][r], fields ? &field[i + 1][r] : nullptr,
+                                    value[i][r], fields ? &field[i][r] : nullptr);
         error[i][r] = std::max(error[i][r], mass * d);
       }
     }
@@ -278,7 +277,8 @@ SpreadIntegrationSummary RefineSpreads(std::vector<SpreadUnit>* units,
         double l1 = 0.0;
         for (size_t b = 0; b < field_after[r].size(); ++b)
           l1 += std::abs(field_after[r][b] - field_before[r][b]);
-        quiet = quiet && (*units)[0].bin_m[r] * l1 <= kSpreadFieldChangeFactor * tolerance * after[r];
+        quiet =
+            quiet && (*units)[0].bin_m[r] * l1 <= kSpreadFieldChangeFactor * tolerance * after[r];
       }
     }
     quiet_rounds = quiet ? quiet_rounds + 1 : 0;

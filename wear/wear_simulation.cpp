@@ -372,9 +372,12 @@ void ValidateWearStudy(const WearStudy& study) {
   if (o.damage_layer_m) RequirePositive("damage_layer_mm", *o.damage_layer_m * 1e3);
   ValidateQuadraturePoints(o.quadrature_points);
   for (size_t k = 0; k < o.spread_nodes.size(); ++k) {
-    if (!std::isfinite(o.spread_nodes[k]) || (k > 0 && !(o.spread_nodes[k] > o.spread_nodes[k - 1]))) {
-      throw InputError(fmt::format("wear: spread_nodes[{}] = {}: expected finite nodes in strictly "
-                                   "increasing order", k, o.spread_nodes[k]));
+    if (!std::isfinite(o.spread_nodes[k]) ||
+        (k > 0 && !(o.spread_nodes[k] > o.spread_nodes[k - 1]))) {
+      throw InputError(
+          fmt::format("wear: spread_nodes[{}] = {}: expected finite nodes in strictly "
+                      "increasing order",
+                      k, o.spread_nodes[k]));
     }
   }
   if (o.integration_tolerance && !o.spread_nodes.empty()) {

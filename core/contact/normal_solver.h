@@ -73,6 +73,11 @@ std::string_view ToString(NormalStopCriterion c);
 
 inline constexpr double kDefaultNormalTolerance = 1e-4;  // kPressureUpdate's, the default
 inline constexpr double kStrictNormalTolerance = 1e-10;  // kGapResidual's, the strict setting
+// The tolerances a scene ([model] normal_tolerance) or the C API (rw_model.normal_tolerance) may
+// ask for: from 1e-13 (a few hundred times double rounding of the pressures' RMS: a step below
+// that is rounding and may never come) to 1e-2 (2 digits; looser stops before the contact set
+// settles).
+inline constexpr double kMinNormalTolerance = 1e-13, kMaxNormalTolerance = 1e-2;
 
 struct NormalSolverOptions {
   // Stopping criterion, see NormalStopCriterion; the tolerance is dimensionless, > 0. The

@@ -99,6 +99,10 @@ namespace railwear {
 extern const int kLoadedDenseMaxCells;
 // ExactTangentialOptions::tolerance's default (tangential_exact.cpp).
 extern const double kDefaultExactTangentialTolerance;
+// The tolerances a scene ([model] tangential_tolerance) or the C API
+// (rw_model.tangential_tolerance) may ask for: from 1e-10 (a tenth of the strict 1e-9 the
+// solver's tests use, far above the FFT products' rounding) to 1e-2 (2 digits).
+inline constexpr double kMinExactTangentialTolerance = 1e-10, kMaxExactTangentialTolerance = 1e-2;
 
 struct ExactTangentialOptions {
   // How the rolling operator B is applied.

@@ -489,10 +489,8 @@ class Equilibrium {
       if (fresh && (!accepted || last_ratio > 0.9) && Norm(*r) <= kNearStall * o.tolerance) {
         const int result = ProbeForceStep(J, q, ws, r, message);
         if (result > 0) return Ended(CurvingEnding::kForceStepProbe, it + 1);
-        if (result <= 0) {
-          Note(result == 0 ? internal::NewtonEvent::kProbeMoved
-                           : internal::NewtonEvent::kProbeFailed);
-        }
+        Note(result == 0 ? internal::NewtonEvent::kProbeMoved
+                         : internal::NewtonEvent::kProbeFailed);
         if (result == 0) {  // the probe reduced the residual: go on from it
           last_ratio = 1.0;
           continue;

@@ -20,9 +20,10 @@ namespace {
 
 // The step-1 depth field per pass of the adaptive rule against the fine reference's, relative
 // L2 over the bins: measured 3.8 % on the default study at draft with the worn area alone as the
-// criterion, 1.7 % since the depth-field criterion (20 fixed Gauss-Hermite nodes 6.1 %). Not the rule's 0.5 %: the rule converges the worn area, and a bin's depth keeps the
-// draft grid's noise of the few nodes that put their patch on it (5-10 % between neighbouring
-// positions at the flange), which the area averages over the profile; 5 % leaves that margin.
+// criterion, 1.7 % since the depth-field criterion (20 fixed Gauss-Hermite nodes 6.1 %). Not the
+// rule's 0.5 %: the rule converges the worn area, and a bin's depth keeps the draft grid's noise of
+// the few nodes that put their patch on it (5-10 % between neighbouring positions at the flange),
+// which the area averages over the profile; 5 % leaves that margin.
 constexpr double kDepthFieldTolerance = 0.05;
 
 double Phi(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
@@ -281,8 +282,8 @@ TEST(SpreadIntegrationTest, FieldDifferenceIsTheL1Distance) {
   unit.bin_m = {0.5, 0.5};
   const std::vector<double> low = {0.0, 1.0, 2.0, 0.0}, high = {0.0, 2.0, 3.0, 0.0};
   const std::vector<double> apart = {4.0, 0.0, 0.0, 2.0};
-  EXPECT_DOUBLE_EQ(unit.Difference(0, 1.5, &low, 2.5, &high), 1.0);    // nested: the areas' 1.0
-  EXPECT_DOUBLE_EQ(unit.Difference(0, 1.5, &low, 3.0, &apart), 4.5);   // apart: 1.5 + 3.0
+  EXPECT_DOUBLE_EQ(unit.Difference(0, 1.5, &low, 2.5, &high), 1.0);   // nested: the areas' 1.0
+  EXPECT_DOUBLE_EQ(unit.Difference(0, 1.5, &low, 3.0, &apart), 4.5);  // apart: 1.5 + 3.0
   EXPECT_DOUBLE_EQ(SpreadUnit().Difference(0, 1.5, &low, 3.0, &apart), 1.5);  // no fields: areas
 }
 
