@@ -30,6 +30,53 @@ Extent MeasureExtent(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>
   return e;
 }
 
+namespace {
+
+// The bilinear interpolant of a, b (t = 0, r = 0 and 1) and c, d (t = 1) at sample (u, v) of
+// the square's kSubSamples x kSubSamples points.
+double SampleOf(double a, double b, double c, double d, int u, int v) {
+  const double t = (v + 0.5) / kSubSamples;
+  const double r = (u + 0.5) / kSubSamples;
+  return (1 - r) * (1 - t) * a + r * (1 - t) * b + (1 - r) * t * c + r * t * d;
+}
+
+}  // namespace
+
+// Along a row of samples (t fixed) the interpolant is linear in r, A + B r, so its positive
+// samples are the row's first or last ones: a row whose ends agree is all in or all out, and
+// another row's change of sign is found by bisection. The samples evaluated are those the full
+// count evaluates, in the same expression, so the count is the full count's; a row whose B is
+// within the rounding of its terms (where the computed signs might change more than once) is
+// counted sample by sample.
+int SubSampledHits(double a, double b, double c, double d) {
+  // Each sample's rounding is below 1e-15 (|a| + |b| + |c| + |d|); a row whose samples step by
+  // more than twice a generous bound of it changes computed sign at most once.
+  const double rounding = 1e-14 * (std::abs(a) + std::abs(b) + std::abs(c) + std::abs(d));
+  int hit = 0;
+  for (int v = 0; v < kSubSamples; ++v) {
+    const double t = (v + 0.5) / kSubSamples;
+    const double slope = (1 - t) * (b - a) + t * (d - c);
+    if (!(std::abs(slope) > 4.0 * kSubSamples * rounding)) {
+      for (int u = 0; u < kSubSamples; ++u) hit += SampleOf(a, b, c, d, u, v) > 0;
+      continue;
+    }
+    const bool first = SampleOf(a, b, c, d, 0, v) > 0;
+    const bool last = SampleOf(a, b, c, d, kSubSamples - 1, v) > 0;
+    if (first == last) {
+      hit += first ? kSubSamples : 0;
+      continue;
+    }
+    // The first sample whose sign is last's: in (lo, hi].
+    int lo = 0, hi = kSubSamples - 1;
+    while (hi - lo > 1) {
+      const int mid = (lo + hi) / 2;
+      ((SampleOf(a, b, c, d, mid, v) > 0) == last ? hi : lo) = mid;
+    }
+    hit += first ? hi : kSubSamples - hi;
+  }
+  return hit;
+}
+
 // Contact area with the edge located inside the boundary cells (a level-set estimate).
 // p^2 is a smooth function that crosses zero at the contact edge (for Hertz it is the quadratic
 // p0^2 (1 - x^2/a^2 - y^2/b^2)). Take phi = p^2 at cells in contact; at cells out of contact next
@@ -77,8 +124,8 @@ double SubCellArea(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>& 
     }
   }
   // Area of {phi > 0} over the squares between cell centres; mixed squares by sub-sampling the
-  // bilinear interpolant on kSub x kSub points (its error is far below the level-set error).
-  constexpr int kSub = 24;
+  // bilinear interpolant on kSubSamples x kSubSamples points (SubSampledHits; its error is far
+  // below the level-set error).
   double cells = 0.0;
   for (int j = 0; j + 1 < ns; ++j) {
     for (int i = 0; i + 1 < nx; ++i) {
@@ -90,16 +137,7 @@ double SubCellArea(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>& 
         cells += 1.0;
         continue;
       }
-      int hit = 0;
-      for (int v = 0; v < kSub; ++v) {
-        const double t = (v + 0.5) / kSub;
-        for (int u = 0; u < kSub; ++u) {
-          const double r = (u + 0.5) / kSub;
-          const double f = (1 - r) * (1 - t) * a + r * (1 - t) * b + (1 - r) * t * c + r * t * d;
-          hit += f > 0;
-        }
-      }
-      cells += static_cast<double>(hit) / (kSub * kSub);
+      cells += static_cast<double>(SubSampledHits(a, b, c, d)) / (kSubSamples * kSubSamples);
     }
   }
   return cells * g.CellArea();

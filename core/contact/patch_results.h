@@ -29,6 +29,14 @@ Extent MeasureExtent(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>
 // the zero of p^2; see the .cpp). p: pressure per cell [Pa], shape [g.cells()].
 double SubCellArea(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>& p);
 
+// SubCellArea's sub-samples per side of a square between four cell centres.
+inline constexpr int kSubSamples = 24;
+// How many of the kSubSamples x kSubSamples points (r, t) = ((u + 0.5), (v + 0.5)) / kSubSamples
+// of a square have a positive bilinear interpolant of its corner values a (r = 0, t = 0),
+// b (1, 0), c (0, 1), d (1, 1), evaluated sample by sample as
+// (1 - r) (1 - t) a + r (1 - t) b + (1 - r) t c + r t d.
+int SubSampledHits(double a, double b, double c, double d);
+
 // A grid patch's result from its pressure p [Pa] (shape [grid.cells()]): forces, peak, the
 // sub-cell area and the pressure centre projected onto the rail profile of `geom`; with a
 // pressure limit p_lim [Pa] also the plastic cells (p >= p_lim), their area and load.
