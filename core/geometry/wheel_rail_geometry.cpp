@@ -46,6 +46,26 @@ std::shared_ptr<const YawedWheelSection> SharedYawedSection(const Profile& wheel
   });
 }
 
+// The points of a profile at equal arc steps of at most step_m (both ends included), which the
+// placement rasterises into the vertical-gap envelopes. They depend only on the profile and the
+// step, not on the pose, so every placement of the same wheel (or yawed outline) and rail shares
+// them: a time loop's placements at a new position each call sampled both profiles again
+// (some 12 000 spline evaluations, 9 % of a warm gauge-corner call, docs/library.md). The key is
+// the profile's points byte for byte and the step's bits (ProfileKeyedCache: a hit is the value
+// a new sampling would make, bit for bit); the kMaxSharedSampledProfiles most recently used
+// (about 0.1 MB each at the default 20 um) are kept.
+constexpr size_t kMaxSharedSampledProfiles = 16;
+
+std::shared_ptr<const std::vector<Eigen::Vector2d>> SharedSamples(const Profile& p, double step_m) {
+  static ProfileKeyedCache<std::vector<Eigen::Vector2d>> shared(kMaxSharedSampledProfiles);
+  return shared.Get(p, {DoubleBits(step_m)}, "", [&] {
+    const int n = std::max(2, static_cast<int>(std::ceil(p.Length() / step_m)) + 1);
+    auto pts = std::make_shared<std::vector<Eigen::Vector2d>>(n);
+    for (int i = 0; i < n; ++i) (*pts)[i] = p.Position(p.Length() * i / (n - 1));
+    return std::shared_ptr<const std::vector<Eigen::Vector2d>>(std::move(pts));
+  });
+}
+
 // Lateral curvature of a profile at s, positive where the body is convex.
 double ConvexCurvature(const CurveLocator& loc, double s) {
   const Eigen::Vector2d outward = loc.OutwardNormal(s);
@@ -71,17 +91,12 @@ WheelRailGeometry::WheelRailGeometry(const Profile& wheel, const Profile& rail,
   if (yawed_) surface_locator_.emplace(wheel, /*material_toward_plus_z=*/false);
   const Profile& section = yawed_ ? yawed_->outline() : wheel;
   // Sample both cross-sections (wheel at dz = 0) and intersect their lateral ranges.
-  auto sample = [](const Profile& p, double step) {
-    const int n = std::max(2, static_cast<int>(std::ceil(p.Length() / step)) + 1);
-    std::vector<Eigen::Vector2d> pts(n);
-    for (int i = 0; i < n; ++i) pts[i] = p.Position(p.Length() * i / (n - 1));
-    return pts;
-  };
-  std::vector<Eigen::Vector2d> rail_pts = sample(rail, vertical_step_m);
-  std::vector<Eigen::Vector2d> wheel_pts = sample(section, vertical_step_m);
+  const std::shared_ptr<const std::vector<Eigen::Vector2d>> rail_pts =
+      SharedSamples(rail, vertical_step_m);
+  std::vector<Eigen::Vector2d> wheel_pts = *SharedSamples(section, vertical_step_m);
   for (auto& p : wheel_pts) p = WheelToRail(p);  // dz_ is still 0
   double ry0 = kInf, ry1 = -kInf, wy0 = kInf, wy1 = -kInf;
-  for (const auto& p : rail_pts) {
+  for (const auto& p : *rail_pts) {
     ry0 = std::min(ry0, p.x());
     ry1 = std::max(ry1, p.x());
   }
@@ -93,7 +108,7 @@ WheelRailGeometry::WheelRailGeometry(const Profile& wheel, const Profile& rail,
   if (!(y1 > y0)) return;
   const int n = static_cast<int>(std::floor((y1 - y0) / vertical_step_m)) + 1;
   std::vector<double> ztop(n, kInf), zbot(n, -kInf);
-  internal::RasteriseEnvelope(rail_pts, y0, vertical_step_m, n, /*take_min=*/true, &ztop);
+  internal::RasteriseEnvelope(*rail_pts, y0, vertical_step_m, n, /*take_min=*/true, &ztop);
   internal::RasteriseEnvelope(wheel_pts, y0, vertical_step_m, n, /*take_min=*/false, &zbot);
   gap_y_.resize(n);
   gap_.assign(n, std::numeric_limits<double>::quiet_NaN());

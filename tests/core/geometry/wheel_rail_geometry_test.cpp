@@ -269,3 +269,40 @@ TEST(WheelRailGeometry, YawedOutlineSharedOnlyForTheSameWheelRadiusAndYaw) {
 
 }  // namespace
 }  // namespace railwear
+
+namespace railwear {
+namespace {
+
+TEST(WheelRailGeometry, APlacementFromTheSharedSamplesIsTheFirstOnesBitForBit) {
+  // The profiles' samples are shared by every later placement of the same profiles (a time
+  // loop's new positions): a placement at a shift whose samples were made by another placement
+  // is the placement that made them itself, bit for bit. Profiles no other test builds (a crown
+  // radius of 0.2837 m), so that the first placement here samples them.
+  const Profile rail = testing::ArcProfile(0.2837, +1.0, 0.15);
+  const Profile wheel =
+      testing::FunctionProfile([](double y) { return 0.002 + 0.05 * y * y; }, -0.05, 0.05, 201);
+  auto place = [&](double shift_m) {
+    WheelPose pose;
+    pose.lateral_shift_m = shift_m;
+    pose.roll_rad = 2e-3;
+    return WheelRailGeometry(wheel, rail, pose);
+  };
+  const WheelRailGeometry first = place(0.003);  // samples both profiles
+  const WheelRailGeometry other = place(-0.004);
+  const WheelRailGeometry again = place(0.003);  // from the shared samples
+  ASSERT_TRUE(first.has_overlap() && other.has_overlap());
+  EXPECT_NE(first.dz_m(), other.dz_m());
+  EXPECT_EQ(again.dz_m(), first.dz_m());
+  const auto a = first.FindCandidates(1e-4), b = again.FindCandidates(1e-4);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].y_m, b[k].y_m);
+    EXPECT_EQ(a[k].y_lo_m, b[k].y_lo_m);
+    EXPECT_EQ(a[k].y_hi_m, b[k].y_hi_m);
+    EXPECT_EQ(a[k].gap_m, b[k].gap_m);
+    EXPECT_EQ(a[k].rail_point_m, b[k].rail_point_m);
+  }
+}
+
+}  // namespace
+}  // namespace railwear
