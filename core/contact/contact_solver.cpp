@@ -96,6 +96,7 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
                            double placement_s, NormalPartMemo* memo, ContactWarmStart* warm_start) {
   const auto t_start = Clock::now();
   auto finish = [&](ContactResult r) {
+    FillDeferredAreas(&r.patches);  // (the patches' areas the stages left to the end)
     r = FinishResult(std::move(r), placement_s + SecondsSince(t_start));
     r.climb = CheckFlangeClimb(
         r, problem.rolling ? std::optional<double>(problem.rolling->friction) : std::nullopt);
@@ -236,13 +237,15 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
         }
       }
 
-      // 4. Patch results.
+      // 4. Patch results; without a memo their areas deferred to the end (finish), since the
+      // balance's solves replace the patches.
       out.status = sol.status;
       out.message = sol.message;
       out.approach_m = sol.approach_m;
       out.iterations = total_iterations;
       const KeptPatches kept =
-          CollectPatches(geom, &builds, sol, m.is_auto(), assembly.np.pressure_limit_Pa, &out);
+          CollectPatches(geom, &builds, sol, m.is_auto(), assembly.np.pressure_limit_Pa, &out,
+                         memo ? PatchArea::kNow : PatchArea::kDeferred);
       if (review.grow) {
         out.message += (out.message.empty() ? "" : "; ");
         out.message += "pressure reaches the edge of the potential contact area";

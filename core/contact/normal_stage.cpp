@@ -18,13 +18,14 @@ NormalSolution SolveNormalStage(const NormalProblem& np, const NormalSolverOptio
 
 KeptPatches CollectPatches(const WheelRailGeometry& geom, PatchBuilds* builds,
                            const NormalSolution& sol, bool auto_model,
-                           std::optional<double> pressure_limit_Pa, ContactResult* result) {
+                           std::optional<double> pressure_limit_Pa, ContactResult* result,
+                           PatchArea area) {
   KeptPatches kept;
   int offset = 0;
   for (size_t k = 0; k < builds->builds.size(); ++k) {
     const int n = builds->builds[k].grid.cells();
     PatchResult pr = NumericalPatch(geom, std::move(builds->builds[k].grid),
-                                    sol.pressure_Pa.segment(offset, n), pressure_limit_Pa);
+                                    sol.pressure_Pa.segment(offset, n), pressure_limit_Pa, area);
     if (pr.cells_in_contact > 0) {
       pr.model = builds->choices[k].label;
       if (auto_model) pr.model_reason = builds->choices[k].reason;

@@ -8,6 +8,7 @@
 
 #include "core/contact/contact_result.h"
 #include "core/contact/normal_solver.h"
+#include "core/contact/patch_results.h"
 #include "core/contact/potential_area.h"
 #include "core/geometry/wheel_rail_geometry.h"
 
@@ -27,9 +28,11 @@ struct KeptPatches {
 
 // Appends to result->patches one PatchResult per grid with cells in contact (its grid moved out
 // of *builds), labelled with its model (and, with auto_model, the reason).
-// pressure_limit_Pa: the NormalProblem's (plastic cells are counted against it).
+// pressure_limit_Pa: the NormalProblem's (plastic cells are counted against it); area: when
+// the patches' sub-cell areas are computed (NumericalPatch).
 KeptPatches CollectPatches(const WheelRailGeometry& geom, PatchBuilds* builds,
                            const NormalSolution& sol, bool auto_model,
-                           std::optional<double> pressure_limit_Pa, ContactResult* result);
+                           std::optional<double> pressure_limit_Pa, ContactResult* result,
+                           PatchArea area = PatchArea::kNow);
 
 }  // namespace railwear::internal

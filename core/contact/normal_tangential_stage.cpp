@@ -137,8 +137,10 @@ bool Iterate(const ContactProblem& problem, const WheelRailGeometry& geom,
     for (size_t k = 0; k < result->patches.size(); ++k) {
       PatchGrid grid = result->patches[k].grid;
       const int n = grid.cells();
-      PatchResult updated = NumericalPatch(
-          geom, std::move(grid), sol.pressure_Pa.segment(kept_offset[k], n), np->pressure_limit_Pa);
+      // (the area of the patches reported only: IterateNormalTangential fills it)
+      PatchResult updated =
+          NumericalPatch(geom, std::move(grid), sol.pressure_Pa.segment(kept_offset[k], n),
+                         np->pressure_limit_Pa, PatchArea::kDeferred);
       updated.model = std::move(result->patches[k].model);
       updated.model_reason = std::move(result->patches[k].model_reason);
       result->patches[k] = std::move(updated);
@@ -187,12 +189,12 @@ Eigen::VectorXd IterateNormalTangential(const ContactProblem& problem,
   const Eigen::VectorXd base_gap = np->gap_m;
   // The balance first, alone: the coupling's changes are measured against the balanced
   // uncoupled solution, so that they are the coupling's own.
-  if (balance && !balance->Settled(BalanceError(*result, *problem.load.vertical_force_N)) &&
-      !Iterate(problem, geom, {}, kept_offset, base_gap, false, balance_ptr, np, &pressure, result,
-               memory)) {
-    return pressure;
-  }
-  if (!coupling) return pressure;
+  const bool balanced = !balance ||
+                        balance->Settled(BalanceError(*result, *problem.load.vertical_force_N)) ||
+                        Iterate(problem, geom, {}, kept_offset, base_gap, false, balance_ptr, np,
+                                &pressure, result, memory);
+  FillDeferredAreas(&result->patches);
+  if (!balanced || !coupling) return pressure;
   const auto [area0, p_max0] = AreaAndPeak(*result);
   std::vector<double> kappa;
   for (int b : kept_build) {
@@ -201,10 +203,10 @@ Eigen::VectorXd IterateNormalTangential(const ContactProblem& problem,
     kappa.push_back(CouplingCoefficient(problem.model.constants, problem.wheel_material, wheel_sign,
                                         problem.rail_material, rail_sign));
   }
-  if (!Iterate(problem, geom, kappa, kept_offset, base_gap, true, balance_ptr, np, &pressure,
-               result, memory)) {
-    return pressure;
-  }
+  const bool coupled = Iterate(problem, geom, kappa, kept_offset, base_gap, true, balance_ptr, np,
+                               &pressure, result, memory);
+  FillDeferredAreas(&result->patches);
+  if (!coupled) return pressure;
   const auto [area1, p_max1] = AreaAndPeak(*result);
   result->coupling_area_change = area1 / area0 - 1.0;
   result->coupling_p_max_change = p_max1 / p_max0 - 1.0;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/contact/contact_forces.h"
 
@@ -145,7 +146,7 @@ double SubCellArea(const PatchGrid& g, const Eigen::Ref<const Eigen::VectorXd>& 
 
 PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
                            const Eigen::Ref<const Eigen::VectorXd>& p,
-                           std::optional<double> pressure_limit_Pa) {
+                           std::optional<double> pressure_limit_Pa, PatchArea area_when) {
   PatchResult r;
   const double area = grid.CellArea();
   double fy = 0.0, fz = 0.0, fn = 0.0, ps = 0.0, px = 0.0, psum = 0.0;
@@ -170,7 +171,8 @@ PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
     }
   }
   r.cells = grid.cells();
-  r.area_m2 = SubCellArea(grid, p);
+  r.area_m2 = area_when == PatchArea::kNow ? SubCellArea(grid, p)
+                                           : std::numeric_limits<double>::quiet_NaN();
   r.normal_force_N = fn;
   r.vertical_force_N = fz;
   r.lateral_force_N = fy;
@@ -189,6 +191,12 @@ PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
   r.grid = std::move(grid);
   r.pressure_Pa = p;
   return r;
+}
+
+void FillDeferredAreas(std::vector<PatchResult>* patches) {
+  for (PatchResult& patch : *patches) {
+    if (std::isnan(patch.area_m2)) patch.area_m2 = SubCellArea(patch.grid, patch.pressure_Pa);
+  }
 }
 
 PatchResult HertzPatch(const ContactCandidate& c, const HertzSolution& h) {

@@ -37,12 +37,24 @@ inline constexpr int kSubSamples = 24;
 // (1 - r) (1 - t) a + r (1 - t) b + (1 - r) t c + r t d.
 int SubSampledHits(double a, double b, double c, double d);
 
+// When a grid patch's sub-cell area is computed: with its other results, or deferred (area_m2
+// NaN) until FillDeferredAreas. The vertical balance's intermediate solves replace their patches
+// by the next solve's, and nothing before the result's end reads the area, so SubCellArea (a
+// tenth of a warm gauge-corner call, docs/library.md) runs only on the patches reported.
+enum class PatchArea { kNow, kDeferred };
+
 // A grid patch's result from its pressure p [Pa] (shape [grid.cells()]): forces, peak, the
-// sub-cell area and the pressure centre projected onto the rail profile of `geom`; with a
-// pressure limit p_lim [Pa] also the plastic cells (p >= p_lim), their area and load.
+// sub-cell area (when `area` is kNow) and the pressure centre projected onto the rail profile of
+// `geom`; with a pressure limit p_lim [Pa] also the plastic cells (p >= p_lim), their area and
+// load.
 PatchResult NumericalPatch(const WheelRailGeometry& geom, PatchGrid grid,
                            const Eigen::Ref<const Eigen::VectorXd>& p,
-                           std::optional<double> pressure_limit_Pa = std::nullopt);
+                           std::optional<double> pressure_limit_Pa = std::nullopt,
+                           PatchArea area = PatchArea::kNow);
+
+// The sub-cell area of every patch whose area NumericalPatch deferred (the same value it would
+// have computed).
+void FillDeferredAreas(std::vector<PatchResult>* patches);
 
 // The Hertz model's patch at candidate c with ellipse h.
 PatchResult HertzPatch(const ContactCandidate& c, const HertzSolution& h);

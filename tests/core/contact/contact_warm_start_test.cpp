@@ -11,6 +11,7 @@
 #include "core/contact/hertz_tread.h"
 #include "core/contact/influence_constant_sets.h"
 #include "core/contact/normal_tangential_stage.h"
+#include "core/contact/patch_results.h"
 #include "core/contact/placement_cache.h"
 #include "core/contact/potential_area.h"
 #include "core/profile/builtin_profiles.h"
@@ -132,6 +133,27 @@ TEST(ContactWarmStart, NearbyPositionsStartWarmWithinTheDiscretizationError) {
   // Most of the steps started warm (the rest fell back, solved cold).
   EXPECT_GE(warm.warm_calls(), 6);
   EXPECT_EQ(warm.cold_calls(), 1 + warm.fallbacks());
+}
+
+TEST(ContactWarmStart, ReportedAreasAreThoseOfTheReportedPressures) {
+  // The patches' sub-cell areas are computed once per call, for the patches reported (the
+  // vertical balance's intermediate solves defer theirs, patch_results.h): each patch's area is
+  // SubCellArea of its own grid and final pressures, bit for bit, cold and warm, and the
+  // result's total is their sum.
+  PlacementCache cache;
+  ContactWarmStart warm;
+  for (const double y_mm : {-5.6, -5.61, -5.62, -5.7}) {
+    const ContactResult r = Solve(GaugeCorner(y_mm * 1e-3), &cache, &warm);
+    ASSERT_EQ(r.status, SolverStatus::kConverged) << r.message;
+    ASSERT_GE(r.balance_iterations, 1) << y_mm;  // (intermediate solves whose areas were deferred)
+    double total = 0.0;
+    for (const PatchResult& p : r.patches) {
+      EXPECT_EQ(p.area_m2, internal::SubCellArea(p.grid, p.pressure_Pa)) << y_mm;
+      total += p.area_m2;
+    }
+    EXPECT_EQ(r.area_m2, total) << y_mm;
+  }
+  EXPECT_GE(warm.warm_calls(), 2);
 }
 
 TEST(ContactWarmStart, AJumpFallsBackToTheColdCallBitForBit) {

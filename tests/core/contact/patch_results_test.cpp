@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/profile/builtin_profiles.h"
 #include "tests/core/contact/hertz_grid.h"
 
 namespace railwear::internal {
@@ -50,15 +51,30 @@ TEST(SubCellArea, AHertzPatchsAreaWithinTheSecondOrderEstimatorsError) {
   // (standard), the ellipse inside a grid 1.5 times wider: the level-set area is within 1 % of
   // pi a b (second order: whole cells would count some 3 % more, patch_results.cpp).
   const double a = 6e-3, b = 4e-3;
-  PatchGrid g = testing::MakeHertzGrid(1.5 * a, 1.5 * b, 30, 30);
-  Eigen::VectorXd p(g.cells());
-  for (int j = 0; j < g.ns; ++j) {
-    for (int i = 0; i < g.nx; ++i) {
-      const double x = g.X(i) / a, s = g.S(j) / b;
-      p[g.Index(i, j)] = 1e9 * std::sqrt(std::max(0.0, 1.0 - x * x - s * s));
-    }
-  }
+  const PatchGrid g = testing::MakeHertzGrid(1.5 * a, 1.5 * b, 30, 30);
+  const Eigen::VectorXd p = testing::HertzPressure(g, a, b, 1e5);
   EXPECT_NEAR(SubCellArea(g, p) / (M_PI * a * b), 1.0, 0.01);
+}
+
+TEST(SubCellArea, ADeferredAreaIsFilledWithTheOneComputedAtOnce) {
+  // NumericalPatch with PatchArea::kDeferred leaves the area NaN (and every other result as at
+  // once); FillDeferredAreas computes it, the same bit for bit, and leaves computed ones alone.
+  const double a = 6e-3, b = 4e-3;
+  const PatchGrid g = testing::MakeHertzGrid(1.5 * a, 1.5 * b, 30, 30);
+  const Eigen::VectorXd p = testing::HertzPressure(g, a, b, 1e5);
+  const Profile rail = MakeUic60();
+  const Profile wheel = MakeS1002();
+  const WheelRailGeometry geom(wheel, rail, WheelPose{});
+  std::vector<PatchResult> patches = {
+      NumericalPatch(geom, g, p, std::nullopt, PatchArea::kDeferred), NumericalPatch(geom, g, p)};
+  const PatchResult now = NumericalPatch(geom, g, p);
+  EXPECT_TRUE(std::isnan(patches[0].area_m2));
+  EXPECT_EQ(patches[0].normal_force_N, now.normal_force_N);
+  EXPECT_EQ(patches[0].p_max_Pa, now.p_max_Pa);
+  patches[1].area_m2 = 1.0;  // (computed: left as it is)
+  FillDeferredAreas(&patches);
+  EXPECT_EQ(patches[0].area_m2, now.area_m2);
+  EXPECT_EQ(patches[1].area_m2, 1.0);
 }
 
 }  // namespace
