@@ -5,6 +5,8 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 #include <Eigen/Dense>
@@ -71,6 +73,64 @@ Eigen::Vector3d PointForce(const LoadedPoint& p, const WheelRigidMotion& m, doub
          f * lin.force_y_N * p.tangent;
 }
 
+// A candidate's virtual interpenetration patch (ContactTableOptions::Patch::kInterpenetration;
+// Kik and Piotrowski 1996): where the sampled vertical gap lies below ratio x the candidate's
+// approach (the wheel's approach delta less the candidate's smallest gap). Each lateral strip j
+// of depth d_j reaches x = +-sqrt(2 r d_j) along the rail (the wheel's circle of radius r), so
+// the region's area is sum 2 sqrt(2 r d_j) dy; its lateral extent (the depth's zero crossings,
+// interpolated between samples: continuous in delta) is 2 b, and a = area / (pi b). The contact
+// point is the strips' load centre, each strip's load taken as its depth (Hertz's strip loads
+// are in proportion to it), with the rail point, normal and lead interpolated between the
+// stations there. Empty (Hertz at the smallest gap is kept) without samples, or when fewer than
+// 3 samples are inside: a patch narrower than the sampling.
+struct Interpenetration {
+  double a_m = 0.0, b_m = 0.0;
+  Eigen::Vector2d rail_point_m, normal;
+  double dx_dpsi_m = 0.0;
+};
+std::optional<Interpenetration> InterpenetrationPatch(const ContactTable::Wheel::Samples& s,
+                                                      const ContactCandidate& c, double delta_m,
+                                                      double ratio) {
+  const int n = static_cast<int>(s.y_m.size());
+  if (n < 3 || s.stations.size() < 2) return std::nullopt;
+  const double depth = ratio * (delta_m - c.gap_m);
+  if (!(depth > 0.0)) return std::nullopt;
+  const double h = s.y_m[1] - s.y_m[0];
+  double sum_d = 0.0, sum_dy = 0.0, area = 0.0;
+  int inside = 0, first = -1, last = -1;
+  for (int j = 0; j < n; ++j) {
+    const double d = depth - (s.gap_m[j] - c.gap_m);
+    if (!(d > 0.0)) continue;
+    if (first < 0) first = j;
+    last = j;
+    ++inside;
+    sum_d += d;
+    sum_dy += d * s.y_m[j];
+    area += 2.0 * std::sqrt(2.0 * c.wheel_radius_m * d) * h;
+  }
+  if (inside < 3) return std::nullopt;
+  auto crossing = [&](int in, int out) {  // where the depth reaches 0 between two samples
+    if (out < 0 || out >= n) return s.y_m[in] + 0.5 * (in < out ? h : -h);
+    const double d_in = depth - (s.gap_m[in] - c.gap_m);
+    const double d_out = depth - (s.gap_m[out] - c.gap_m);
+    return s.y_m[in] + (s.y_m[out] - s.y_m[in]) * d_in / (d_in - d_out);
+  };
+  const double y_a = crossing(first, first - 1), y_b = crossing(last, last + 1);
+  Interpenetration e;
+  e.b_m = 0.5 * (y_b - y_a);
+  e.a_m = area / (std::numbers::pi * e.b_m);
+  const double y_c = sum_dy / sum_d;
+  const auto& st = s.stations;
+  const int m = static_cast<int>(st.size());
+  int i = 0;
+  while (i + 2 < m && st[i + 1].y_m < y_c) ++i;
+  const double t = std::clamp((y_c - st[i].y_m) / (st[i + 1].y_m - st[i].y_m), 0.0, 1.0);
+  e.rail_point_m = (1.0 - t) * st[i].rail_point_m + t * st[i + 1].rail_point_m;
+  e.normal = ((1.0 - t) * st[i].normal + t * st[i + 1].normal).normalized();
+  e.dx_dpsi_m = (1.0 - t) * st[i].dx_dpsi_m + t * st[i + 1].dx_dpsi_m;
+  return e;
+}
+
 }  // namespace
 
 ContactTable::ContactTable(const ContactTableGeometry& geometry, const ContactTableOptions& options)
@@ -120,14 +180,35 @@ ContactTable::ContactTable(const ContactTableGeometry& geometry, const ContactTa
       w->contact = !w->candidates.empty();
       w->axle_yz_m = g.WheelToRail({0.0, -g.pose().rolling_radius_m});
       w->origin_yz_m = g.WheelToRail({0.0, 0.0});
-      for (const ContactCandidate& c : w->candidates) {
-        // A body of revolution yawed by psi touches a prismatic rail where its normal has no
-        // x part: at x = -psi (y_w + rho drho/dy_w) to first order (y_w along the axle, rho
-        // the radius; drho/dy_w the profile's slope in W, from the contact normal).
+      // A body of revolution yawed by psi touches a prismatic rail where its normal has no
+      // x part: at x = -psi (y_w + rho drho/dy_w) to first order (y_w along the axle, rho the
+      // radius; drho/dy_w the profile's slope in W, from the contact normal).
+      auto dx_dpsi = [&](const ContactCandidate& c) {
         const double y_w = g.RailToWheel(c.rail_point_m).x();
         const Eigen::Vector2d n_w = g.RailDirectionToWheel(c.normal);
         const double slope = std::abs(n_w.y()) > 1e-9 ? -n_w.x() / n_w.y() : 0.0;
-        w->dx_dpsi_m.push_back(-(y_w + c.wheel_radius_m * slope));
+        return -(y_w + c.wheel_radius_m * slope);
+      };
+      const std::vector<double>& gy = g.gap_samples_y();
+      const std::vector<double>& gg = g.gap_samples();
+      for (const ContactCandidate& c : w->candidates) {
+        w->dx_dpsi_m.push_back(dx_dpsi(c));
+        Wheel::Samples smp;
+        if (o.patch == ContactTableOptions::Patch::kInterpenetration) {
+          for (size_t j = 0; j < gy.size(); ++j) {
+            if (gy[j] >= c.y_lo_m && gy[j] <= c.y_hi_m && std::isfinite(gg[j])) {
+              smp.y_m.push_back(gy[j]);
+              smp.gap_m.push_back(gg[j]);
+            }
+          }
+          const int m =
+              std::max(1, static_cast<int>(std::ceil((c.y_hi_m - c.y_lo_m) / o.station_spacing_m)));
+          for (int j = 0; j <= m; ++j) {
+            const ContactCandidate at = g.CandidateAt(c, c.y_lo_m + (c.y_hi_m - c.y_lo_m) * j / m);
+            smp.stations.push_back({at.rail_point_m.x(), at.rail_point_m, at.normal, dx_dpsi(at)});
+          }
+        }
+        w->samples.push_back(std::move(smp));
       }
     };
     fill(high, &node.high);
@@ -173,9 +254,19 @@ ContactTableForces ContactTable::EvaluateNode(int i, double yaw_rad,
       lp.normal_N = hs[k].force_N;
       lp.a_m = hs[k].semi_axis_x_m;
       lp.b_m = hs[k].semi_axis_y_m;
-      lp.point_m = {w.dx_dpsi_m[k] * pose.yaw_rad, c.rail_point_m.x(), c.rail_point_m.y()};
-      lp.normal = {0.0, c.normal.x(), c.normal.y()};
-      lp.tangent = {0.0, c.normal.y(), -c.normal.x()};
+      Eigen::Vector2d rail_point = c.rail_point_m, normal = c.normal;
+      double dx = w.dx_dpsi_m[k];
+      if (const auto e =
+              InterpenetrationPatch(w.samples[k], c, delta, options_.penetration_ratio)) {
+        lp.a_m = e->a_m;
+        lp.b_m = e->b_m;
+        rail_point = e->rail_point_m;
+        normal = e->normal;
+        dx = e->dx_dpsi_m;
+      }
+      lp.point_m = {dx * pose.yaw_rad, rail_point.x(), rail_point.y()};
+      lp.normal = {0.0, normal.x(), normal.y()};
+      lp.tangent = {0.0, normal.y(), -normal.x()};
       p.normal_N += lp.normal_N;
       p.points.push_back(lp);
     }

@@ -58,6 +58,19 @@ struct ContactTableOptions {
   // Candidates up to this gap at first contact are kept (a wheel load's approach is 50-100 um).
   double candidate_threshold_m = 3e-4;
   int threads = 0;  // of the build (nodes are independent): 0 = the hardware threads
+  // Each loaded candidate's patch: kHertz (the default), Hertz's ellipse from the curvatures at
+  // the smallest gap, placed there; kInterpenetration, the virtual interpenetration region of
+  // the sampled gap at penetration_ratio times the candidate's approach (Kik and Piotrowski,
+  // Vehicle System Dynamics 1996; Piotrowski and Chollet 2005): its lateral extent gives b, its
+  // area pi a b, the contact point, normal and rolling radius move to its load centre. On
+  // S1002/UIC60 the tread and the gauge corner are nearly conformal, and Hertz at the smallest
+  // gap put the patch 1-4 mm from the grids' pressure centre with half their width
+  // (docs/curving.md, "The table's patches"); it brings the table's equilibrium nearer the full
+  // model's, but the wagon's finish at draft took more solves: an option, not the default.
+  enum class Patch { kHertz, kInterpenetration };
+  Patch patch = Patch::kHertz;
+  double penetration_ratio = 0.55;  // Kik and Piotrowski's; 0.5 gives the circular Hertz area
+  double station_spacing_m = 1e-3;  // the contact point's data along each candidate's interval
 };
 
 // What a table is built from: the wheelset's wheels and rails in their own frames (the low wheel
@@ -120,6 +133,18 @@ class ContactTable {
     // Per candidate: the wheel point's lateral coordinate in the wheel frame and the contact
     // point's lead per radian of yaw, dx/dpsi [m].
     std::vector<double> dx_dpsi_m;
+    // Per candidate: its sampled gap over its interval (lateral positions and gaps [m], R) and
+    // its contact point's data at stations along the interval (kInterpenetration).
+    struct Station {
+      double y_m = 0.0;
+      Eigen::Vector2d rail_point_m = Eigen::Vector2d::Zero(), normal = Eigen::Vector2d::Zero();
+      double dx_dpsi_m = 0.0;
+    };
+    struct Samples {
+      std::vector<double> y_m, gap_m;
+      std::vector<Station> stations;
+    };
+    std::vector<Samples> samples;
     Eigen::Vector2d axle_yz_m = Eigen::Vector2d::Zero();    // W (0, -r0) in R
     Eigen::Vector2d origin_yz_m = Eigen::Vector2d::Zero();  // W (0, 0) in R
   };

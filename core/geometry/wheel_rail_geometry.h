@@ -108,6 +108,12 @@ class WheelRailGeometry {
   CurveLocator::Projection ProjectOnRail(const Eigen::Vector2d& yz_R, double s_lo,
                                          double s_hi) const;
 
+  // The sampled vertical gap g(y) that FindCandidates searches (0 at first contact, NaN where
+  // the profiles do not overlap), at the lateral positions gap_samples_y() [m], R, one
+  // vertical_step_m apart (empty without overlap).
+  const std::vector<double>& gap_samples_y() const { return gap_y_; }
+  const std::vector<double>& gap_samples() const { return gap_; }
+
   // Outward normal of the wheel's cross-section (wheel()) at its parameter s, in R.
   Eigen::Vector2d WheelOutwardNormalInRail(double s) const;
 

@@ -17,7 +17,9 @@
 //                           finished with the full model); also reports the table's build time,
 //                           its evaluations and whether it fell back to the model predictor;
 //                           T = 0 the default table (nodes 0.1 mm apart, sampled at 0.1 mm),
-//                           1 its nodes 0.2 mm apart, 2 also sampled at 0.2 mm.
+//                           1 its nodes 0.2 mm apart, 2 also sampled at 0.2 mm, 3 the default
+//                           nodes with the interpenetration patches
+//                           (ContactTableOptions::Patch::kInterpenetration).
 //   BM_ContactTableBuild/V  the contact table of vehicle V's wheels on the main job's rails.
 // Each reports the wheelset contact solves it needed, and where its predictor's phase ended
 // against the solution (predictor_off_y_mm, predictor_off_psi_mrad, the largest over the
@@ -121,12 +123,16 @@ void BM_CurvingExampleTable(benchmark::State& state) {
   p.options.cold_predictor = CurvingPredictor::kTable;
   // T (third argument): 0 the default table (0.1 mm nodes and sampling); 1 nodes 0.2 mm apart;
   // 2 nodes and sampling 0.2 mm.
-  if (state.range(2) >= 1) p.options.table.node_spacing_m = 2e-4;
-  if (state.range(2) >= 2) p.options.table.sampling_m = 2e-4;
+  if (state.range(2) == 3) {
+    p.options.table.patch = ContactTableOptions::Patch::kInterpenetration;
+  } else {
+    if (state.range(2) >= 1) p.options.table.node_spacing_m = 2e-4;
+    if (state.range(2) >= 2) p.options.table.sampling_m = 2e-4;
+  }
   Run(state, p);
 }
 BENCHMARK(BM_CurvingExampleTable)
-    ->ArgsProduct({{0, 1}, {0, 1}, {0, 1, 2}})
+    ->ArgsProduct({{0, 1}, {0, 1}, {0, 1, 2, 3}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
