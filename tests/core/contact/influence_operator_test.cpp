@@ -828,7 +828,8 @@ TEST(InfluenceOperator, PlanarPreconditionerInvertsStrangsCirculant) {
     for (int is = 0; is < ps; ++is) {
       for (int ix = 0; ix < px; ++ix) {
         for (int js = 0; js < ps; ++js) {
-          for (int jx = 0; jx < px; ++jx) circulant(is * px + ix, js * px + jx) = wrapped(ix - jx, is - js);
+          for (int jx = 0; jx < px; ++jx)
+            circulant(is * px + ix, js * px + jx) = wrapped(ix - jx, is - js);
         }
       }
     }

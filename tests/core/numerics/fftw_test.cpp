@@ -78,8 +78,8 @@ TEST(PaddedFft2d, IsALinearConvolution) {
 // than 2n - 1): the convolution wraps, out_i = sum_j g((ix - jx) mod px, (is - js) mod ps) in_j,
 // against that periodic sum for a random generator on the whole period.
 TEST(PaddedFft2d, CallersPeriodsGiveThePeriodicConvolution) {
-  for (auto [nx, ns, px, ps] : {std::array{1, 1, 2, 1}, {7, 5, 8, 5}, {11, 13, 12, 14},
-                                {6, 9, 10, 15}, {10, 4, 20, 7}}) {
+  for (auto [nx, ns, px, ps] :
+       {std::array{1, 1, 2, 1}, {7, 5, 8, 5}, {11, 13, 12, 14}, {6, 9, 10, 15}, {10, 4, 20, 7}}) {
     const PaddedFft2d fft(nx, ns, px, ps);
     ASSERT_EQ(fft.lx(), px);
     ASSERT_EQ(fft.ls(), ps);
@@ -97,14 +97,16 @@ TEST(PaddedFft2d, CallersPeriodsGiveThePeriodicConvolution) {
         double direct = 0.0;
         for (int js = 0; js < ns; ++js) {
           for (int jx = 0; jx < nx; ++jx) {
-            direct += generator[((is - js + ps) % ps) * px + (ix - jx + px) % px] * in[js * nx + jx];
+            direct +=
+                generator[((is - js + ps) % ps) * px + (ix - jx + px) % px] * in[js * nx + jx];
           }
         }
         scale = std::max(scale, std::abs(direct));
         error = std::max(error, std::abs(direct - out[is * nx + ix]));
       }
     }
-    EXPECT_LE(error, kConvolutionTolerance * scale) << nx << " x " << ns << " on " << px << " x " << ps;
+    EXPECT_LE(error, kConvolutionTolerance * scale)
+        << nx << " x " << ns << " on " << px << " x " << ps;
   }
 }
 
