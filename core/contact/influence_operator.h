@@ -34,12 +34,9 @@
 // assembled cell by cell serves as the naive reference on small grids.
 //
 // Approximate inverses (ApplyPreconditioner), the same structure run backwards: the 2-D
-// operator (planar or uniform arc) inverts Strang's circulant of the Toeplitz matrix, of period
-// the shortest fast lengths >= nx and >= ns (the kernel at offsets up to half the period, wrapped:
-// 2-D FFTs of a quarter of Apply's bins; until 2026-11-29 it divided by the spectrum of Apply's
-// own 2n - 1 embedding, at Apply's cost, for the same iterations to +-1, docs/speed.md), the
-// curved one solves with each frequency's ns x ns block (its symmetric
-// part, Cholesky-factored once in the constructor: another (L/2 + 1) ns^2 doubles and
+// operator (planar or uniform arc) inverts Strang's circulant on periods >= nx, ns (2-D FFTs,
+// a quarter of Apply's bins), the curved one solves with each frequency's ns x ns block (its
+// symmetric part, Cholesky-factored once in the constructor: another (L/2 + 1) ns^2 doubles and
 // (L/2 + 1) ns^3 / 3 flops; each application costs about 1.5 Apply, the triangular solves being
 // slower than Apply's products). On a uniform arc the 2-D inverse is circulant along s as well,
 // where the blocks' inverse is exact along s: it loses at the s edges too, which costs a few
