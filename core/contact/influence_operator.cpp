@@ -12,6 +12,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -77,8 +78,10 @@ class ToeplitzXsFftOperator final : public InfluenceOperator {
     // generator (x fastest).
     std::vector<double> generator(static_cast<size_t>(lx) * ls, 0.0);
     std::vector<double> row(nx_);
+    std::vector<double> kernel(static_cast<size_t>(nx_) * ns_);
     for (int e = 0; e < ns_; ++e) {
       internal::CellInfluenceRow(grid, coefficients, e, 0, row.data());
+      std::copy(row.begin(), row.end(), kernel.begin() + static_cast<size_t>(e) * nx_);
       for (int d = 0; d < nx_; ++d) {
         const double c = row[d];
         if (d == 0 && e == 0) diagonal_ = c;
@@ -92,13 +95,32 @@ class ToeplitzXsFftOperator final : public InfluenceOperator {
     const double scale = 1.0 / (static_cast<double>(lx) * ls);
     spectrum_.resize(fft_.spectrum_size());
     for (size_t k = 0; k < spectrum_.size(); ++k) spectrum_[k] = work_[k].real() * scale;
-    // The preconditioner's multiplier: 1 / symbol, the symbol raised to the floor first, times
-    // 1/(lx ls) for the unscaled inverse FFT.
+    // The preconditioner (docs/speed.md, "A preconditioner on the grid's own period"): the
+    // inverse of the circulant of period px >= nx by ps >= ns (the shortest fast lengths, not
+    // the products' 2n - 1) whose generator is the kernel at the offsets |d| <= px / 2,
+    // |e| <= ps / 2, wrapped (Strang's circulant of the Toeplitz matrix). A quarter of the
+    // products' bins, with the same iteration counts on CONTACT's perfc cases to +-1.
+    const int px = internal::NextFftSize(nx_, 2), ps = internal::NextFftSize(ns_, 1);
+    preconditioner_fft_.emplace(nx_, ns_, px, ps);
+    std::vector<double> wrapped(static_cast<size_t>(px) * ps, 0.0);
+    for (int e = 0; e <= std::min(ps / 2, ns_ - 1); ++e) {
+      for (int d = 0; d <= std::min(px / 2, nx_ - 1); ++d) {
+        const double c = kernel[static_cast<size_t>(e) * nx_ + d];
+        for (int ee : {e, (ps - e) % ps}) {
+          for (int dd : {d, (px - d) % px}) wrapped[static_cast<size_t>(ee) * px + dd] = c;
+        }
+      }
+    }
+    preconditioner_work_ = preconditioner_fft_->NewSpectrum();
+    preconditioner_fft_->ForwardGenerator(wrapped.data(), preconditioner_work_.data());
+    // 1 / symbol, the symbol raised to the floor first, times 1/(px ps) for the unscaled
+    // inverse FFT.
     const double floor = kSpectrumFloor * diagonal_;
-    inverse_spectrum_.resize(spectrum_.size());
-    for (size_t k = 0; k < spectrum_.size(); ++k) {
-      const double symbol = spectrum_[k] / scale;  // the circulant's eigenvalue [m/Pa]
-      inverse_spectrum_[k] = scale / std::max(symbol, floor);
+    const double pc_scale = 1.0 / (static_cast<double>(px) * ps);
+    inverse_spectrum_.resize(preconditioner_fft_->spectrum_size());
+    for (size_t k = 0; k < inverse_spectrum_.size(); ++k) {
+      const double symbol = preconditioner_work_[k].real();  // the circulant's eigenvalue [m/Pa]
+      inverse_spectrum_[k] = pc_scale / std::max(symbol, floor);
     }
     if (dense_products) {
       dense_.resize(size(), size());
@@ -120,39 +142,44 @@ class ToeplitzXsFftOperator final : public InfluenceOperator {
 
   void Apply(const Eigen::VectorXd& p, Eigen::VectorXd* u) const override {
     if (dense_.size() > 0) return DenseProduct(dense_, p, u);
-    Convolve(p, spectrum_, u);
+    Convolve(fft_, p, spectrum_, &work_, u);
   }
 
-  // Same embedding, divided by the spectrum instead: z = crop(IFFT(FFT(pad(r)) / C^)). It
-  // inverts the circulant exactly; on the grid it is close to the Toeplitz inverse except
-  // within a few cells of the edges.
+  // z = crop(IFFT(FFT(pad(r)) / S^)) on the px by ps period: Strang's circulant S of the
+  // Toeplitz matrix (the constructor), inverted exactly. Until 2026-11-29 the inverse of the
+  // products' own 2n - 1 embedding, cropped: 4 times the bins for the same iterations to +-1
+  // (docs/speed.md).
   bool ApplyPreconditioner(const Eigen::VectorXd& r, Eigen::VectorXd* z) const override {
-    Convolve(r, inverse_spectrum_, z);
+    Convolve(*preconditioner_fft_, r, inverse_spectrum_, &preconditioner_work_, z);
     return true;
   }
 
  private:
   // out = crop(IFFT2(FFT2(pad(in)) * multiplier)); multiplier [hx * ls], x-major, with the
   // inverse FFTs' scaling folded in.
-  void Convolve(const Eigen::VectorXd& in, const std::vector<double>& multiplier,
+  void Convolve(const internal::PaddedFft2d& fft, const Eigen::VectorXd& in,
+                const std::vector<double>& multiplier, internal::FftwBuffer<Complex>* work,
                 Eigen::VectorXd* out) const {
     RAILWEAR_CHECK(in.size() == size());
-    fft_.Forward(in.data(), work_.data());
-    for (size_t k = 0; k < multiplier.size(); ++k) work_[k] *= multiplier[k];
+    fft.Forward(in.data(), work->data());
+    for (size_t k = 0; k < multiplier.size(); ++k) (*work)[k] *= multiplier[k];
     if (out->size() != size()) out->resize(size());
-    fft_.Inverse(work_.data(), out->data());
+    fft.Inverse(work->data(), out->data());
   }
 
   int nx_, ns_;
   double diagonal_ = 0.0;
   std::vector<double> spectrum_;          // [hx * ls], x-major, scaled by 1/(lx ls)
-  std::vector<double> inverse_spectrum_;  // [hx * ls], 1 / max(spectrum, floor), scaled
+  std::vector<double> inverse_spectrum_;  // [(px / 2 + 1) * ps], 1 / max(S^, floor), scaled
   Eigen::MatrixXd dense_;                 // [N x N] for dense products, else empty [m/Pa]
 
   // Scratch reused by every Apply (hence mutable): the operator is not safe for concurrent
   // Apply calls from several threads; give each thread its own operator.
   internal::PaddedFft2d fft_;
   mutable internal::FftwBuffer<Complex> work_;  // [hx * ls]
+  // The preconditioner's transforms on the px by ps period and their scratch (the same rules).
+  std::optional<internal::PaddedFft2d> preconditioner_fft_;
+  mutable internal::FftwBuffer<Complex> preconditioner_work_;  // [(px / 2 + 1) * ps]
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -34,15 +34,15 @@
 // assembled cell by cell serves as the naive reference on small grids.
 //
 // Approximate inverses (ApplyPreconditioner), the same structure run backwards: the 2-D
-// operator (planar or uniform arc) divides by the circulant embedding's spectrum (2-D FFT, the
-// cost of one Apply), the curved one solves with each frequency's ns x ns block (its symmetric
-// part, Cholesky-factored once in the constructor: another (L/2 + 1) ns^2 doubles and
+// operator (planar or uniform arc) inverts Strang's circulant on periods >= nx, ns (2-D FFTs,
+// a quarter of Apply's bins), the curved one solves with each frequency's ns x ns block (its
+// symmetric part, Cholesky-factored once in the constructor: another (L/2 + 1) ns^2 doubles and
 // (L/2 + 1) ns^3 / 3 flops; each application costs about 1.5 Apply, the triangular solves being
 // slower than Apply's products). On a uniform arc the 2-D inverse is circulant along s as well,
 // where the blocks' inverse is exact along s: it loses at the s edges too, which costs a few
 // iterations (docs/speed.md) and saves the blocks' ns^3 factorisations. Spectrum values and
-// block eigenvalues below a floor are raised to it, so M stays positive definite. M inverts the
-// circulant embedding, not C itself: C M r - r is small for displacement fields r that are
+// block eigenvalues below a floor are raised to it, so M stays positive definite. M inverts a
+// circulant, not C itself: C M r - r is small for displacement fields r that are
 // smooth and vanish toward the grid's edges (below 0.15 relative at every grid size,
 // influence_operator_test.cpp), which is what makes it a good preconditioner (Vollebregt,
 // J. Comput. Phys. 2014).

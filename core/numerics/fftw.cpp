@@ -46,11 +46,14 @@ SharedFftwPlan SharedPlan(std::initializer_list<long> description,
 }
 
 PaddedFft2d::PaddedFft2d(int nx, int ns)
+    : PaddedFft2d(nx, ns, RealFftSize(nx), ComplexFftSize(ns)) {}
+
+PaddedFft2d::PaddedFft2d(int nx, int ns, int x_period, int s_period)
     : nx_(nx),
       ns_(ns),
-      lx_(RealFftSize(nx)),
+      lx_(x_period),
       hx_(lx_ / 2 + 1),
-      ls_(ComplexFftSize(ns)),
+      ls_(s_period),
       padded_in_(static_cast<size_t>(ns) * lx_),
       padded_out_(static_cast<size_t>(ns) * lx_),
       x_spectrum_(spectrum_size()) {
@@ -59,6 +62,7 @@ PaddedFft2d::PaddedFft2d(int nx, int ns)
   // of the planner call. The spectra are x-major (fftw.h): the real transforms along x write
   // (read) bin kx of row j at kx * ls + j, so the complex transforms along s run on contiguous
   // columns. (Kinds 1-4 were the s-major layout's transforms until 2026-11-29.)
+  RAILWEAR_CHECK(lx_ >= nx_ && lx_ % 2 == 0 && ls_ >= ns_);
   const int lx[] = {lx_}, ls[] = {ls_};
   std::optional<FftwBuffer<FftwComplex>> planning;
   auto planning_data = [&] {

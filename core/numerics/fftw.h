@@ -119,6 +119,9 @@ SharedFftwPlan SharedPlan(std::initializer_list<long> description,
 class PaddedFft2d {
  public:
   PaddedFft2d(int nx, int ns);
+  // Periods of the caller's: lx >= nx even, ls >= ns (lx >= 2 nx - 1 and ls >= 2 ns - 1 for a
+  // linear convolution; shorter ones give a periodic one).
+  PaddedFft2d(int nx, int ns, int lx, int ls);
   int lx() const { return lx_; }
   int hx() const { return hx_; }
   int ls() const { return ls_; }

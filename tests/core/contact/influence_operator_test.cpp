@@ -14,10 +14,12 @@
 
 #include <gtest/gtest.h>
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 
 #include "core/contact/influence_kernels.h"
 #include "core/contact/normal_solver.h"
 #include "core/numerics/check.h"
+#include "core/numerics/fft_size.h"
 #include "core/numerics/input_error.h"
 #include "tests/core/contact/hertz_grid.h"
 #include "tests/core/contact/same_result.h"
@@ -792,6 +794,63 @@ TEST(InfluenceOperator, PreconditionerInvertsApplyOnSmoothFields) {
                            MakeDissimilarSettings(KernelModel::kGolubenko));
   ExpectApproximateInverse(MakeArcGrid(24, 40, 2e-4, 1e-4, 5e-3),
                            MakeDissimilarSettings(KernelModel::kGolubenko));
+}
+
+// The planar (and uniform-arc) operator's preconditioner is the exact inverse of Strang's
+// circulant of period px = NextFftSize(nx, 2) by ps = NextFftSize(ns, 1): the kernel at the
+// offsets |d| <= px / 2, |e| <= ps / 2, wrapped (influence_operator.cpp). Against that circulant
+// assembled densely on the whole period (from the operator's own column of cell (0, 0)), solved by
+// LU, the padded r, cropped: fast lengths equal to n and above it, square and long cells.
+// Tolerance: rounding of the FFTs and of the solve times the circulant's condition number (below
+// 1e2 here; the floor of its symbol, 0.1 C_kk, is not reached on these grids).
+constexpr double kStrangInverseTolerance = 1e-11;
+
+TEST(InfluenceOperator, PlanarPreconditionerInvertsStrangsCirculant) {
+  for (const PatchGrid& grid :
+       {MakePlanarGrid(8, 9, 1e-4, 1e-4), MakePlanarGrid(11, 13, 1e-4, 1.2e-4),
+        MakePlanarGrid(17, 6, 2e-4, 1e-4)}) {
+    SCOPED_TRACE(::testing::Message() << grid.nx << " x " << grid.ns);
+    const auto op = MakeInfluenceOperator(grid, MakeSettings(KernelModel::kBoussinesq));
+    const int nx = grid.nx, ns = grid.ns;
+    const int px = internal::NextFftSize(nx, 2), ps = internal::NextFftSize(ns, 1);
+    Eigen::VectorXd unit = Eigen::VectorXd::Zero(grid.cells()), column;
+    unit[grid.Index(0, 0)] = 1.0;
+    op->Apply(unit, &column);  // c(d, e) at cell (d, e)
+    auto wrapped = [&](int d, int e) {
+      d = std::abs(d) % px;
+      e = std::abs(e) % ps;
+      d = std::min(d, px - d);
+      e = std::min(e, ps - e);
+      return d < nx && e < ns ? column[grid.Index(d, e)] : 0.0;
+    };
+    const int n = px * ps;
+    Eigen::MatrixXd circulant(n, n);
+    for (int is = 0; is < ps; ++is) {
+      for (int ix = 0; ix < px; ++ix) {
+        for (int js = 0; js < ps; ++js) {
+          for (int jx = 0; jx < px; ++jx)
+            circulant(is * px + ix, js * px + jx) = wrapped(ix - jx, is - js);
+        }
+      }
+    }
+    std::mt19937 rng(nx * 100 + ns);
+    std::uniform_real_distribution<double> value(-1e-6, 1e-6);
+    Eigen::VectorXd r(grid.cells()), padded = Eigen::VectorXd::Zero(n), z;
+    for (int k = 0; k < r.size(); ++k) r[k] = value(rng);
+    for (int is = 0; is < ns; ++is) {
+      for (int ix = 0; ix < nx; ++ix) padded[is * px + ix] = r[grid.Index(ix, is)];
+    }
+    const Eigen::VectorXd solved = circulant.partialPivLu().solve(padded);
+    ASSERT_TRUE(op->ApplyPreconditioner(r, &z));
+    double error = 0.0, scale = 0.0;
+    for (int is = 0; is < ns; ++is) {
+      for (int ix = 0; ix < nx; ++ix) {
+        error = std::max(error, std::abs(z[grid.Index(ix, is)] - solved[is * px + ix]));
+        scale = std::max(scale, std::abs(solved[is * px + ix]));
+      }
+    }
+    EXPECT_LE(error, kStrangInverseTolerance * scale);
+  }
 }
 
 // The curved operator's preconditioner solves with the Cholesky factor of sym K_k per x frequency

@@ -3,6 +3,7 @@
 // threads at once, and the lengths' properties against a naive search.
 #include "core/numerics/fftw.h"
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <thread>
@@ -70,6 +71,42 @@ void EvictSharedPlans() {
 TEST(PaddedFft2d, IsALinearConvolution) {
   for (auto [nx, ns] : {std::pair{1, 1}, {1, 6}, {6, 1}, {7, 5}, {11, 11}, {16, 9}}) {
     ExpectLinearConvolution(nx, ns);
+  }
+}
+
+// With the caller's periods px >= nx (even), ps >= ns (the half-space preconditioner's, shorter
+// than 2n - 1): the convolution wraps, out_i = sum_j g((ix - jx) mod px, (is - js) mod ps) in_j,
+// against that periodic sum for a random generator on the whole period.
+TEST(PaddedFft2d, CallersPeriodsGiveThePeriodicConvolution) {
+  for (auto [nx, ns, px, ps] :
+       {std::array{1, 1, 2, 1}, {7, 5, 8, 5}, {11, 13, 12, 14}, {6, 9, 10, 15}, {10, 4, 20, 7}}) {
+    const PaddedFft2d fft(nx, ns, px, ps);
+    ASSERT_EQ(fft.lx(), px);
+    ASSERT_EQ(fft.ls(), ps);
+    const std::vector<double> generator = RandomField(px * ps, 7);
+    FftwBuffer<FftwComplex> g_hat = fft.NewSpectrum(), f_hat = fft.NewSpectrum();
+    fft.ForwardGenerator(generator.data(), g_hat.data());
+    const std::vector<double> in = RandomField(nx * ns, 9);
+    fft.Forward(in.data(), f_hat.data());
+    for (size_t b = 0; b < f_hat.size(); ++b) f_hat[b] *= g_hat[b] / (static_cast<double>(px) * ps);
+    std::vector<double> out(nx * ns);
+    fft.Inverse(f_hat.data(), out.data());
+    double scale = 0.0, error = 0.0;
+    for (int is = 0; is < ns; ++is) {
+      for (int ix = 0; ix < nx; ++ix) {
+        double direct = 0.0;
+        for (int js = 0; js < ns; ++js) {
+          for (int jx = 0; jx < nx; ++jx) {
+            direct +=
+                generator[((is - js + ps) % ps) * px + (ix - jx + px) % px] * in[js * nx + jx];
+          }
+        }
+        scale = std::max(scale, std::abs(direct));
+        error = std::max(error, std::abs(direct - out[is * nx + ix]));
+      }
+    }
+    EXPECT_LE(error, kConvolutionTolerance * scale)
+        << nx << " x " << ns << " on " << px << " x " << ps;
   }
 }
 
