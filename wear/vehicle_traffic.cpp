@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "core/geometry/wheel_rail_geometry.h"
+#include "core/numerics/check.h"
 #include "core/profile/builtin_profiles.h"
 #include "wear/spread_integration.h"
 
@@ -29,38 +31,62 @@ double RigidContactAngle(const Profile& wheel, const Profile& rail, const WheelP
   return std::atan2(std::abs(first.normal.x()), std::abs(first.normal.y()));
 }
 
-// The part of a spread node's offset (toward the rail of `side`) that keeps that wheel's rigid
-// contact below flange contact (kFlangeContactAngle_rad): the whole offset when it stays there,
-// else the onset of flange contact found by bisection to 10 um (0 when the equilibrium is
-// already at it). A node is a wheelset displaced by the track's irregularity; in flange contact
-// the flange force would be the equilibrium's, not an imposed position's.
-double OffsetBeforeFlange(const WheelsetSpec& at_equilibrium, double offset, RailSide side,
-                          const CurvingProblem& p, int wheelset) {
+// Whether the wheel of `side` of the wheelset at `at_equilibrium` displaced laterally by d [m]
+// (toward the high rail for d > 0) has its rigid first contact in flange contact (at least
+// kFlangeContactAngle_rad), on the step's rails.
+bool Flanging(const WheelsetSpec& at_equilibrium, double d, RailSide side, const CurvingProblem& p,
+              int wheelset) {
   // The wheel on that rail: the wheelset's own (worn wheels, CurvingProblem::wheels), else the
   // vehicle's.
   const Profile& wheel =
       p.wheels.empty() ? p.vehicle.wheel_profile
                        : (side == RailSide::kHigh ? p.wheels[wheelset].high : p.wheels[wheelset].low);
-  auto flanging = [&](double d) {
-    WheelsetSpec ws = at_equilibrium;
-    ws.lateral_displacement_m += d;
-    const WheelsetPlacement placed = PlaceWheelsetAt(*p.gauge_points, p.track, ws);
-    const double angle = side == RailSide::kHigh
-                             ? RigidContactAngle(wheel, p.high_rail, placed.right)
-                             : RigidContactAngle(wheel, p.low_rail, placed.left);
-    return angle >= kFlangeContactAngle_rad;
+  WheelsetSpec ws = at_equilibrium;
+  ws.lateral_displacement_m += d;
+  const WheelsetPlacement placed = PlaceWheelsetAt(*p.gauge_points, p.track, ws);
+  const double angle = side == RailSide::kHigh ? RigidContactAngle(wheel, p.high_rail, placed.right)
+                                               : RigidContactAngle(wheel, p.low_rail, placed.left);
+  return angle >= kFlangeContactAngle_rad;
+}
+
+// The wheelset's position at its equilibrium (the nodes' common yaw and roll).
+WheelsetSpec EquilibriumWheelset(const VehicleEquilibrium& eq, int wheelset) {
+  const CurvedWheelset& w = eq.result.wheelsets[wheelset];
+  return eq.problem.vehicle.WheelsetAt(w.lateral_m, w.yaw_rad, w.roll_rad);
+}
+
+}  // namespace
+
+double FlangeOnsetOffset(const VehicleEquilibrium& eq, int wheelset, RailSide side,
+                         double spread_std_m) {
+  RAILWEAR_CHECK(spread_std_m > 0.0);
+  const CurvedWheelset& w = eq.result.wheelsets[wheelset];
+  const CurvingProblem& p = eq.problem;
+  const bool high = side == RailSide::kHigh;
+  // In flange contact at the equilibrium already: its flange force is the equilibrium's.
+  if ((high ? w.high_climb : w.low_climb).contact_angle_rad > kFlangeContactAngle_rad) return 0.0;
+  const WheelsetSpec at_equilibrium = EquilibriumWheelset(eq, wheelset);
+  const double sign = high ? 1.0 : -1.0;
+  const auto flanging = [&](double d) {
+    return Flanging(at_equilibrium, sign * d, side, p, wheelset);
   };
-  if (!flanging(offset)) return offset;
-  double lo = 0.0, hi = offset;
-  if (flanging(lo)) return 0.0;
-  while (std::abs(hi - lo) > 1e-5) {
+  if (flanging(0.0)) return 0.0;
+  // The bracket: the first of kFlangeOnsetScanStd's offsets that is in flange contact.
+  double lo = 0.0, hi = -1.0;
+  for (const double x : kFlangeOnsetScanStd) {
+    if (flanging(x * spread_std_m)) {
+      hi = x * spread_std_m;
+      break;
+    }
+    lo = x * spread_std_m;
+  }
+  if (hi < 0.0) return std::numeric_limits<double>::infinity();
+  while (hi - lo > kFlangeOnsetResolution_m) {
     const double mid = 0.5 * (lo + hi);
     (flanging(mid) ? hi : lo) = mid;
   }
   return lo;
 }
-
-}  // namespace
 
 RailGaugePoints UnwornGaugePoints(const WearStudy& study) {
   auto in_track = [&](const Profile& rail) {
@@ -146,6 +172,13 @@ VehicleEquilibrium SolveVehicleEquilibrium(const WearStudy& study, int traffic_i
         "wear: {}: steady-state curving of vehicle \"{}\" at {} m/s on the current rails: {}: {}",
         c.name, v.name, c.speed_m_s, ToString(r.status), r.message));
   }
+  if (c.lateral_shift_std_m > 0.0) {
+    for (int w = 0; w < static_cast<int>(r.wheelsets.size()); ++w) {
+      eq.flange_onset_m.push_back(
+          {FlangeOnsetOffset(eq, w, RailSide::kHigh, c.lateral_shift_std_m),
+           FlangeOnsetOffset(eq, w, RailSide::kLow, c.lateral_shift_std_m)});
+    }
+  }
   return eq;
 }
 
@@ -160,18 +193,13 @@ std::vector<LoadCase> VehicleNodeCases(const WearStudy& study, int traffic_index
   const std::array<double, 2> totals = RailShareTotals(study.traffic);
   const double kappa = study.curve.curvature_per_m();
   const int n_ws = static_cast<int>(r.wheelsets.size());
-  const bool high_flange = w.high_climb.contact_angle_rad > kFlangeContactAngle_rad;
-  const bool low_flange = w.low_climb.contact_angle_rad > kFlangeContactAngle_rad;
-  WheelsetSpec ws = v.WheelsetAt(w.lateral_m, w.yaw_rad, w.roll_rad);
-  const WheelsetSpec at_equilibrium = ws;
+  WheelsetSpec ws = EquilibriumWheelset(eq, wheelset);
   double offset = c.lateral_shift_std_m * x;
-  // A node pushing a wheel toward its rail's flange stops where flange contact begins (at
-  // the equilibrium when that wheel is in flange contact already).
-  if ((offset > 0.0 && high_flange) || (offset < 0.0 && low_flange)) offset = 0.0;
-  if (offset != 0.0) {
-    offset = OffsetBeforeFlange(at_equilibrium, offset,
-                                offset > 0.0 ? RailSide::kHigh : RailSide::kLow, p, wheelset);
-  }
+  // A node pushing a wheel toward its rail's flange stops at the wheelset's one onset of flange
+  // contact on that side (at the equilibrium when that wheel is in flange contact already), so
+  // every node beyond it is the same position, bit for bit.
+  if (offset > 0.0) offset = std::min(offset, eq.flange_onset_m[wheelset][0]);
+  if (offset < 0.0) offset = std::max(offset, -eq.flange_onset_m[wheelset][1]);
   ws.lateral_displacement_m = w.lateral_m + offset;
   const WheelsetPlacement placed = PlaceWheelsetAt(*p.gauge_points, p.track, ws);
   WheelMotion axle;

@@ -16,6 +16,7 @@
 // rail) times the node's weight over the vehicle's wheelsets.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "wear/traffic.h"
@@ -57,18 +58,44 @@ std::vector<CurvingStart> VehicleStarts(const WearStudy& study, const Profile& u
 // the entry and the vehicle when the curving has no usable equilibrium (a flange-climb
 // equilibrium is kept: its cases carry their L/V checks), WearCancelled when study.options.cancel
 // stopped it mid-solve. The curving starts from `start`.
+// With a spread, it also holds each wheelset's flange onsets (FlangeOnsetOffset, found once per
+// step and side).
 struct VehicleEquilibrium {
   CurvingProblem problem;
   CurvingResult result;
   bool usable = false;
+  // Per wheelset, [0] toward the high rail and [1] toward the low rail: the largest lateral
+  // offset [m, >= 0; infinity: none] a spread node takes from the equilibrium in that direction
+  // (FlangeOnsetOffset); empty without a spread.
+  std::vector<std::array<double, 2>> flange_onset_m;
 };
 VehicleEquilibrium SolveVehicleEquilibrium(const WearStudy& study, int traffic_index,
                                            const Profile& high_track, const Profile& low_track,
                                            const CurvingStart* start = nullptr);
 
+// The scan of FlangeOnsetOffset's bracket [spread standard deviations]: its first offset in flange
+// contact and the one before it (0 first). Up to 32 std, beyond the outermost node of every rule
+// (Gauss-Hermite's at kMaxQuadraturePoints: 16.9 std; the adaptive and piecewise-linear rules':
+// 5), and independent of the rule, so every rule holds its nodes at the same position.
+inline constexpr std::array<double, 8> kFlangeOnsetScanStd = {0.25, 0.5, 1.0,  2.0,
+                                                              4.0,  8.0, 16.0, 32.0};
+// FlangeOnsetOffset's bisection stops when its bracket is this narrow [m].
+inline constexpr double kFlangeOnsetResolution_m = 1e-5;
+
+// The onset of flange contact of one wheel of a wheelset of a vehicle equilibrium, as the lateral
+// offset [m, >= 0] from the equilibrium toward the rail of `side`: the last position of a
+// bisection on kFlangeOnsetScanStd's bracket (scaled by the spread's standard deviation
+// spread_std_m > 0) where that wheel's rigid first contact (its smallest vertical gap, on a 0.1
+// mm sampling) stays below kFlangeContactAngle_rad, to kFlangeOnsetResolution_m; 0 when the
+// wheel is in flange contact at the equilibrium already, infinity when it is not within 32 std.
+// Found once per wheelset, side and step (SolveVehicleEquilibrium) so that every node beyond it
+// is held at exactly this offset (docs/wear.md, "The flange onset, once per wheelset").
+double FlangeOnsetOffset(const VehicleEquilibrium& eq, int wheelset, RailSide side,
+                         double spread_std_m);
+
 // The two load cases (high rail, then low) of one wheelset of a vehicle entry at the spread
 // node x [standard-normal units]: the wheelset displaced by lateral_shift_std_m x from its
-// equilibrium (stopped at the flange's onset, see above), numbered `node`, weighted by the
+// equilibrium, held at eq.flange_onset_m beyond it (see above), numbered `node`, weighted by the
 // entry's share over its rail's total x node_weight / wheelsets.
 std::vector<LoadCase> VehicleNodeCases(const WearStudy& study, int traffic_index,
                                        const VehicleEquilibrium& eq, int wheelset, double x,

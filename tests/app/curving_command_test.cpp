@@ -315,6 +315,51 @@ TEST_F(CurvingCommandTest, WornRailsOfStep66Converge) {
   EXPECT_EQ(j[0]["status"], "converged");
 }
 
+// The spread nodes on step 66's worn rails (issue 16; docs/wear.md, "The flange onset, once per
+// wheelset"), where the Y25 wagon's leading wheelset on the high rail reaches its flange's onset
+// at about +0.2 std of the 1 mm spread: each node used to bisect its own onset to 10 um, and the
+// third (flange) patch appeared at scattered nodes (x = 0.53-0.60, 1.25, 2.29, 4.06 of the
+// 320-node rule), decided by where each bisection stopped. Now every node beyond the onset is the
+// same wheelset position, bit for bit (geometry and the wagon's curving from the step's stored
+// start, no contact solve of the spread).
+TEST(CurvingOnStoredRailsTest, SpreadNodesOnStep66AreHeldAtOneFlangeOnset) {
+  const fs::path data = fs::path(RAILWEAR_SOURCE_DIR) / "tests/data";
+  const app::Scene scene = app::ParseScene(ReadFile(data / "r600_10mgt_scene.toml"), "s.toml");
+  const WearStudy& study = *scene.wear;
+  const ProfileStore db = ProfileStore::OpenReadOnly((data / "r600_10mgt_step66.sqlite").string());
+  const int64_t run = db.FindRun(scene.name)->id;
+  const WearState unworn = app::StateFromStore(db, run, 0);
+  const WearState worn = app::StateFromStore(db, run, 66);
+  const int wagon = 1;  // the traffic entry of the Y25 wagon
+  ASSERT_EQ(static_cast<int>(worn.curving.size()), 2);
+  const VehicleEquilibrium eq = SolveVehicleEquilibrium(
+      study, wagon, RailInTrack(study, unworn.rail, worn.rail),
+      RailInTrack(study, *unworn.low_rail, *worn.low_rail), &worn.curving[wagon]);
+  ASSERT_EQ(eq.flange_onset_m.size(), 4u);
+  const double std_m = study.traffic[wagon].lateral_shift_std_m;
+  const double onset_m = eq.flange_onset_m[0][0];  // leading wheelset, toward the high rail
+  std::printf("wagon's leading wheelset on step 66: flange onset %.4f std toward the high rail\n",
+              onset_m / std_m);
+  EXPECT_GT(onset_m, 0.1 * std_m);
+  EXPECT_LT(onset_m, 0.3 * std_m);
+  const auto high_case = [&](double x) {
+    return VehicleNodeCases(study, wagon, eq, 0, x, 0, 1.0)[0];
+  };
+  const LoadCase held = high_case(0.3);
+  for (const double x : {0.53, 0.60, 1.25, 1.5, 2.29, 3.0, 4.06, 5.0}) {
+    const LoadCase c = high_case(x);
+    EXPECT_EQ(c.placement.lateral_shift_m, held.placement.lateral_shift_m) << x;
+    EXPECT_EQ(c.placement.roll_rad, held.placement.roll_rad) << x;
+    EXPECT_EQ(c.placement.yaw_rad, held.placement.yaw_rad) << x;
+    EXPECT_EQ(c.placement.rolling_radius_m, held.placement.rolling_radius_m) << x;
+    EXPECT_EQ(c.motion.speed_m_s, held.motion.speed_m_s) << x;
+    EXPECT_EQ(c.motion.yaw_velocity_rad_s, held.motion.yaw_velocity_rad_s) << x;
+    EXPECT_EQ(c.vertical_force_N, held.vertical_force_N) << x;
+  }
+  // Below the onset a node keeps its own offset.
+  EXPECT_NE(high_case(0.05).placement.lateral_shift_m, held.placement.lateral_shift_m);
+}
+
 // Step 81 of the same run (6.24 MGT), where the 10 MGT run stopped after 1040 wheelset solves
 // without an equilibrium: the Y25 wagon's rear bogie's low wheel runs on the worn tread's wide,
 // nearly conformal patch, whose smallest gap jumps between its two ends as the wheelset moves by

@@ -89,6 +89,55 @@ TEST(VehicleTrafficTest, SpreadNodesStopAtTheFlangesOnset) {
   EXPECT_LT(std::abs(spread_high), 2.0 * std::sqrt(3.0) * 6.0e-3 - 1e-3);
 }
 
+// The flange onset is found once per wheelset and side (FlangeOnsetOffset), not per node: with
+// 5 Gauss-Hermite nodes over an 8 mm spread (+-10.8 and +-22.9 mm, both beyond the onset on each
+// side), the two outer nodes of a side are the same wheelset position, so their cases and their
+// solved responses (worn area and depth field per pass) are equal to the bit, and the held
+// offset is the onset's.
+TEST(VehicleTrafficTest, NodesBeyondTheFlangeOnsetAreHeldAtOneOffset) {
+  WearStudy study = VehicleStudy(8.0e-3);
+  study.options.quadrature_points = 5;
+  const WearState s0 = MakeInitialState(study);
+  const Profile high = RailInTrack(study, s0.rail, s0.rail);
+  const Profile low = RailInTrack(study, *s0.low_rail, *s0.low_rail);
+  const VehicleEquilibrium eq = SolveVehicleEquilibrium(study, 0, high, low);
+  ASSERT_EQ(eq.flange_onset_m.size(), 1u);
+  const double std_m = study.traffic[0].lateral_shift_std_m;
+  for (const int side : {0, 1}) {
+    const double onset_m = eq.flange_onset_m[0][side];
+    std::printf("[ measured ] flange onset toward the %s rail: %.3f mm from the equilibrium\n",
+                side == 0 ? "high" : "low", onset_m * 1e3);
+    EXPECT_GT(onset_m, 0.0);
+    EXPECT_LT(onset_m, 1.35 * std_m);  // both outer nodes beyond it
+    const RailSide rail = side == 0 ? RailSide::kHigh : RailSide::kLow;
+    EXPECT_EQ(FlangeOnsetOffset(eq, 0, rail, std_m), onset_m);  // deterministic
+  }
+  const auto shift = [&](double x) {
+    return VehicleNodeCases(study, 0, eq, 0, x, 0, 1.0)[0].placement.lateral_shift_m;
+  };
+  // A node below the onset keeps its own offset; every node beyond it is at the onset.
+  const double at_onset = eq.flange_onset_m[0][0] / std_m;
+  EXPECT_NE(shift(0.5 * at_onset), shift(0.0));
+  EXPECT_NE(shift(0.5 * at_onset), shift(at_onset + 0.5));
+  EXPECT_EQ(shift(at_onset + 0.5), shift(3.0));
+  EXPECT_EQ(shift(3.0), shift(16.9));
+
+  const StepResult step = RunWearStep(study, UnwornRails::Of(s0), s0, 1e6);
+  ASSERT_EQ(step.cases.size(), 10u);  // 5 nodes x 2 rails, node by node
+  // Gauss-Hermite nodes in increasing order: cases 0-1 and 2-3 the two nodes toward the low rail,
+  // 6-7 and 8-9 toward the high rail.
+  for (const auto& [a, b] : {std::pair{0, 2}, std::pair{1, 3}, std::pair{6, 8}, std::pair{7, 9}}) {
+    const LoadCaseSummary& ca = step.cases[a];
+    const LoadCaseSummary& cb = step.cases[b];
+    ASSERT_EQ(ca.load_case.rail, cb.load_case.rail);
+    ASSERT_NE(ca.load_case.spread_x, cb.load_case.spread_x);
+    EXPECT_EQ(ca.load_case.placement.lateral_shift_m, cb.load_case.placement.lateral_shift_m);
+    EXPECT_EQ(ca.worn_area_per_pass_m2, cb.worn_area_per_pass_m2) << a << " " << b;
+    EXPECT_EQ(ca.depth_per_pass_m, cb.depth_per_pass_m) << a << " " << b;
+    EXPECT_EQ(ca.contact_angle_rad, cb.contact_angle_rad) << a << " " << b;
+  }
+}
+
 // RunWear starts the first step's curving from the equilibrium on the unworn rails and every
 // later one from the step before's (WearState::curving, with its Jacobian): a run stopped after
 // one step and resumed from its state ends exactly where the uninterrupted run does.
