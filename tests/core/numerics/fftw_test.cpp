@@ -28,8 +28,41 @@ std::vector<double> RandomField(int n, unsigned seed) {
   return f;
 }
 
-// out = crop(IFFT2(FFT2(generator) * FFT2(pad(in)))) / (lx ls) with the kernel k(d, e) wrapped
-// into the generator, against sum_j k(ix - jx, is - js) in_j.
+// out = crop(IFFT2(FFT2(generator) * FFT2(pad(in)))) / (lx ls): the product the influence
+// operators make, on fft's own lengths.
+std::vector<double> SpectralProduct(const PaddedFft2d& fft, const std::vector<double>& generator,
+                                    const std::vector<double>& in) {
+  FftwBuffer<FftwComplex> g_hat = fft.NewSpectrum(), f_hat = fft.NewSpectrum();
+  fft.ForwardGenerator(generator.data(), g_hat.data());
+  fft.Forward(in.data(), f_hat.data());
+  const double n = static_cast<double>(fft.lx()) * fft.ls();
+  for (size_t b = 0; b < f_hat.size(); ++b) f_hat[b] *= g_hat[b] / n;
+  std::vector<double> out(in.size());
+  fft.Inverse(f_hat.data(), out.data());
+  return out;
+}
+
+// Expects out (nx x ns, x fastest) within kConvolutionTolerance of the direct sum
+// sum_j k(ix, jx, is, js) in_j, relative to its largest value.
+template <class Kernel>
+void ExpectDirectSum(int nx, int ns, const std::vector<double>& in, const std::vector<double>& out,
+                     Kernel k) {
+  double scale = 0.0, error = 0.0;
+  for (int is = 0; is < ns; ++is) {
+    for (int ix = 0; ix < nx; ++ix) {
+      double direct = 0.0;
+      for (int js = 0; js < ns; ++js) {
+        for (int jx = 0; jx < nx; ++jx) direct += k(ix, jx, is, js) * in[js * nx + jx];
+      }
+      scale = std::max(scale, std::abs(direct));
+      error = std::max(error, std::abs(direct - out[is * nx + ix]));
+    }
+  }
+  EXPECT_LE(error, kConvolutionTolerance * scale) << nx << " x " << ns;
+}
+
+// The padded product with the kernel k(d, e) wrapped into the generator, against the linear
+// convolution sum_j k(ix - jx, is - js) in_j.
 void ExpectLinearConvolution(int nx, int ns) {
   const PaddedFft2d fft(nx, ns);
   const int lx = fft.lx(), ls = fft.ls();
@@ -41,25 +74,9 @@ void ExpectLinearConvolution(int nx, int ns) {
   for (int e = -(ns - 1); e < ns; ++e) {
     for (int d = -(nx - 1); d < nx; ++d) generator[((e + ls) % ls) * lx + (d + lx) % lx] = k(d, e);
   }
-  FftwBuffer<FftwComplex> g_hat = fft.NewSpectrum(), f_hat = fft.NewSpectrum();
-  fft.ForwardGenerator(generator.data(), g_hat.data());
   const std::vector<double> in = RandomField(nx * ns, 5);
-  fft.Forward(in.data(), f_hat.data());
-  for (size_t b = 0; b < f_hat.size(); ++b) f_hat[b] *= g_hat[b] / (static_cast<double>(lx) * ls);
-  std::vector<double> out(nx * ns);
-  fft.Inverse(f_hat.data(), out.data());
-  double scale = 0.0, error = 0.0;
-  for (int is = 0; is < ns; ++is) {
-    for (int ix = 0; ix < nx; ++ix) {
-      double direct = 0.0;
-      for (int js = 0; js < ns; ++js) {
-        for (int jx = 0; jx < nx; ++jx) direct += k(ix - jx, is - js) * in[js * nx + jx];
-      }
-      scale = std::max(scale, std::abs(direct));
-      error = std::max(error, std::abs(direct - out[is * nx + ix]));
-    }
-  }
-  EXPECT_LE(error, kConvolutionTolerance * scale) << nx << " x " << ns;
+  ExpectDirectSum(nx, ns, in, SpectralProduct(fft, generator, in),
+                  [&](int ix, int jx, int is, int js) { return k(ix - jx, is - js); });
 }
 
 // Fills the shared-plan cache with other transforms, so that the next transform of any earlier
@@ -84,29 +101,12 @@ TEST(PaddedFft2d, CallersPeriodsGiveThePeriodicConvolution) {
     ASSERT_EQ(fft.lx(), px);
     ASSERT_EQ(fft.ls(), ps);
     const std::vector<double> generator = RandomField(px * ps, 7);
-    FftwBuffer<FftwComplex> g_hat = fft.NewSpectrum(), f_hat = fft.NewSpectrum();
-    fft.ForwardGenerator(generator.data(), g_hat.data());
     const std::vector<double> in = RandomField(nx * ns, 9);
-    fft.Forward(in.data(), f_hat.data());
-    for (size_t b = 0; b < f_hat.size(); ++b) f_hat[b] *= g_hat[b] / (static_cast<double>(px) * ps);
-    std::vector<double> out(nx * ns);
-    fft.Inverse(f_hat.data(), out.data());
-    double scale = 0.0, error = 0.0;
-    for (int is = 0; is < ns; ++is) {
-      for (int ix = 0; ix < nx; ++ix) {
-        double direct = 0.0;
-        for (int js = 0; js < ns; ++js) {
-          for (int jx = 0; jx < nx; ++jx) {
-            direct +=
-                generator[((is - js + ps) % ps) * px + (ix - jx + px) % px] * in[js * nx + jx];
-          }
-        }
-        scale = std::max(scale, std::abs(direct));
-        error = std::max(error, std::abs(direct - out[is * nx + ix]));
-      }
-    }
-    EXPECT_LE(error, kConvolutionTolerance * scale)
-        << nx << " x " << ns << " on " << px << " x " << ps;
+    SCOPED_TRACE(testing::Message() << "periods " << px << " x " << ps);
+    ExpectDirectSum(nx, ns, in, SpectralProduct(fft, generator, in),
+                    [&](int ix, int jx, int is, int js) {
+                      return generator[((is - js + ps) % ps) * px + (ix - jx + px) % px];
+                    });
   }
 }
 
