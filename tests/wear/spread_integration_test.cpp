@@ -75,7 +75,9 @@ TEST(SpreadIntegrationTest, LinearSpreadNodesAreUniformWithTails) {
     EXPECT_DOUBLE_EQ(x.back(), 5.0);
     for (size_t k = 0; k < x.size(); ++k) {
       EXPECT_NEAR(x[k], -x[x.size() - 1 - k], 1e-14);
-      if (k > 0) EXPECT_GT(x[k], x[k - 1]);
+      if (k > 0) {
+        EXPECT_GT(x[k], x[k - 1]);
+      }
     }
     const size_t inner = static_cast<size_t>(m / 8);  // the first inner node
     EXPECT_NEAR(x[inner], -3.0 + 3.0 / m, 1e-14);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "core/contact/contact_case.h"
@@ -53,9 +54,8 @@ std::string Describe(const ContactResult& warm, const ContactResult& cold) {
   for (const ContactResult* r : {&warm, &cold}) {
     out += r == &warm ? "\n  warm:" : "\n  cold:";
     for (const PatchResult& p : r->patches) {
-      out += " " + std::to_string(p.area_m2 * 1e6) + " mm2, " + std::to_string(p.p_max_Pa / 1e6) +
-             " MPa, " + std::to_string(p.grid.nx) + " x " + std::to_string(p.grid.ns) + " cells (" +
-             std::to_string(p.cells_in_contact) + " in contact);";
+      out += fmt::format(" {} mm2, {} MPa, {} x {} cells ({} in contact);", p.area_m2 * 1e6,
+                         p.p_max_Pa / 1e6, p.grid.nx, p.grid.ns, p.cells_in_contact);
     }
   }
   return out;

@@ -543,7 +543,9 @@ TEST(CurvingTest, TablePredictorHardCasesConvergeOrFallBack) {
     if (r.table_predictor == TablePredictorOutcome::kFellBack) {
       EXPECT_NE(r.message.find("table predictor's start failed"), std::string::npos) << c.what;
     }
-    if (r.status != CurvingStatus::kConverged) EXPECT_FALSE(r.message.empty()) << c.what;
+    if (r.status != CurvingStatus::kConverged) {
+      EXPECT_FALSE(r.message.empty()) << c.what;
+    }
     EXPECT_TRUE(std::isfinite(r.largest_scaled_residual)) << c.what;
     if (!c.wheelset) {
       ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
