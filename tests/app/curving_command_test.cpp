@@ -385,13 +385,15 @@ TEST_F(CurvingCommandTest, WornTreadPlaneOnThePressureCentreConverges) {
 // force: -1.6 to -8.1 kN between 0 and -0.05 mrad of yaw as its gauge-corner contact switches
 // between two patches and one, while the force turns by 1.5e9 N/m with y. Every trial past the
 // step had a larger residual; the natural-level test (core/vehicle/curving.cpp) takes the
-// step by its distance in position and the solve ends within the position tolerances.
-TEST_F(CurvingCommandTest, ForceStepInFlangeContactIsCrossedInPosition) {
+// step by its distance in position. Since that test comes before the Levenberg-Marquardt trials
+// the solve goes on to the grid's noise floor (residual 4.0e-3 in 148 solves; it ended in
+// position at 2.6e-2 in 232 before, docs/curving.md).
+TEST_F(CurvingCommandTest, ForceStepInFlangeContactIsCrossed) {
   const nlohmann::json j = SolveOnStep105("");
   ASSERT_EQ(j.size(), 2u);
-  // Converged on the forces, or in position within the near-stall bound of the position rules
-  // (20 x the tolerance 3e-3), below the 3.1e-2 the failed solve stopped at.
-  EXPECT_LT(j[0]["largest_scaled_residual"].get<double>(), 3.1e-2);
+  // Converged on the forces, or at the grid's noise floor (kNoiseFloor = 3 x the tolerance
+  // 3e-3), far below the 3.1e-2 the failed solve stopped at.
+  EXPECT_LE(j[0]["largest_scaled_residual"].get<double>(), 3.0 * 3e-3);
 }
 
 // The same rails without the stored start: the coach from the centred start. Its Newton steps

@@ -206,7 +206,7 @@ TEST(CurvingRulesTest, EachRuleReportsItsNamedEnding) {
 // trial also crosses the step (they are refused, or take a step too short to matter), and each
 // trial costs a solve of every wheelset. On step 105's rails the coach's stored start spent 64
 // of its 232 wheelset solves in two rounds of Levenberg-Marquardt trials there before the
-// natural-level step crossed (CurvingCommandTest.ForceStepInFlangeContactIsCrossedInPosition).
+// natural-level step crossed (CurvingCommandTest.ForceStepInFlangeContactIsCrossed).
 // Here the natural-level step follows the failed line search directly: 8 force evaluations
 // (start, Jacobian, 4 line-search trials, the natural-level trial) where the order
 // Levenberg-Marquardt first took 16 (its 8 refused trials, measured with the old order).
