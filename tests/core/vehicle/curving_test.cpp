@@ -3,7 +3,9 @@
 // and an S1002/UIC60 bogie vehicle in flange contact on R 300 m.
 #include "core/vehicle/curving.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
@@ -440,6 +442,28 @@ Eigen::VectorXd ToleranceSpread(const CurvingResult& r, const CurvingProblem& p)
   return r.jacobian.inverse().cwiseAbs() * allowed;
 }
 
+// Expects the bogie vehicle's solution `got` at `reference`'s equilibrium within the spread the
+// residual tolerance allows (ToleranceSpread of `reference`), wheelset by wheelset.
+void ExpectSameEquilibrium(const CurvingResult& got, const CurvingResult& reference,
+                           const CurvingProblem& p) {
+  const Eigen::VectorXd spread = ToleranceSpread(reference, p);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(got.state[2 * i], reference.state[2 * i], spread[2 * i]) << i;
+    EXPECT_NEAR(got.state[2 * i + 1], reference.state[2 * i + 1], spread[2 * i + 1]) << i;
+  }
+}
+
+// How far a solve's predictor equilibrium lay from its solution: the largest lateral offset [m]
+// and yaw [rad] over the four wheelsets.
+std::pair<double, double> PredictorOffset(const CurvingResult& r) {
+  double y = 0.0, psi = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    y = std::max(y, std::abs(r.predictor_state[2 * i] - r.state[2 * i]));
+    psi = std::max(psi, std::abs(r.predictor_state[2 * i + 1] - r.state[2 * i + 1]));
+  }
+  return {y, psi};
+}
+
 // The table predictor (CurvingPredictor::kTable): the S1002 coach's cold solve on R 600 m with
 // 100 mm cant at 25 m/s (the main job's passenger case) through the contact table's equilibrium
 // ends at the same equilibrium of the full model as through the draft model predictor, within
@@ -456,15 +480,8 @@ TEST(CurvingTest, TablePredictorReachesTheModelPredictorsEquilibrium) {
   EXPECT_EQ(model.table_predictor, TablePredictorOutcome::kNotUsed);
   EXPECT_LE(table.largest_scaled_residual, 3.0 * p.options.tolerance);
   ASSERT_EQ(table.predictor_state.size(), table.state.size());
-  const Eigen::VectorXd spread = ToleranceSpread(model, p);
-  double off_y = 0.0, off_psi = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    EXPECT_NEAR(table.state[2 * i], model.state[2 * i], spread[2 * i]) << i;
-    EXPECT_NEAR(table.state[2 * i + 1], model.state[2 * i + 1], spread[2 * i + 1]) << i;
-    off_y = std::max(off_y, std::abs(table.predictor_state[2 * i] - table.state[2 * i]));
-    off_psi =
-        std::max(off_psi, std::abs(table.predictor_state[2 * i + 1] - table.state[2 * i + 1]));
-  }
+  ExpectSameEquilibrium(table, model, p);
+  const auto [off_y, off_psi] = PredictorOffset(table);
   std::printf(
       "coach R 600 m, 25 m/s, cold: model predictor %d + %d iterations, %d solves, %.2f s; table "
       "%d + %d iterations, %d solves, %d table evaluations, build %.3f s, %.2f s; the table's "
@@ -493,14 +510,8 @@ TEST(CurvingTest, TableInterpenetrationPatchesLandNearerTheFullModel) {
   EXPECT_EQ(pen.table_predictor, TablePredictorOutcome::kUsed) << pen.message;
   ASSERT_EQ(pen.predictor_state.size(), pen.state.size());
   ASSERT_EQ(hertz.predictor_state.size(), hertz.state.size());
-  const Eigen::VectorXd spread = ToleranceSpread(hertz, p);
-  double off_hertz = 0.0, off_pen = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    EXPECT_NEAR(pen.state[2 * i], hertz.state[2 * i], spread[2 * i]) << i;
-    EXPECT_NEAR(pen.state[2 * i + 1], hertz.state[2 * i + 1], spread[2 * i + 1]) << i;
-    off_hertz = std::max(off_hertz, std::abs(hertz.predictor_state[2 * i] - hertz.state[2 * i]));
-    off_pen = std::max(off_pen, std::abs(pen.predictor_state[2 * i] - pen.state[2 * i]));
-  }
+  ExpectSameEquilibrium(pen, hertz, p);
+  const double off_hertz = PredictorOffset(hertz).first, off_pen = PredictorOffset(pen).first;
   EXPECT_LT(off_pen, 0.5 * off_hertz);
   EXPECT_LT(pen.finish_start_residual, hertz.finish_start_residual);
   std::printf(
