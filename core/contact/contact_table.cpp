@@ -144,6 +144,14 @@ ContactTable::ContactTable(const ContactTableGeometry& geometry, const ContactTa
                     "candidate_threshold_m = {}: expected each > 0",
                     o.node_spacing_m, o.half_range_m, o.sampling_m, o.candidate_threshold_m));
   }
+  if (o.patch == ContactTableOptions::Patch::kInterpenetration &&
+      (!(o.penetration_ratio > 0.0 && o.penetration_ratio <= 1.0) ||
+       !(o.station_spacing_m > 0.0))) {
+    throw InputError(
+        fmt::format("contact table: interpenetration patches with penetration_ratio = {}, "
+                    "station_spacing_m = {}: expected a ratio in (0, 1] and a spacing > 0",
+                    o.penetration_ratio, o.station_spacing_m));
+  }
   const int n = 2 * static_cast<int>(std::lround(o.half_range_m / o.node_spacing_m)) + 1;
   if (n < 3) {
     throw InputError(

@@ -69,6 +69,7 @@ struct ContactTableOptions {
   // model's, but the wagon's finish at draft took more solves: an option, not the default.
   enum class Patch { kHertz, kInterpenetration };
   Patch patch = Patch::kHertz;
+  // (kInterpenetration; the constructor throws InputError outside (0, 1] and > 0.)
   double penetration_ratio = 0.55;  // Kik and Piotrowski's; 0.5 gives the circular Hertz area
   double station_spacing_m = 1e-3;  // the contact point's data along each candidate's interval
 };

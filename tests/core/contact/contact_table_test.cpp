@@ -5,7 +5,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <tuple>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -193,6 +195,28 @@ TEST(ContactTable, OutsideTheTableIsNotValidAndBadOptionsThrow) {
   o.node_spacing_m = 1e-3;
   o.half_range_m = 1e-4;
   EXPECT_THROW(ContactTable(g, o), InputError);
+}
+
+// The interpenetration patches' options are checked where the table is built, the message
+// naming both values and the ranges expected.
+TEST(ContactTable, BadInterpenetrationOptionsThrowNamingThem) {
+  const ContactTableGeometry g = S1002OnUic60();
+  ContactTableOptions o = Nodes(1e-3, 5e-4);
+  o.patch = ContactTableOptions::Patch::kInterpenetration;
+  for (const auto& [ratio, spacing] : {std::pair{0.0, 1e-3}, {1.5, 1e-3}, {0.55, 0.0}}) {
+    o.penetration_ratio = ratio;
+    o.station_spacing_m = spacing;
+    try {
+      const ContactTable table(g, o);
+      ADD_FAILURE() << "no error for ratio " << ratio << ", spacing " << spacing;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("penetration_ratio"), std::string::npos) << what;
+      EXPECT_NE(what.find("station_spacing_m"), std::string::npos) << what;
+      EXPECT_NE(what.find("expected a ratio in (0, 1] and a spacing > 0"), std::string::npos)
+          << what;
+    }
+  }
 }
 
 }  // namespace
