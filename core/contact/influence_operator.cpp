@@ -22,6 +22,7 @@
 #include "core/numerics/check.h"
 #include "core/numerics/fft_size.h"
 #include "core/numerics/fftw.h"
+#include "core/numerics/pooled_buffer.h"
 
 namespace railwear {
 
@@ -206,7 +207,10 @@ class CurvedFftOperator final : public InfluenceOperator {
     // Kernel on x offsets d >= 0 (nx * ns^2 values, a row of offsets per pair of s indices:
     // CellInfluenceRow): values(js * ns + is, d).
     const int pairs = ns_ * ns_;
-    Eigen::MatrixXd values(pairs, nx_);
+    // (the three large matrices on recycled memory, pooled_buffer.h: fresh pages cost a fifth
+    // of a cold gauge-corner call)
+    PooledBuffer values_memory(static_cast<size_t>(pairs) * nx_);
+    Eigen::Map<Eigen::MatrixXd, Eigen::Aligned16> values(values_memory.data(), pairs, nx_);
     std::vector<double> row(nx_);
     for (int js = 0; js < ns_; ++js) {
       for (int is = 0; is < ns_; ++is) {
@@ -229,7 +233,7 @@ class CurvedFftOperator final : public InfluenceOperator {
     }
     // Spectrum of the even extension: K_k = sum_d w_d c(d) cos(2 pi k d / lx), w_0 = 1 and
     // w_d = 2, with the unscaled inverse FFT's 1/lx folded in. One product for all pairs;
-    // column k of kernel_ is K_k stored column-major (ns x ns).
+    // column k of kernel() is K_k stored column-major (ns x ns).
     Eigen::MatrixXd cosines(nx_, hx_);
     for (int d = 0; d < nx_; ++d) {
       const double w = (d == 0 ? 1.0 : 2.0) / lx_;
@@ -238,7 +242,8 @@ class CurvedFftOperator final : public InfluenceOperator {
         cosines(d, k) = w * std::cos(2.0 * std::numbers::pi * phase / lx_);
       }
     }
-    kernel_.noalias() = values * cosines;
+    kernel_memory_ = PooledBuffer(static_cast<size_t>(pairs) * hx_);
+    kernel().noalias() = values * cosines;
     MakeInverseBlocks();
     // Row j of the padded field (x fastest, stride lx) <-> bin k of row j at (j, 2k) and
     // (j, 2k + 1) of the column-major ns x 2 hx spectrum matrices.
@@ -272,20 +277,20 @@ class CurvedFftOperator final : public InfluenceOperator {
   }
 
  private:
-  // factor_ column k = the Cholesky factor L_k of sym K_k = (K_k + K_k^T) / 2 [m/Pa] (lower
+  // factor column k = the Cholesky factor L_k of sym K_k = (K_k + K_k^T) / 2 [m/Pa] (lower
   // triangle of an ns x ns column-major block). Factors rather than inverses: a third of the
   // flops to build (ns^3 / 3 per frequency), which matters on laterally long patches (ns of a
   // few hundred), for about 1.5 times the cost to apply (measured at ns = 45 and 90). A block whose
   // symmetric part is not positive definite (Cholesky fails) is rebuilt from its eigenvalues, those
   // below kSpectrumFloor * min_j C_jj raised to it, and factored again.
   void MakeInverseBlocks() {
-    factor_.resize(kernel_.rows(), kernel_.cols());
+    factor_memory_ = PooledBuffer(kernel_memory_.size());
     const double floor = kSpectrumFloor * diagonal_.minCoeff();
     Eigen::MatrixXd sym(ns_, ns_);
     Eigen::LLT<Eigen::MatrixXd> llt(ns_);
     for (int k = 0; k < hx_; ++k) {
-      const Eigen::Map<const Eigen::MatrixXd> k_k(kernel_.col(k).data(), ns_, ns_);
-      sym = (0.5 * lx_) * (k_k + k_k.transpose());  // kernel_ holds K_k / lx
+      const Eigen::Map<const Eigen::MatrixXd> k_k(KernelBlock(k), ns_, ns_);
+      sym = (0.5 * lx_) * (k_k + k_k.transpose());  // kernel() holds K_k / lx
       llt.compute(sym);
       if (llt.info() != Eigen::Success) {
         Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(sym);
@@ -295,7 +300,7 @@ class CurvedFftOperator final : public InfluenceOperator {
         llt.compute(sym);
         RAILWEAR_CHECK(llt.info() == Eigen::Success);
       }
-      Eigen::Map<Eigen::MatrixXd>(factor_.col(k).data(), ns_, ns_) = llt.matrixLLT();
+      Eigen::Map<Eigen::MatrixXd>(FactorBlock(k), ns_, ns_) = llt.matrixLLT();
     }
   }
 
@@ -361,12 +366,12 @@ class CurvedFftOperator final : public InfluenceOperator {
       // L L^T z = p / lx (the unscaled inverse FFT's factor), both columns at once.
       u_hat = p_hat * (1.0 / lx_);
       for (int k = 0; k < hx_; ++k) {
-        SolveFactored(factor_.col(k).data(), u_hat_.data() + static_cast<size_t>(2 * k) * ns_,
+        SolveFactored(FactorBlock(k), u_hat_.data() + static_cast<size_t>(2 * k) * ns_,
                       u_hat_.data() + static_cast<size_t>(2 * k + 1) * ns_);
       }
     } else {
       for (int k = 0; k < hx_; ++k) {
-        const Eigen::Map<const Eigen::MatrixXd> k_k(kernel_.col(k).data(), ns_, ns_);
+        const Eigen::Map<const Eigen::MatrixXd> k_k(KernelBlock(k), ns_, ns_);
         u_hat.col(2 * k).noalias() = k_k * p_hat.col(2 * k);
         u_hat.col(2 * k + 1).noalias() = k_k * p_hat.col(2 * k + 1);
       }
@@ -382,8 +387,19 @@ class CurvedFftOperator final : public InfluenceOperator {
 
   int nx_, ns_, lx_, hx_;
   Eigen::VectorXd diagonal_;  // [ns], C_kk depends on the s index only
-  Eigen::MatrixXd kernel_;    // [ns^2 x hx_]: column k is K_k (ns x ns, column-major)
-  Eigen::MatrixXd factor_;    // [ns^2 x hx_]: column k is L_k, sym K_k = L_k L_k^T [m/Pa]
+  // kernel [ns^2 x hx_]: column k is K_k (ns x ns, column-major); factor [ns^2 x hx_]: column
+  // k is L_k, sym K_k = L_k L_k^T [m/Pa]. Column-major on recycled memory (pooled_buffer.h).
+  PooledBuffer kernel_memory_, factor_memory_;
+  Eigen::Map<Eigen::MatrixXd, Eigen::Aligned16> kernel() {
+    return {kernel_memory_.data(), static_cast<Eigen::Index>(ns_) * ns_, hx_};
+  }
+  const double* KernelBlock(int k) const {
+    return kernel_memory_.data() + static_cast<size_t>(k) * ns_ * ns_;
+  }
+  double* FactorBlock(int k) { return factor_memory_.data() + static_cast<size_t>(k) * ns_ * ns_; }
+  const double* FactorBlock(int k) const {
+    return factor_memory_.data() + static_cast<size_t>(k) * ns_ * ns_;
+  }
   Eigen::MatrixXd dense_;     // [N x N] for dense products, else empty [m/Pa]
 
   // Scratch reused by every Apply (hence mutable): not safe for concurrent Apply calls.

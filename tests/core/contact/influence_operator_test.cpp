@@ -10,6 +10,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -21,6 +22,7 @@
 #include "core/numerics/check.h"
 #include "core/numerics/fft_size.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/pooled_buffer.h"
 #include "tests/core/contact/hertz_grid.h"
 #include "tests/core/contact/same_result.h"
 
@@ -952,6 +954,46 @@ TEST(InfluenceOperator, ReusedOperatorGivesTheFreshNormalSolveBitForBit) {
       ASSERT_EQ(again.status, SolverStatus::kConverged) << again.message;
       testing::ExpectSameNormal(again, SolveNormal(problem(fresh.get(), 8.0, load)));
     }
+  }
+}
+
+// The curved operator's matrices live on memory recycled from earlier operators of the thread
+// (core/numerics/pooled_buffer.h), whose contents are left over from them: an operator built
+// after others (on their memory) equals, bit for bit, one built on a thread whose pool is empty
+// (fresh memory), in its products, preconditioner and diagonal. Grids of decreasing size, so
+// each takes over a larger earlier operator's memory.
+TEST(InfluenceOperator, AnOperatorOnRecycledMemoryEqualsAFreshOneBitForBit) {
+  const InfluenceSettings settings = MakeDissimilarSettings(KernelModel::kGolubenko);
+  const std::vector<PatchGrid> grids = {MakeParabolaGrid(30, 25, 2.5e-4, 4e-4),
+                                        MakeArcGrid(24, 20, 2e-4, 4e-4, 10e-3),
+                                        MakeParabolaGrid(13, 12, 3e-4, 3e-4)};
+  struct Outputs {
+    Eigen::VectorXd u, z, diagonal;
+  };
+  auto outputs = [&](const PatchGrid& grid) {
+    const auto op =
+        MakeInfluenceOperator(grid, settings, OperatorProducts::kFft, SectionStructure::kBlocks);
+    std::mt19937 rng(grid.cells());
+    std::uniform_real_distribution<double> pressure(0.0, 2e9);
+    Eigen::VectorXd p(grid.cells());
+    for (int k = 0; k < p.size(); ++k) p[k] = pressure(rng);
+    Outputs o;
+    op->Apply(p, &o.u);
+    EXPECT_TRUE(op->ApplyPreconditioner(o.u, &o.z));
+    o.diagonal.resize(grid.cells());
+    for (int k = 0; k < grid.cells(); ++k) o.diagonal[k] = op->Diagonal(k);
+    return o;
+  };
+  std::vector<Outputs> recycled;
+  for (const PatchGrid& grid : grids) recycled.push_back(outputs(grid));  // (each on the last's)
+  ASSERT_GT(PooledBuffer::PooledCount(), 0u);
+  for (size_t g = 0; g < grids.size(); ++g) {
+    SCOPED_TRACE(::testing::Message() << "grid " << g);
+    Outputs fresh;
+    std::thread([&] { fresh = outputs(grids[g]); }).join();  // (a new thread: an empty pool)
+    EXPECT_EQ(recycled[g].u, fresh.u);
+    EXPECT_EQ(recycled[g].z, fresh.z);
+    EXPECT_EQ(recycled[g].diagonal, fresh.diagonal);
   }
 }
 
