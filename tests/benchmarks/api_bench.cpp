@@ -97,7 +97,15 @@ void BM_GaugeCornerWheelTimeStep(benchmark::State& state) {
     return State(-5.6e-3 + 1e-5 * static_cast<double>(k % kTimeSteps), 0.0);
   });
 }
-BENCHMARK(BM_GaugeCornerWheelTimeStep)->DenseRange(0, 1)->Unit(benchmark::kMillisecond);
+// The time-step rows run kTimeSteps calls per repetition, each position once: with a run time
+// instead, a faster library ran more calls, further along the steps, whose cost varies tenfold
+// (cold: 15-26 ms of CPU from -5.60 to -5.37 mm, 200-265 ms from -5.35 to -5.21 mm, main at
+// b23757c; docs/library.md, "The cold call"), so the medians of two libraries compared
+// different positions.
+BENCHMARK(BM_GaugeCornerWheelTimeStep)
+    ->DenseRange(0, 1)
+    ->Iterations(kTimeSteps)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_WheelsetGaugeCornerTimeStep(benchmark::State& state) {
   rw_problem* p = railwear::test::MakeRollingS1002Wheel(RW_MODEL_CONFORMAL, RW_ACCURACY_STANDARD,
@@ -107,7 +115,10 @@ void BM_WheelsetGaugeCornerTimeStep(benchmark::State& state) {
     return State(4.9e-3 + 1e-5 * static_cast<double>(k % kTimeSteps), 0.0);
   });
 }
-BENCHMARK(BM_WheelsetGaugeCornerTimeStep)->DenseRange(0, 1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetGaugeCornerTimeStep)
+    ->DenseRange(0, 1)
+    ->Iterations(kTimeSteps)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_TreadFastsim(benchmark::State& state) {
   RunSteps(
