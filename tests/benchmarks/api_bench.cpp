@@ -99,9 +99,9 @@ void BM_GaugeCornerWheelTimeStep(benchmark::State& state) {
 }
 // The time-step rows run kTimeSteps calls per repetition, each position once: with a run time
 // instead, a faster library ran more calls, further along the steps, whose cost varies tenfold
-// (cold: 15-26 ms of CPU from -5.60 to -5.37 mm, 200-265 ms from -5.35 to -5.21 mm, main at
-// b23757c; docs/library.md, "The cold call"), so the medians of two libraries compared
-// different positions.
+// (cold: 15-38 ms of CPU from -5.60 to -5.37 mm, 199-283 ms from -5.35 to -5.21 mm, main at
+// b23757c, tests/benchmarks/cold_call_positions.py; docs/library.md, "The cold call"), so the
+// medians of two libraries compared different positions.
 BENCHMARK(BM_GaugeCornerWheelTimeStep)
     ->DenseRange(0, 1)
     ->Iterations(kTimeSteps)
