@@ -12,19 +12,12 @@ import sys
 import time
 
 import railwear
-
-LOAD_N = 100e3
+from warm_start_accuracy import LOAD_N, handle  # (the benchmark's wheel, this directory)
 
 
 def main():
     rounds = int(sys.argv[1]) if len(sys.argv) > 1 else 2
-    p = railwear.Problem(railwear.PROBLEM_WHEEL)
-    p.set_profile_file(railwear.BODY_WHEEL, "builtin:S1002")
-    p.set_profile_file(railwear.BODY_RAIL, "builtin:UIC60")
-    p.set_geometry(rail_cant=1.0 / 40.0)
-    p.set_model(kind=railwear.MODEL_CONFORMAL, accuracy=railwear.ACCURACY_STANDARD,
-                effects=railwear.EFFECT_TANGENTIAL)
-    p.set_friction(0.3)
+    p = handle(railwear.ACCURACY_STANDARD, warm=False)
     cpu = [[] for _ in range(40)]
     patches = [0] * 40
     for _ in range(rounds):
