@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
-#include <optional>
 
 #include <fmt/format.h>
 #include <Eigen/Dense>
@@ -73,62 +72,94 @@ Eigen::Vector3d PointForce(const LoadedPoint& p, const WheelRigidMotion& m, doub
          f * lin.force_y_N * p.tangent;
 }
 
-// A candidate's virtual interpenetration patch (ContactTableOptions::Patch::kInterpenetration;
-// Kik and Piotrowski 1996): where the sampled vertical gap lies below ratio x the candidate's
-// approach (the wheel's approach delta less the candidate's smallest gap). Each lateral strip j
-// of depth d_j reaches x = +-sqrt(2 r d_j) along the rail (the wheel's circle of radius r), so
-// the region's area is sum 2 sqrt(2 r d_j) dy; its lateral extent (the depth's zero crossings,
-// interpolated between samples: continuous in delta) is 2 b, and a = area / (pi b). The contact
-// point is the strips' load centre, each strip's load taken as its depth (Hertz's strip loads
-// are in proportion to it), with the rail point, normal and lead interpolated between the
-// stations there. Empty (Hertz at the smallest gap is kept) without samples, or when fewer than
-// 3 samples are inside: a patch narrower than the sampling.
-struct Interpenetration {
-  double a_m = 0.0, b_m = 0.0;
-  Eigen::Vector2d rail_point_m, normal;
-  double dx_dpsi_m = 0.0;
-};
-std::optional<Interpenetration> InterpenetrationPatch(const ContactTable::Wheel::Samples& s,
-                                                      const ContactCandidate& c, double delta_m,
-                                                      double ratio) {
-  const int n = static_cast<int>(s.y_m.size());
-  if (n < 3 || s.stations.size() < 2) return std::nullopt;
-  const double depth = ratio * (delta_m - c.gap_m);
-  if (!(depth > 0.0)) return std::nullopt;
-  const double h = s.y_m[1] - s.y_m[0];
-  double sum_d = 0.0, sum_dy = 0.0, area = 0.0;
-  int inside = 0, first = -1, last = -1;
-  for (int j = 0; j < n; ++j) {
-    const double d = depth - (s.gap_m[j] - c.gap_m);
-    if (!(d > 0.0)) continue;
-    if (first < 0) first = j;
-    last = j;
-    ++inside;
-    sum_d += d;
-    sum_dy += d * s.y_m[j];
-    area += 2.0 * std::sqrt(2.0 * c.wheel_radius_m * d) * h;
-  }
-  if (inside < 3) return std::nullopt;
-  auto crossing = [&](int in, int out) {  // where the depth reaches 0 between two samples
-    if (out < 0 || out >= n) return s.y_m[in] + 0.5 * (in < out ? h : -h);
-    const double d_in = depth - (s.gap_m[in] - c.gap_m);
-    const double d_out = depth - (s.gap_m[out] - c.gap_m);
-    return s.y_m[in] + (s.y_m[out] - s.y_m[in]) * d_in / (d_in - d_out);
-  };
-  const double y_a = crossing(first, first - 1), y_b = crossing(last, last + 1);
-  Interpenetration e;
-  e.b_m = 0.5 * (y_b - y_a);
-  e.a_m = area / (std::numbers::pi * e.b_m);
-  const double y_c = sum_dy / sum_d;
-  const auto& st = s.stations;
+// The contact point's data at lateral position y [m], interpolated between the stations around
+// it (clamped to the first and last).
+ContactTable::Wheel::Station StationAt(const std::vector<ContactTable::Wheel::Station>& st,
+                                       double y_m) {
   const int m = static_cast<int>(st.size());
   int i = 0;
-  while (i + 2 < m && st[i + 1].y_m < y_c) ++i;
-  const double t = std::clamp((y_c - st[i].y_m) / (st[i + 1].y_m - st[i].y_m), 0.0, 1.0);
-  e.rail_point_m = (1.0 - t) * st[i].rail_point_m + t * st[i + 1].rail_point_m;
-  e.normal = ((1.0 - t) * st[i].normal + t * st[i + 1].normal).normalized();
-  e.dx_dpsi_m = (1.0 - t) * st[i].dx_dpsi_m + t * st[i + 1].dx_dpsi_m;
-  return e;
+  while (i + 2 < m && st[i + 1].y_m < y_m) ++i;
+  const double t = std::clamp((y_m - st[i].y_m) / (st[i + 1].y_m - st[i].y_m), 0.0, 1.0);
+  ContactTable::Wheel::Station out;
+  out.y_m = y_m;
+  out.rail_point_m = (1.0 - t) * st[i].rail_point_m + t * st[i + 1].rail_point_m;
+  out.normal = ((1.0 - t) * st[i].normal + t * st[i + 1].normal).normalized();
+  out.dx_dpsi_m = (1.0 - t) * st[i].dx_dpsi_m + t * st[i + 1].dx_dpsi_m;
+  out.wheel_radius_m = (1.0 - t) * st[i].wheel_radius_m + t * st[i + 1].wheel_radius_m;
+  return out;
+}
+
+// The virtual interpenetration patches of one wheel (ContactTableOptions::Patch::
+// kInterpenetration; Kik and Piotrowski 1996), one per physical contact region: the runs of
+// adjacent samples of the wheel's whole gap where the wheel's approach delta overlaps the rail
+// (gap < delta). Two candidates split at a saddle that the approach overlaps are one region, so
+// a region does not depend on where FindCandidates splits the gap (which moves from node to
+// node at a flat gauge corner). In each run, of smallest gap g0, the virtual penetration is
+// ratio x (delta - g0): the strips j of depth d_j = ratio (delta - g0) - (g_j - g0) > 0 reach
+// x = +-sqrt(2 r d_j) along the rail (the wheel's circle of radius r), so the area is
+// sum 2 sqrt(2 r d_j) dy; the lateral extent from the first to the last such strip (the
+// depth's zero crossings interpolated between samples: continuous in delta, and across a
+// shallow saddle inside the run the region is joined) is 2 b, and a = area / (pi b). The
+// contact point is the strips' load centre, each strip's load taken as its depth (Hertz's strip
+// loads are in proportion to it), with the rail point, normal and lead interpolated between the
+// stations there. A run with fewer than 3 strips inside (a patch narrower than the sampling)
+// gives no patch: its candidates keep their Hertz ellipses.
+struct Interpenetration {
+  double a_m = 0.0, b_m = 0.0;
+  double y_lo_m = 0.0, y_hi_m = 0.0;  // the run (gap < delta), to which candidates belong
+  ContactTable::Wheel::Station centre;
+};
+std::vector<Interpenetration> InterpenetrationPatches(const ContactTable::Wheel::Samples& s,
+                                                      double delta_m, double ratio) {
+  std::vector<Interpenetration> out;
+  const int n = static_cast<int>(s.y_m.size());
+  if (n < 3 || s.stations.size() < 2) return out;
+  auto adjacent = [&](int j, int k) {
+    return k >= 0 && k < n && std::abs(s.index[k] - s.index[j]) == 1;
+  };
+  const double h = s.y_m[1] - s.y_m[0];
+  for (int j = 0; j < n;) {
+    if (!(s.gap_m[j] < delta_m)) {
+      ++j;
+      continue;
+    }
+    int k = j;
+    double g0 = s.gap_m[j];
+    while (k + 1 < n && adjacent(k, k + 1) && s.gap_m[k + 1] < delta_m) {
+      ++k;
+      g0 = std::min(g0, s.gap_m[k]);
+    }
+    const int run_lo = j, run_hi = k;
+    j = k + 1;
+    const double level = g0 + ratio * (delta_m - g0);  // the virtual penetration's gap level
+    double sum_d = 0.0, sum_dy = 0.0, area = 0.0;
+    int inside = 0, first = -1, last = -1;
+    for (int i = run_lo; i <= run_hi; ++i) {
+      const double d = level - s.gap_m[i];
+      if (!(d > 0.0)) continue;
+      if (first < 0) first = i;
+      last = i;
+      ++inside;
+      sum_d += d;
+      sum_dy += d * s.y_m[i];
+      area += 2.0 * std::sqrt(2.0 * StationAt(s.stations, s.y_m[i]).wheel_radius_m * d) * h;
+    }
+    if (inside < 3) continue;
+    auto crossing = [&](int in, int out_i) {  // where the depth reaches 0 between two samples
+      if (!adjacent(in, out_i)) return s.y_m[in] + 0.5 * (in < out_i ? h : -h);
+      const double d_in = level - s.gap_m[in];
+      const double d_out = level - s.gap_m[out_i];
+      return s.y_m[in] + (s.y_m[out_i] - s.y_m[in]) * d_in / (d_in - d_out);
+    };
+    Interpenetration e;
+    e.b_m = 0.5 * (crossing(last, last + 1) - crossing(first, first - 1));
+    e.a_m = area / (std::numbers::pi * e.b_m);
+    e.y_lo_m = s.y_m[run_lo] - 0.5 * h;
+    e.y_hi_m = s.y_m[run_hi] + 0.5 * h;
+    e.centre = StationAt(s.stations, sum_dy / sum_d);
+    out.push_back(e);
+  }
+  return out;
 }
 
 }  // namespace
@@ -199,24 +230,24 @@ ContactTable::ContactTable(const ContactTableGeometry& geometry, const ContactTa
       };
       const std::vector<double>& gy = g.gap_samples_y();
       const std::vector<double>& gg = g.gap_samples();
+      const bool stations = o.patch == ContactTableOptions::Patch::kInterpenetration;
       for (const ContactCandidate& c : w->candidates) {
         w->dx_dpsi_m.push_back(dx_dpsi(c));
-        Wheel::Samples smp;
-        if (o.patch == ContactTableOptions::Patch::kInterpenetration) {
-          for (size_t j = 0; j < gy.size(); ++j) {
-            if (gy[j] >= c.y_lo_m && gy[j] <= c.y_hi_m && std::isfinite(gg[j])) {
-              smp.y_m.push_back(gy[j]);
-              smp.gap_m.push_back(gg[j]);
-            }
-          }
-          const int m =
-              std::max(1, static_cast<int>(std::ceil((c.y_hi_m - c.y_lo_m) / o.station_spacing_m)));
-          for (int j = 0; j <= m; ++j) {
-            const ContactCandidate at = g.CandidateAt(c, c.y_lo_m + (c.y_hi_m - c.y_lo_m) * j / m);
-            smp.stations.push_back({at.rail_point_m.x(), at.rail_point_m, at.normal, dx_dpsi(at)});
+        if (!stations) continue;
+        for (size_t j = 0; j < gy.size(); ++j) {
+          if (gy[j] >= c.y_lo_m && gy[j] <= c.y_hi_m && std::isfinite(gg[j])) {
+            w->samples.y_m.push_back(gy[j]);
+            w->samples.gap_m.push_back(gg[j]);
+            w->samples.index.push_back(static_cast<int>(j));
           }
         }
-        w->samples.push_back(std::move(smp));
+        const int m =
+            std::max(1, static_cast<int>(std::ceil((c.y_hi_m - c.y_lo_m) / o.station_spacing_m)));
+        for (int j = 0; j <= m; ++j) {
+          const ContactCandidate at = g.CandidateAt(c, c.y_lo_m + (c.y_hi_m - c.y_lo_m) * j / m);
+          w->samples.stations.push_back(
+              {at.rail_point_m.x(), at.rail_point_m, at.normal, dx_dpsi(at), at.wheel_radius_m});
+        }
       }
     };
     fill(high, &node.high);
@@ -255,28 +286,46 @@ ContactTableForces ContactTable::EvaluateNode(int i, double yaw_rad,
     const double delta = internal::HertzApproachForLoad(w.candidates, w.pose.roll_rad, estar, q);
     std::vector<HertzSolution> hs;
     internal::HertzVerticalLoad(w.candidates, w.pose.roll_rad, estar, delta, &hs);
-    for (size_t k = 0; k < w.candidates.size(); ++k) {
-      if (!(hs[k].force_N > 0.0)) continue;
-      const ContactCandidate& c = w.candidates[k];
+    auto add = [&](double normal_N, double a_m, double b_m, const Eigen::Vector2d& rail_point,
+                   const Eigen::Vector2d& normal, double dx) {
       LoadedPoint lp;
-      lp.normal_N = hs[k].force_N;
-      lp.a_m = hs[k].semi_axis_x_m;
-      lp.b_m = hs[k].semi_axis_y_m;
-      Eigen::Vector2d rail_point = c.rail_point_m, normal = c.normal;
-      double dx = w.dx_dpsi_m[k];
-      if (const auto e =
-              InterpenetrationPatch(w.samples[k], c, delta, options_.penetration_ratio)) {
-        lp.a_m = e->a_m;
-        lp.b_m = e->b_m;
-        rail_point = e->rail_point_m;
-        normal = e->normal;
-        dx = e->dx_dpsi_m;
-      }
+      lp.normal_N = normal_N;
+      lp.a_m = a_m;
+      lp.b_m = b_m;
       lp.point_m = {dx * pose.yaw_rad, rail_point.x(), rail_point.y()};
       lp.normal = {0.0, normal.x(), normal.y()};
       lp.tangent = {0.0, normal.y(), -normal.x()};
       p.normal_N += lp.normal_N;
       p.points.push_back(lp);
+    };
+    // (kInterpenetration) The wheel's physical regions and the vertical load of the Hertz
+    // candidates in each (the candidates' load sharing, kept; the patch's normal force carries
+    // that vertical load along the patch's own normal, as the wheel's vertical balance has it).
+    const std::vector<Interpenetration> regions =
+        options_.patch == ContactTableOptions::Patch::kInterpenetration
+            ? InterpenetrationPatches(w.samples, delta, options_.penetration_ratio)
+            : std::vector<Interpenetration>{};
+    std::vector<double> region_vertical_N(regions.size(), 0.0);
+    for (size_t k = 0; k < w.candidates.size(); ++k) {
+      if (!(hs[k].force_N > 0.0)) continue;
+      const ContactCandidate& c = w.candidates[k];
+      const auto in = std::find_if(regions.begin(), regions.end(), [&](const Interpenetration& e) {
+        return c.y_m >= e.y_lo_m && c.y_m <= e.y_hi_m;
+      });
+      if (in != regions.end()) {
+        region_vertical_N[in - regions.begin()] +=
+            hs[k].force_N * internal::CandidateCurvatures(c, w.pose.roll_rad).w0;
+        continue;
+      }
+      add(hs[k].force_N, hs[k].semi_axis_x_m, hs[k].semi_axis_y_m, c.rail_point_m, c.normal,
+          w.dx_dpsi_m[k]);
+    }
+    for (size_t r = 0; r < regions.size(); ++r) {
+      if (!(region_vertical_N[r] > 0.0)) continue;
+      const Interpenetration& e = regions[r];
+      const double w0 = std::max(-e.centre.normal.y(), 1e-3);  // as CandidateCurvatures'
+      add(region_vertical_N[r] / w0, e.a_m, e.b_m, e.centre.rail_point_m, e.centre.normal,
+          e.centre.dx_dpsi_m);
     }
     return p;
   };

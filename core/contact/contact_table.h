@@ -59,10 +59,13 @@ struct ContactTableOptions {
   double candidate_threshold_m = 3e-4;
   int threads = 0;  // of the build (nodes are independent): 0 = the hardware threads
   // Each loaded candidate's patch: kHertz (the default), Hertz's ellipse from the curvatures at
-  // the smallest gap, placed there; kInterpenetration, the virtual interpenetration region of
-  // the sampled gap at penetration_ratio times the candidate's approach (Kik and Piotrowski,
-  // Vehicle System Dynamics 1996; Piotrowski and Chollet 2005): its lateral extent gives b, its
-  // area pi a b, the contact point, normal and rolling radius move to its load centre. On
+  // the smallest gap, placed there; kInterpenetration, one patch per physical contact region
+  // (Kik and Piotrowski, Vehicle System Dynamics 1996; Piotrowski and Chollet 2005): the
+  // wheel's whole sampled gap is cut into the runs where the wheel's approach overlaps the
+  // rail (gap < approach; candidates whose saddle lies inside one run are one region), each
+  // run's virtual interpenetration at penetration_ratio times its own approach gives b (its
+  // lateral extent), its area pi a b and its load centre (contact point, normal, lead), and it
+  // carries the vertical load of the Hertz candidates inside it. On
   // S1002/UIC60 the tread and the gauge corner are nearly conformal, and Hertz at the smallest
   // gap put the patch 1-4 mm from the grids' pressure centre with half their width
   // (docs/curving.md, "The table's patches"); it brings the table's equilibrium nearer the full
@@ -134,18 +137,23 @@ class ContactTable {
     // Per candidate: the wheel point's lateral coordinate in the wheel frame and the contact
     // point's lead per radian of yaw, dx/dpsi [m].
     std::vector<double> dx_dpsi_m;
-    // Per candidate: its sampled gap over its interval (lateral positions and gaps [m], R) and
-    // its contact point's data at stations along the interval (kInterpenetration).
+    // (kInterpenetration) The wheel's sampled gap over all its candidates' intervals, in
+    // lateral order (positions, gaps [m], R, and each sample's index in the placed geometry's
+    // sampling, so that runs of adjacent samples are found), and the contact point's data at
+    // stations along each interval (the candidates' stations in lateral order): the
+    // interpenetration regions are taken from this whole gap, not per candidate.
     struct Station {
       double y_m = 0.0;
       Eigen::Vector2d rail_point_m = Eigen::Vector2d::Zero(), normal = Eigen::Vector2d::Zero();
       double dx_dpsi_m = 0.0;
+      double wheel_radius_m = 0.0;
     };
     struct Samples {
       std::vector<double> y_m, gap_m;
+      std::vector<int> index;
       std::vector<Station> stations;
     };
-    std::vector<Samples> samples;
+    Samples samples;
     Eigen::Vector2d axle_yz_m = Eigen::Vector2d::Zero();    // W (0, -r0) in R
     Eigen::Vector2d origin_yz_m = Eigen::Vector2d::Zero();  // W (0, 0) in R
   };
