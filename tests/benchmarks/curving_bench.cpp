@@ -20,6 +20,9 @@
 //                           1 its nodes 0.2 mm apart, 2 also sampled at 0.2 mm, 3 the default
 //                           nodes with the interpenetration patches
 //                           (ContactTableOptions::Patch::kInterpenetration).
+//   BM_CurvingExampleShiftedStart/V/S  vehicle V at draft from its own solution with every
+//                           wheelset moved S x 0.1 mm toward the centre, without its Jacobian:
+//                           how near a cold solve's start must be to save solves.
 //   BM_ContactTableBuild/V  the contact table of vehicle V's wheels on the main job's rails.
 // Each reports the wheelset contact solves it needed, and where its predictor's phase ended
 // against the solution (predictor_off_y_mm, predictor_off_psi_mrad, the largest over the
@@ -115,6 +118,23 @@ void BM_CurvingExampleContinuation(benchmark::State& state) {
 }
 BENCHMARK(BM_CurvingExampleContinuation)
     ->ArgsProduct({{0, 1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+// How near a cold solve's start must be (issue 15, docs/curving.md "Starts other than the centred
+// one"): vehicle V at draft from its own solution's state with every wheelset moved S x 0.1 mm
+// toward the track centre (the yaws, the frames and the body as solved), without its Jacobian,
+// so the solve evaluates one afresh as a cold solve does. S = 0 is the floor (one evaluation).
+void BM_CurvingExampleShiftedStart(benchmark::State& state) {
+  CurvingProblem p = ExampleProblem(static_cast<int>(state.range(0)), false);
+  const CurvingResult solved = SolveCurving(p);
+  CurvingStart start{solved.state, {}};
+  for (int i = 0; i < p.vehicle.wheelsets(); ++i) start.state[2 * i] -= state.range(1) * 1e-4;
+  p.options.start = start;
+  Run(state, p);
+}
+BENCHMARK(BM_CurvingExampleShiftedStart)
+    ->ArgsProduct({{0, 1}, {0, 1, 5, 10, 20}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
