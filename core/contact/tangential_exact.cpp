@@ -970,7 +970,10 @@ struct ExactTangentialSetup::Impl {
   double dx_m = 0.0, ds_m = 0.0;
   ExactTangentialOptions::Method method = ExactTangentialOptions::Method::kAuto;
   std::unique_ptr<RollingGenerator> generator;  // with kFft only
-  std::unique_ptr<RollingOperator> op;
+  // The products on the whole grid: the dense matrix (kDense), or the FFT products, built at the
+  // first solve that uses them (a solve on a small patch uses the loaded cells' matrix, one whose
+  // loaded rectangle pads to shorter transforms uses those, and neither needs the grid's).
+  mutable std::unique_ptr<RollingOperator> op;
   // The products on the last solve's loaded rectangle when it pads to shorter transforms than
   // the grid (kFft only): kept for the next solve with the same rectangle (the solves of a
   // pitch search or a vertical balance on one patch), built anew for another.
@@ -999,7 +1002,6 @@ ExactTangentialSetup::ExactTangentialSetup(const PatchGrid& grid, const Material
     impl_->op = std::make_unique<DenseRollingOperator>(grid, RollingKernel(grid, coefficients));
   } else {
     impl_->generator = std::make_unique<RollingGenerator>(grid, cells);
-    impl_->op = std::make_unique<FftRollingOperator>(grid.nx, grid.ns, *impl_->generator);
   }
   impl_->kernel_tables = MakeKernelTables(grid, cells);
 }
@@ -1093,7 +1095,7 @@ TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& 
     }
   }
   // The products: the setup's (FFT or full dense), or on small patches the loaded cells' matrix.
-  const RollingOperator* op = setup.op.get();
+  const RollingOperator* op = nullptr;
   std::optional<LoadedDenseProduct> loaded_product;
   if (setup.generator && opt.method == ExactTangentialOptions::Method::kAuto &&
       n_loaded <= kLoadedDenseMaxCells) {
@@ -1116,6 +1118,12 @@ TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& 
       }
       op = setup.cropped.get();
     }
+  }
+  if (op == nullptr) {  // the whole grid's products
+    if (!setup.op) {
+      setup.op = std::make_unique<FftRollingOperator>(setup.nx, setup.ns, *setup.generator);
+    }
+    op = setup.op.get();
   }
   AndersonMixer mixer(opt.anderson_depth, 2 * n_loaded);
   Eigen::VectorXd x_start(2 * n_loaded), x_next(2 * n_loaded);  // before and after a sweep
