@@ -154,7 +154,9 @@ class RollingKernel {
 // best block 16 to 24 columns), converts the FFT work to refresh units. The blocks then share the
 // span evenly: ceil(span / k) blocks of equal width (to one column) instead of blocks of k with a
 // remainder, which keeps the products and lowers the refreshes (they grow as the square of a
-// block's width).
+// block's width). Re-measured with the deferred refreshes (SweepBlock; docs/speed.md): on
+// tang_problm_2c blocks of 22 (this ratio), 28 and 34 columns within the noise of each other, 44
+// slower; tang_problm_1c flat from 17 to 34; so the ratio stays.
 constexpr double kBlockCostRatio = 2.0;
 int FftBlockColumns(int nx, int ns, int span, int cells_loaded, double mean_column_length) {
   const double lx = internal::RealFftSize(nx), ls = internal::ComplexFftSize(ns);
@@ -704,17 +706,23 @@ LocalResult LocalSolveAt(const PatchGrid& grid, const SweepTables& tables,
   return SolveLocal(sx[k] - dxx * qx[k], ss[k] - dss * qs[k], dxx, dss, mu * pressure_Pa[k]);
 }
 
-// The innermost loop of the sweeps (most of a sweep's time on the benchmark grids, perf in
-// docs/speed.md): one column's slip refreshed after a chain update, from the table rows of the
-// cell (*1) and of the virtual cell beyond the chain end (*2). Compiled twice, for AVX2 (4
-// doubles per instruction, chosen at load time on CPUs that have it) and for the baseline (SSE2,
-// 2 doubles): the loop is element-wise and AVX2 without the "fma" target keeps every multiply
-// and add separately rounded, so both clones give the same bits. Not under ThreadSanitizer
-// (RAILWEAR_SANITIZE=thread): GCC instruments the clones' load-time resolver, which then runs
-// before the sanitizer's runtime is set up and crashes the program while librailwear loads.
+// The sweeps' two inner loops (most of a sweep's time on the benchmark grids, perf in
+// docs/speed.md) are compiled twice, for AVX2 (4 doubles per instruction, chosen at load time on
+// CPUs that have it) and for the baseline (SSE2, 2 doubles): the loops are element-wise and AVX2
+// without the "fma" target keeps every multiply and add separately rounded, so both clones give
+// the same bits. Not under ThreadSanitizer (RAILWEAR_SANITIZE=thread): GCC instruments the
+// clones' load-time resolver, which then runs before the sanitizer's runtime is set up and
+// crashes the program while librailwear loads.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_THREAD__)
-__attribute__((target_clones("avx2", "default")))
+#define RAILWEAR_SWEEP_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define RAILWEAR_SWEEP_CLONES
 #endif
+
+// One column's slip refreshed right after a chain update in that column (the cells after the
+// updated one), from the table rows of the cell (*1) and of the virtual cell beyond the chain
+// end (*2).
+RAILWEAR_SWEEP_CLONES
 void RefreshColumn(int len, const double* __restrict xx1, const double* __restrict xx2,
                    const double* __restrict xs1, const double* __restrict xs2,
                    const double* __restrict ss1, const double* __restrict ss2, double dqx,
@@ -727,77 +735,170 @@ void RefreshColumn(int len, const double* __restrict xx1, const double* __restri
   }
 }
 
+// The deferred refreshes' loop: adds to one target column's slip (len consecutive cells along s,
+// ox, os) the displacement of n_src sources on consecutive rows of one x-column with traction
+// changes qx[t], qs[t]: a Toeplitz product with the table row of their x offset. xx, xs, ss point
+// at the table entries of source 0 for the first target cell; source t's entries start t
+// entries earlier (its row is t further along s). Four sources per pass over the target, so the
+// target is read and written once per four.
+RAILWEAR_SWEEP_CLONES
+void AddKernelProducts(int len, int n_src, const double* xx, const double* xs, const double* ss,
+                       const double* qx, const double* qs, double* __restrict ox,
+                       double* __restrict os) {
+  int t = 0;
+  for (; t + 4 <= n_src; t += 4) {
+    // Source t + u reads a[j - u] (one base pointer per table keeps the loop in registers).
+    const double* __restrict a = xx - t, * __restrict b = xs - t, * __restrict c = ss - t;
+    const double x0 = qx[t], x1 = qx[t + 1], x2 = qx[t + 2], x3 = qx[t + 3];
+    const double s0 = qs[t], s1 = qs[t + 1], s2 = qs[t + 2], s3 = qs[t + 3];
+#pragma GCC ivdep
+    for (int j = 0; j < len; ++j) {
+      ox[j] += ((a[j] * x0 + b[j] * s0) + (a[j - 1] * x1 + b[j - 1] * s1)) +
+               ((a[j - 2] * x2 + b[j - 2] * s2) + (a[j - 3] * x3 + b[j - 3] * s3));
+      os[j] += ((b[j] * x0 + c[j] * s0) + (b[j - 1] * x1 + c[j - 1] * s1)) +
+               ((b[j - 2] * x2 + c[j - 2] * s2) + (b[j - 3] * x3 + c[j - 3] * s3));
+    }
+  }
+  for (; t < n_src; ++t) {
+    const double* __restrict a = xx - t, * __restrict b = xs - t, * __restrict c = ss - t;
+    const double x = qx[t], s = qs[t];
+#pragma GCC ivdep
+    for (int j = 0; j < len; ++j) {
+      ox[j] += a[j] * x + b[j] * s;
+      os[j] += b[j] * x + c[j] * s;
+    }
+  }
+}
+
+// Scratch of the block sweeps, kept across the blocks and sweeps of a solve.
+struct SweepScratch {
+  // The block's slip and the traction changes of its updated cells, column-major
+  // [ix * ns + js] (the refreshes run along s, contiguous).
+  Eigen::VectorXd sx_col, ss_col, dqx_col, dqs_col;
+  // The virtual cells' sources (the changes' telescoped chain ends, see SweepBlock): one entry
+  // per row and chain end met in the block, the negated sum of the chain updates there.
+  std::vector<int> virtual_row, virtual_col;
+  std::vector<double> virtual_qx, virtual_qs;
+  std::vector<int> row_entry;  // [ns]: the row's latest entry, -1 for none
+  SweepScratch(int cells, int ns)
+      : sx_col(cells), ss_col(cells), dqx_col(cells), dqs_col(cells), row_entry(ns, -1) {}
+};
+
 // One block (columns block_lo .. block_hi) of a Gauss-Seidel sweep from the leading edge with
 // relaxation w: tractions *qx_io, *qs_io updated chain by chain, the block's slip (from sx, ss)
-// refreshed in the column-major copies *sx_col_io, *ss_col_io.
+// refreshed in the column-major copies of *scratch.
+// A change dq at cell (ix, js) moves the whole chain ix .. chain end (the cell and everything
+// downstream of it up to the contact edge), whose slip is the telescoped sum
+// (A(m - ix) - A(m - v)) / dx, v the virtual cell just beyond the chain end: a source dq at the
+// cell and a source -dq at the virtual cell. The cells after it in its own column are refreshed
+// at once (RefreshColumn); the block's later columns only when the sweep reaches them, each
+// once, from all the changes made since the block began (deferred refreshes): one Toeplitz
+// product per earlier column of the block (the cells' sources) and one with the virtual cells'
+// sources, which sum per row and chain end (a row's cells share their chain end), so that term
+// costs one product per target column instead of one per changed cell. The slip each local
+// solve reads is the same as with a refresh after every update (to rounding: the sums run in
+// another order).
 void SweepBlock(const PatchGrid& grid, const SweepTables& tables,
                 const Eigen::VectorXd& pressure_Pa, double mu, double w, int block_lo, int block_hi,
                 const Eigen::VectorXd& sx, const Eigen::VectorXd& ss, Eigen::VectorXd* qx_io,
-                Eigen::VectorXd* qs_io, Eigen::VectorXd* sx_col_io, Eigen::VectorXd* ss_col_io) {
+                Eigen::VectorXd* qs_io, SweepScratch* scratch) {
   Eigen::VectorXd& qx = *qx_io;
   Eigen::VectorXd& qs = *qs_io;
-  Eigen::VectorXd& sx_col = *sx_col_io;
-  Eigen::VectorXd& ss_col = *ss_col_io;
+  SweepScratch& sc = *scratch;
+  const int ns = grid.ns;
   const std::vector<int>& chain_end = tables.chain_end;
   const std::vector<int>& first_loaded_col = tables.first_loaded_col;
   const std::vector<int>& last_loaded_col = tables.last_loaded_col;
-  const std::vector<double>& c_xx = tables.kernel->c_xx;
-  const std::vector<double>& c_xs = tables.kernel->c_xs;
-  const std::vector<double>& c_ss = tables.kernel->c_ss;
+  const double* c_xx = tables.kernel->c_xx.data();
+  const double* c_xs = tables.kernel->c_xs.data();
+  const double* c_ss = tables.kernel->c_ss.data();
   const int col_table = tables.kernel->col_table;
-  auto local_diagonal = [&](int ix, int js, double* dxx, double* dss) {
-    tables.LocalDiagonal(grid, ix, js, dxx, dss);
+  // The table entries (d, e = jm_lo - js) of x offset d, for the target rows from jm_lo and a
+  // source in row js.
+  auto table_at = [&](int d, int jm_lo, int js) {
+    return static_cast<size_t>(d + grid.nx) * col_table + static_cast<size_t>(ns - 1 - js + jm_lo);
   };
-  // Column-major copy of the block's slip (the refreshes run along s, contiguous).
   for (int im = block_lo; im <= block_hi; ++im) {
-    for (int jm = 0; jm < grid.ns; ++jm) {
-      const size_t t = static_cast<size_t>(im) * grid.ns + jm;
-      sx_col[t] = sx[grid.Index(im, jm)];
-      ss_col[t] = ss[grid.Index(im, jm)];
+    for (int jm = 0; jm < ns; ++jm) {
+      const size_t t = static_cast<size_t>(im) * ns + jm;
+      sc.sx_col[t] = sx[grid.Index(im, jm)];
+      sc.ss_col[t] = ss[grid.Index(im, jm)];
     }
   }
+  const size_t block_at = static_cast<size_t>(block_lo) * ns;
+  const size_t block_size = static_cast<size_t>(block_hi - block_lo + 1) * ns;
+  std::fill_n(sc.dqx_col.data() + block_at, block_size, 0.0);
+  std::fill_n(sc.dqs_col.data() + block_at, block_size, 0.0);
+  sc.virtual_row.clear();
+  sc.virtual_col.clear();
+  sc.virtual_qx.clear();
+  sc.virtual_qs.clear();
+  std::fill(sc.row_entry.begin(), sc.row_entry.end(), -1);
   for (int ix = block_hi; ix >= block_lo; --ix) {
-    for (int js = 0; js < grid.ns; ++js) {
+    const int lo = first_loaded_col[ix], hi = last_loaded_col[ix];
+    if (hi < lo) continue;  // no loaded cell in this column
+    const int len = hi - lo + 1;
+    const size_t col_at = static_cast<size_t>(ix) * ns;
+    double* ox = sc.sx_col.data() + col_at + lo;
+    double* os = sc.ss_col.data() + col_at + lo;
+    // The deferred refreshes: the changes of the block's earlier columns ...
+    for (int jx = ix + 1; jx <= block_hi; ++jx) {
+      const int s_lo = first_loaded_col[jx], s_hi = last_loaded_col[jx];
+      if (s_hi < s_lo) continue;
+      const size_t r = table_at(ix - jx, lo, s_lo);
+      const size_t from = static_cast<size_t>(jx) * ns + s_lo;
+      AddKernelProducts(len, s_hi - s_lo + 1, c_xx + r, c_xs + r, c_ss + r,
+                        sc.dqx_col.data() + from, sc.dqs_col.data() + from, ox, os);
+    }
+    // ... and their virtual cells', in runs of consecutive rows with the same virtual column.
+    const int entries = static_cast<int>(sc.virtual_row.size());
+    for (int e = 0; e < entries;) {
+      int run = 1;
+      while (e + run < entries && sc.virtual_col[e + run] == sc.virtual_col[e] &&
+             sc.virtual_row[e + run] == sc.virtual_row[e] + run) {
+        ++run;
+      }
+      const size_t r = table_at(ix - sc.virtual_col[e], lo, sc.virtual_row[e]);
+      AddKernelProducts(len, run, c_xx + r, c_xs + r, c_ss + r, sc.virtual_qx.data() + e,
+                        sc.virtual_qs.data() + e, ox, os);
+      e += run;
+    }
+    for (int js = lo; js <= hi; ++js) {
       const int k = grid.Index(ix, js);
       if (!(pressure_Pa[k] > 0.0)) continue;
-      const size_t t = static_cast<size_t>(ix) * grid.ns + js;
+      const size_t t = col_at + js;
       double dxx = 0.0, dss = 0.0;
-      local_diagonal(ix, js, &dxx, &dss);
-      const LocalResult loc = SolveLocal(sx_col[t] - dxx * qx[k], ss_col[t] - dss * qs[k], dxx, dss,
-                                         mu * pressure_Pa[k]);
+      tables.LocalDiagonal(grid, ix, js, &dxx, &dss);
+      const LocalResult loc = SolveLocal(sc.sx_col[t] - dxx * qx[k], sc.ss_col[t] - dss * qs[k],
+                                         dxx, dss, mu * pressure_Pa[k]);
       const double dqx = w * (loc.qx - qx[k]);
       const double dqs = w * (loc.qs - qs[k]);
       if (dqx == 0.0 && dqs == 0.0) continue;
-      // The change moves the whole chain ix .. chain end (the cell and everything downstream
-      // of it up to the contact edge), whose slip is the telescoped sum
-      // (A(m - k) - A(m - v)) / dx, v the virtual cell just beyond the chain end. Refreshed
-      // here: the loaded cells of the block not yet visited (columns block_lo .. ix).
       const int v = chain_end[k] - 1;
       for (int i = v + 1; i <= ix; ++i) {
         qx[grid.Index(i, js)] += dqx;
         qs[grid.Index(i, js)] += dqs;
       }
-      for (int im = block_lo; im <= ix; ++im) {
-        // In column ix only the cells after js are still to be visited.
-        const int jm_lo = im == ix ? std::max(js + 1, first_loaded_col[im]) : first_loaded_col[im];
-        const int len = last_loaded_col[im] - jm_lo + 1;
-        if (len <= 0) continue;
-        // Table entries (d, e = jm - js) for d = im - ix (the cell) and im - v (the virtual
-        // cell), jm = jm_lo ...
-        const size_t e0 = static_cast<size_t>(grid.ns - 1 - js + jm_lo);
-        const size_t r1 = static_cast<size_t>(im - ix + grid.nx) * col_table + e0;
-        const size_t r2 = static_cast<size_t>(im - v + grid.nx) * col_table + e0;
-        const double* __restrict xx1 = c_xx.data() + r1;
-        const double* __restrict xx2 = c_xx.data() + r2;
-        const double* __restrict xs1 = c_xs.data() + r1;
-        const double* __restrict xs2 = c_xs.data() + r2;
-        const double* __restrict ss1 = c_ss.data() + r1;
-        const double* __restrict ss2 = c_ss.data() + r2;
-        const size_t at = static_cast<size_t>(im) * grid.ns + jm_lo;
-        double* __restrict ox = sx_col.data() + at;
-        double* __restrict os = ss_col.data() + at;
-        RefreshColumn(len, xx1, xx2, xs1, xs2, ss1, ss2, dqx, dqs, ox, os);
+      // This column's cells after js at once (table rows d = 0 for the cell, ix - v for the
+      // virtual cell).
+      if (js < hi) {
+        const size_t r1 = table_at(0, js + 1, js), r2 = table_at(ix - v, js + 1, js);
+        RefreshColumn(hi - js, c_xx + r1, c_xx + r2, c_xs + r1, c_xs + r2, c_ss + r1, c_ss + r2,
+                      dqx, dqs, ox + (js + 1 - lo), os + (js + 1 - lo));
       }
+      // The later columns' refreshes deferred: the cell's source and its virtual cell's.
+      sc.dqx_col[t] = dqx;
+      sc.dqs_col[t] = dqs;
+      int& entry = sc.row_entry[js];
+      if (entry < 0 || sc.virtual_col[entry] != v) {
+        entry = static_cast<int>(sc.virtual_row.size());
+        sc.virtual_row.push_back(js);
+        sc.virtual_col.push_back(v);
+        sc.virtual_qx.push_back(0.0);
+        sc.virtual_qs.push_back(0.0);
+      }
+      sc.virtual_qx[entry] -= dqx;
+      sc.virtual_qs[entry] -= dqs;
     }
   }
 }
@@ -869,7 +970,10 @@ struct ExactTangentialSetup::Impl {
   double dx_m = 0.0, ds_m = 0.0;
   ExactTangentialOptions::Method method = ExactTangentialOptions::Method::kAuto;
   std::unique_ptr<RollingGenerator> generator;  // with kFft only
-  std::unique_ptr<RollingOperator> op;
+  // The products on the whole grid: the dense matrix (kDense), or the FFT products, built at the
+  // first solve that uses them (a solve on a small patch uses the loaded cells' matrix, one whose
+  // loaded rectangle pads to shorter transforms uses those, and neither needs the grid's).
+  mutable std::unique_ptr<RollingOperator> op;
   // The products on the last solve's loaded rectangle when it pads to shorter transforms than
   // the grid (kFft only): kept for the next solve with the same rectangle (the solves of a
   // pitch search or a vertical balance on one patch), built anew for another.
@@ -898,7 +1002,6 @@ ExactTangentialSetup::ExactTangentialSetup(const PatchGrid& grid, const Material
     impl_->op = std::make_unique<DenseRollingOperator>(grid, RollingKernel(grid, coefficients));
   } else {
     impl_->generator = std::make_unique<RollingGenerator>(grid, cells);
-    impl_->op = std::make_unique<FftRollingOperator>(grid.nx, grid.ns, *impl_->generator);
   }
   impl_->kernel_tables = MakeKernelTables(grid, cells);
 }
@@ -966,7 +1069,7 @@ TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& 
   const double p_max = pressure_Pa.maxCoeff();
   const bool dense = opt.method == ExactTangentialOptions::Method::kDense;
   const SweepTables tables = MakeSweepTables(grid, setup.kernel_tables, pressure_Pa);
-  Eigen::VectorXd sx_col(n), ss_col(n);
+  SweepScratch scratch(n, grid.ns);
   const int block_columns = ChooseBlockColumns(grid, tables, dense, opt);
 
   // 2. Iterate: exact slip, convergence check, one Gauss-Seidel sweep from the leading edge.
@@ -992,7 +1095,7 @@ TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& 
     }
   }
   // The products: the setup's (FFT or full dense), or on small patches the loaded cells' matrix.
-  const RollingOperator* op = setup.op.get();
+  const RollingOperator* op = nullptr;
   std::optional<LoadedDenseProduct> loaded_product;
   if (setup.generator && opt.method == ExactTangentialOptions::Method::kAuto &&
       n_loaded <= kLoadedDenseMaxCells) {
@@ -1015,6 +1118,12 @@ TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& 
       }
       op = setup.cropped.get();
     }
+  }
+  if (op == nullptr) {  // the whole grid's products
+    if (!setup.op) {
+      setup.op = std::make_unique<FftRollingOperator>(setup.nx, setup.ns, *setup.generator);
+    }
+    op = setup.op.get();
   }
   AndersonMixer mixer(opt.anderson_depth, 2 * n_loaded);
   Eigen::VectorXd x_start(2 * n_loaded), x_next(2 * n_loaded);  // before and after a sweep
@@ -1058,8 +1167,7 @@ TangentialSolution SolveWithSetup(const PatchGrid& grid, const Eigen::VectorXd& 
     gather(&x_start);
     for (int block_hi = tables.col_hi; block_hi >= tables.col_lo; block_hi -= block_columns) {
       const int block_lo = std::max(tables.col_lo, block_hi - block_columns + 1);
-      SweepBlock(grid, tables, pressure_Pa, mu, w, block_lo, block_hi, sx, ss, &qx, &qs, &sx_col,
-                 &ss_col);
+      SweepBlock(grid, tables, pressure_Pa, mu, w, block_lo, block_hi, sx, ss, &qx, &qs, &scratch);
       // The exact slip of the rest (one operator product); the last block needs none, the next
       // iteration starts with one.
       if (block_lo > tables.col_lo) {

@@ -62,14 +62,18 @@
 // Each outer iteration evaluates s = w + B q exactly (one FFT product of the four blocks, or the
 // dense matrix; on small patches the dense matrix of the loaded cells, Method::kAuto), checks
 // convergence, then sweeps once and mixes. The sweep runs over blocks of
-// adjacent x-columns, leading block first. Inside a block every update refreshes exactly, from a
-// table of A on the offsets, the slip of the block's loaded cells not yet visited (columns
-// block_lo .. ix; the chain's effect (A(m - k) - A(m - v)) / dx). After a block one operator
-// product refreshes the slip of all cells at once. Cells of later blocks are read only after that
-// product and visited cells not again in the sweep, so every local solve sees the exact slip of
-// the current iterate: the iterates are those of the plain sweep with a full refresh after every
-// update (to rounding), at a cost per sweep of about N_contact * (block / 2) * (loaded column
-// length) multiply-adds plus span / block products, span the x-columns from the first to the last
+// adjacent x-columns, leading block first. Inside a block the slip of the loaded cells not yet
+// visited is kept exact from a table of A on the offsets (the chain's effect
+// (A(m - k) - A(m - v)) / dx: a source at the cell and an opposite one at the virtual cell v
+// beyond the chain end): the cells after an update in its own column at once, a later column of
+// the block when the sweep reaches it, from all the block's changes so far (one Toeplitz product
+// per earlier column, and one with the virtual cells' sources, summed per row and chain end).
+// After a block one operator product refreshes the slip of all cells at once. Cells of later
+// blocks are read only after that product and visited cells not again in the sweep, so every
+// local solve sees the exact slip of the current iterate: the iterates are those of the plain
+// sweep with a full refresh after every update (to rounding), at a cost per sweep of about
+// N_contact * (block / 2) * (loaded column length) multiply-adds (4 per source and target cell)
+// plus span / block products, span the x-columns from the first to the last
 // loaded one (the blocks cover those only, in equal widths). The block width balances the two
 // (FftBlockColumns in the .cpp: 17 and 22 columns on CONTACT's tang_problm_1c / 2c grids), or
 // ExactTangentialOptions::block_columns sets it. The FFT products run on the loaded cells'

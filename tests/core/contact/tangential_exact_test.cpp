@@ -449,6 +449,48 @@ TEST(TangentialExact, BlockSweepAgreesWithDenseReference) {
   }
 }
 
+// The deferred refreshes inside a block (a later column's slip brought up to date when the
+// sweep reaches it, the chain ends' sources summed per row and chain end) on a loaded set with
+// holes: rows with two and three chains (a band of unloaded columns across the middle rows and a
+// single unloaded cell), so a row's chain ends differ within a block. One block over the whole
+// span (FFT products, and the dense operator's single block) gives the iterates of one-column
+// blocks, where nothing is deferred (every column's slip comes from an exact product), to
+// rounding.
+TEST(TangentialExact, DeferredRefreshesAgreeWithOneColumnBlocksOnHoles) {
+  const Case c = MakeCase(12);
+  Eigen::VectorXd p = c.p;
+  for (int j = 0; j < c.grid.ns; ++j) {
+    for (int i = 0; i < c.grid.nx; ++i) {
+      if (std::abs(c.grid.S(j)) < 0.5 * kB_m && std::abs(c.grid.X(i) - 0.2 * kA_m) < 0.1 * kA_m) {
+        p[c.grid.Index(i, j)] = 0.0;
+      }
+    }
+  }
+  p[c.grid.Index(c.grid.nx / 4, c.grid.ns / 2)] = 0.0;
+  const RollingInput in = Creepage(c.grid, 1e-4, -6.25e-4, 0.625);
+  ExactTangentialOptions one_column;
+  one_column.method = ExactTangentialOptions::Method::kFft;
+  one_column.block_columns = 1;
+  const TangentialSolution reference =
+      SolveTangentialExact(c.grid, p, in, SteelG(), SteelG(), Strict(one_column));
+  ASSERT_EQ(reference.status, SolverStatus::kConverged) << reference.message;
+  ExactTangentialOptions wide = one_column, dense;
+  wide.block_columns = c.grid.nx;
+  dense.method = ExactTangentialOptions::Method::kDense;
+  const double qmax = kMu * p.maxCoeff();
+  for (const ExactTangentialOptions& opt : {wide, dense}) {
+    const TangentialSolution f =
+        SolveTangentialExact(c.grid, p, in, SteelG(), SteelG(), Strict(opt));
+    ASSERT_EQ(f.status, SolverStatus::kConverged) << f.message;
+    EXPECT_EQ(f.iterations, reference.iterations);
+    EXPECT_LE((f.traction_x_Pa - reference.traction_x_Pa).cwiseAbs().maxCoeff(),
+              kFastVersusDenseTolerance * qmax);
+    EXPECT_LE((f.traction_s_Pa - reference.traction_s_Pa).cwiseAbs().maxCoeff(),
+              kFastVersusDenseTolerance * qmax);
+    EXPECT_EQ(f.stick, reference.stick);
+  }
+}
+
 // Anderson acceleration changes the path, not the fixed point: on the README case (32 x 16) the
 // accelerated and the plain relaxed sweeps (the previous defaults) reach the same tractions, the
 // accelerated one in far fewer sweeps (measured 32 against 93).
