@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "core/contact/contact_solver.h"
 #include "core/geometry/wheel_rail_geometry.h"
 #include "core/numerics/check.h"
 #include "core/profile/builtin_profiles.h"
@@ -49,6 +50,17 @@ bool Flanging(const WheelsetSpec& at_equilibrium, double d, RailSide side, const
   return angle >= kFlangeContactAngle_rad;
 }
 
+// The last point below the switch of `test` (false at lo, true at hi) by bisection to
+// kFlangeOnsetResolution_m: lo's side of the final bracket.
+template <typename Test>
+double BisectLastBelow(double lo, double hi, const Test& test) {
+  while (hi - lo > kFlangeOnsetResolution_m) {
+    const double mid = 0.5 * (lo + hi);
+    (test(mid) ? hi : lo) = mid;
+  }
+  return lo;
+}
+
 // The wheelset's position at its equilibrium (the nodes' common yaw and roll).
 WheelsetSpec EquilibriumWheelset(const VehicleEquilibrium& eq, int wheelset) {
   const CurvedWheelset& w = eq.result.wheelsets[wheelset];
@@ -57,8 +69,8 @@ WheelsetSpec EquilibriumWheelset(const VehicleEquilibrium& eq, int wheelset) {
 
 }  // namespace
 
-double FlangeOnsetOffset(const VehicleEquilibrium& eq, int wheelset, RailSide side,
-                         double spread_std_m) {
+double RigidFlangeOnsetOffset(const VehicleEquilibrium& eq, int wheelset, RailSide side,
+                              double spread_std_m) {
   RAILWEAR_CHECK(spread_std_m > 0.0);
   const CurvedWheelset& w = eq.result.wheelsets[wheelset];
   const CurvingProblem& p = eq.problem;
@@ -81,11 +93,40 @@ double FlangeOnsetOffset(const VehicleEquilibrium& eq, int wheelset, RailSide si
     lo = x * spread_std_m;
   }
   if (hi < 0.0) return std::numeric_limits<double>::infinity();
-  while (hi - lo > kFlangeOnsetResolution_m) {
-    const double mid = 0.5 * (lo + hi);
-    (flanging(mid) ? hi : lo) = mid;
+  return BisectLastBelow(lo, hi, flanging);
+}
+
+double FlangeOnsetOffset(const WearStudy& study, int traffic_index, const VehicleEquilibrium& eq,
+                         int wheelset, RailSide side) {
+  const double spread_std_m = study.traffic[traffic_index].lateral_shift_std_m;
+  const double rigid = RigidFlangeOnsetOffset(eq, wheelset, side, spread_std_m);
+  if (!(rigid > 0.0) || !std::isfinite(rigid)) return rigid;
+  const bool high = side == RailSide::kHigh;
+  const Profile& rail = high ? eq.problem.high_rail : eq.problem.low_rail;
+  // Whether the contact the nodes solve at offset d toward this rail has a flange patch (a
+  // contact that does not converge counts as one: the hold stays below what the model cannot
+  // solve).
+  const auto flanging = [&](double d) {
+    const LoadCase c = internal::VehicleCasesAtOffset(study, traffic_index, eq, wheelset,
+                                                      high ? d : -d, 0.0, 0, 1.0)[high ? 0 : 1];
+    const ContactResult r = SolveContact(LoadCaseProblem(study, rail, c));
+    if (r.status == SolverStatus::kNotConverged) return true;
+    if (r.status != SolverStatus::kConverged) return false;
+    for (const PatchResult& patch : r.patches) {
+      if (patch.contact_angle_rad >= kFlangeContactAngle_rad) return true;
+    }
+    return false;
+  };
+  // The first of kFlangeOnsetScanStd's offsets below the rigid onset, then the rigid onset itself,
+  // that has a flange patch; none: the rigid onset stands.
+  double lo = 0.0;
+  for (const double x : kFlangeOnsetScanStd) {
+    const double d = std::min(x * spread_std_m, rigid);
+    if (flanging(d)) return BisectLastBelow(lo, d, flanging);
+    if (d == rigid) break;
+    lo = d;
   }
-  return lo;
+  return rigid;
 }
 
 RailGaugePoints UnwornGaugePoints(const WearStudy& study) {
@@ -174,17 +215,17 @@ VehicleEquilibrium SolveVehicleEquilibrium(const WearStudy& study, int traffic_i
   }
   if (c.lateral_shift_std_m > 0.0) {
     for (int w = 0; w < static_cast<int>(r.wheelsets.size()); ++w) {
-      eq.flange_onset_m.push_back(
-          {FlangeOnsetOffset(eq, w, RailSide::kHigh, c.lateral_shift_std_m),
-           FlangeOnsetOffset(eq, w, RailSide::kLow, c.lateral_shift_std_m)});
+      eq.flange_onset_m.push_back({FlangeOnsetOffset(study, traffic_index, eq, w, RailSide::kHigh),
+                                   FlangeOnsetOffset(study, traffic_index, eq, w, RailSide::kLow)});
     }
   }
   return eq;
 }
 
-std::vector<LoadCase> VehicleNodeCases(const WearStudy& study, int traffic_index,
-                                       const VehicleEquilibrium& eq, int wheelset, double x,
-                                       int node, double node_weight) {
+std::vector<LoadCase> internal::VehicleCasesAtOffset(const WearStudy& study, int traffic_index,
+                                                     const VehicleEquilibrium& eq, int wheelset,
+                                                     double offset_m, double x, int node,
+                                                     double node_weight) {
   const TrafficCase& c = study.traffic[traffic_index];
   const VehicleSpec& v = study.vehicles[c.vehicle];
   const CurvingProblem& p = eq.problem;
@@ -194,13 +235,7 @@ std::vector<LoadCase> VehicleNodeCases(const WearStudy& study, int traffic_index
   const double kappa = study.curve.curvature_per_m();
   const int n_ws = static_cast<int>(r.wheelsets.size());
   WheelsetSpec ws = EquilibriumWheelset(eq, wheelset);
-  double offset = c.lateral_shift_std_m * x;
-  // A node pushing a wheel toward its rail's flange stops at the wheelset's one onset of flange
-  // contact on that side (at the equilibrium when that wheel is in flange contact already), so
-  // every node beyond it is the same position, bit for bit.
-  if (offset > 0.0) offset = std::min(offset, eq.flange_onset_m[wheelset][0]);
-  if (offset < 0.0) offset = std::max(offset, -eq.flange_onset_m[wheelset][1]);
-  ws.lateral_displacement_m = w.lateral_m + offset;
+  ws.lateral_displacement_m = w.lateral_m + offset_m;
   const WheelsetPlacement placed = PlaceWheelsetAt(*p.gauge_points, p.track, ws);
   WheelMotion axle;
   axle.speed_m_s = c.speed_m_s;
@@ -226,6 +261,19 @@ std::vector<LoadCase> VehicleNodeCases(const WearStudy& study, int traffic_index
     cases.push_back(lc);
   }
   return cases;
+}
+
+std::vector<LoadCase> VehicleNodeCases(const WearStudy& study, int traffic_index,
+                                       const VehicleEquilibrium& eq, int wheelset, double x,
+                                       int node, double node_weight) {
+  double offset = study.traffic[traffic_index].lateral_shift_std_m * x;
+  // A node pushing a wheel toward its rail's flange stops at the wheelset's one onset of flange
+  // contact on that side (at the equilibrium when that wheel is in flange contact already), so
+  // every node beyond it is the same position, bit for bit.
+  if (offset > 0.0) offset = std::min(offset, eq.flange_onset_m[wheelset][0]);
+  if (offset < 0.0) offset = std::max(offset, -eq.flange_onset_m[wheelset][1]);
+  return internal::VehicleCasesAtOffset(study, traffic_index, eq, wheelset, offset, x, node,
+                                        node_weight);
 }
 
 std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index,

@@ -9,11 +9,12 @@
 // (lateral_shift_std_m: track irregularity, hunting) every wheelset is also placed at the
 // Gauss-Hermite nodes around its equilibrium at the same yaw, roll, loads and pitch velocity;
 // a node never pushes a wheel into flange contact: its offset toward a rail stops where that
-// wheel's rigid contact reaches 45 degrees (the flange's onset, found on the step's rails), and
-// at the equilibrium when the wheel is in flange contact already (its flange force is the
-// equilibrium's: an imposed position there would be wheel climb, not a vehicle's state). Weights:
-// the entry's share (normalised per
-// rail) times the node's weight over the vehicle's wheelsets.
+// wheel's contact (the study's elastic contact model) would first have a patch at 45 degrees or
+// steeper (the flange's onset, FlangeOnsetOffset, found on the step's rails), and at the
+// equilibrium when the wheel is in flange contact already (its flange force is the
+// equilibrium's: an imposed position there would be wheel climb, not a vehicle's state).
+// Weights: the entry's share (normalised per rail) times the node's weight over the vehicle's
+// wheelsets.
 #pragma once
 
 #include <array>
@@ -66,7 +67,7 @@ struct VehicleEquilibrium {
   bool usable = false;
   // Per wheelset, [0] toward the high rail and [1] toward the low rail: the largest lateral
   // offset [m, >= 0; infinity: none] a spread node takes from the equilibrium in that direction
-  // (FlangeOnsetOffset); empty without a spread.
+  // (FlangeOnsetOffset, elastic); empty without a spread.
   std::vector<std::array<double, 2>> flange_onset_m;
 };
 VehicleEquilibrium SolveVehicleEquilibrium(const WearStudy& study, int traffic_index,
@@ -82,16 +83,30 @@ inline constexpr std::array<double, 8> kFlangeOnsetScanStd = {0.25, 0.5, 1.0,  2
 // FlangeOnsetOffset's bisection stops when its bracket is this narrow [m].
 inline constexpr double kFlangeOnsetResolution_m = 1e-5;
 
-// The onset of flange contact of one wheel of a wheelset of a vehicle equilibrium, as the lateral
-// offset [m, >= 0] from the equilibrium toward the rail of `side`: the last position of a
+// The rigid onset of flange contact of one wheel of a wheelset of a vehicle equilibrium, as the
+// lateral offset [m, >= 0] from the equilibrium toward the rail of `side`: the last position of a
 // bisection on kFlangeOnsetScanStd's bracket (scaled by the spread's standard deviation
 // spread_std_m > 0) where that wheel's rigid first contact (its smallest vertical gap, on a 0.1
 // mm sampling) stays below kFlangeContactAngle_rad, to kFlangeOnsetResolution_m; 0 when the
 // wheel is in flange contact at the equilibrium already, infinity when it is not within 32 std.
-// Found once per wheelset, side and step (SolveVehicleEquilibrium) so that every node beyond it
-// is held at exactly this offset (docs/wear.md, "The flange onset, once per wheelset").
-double FlangeOnsetOffset(const VehicleEquilibrium& eq, int wheelset, RailSide side,
-                         double spread_std_m);
+// Geometry only: the elastic approach brings the flange into contact before this (below).
+double RigidFlangeOnsetOffset(const VehicleEquilibrium& eq, int wheelset, RailSide side,
+                              double spread_std_m);
+
+// The onset of flange contact of one wheel of a wheelset of study.traffic[traffic_index] (a
+// vehicle entry with a spread) at its equilibrium eq, as the lateral offset [m, >= 0] toward the
+// rail of `side` that every spread node beyond it is held at: the last position below the first
+// one where the contact the nodes solve (LoadCaseProblem, the study's contact model, elastic) has
+// a patch at kFlangeContactAngle_rad or steeper (or does not converge), found on
+// kFlangeOnsetScanStd's offsets below the rigid onset and the rigid onset itself, then bisected
+// to kFlangeOnsetResolution_m. The rigid onset (RigidFlangeOnsetOffset) when no such position
+// lies below it; 0 and infinity as there. So a node never puts a flange patch into the contact
+// (its approach of about 0.1 mm brings one in up to 0.06 mm before the rigid onset on a worn
+// gauge corner: docs/wear.md, "The spike below the flange onset"). A few contact solves per
+// wheelset and side with a finite rigid onset. Found once per wheelset, side and step
+// (SolveVehicleEquilibrium), so every node beyond it is held at exactly this offset.
+double FlangeOnsetOffset(const WearStudy& study, int traffic_index, const VehicleEquilibrium& eq,
+                         int wheelset, RailSide side);
 
 // The two load cases (high rail, then low) of one wheelset of a vehicle entry at the spread
 // node x [standard-normal units]: the wheelset displaced by lateral_shift_std_m x from its
@@ -100,6 +115,14 @@ double FlangeOnsetOffset(const VehicleEquilibrium& eq, int wheelset, RailSide si
 std::vector<LoadCase> VehicleNodeCases(const WearStudy& study, int traffic_index,
                                        const VehicleEquilibrium& eq, int wheelset, double x,
                                        int node, double node_weight);
+
+namespace internal {
+// VehicleNodeCases at the lateral offset offset_m [m] from the equilibrium (toward the high rail
+// for > 0) as given, without the hold at the flange onset; x is the cases' spread_x.
+std::vector<LoadCase> VehicleCasesAtOffset(const WearStudy& study, int traffic_index,
+                                           const VehicleEquilibrium& eq, int wheelset,
+                                           double offset_m, double x, int node, double node_weight);
+}  // namespace internal
 
 // The load cases of study.traffic[traffic_index] (a vehicle entry) on the rails of this step,
 // both in the track frame (canted). Throws std::runtime_error naming the entry and the vehicle

@@ -23,6 +23,22 @@
 
 namespace railwear {
 
+ContactProblem LoadCaseProblem(const WearStudy& study, const Profile& rail_track,
+                               const LoadCase& load_case) {
+  // The study's set-up; the wheel from its traffic entry, everything else from the case.
+  ContactProblem problem;
+  problem.setup() = study.setup();
+  problem.wheel_profile = CaseWheelProfile(study.traffic[load_case.traffic_index], load_case);
+  problem.rail_profile = rail_track;
+  problem.placement = load_case.placement;
+  problem.load.vertical_force_N = load_case.vertical_force_N;
+  RollingOptions rolling;
+  rolling.motion = load_case.motion;
+  rolling.friction = load_case.friction;
+  problem.rolling = rolling;
+  return problem;
+}
+
 namespace {
 
 void RequirePositive(const char* key, double value) {
@@ -103,18 +119,7 @@ CaseOutcome SolveLoadCase(const WearStudy& study, const RailTarget& target,
   const WearGrid& grid = *target.grid;
   const Profile& rail_track = rail.profile();
   const TrafficCase& traffic = study.traffic[load_case.traffic_index];
-  // The study's set-up; the wheel from its traffic entry, everything else from the case.
-  ContactProblem problem;
-  problem.setup() = study.setup();
-  problem.wheel_profile = CaseWheelProfile(traffic, load_case);
-  problem.rail_profile = rail_track;
-  problem.placement = load_case.placement;
-  problem.load.vertical_force_N = load_case.vertical_force_N;
-  RollingOptions rolling;
-  rolling.motion = load_case.motion;
-  rolling.friction = load_case.friction;
-  problem.rolling = rolling;
-
+  const ContactProblem problem = LoadCaseProblem(study, rail_track, load_case);
   ContactResult result = SolveContact(problem);
   // The wear factor of each patch: its zone's friction condition (top of rail, or gauge face
   // when the patch is steeper than the boundary and the entry has a gauge-face condition).

@@ -206,6 +206,13 @@ struct UnwornRails {
   std::optional<Profile> low;
 };
 
+// The contact problem a wear step solves for a load case on its rail (rail_track: the case's rail
+// canted into its track frame): the study's set-up, the case's wheel (CaseWheelProfile), its
+// placement, vertical load, motion and friction. Also what FlangeOnsetOffset solves
+// (wear/vehicle_traffic.h), so that the flange onset is the nodes' own contact model's.
+ContactProblem LoadCaseProblem(const WearStudy& study, const Profile& rail_track,
+                               const LoadCase& load_case);
+
 namespace internal {
 // MakeInitialState without ValidateWearStudy, for callers that validated the study once already
 // (the scene reader, railwear accuracy).

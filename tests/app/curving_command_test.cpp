@@ -1,5 +1,6 @@
 // `railwear curving` and the scene keys of vehicle traffic: [track] radius and cant, [[vehicle]]
 // tables, traffic entries naming a vehicle; a single S1002 wheelset on R 1500 m (about a second).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +11,7 @@
 
 #include "app/scene.h"
 #include "app/stored_study.h"
+#include "core/contact/contact_solver.h"
 #include "profiles_db/profile_store.h"
 #include "tests/app/cli_runner.h"
 #include "tests/app/wear_scenes.h"
@@ -319,12 +321,16 @@ TEST_F(CurvingCommandTest, WornRailsOfStep66Converge) {
 }
 
 // The spread nodes on step 66's worn rails (issue 16; docs/wear.md, "The flange onset, once per
-// wheelset"), where the Y25 wagon's leading wheelset on the high rail reaches its flange's onset
-// at about +0.2 std of the 1 mm spread: each node used to bisect its own onset to 10 um, and the
-// third (flange) patch appeared at scattered nodes (x = 0.53-0.60, 1.25, 2.29, 4.06 of the
-// 320-node rule), decided by where each bisection stopped. Now every node beyond the onset is the
-// same wheelset position, bit for bit (geometry and the wagon's curving from the step's stored
-// start, no contact solve of the spread).
+// wheelset" and "The spike below the flange onset"), where the Y25 wagon's leading wheelset on
+// the high rail reaches its flange's onset at about +0.15 std of the 1 mm spread: each node used
+// to bisect its own onset to 10 um, and the third (flange) patch appeared at scattered nodes (x =
+// 0.53-0.60, 1.25, 2.29, 4.06 of the 320-node rule), decided by where each bisection stopped. Now
+// every node beyond the onset is the same wheelset position, bit for bit. And the onset is the
+// elastic contact's: the rigid first contact reaches 45 degrees only at +0.21 std, but from +0.15
+// std on the wheel's approach (about 0.1 mm) already brings a flange patch (61 degrees) in, which
+// carried up to 6 times the held response (the spike). The held position has no flange patch;
+// 20 um further out (two of the bisection's resolution) it has one. (The wagon's curving from the
+// step's stored start, and the onset's and these two contact solves; no wear step.)
 TEST(CurvingOnStoredRailsTest, SpreadNodesOnStep66AreHeldAtOneFlangeOnset) {
   const fs::path data = fs::path(RAILWEAR_SOURCE_DIR) / "tests/data";
   const app::Scene scene = app::ParseScene(ReadFile(data / "r600_10mgt_scene.toml"), "s.toml");
@@ -361,17 +367,37 @@ TEST(CurvingOnStoredRailsTest, SpreadNodesOnStep66AreHeldAtOneFlangeOnset) {
   }
   // Below the onset a node keeps its own offset.
   EXPECT_NE(high_case(0.05).placement.lateral_shift_m, held.placement.lateral_shift_m);
+
+  // The onset is the elastic contact's, below the rigid one.
+  const double rigid_m = RigidFlangeOnsetOffset(eq, 0, RailSide::kHigh, std_m);
+  std::printf("rigid onset %.4f std\n", rigid_m / std_m);
+  EXPECT_LT(onset_m, rigid_m - 0.03 * std_m);
+  const auto steepest_patch_rad = [&](double offset_m) {
+    const LoadCase c =
+        internal::VehicleCasesAtOffset(study, wagon, eq, 0, offset_m, 0.0, 0, 1.0)[0];
+    const ContactResult r = SolveContact(LoadCaseProblem(study, eq.problem.high_rail, c));
+    EXPECT_EQ(r.status, SolverStatus::kConverged);
+    double steepest = 0.0;
+    for (const PatchResult& p : r.patches) steepest = std::max(steepest, p.contact_angle_rad);
+    return steepest;
+  };
+  EXPECT_LT(steepest_patch_rad(onset_m), kFlangeContactAngle_rad);
+  EXPECT_GE(steepest_patch_rad(onset_m + 2.0 * kFlangeOnsetResolution_m), kFlangeContactAngle_rad);
 }
 
 // Issue 16's must-show on the curve's worn rails: the adaptive spread rule at the scenes' default
-// tolerance (0.005) against the converged fixed reference, 320 piecewise-linear nodes per wheelset
-// (L256, docs/wear.md "The converged fixed reference on the curve"), on step 66 (5.2 MGT), the
-// high rail's depth field per pass summed over all wheelsets of both vehicles. Before each
-// wheelset's flange onset was found once, the adaptive rule was 12.1 % off here (a two-valued
-// response at per-node onsets); now 0.6 % (`spread_depth_study`, docs/wear.md "The flange onset,
-// once per wheelset"). The bound is the issue's 2 %. Two wear steps, about 20 s.
-TEST(CurvingOnStoredRailsTest, AdaptiveSpreadRuleIsWithin2PercentOfTheReferenceOnStep66) {
-  constexpr double kIssueBound = 0.02;
+// tolerance (0.005), and the fixed piecewise-linear rule on 80 nodes (L64), against the converged
+// fixed reference, 320 piecewise-linear nodes per wheelset (L256, docs/wear.md "The converged
+// fixed reference on the curve"), on step 66 (5.2 MGT), the high rail's depth field per pass
+// summed over all wheelsets of both vehicles. Before each wheelset's flange onset was found once,
+// the adaptive rule was 12.1 % off here (a two-valued response at per-node onsets); with the
+// rigid onset found once 0.6 %, L64 3.0 % (the spike of elastic flange patches below the rigid
+// onset); with the elastic onset 0.9 % and 0.1 % (`spread_depth_study`, docs/wear.md "The spike
+// below the flange onset"). The bounds: the issue's 2 % for the adaptive rule, 1 % for L64 (the
+// brief's target; the rigid onset's 3.0 % fails it). Three wear steps (6872 load cases), 84 s CPU
+// on cores shared at a load average of 10.
+TEST(CurvingOnStoredRailsTest, AdaptiveAndL64SpreadRulesAreNearTheReferenceOnStep66) {
+  constexpr double kIssueBound = 0.02, kL64Bound = 0.01;
   const fs::path data = fs::path(RAILWEAR_SOURCE_DIR) / "tests/data";
   const ProfileStore db = ProfileStore::OpenReadOnly((data / "r600_10mgt_step66.sqlite").string());
   const RunInfo run = app::FindRunOrThrow(db, "R600 curve, coach and Y25 wagon");
@@ -393,22 +419,27 @@ TEST(CurvingOnStoredRailsTest, AdaptiveSpreadRuleIsWithin2PercentOfTheReferenceO
     }
     return field;
   };
-  WearOptions reference, adaptive;
+  WearOptions reference, adaptive, l64;
   reference.spread_nodes = LinearSpreadNodes(256);
   adaptive.integration_tolerance = 0.005;
+  l64.spread_nodes = LinearSpreadNodes(64);
   const std::vector<double> ref = high_rail_field(reference);
-  const std::vector<double> got = high_rail_field(adaptive);
-  ASSERT_EQ(got.size(), ref.size());
-  double diff2 = 0.0, ref2 = 0.0;
-  for (size_t b = 0; b < ref.size(); ++b) {
-    diff2 += (got[b] - ref[b]) * (got[b] - ref[b]);
-    ref2 += ref[b] * ref[b];
-  }
-  ASSERT_GT(ref2, 0.0);
-  const double relative = std::sqrt(diff2 / ref2);
-  std::printf("step 66, high rail: adaptive rule's depth field %.2f %% off L256's\n",
-              100 * relative);
-  EXPECT_LE(relative, kIssueBound);
+  const auto relative_to_ref = [&](const std::vector<double>& got) {
+    EXPECT_EQ(got.size(), ref.size());
+    double diff2 = 0.0, ref2 = 0.0;
+    for (size_t b = 0; b < ref.size() && b < got.size(); ++b) {
+      diff2 += (got[b] - ref[b]) * (got[b] - ref[b]);
+      ref2 += ref[b] * ref[b];
+    }
+    EXPECT_GT(ref2, 0.0);
+    return std::sqrt(diff2 / ref2);
+  };
+  const double adaptive_off = relative_to_ref(high_rail_field(adaptive));
+  const double l64_off = relative_to_ref(high_rail_field(l64));
+  std::printf("step 66, high rail: depth field off L256's: adaptive rule %.2f %%, L64 %.2f %%\n",
+              100 * adaptive_off, 100 * l64_off);
+  EXPECT_LE(adaptive_off, kIssueBound);
+  EXPECT_LE(l64_off, kL64Bound);
 }
 
 // Step 81 of the same run (6.24 MGT), where the 10 MGT run stopped after 1040 wheelset solves

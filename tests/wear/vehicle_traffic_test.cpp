@@ -110,7 +110,9 @@ TEST(VehicleTrafficTest, NodesBeyondTheFlangeOnsetAreHeldAtOneOffset) {
     EXPECT_GT(onset_m, 0.0);
     EXPECT_LT(onset_m, 1.35 * std_m);  // both outer nodes beyond it
     const RailSide rail = side == 0 ? RailSide::kHigh : RailSide::kLow;
-    EXPECT_EQ(FlangeOnsetOffset(eq, 0, rail, std_m), onset_m);  // deterministic
+    EXPECT_EQ(FlangeOnsetOffset(study, 0, eq, 0, rail), onset_m);  // deterministic
+    // The elastic contact's onset: at or below the rigid first contact's 45 degrees.
+    EXPECT_LE(onset_m, RigidFlangeOnsetOffset(eq, 0, rail, std_m));
   }
   const auto shift = [&](double x) {
     return VehicleNodeCases(study, 0, eq, 0, x, 0, 1.0)[0].placement.lateral_shift_m;
