@@ -51,10 +51,12 @@ bool Flanging(const WheelsetSpec& at_equilibrium, double d, RailSide side, const
 }
 
 // The last point below the switch of `test` (false at lo, true at hi) by bisection to
-// kFlangeOnsetResolution_m: lo's side of the final bracket.
+// kFlangeOnsetResolution_m: lo's side of the final bracket; or, as soon as lo reaches
+// `enough` (the result cannot lie below it), that lo.
 template <typename Test>
-double BisectLastBelow(double lo, double hi, const Test& test) {
-  while (hi - lo > kFlangeOnsetResolution_m) {
+double BisectLastBelow(double lo, double hi, const Test& test,
+                       double enough = std::numeric_limits<double>::infinity()) {
+  while (hi - lo > kFlangeOnsetResolution_m && lo < enough) {
     const double mid = 0.5 * (lo + hi);
     (test(mid) ? hi : lo) = mid;
   }
@@ -97,7 +99,7 @@ double RigidFlangeOnsetOffset(const VehicleEquilibrium& eq, int wheelset, RailSi
 }
 
 double FlangeOnsetOffset(const WearStudy& study, int traffic_index, const VehicleEquilibrium& eq,
-                         int wheelset, RailSide side) {
+                         int wheelset, RailSide side, double enough_m) {
   const double spread_std_m = study.traffic[traffic_index].lateral_shift_std_m;
   const double rigid = RigidFlangeOnsetOffset(eq, wheelset, side, spread_std_m);
   if (!(rigid > 0.0) || !std::isfinite(rigid)) return rigid;
@@ -119,14 +121,36 @@ double FlangeOnsetOffset(const WearStudy& study, int traffic_index, const Vehicl
   };
   // The first of kFlangeOnsetScanStd's offsets below the rigid onset, then the rigid onset itself,
   // that has a flange patch; none: the rigid onset stands.
+  // Every offset this returns is at or above the bracket's lo: once lo reaches enough_m, so has
+  // the onset, and the scan stops there.
   double lo = 0.0;
   for (const double x : kFlangeOnsetScanStd) {
+    if (lo >= enough_m) return lo;
     const double d = std::min(x * spread_std_m, rigid);
-    if (flanging(d)) return BisectLastBelow(lo, d, flanging);
+    if (flanging(d)) return BisectLastBelow(lo, d, flanging, enough_m);
     if (d == rigid) break;
     lo = d;
   }
   return rigid;
+}
+
+std::array<double, 2> OutermostSpreadNodes(const WearOptions& o) {
+  std::vector<double> nodes;
+  switch (SpreadRuleOf(o)) {
+    case SpreadRule::kAdaptive:
+      nodes.assign(kSpreadInitialNodes.begin(), kSpreadInitialNodes.end());
+      break;
+    case SpreadRule::kPiecewiseLinear:
+      nodes = o.spread_nodes;
+      break;
+    case SpreadRule::kGaussHermite: {
+      std::vector<double> weights;
+      GaussHermiteProbabilists(o.quadrature_points, &nodes, &weights);
+      break;
+    }
+  }
+  const auto [lowest, highest] = std::minmax_element(nodes.begin(), nodes.end());
+  return {std::max(0.0, *highest), std::max(0.0, -*lowest)};
 }
 
 RailGaugePoints UnwornGaugePoints(const WearStudy& study) {
@@ -214,9 +238,13 @@ VehicleEquilibrium SolveVehicleEquilibrium(const WearStudy& study, int traffic_i
         c.name, v.name, c.speed_m_s, ToString(r.status), r.message));
   }
   if (c.lateral_shift_std_m > 0.0) {
+    // The rule's outermost nodes bound the search: an onset beyond them holds no node.
+    const std::array<double, 2> outermost = OutermostSpreadNodes(study.options);
+    const double std_m = c.lateral_shift_std_m;
     for (int w = 0; w < static_cast<int>(r.wheelsets.size()); ++w) {
-      eq.flange_onset_m.push_back({FlangeOnsetOffset(study, traffic_index, eq, w, RailSide::kHigh),
-                                   FlangeOnsetOffset(study, traffic_index, eq, w, RailSide::kLow)});
+      eq.flange_onset_m.push_back(
+          {FlangeOnsetOffset(study, traffic_index, eq, w, RailSide::kHigh, outermost[0] * std_m),
+           FlangeOnsetOffset(study, traffic_index, eq, w, RailSide::kLow, outermost[1] * std_m)});
     }
   }
   return eq;

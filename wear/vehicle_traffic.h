@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "wear/traffic.h"
@@ -67,7 +68,9 @@ struct VehicleEquilibrium {
   bool usable = false;
   // Per wheelset, [0] toward the high rail and [1] toward the low rail: the largest lateral
   // offset [m, >= 0; infinity: none] a spread node takes from the equilibrium in that direction
-  // (FlangeOnsetOffset, elastic); empty without a spread.
+  // (FlangeOnsetOffset, elastic, bounded by the study's rule's outermost node on that side:
+  // OutermostSpreadNodes; beyond that node it is only a lower bound of the onset, so it holds
+  // the rule's own nodes, not farther ones); empty without a spread.
   std::vector<std::array<double, 2>> flange_onset_m;
 };
 VehicleEquilibrium SolveVehicleEquilibrium(const WearStudy& study, int traffic_index,
@@ -105,8 +108,20 @@ double RigidFlangeOnsetOffset(const VehicleEquilibrium& eq, int wheelset, RailSi
 // gauge corner: docs/wear.md, "The spike below the flange onset"). A few contact solves per
 // wheelset and side with a finite rigid onset. Found once per wheelset, side and step
 // (SolveVehicleEquilibrium), so every node beyond it is held at exactly this offset.
+// enough_m: as soon as the scan or the bisection has shown that the onset lies at or beyond this
+// offset, their bracket's lower end is returned instead (at or beyond enough_m, at or below the
+// onset): a node at or below enough_m is then held by neither value, so the nodes' cases are the
+// same as with the onset itself, for fewer contact solves (SolveVehicleEquilibrium passes the
+// rule's outermost node).
 double FlangeOnsetOffset(const WearStudy& study, int traffic_index, const VehicleEquilibrium& eq,
-                         int wheelset, RailSide side);
+                         int wheelset, RailSide side,
+                         double enough_m = std::numeric_limits<double>::infinity());
+
+// The outermost nodes of the options' spread rule (SpreadRuleOf) [standard-normal units, >= 0]:
+// [0] the largest node toward the high rail (x > 0), [1] toward the low rail (-x for x < 0):
+// the Gauss-Hermite rule's outer node, the piecewise-linear rule's ends, the adaptive rule's
+// first nodes (kSpreadInitialNodes: it only bisects between nodes).
+std::array<double, 2> OutermostSpreadNodes(const WearOptions& o);
 
 // The two load cases (high rail, then low) of one wheelset of a vehicle entry at the spread
 // node x [standard-normal units]: the wheelset displaced by lateral_shift_std_m x from its

@@ -56,7 +56,9 @@ int main(int argc, char** argv) {
         "traffic %d wheelset %d %s rail: equilibrium lateral %.4f mm, spread std %.3f mm;"
         " flange onsets [std] high %.4f, low %.4f (rigid: %.4f, %.4f)\n",
         t, w, high ? "high" : "low", eq.result.wheelsets[w].lateral_m * 1e3, std_m * 1e3,
-        eq.flange_onset_m[w][0] / std_m, eq.flange_onset_m[w][1] / std_m,
+        // The onsets themselves: eq holds them only up to the rule's outermost nodes.
+        FlangeOnsetOffset(study, t, eq, w, RailSide::kHigh) / std_m,
+        FlangeOnsetOffset(study, t, eq, w, RailSide::kLow) / std_m,
         RigidFlangeOnsetOffset(eq, w, RailSide::kHigh, std_m) / std_m,
         RigidFlangeOnsetOffset(eq, w, RailSide::kLow, std_m) / std_m);
     // Without the hold: every offset is its own position.

@@ -2,8 +2,10 @@
 // both rails their load cases from its curving equilibrium, and both rails wear.
 #include "wear/vehicle_traffic.h"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -137,6 +139,52 @@ TEST(VehicleTrafficTest, NodesBeyondTheFlangeOnsetAreHeldAtOneOffset) {
     EXPECT_EQ(ca.worn_area_per_pass_m2, cb.worn_area_per_pass_m2) << a << " " << b;
     EXPECT_EQ(ca.depth_per_pass_m, cb.depth_per_pass_m) << a << " " << b;
     EXPECT_EQ(ca.contact_angle_rad, cb.contact_angle_rad) << a << " " << b;
+  }
+}
+
+// The onset search stops at the rule's outermost node (FlangeOnsetOffset's enough_m): with 3
+// Gauss-Hermite nodes (+-1.73 std) over a 1 mm spread, a side whose onset lies beyond 1.73 std
+// keeps only a lower bound at or beyond that node, found with fewer contact solves, and every
+// node's case is the same, bit for bit, as with the onset itself.
+TEST(VehicleTrafficTest, TheOnsetSearchStopsAtTheRulesOutermostNode) {
+  const WearStudy study = VehicleStudy(1.0e-3);
+  const std::array<double, 2> outermost = OutermostSpreadNodes(study.options);
+  EXPECT_NEAR(outermost[0], std::sqrt(3.0), 1e-12);
+  EXPECT_NEAR(outermost[1], std::sqrt(3.0), 1e-12);
+  const WearState s0 = MakeInitialState(study);
+  const VehicleEquilibrium eq =
+      SolveVehicleEquilibrium(study, 0, RailInTrack(study, s0.rail, s0.rail),
+                              RailInTrack(study, *s0.low_rail, *s0.low_rail));
+  const double std_m = study.traffic[0].lateral_shift_std_m;
+  VehicleEquilibrium full = eq;  // the onsets without the bound
+  int bounded = 0;
+  for (const int side : {0, 1}) {
+    const RailSide rail = side == 0 ? RailSide::kHigh : RailSide::kLow;
+    const double onset_m = FlangeOnsetOffset(study, 0, eq, 0, rail);
+    const double kept_m = eq.flange_onset_m[0][side];
+    full.flange_onset_m[0][side] = onset_m;
+    std::printf("[ measured ] toward the %s rail: onset %.4f std, kept %.4f std\n",
+                side == 0 ? "high" : "low", onset_m / std_m, kept_m / std_m);
+    if (kept_m == onset_m) continue;
+    ++bounded;
+    EXPECT_GE(kept_m, outermost[side] * std_m);
+    EXPECT_LE(kept_m, onset_m);
+  }
+  EXPECT_GE(bounded, 1);  // the bound is exercised here
+  // Nodes of the rule itself (and any within its outermost ones): the same cases.
+  std::vector<double> nodes, weights;
+  GaussHermiteProbabilists(study.options.quadrature_points, &nodes, &weights);
+  nodes.push_back(0.99 * std::sqrt(3.0));
+  nodes.push_back(-0.99 * std::sqrt(3.0));
+  for (const double x : nodes) {
+    const std::vector<LoadCase> a = VehicleNodeCases(study, 0, eq, 0, x, 0, 1.0);
+    const std::vector<LoadCase> b = VehicleNodeCases(study, 0, full, 0, x, 0, 1.0);
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t k = 0; k < a.size(); ++k) {
+      EXPECT_EQ(a[k].placement.lateral_shift_m, b[k].placement.lateral_shift_m) << x;
+      EXPECT_EQ(a[k].placement.roll_rad, b[k].placement.roll_rad) << x;
+      EXPECT_EQ(a[k].vertical_force_N, b[k].vertical_force_N) << x;
+    }
   }
 }
 
