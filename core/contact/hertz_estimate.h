@@ -55,6 +55,12 @@ SemiAxisEstimate EstimateSemiAxisS(const WheelRailGeometry& geom, const ContactC
                                    double estar, double delta,
                                    const std::vector<ContactCandidate>& at_delta);
 
+// The largest lateral semi-axis (EstimateSemiAxisS's lo) of the candidates at delta
+// (at_delta: geom.FindCandidates(delta)) that hold no point of `first` (the candidates at first
+// contact): second points of contact that the approach delta reaches; 0 when there is none.
+double ReachedSemiAxisS(const WheelRailGeometry& geom, const std::vector<ContactCandidate>& first,
+                        double estar, double delta, const std::vector<ContactCandidate>& at_delta);
+
 // Hertz estimate of the approach and of the patch size at the first contact point, which seeds
 // the grid models' potential area.
 struct FirstContactEstimate {
@@ -63,7 +69,9 @@ struct FirstContactEstimate {
   double delta = 0.0;                   // estimated vertical approach [m]
   double semi_axis_x_m = 0.0;           // largest Hertz semi-axis along x
   // Largest Hertz lateral semi-axis, bounded by the lateral reach of the interpenetration at
-  // delta (in nearly conformal contact Hertz's is far too large) [m].
+  // delta (in nearly conformal contact Hertz's is far too large), and above the draft preset at
+  // least the estimate of a candidate that delta reaches beside those at first contact
+  // (ReachedSemiAxisS) [m].
   double semi_axis_s_m = 0.0;
   std::vector<ContactCandidate> at_delta;  // geom.FindCandidates(delta)
 };

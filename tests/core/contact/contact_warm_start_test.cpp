@@ -16,37 +16,22 @@
 #include "core/contact/placement_cache.h"
 #include "core/contact/potential_area.h"
 #include "core/profile/builtin_profiles.h"
+#include "tests/core/contact/gauge_corner_scene.h"
 #include "tests/core/contact/same_result.h"
 
 namespace railwear {
 namespace {
-
-// The C API benchmark's wheel (tests/api/rolling_wheel.h): S1002 on UIC60 at 1:40, conformal,
-// standard, FASTSIM, mu 0.3, 100 kN at 20 m/s, the FEM-calibrated influence constants (the C
-// API's default), at a lateral shift.
-ContactCase GaugeCorner(double lateral_m, double load_N = 100e3) {
-  ContactCase c;
-  ContactProblem& p = c.problem;
-  p.wheel_profile = MakeS1002();
-  p.rail_profile = ApplyCant(MakeUic60(), 1.0 / 40.0);
-  p.wheel_material = p.rail_material = {210e9, 0.28};
-  p.load.vertical_force_N = load_N;
-  p.model = MakeModelOptions(ModelKind::kConformal);
-  p.model.accuracy = AccuracyPreset::kStandard;
-  p.model.constants = NamedInfluenceConstants(InfluenceConstantsName::kFem);
-  p.placement.lateral_shift_m = lateral_m;
-  RollingOptions r;
-  r.friction = 0.3;
-  r.motion.speed_m_s = 20.0;
-  p.rolling = r;
-  return c;
-}
 
 ContactResult Solve(const ContactCase& c, PlacementCache* cache, ContactWarmStart* warm) {
   return SolveContactCase(c, cache, nullptr, warm).wheel;
 }
 
 using testing::ExpectSameResult;
+using testing::GaugeCorner;
+using testing::kAreaTolerance;
+using testing::kFxTolerance;
+using testing::kFyTolerance;
+using testing::kPeakTolerance;
 
 // Each patch's area, p_max, cells and contact y of a warm and a cold result, for a failure.
 std::string Describe(const ContactResult& warm, const ContactResult& cold) {
@@ -70,17 +55,6 @@ TEST(ContactWarmStart, FirstCallIsTheColdCallBitForBit) {
   EXPECT_EQ(warm.warm_calls(), 0);
   EXPECT_FALSE(warm.empty());
 }
-
-// Largest differences of a warm call from the cold call at the same position that this test
-// accepts: the standard preset's own discretization error on this wheel, measured against the
-// reference preset at 17 positions -3 .. -7 mm (docs/library.md, "Where a gauge-corner call's
-// time goes": largest errors 7.3 % of the area, 3.1 % of p_max, 1.2 and 2.4 % of the load in
-// F_x and F_y). Both calls carry that error; a warm call places its cells from another
-// measurement of the patch, so the two may differ by up to about the error itself.
-constexpr double kAreaTolerance = 0.073;
-constexpr double kPeakTolerance = 0.062;  // twice p_max's 3.1 %: it depends on where cells fall
-constexpr double kFxTolerance = 0.012;    // of the load
-constexpr double kFyTolerance = 0.024;    // of the load
 
 // p_max at the flange root where the cold call's own p_max is far from the reference preset's
 // (p_max on a cell grid depends on where the cells fall under the peak): there a warm call that

@@ -9,6 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include "core/contact/contact_forces.h"
+#include "core/contact/patch_model_memory.h"
+#include "core/contact/placement_stage.h"
+#include "core/contact/potential_area.h"
+#include "tests/core/contact/gauge_corner_scene.h"
+
 namespace railwear::internal {
 namespace {
 
@@ -73,6 +79,109 @@ TEST(HertzEstimate, KeptShapesGiveTheLoadsAndApproachOfASolvePerCall) {
   EXPECT_EQ(approach, 0.5 * (lo + hi));
   // And it carries the load (the bisection's 1e-15 m on a ~1e-4 m approach).
   EXPECT_NEAR(HertzVerticalLoad(cands, roll, estar, approach, nullptr), force, 1e-6 * force);
+}
+
+// The first estimate on the C API benchmark's gauge-corner wheel (gauge_corner_scene.h) at a
+// lateral shift, and the first attempt's grids from it: their cells and the curved operator's
+// cell integrals, nx ns^2 summed over the grids (the first attempt's cost; docs/library.md,
+// "The cold call").
+struct FirstAttempt {
+  FirstContactEstimate estimate;
+  // The largest Hertz b at first contact, the interpenetration's reach / sqrt(2), and the
+  // reached candidates' estimate (ReachedSemiAxisS).
+  double hertz_b_m = 0.0, reach_b_m = 0.0, reached_b_m = 0.0;
+  double ds_m = 0.0;
+  double integrals = 0.0;
+};
+
+FirstAttempt FirstAttemptAt(double lateral_m) {
+  const ContactProblem problem = testing::GaugeCorner(lateral_m).problem;
+  const WheelRailGeometry geom = PlaceWheel(problem);
+  const double estar = ContactModulus(problem.wheel_material, problem.rail_material);
+  const double k_w = problem.wheel_material.Compliance(), k_r = problem.rail_material.Compliance();
+  FirstAttempt out;
+  out.estimate = EstimateFirstContact(geom, problem, estar);
+  const FirstContactEstimate& e = out.estimate;
+  for (const HertzSolution& h : e.hs) out.hertz_b_m = std::max(out.hertz_b_m, h.semi_axis_y_m);
+  for (const ContactCandidate& c : e.at_delta) {
+    out.reach_b_m = std::max(
+        out.reach_b_m, 0.5 * (c.y_hi_m - c.y_lo_m) / std::max(-c.normal.y(), 0.1) / std::sqrt(2.0));
+  }
+  out.reached_b_m = ReachedSemiAxisS(geom, e.first, estar, e.delta, e.at_delta);
+  PatchModelMemory models(geom, problem, estar, k_r / (k_w + k_r), e);
+  PotentialArea area(problem, e, k_r / (k_w + k_r));
+  PatchBuilds builds;
+  ContactResult scratch;
+  EXPECT_TRUE(area.Build(geom, &models, e.delta, &builds, &scratch)) << scratch.message;
+  for (const PatchBuild& b : builds.builds) {
+    out.ds_m = b.grid.ds_m;
+    out.integrals += static_cast<double>(b.grid.nx) * b.grid.ns * b.grid.ns;
+  }
+  return out;
+}
+
+// From -5.35 mm the tread's point lies more than 1 um from first contact: the flange root alone
+// is at first contact, and its Hertz b (1.35 mm) sized the cells of the tread's patch, which the
+// estimated approach reaches (the tread's own estimate 5.7 mm): 0.137 mm cells and a first
+// attempt of 35 x 60 and 35 x 175 cells, 1.2 million cell integrals against 0.08 million at
+// -5.36 mm, where both points are at first contact. The reached candidate's estimate now bounds
+// the first cells from below (at the standard preset and finer); where both are at first
+// contact nothing changes, nor at the draft preset.
+TEST(HertzEstimate, ASecondPointTheApproachReachesSizesTheFirstCells) {
+  const FirstAttempt before = FirstAttemptAt(-5.36e-3);
+  ASSERT_EQ(before.estimate.first.size(), 2u);
+  // (both points at first contact: the rule before, min(Hertz b, reach), unchanged)
+  EXPECT_EQ(before.estimate.semi_axis_s_m, std::min(before.hertz_b_m, before.reach_b_m));
+  for (const double y : {-5.35e-3, -5.30e-3, -5.21e-3}) {
+    SCOPED_TRACE(y);
+    const FirstAttempt cliff = FirstAttemptAt(y);
+    const FirstContactEstimate& e = cliff.estimate;
+    ASSERT_EQ(e.first.size(), 1u);
+    ASSERT_EQ(e.at_delta.size(), 2u);
+    EXPECT_LT(cliff.hertz_b_m, 0.3 * cliff.reach_b_m);  // (the flange root's Hertz b)
+    EXPECT_GT(e.semi_axis_s_m, 3.0 * cliff.hertz_b_m);
+    EXPECT_EQ(e.semi_axis_s_m, cliff.reached_b_m);
+    // The first attempt's lateral cells are its neighbour's (-5.36 mm) within 2x, and its
+    // cell integrals within 3x (0.13 million at -5.21 mm: its patches are longer).
+    EXPECT_GT(cliff.ds_m, 0.5 * before.ds_m);
+    EXPECT_LT(cliff.ds_m, 2.0 * before.ds_m);
+    EXPECT_LT(cliff.integrals, 3.0 * before.integrals);
+  }
+  // At draft the first cells stay the flange root's Hertz b bounded by the reach, as before.
+  ContactProblem draft = testing::GaugeCorner(-5.35e-3).problem;
+  draft.model.accuracy = AccuracyPreset::kDraft;
+  const WheelRailGeometry geom = PlaceWheel(draft);
+  const FirstContactEstimate e =
+      EstimateFirstContact(geom, draft, ContactModulus(draft.wheel_material, draft.rail_material));
+  ASSERT_EQ(e.hs.size(), 1u);
+  EXPECT_EQ(e.semi_axis_s_m, e.hs[0].semi_axis_y_m);
+}
+
+// The cold call at -5.35 mm on the coarser first cells: within the standard preset's
+// discretization error of the reference preset's call (gauge_corner_scene.h).
+TEST(HertzEstimate, TheCallAtTheCliffIsWithinTheStandardPresetsErrorOfTheReference) {
+  const ContactCase standard = testing::GaugeCorner(-5.35e-3);
+  ContactCase reference = standard;
+  reference.problem.model.accuracy = AccuracyPreset::kReference;
+  const ContactResult s = SolveContactCase(standard).wheel;
+  const ContactResult r = SolveContactCase(reference).wheel;
+  ASSERT_EQ(s.status, SolverStatus::kConverged) << s.message;
+  ASSERT_EQ(r.status, SolverStatus::kConverged) << r.message;
+  double area_s = 0, area_r = 0, peak_s = 0, peak_r = 0;
+  for (const PatchResult& p : s.patches) {
+    area_s += p.area_m2;
+    peak_s = std::max(peak_s, p.p_max_Pa);
+  }
+  for (const PatchResult& p : r.patches) {
+    area_r += p.area_m2;
+    peak_r = std::max(peak_r, p.p_max_Pa);
+  }
+  const double load_N = *standard.problem.load.vertical_force_N;
+  const Eigen::Vector3d fs = TotalForcesOnRail(s).Net(), fr = TotalForcesOnRail(r).Net();
+  EXPECT_NEAR(area_s / area_r, 1.0, testing::kAreaTolerance);
+  EXPECT_NEAR(peak_s / peak_r, 1.0, testing::kPeakTolerance);
+  EXPECT_NEAR(fs.x(), fr.x(), testing::kFxTolerance * load_N);
+  EXPECT_NEAR(fs.y(), fr.y(), testing::kFyTolerance * load_N);
 }
 
 }  // namespace
