@@ -190,7 +190,8 @@ std::vector<CurvingStart> VehicleStarts(const WearStudy& study, const Profile& u
     if (!study.traffic[t].is_vehicle()) continue;
     CurvingProblem p = VehicleCurvingProblem(study, t, RailInTrack(study, unworn_high, unworn_high),
                                              RailInTrack(study, unworn_low, unworn_low));
-    p.options.start.reset();
+    p.options.start.reset();  // centred (no fallback either)
+    p.options.fallback_starts.clear();
     const CurvingResult r = SolveCurving(p);
     if (r.status == CurvingStatus::kCancelled) throw WearCancelled();
     if (r.status == CurvingStatus::kConverged || r.status == CurvingStatus::kFlangeClimb) {
