@@ -45,6 +45,14 @@ void Print(const TrafficCase& c, const CurvingProblem& p, const CurvingResult& r
         w.high_lateral_N * 1e-3, w.high_climb.contact_angle_rad * 180.0 / M_PI,
         w.high_climb.l_over_v, NadalText(w.high_climb));
   }
+  if (r.attempts.size() > 1) {  // a start failed: each start's solves
+    std::string starts;
+    for (const CurvingAttempt& a : r.attempts) {
+      starts += fmt::format("{}{}: {} solves{}", starts.empty() ? "" : "; ", a.start,
+                            a.contact_solves, a.converged ? ", converged" : "");
+    }
+    std::cout << "  starts: " << starts << "\n";
+  }
   std::cout << fmt::format(
       "  status {}{}; residuals: lateral {:.1f} N, yaw {:.1f} N m, longitudinal {:.1f} N; "
       "{} + {} iterations, {} wheelset contact solves, {:.1f} s{}\n",
@@ -75,6 +83,14 @@ nlohmann::json Json(const TrafficCase& c, const CurvingProblem& p, const Curving
                       {"predictor", ToString(p.options.cold_predictor)},
                       {"table_predictor", ToString(r.table_predictor)},
                       {"time_s", r.time_s}};
+  j["starts"] = nlohmann::json::array();
+  for (const CurvingAttempt& a : r.attempts) {
+    j["starts"].push_back({{"start", a.start},
+                           {"contact_solves", a.contact_solves},
+                           {"converged", a.converged},
+                           {"largest_scaled_residual", a.largest_scaled_residual},
+                           {"message", a.message}});
+  }
   for (const CurvedWheelset& w : r.wheelsets) {
     j["wheelsets"].push_back(
         {{"x_m", w.x_m},
@@ -95,10 +111,12 @@ nlohmann::json Json(const TrafficCase& c, const CurvingProblem& p, const Curving
   return j;
 }
 
-// A stored wear step's rails in the track frame, and its state (each entry's curving solution).
+// A stored wear step's rails in the track frame, and its state (each entry's curving solution),
+// and the run's step 0 (its unworn rails, own frames).
 struct StoredRails {
   TrackRails rails;
   WearState state;
+  WearState unworn;
   std::string where;  // "run 'NAME' step N (M MGT) in FILE"
 };
 
@@ -124,11 +142,11 @@ StoredRails StoredStepRails(const CurvingOptions& o, const Scene& scene) {
     throw InputError(fmt::format("--step {}: run '{}' in '{}' has steps 0 to {}", step, run.name,
                                  db.path(), *last));
   }
-  const WearState unworn = StateFromStore(db, run.id, 0);
   StoredRails out;
+  out.unworn = StateFromStore(db, run.id, 0);
   out.state = StateFromStore(db, run.id, step);
-  out.rails.high = RailInTrack(study, unworn.rail, out.state.rail);
-  out.rails.low = RailInTrack(study, *unworn.low_rail, *out.state.low_rail);
+  out.rails.high = RailInTrack(study, out.unworn.rail, out.state.rail);
+  out.rails.low = RailInTrack(study, *out.unworn.low_rail, *out.state.low_rail);
   out.where =
       fmt::format("run '{}' step {} ({:.4g} MGT) in {}", run.name, step, out.state.mgt, db.path());
   return out;
@@ -155,6 +173,13 @@ void SetupCurving(CLI::App& app) {
                   "contact geometry with Hertz and Kalker; docs/curving.md \"The table "
                   "predictor\"); default: the scene's [curving] predictor")
       ->check(CLI::IsMember(EnumChoiceStrings(kCurvingPredictorNames)));
+  cmd->add_option("--start", o->start,
+                  "With --db: the first start, 'stored' (the step's stored solution, then the "
+                  "vehicle's equilibrium on the run's unworn rails, then centred: the run's next "
+                  "step), 'unworn' (from the unworn rails' equilibrium) or 'centred' (a cold "
+                  "solve)")
+      ->check(CLI::IsMember({"stored", "unworn", "centred"}))
+      ->needs(db);
   cmd->callback([o]() { RunCurving(*o); });
 }
 
@@ -170,10 +195,27 @@ void RunCurving(const CurvingOptions& o) {
         "naming a vehicle",
         o.scene));
   }
-  const WearStudy& study = *scene.wear;
+  WearStudy study = *scene.wear;
   nlohmann::json all = nlohmann::json::array();
   std::string failures;
   const StoredRails stored = o.db ? StoredStepRails(o, scene) : StoredRails{};
+  // On a stored step, each vehicle's equilibrium on the run's unworn rails: the fallback of the
+  // stored solution (and the start of a step without one), as RunWear solves it.
+  if (o.db && o.start != "centred") {
+    std::cerr << "railwear: curving: solving each vehicle on the run's unworn rails (the "
+                 "fallback start)\n";
+    study.options.cancel = [] { return InterruptSignals::Received() != 0; };
+    try {
+      study.vehicle_starts = VehicleStarts(study, stored.unworn.rail, *stored.unworn.low_rail);
+    } catch (const WearCancelled&) {
+      const int signal = InterruptSignals::Received();
+      throw Interrupted(signal,
+                        fmt::format("{}: curving of {} stopped in the solve on the run's "
+                                    "unworn rails; nothing was solved{}",
+                                    SignalName(signal), o.scene,
+                                    o.json ? fmt::format(" and {} was not written", *o.json) : ""));
+    }
+  }
   const TrackRails rails = o.db ? stored.rails : UnwornRailsInTrack(study);
   if (o.db && (!o.json || *o.json != "-")) {
     std::cout << "on the worn rails of " << stored.where << ", from its stored curving\n";
@@ -181,9 +223,12 @@ void RunCurving(const CurvingOptions& o) {
   for (int t = 0; t < static_cast<int>(study.traffic.size()); ++t) {
     const TrafficCase& c = study.traffic[t];
     if (!c.is_vehicle()) continue;
-    // An entry without a stored solution (state empty) starts centred (VehicleCurvingProblem).
+    // An entry without a stored solution (state empty) starts from the unworn rails'
+    // equilibrium when there is one, else centred (VehicleCurvingProblem).
     const CurvingStart* start =
-        t < static_cast<int>(stored.state.curving.size()) ? &stored.state.curving[t] : nullptr;
+        o.start == "stored" && t < static_cast<int>(stored.state.curving.size())
+            ? &stored.state.curving[t]
+            : nullptr;
     CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low, start);
     p.options.cancel = [] { return InterruptSignals::Received() != 0; };
     if (o.predictor) {

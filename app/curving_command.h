@@ -6,10 +6,13 @@
 //
 // With --db FILE [--run NAME] [--step N]: on the worn rails of a stored wear step instead (both
 // rails of the run's step N, default its last, placed as the wear loop places them), each
-// vehicle starting from the step's stored curving solution (step 0 has none: from the centred
-// start), as the run's next step would: how the
-// vehicle runs after that much traffic, and the way to see why a run stopped on a curving that
-// did not converge. The database is only read.
+// vehicle starting as the run's next step would: from the step's stored curving solution, then
+// (when that fails, or the step stored none: step 0) from the vehicle's equilibrium on the run's
+// unworn rails (solved first, as the run does), then centred: how the vehicle runs after that
+// much traffic, and the way to see why a run stopped on a curving that did not converge. The
+// database is only read. --start unworn leaves out the stored solution, --start centred both
+// (a cold solve). The output names the start of a solution from a fallback and each start's
+// solves (JSON: "starts").
 //
 // --predictor table: a cold solve (on the unworn rails, or a stored step without a curving
 // solution) iterates on the contact-table predictor (core/contact/contact_table.h; docs/curving.md
@@ -39,6 +42,8 @@ struct CurvingOptions {
   std::optional<int> step;          // default: the run's last stored step
   // The cold solve's: "model" or "table"; absent: the scene's [curving] predictor.
   std::optional<std::string> predictor;
+  // With db: the first start, "stored" (the run's next step's sequence), "unworn" or "centred".
+  std::string start = "stored";
 };
 
 void SetupCurving(CLI::App& app);

@@ -179,11 +179,20 @@ CurvingProblem VehicleCurvingProblem(const WearStudy& study, int traffic_index,
   p.options.threads = study.options.threads;
   p.options.cold_predictor = study.curving_predictor;
   p.options.cancel = study.options.cancel;  // a signal stops the solve, not only the step after it
+  // The previous step's solution, then the equilibrium on the unworn rails (SolveCurving skips
+  // it when it is the same state: step 1's start), then the centred start.
+  std::optional<CurvingStart> unworn;
+  if (traffic_index < static_cast<int>(study.vehicle_starts.size()) &&
+      study.vehicle_starts[traffic_index].state.size() > 0) {
+    unworn = study.vehicle_starts[traffic_index];
+    unworn->label = kUnwornEquilibriumStart;
+  }
   if (start && start->state.size() > 0) {
     p.options.start = *start;
-  } else if (traffic_index < static_cast<int>(study.vehicle_starts.size()) &&
-             study.vehicle_starts[traffic_index].state.size() > 0) {
-    p.options.start = study.vehicle_starts[traffic_index];
+    p.options.start->label = kPreviousStepStart;
+    if (unworn) p.options.fallback_starts.push_back(*unworn);
+  } else {
+    p.options.start = unworn;
   }
   return p;
 }
@@ -205,7 +214,8 @@ std::vector<CurvingStart> VehicleStarts(const WearStudy& study, const Profile& u
     if (!study.traffic[t].is_vehicle()) continue;
     CurvingProblem p = VehicleCurvingProblem(study, t, RailInTrack(study, unworn_high, unworn_high),
                                              RailInTrack(study, unworn_low, unworn_low));
-    p.options.start.reset();
+    p.options.start.reset();  // centred (no fallback either)
+    p.options.fallback_starts.clear();
     const CurvingResult r = SolveCurving(p);
     if (r.status == CurvingStatus::kCancelled) throw WearCancelled();
     if (r.status == CurvingStatus::kConverged || r.status == CurvingStatus::kFlangeClimb) {

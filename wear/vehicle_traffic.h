@@ -19,6 +19,7 @@
 
 #include <array>
 #include <limits>
+#include <string_view>
 #include <vector>
 
 #include "wear/traffic.h"
@@ -29,10 +30,17 @@ namespace railwear {
 // The rails' gauge points in their own track-frame profiles: where the unworn rails stand.
 RailGaugePoints UnwornGaugePoints(const WearStudy& study);
 
+// The labels of a vehicle entry's curving starts (CurvingStart::label): the previous step's
+// solution (WearState::curving), and the vehicle's equilibrium on the unworn rails
+// (WearStudy::vehicle_starts).
+inline constexpr std::string_view kPreviousStepStart = "the previous step's solution";
+inline constexpr std::string_view kUnwornEquilibriumStart = "the unworn rails' equilibrium";
+
 // The curving problem of study.traffic[traffic_index] (a vehicle entry) on these rails (track
 // frame): the study's contact set-up, the unworn rails' places, its track, curve, vehicle, speed
-// and friction, and its start: `start` when it has a state, else study.vehicle_starts' when
-// there is one.
+// and friction, and its starts: `start` when it has a state, with study.vehicle_starts' as its
+// fallback (CurvingOptions::fallback_starts) when there is one, else study.vehicle_starts'
+// alone; the centred start after them (SolveCurving).
 CurvingProblem VehicleCurvingProblem(const WearStudy& study, int traffic_index,
                                      const Profile& high_track, const Profile& low_track,
                                      const CurvingStart* start = nullptr);

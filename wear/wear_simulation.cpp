@@ -856,16 +856,11 @@ StepResult RunWearStep(const WearStudy& given, const UnwornRails& unworn, const 
 WearRunSummary RunWear(const WearStudy& study, const UnwornRails& unworn, WearState start,
                        const WearStepCallback& on_step, int max_steps) {
   // Vehicle traffic starts a step's curving from the step before's solution (WearState::curving)
-  // and, where the state carries none (step 0, or a run stored without them), from its
-  // equilibrium on the unworn rails: solved here only when some vehicle entry needs it.
-  const auto lacks_start = [&](int t) {
-    return study.traffic[t].is_vehicle() &&
-           (t >= static_cast<int>(start.curving.size()) || start.curving[t].state.size() == 0);
-  };
+  // and, where the state carries none (step 0, or a run stored without them) or that start fails,
+  // from its equilibrium on the unworn rails (VehicleCurvingProblem): solved here whenever the
+  // study has a vehicle entry, so a resumed run has the same fallback as an uninterrupted one.
   bool needs_starts = false;
-  for (int t = 0; t < static_cast<int>(study.traffic.size()); ++t) {
-    needs_starts = needs_starts || lacks_start(t);
-  }
+  for (const TrafficCase& c : study.traffic) needs_starts = needs_starts || c.is_vehicle();
   std::optional<WearStudy> prepared;
   WearRunSummary summary;
   if (study.vehicle_starts.empty() && unworn.low && needs_starts) {

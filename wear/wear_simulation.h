@@ -141,9 +141,10 @@ struct WearStudy : ContactSetup {
   // predictor).
   CurvingPredictor curving_predictor = CurvingPredictor::kModel;
   // Per traffic entry, the curving solution on the unworn rails (empty, or an empty entry: the
-  // centred start): the start of a step whose state carries none (WearState::curving). RunWear
-  // fills it with each vehicle's equilibrium on the unworn rails of step 0 when its start state
-  // lacks some vehicle entry's curving.
+  // centred start): the start of a step whose state carries none (WearState::curving), and the
+  // fallback of one whose previous step's solution fails, before the centred start
+  // (VehicleCurvingProblem). RunWear fills it with each vehicle's equilibrium on the unworn rails
+  // of step 0 when the study has a vehicle entry.
   std::vector<CurvingStart> vehicle_starts;
   WearOptions options;
 };
@@ -172,7 +173,8 @@ struct WearState {
   // entries otherwise): the next step starts there, with its Jacobian as the first chord, so a
   // step's curving costs a few residual evaluations instead of a solve from the unworn start.
   // Part of the state: a resumed run reads it back and continues bit-identically. Empty (step 0,
-  // or a run stored without it): each entry starts from WearStudy::vehicle_starts.
+  // or a run stored without it): each entry starts from WearStudy::vehicle_starts, which is also
+  // the fallback when this start fails.
   std::vector<CurvingStart> curving;
   // Co-evolution (issue 16): per traffic entry, the current profile of an entry whose wheel wears
   // (TrafficCase::wheel_wear; wheel profile frame), an empty profile for the others; empty when

@@ -916,36 +916,75 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
   }
   // Each start, and whether it goes to the full model directly (a start with its Jacobian is a
   // solution of the full model nearby: continuation); when that fails, the same start goes
-  // through the predictor's phase before the centred start is tried.
+  // through the predictor's phase before the next start is tried.
   struct Attempted {
     CurvingStart start;
     bool full_directly = false;
     bool relaxed = false;  // pseudo-transient continuation first (Equilibrium::Relax)
     bool table = false;    // the contact table's phase first (CurvingPredictor::kTable)
+    std::string name;      // CurvingAttempt::start
+    int start_index = 0;   // which start (a start's two tries share it)
+    std::string label;     // the start's, for the message
   };
   // The predictor's phase, then the full model's; one phase when they are the same model.
   const ModelOptions predictor =
       p.options.predictor ? *p.options.predictor : CurvingOptions::PredictorFor(p.contact.model);
   const bool has_predictor = !(predictor == p.contact.model);
   std::vector<Attempted> starts;
-  if (p.options.start && p.options.start->state.size() == layout.size()) {
-    const bool has_jacobian = p.options.start->jacobian.rows() == layout.size() &&
-                              p.options.start->jacobian.cols() == layout.size();
+  int start_count = 0;
+  // The given start, then the fallbacks: each of the layout's size and not an earlier one.
+  auto add_start = [&](const CurvingStart& s, const std::string& label) {
+    if (s.state.size() != layout.size()) return;
+    for (const Attempted& a : starts) {
+      if (a.start.state == s.state) return;
+    }
+    const bool has_jacobian =
+        s.jacobian.rows() == layout.size() && s.jacobian.cols() == layout.size();
     // (Without a predictor both attempts would be the same solve.)
-    if (has_jacobian && has_predictor) starts.push_back({*p.options.start, true});
-    starts.push_back({*p.options.start, false});
+    const bool both = has_jacobian && has_predictor;
+    if (both) {
+      starts.push_back(
+          {s, true, false, false, label + ", continued on the full model", start_count, label});
+    }
+    starts.push_back({s, false, false, false, both ? label + ", through the predictor" : label,
+                      start_count, label});
+    ++start_count;
+  };
+  if (p.options.start) {
+    add_start(*p.options.start,
+              p.options.start->label.empty() ? "the given start" : p.options.start->label);
   }
+  for (size_t i = 0; i < p.options.fallback_starts.size(); ++i) {
+    const CurvingStart& s = p.options.fallback_starts[i];
+    add_start(s, s.label.empty() ? fmt::format("fallback start {}", i + 1) : s.label);
+  }
+  // The centred starts follow (`starts` from here on).
+  const int centred_from = start_count;
   // The table predictor: from the centred start through the contact table's equilibrium; when
   // that fails, the model predictor's centred start below is the fallback.
   if (p.options.cold_predictor == CurvingPredictor::kTable) {
-    starts.push_back({{centred, {}}, false, false, true});
+    const std::string label = "the centred start through the contact table";
+    starts.push_back({{centred, {}, {}}, false, false, true, label, start_count++, label});
   }
-  starts.push_back({{centred, {}}, false});
+  starts.push_back({{centred, {}, {}},
+                    false,
+                    false,
+                    false,
+                    "the centred start",
+                    start_count++,
+                    "the centred start"});
   // Last, when no start has converged nor stopped within the usable residual: the centred start
   // again, relaxed toward the equilibrium before Newton (on the worn rails of the default curve
   // with 20 spread nodes at 8.5 MGT the coach's Newton steps from the centred start went 2 mm
   // per iteration away from the flange and stopped at 5.2e-1 Q0).
-  starts.push_back({{centred, {}}, false, true});
+  starts.push_back({{centred, {}, {}},
+                    false,
+                    true,
+                    false,
+                    "the centred start relaxed",
+                    start_count++,
+                    "the centred start relaxed toward the equilibrium first by pseudo-transient "
+                    "continuation"});
   Eigen::VectorXd q;
   std::vector<CurvedWheelset> ws;
   Eigen::VectorXd r;
@@ -960,7 +999,10 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
     std::vector<CurvedWheelset> ws;
     Eigen::MatrixXd jacobian;
     std::string message;
+    size_t k = 0;  // in `starts`
   };
+  // The attempt (in `starts`) whose state is returned.
+  std::optional<size_t> returned;
   std::optional<Attempt> best;
   // The contact tables, one per distinct wheel pair (one for all wheelsets without
   // CurvingProblem::wheels), built when a table start is reached.
@@ -990,8 +1032,9 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
   };
   std::string table_note;  // why the table's start failed
   for (size_t k = 0; k < starts.size(); ++k) {
-    const auto& [start, full_directly, relaxed, table] = starts[k];
+    const auto& [start, full_directly, relaxed, table, name, start_index, label] = starts[k];
     const bool another_follows = k + 1 < starts.size();
+    const int solves_before = eq.solves();
     q = start.state;
     no_equilibrium = false;
     const bool two_phases = (has_predictor || table) && !full_directly;
@@ -999,12 +1042,6 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
                start.jacobian);
     if (relaxed && !eq.Relax(&q, &ws, &r) && eq.cancelled()) break;
     iterations = eq.Solve(&q, &ws, &r, &out.message, &no_equilibrium, another_follows);
-    if (relaxed) {
-      out.message =
-          "the centred start relaxed toward the equilibrium first (pseudo-transient "
-          "continuation)" +
-          (out.message.empty() ? "" : "; " + out.message);
-    }
     bool table_phase_failed = false;
     if (two_phases) {
       out.predictor_iterations += std::max(iterations, 0);
@@ -1019,8 +1056,13 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
     } else {
       out.full_iterations += std::max(iterations, 0);
     }
+    const bool converged = iterations >= 0 && !eq.cancelled();
+    out.attempts.push_back({name, eq.solves() - solves_before, converged,
+                            r.size() == q.size() ? eq.Norm(r) : 0.0,
+                            converged ? std::string() : out.message});
+    if (converged) returned = k;
     if (table) {
-      if (iterations >= 0 && !eq.cancelled()) {
+      if (converged) {
         out.table_predictor = TablePredictorOutcome::kUsed;
         break;
       }
@@ -1035,13 +1077,19 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
       no_equilibrium = false;
       if (table_phase_failed) continue;  // the states are the table's: no candidate for `best`
     }
+    // A given or fallback start that walked past the lateral limit says nothing of the vehicle:
+    // the next start is tried (on the worn rails of step 105 a start at the track centre with
+    // unyawed wheelsets went past 20 mm in 244 wheelset solves; from the unworn rails'
+    // equilibrium the coach converged in 148). From a centred start it ends the solve.
+    if (no_equilibrium && !eq.cancelled() && start_index < centred_from) continue;
     if (!table && (iterations >= 0 || no_equilibrium || eq.cancelled())) break;
     if (AllConverged(ws, layout.wheelsets) && r.size() == q.size() &&
         (!best || eq.Norm(r) < eq.Norm(best->r))) {
-      best = Attempt{q, r, ws, eq.jacobian(), out.message};
+      best = Attempt{q, r, ws, eq.jacobian(), out.message, k};
     }
     if (best && eq.Norm(best->r) <= p.options.usable_multiple * p.options.tolerance) break;
   }
+  if (!returned && best) returned = best->k;
   out.jacobian = eq.jacobian();
   // Returns attempt `a` as the result's state.
   auto take = [&](const Attempt& a) {
@@ -1068,18 +1116,27 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
     Eigen::VectorXd fr;
     std::string fmessage;
     bool fno = false;
+    const int solves_before = eq.solves();
     eq.Restart(contexts(finer), best->jacobian);
     const int fit = eq.Solve(&fq, &fws, &fr, &fmessage, &fno);
+    out.attempts.push_back({"the best stopped attempt on the standard grid",
+                            eq.solves() - solves_before, fit >= 0 && !eq.cancelled(),
+                            fr.size() == fq.size() ? eq.Norm(fr) : 0.0,
+                            fit >= 0 ? std::string() : fmessage});
     if (AllConverged(fws, layout.wheelsets) && fr.size() == fq.size() &&
         eq.Norm(fr) < eq.Norm(best->r)) {
       const std::string draft = fmt::format("the draft grid stalled at {:.1e}", eq.Norm(best->r));
       out.full_iterations += std::max(fit, 0);
       iterations = fit;
       no_equilibrium = fno;
-      best = Attempt{fq, fr, fws, eq.jacobian(),
+      best = Attempt{fq,
+                     fr,
+                     fws,
+                     eq.jacobian(),
                      fit >= 0 ? fmt::format("{}; finished on the standard grid{}", draft,
                                             fmessage.empty() ? "" : ": " + fmessage)
-                              : fmt::format("{}; on the standard grid: {}", draft, fmessage)};
+                              : fmt::format("{}; on the standard grid: {}", draft, fmessage),
+                     best->k};
       take(*best);
     }
   }
@@ -1091,6 +1148,17 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
     return out;
   }
   if (iterations < 0 && !no_equilibrium && best) take(*best);
+  // A state from a start after the first says so, and why the starts before it failed.
+  if (returned && !no_equilibrium && starts[*returned].start_index != starts[0].start_index) {
+    std::string before;
+    for (size_t k = 0; k < *returned && k < out.attempts.size(); ++k) {
+      const CurvingAttempt& a = out.attempts[k];
+      before += fmt::format("{}{}: {} solves{}", before.empty() ? "" : "; ", a.start,
+                            a.contact_solves, a.message.empty() ? "" : ", " + a.message);
+    }
+    out.message = fmt::format("from {} (before it: {})", starts[*returned].label, before) +
+                  (out.message.empty() ? "" : "; " + out.message);
+  }
   if (!table_note.empty())
     out.message = table_note + (out.message.empty() ? "" : "; " + out.message);
   out.table_evaluations = eq.table_evaluations();

@@ -40,13 +40,17 @@
 // contact forces that no residual-reducing step crosses, and ends the solve converged in
 // position when that correction is within the position tolerances;
 // otherwise one retry with 4x wider finite differences; and a draft solve stalled within 20x the
-// tolerance goes on once on the standard grid (docs/curving.md). A start that is not the last
-// gives up when its merit fell by less than 5 % in 6 iterations while it was never within 20x
-// the tolerance (stalled far off: the next start is tried). When every start fails, the
-// centred start is tried once more, first relaxed toward the equilibrium by pseudo-transient
+// tolerance goes on once on the standard grid (docs/curving.md). The starts, in order: the
+// given start (CurvingOptions::start), the fallback starts (CurvingOptions::fallback_starts: in
+// a wear run the vehicle's equilibrium on the unworn rails), the centred start. A start that is
+// not the last gives up when its merit fell by less than 5 % in 6 iterations while it was never
+// within 20x the tolerance (stalled far off: the next start is tried). When every start fails,
+// the centred start is tried once more, first relaxed toward the equilibrium by pseudo-transient
 // continuation (each wheelset moved along its residual force, then Newton), said in the message.
 // A start with its Jacobian (CurvingStart) uses that Jacobian as the first chord and goes to the
-// full model directly: continuation.
+// full model directly (continuation), then, when that fails, through the predictor. A solution
+// from a start after the first says so in its message; CurvingResult::attempts counts the
+// solves of every start.
 #pragma once
 
 #include <functional>
@@ -70,6 +74,9 @@ struct CurvingStart {
   // CurvingResult::jacobian at that state [N/m, N/rad, N m/m, N m/rad]: the first iterations'
   // chord. Empty, or of another size: evaluated afresh at the start.
   Eigen::MatrixXd jacobian;
+  // What the start is, for the result's message and attempts ("the previous step's solution");
+  // empty: "the given start" (CurvingOptions::start) or "fallback start N".
+  std::string label;
 };
 
 // The cold solve's predictor: the iterates' contact model before the full model finishes.
@@ -145,6 +152,13 @@ struct CurvingOptions {
   double max_lateral_m = 0.02;
   // A solution to start from (CurvingResult::Start()); the centred start is tried after it.
   std::optional<CurvingStart> start;
+  // Starts tried in order after `start` fails and before the centred start, each as `start` is
+  // (with its Jacobian first on the full model, then through the predictor); one of another size,
+  // or whose state equals an earlier start's, is skipped. In a wear run: the vehicle's
+  // equilibrium on the unworn rails, when the previous step's solution (`start`) fails: on the
+  // worn rails of the 10 MGT study's step 105 the coach from the centred start took 316 wheelset
+  // solves (docs/curving.md, "The start sequence").
+  std::vector<CurvingStart> fallback_starts;
   // Workers for the wheelsets' contact solves (each iterate's wheelsets and finite differences
   // are independent): 0 = the machine's hardware threads. Results do not depend on it.
   int threads = 0;
@@ -224,6 +238,20 @@ inline constexpr std::array<EnumName<CurvingEnding>, 6> kCurvingEndingNames = {{
 }};
 inline std::string_view ToString(CurvingEnding e) { return EnumToString(kCurvingEndingNames, e); }
 
+// One start's attempt in a solve (CurvingResult::attempts), in the order tried.
+struct CurvingAttempt {
+  // The start (CurvingStart::label, "the centred start", "the centred start relaxed", "the centred
+  // start through the contact table", "the best stopped attempt on the standard grid"), and for a
+  // start with its Jacobian which of its two tries: ", continued on the full model" or ", through
+  // the predictor".
+  std::string start;
+  int contact_solves = 0;  // of this attempt, all its phases (not the table's evaluations)
+  bool converged = false;  // it ended on a Newton rule (its ending may still be flange_climb)
+  // Where it stopped (0 when it evaluated nothing), and why when it did not converge.
+  double largest_scaled_residual = 0.0;
+  std::string message;
+};
+
 // One wheelset's steady state.
 struct CurvedWheelset {
   double x_m = 0.0;        // position from the car body's centre (0 for a single wheelset)
@@ -274,6 +302,8 @@ struct CurvingResult {
   int predictor_iterations = 0;  // of the predictor's phase (none when it is the full model)
   int full_iterations = 0;       // of the full model's phase
   int contact_solves = 0;        // wheelset contact solves, all phases (not the table's)
+  // Every start tried, in order, with its solves (their sum is contact_solves).
+  std::vector<CurvingAttempt> attempts;
   // The table predictor (CurvingOptions::cold_predictor): what became of it, its wheelset
   // evaluations, and the tables' build time [s] (one table per distinct wheelset wheel pair).
   TablePredictorOutcome table_predictor = TablePredictorOutcome::kNotUsed;
@@ -286,7 +316,7 @@ struct CurvingResult {
   double time_s = 0.0;
 
   // This solution as the start of a nearby solve (CurvingOptions::start).
-  CurvingStart Start() const { return {state, jacobian}; }
+  CurvingStart Start() const { return {state, jacobian, {}}; }
 };
 
 // Throws InputError for bad input (curve, vehicle, speed, friction; the contact set-up as

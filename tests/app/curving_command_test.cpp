@@ -30,9 +30,10 @@ class CurvingCommandTest : public CliFixture {
   // output names `step` (e.g. "step 66 (5.197 MGT)").
   // `nodes`: the spread nodes of the run (the stored scene has 3; traffic_study.sh's
   // TRAFFIC_STUDY_SPREAD=N writes N in their place, and the database keeps that text).
-  // `sql`: run on the database's copy first.
+  // `sql`: run on the database's copy first; `args`: more options of the command.
   nlohmann::json SolveOnStoredRails(const std::string& database, const std::string& step,
-                                    int nodes = 3, const std::string& sql = "") {
+                                    int nodes = 3, const std::string& sql = "",
+                                    const std::string& args = "") {
     const fs::path data = fs::path(RAILWEAR_SOURCE_DIR) / "tests/data";
     std::string scene = ReadFile(data / "r600_10mgt_scene.toml");
     const std::string three = "quadrature_points = 3";
@@ -40,9 +41,9 @@ class CurvingCommandTest : public CliFixture {
     EXPECT_NE(at, std::string::npos);
     std::ofstream(dir_ / "s.toml")
         << scene.replace(at, three.size(), "quadrature_points = " + std::to_string(nodes));
-    fs::copy_file(data / database, dir_ / "w.sqlite");
+    fs::copy_file(data / database, dir_ / "w.sqlite", fs::copy_options::overwrite_existing);
     if (!sql.empty()) test::RawExec((dir_ / "w.sqlite").string(), sql);
-    const Outcome o = Run("curving s.toml --db w.sqlite --json eq.json");
+    const Outcome o = Run("curving s.toml --db w.sqlite --json eq.json" + args);
     EXPECT_EQ(o.exit_code, 0) << o.out << o.err;
     EXPECT_TRUE(Contains(o.out, step)) << o.out;
     return nlohmann::json::parse(ReadFile(dir_ / "eq.json"));
@@ -52,9 +53,9 @@ class CurvingCommandTest : public CliFixture {
   // database first: both converged, and the coach's flanging leading wheelset where the run had
   // it (10.26 mm, 3.45 mrad from the stored start, which converges to 10.28 mm, 3.47 mrad) to
   // the position tolerances' order: the step in its force is crossed, not run away from.
-  nlohmann::json SolveOnStep105(const std::string& sql) {
-    const nlohmann::json j =
-        SolveOnStoredRails("r600_10mgt_20nodes_step105.sqlite", "step 105 (8.508 MGT)", 20, sql);
+  nlohmann::json SolveOnStep105(const std::string& sql, const std::string& args = "") {
+    const nlohmann::json j = SolveOnStoredRails("r600_10mgt_20nodes_step105.sqlite",
+                                                "step 105 (8.508 MGT)", 20, sql, args);
     if (j.size() != 2u) {
       ADD_FAILURE() << "expected the coach and the wagon: " << j.dump();
       return j;
@@ -478,15 +479,59 @@ TEST_F(CurvingCommandTest, ForceStepInFlangeContactIsCrossed) {
   EXPECT_LE(j[0]["largest_scaled_residual"].get<double>(), 3.0 * 3e-3);
 }
 
-// The same rails without the stored start: the coach from the centred start. Its Newton steps
-// went 2 mm an iteration away from the flange (the worn tread's Jacobian there points that way)
-// and stopped at 5.2e-1 Q0 after 252 solves; the centred start relaxed by pseudo-transient
-// continuation (core/vehicle/curving.cpp, Relax) reaches the stored run's equilibrium.
+// The same rails from the centred start alone (--start centred: a cold solve). The coach's
+// Newton steps went 2 mm an iteration away from the flange (the worn tread's Jacobian there
+// points that way) and stopped at 5.2e-1 Q0 after 252 solves; the centred start relaxed by
+// pseudo-transient continuation (core/vehicle/curving.cpp, Relax) reaches the stored run's
+// equilibrium.
 TEST_F(CurvingCommandTest, CentredStartIsRelaxedOntoTheFlange) {
-  const nlohmann::json j = SolveOnStep105("DELETE FROM curving_starts WHERE step = 105");
+  const nlohmann::json j = SolveOnStep105("", " --start centred");
   ASSERT_EQ(j.size(), 2u);
   EXPECT_TRUE(Contains(j[0]["message"], "relaxed")) << j[0]["message"];
   EXPECT_LE(j[0]["largest_scaled_residual"].get<double>(), 20 * 3e-3);
+  ASSERT_EQ(j[0]["starts"].size(), 2u);
+  EXPECT_EQ(j[0]["starts"][0]["start"], "the centred start");
+  EXPECT_EQ(j[0]["starts"][1]["start"], "the centred start relaxed");
+}
+
+// The start sequence (issue 15; docs/curving.md, "The start sequence"): a previous step's
+// solution that fails falls back to the vehicle's equilibrium on the unworn rails before the
+// centred start. The coach's stored start on step 105 replaced by the track centre with unyawed
+// wheelsets (every unknown 0, no Jacobian): from there it walks past the 20 mm lateral limit
+// (244 solves), which used to end the solve `no_equilibrium` and the wear run with it. Now the
+// unworn rails' equilibrium (solved first on the run's step 0, as the run does) follows and
+// converges where the stored start does, in fewer solves than the centred start takes (316:
+// --start centred), and the message and the JSON's "starts" say so. The wagon's stored start
+// converges first: no start is named.
+TEST_F(CurvingCommandTest, FailedStartFallsBackToTheUnwornRailsEquilibrium) {
+  const nlohmann::json j = SolveOnStep105(
+      "UPDATE curving_starts SET state = zeroblob(14 * 8), jacobian = zeroblob(0) "
+      "WHERE step = 105 AND traffic_index = 0");
+  ASSERT_EQ(j.size(), 2u);
+  const nlohmann::json& starts = j[0]["starts"];
+  ASSERT_EQ(starts.size(), 2u) << starts.dump();
+  EXPECT_EQ(starts[0]["start"], "the previous step's solution");
+  EXPECT_FALSE(starts[0]["converged"].get<bool>());
+  EXPECT_TRUE(Contains(starts[0]["message"], "lateral limit")) << starts[0]["message"];
+  EXPECT_EQ(starts[1]["start"], "the unworn rails' equilibrium");
+  EXPECT_TRUE(starts[1]["converged"].get<bool>());
+  EXPECT_EQ(starts[0]["contact_solves"].get<int>() + starts[1]["contact_solves"].get<int>(),
+            j[0]["contact_solves"].get<int>());
+  const std::string message = j[0]["message"];
+  EXPECT_EQ(message.rfind("from the unworn rails' equilibrium (before it: the previous step's "
+                          "solution: ",
+                          0),
+            0u)
+      << message;
+  ASSERT_EQ(j[1]["starts"].size(), 1u);
+  EXPECT_EQ(j[1]["starts"][0]["start"], "the previous step's solution");
+  EXPECT_FALSE(Contains(j[1]["message"], "from ")) << j[1]["message"];
+  // The centred start on the same rails: more solves than the unworn rails' equilibrium took.
+  const nlohmann::json centred = SolveOnStep105("", " --start centred");
+  ASSERT_EQ(centred.size(), 2u);
+  std::printf("coach from the unworn rails' equilibrium: %d solves; from the centred start: %d\n",
+              starts[1]["contact_solves"].get<int>(), centred[0]["contact_solves"].get<int>());
+  EXPECT_LT(starts[1]["contact_solves"].get<int>(), centred[0]["contact_solves"].get<int>());
 }
 
 // Near climb (issue 15's hard cases), the documented near-climb run of docs/curving.md without

@@ -128,7 +128,7 @@ BENCHMARK(BM_CurvingExampleContinuation)
 void BM_CurvingExampleShiftedStart(benchmark::State& state) {
   CurvingProblem p = ExampleProblem(static_cast<int>(state.range(0)), false);
   const CurvingResult solved = SolveCurving(p);
-  CurvingStart start{solved.state, {}};
+  CurvingStart start{solved.state, {}, {}};
   for (int i = 0; i < p.vehicle.wheelsets(); ++i) start.state[2 * i] -= state.range(1) * 1e-4;
   p.options.start = start;
   Run(state, p);

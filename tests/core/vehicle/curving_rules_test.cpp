@@ -239,23 +239,40 @@ namespace {
 // although the wheelset has one on its flange; with it the centred start gives up after 6
 // iterations (kStalled), and the relaxed centred start (the last) moves the wheelset along its
 // residual onto the flange.
-TEST(CurvingRulesTest, CentredStartStalledFarOffGivesUpForTheRelaxedStart) {
-  auto lateral_N = [](double y) {
-    return 20e3 + 10e3 * std::tanh(y / 2e-3) + 2e4 * y - (y > 6e-3 ? 1e7 * (y - 6e-3) : 0.0);
+double WornTreadLateral_N(double y) {
+  return 20e3 + 10e3 * std::tanh(y / 2e-3) + 2e4 * y - (y > 6e-3 ? 1e7 * (y - 6e-3) : 0.0);
+}
+
+internal::WheelsetForceModel WornTreadWithFlange() {
+  return [](int, double y, double psi) {
+    WheelsetForces f;
+    f.lateral_N = WornTreadLateral_N(y);
+    f.yaw_moment_Nm = -kYawStiffness * psi;
+    return f;
   };
+}
+
+// The equilibrium on the flange of WornTreadWithFlange: the lateral force's root beyond 6 mm.
+double WornTreadRoot_m() {
+  double root = 9e-3;
+  for (int k = 0; k < 20; ++k) root -= WornTreadLateral_N(root) / (-1e7 + 2e4);
+  return root;
+}
+
+// A wheelset start (y, psi) without a Jacobian, labelled.
+CurvingStart WheelsetStart(double y_m, const std::string& label) {
+  CurvingStart s;
+  s.state = Eigen::Vector2d(y_m, 0.0);
+  s.label = label;
+  return s;
+}
+
+TEST(CurvingRulesTest, CentredStartStalledFarOffGivesUpForTheRelaxedStart) {
   CurvingProblem p = BaseProblem(MakeCone(0.1), 0.0);
   p.options.predictor = p.contact.model;
   p.options.threads = 1;
   std::vector<NewtonEvent> events;
-  const CurvingResult r = internal::SolveCurvingWith(
-      p,
-      [&](int, double y, double psi) {
-        WheelsetForces f;
-        f.lateral_N = lateral_N(y);
-        f.yaw_moment_Nm = -kYawStiffness * psi;
-        return f;
-      },
-      &events);
+  const CurvingResult r = internal::SolveCurvingWith(p, WornTreadWithFlange(), &events);
   std::printf("stalled centred start: %s (%s), %d evaluations\n",
               std::string(ToString(r.status)).c_str(), r.message.c_str(), r.contact_solves);
   ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
@@ -263,10 +280,91 @@ TEST(CurvingRulesTest, CentredStartStalledFarOffGivesUpForTheRelaxedStart) {
   EXPECT_NE(r.message.find("relaxed"), std::string::npos) << r.message;
   // The flange's root, to the force tolerance over the flange's stiffness (150 N / 1e7 N/m =
   // 15 um).
-  double root = 9e-3;
-  for (int k = 0; k < 20; ++k) root -= lateral_N(root) / (-1e7 + 2e4);
-  EXPECT_NEAR(lateral_N(root), 0.0, 1e-6);
+  const double root = WornTreadRoot_m();
+  EXPECT_NEAR(WornTreadLateral_N(root), 0.0, 1e-6);
   EXPECT_NEAR(r.wheelsets[0].lateral_m, root, 2e-5);
+  // Two starts, each with its count: the centred one gave up, the relaxed one converged.
+  ASSERT_EQ(r.attempts.size(), 2u);
+  EXPECT_EQ(r.attempts[0].start, "the centred start");
+  EXPECT_FALSE(r.attempts[0].converged);
+  EXPECT_EQ(r.attempts[1].start, "the centred start relaxed");
+  EXPECT_TRUE(r.attempts[1].converged);
+  EXPECT_EQ(r.attempts[0].contact_solves + r.attempts[1].contact_solves, r.contact_solves);
+}
+
+// The start sequence (issue 15, docs/curving.md "The start sequence"): the given start, then the
+// fallback starts, then the centred one (and its relaxed retry). On WornTreadWithFlange a
+// "previous step's solution" at the centre stalls as the centred start does and gives up; the
+// fallback near the flange (8 mm, an "unworn rails' equilibrium" 1 mm off) converges, the
+// centred start is not tried, and the message says which start converged and why the one
+// before it failed. A fallback equal to the start is skipped. The whole costs fewer evaluations
+// than the centred start's relaxation path (the test above).
+TEST(CurvingRulesTest, FailedStartFallsBackToTheNextStartBeforeTheCentredOne) {
+  CurvingProblem p = BaseProblem(MakeCone(0.1), 0.0);
+  p.options.predictor = p.contact.model;
+  p.options.threads = 1;
+  const CurvingResult centred = internal::SolveCurvingWith(p, WornTreadWithFlange());
+  p.options.start = WheelsetStart(0.0, "the previous step's solution");
+  p.options.fallback_starts = {WheelsetStart(0.0, "a copy of it"),
+                               WheelsetStart(8e-3, "the unworn rails' equilibrium")};
+  std::vector<NewtonEvent> events;
+  const CurvingResult r = internal::SolveCurvingWith(p, WornTreadWithFlange(), &events);
+  std::printf("fallback: %s (%s), %d evaluations (centred start: %d)\n",
+              std::string(ToString(r.status)).c_str(), r.message.c_str(), r.contact_solves,
+              centred.contact_solves);
+  ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
+  EXPECT_TRUE(Has(events, NewtonEvent::kStalled));
+  EXPECT_NEAR(r.wheelsets[0].lateral_m, WornTreadRoot_m(), 2e-5);
+  ASSERT_EQ(r.attempts.size(), 2u);  // the copy skipped, the centred start not reached
+  EXPECT_EQ(r.attempts[0].start, "the previous step's solution");
+  EXPECT_FALSE(r.attempts[0].converged);
+  EXPECT_GT(r.attempts[0].largest_scaled_residual, 20 * kTolerance);  // stalled far off
+  EXPECT_NE(r.attempts[0].message.find("stalled far from the equilibrium"), std::string::npos);
+  EXPECT_EQ(r.attempts[1].start, "the unworn rails' equilibrium");
+  EXPECT_TRUE(r.attempts[1].converged);
+  EXPECT_LE(r.attempts[1].largest_scaled_residual, kTolerance);
+  EXPECT_EQ(r.attempts[0].contact_solves + r.attempts[1].contact_solves, r.contact_solves);
+  EXPECT_EQ(r.message.rfind("from the unworn rails' equilibrium (before it: the previous step's "
+                            "solution: ",
+                            0),
+            0u)
+      << r.message;
+  EXPECT_LT(r.contact_solves, centred.contact_solves);
+  // A start that converges at once keeps its message: no start is named.
+  p.options.start = WheelsetStart(WornTreadRoot_m(), "the previous step's solution");
+  const CurvingResult at_once = internal::SolveCurvingWith(p, WornTreadWithFlange());
+  ASSERT_EQ(at_once.status, CurvingStatus::kConverged) << at_once.message;
+  EXPECT_EQ(at_once.attempts.size(), 1u);
+  EXPECT_EQ(at_once.message.find("from "), std::string::npos) << at_once.message;
+}
+
+// A fallback start that fails too still reaches the centred start and its relaxed retry: the
+// given start at -3 mm and the fallback at -5 mm (both on the worn tread's side away from the
+// flange, where Newton walks away from it) give up stalled, the centred start too, and the
+// relaxed centred start converges on the flange; the message names it and every start before.
+TEST(CurvingRulesTest, FallbackThatAlsoFailsStillReachesTheCentredStart) {
+  CurvingProblem p = BaseProblem(MakeCone(0.1), 0.0);
+  p.options.predictor = p.contact.model;
+  p.options.threads = 1;
+  p.options.start = WheelsetStart(-3e-3, "the previous step's solution");
+  p.options.fallback_starts = {WheelsetStart(-5e-3, "the unworn rails' equilibrium")};
+  const CurvingResult r = internal::SolveCurvingWith(p, WornTreadWithFlange());
+  std::printf("failed fallback: %s (%s), %d evaluations\n", std::string(ToString(r.status)).c_str(),
+              r.message.c_str(), r.contact_solves);
+  ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
+  EXPECT_NEAR(r.wheelsets[0].lateral_m, WornTreadRoot_m(), 2e-5);
+  ASSERT_EQ(r.attempts.size(), 4u);
+  const char* expected[] = {"the previous step's solution", "the unworn rails' equilibrium",
+                            "the centred start", "the centred start relaxed"};
+  int solves = 0;
+  for (size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(r.attempts[k].start, expected[k]);
+    EXPECT_EQ(r.attempts[k].converged, k == 3) << expected[k];
+    EXPECT_NE(r.message.find(expected[k]), std::string::npos) << r.message;
+    solves += r.attempts[k].contact_solves;
+  }
+  EXPECT_EQ(solves, r.contact_solves);
+  EXPECT_EQ(r.message.rfind("from the centred start relaxed", 0), 0u) << r.message;
 }
 
 }  // namespace
