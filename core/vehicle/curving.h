@@ -148,6 +148,11 @@ struct CurvingOptions {
   // Workers for the wheelsets' contact solves (each iterate's wheelsets and finite differences
   // are independent): 0 = the machine's hardware threads. Results do not depend on it.
   int threads = 0;
+  // Each wheelset's contact solves start warm (contact_warm_start.h) from the last solve of the
+  // same stream (the iterates, or one finite-difference direction) under the same contact model:
+  // cheaper, and the results differ from cold solves by the contact grid's discretization error
+  // (docs/curving.md, "Warm contact solves"). Deterministic and independent of `threads`.
+  bool warm_contact = false;
   // Cancellation (issue 17), empty: never. Asked before every Newton iteration and before every
   // evaluation of the wheelsets' contact forces (from the calling thread: it must be
   // thread-safe, e.g. read an atomic flag). Once it returns true the solve stops at once with
