@@ -130,6 +130,8 @@ struct WheelsetContext {
   // Tests' analytic forces in place of the contact and the table (curving_internal.h), null: none.
   const internal::WheelsetForceModel* forces = nullptr;
   int index = 0;  // this wheelset's, from the front
+  // The contact solves start warm (CurvingOptions::warm_contact: the full model's phases only).
+  bool warm = false;
 };
 
 // A wheelset's forces from the tests' model (internal::SolveCurvingWith): contact empty, its
@@ -223,9 +225,8 @@ CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw
   out.roll_rad = wp.wheelset.roll_rad;
   out.high_load_N = ctx.high_load_N;
   out.low_load_N = ctx.low_load_N;
-  out.contact = stream ? SolveWheelset(wp, &stream->placements,
-                                       ctx.problem->options.warm_contact ? &stream->right : nullptr,
-                                       ctx.problem->options.warm_contact ? &stream->left : nullptr)
+  out.contact = stream ? SolveWheelset(wp, &stream->placements, ctx.warm ? &stream->right : nullptr,
+                                       ctx.warm ? &stream->left : nullptr)
                        : SolveWheelset(wp);
   out.pitch_velocity_rad_s = out.contact.right.pitch_velocity_rad_s;
   const WheelsetPlacement& placed = out.contact.placement;
@@ -926,6 +927,10 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
                     transfer, q0);
     return out;
   }
+  // The predictor's phase, then the full model's; one phase when they are the same model.
+  const ModelOptions predictor =
+      p.options.predictor ? *p.options.predictor : CurvingOptions::PredictorFor(p.contact.model);
+  const bool has_predictor = !(predictor == p.contact.model);
   auto contexts = [&](const ModelOptions& model) {
     std::vector<WheelsetContext> ctx(layout.wheelsets);
     for (int i = 0; i < layout.wheelsets; ++i) {
@@ -937,7 +942,8 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
                 p.wheels.empty() ? nullptr : &p.wheels[i],
                 nullptr,
                 force_model,
-                i};
+                i,
+                p.options.warm_contact && !(has_predictor && model == predictor)};
     }
     return ctx;
   };
@@ -960,10 +966,6 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
     bool relaxed = false;  // pseudo-transient continuation first (Equilibrium::Relax)
     bool table = false;    // the contact table's phase first (CurvingPredictor::kTable)
   };
-  // The predictor's phase, then the full model's; one phase when they are the same model.
-  const ModelOptions predictor =
-      p.options.predictor ? *p.options.predictor : CurvingOptions::PredictorFor(p.contact.model);
-  const bool has_predictor = !(predictor == p.contact.model);
   std::vector<Attempted> starts;
   if (p.options.start && p.options.start->state.size() == layout.size()) {
     const bool has_jacobian = p.options.start->jacobian.rows() == layout.size() &&
