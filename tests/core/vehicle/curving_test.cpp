@@ -231,16 +231,17 @@ TEST(CurvingTest, RigidBogieMatchesTheLinearClosedForm) {
   EXPECT_NEAR(r.bogies[0].y(), 0.0, 0.05 * a / radius);  // frame psi: bogies hold (y, psi)
 }
 
-// Warm contact solves (CurvingOptions::warm_contact) on the free conical wheelset with the draft
-// predictor and the standard finish (two contact models: each phase's first solves are cold, its
-// axle-force rounds warm from its own streams): the same solution bit for bit on one and two
-// worker threads (each stream's calls are the same sequence whatever thread runs them), and the
-// equilibrium within the solve's position tolerances of the cold contact's (both are solutions
-// of the same contact model whose force noise, warm or cold, is of the grid's discretization
-// error; the position tolerances are that error's order, CurvingOptions).
+// Warm contact solves (CurvingOptions::warm_contact) on the free conical wheelset at standard
+// accuracy in one phase (the predictor is the standard model itself, so every solve after each
+// stream's first starts warm, the axle-force rounds from it): the same solution bit for bit on
+// one and two worker threads (each stream's calls are the same sequence whatever thread runs
+// them), and the equilibrium within the solve's position tolerances of the cold contact's (both
+// are solutions of the same contact model whose force noise, warm or cold, is of the grid's
+// discretization error; the position tolerances are that error's order, CurvingOptions).
 TEST(CurvingTest, WarmContactSolvesAreThreadIndependentAndNearTheColdOnes) {
   CurvingProblem p = BaseProblem(MakeCone(0.05), 1000.0);
   p.contact.model.accuracy = AccuracyPreset::kStandard;
+  p.options.predictor = p.contact.model;
   const CurvingResult cold = SolveCurving(p);
   ASSERT_EQ(cold.status, CurvingStatus::kConverged) << cold.message;
   p.options.warm_contact = true;
