@@ -226,7 +226,7 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
       // the grids); a grid kept again keeps the pose it was built at, so that the wheel's moves
       // add up against kMaxKeptGridMove.
       std::vector<KeptGrid> next_kept;
-      if (warm_start && !memo) {
+      if (warm_start) {
         for (size_t k = 0; k < builds.builds.size(); ++k) {
           const PatchBuild& b = builds.builds[k];
           if (kept_grids && builds.kept[k] >= 0) {
@@ -251,6 +251,28 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
         out.message += "pressure reaches the edge of the potential contact area";
       }
 
+      // A warm start's state for the next call: what this call measured and its balanced
+      // target and pressures (`np` after the balance).
+      auto keep_warm = [&](const NormalProblem& np, const ContactResult& solved) {
+        if (!warm_start || solved.status != SolverStatus::kConverged) return;
+        auto state = std::make_unique<WarmStartState>();
+        state->area = area.measured();
+        state->candidates = static_cast<int>(builds.builds.size());
+        state->approach_m = solved.approach_m;
+        // The balance's target (without coupling: the coupling's balance is on another gap).
+        if (problem.rolling && !problem.rolling->coupling && problem.load.vertical_force_N &&
+            np.force_N) {
+          state->load_N = *problem.load.vertical_force_N;
+          state->target_N = *np.force_N;
+        }
+        for (const PatchResult& patch : solved.patches) {
+          state->grids.push_back(patch.grid);
+          state->grids.back().gap_m.resize(0);  // (not needed)
+          state->pressures_Pa.push_back(patch.pressure_Pa);
+        }
+        state->kept_grids = std::move(next_kept);
+        warm_start->Keep(std::move(state));
+      };
       // 5. Rolling, then coupling and the vertical balance; with a memo, the normal part is
       // kept for the next solve first (the balance changes the normal problem: it runs on a
       // copy).
@@ -262,37 +284,23 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
         memo->Keep(geom, std::move(part));  // (before the balance: a warm memo keeps its state)
         RunRollingPart(problem, geom, kept_part.cands, kept_part.kept, &np, kept_part.pressure,
                        &out, memo);
+        // A warm attempt that does not fit: the cold solve's Keep replaces this part.
+        if (from && out.status != SolverStatus::kConverged) return std::nullopt;
+        keep_warm(np, out);
         return out;
       }
       RunRollingPart(problem, geom, builds.cands, kept, &assembly.np, sol.pressure_Pa, &out,
                      nullptr);
       if (from && out.status != SolverStatus::kConverged) return std::nullopt;
-      if (warm_start && out.status == SolverStatus::kConverged) {
-        auto state = std::make_unique<WarmStartState>();
-        state->area = area.measured();
-        state->candidates = static_cast<int>(builds.builds.size());
-        state->approach_m = out.approach_m;
-        // The balance's target (without coupling: the coupling's balance is on another gap).
-        if (problem.rolling && !problem.rolling->coupling && problem.load.vertical_force_N &&
-            assembly.np.force_N) {
-          state->load_N = *problem.load.vertical_force_N;
-          state->target_N = *assembly.np.force_N;
-        }
-        for (const PatchResult& patch : out.patches) {
-          state->grids.push_back(patch.grid);
-          state->grids.back().gap_m.resize(0);  // (not needed)
-          state->pressures_Pa.push_back(patch.pressure_Pa);
-        }
-        state->kept_grids = std::move(next_kept);
-        warm_start->Keep(std::move(state));
-      }
+      keep_warm(assembly.np, out);
       return out;
     }
     out.status = SolverStatus::kNotConverged;
     out.message = "the potential contact area did not settle";
     return out;
   };
-  if (warm_start && memo) warm_start = nullptr;  // (the memo's solves are of one geometry)
+  // (With a memo, an axle force target's rounds, only the first solve on a geometry gets here
+  // and may start warm: the rounds continue from the memo's normal part above.)
   if (warm_start && warm_start->state()) {
     if (std::optional<ContactResult> warm_result = solve_grids(warm_start->state())) {
       warm_start->CountWarm();

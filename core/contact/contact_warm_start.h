@@ -34,8 +34,9 @@
 // profiles, materials, model, solver options, friction and pressure limit) between which only
 // the wheel's pose and motion and the load change; the caller clears it when anything else
 // changes (the C API's handle does on every set-up call). A wheelset keeps one per wheel
-// (SolveWheelset's right_warm and left_warm; not with an axle force target). It is used by one
-// thread.
+// (SolveWheelset's right_warm and left_warm; with an axle force target the first solve of each
+// wheel starts warm and its balance rounds continue from that solve's normal part, their
+// NormalPartMemo, the pitch velocity being part of the motion). It is used by one thread.
 #pragma once
 
 #include <memory>

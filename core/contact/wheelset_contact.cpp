@@ -206,7 +206,8 @@ WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cac
   // normal solves.
   internal::NormalPartMemo right_memo(internal::NormalPartMemo::kWarmBalance),
       left_memo(internal::NormalPartMemo::kWarmBalance);
-  // Without a target each wheel may start warm (SolveContact ignores a warm start beside a memo).
+  // Each wheel may start warm; with a target the rounds below continue from this solve's
+  // normal part (the memo), warm or cold.
   out.right =
       internal::SolveContact(right, right_geom, 0.0, target ? &right_memo : nullptr, right_warm);
   out.left = internal::SolveContact(left, left_geom, 0.0, target ? &left_memo : nullptr, left_warm);

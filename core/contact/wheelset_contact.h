@@ -85,8 +85,10 @@ WheelMotions CurveWheelMotions(const WheelMotion& axle, const WheelsetPlacement&
 // the same results, bit for bit.
 // right_warm, left_warm (optional, in/out, both or neither): each wheel's grid solve starts
 // from its last call's measured patch and balance as a single wheel's does
-// (contact_warm_start.h) and keeps its own; not used with an axle force target (whose rounds
-// keep their own memo of the normal part) nor on the fast tread path.
+// (contact_warm_start.h) and keeps its own; not used on the fast tread path. With an axle force
+// target the first solve of each wheel starts warm and keeps its state, and the balance rounds
+// continue from that solve's normal part (its memo) as a cold call's rounds continue from the
+// cold solve's: a warm attempt that does not fit falls back to the cold call, bit for bit.
 WheelsetResult SolveWheelset(const WheelsetProblem& problem, PlacementCache* cache = nullptr,
                              ContactWarmStart* right_warm = nullptr,
                              ContactWarmStart* left_warm = nullptr);

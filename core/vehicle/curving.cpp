@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include "core/contact/contact_forces.h"
+#include "core/contact/contact_warm_start.h"
 #include "core/contact/rolling_stage.h"
 #include "core/numerics/input_error.h"
 #include "core/numerics/parallel.h"
@@ -129,6 +130,8 @@ struct WheelsetContext {
   // Tests' analytic forces in place of the contact and the table (curving_internal.h), null: none.
   const internal::WheelsetForceModel* forces = nullptr;
   int index = 0;  // this wheelset's, from the front
+  // The contact solves start warm (CurvingOptions::warm_contact: the full model's phases only).
+  bool warm = false;
 };
 
 // A wheelset's forces from the tests' model (internal::SolveCurvingWith): contact empty, its
@@ -178,7 +181,18 @@ CurvedWheelset EvaluateFromTable(const WheelsetContext& ctx, double y, double ya
   return out;
 }
 
-CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw) {
+// What one stream of a wheelset's contact solves keeps between its calls (Equilibrium: per
+// wheelset one stream for the iterates and one per finite-difference direction, each used by one
+// task at a time): the placed geometries (exact, PlacementCache: a pose solved before is not
+// placed again) and, with CurvingOptions::warm_contact, each wheel's warm start
+// (contact_warm_start.h), cleared whenever the contact model changes.
+struct ContactStream {
+  PlacementCache placements;
+  ContactWarmStart right, left;
+};
+
+CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw,
+                                ContactStream* stream = nullptr) {
   if (ctx.forces) return EvaluateFromModel(ctx, y, yaw);
   if (ctx.table) return EvaluateFromTable(ctx, y, yaw);
   const CurvingProblem& p = *ctx.problem;
@@ -211,7 +225,9 @@ CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw
   out.roll_rad = wp.wheelset.roll_rad;
   out.high_load_N = ctx.high_load_N;
   out.low_load_N = ctx.low_load_N;
-  out.contact = SolveWheelset(wp);
+  out.contact = stream ? SolveWheelset(wp, &stream->placements, ctx.warm ? &stream->right : nullptr,
+                                       ctx.warm ? &stream->left : nullptr)
+                       : SolveWheelset(wp);
   out.pitch_velocity_rad_s = out.contact.right.pitch_velocity_rad_s;
   const WheelsetPlacement& placed = out.contact.placement;
   const double half_span =
@@ -252,7 +268,12 @@ class Equilibrium {
  public:
   Equilibrium(const CurvingProblem& p, const Layout& layout, std::vector<WheelsetContext> ctx,
               double unbalanced_force_N, double q0)
-      : p_(p), l_(layout), ctx_(std::move(ctx)), unbalanced_N_(unbalanced_force_N), q0_(q0) {
+      : p_(p),
+        l_(layout),
+        ctx_(std::move(ctx)),
+        streams_(3 * layout.wheelsets),
+        unbalanced_N_(unbalanced_force_N),
+        q0_(q0) {
     const int n = l_.size();
     const double kappa = p.curve.curvature_per_m();
     // The suspension's stiffness: its forces are linear in q, exact by differences of one.
@@ -292,8 +313,9 @@ class Equilibrium {
     // The unbalanced lateral force: on the car body, or on the single wheelset.
     (*r)[l_.bogies > 0 ? l_.BodyIndex() : 0] += unbalanced_N_;
     ws->resize(l_.wheelsets);
-    ParallelFor(l_.wheelsets, p_.options.threads,
-                [&](int i) { (*ws)[i] = EvaluateWheelset(ctx_[i], q[2 * i], q[2 * i + 1]); });
+    ParallelFor(l_.wheelsets, p_.options.threads, [&](int i) {
+      (*ws)[i] = EvaluateWheelset(ctx_[i], q[2 * i], q[2 * i + 1], &streams_[3 * i]);
+    });
     Count(l_.wheelsets);
     bool ok = true;
     for (int i = 0; i < l_.wheelsets; ++i) {
@@ -706,8 +728,10 @@ class Equilibrium {
     std::vector<CurvedWheelset> stepped(2 * l_.wheelsets);
     ParallelFor(2 * l_.wheelsets, p_.options.threads, [&](int t) {
       const int i = t / 2;
-      stepped[t] = t % 2 == 0 ? EvaluateWheelset(ctx_[i], q[2 * i] + step_y, q[2 * i + 1])
-                              : EvaluateWheelset(ctx_[i], q[2 * i], q[2 * i + 1] + step_yaw);
+      ContactStream* stream = &streams_[3 * i + 1 + t % 2];
+      stepped[t] = t % 2 == 0
+                       ? EvaluateWheelset(ctx_[i], q[2 * i] + step_y, q[2 * i + 1], stream)
+                       : EvaluateWheelset(ctx_[i], q[2 * i], q[2 * i + 1] + step_yaw, stream);
     });
     Count(2 * l_.wheelsets);
     for (int i = 0; i < l_.wheelsets; ++i) {
@@ -750,11 +774,15 @@ class Equilibrium {
   }
   bool cancelled() const { return cancelled_; }
   const Eigen::MatrixXd& jacobian() const { return jacobian_; }
-  void set_contexts(std::vector<WheelsetContext> ctx) { ctx_ = std::move(ctx); }
+  void set_contexts(std::vector<WheelsetContext> ctx) {
+    ctx_ = std::move(ctx);
+    ClearWarmStarts();
+  }
   // A new start: the contexts of the first phase and the chord to begin with (empty, or of
   // another size: none, the first iteration evaluates it).
   void Restart(std::vector<WheelsetContext> ctx, const Eigen::MatrixXd& jacobian) {
     ctx_ = std::move(ctx);
+    ClearWarmStarts();
     const Eigen::Index n = l_.size();
     if (jacobian.rows() == n && jacobian.cols() == n && jacobian.allFinite()) {
       jacobian_ = jacobian;
@@ -785,6 +813,14 @@ class Equilibrium {
     }
     return false;
   }
+  // A new contact model (or a new start): every stream's next solve is cold. The placements are
+  // kept (a pure function of the profiles and the pose).
+  void ClearWarmStarts() {
+    for (ContactStream& s : streams_) {
+      s.right.Clear();
+      s.left.Clear();
+    }
+  }
   // Counts n wheelset evaluations: contact solves, or the table's.
   void Count(int n) { (ctx_.empty() || !ctx_[0].table ? solves_ : table_evaluations_) += n; }
   int Ended(CurvingEnding rule, int iterations) {
@@ -803,6 +839,8 @@ class Equilibrium {
   const CurvingProblem& p_;
   const Layout& l_;
   std::vector<WheelsetContext> ctx_;
+  // Per wheelset: the iterates' stream, then the y and the yaw differences' (ContactStream).
+  std::vector<ContactStream> streams_;
   double unbalanced_N_ = 0.0, q0_ = 1.0;
   Eigen::MatrixXd suspension_, jacobian_;
   Eigen::FullPivLU<Eigen::MatrixXd> frames_;  // the frames' and body's block of the suspension
@@ -889,6 +927,10 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
                     transfer, q0);
     return out;
   }
+  // The predictor's phase, then the full model's; one phase when they are the same model.
+  const ModelOptions predictor =
+      p.options.predictor ? *p.options.predictor : CurvingOptions::PredictorFor(p.contact.model);
+  const bool has_predictor = !(predictor == p.contact.model);
   auto contexts = [&](const ModelOptions& model) {
     std::vector<WheelsetContext> ctx(layout.wheelsets);
     for (int i = 0; i < layout.wheelsets; ++i) {
@@ -900,7 +942,8 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
                 p.wheels.empty() ? nullptr : &p.wheels[i],
                 nullptr,
                 force_model,
-                i};
+                i,
+                p.options.warm_contact && !(has_predictor && model == predictor)};
     }
     return ctx;
   };
@@ -926,10 +969,6 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
     int start_index = 0;   // which start (a start's two tries share it)
     std::string label;     // the start's, for the message
   };
-  // The predictor's phase, then the full model's; one phase when they are the same model.
-  const ModelOptions predictor =
-      p.options.predictor ? *p.options.predictor : CurvingOptions::PredictorFor(p.contact.model);
-  const bool has_predictor = !(predictor == p.contact.model);
   std::vector<Attempted> starts;
   int start_count = 0;
   // The given start, then the fallbacks: each of the layout's size and not an earlier one.

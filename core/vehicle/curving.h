@@ -162,6 +162,15 @@ struct CurvingOptions {
   // Workers for the wheelsets' contact solves (each iterate's wheelsets and finite differences
   // are independent): 0 = the machine's hardware threads. Results do not depend on it.
   int threads = 0;
+  // In the full model's phases (not the predictor's, whose finite differences then met the warm
+  // start's noise and took more iterations), each wheelset's contact solves start warm
+  // (contact_warm_start.h) from the last solve of the same stream (the iterates, or one
+  // finite-difference direction) under the same contact model: cheaper where the full model's
+  // patches are conformal (their operators kept), and the results differ from cold solves by the
+  // contact grid's discretization error (docs/curving.md, "Kept placements and warm contact
+  // solves"). A problem without a predictor's phase (the predictor is its own model) is solved
+  // warm throughout. Deterministic and independent of `threads`.
+  bool warm_contact = false;
   // Cancellation (issue 17), empty: never. Asked before every Newton iteration and before every
   // evaluation of the wheelsets' contact forces (from the calling thread: it must be
   // thread-safe, e.g. read an atomic flag). Once it returns true the solve stops at once with

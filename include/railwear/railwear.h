@@ -299,8 +299,8 @@ RW_API rw_status rw_set_state(rw_problem* problem, const rw_state* state);
  * results depend on the calls before: leave it off where runs must be reproducible call by
  * call. The first calculate, and the first after any set-up call (every rw_set_* but
  * rw_set_state and rw_set_wear) or rw_set_warm_start itself, is cold. A wheelset's two wheels
- * each start warm from their own last calculate, except with an axle force target (then
- * solved cold). */
+ * each start warm from their own last calculate, with an axle force target too (since
+ * 2026-11-29: the first solve of each wheel warm, the pitch search's rounds from it). */
 RW_API rw_status rw_set_warm_start(rw_problem* problem, int enable);
 
 /* Solves the contact of the current set-up and state. RW_ERROR_NOT_CONVERGED and

@@ -12,6 +12,9 @@
 //   BM_CurvingExampleContinuation/V/A  the same vehicle 0.5 m/s faster, started from the solution
 //                           at the scene's speed and its Jacobian (CurvingResult::Start): what
 //                           each wear step's curving costs (it starts from the step before's).
+//   BM_CurvingExampleWarm/V/A, BM_CurvingExampleContinuationWarm/V/A  the same two with warm
+//                           contact solves (CurvingOptions::warm_contact), and how far their
+//                           solution and Jacobian lie from the cold contact's;
 //   BM_CurvingExampleTable/V/A/T  as BM_CurvingExample with the table predictor
 //                           (CurvingPredictor::kTable: the contact table built, its equilibrium
 //                           finished with the full model); also reports the table's build time,
@@ -117,6 +120,52 @@ void BM_CurvingExampleContinuation(benchmark::State& state) {
   Run(state, p);
 }
 BENCHMARK(BM_CurvingExampleContinuation)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+// BM_CurvingExample and BM_CurvingExampleContinuation with warm contact solves
+// (CurvingOptions::warm_contact): the same solve, each wheelset's contact starting from its
+// stream's last solve; also reports how far the solution lies from the cold contact's (the
+// largest over the wheelsets: off_cold_y_mm, off_cold_psi_mrad; off_cold_jacobian, the largest
+// relative change of a wheelset's 2 x 2 block of the returned Jacobian).
+void RunWarm(benchmark::State& state, CurvingProblem p) {
+  const CurvingResult cold = SolveCurving(p);
+  p.options.warm_contact = true;
+  Run(state, p);
+  const CurvingResult warm = SolveCurving(p);
+  double off_y = 0.0, off_psi = 0.0, off_j = 0.0;
+  for (int i = 0; i < static_cast<int>(cold.wheelsets.size()); ++i) {
+    off_y = std::max(off_y, std::abs(warm.state[2 * i] - cold.state[2 * i]));
+    off_psi = std::max(off_psi, std::abs(warm.state[2 * i + 1] - cold.state[2 * i + 1]));
+    if (warm.jacobian.size() == cold.jacobian.size() && cold.jacobian.size() > 0) {
+      const Eigen::Matrix2d c = cold.jacobian.block<2, 2>(2 * i, 2 * i);
+      const Eigen::Matrix2d w = warm.jacobian.block<2, 2>(2 * i, 2 * i);
+      off_j = std::max(off_j, (w - c).norm() / c.norm());
+    }
+  }
+  state.counters["off_cold_y_mm"] = off_y * 1e3;
+  state.counters["off_cold_psi_mrad"] = off_psi * 1e3;
+  state.counters["off_cold_jacobian"] = off_j;
+  state.counters["cold_contact_solves"] = cold.contact_solves;
+}
+
+void BM_CurvingExampleWarm(benchmark::State& state) {
+  RunWarm(state, ExampleProblem(static_cast<int>(state.range(0)), state.range(1) == 1));
+}
+BENCHMARK(BM_CurvingExampleWarm)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+void BM_CurvingExampleContinuationWarm(benchmark::State& state) {
+  CurvingProblem p = ExampleProblem(static_cast<int>(state.range(0)), state.range(1) == 1);
+  const CurvingResult at_speed = SolveCurving(p);  // (the cold contact's start, as a wear step's)
+  p.options.start = at_speed.Start();
+  p.speed_m_s += 0.5;
+  RunWarm(state, p);
+}
+BENCHMARK(BM_CurvingExampleContinuationWarm)
     ->ArgsProduct({{0, 1}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);

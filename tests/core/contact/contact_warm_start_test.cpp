@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
@@ -15,6 +17,7 @@
 #include "core/contact/patch_results.h"
 #include "core/contact/placement_cache.h"
 #include "core/contact/potential_area.h"
+#include "core/contact/rolling_stage.h"
 #include "core/profile/builtin_profiles.h"
 #include "tests/core/contact/gauge_corner_scene.h"
 #include "tests/core/contact/same_result.h"
@@ -287,54 +290,94 @@ TEST(ContactWarmStart, PressureStartInterpolatesTheLastPressuresOntoTheNewGrid) 
   EXPECT_EQ(internal::WarmPressureStart(state, elsewhere).maxCoeff(), 0.0);
 }
 
-TEST(ContactWarmStart, AWheelsetsWheelsStartWarmEachFromTheirOwnLastCall) {
-  // The wheelset of the benchmark's wheels displaced toward the right rail's gauge corner (the
-  // right wheel at the flange root, the left one on its rail's crown), stepped as a time loop
-  // does: the first call is the cold one bit for bit, later ones start warm on both wheels and
-  // stay within the standard preset's measured errors of the cold call; with an axle force
-  // target (its rounds keep their own memo) the call is the cold one bit for bit.
-  auto at = [](double displacement_m) {
-    ContactCase c = GaugeCorner(0.0);
-    c.problem.placement = {};
-    c.wheelset.emplace().wheelset.lateral_displacement_m = displacement_m;
-    return c;
-  };
-  PlacementCache cache;
-  ContactWarmStart right, left;
-  auto solve = [&](const ContactCase& c) {
-    return *SolveContactCase(c, &cache, nullptr, &right, &left).wheelset;
-  };
+// The benchmark's wheels as a wheelset displaced toward the right rail's gauge corner (the right
+// wheel at the flange root, the left one on its rail's crown), with an axle force target if
+// given.
+ContactCase WheelsetAt(double displacement_m, std::optional<double> axle_force_N = {}) {
+  ContactCase c = GaugeCorner(0.0);
+  c.problem.placement = {};
+  c.problem.rolling->longitudinal_force_N = axle_force_N;
+  c.wheelset.emplace().wheelset.lateral_displacement_m = displacement_m;
+  return c;
+}
+
+// That wheelset stepped as a time loop does from 4.9 mm with warm starts: the first call is the
+// cold one bit for bit, the next four (steps of 0.05-0.2 mm) within the standard preset's
+// measured errors of the cold call at the same position; `each` checks more per step.
+void StepWheelsetWarm(
+    std::optional<double> axle_force_N, PlacementCache* cache, ContactWarmStart* right,
+    ContactWarmStart* left,
+    const std::function<void(const WheelsetResult& warm, const WheelsetResult& cold,
+                             const std::string& where)>& each = {}) {
   double d_mm = 4.9;
   {
-    const WheelsetResult first = solve(at(d_mm * 1e-3));
-    const WheelsetResult cold = *SolveContactCase(at(d_mm * 1e-3)).wheelset;
+    const ContactCase c = WheelsetAt(d_mm * 1e-3, axle_force_N);
+    const WheelsetResult first = *SolveContactCase(c, cache, nullptr, right, left).wheelset;
+    const WheelsetResult cold = *SolveContactCase(c).wheelset;
     ExpectSameResult(first.right, cold.right);
     ExpectSameResult(first.left, cold.left);
   }
   for (const double step : {0.05, 0.10, 0.15, 0.20}) {
     d_mm += step;
-    const ContactCase c = at(d_mm * 1e-3);
-    const WheelsetResult w = solve(c);
+    const ContactCase c = WheelsetAt(d_mm * 1e-3, axle_force_N);
+    const WheelsetResult w = *SolveContactCase(c, cache, nullptr, right, left).wheelset;
     const WheelsetResult cold = *SolveContactCase(c).wheelset;
-    ExpectWithinTheDiscretizationError(w.right, cold.right, 100e3,
-                                       "right, " + std::to_string(d_mm) + " mm",
+    const std::string where = std::to_string(d_mm) + " mm";
+    ExpectWithinTheDiscretizationError(w.right, cold.right, 100e3, "right, " + where,
                                        kFlangeRootPeakTolerance);
-    ExpectWithinTheDiscretizationError(w.left, cold.left, 100e3,
-                                       "left, " + std::to_string(d_mm) + " mm");
+    ExpectWithinTheDiscretizationError(w.left, cold.left, 100e3, "left, " + where);
+    if (each) each(w, cold, where);
   }
+}
+
+TEST(ContactWarmStart, AWheelsetsWheelsStartWarmEachFromTheirOwnLastCall) {
+  // The wheelset above stepped as a time loop does: the first call is the cold one bit for bit,
+  // later ones start warm on both wheels and stay within the standard preset's measured errors
+  // of the cold call.
+  PlacementCache cache;
+  ContactWarmStart right, left;
+  StepWheelsetWarm(std::nullopt, &cache, &right, &left);
+  EXPECT_GE(right.warm_calls(), 3);
+  EXPECT_GE(left.warm_calls(), 3);
+  EXPECT_EQ(right.cold_calls(), 1 + right.fallbacks());
+  EXPECT_EQ(left.cold_calls(), 1 + left.fallbacks());
+}
+
+TEST(ContactWarmStart, AWheelsetWithAnAxleForceTargetStartsWarmAndFallsBackBitForBit) {
+  // The wheelset of the test above with an axle force target (5 kN of traction; steady-state
+  // curving always sets one): the first solve of each wheel starts warm and the balance rounds
+  // continue from its normal part. The first call is the cold one bit for bit; later ones start
+  // warm on both wheels, within the standard preset's measured errors of the cold call (the
+  // same tolerances as without a target: each wheel's result is a balanced warm solve at the
+  // pitch velocity the rounds found), and both carry the target to the search's tolerance. A
+  // jump to the tread (another candidate) falls back to the cold call, bit for bit.
+  const double target_N = 5e3;
+  PlacementCache cache;
+  ContactWarmStart right, left;
+  // The search's default tolerance on the axle's F_x: 1e-6 mu F_n (wheelset_contact.h).
+  const double force_tolerance_N = 1e-6 * 0.3 * 2.0 * 100e3;
+  StepWheelsetWarm(
+      target_N, &cache, &right, &left,
+      [&](const WheelsetResult& w, const WheelsetResult& cold, const std::string& where) {
+        // Both carry the axle's force, warm as cold (the search's tolerance).
+        EXPECT_NEAR(TotalForceX(w.right) + TotalForceX(w.left), target_N, force_tolerance_N)
+            << where;
+        EXPECT_NEAR(TotalForceX(cold.right) + TotalForceX(cold.left), target_N, force_tolerance_N)
+            << where;
+      });
   EXPECT_GE(right.warm_calls(), 3);
   EXPECT_GE(left.warm_calls(), 3);
   EXPECT_EQ(right.cold_calls(), 1 + right.fallbacks());
   EXPECT_EQ(left.cold_calls(), 1 + left.fallbacks());
 
-  ContactCase target = at(d_mm * 1e-3);
-  target.problem.rolling->longitudinal_force_N = 5e3;
-  const int right_calls = right.warm_calls() + right.cold_calls();
-  const WheelsetResult with_target = solve(target);
-  const WheelsetResult cold = *SolveContactCase(target).wheelset;
-  ExpectSameResult(with_target.right, cold.right);
-  ExpectSameResult(with_target.left, cold.left);
-  EXPECT_EQ(right.warm_calls() + right.cold_calls(), right_calls);  // not used
+  // A jump of the right wheel from the flange root to its tread: solved cold, bit for bit.
+  const int fallbacks = right.fallbacks();
+  const ContactCase jump = WheelsetAt(-3e-3, target_N);
+  const WheelsetResult w = *SolveContactCase(jump, &cache, nullptr, &right, &left).wheelset;
+  const WheelsetResult cold = *SolveContactCase(jump).wheelset;
+  EXPECT_EQ(right.fallbacks(), fallbacks + 1);
+  ExpectSameResult(w.right, cold.right);
+  ExpectSameResult(w.left, cold.left);
 }
 
 TEST(ContactWarmStart, ClearedItIsColdAgain) {

@@ -231,6 +231,39 @@ TEST(CurvingTest, RigidBogieMatchesTheLinearClosedForm) {
   EXPECT_NEAR(r.bogies[0].y(), 0.0, 0.05 * a / radius);  // frame psi: bogies hold (y, psi)
 }
 
+// Warm contact solves (CurvingOptions::warm_contact) on the free conical wheelset at standard
+// accuracy in one phase (the predictor is the standard model itself, so every solve after each
+// stream's first starts warm, the axle-force rounds from it): the same solution bit for bit on
+// one and two worker threads (each stream's calls are the same sequence whatever thread runs
+// them), and the equilibrium within the solve's position tolerances of the cold contact's (both
+// are solutions of the same contact model whose force noise, warm or cold, is of the grid's
+// discretization error; the position tolerances are that error's order, CurvingOptions).
+TEST(CurvingTest, WarmContactSolvesAreThreadIndependentAndNearTheColdOnes) {
+  CurvingProblem p = BaseProblem(MakeCone(0.05), 1000.0);
+  p.contact.model.accuracy = AccuracyPreset::kStandard;
+  p.options.predictor = p.contact.model;
+  const CurvingResult cold = SolveCurving(p);
+  ASSERT_EQ(cold.status, CurvingStatus::kConverged) << cold.message;
+  p.options.warm_contact = true;
+  p.options.threads = 1;
+  const CurvingResult one = SolveCurving(p);
+  p.options.threads = 2;
+  const CurvingResult two = SolveCurving(p);
+  ASSERT_EQ(one.status, CurvingStatus::kConverged) << one.message;
+  ASSERT_EQ(two.status, CurvingStatus::kConverged) << two.message;
+  ASSERT_EQ(one.state.size(), two.state.size());
+  for (int k = 0; k < one.state.size(); ++k) EXPECT_EQ(one.state[k], two.state[k]) << k;
+  EXPECT_EQ(one.contact_solves, two.contact_solves);
+  EXPECT_EQ(one.largest_scaled_residual, two.largest_scaled_residual);
+  EXPECT_NEAR(one.wheelsets[0].lateral_m, cold.wheelsets[0].lateral_m,
+              p.options.position_tolerance_m);
+  EXPECT_NEAR(one.wheelsets[0].yaw_rad, cold.wheelsets[0].yaw_rad, p.options.yaw_tolerance_rad);
+  std::printf(
+      "warm contact: y %.4f mm (cold %.4f), yaw %.3e rad (cold %.3e), %d solves (cold %d)\n",
+      one.wheelsets[0].lateral_m * 1e3, cold.wheelsets[0].lateral_m * 1e3, one.wheelsets[0].yaw_rad,
+      cold.wheelsets[0].yaw_rad, one.contact_solves, cold.contact_solves);
+}
+
 // Without primary yaw stiffness every wheelset steers itself: radial (psi = 0) at the free
 // wheelset's pure-rolling offset.
 TEST(CurvingTest, SoftPrimaryYawLetsWheelsetsGoRadial) {
