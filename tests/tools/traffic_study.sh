@@ -9,9 +9,9 @@
 #   usage: tests/tools/traffic_study.sh [RAILWEAR] [WORKDIR] [MGT]
 #   (TRAFFIC_STUDY_REUSE=1: analyse WORKDIR/traffic.sqlite of an earlier run without running;
 #    TRAFFIC_STUDY_SPREAD=adaptive: the adaptive spread rule at its default tolerance instead of the
-#    scene's 3 fixed nodes, TRAFFIC_STUDY_SPREAD=N: N fixed Gauss-Hermite nodes,
-#    TRAFFIC_STUDY_SPREAD=linearM: the fixed piecewise-linear rule, spread_nodes = M (linear128: the
-#    curve's converged reference); docs/wear.md)
+#    scene's own rule (the piecewise-linear rule on 16 nodes), TRAFFIC_STUDY_SPREAD=N: N fixed
+#    Gauss-Hermite nodes, TRAFFIC_STUDY_SPREAD=linearM: the fixed piecewise-linear rule,
+#    spread_nodes = M (linear64: the curve's converged reference); docs/wear.md)
 set -euo pipefail
 bin=${1:-build/app/railwear}
 work=${2:-$(mktemp -d)}
@@ -21,15 +21,18 @@ mkdir -p "$work"
 scene="$work/traffic.toml"
 spread=${TRAFFIC_STUDY_SPREAD:-}
 case "$spread" in
-  "") rule="quadrature_points = 3" ;;
+  "") rule="" ;;
   adaptive) rule="integration_tolerance = 0.005" ;;
   linear*[!0-9]* | linear) echo "TRAFFIC_STUDY_SPREAD = '$spread': expected linearM, M a node count" >&2; exit 2 ;;
   linear*) rule="spread_rule = \"piecewise_linear\"\nspread_nodes = ${spread#linear}" ;;
   *[!0-9]*) echo "TRAFFIC_STUDY_SPREAD = '$spread': expected 'adaptive', a node count or linearM" >&2; exit 2 ;;
   *) rule="quadrature_points = $spread" ;;
 esac
+# The scene's rule lines give way to the chosen rule (none chosen: they stay).
 awk -v t="$total" -v r="$rule" '/^total_MGT = / { print "total_MGT = " t; next }
-  /^quadrature_points = / { print r; next } { print }' \
+  r != "" && /^(quadrature_points|integration_tolerance|spread_rule|spread_nodes) = / {
+    if (!done) print r; done = 1; next }
+  { print }' \
   "$here/examples/curve_r600_vehicles.toml" > "$scene"
 db="$work/traffic.sqlite"
 if [ "${TRAFFIC_STUDY_REUSE:-0}" != 1 ]; then
