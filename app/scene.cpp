@@ -798,11 +798,14 @@ void ReadLateralShift(const Fields& t, TrafficCase* c) {
 
 // [curving] (issue 15): how the vehicles' steady-state curving is solved. predictor: the cold
 // solve's predictor (CurvingOptions::cold_predictor): "model" (the draft grid) or "table" (the
-// contact table, docs/curving.md "The table predictor"). Only beside [[vehicle]] tables.
+// contact table, docs/curving.md "The table predictor"). warm_contact: each wheelset's contact
+// solves start from its last one in the full model's phases (CurvingOptions::warm_contact,
+// docs/curving.md "Kept placements and warm contact solves"); default false. Only beside
+// [[vehicle]] tables.
 void ReadCurvingTable(const Fields& top, Scene* scene) {
-  const auto t = top.Table("curving", "a table { predictor }");
+  const auto t = top.Table("curving", "a table { predictor, warm_contact }");
   if (!t) return;
-  t->AllowOnly({"predictor"});
+  t->AllowOnly({"predictor", "warm_contact"});
   if (scene->wear->vehicles.empty()) {
     top.Fail("curving",
              "a [curving] table only beside [[vehicle]] tables (it sets how their curving is "
@@ -811,6 +814,7 @@ void ReadCurvingTable(const Fields& top, Scene* scene) {
   if (const auto name = t->Choice("predictor", EnumChoices(kCurvingPredictorNames))) {
     scene->wear->curving_predictor = *EnumFromString(kCurvingPredictorNames, *name);
   }
+  scene->wear->curving_warm_contact = t->Bool("warm_contact").value_or(false);
 }
 
 // [[vehicle]]: the vehicles that vehicle traffic names (core/vehicle/vehicle.h). Units as in

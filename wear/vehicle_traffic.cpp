@@ -178,6 +178,7 @@ CurvingProblem VehicleCurvingProblem(const WearStudy& study, int traffic_index,
   p.friction = c.friction;
   p.options.threads = study.options.threads;
   p.options.cold_predictor = study.curving_predictor;
+  p.options.warm_contact = study.curving_warm_contact;
   p.options.cancel = study.options.cancel;  // a signal stops the solve, not only the step after it
   // The previous step's solution, then the equilibrium on the unworn rails (SolveCurving skips
   // it when it is the same state: step 1's start), then the centred start.

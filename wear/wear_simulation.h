@@ -140,6 +140,10 @@ struct WearStudy : ContactSetup {
   // solves on the unworn rails, and a step's fallback from the centred start (scenes: [curving]
   // predictor).
   CurvingPredictor curving_predictor = CurvingPredictor::kModel;
+  // Warm contact solves in every vehicle entry's curving (CurvingOptions::warm_contact; scenes:
+  // [curving] warm_contact): off by default, since it moves the equilibria within the curving's
+  // position tolerances.
+  bool curving_warm_contact = false;
   // Per traffic entry, the curving solution on the unworn rails (empty, or an empty entry: the
   // centred start): the start of a step whose state carries none (WearState::curving), and the
   // fallback of one whose previous step's solution fails, before the centred start

@@ -128,6 +128,11 @@ std::vector<CorpusCase> Corpus() {
                "curving s.toml",
                2,
                {"s.toml:", "key 'curving.predictor' = 1", "'model', 'table'"}});
+  c.push_back({"curving_warm_contact_not_a_bool",
+               {{"s.toml", std::string(kWheelsetCurveScene) + "[curving]\nwarm_contact = 1\n"}},
+               "curving s.toml",
+               2,
+               {"s.toml:", "key 'curving.warm_contact' = 1", "true or false"}});
   c.push_back({"curving_without_vehicles",
                {{"s.toml", wear + "\n[curving]\npredictor = \"table\"\n"}},
                "wear s.toml --db s.sqlite",

@@ -142,6 +142,22 @@ TEST_F(CurvingCommandTest, TablePredictorReachesTheSameEquilibrium) {
 // its step where the model predictor's run does, within the curving's position tolerances
 // (CurvingOptions::position_tolerance_m, yaw_tolerance_rad: 0.05 mm, 0.05 mrad). Bad values:
 // the bad-input corpus (curving_predictor_*).
+// [curving] warm_contact (CurvingOptions::warm_contact, off by default) reaches every vehicle
+// entry's curving problem, the wear run's and `railwear curving`'s (VehicleCurvingProblem); a
+// value other than a boolean: the bad-input corpus (curving_warm_contact_not_a_bool). What the
+// option does: CurvingTest.WarmContactSolvesAreThreadIndependentAndNearTheColdOnes.
+TEST_F(CurvingCommandTest, SceneWarmContactKeyReachesTheCurvingProblem) {
+  const app::Scene cold = app::ParseScene(TwoRailWearScene(), "s.toml");
+  EXPECT_FALSE(cold.wear->curving_warm_contact);
+  const TrackRails rails = UnwornRailsInTrack(*cold.wear);
+  EXPECT_FALSE(VehicleCurvingProblem(*cold.wear, 0, rails.high, rails.low).options.warm_contact);
+  const app::Scene warm =
+      app::ParseScene(TwoRailWearScene() + "[curving]\nwarm_contact = true\n", "w.toml");
+  ASSERT_TRUE(warm.wear->curving_warm_contact);
+  EXPECT_TRUE(VehicleCurvingProblem(*warm.wear, 0, rails.high, rails.low).options.warm_contact);
+  EXPECT_EQ(warm.wear->curving_predictor, CurvingPredictor::kModel);  // the other key unchanged
+}
+
 TEST_F(CurvingCommandTest, ScenePredictorKeyReachesTheCurvingAndTheWearRun) {
   const std::string table_scene = TwoRailWearScene() + "[curving]\npredictor = \"table\"\n";
   const std::string model_scene = TwoRailWearScene() + "[curving]\npredictor = \"model\"\n";
