@@ -54,6 +54,16 @@ void GaussHermiteProbabilists(int n, std::vector<double>* nodes, std::vector<dou
   if (n % 2 == 1) (*nodes)[n / 2] = 0.0;
 }
 
+void FixedSpreadRule(int quadrature_points, const std::vector<double>& linear_nodes,
+                     std::vector<double>* nodes, std::vector<double>* weights) {
+  if (linear_nodes.empty()) {
+    GaussHermiteProbabilists(quadrature_points, nodes, weights);
+  } else {
+    *nodes = linear_nodes;
+    *weights = LinearGaussianWeights(linear_nodes);
+  }
+}
+
 namespace {
 
 void Require(bool ok, const TrafficCase& c, const char* key, double value, const char* expected) {
@@ -153,12 +163,7 @@ std::vector<LoadCase> ExpandValidTraffic(const std::vector<TrafficCase>& traffic
                                          const std::vector<double>& linear_nodes) {
   const std::array<double, 2> total_share = RailShareTotals(traffic);
   std::vector<double> nodes, weights;
-  if (linear_nodes.empty()) {
-    GaussHermiteProbabilists(quadrature_points, &nodes, &weights);
-  } else {
-    nodes = linear_nodes;
-    weights = LinearGaussianWeights(nodes);
-  }
+  FixedSpreadRule(quadrature_points, linear_nodes, &nodes, &weights);
   std::vector<LoadCase> cases;
   for (int t = 0; t < static_cast<int>(traffic.size()); ++t) {
     const TrafficCase& c = traffic[t];

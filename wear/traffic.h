@@ -161,6 +161,12 @@ inline constexpr int kMaxQuadraturePoints = 81;
 // polynomials up to degree 2n - 1. n in [1, kMaxQuadraturePoints].
 void GaussHermiteProbabilists(int n, std::vector<double>* nodes, std::vector<double>* weights);
 
+// The fixed rule's nodes and weights over a spread [standard-normal units]: the piecewise-linear
+// rule on linear_nodes (LinearGaussianWeights) when it is not empty, else quadrature_points
+// Gauss-Hermite nodes (WearOptions::spread_nodes, quadrature_points).
+void FixedSpreadRule(int quadrature_points, const std::vector<double>& linear_nodes,
+                     std::vector<double>* nodes, std::vector<double>* weights);
+
 // Checks every entry (positive loads, radii, speeds, friction, shares; std >= 0; finite values;
 // wheel wear only on prescribed and collective entries, with a positive distance and hardness)
 // and throws InputError naming the entry and the value.

@@ -135,19 +135,11 @@ double FlangeOnsetOffset(const WearStudy& study, int traffic_index, const Vehicl
 }
 
 std::array<double, 2> OutermostSpreadNodes(const WearOptions& o) {
-  std::vector<double> nodes;
-  switch (SpreadRuleOf(o)) {
-    case SpreadRule::kAdaptive:
-      nodes.assign(kSpreadInitialNodes.begin(), kSpreadInitialNodes.end());
-      break;
-    case SpreadRule::kPiecewiseLinear:
-      nodes = o.spread_nodes;
-      break;
-    case SpreadRule::kGaussHermite: {
-      std::vector<double> weights;
-      GaussHermiteProbabilists(o.quadrature_points, &nodes, &weights);
-      break;
-    }
+  std::vector<double> nodes, weights;
+  if (SpreadRuleOf(o) == SpreadRule::kAdaptive) {
+    nodes.assign(kSpreadInitialNodes.begin(), kSpreadInitialNodes.end());
+  } else {
+    FixedSpreadRule(o.quadrature_points, o.spread_nodes, &nodes, &weights);
   }
   const auto [lowest, highest] = std::minmax_element(nodes.begin(), nodes.end());
   return {std::max(0.0, *highest), std::max(0.0, -*lowest)};
@@ -323,11 +315,8 @@ std::vector<LoadCase> VehicleLoadCases(const WearStudy& study, int traffic_index
       SolveVehicleEquilibrium(study, traffic_index, high_track, low_track, start);
   if (solved) *solved = eq.result.Start();
   std::vector<double> nodes = {0.0}, weights = {1.0};
-  if (c.lateral_shift_std_m > 0.0 && !study.options.spread_nodes.empty()) {
-    nodes = study.options.spread_nodes;  // the piecewise-linear rule (WearOptions)
-    weights = LinearGaussianWeights(nodes);
-  } else if (c.lateral_shift_std_m > 0.0) {
-    GaussHermiteProbabilists(study.options.quadrature_points, &nodes, &weights);
+  if (c.lateral_shift_std_m > 0.0) {
+    FixedSpreadRule(study.options.quadrature_points, study.options.spread_nodes, &nodes, &weights);
   }
   std::vector<LoadCase> cases;
   for (int w = 0; w < static_cast<int>(eq.result.wheelsets.size()); ++w) {

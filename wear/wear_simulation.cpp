@@ -859,8 +859,8 @@ WearRunSummary RunWear(const WearStudy& study, const UnwornRails& unworn, WearSt
   // and, where the state carries none (step 0, or a run stored without them) or that start fails,
   // from its equilibrium on the unworn rails (VehicleCurvingProblem): solved here whenever the
   // study has a vehicle entry, so a resumed run has the same fallback as an uninterrupted one.
-  bool needs_starts = false;
-  for (const TrafficCase& c : study.traffic) needs_starts = needs_starts || c.is_vehicle();
+  const bool needs_starts = std::any_of(study.traffic.begin(), study.traffic.end(),
+                                        [](const TrafficCase& c) { return c.is_vehicle(); });
   std::optional<WearStudy> prepared;
   WearRunSummary summary;
   if (study.vehicle_starts.empty() && unworn.low && needs_starts) {

@@ -999,31 +999,25 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
   }
   // The centred starts follow (`starts` from here on).
   const int centred_from = start_count;
+  // A centred start (each its own start): named `name`, `label` in the message.
+  auto add_centred = [&](bool relaxed, bool table, const std::string& name,
+                         const std::string& label) {
+    starts.push_back({{centred, {}, {}}, false, relaxed, table, name, start_count++, label});
+  };
   // The table predictor: from the centred start through the contact table's equilibrium; when
   // that fails, the model predictor's centred start below is the fallback.
   if (p.options.cold_predictor == CurvingPredictor::kTable) {
     const std::string label = "the centred start through the contact table";
-    starts.push_back({{centred, {}, {}}, false, false, true, label, start_count++, label});
+    add_centred(false, true, label, label);
   }
-  starts.push_back({{centred, {}, {}},
-                    false,
-                    false,
-                    false,
-                    "the centred start",
-                    start_count++,
-                    "the centred start"});
+  add_centred(false, false, "the centred start", "the centred start");
   // Last, when no start has converged nor stopped within the usable residual: the centred start
   // again, relaxed toward the equilibrium before Newton (on the worn rails of the default curve
   // with 20 spread nodes at 8.5 MGT the coach's Newton steps from the centred start went 2 mm
   // per iteration away from the flange and stopped at 5.2e-1 Q0).
-  starts.push_back({{centred, {}, {}},
-                    false,
-                    true,
-                    false,
-                    "the centred start relaxed",
-                    start_count++,
-                    "the centred start relaxed toward the equilibrium first by pseudo-transient "
-                    "continuation"});
+  add_centred(true, false, "the centred start relaxed",
+              "the centred start relaxed toward the equilibrium first by pseudo-transient "
+              "continuation");
   Eigen::VectorXd q;
   std::vector<CurvedWheelset> ws;
   Eigen::VectorXd r;
