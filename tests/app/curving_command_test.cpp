@@ -617,6 +617,16 @@ TEST_F(CurvingCommandTest, BadVehicleInputIsExitTwoWithFileAndKey) {
   // A scene without vehicles is not a curving scene.
   std::ofstream(dir_ / "none.toml") << "[scene]\nname = \"x\"\n";
   EXPECT_EQ(Run("curving none.toml").exit_code, 2);
+  // --start names one of three starts and needs --db (the stored step it starts on).
+  std::ofstream(dir_ / "good.toml") << kScene;
+  const Outcome no_db = Run("curving good.toml --start unworn");
+  EXPECT_EQ(no_db.exit_code, 2) << no_db.err;
+  EXPECT_TRUE(Contains(no_db.err, "--start")) << no_db.err;
+  EXPECT_TRUE(Contains(no_db.err, "--db")) << no_db.err;
+  const Outcome bad = Run("curving good.toml --db w.sqlite --start warm");
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_TRUE(Contains(bad.err, "warm")) << bad.err;
+  EXPECT_TRUE(Contains(bad.err, "centred")) << bad.err;
 }
 
 }  // namespace
