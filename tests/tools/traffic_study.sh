@@ -9,9 +9,11 @@
 #   usage: tests/tools/traffic_study.sh [RAILWEAR] [WORKDIR] [MGT]
 #   (TRAFFIC_STUDY_REUSE=1: analyse WORKDIR/traffic.sqlite of an earlier run without running;
 #    TRAFFIC_STUDY_SPREAD=adaptive: the adaptive spread rule at its default tolerance instead of the
-#    scene's own rule (the piecewise-linear rule on 16 nodes), TRAFFIC_STUDY_SPREAD=N: N fixed
+#    scene's own rule (the piecewise-linear rule on 16 nodes), adaptiveT: at tolerance T (e.g.
+#    adaptive0.0025), TRAFFIC_STUDY_SPREAD=N: N fixed
 #    Gauss-Hermite nodes, TRAFFIC_STUDY_SPREAD=linearM: the fixed piecewise-linear rule,
-#    spread_nodes = M (linear64: the curve's converged reference); docs/wear.md)
+#    spread_nodes = M (linear64: the curve's converged reference); TRAFFIC_STUDY_STEP_MM=D: the
+#    step limit max_depth_per_step_mm = D instead of the scene's 0.1 mm; docs/wear.md)
 set -euo pipefail
 bin=${1:-build/app/railwear}
 work=${2:-$(mktemp -d)}
@@ -23,13 +25,21 @@ spread=${TRAFFIC_STUDY_SPREAD:-}
 case "$spread" in
   "") rule="" ;;
   adaptive) rule="integration_tolerance = 0.005" ;;
+  adaptive*[!0-9.]* | adaptive.*) echo "TRAFFIC_STUDY_SPREAD = '$spread': expected adaptiveT, T a tolerance such as 0.0025" >&2; exit 2 ;;
+  adaptive*) rule="integration_tolerance = ${spread#adaptive}" ;;
   linear*[!0-9]* | linear) echo "TRAFFIC_STUDY_SPREAD = '$spread': expected linearM, M a node count" >&2; exit 2 ;;
   linear*) rule="spread_rule = \"piecewise_linear\"\nspread_nodes = ${spread#linear}" ;;
   *[!0-9]*) echo "TRAFFIC_STUDY_SPREAD = '$spread': expected 'adaptive', a node count or linearM" >&2; exit 2 ;;
   *) rule="quadrature_points = $spread" ;;
 esac
+step_mm=${TRAFFIC_STUDY_STEP_MM:-}
+case "$step_mm" in
+  "" | [0-9]*) ;;
+  *) echo "TRAFFIC_STUDY_STEP_MM = '$step_mm': expected a step limit in mm such as 0.05" >&2; exit 2 ;;
+esac
 # The scene's rule lines give way to the chosen rule (none chosen: they stay).
-awk -v t="$total" -v r="$rule" '/^total_MGT = / { print "total_MGT = " t; next }
+awk -v t="$total" -v r="$rule" -v d="$step_mm" '/^total_MGT = / { print "total_MGT = " t; next }
+  d != "" && /^max_depth_per_step_mm = / { print "max_depth_per_step_mm = " d; next }
   r != "" && /^(quadrature_points|integration_tolerance|spread_rule|spread_nodes) = / {
     if (!done) print r; done = 1; next }
   { print }' \
