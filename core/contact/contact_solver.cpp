@@ -212,6 +212,12 @@ ContactResult SolveContact(const ContactProblem& problem, const WheelRailGeometr
           SolveNormalStage(assembly.np, problem.solver, &out.stages, start ? &*start : nullptr);
       total_iterations += sol.iterations;
       const bool converged = sol.status == SolverStatus::kConverged;
+      // A solve on the measuring cells that fails is solved again on the preset's
+      // (potential_area.h).
+      if (!converged && !sol.load_above_limit && area.measuring() && attempt < 11) {
+        area.StopMeasuring();
+        continue;
+      }
       if (converged) approach_now = sol.approach_m;
       const AreaReview review = area.Review(&builds, sol, assembly.np.cell_area_m2, &m);
       if (from && (!converged || review.Again())) return std::nullopt;

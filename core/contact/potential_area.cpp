@@ -29,6 +29,15 @@ constexpr double kFullShare = 0.1;
 constexpr double kMinCellsAlong = 40.0;
 // The crop follows the solved approach with this margin.
 constexpr double kTrimFactor = 1.2;
+// A patch is re-gridded when its target cells differ from its cells by more than this share.
+constexpr double kRegridBand = 0.3;
+// The measuring attempts' cells per semi-axis (potential_area.h, measure_cell_): the draft
+// preset's.
+double MeasureCellsPerSemiAxis() { return CellsPerSemiAxis(AccuracyPreset::kDraft); }
+bool Regrids(const CellSize& now, const CellSize& target) {
+  return std::abs(target.dx_m / now.dx_m - 1.0) > kRegridBand ||
+         std::abs(target.ds_m / now.ds_m - 1.0) > kRegridBand;
+}
 
 }  // namespace
 
@@ -40,7 +49,11 @@ PotentialArea::PotentialArea(const ContactProblem& problem, const FirstContactEs
                            std::max(first.semi_axis_s_m, kMinSemiAxis_m))),
       threshold_(std::max(2.0 * first.delta, kMinThreshold_m)),
       n_per_axis_(CellsPerSemiAxis(problem.model.accuracy)),
-      cell_fixed_(problem.model.cell_dx_m.has_value() || problem.model.cell_ds_m.has_value()) {}
+      cell_fixed_(problem.model.cell_dx_m.has_value() || problem.model.cell_ds_m.has_value()),
+      measure_cell_{std::max(first.semi_axis_x_m, kMinSemiAxis_m) / MeasureCellsPerSemiAxis(),
+                    std::max(first.semi_axis_s_m, kMinSemiAxis_m) / MeasureCellsPerSemiAxis()},
+      measuring_(problem.model.accuracy != AccuracyPreset::kDraft && !problem.model.cell_dx_m &&
+                 !problem.model.cell_ds_m) {}
 
 namespace {
 
@@ -96,7 +109,8 @@ bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* model
   const std::vector<ContactCandidate> cands = geom.FindCandidates(threshold_);
   std::vector<bool> kept_used(kept ? kept->size() : 0, false);  // (each grid serves one patch)
   for (const auto& found : cands) {
-    CellMemory memory{found.y_lo_m, found.y_hi_m, cell_, std::nullopt, 0};
+    CellMemory memory{found.y_lo_m, found.y_hi_m, measuring_ ? measure_cell_ : cell_, std::nullopt,
+                      0};
     bool remembered = false;
     for (const auto& m : cell_memory_) {
       if (found.y_m >= m.y_lo_m && found.y_m <= m.y_hi_m) {
@@ -188,6 +202,8 @@ AreaReview PotentialArea::Review(PatchBuilds* builds, const NormalSolution& sol,
   // qualifies for the planar grid on its solved extent).
   AreaReview review;
   std::vector<CellMemory> next_memory;
+  // While measuring: each patch's (an index of next_memory) cells at the preset.
+  std::vector<std::pair<size_t, CellSize>> preset_targets;
   const double total_load = sol.pressure_Pa.dot(cell_area_m2);
   int offset = 0;
   for (size_t k = 0; k < builds->builds.size(); ++k) {
@@ -222,7 +238,7 @@ AreaReview PotentialArea::Review(PatchBuilds* builds, const NormalSolution& sol,
         }
       }
     }
-    if (!cell_fixed_ && regrids_ < 3) {
+    if (!cell_fixed_) {
       // The preset's cells per semi-axis for every patch that carries at least
       // kFullShare of the load. A patch that barely touches (a third candidate on a worn
       // rail: 0.03 mm2 beside 126 mm2) would otherwise be re-gridded into millions of tiny
@@ -230,26 +246,67 @@ AreaReview PotentialArea::Review(PatchBuilds* builds, const NormalSolution& sol,
       // its force error is its share times its relative error, so it keeps
       // n sqrt(share / kFullShare) cells per semi-axis (at least the draft preset's), and
       // never more than kMaxCellsAlong (scaled alike, at least kMinCellsAlong) across its
-      // potential area.
+      // potential area. While measuring, the draft preset's cells per semi-axis.
       const double weight = std::sqrt(std::min(1.0, share / kFullShare));
-      const double n_patch =
-          std::max(CellsPerSemiAxis(AccuracyPreset::kDraft), n_per_axis_ * weight);
       const double along = std::max(kMinCellsAlong, kMaxCellsAlong * weight);
-      const CellSize target{std::max(e.half_x / n_patch, b.grid.nx * b.grid.dx_m / along),
-                            std::max(e.half_s / n_patch, b.grid.ns * b.grid.ds_m / along)};
-      if (std::abs(target.dx_m / mem.cell.dx_m - 1.0) > 0.3 ||
-          std::abs(target.ds_m / mem.cell.ds_m - 1.0) > 0.3) {
-        review.regrid = true;
-        mem.cell = target;
+      const double min_dx = b.grid.nx * b.grid.dx_m / along,
+                   min_ds = b.grid.ns * b.grid.ds_m / along;
+      auto target_at = [&, half_x = e.half_x, half_s = e.half_s](double n_per_axis) {
+        const double n_patch =
+            std::max(CellsPerSemiAxis(AccuracyPreset::kDraft), n_per_axis * weight);
+        return CellSize{std::max(half_x / n_patch, min_dx), std::max(half_s / n_patch, min_ds)};
+      };
+      // The preset's cells from a measurement on the measuring cells. The extent counts whole
+      // cells, so it lies half a cell beyond the patch's edge on average: the patch's
+      // semi-axis is about half - dx / 2, and the target is the cell size whose own measurement
+      // (half a target cell beyond the edge) gives n_patch cells per semi-axis,
+      // (half - dx / 2) / (n_patch - 1/2). Without it the preset's cells follow the coarse
+      // cells' larger overshoot (the Hertz cases' areas at standard were 1.7 % off, the
+      // preset's 1 % exceeded, SolveContact.AccuracyPresetsReachTheirErrorsOnHertzCases).
+      auto preset_target = [&, half_x = e.half_x, half_s = e.half_s]() {
+        const double n_patch =
+            std::max(CellsPerSemiAxis(AccuracyPreset::kDraft), n_per_axis_ * weight);
+        return CellSize{std::max((half_x - 0.5 * b.grid.dx_m) / (n_patch - 0.5), min_dx),
+                        std::max((half_s - 0.5 * b.grid.ds_m) / (n_patch - 0.5), min_ds)};
+      };
+      if (measuring_ ? measure_regrids_ < 3 : regrids_ < 3) {
+        const CellSize target = target_at(measuring_ ? MeasureCellsPerSemiAxis() : n_per_axis_);
+        if (Regrids(mem.cell, target)) {
+          review.regrid = true;
+          mem.cell = target;
+        }
       }
+      if (measuring_) preset_targets.push_back({next_memory.size(), preset_target()});
     }
     next_memory.push_back(mem);
   }
-  cell_memory_ = std::move(next_memory);
   const bool converged = sol.status == SolverStatus::kConverged;
   review.more_candidates = converged && sol.approach_m > 0.7 * threshold_;
   // The crop is exact only while the approach stays below the one it was made for.
   review.outgrew_trim = converged && sol.approach_m > trim_approach_;
+  if (measuring_) {
+    // The patch measured (it fits, on its measuring cells): every patch onto the preset's cells
+    // on its measured extent, or onto the first estimate's preset cells (cell_, the cells the
+    // first attempt would have had without measuring) where those are within kRegridBand of
+    // it, as a review at the preset keeps them (on the Hertz cases the estimate is exact).
+    if (converged && !review.grow && !review.more_candidates && !review.switched &&
+        !review.outgrew_trim && !review.recentre) {
+      review.regrid = false;
+      for (const auto& [index, target] : preset_targets) {
+        const CellSize cells = Regrids(cell_, target) ? target : cell_;
+        if (Regrids(next_memory[index].cell, cells)) {
+          review.regrid = true;
+          next_memory[index].cell = cells;
+        }
+      }
+      measuring_ = false;
+    } else if (review.regrid) {
+      ++measure_regrids_;
+    }
+  } else if (review.regrid) {
+    ++regrids_;
+  }
+  cell_memory_ = std::move(next_memory);
   if (converged) trim_approach_ = kTrimFactor * sol.approach_m;
   return review;
 }
@@ -257,10 +314,7 @@ AreaReview PotentialArea::Review(PatchBuilds* builds, const NormalSolution& sol,
 void PotentialArea::Widen(const AreaReview& review, const NormalSolution& sol) {
   if (review.grow) threshold_ *= 1.8;
   if (review.more_candidates) threshold_ = std::max(threshold_, 2.0 * sol.approach_m);
-  if (review.regrid) {
-    ++regrids_;
-    threshold_ = std::max(threshold_, 2.0 * sol.approach_m);
-  }
+  if (review.regrid) threshold_ = std::max(threshold_, 2.0 * sol.approach_m);
 }
 
 }  // namespace railwear::internal

@@ -130,6 +130,15 @@ class PotentialArea {
   // Widens the threshold for the next attempt after a review that asks for one.
   void Widen(const AreaReview& review, const NormalSolution& sol);
 
+  // Whether the grids are still on the measuring cells (measure_cell_ below), and an end to it
+  // after a solve on them that did not converge (the next attempt then starts on the preset's
+  // cells, as without measuring).
+  bool measuring() const { return measuring_; }
+  void StopMeasuring() {
+    measuring_ = false;
+    cell_memory_.clear();
+  }
+
   // What the attempts have measured (the threshold, each patch's cell size and plane, the crop),
   // and the same taken over by a new PotentialArea of the next call at a nearby position
   // (warm start, contact_warm_start.h): its first attempt is then the last call's final one,
@@ -148,15 +157,26 @@ class PotentialArea {
     cell_memory_ = m.cells;
     for (CellMemory& c : cell_memory_) c.recentred = 0;
     trim_approach_ = m.trim_approach_m;
+    measuring_ = false;
   }
 
  private:
   const ContactProblem& problem_;
   double stiffness_ratio_K_;
-  CellSize cell_;      // the first estimate's cell size
+  CellSize cell_;      // the first estimate's cell size at the preset's cells per semi-axis
   double threshold_;   // vertical-gap threshold bounding the potential area [m]
   double n_per_axis_;  // the preset's cells per semi-axis
   bool cell_fixed_;    // an explicit cell size: never re-gridded
+  // At presets finer than draft the first attempts only measure the patch (its extent, the
+  // approach, the candidates it touches) and run on the draft preset's cells per semi-axis of
+  // the first estimate (measure_cell_; at standard (4/10)^3, some 15 times, fewer cell integrals
+  // per operator) until the potential area fits; that review re-grids every patch to the
+  // preset's cells on its measured extent, and the attempts from there on are the preset's, as
+  // before. A patch first found after that starts on cell_. Draft is unchanged (its measuring
+  // cells are its own); an explicit cell size is never re-gridded, so it never measures.
+  CellSize measure_cell_;
+  bool measuring_;
+  int measure_regrids_ = 0;  // re-griddings on the measuring cells (at most 3, as regrids_)
   // Each patch keeps its own cell size once it has been measured (two-point contact: a small
   // flange patch must not shrink the cells of a large tread patch), found again by position.
   std::vector<CellMemory> cell_memory_;

@@ -104,8 +104,14 @@ TEST(ContactWarmStart, NearbyPositionsStartWarmWithinTheDiscretizationError) {
     y_mm -= step;
     const ContactCase c = GaugeCorner(y_mm * 1e-3);
     const ContactResult w = Solve(c, &cache, &warm);
+    // p_max at the flange root (-5.2 .. -5.65 mm) carries the cold call's own error there
+    // (kFlangeRootPeakTolerance): since the cold call measures the patch on coarse cells
+    // (potential_area.h) the cold p_max at -5.5 mm is 7 % below the reference preset's and the
+    // warm one 3.5 % above (docs/library.md, "The cold call measures the patch on coarse cells").
+    const bool flange_root = y_mm > -5.65 && y_mm < -5.2;
     ExpectWithinTheDiscretizationError(w, SolveContactCase(c).wheel, load_N,
-                                       std::to_string(y_mm) + " mm");
+                                       std::to_string(y_mm) + " mm",
+                                       flange_root ? kFlangeRootPeakTolerance : kPeakTolerance);
   }
   // Most of the steps started warm (the rest fell back, solved cold).
   EXPECT_GE(warm.warm_calls(), 6);
@@ -134,15 +140,18 @@ TEST(ContactWarmStart, ReportedAreasAreThoseOfTheReportedPressures) {
 }
 
 TEST(ContactWarmStart, AJumpFallsBackToTheColdCallBitForBit) {
-  // From the gauge corner to the tread (another candidate, another patch), and a load twice the
+  // From the gauge corner to the flange (another candidate, another patch), and a load twice the
   // last (pressure at the edge of the last patch): each solved cold, as without a warm start.
+  // (A jump to the tread, -10.4 mm, can start warm: the tread's candidate lies within the gauge
+  // corner's remembered interval, and whether its kept cells fit the tread's patch within the
+  // re-gridding's 30 % depends on how the gauge corner's patch was measured.)
   PlacementCache cache;
   ContactWarmStart warm;
   Solve(GaugeCorner(-5.6e-3), &cache, &warm);
-  const ContactCase jump = GaugeCorner(-10.4e-3);
+  const ContactCase jump = GaugeCorner(-3.0e-3);
   ExpectSameResult(Solve(jump, &cache, &warm), SolveContactCase(jump).wheel);
   EXPECT_EQ(warm.fallbacks(), 1);
-  const ContactCase heavier = GaugeCorner(-10.4e-3, 200e3);
+  const ContactCase heavier = GaugeCorner(-3.0e-3, 200e3);
   ExpectSameResult(Solve(heavier, &cache, &warm), SolveContactCase(heavier).wheel);
   EXPECT_EQ(warm.fallbacks(), 2);
   EXPECT_EQ(warm.warm_calls(), 0);
