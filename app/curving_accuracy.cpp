@@ -34,12 +34,18 @@ CurvingAccuracyStudy RunCurvingAccuracyStudy(
     const TrafficCase& c = study.traffic[t];
     if (!c.is_vehicle()) continue;
     std::vector<CurvingResult> results;
-    // The scene's predictor at every level, then the other one at the finest.
-    const CurvingPredictor own = study.curving_predictor;
-    const CurvingPredictor other =
-        own == CurvingPredictor::kTable ? CurvingPredictor::kModel : CurvingPredictor::kTable;
+    // The scene's predictor at every level (absent: each level's default,
+    // CurvingOptions::ColdPredictorFor), then the other one at the finest.
+    auto own = [&](AccuracyPreset a) {
+      CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low);
+      p.contact.model.accuracy = a;
+      return p.options.ColdPredictorFor(p.contact.model);
+    };
+    const CurvingPredictor other = own(presets.back()) == CurvingPredictor::kTable
+                                       ? CurvingPredictor::kModel
+                                       : CurvingPredictor::kTable;
     std::vector<std::pair<AccuracyPreset, CurvingPredictor>> runs;
-    for (AccuracyPreset a : presets) runs.emplace_back(a, own);
+    for (AccuracyPreset a : presets) runs.emplace_back(a, own(a));
     runs.emplace_back(presets.back(), other);
     for (const auto& [a, predictor] : runs) {
       CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low);

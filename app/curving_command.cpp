@@ -59,7 +59,7 @@ void Print(const TrafficCase& c, const CurvingProblem& p, const CurvingResult& r
       ToString(r.status), r.message.empty() ? "" : " (" + r.message + ")", r.lateral_residual_N,
       r.yaw_residual_Nm, r.longitudinal_residual_N, r.predictor_iterations, r.full_iterations,
       r.contact_solves, r.time_s,
-      p.options.cold_predictor == CurvingPredictor::kTable
+      p.options.ColdPredictorFor(p.contact.model) == CurvingPredictor::kTable
           ? fmt::format("; table predictor {} ({} evaluations, built in {:.2f} s)",
                         ToString(r.table_predictor), r.table_evaluations, r.table_build_s)
           : std::string());
@@ -80,7 +80,7 @@ nlohmann::json Json(const TrafficCase& c, const CurvingProblem& p, const Curving
                         {"longitudinal_N", r.longitudinal_residual_N}}},
                       {"largest_scaled_residual", r.largest_scaled_residual},
                       {"contact_solves", r.contact_solves},
-                      {"predictor", ToString(p.options.cold_predictor)},
+                      {"predictor", ToString(p.options.ColdPredictorFor(p.contact.model))},
                       {"table_predictor", ToString(r.table_predictor)},
                       {"time_s", r.time_s}};
   j["starts"] = nlohmann::json::array();
@@ -171,7 +171,8 @@ void SetupCurving(CLI::App& app) {
   cmd->add_option("--predictor", o->predictor,
                   "A cold solve's predictor: model (the draft grid) or table (tabulated rigid "
                   "contact geometry with Hertz and Kalker; docs/curving.md \"The table "
-                  "predictor\"); default: the scene's [curving] predictor")
+                  "predictor\"); default: the scene's [curving] predictor, else table at standard "
+                  "and finer, model at draft")
       ->check(CLI::IsMember(EnumChoiceStrings(kCurvingPredictorNames)));
   cmd->add_option("--start", o->start,
                   "With --db: the first start, 'stored' (the step's stored solution, then the "
@@ -199,23 +200,26 @@ void RunCurving(const CurvingOptions& o) {
   nlohmann::json all = nlohmann::json::array();
   std::string failures;
   const StoredRails stored = o.db ? StoredStepRails(o, scene) : StoredRails{};
-  // On a stored step, each vehicle's equilibrium on the run's unworn rails: the fallback of the
-  // stored solution (and the start of a step without one), as RunWear solves it.
-  if (o.db && o.start != "centred") {
-    std::cerr << "railwear: curving: solving each vehicle on the run's unworn rails (the "
-                 "fallback start)\n";
-    study.options.cancel = [] { return InterruptSignals::Received() != 0; };
-    try {
-      study.vehicle_starts = VehicleStarts(study, stored.unworn.rail, *stored.unworn.low_rail);
-    } catch (const WearCancelled&) {
-      const int signal = InterruptSignals::Received();
-      throw Interrupted(signal,
-                        fmt::format("{}: curving of {} stopped in the solve on the run's "
-                                    "unworn rails; nothing was solved{}",
-                                    SignalName(signal), o.scene,
-                                    o.json ? fmt::format(" and {} was not written", *o.json) : ""));
-    }
-  }
+  study.options.cancel = [] { return InterruptSignals::Received() != 0; };
+  // On a stored step, a vehicle's equilibrium on the run's unworn rails, as RunWear solves it:
+  // the start of an entry without a stored solution (or with --start unworn), solved first, and
+  // the fallback of a stored solution, solved only when that fails (CurvingStart::lazy).
+  const bool unworn_starts = o.db && o.start != "centred";
+  study.vehicle_starts.assign(study.traffic.size(), CurvingStart{});
+  auto unworn_start = [&study, &stored, &o](int t) {
+    std::cerr << fmt::format(
+        "railwear: curving: solving traffic entry '{}' on the run's unworn rails (its {} start)\n",
+        study.traffic[t].name,
+        o.start == "stored" && t < static_cast<int>(stored.state.curving.size()) &&
+                stored.state.curving[t].state.size() > 0
+            ? "fallback"
+            : "first");
+    bool cancelled = false;
+    CurvingStart s =
+        VehicleStart(study, t, stored.unworn.rail, *stored.unworn.low_rail, &cancelled);
+    s.label = kUnwornEquilibriumStart;
+    return s;  // cancelled: empty (the entry's solve then stops on the same signal)
+  };
   const TrackRails rails = o.db ? stored.rails : UnwornRailsInTrack(study);
   if (o.db && (!o.json || *o.json != "-")) {
     std::cout << "on the worn rails of " << stored.where << ", from its stored curving\n";
@@ -229,7 +233,15 @@ void RunCurving(const CurvingOptions& o) {
         o.start == "stored" && t < static_cast<int>(stored.state.curving.size())
             ? &stored.state.curving[t]
             : nullptr;
+    const bool stored_start = start && start->state.size() > 0;
+    if (unworn_starts && !stored_start) study.vehicle_starts[t] = unworn_start(t);
     CurvingProblem p = VehicleCurvingProblem(study, t, rails.high, rails.low, start);
+    if (unworn_starts && stored_start) {
+      CurvingStart lazy;
+      lazy.label = kUnwornEquilibriumStart;
+      lazy.lazy = [&unworn_start, t] { return unworn_start(t); };
+      p.options.fallback_starts.push_back(std::move(lazy));
+    }
     p.options.cancel = [] { return InterruptSignals::Received() != 0; };
     if (o.predictor) {
       p.options.cold_predictor = *EnumFromString(kCurvingPredictorNames, *o.predictor);

@@ -800,8 +800,9 @@ void ReadLateralShift(const Fields& t, TrafficCase* c) {
 // solve's predictor (CurvingOptions::cold_predictor): "model" (the draft grid) or "table" (the
 // contact table, docs/curving.md "The table predictor"). warm_contact: each wheelset's contact
 // solves start from its last one in the full model's phases (CurvingOptions::warm_contact,
-// docs/curving.md "Kept placements and warm contact solves"); default false. Only beside
-// [[vehicle]] tables.
+// docs/curving.md "Kept placements and warm contact solves"). Absent, each: the table and warm
+// contact solves at standard accuracy and finer, the model predictor and cold contact solves at
+// draft (CurvingOptions::ColdPredictorFor, WarmContactFor). Only beside [[vehicle]] tables.
 void ReadCurvingTable(const Fields& top, Scene* scene) {
   const auto t = top.Table("curving", "a table { predictor, warm_contact }");
   if (!t) return;
@@ -814,7 +815,7 @@ void ReadCurvingTable(const Fields& top, Scene* scene) {
   if (const auto name = t->Choice("predictor", EnumChoices(kCurvingPredictorNames))) {
     scene->wear->curving_predictor = *EnumFromString(kCurvingPredictorNames, *name);
   }
-  scene->wear->curving_warm_contact = t->Bool("warm_contact").value_or(false);
+  scene->wear->curving_warm_contact = t->Bool("warm_contact");
 }
 
 // [[vehicle]]: the vehicles that vehicle traffic names (core/vehicle/vehicle.h). Units as in

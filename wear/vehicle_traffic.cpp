@@ -200,20 +200,30 @@ TrackRails UnwornRailsInTrack(const WearStudy& study) {
           RailInTrack(study, *study.low_rail_profile, *study.low_rail_profile)};
 }
 
+CurvingStart VehicleStart(const WearStudy& study, int traffic_index, const Profile& unworn_high,
+                          const Profile& unworn_low, bool* cancelled) {
+  *cancelled = false;
+  CurvingProblem p =
+      VehicleCurvingProblem(study, traffic_index, RailInTrack(study, unworn_high, unworn_high),
+                            RailInTrack(study, unworn_low, unworn_low));
+  p.options.start.reset();  // centred (no fallback either)
+  p.options.fallback_starts.clear();
+  const CurvingResult r = SolveCurving(p);
+  *cancelled = r.status == CurvingStatus::kCancelled;
+  if (r.status == CurvingStatus::kConverged || r.status == CurvingStatus::kFlangeClimb) {
+    return r.Start();
+  }
+  return {};
+}
+
 std::vector<CurvingStart> VehicleStarts(const WearStudy& study, const Profile& unworn_high,
                                         const Profile& unworn_low) {
   std::vector<CurvingStart> starts(study.traffic.size());
   for (int t = 0; t < static_cast<int>(study.traffic.size()); ++t) {
     if (!study.traffic[t].is_vehicle()) continue;
-    CurvingProblem p = VehicleCurvingProblem(study, t, RailInTrack(study, unworn_high, unworn_high),
-                                             RailInTrack(study, unworn_low, unworn_low));
-    p.options.start.reset();  // centred (no fallback either)
-    p.options.fallback_starts.clear();
-    const CurvingResult r = SolveCurving(p);
-    if (r.status == CurvingStatus::kCancelled) throw WearCancelled();
-    if (r.status == CurvingStatus::kConverged || r.status == CurvingStatus::kFlangeClimb) {
-      starts[t] = r.Start();
-    }
+    bool cancelled = false;
+    starts[t] = VehicleStart(study, t, unworn_high, unworn_low, &cancelled);
+    if (cancelled) throw WearCancelled();
   }
   return starts;
 }

@@ -61,6 +61,11 @@ TrackRails UnwornRailsInTrack(const WearStudy& study);
 // study.options.cancel stopped a curving solve (it is passed on to every curving solve).
 std::vector<CurvingStart> VehicleStarts(const WearStudy& study, const Profile& unworn_high,
                                         const Profile& unworn_low);
+// VehicleStarts' entry `traffic_index` alone (a vehicle entry), without throwing: empty when its
+// curving did not converge, and empty with *cancelled set when study.options.cancel stopped it
+// (a lazy start's, CurvingStart::lazy).
+CurvingStart VehicleStart(const WearStudy& study, int traffic_index, const Profile& unworn_high,
+                          const Profile& unworn_low, bool* cancelled);
 
 // A vehicle entry's curving on the rails of a step (both in the track frame, canted): the problem
 // it solved and its solution, and whether that solution is only usable (stopped above its

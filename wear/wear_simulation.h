@@ -139,11 +139,12 @@ struct WearStudy : ContactSetup {
   // The cold predictor of every vehicle entry's curving (CurvingOptions::cold_predictor): the
   // solves on the unworn rails, and a step's fallback from the centred start (scenes: [curving]
   // predictor).
-  CurvingPredictor curving_predictor = CurvingPredictor::kModel;
+  // Absent: CurvingOptions::ColdPredictorFor's default (the table at standard and finer).
+  std::optional<CurvingPredictor> curving_predictor;
   // Warm contact solves in every vehicle entry's curving (CurvingOptions::warm_contact; scenes:
-  // [curving] warm_contact): off by default, since it moves the equilibria within the curving's
-  // position tolerances.
-  bool curving_warm_contact = false;
+  // [curving] warm_contact). Absent: CurvingOptions::WarmContactFor's default (on at standard
+  // and finer, off at draft: it moves the equilibria within the curving's position tolerances).
+  std::optional<bool> curving_warm_contact;
   // Per traffic entry, the curving solution on the unworn rails (empty, or an empty entry: the
   // centred start): the start of a step whose state carries none (WearState::curving), and the
   // fallback of one whose previous step's solution fails, before the centred start

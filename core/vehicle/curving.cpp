@@ -878,6 +878,16 @@ void Validate(const CurvingProblem& p) {
 
 }  // namespace
 
+CurvingPredictor CurvingOptions::ColdPredictorFor(const ModelOptions& full) const {
+  if (cold_predictor) return *cold_predictor;
+  return full.accuracy == AccuracyPreset::kDraft || predictor ? CurvingPredictor::kModel
+                                                              : CurvingPredictor::kTable;
+}
+
+bool CurvingOptions::WarmContactFor(const ModelOptions& full) const {
+  return warm_contact.value_or(full.accuracy != AccuracyPreset::kDraft);
+}
+
 ModelOptions CurvingOptions::PredictorModel() {
   ModelOptions m = MakeModelOptions(ModelKind::kAuto);
   m.accuracy = AccuracyPreset::kDraft;
@@ -931,6 +941,7 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
   const ModelOptions predictor =
       p.options.predictor ? *p.options.predictor : CurvingOptions::PredictorFor(p.contact.model);
   const bool has_predictor = !(predictor == p.contact.model);
+  const bool warm_contact = p.options.WarmContactFor(p.contact.model);
   auto contexts = [&](const ModelOptions& model) {
     std::vector<WheelsetContext> ctx(layout.wheelsets);
     for (int i = 0; i < layout.wheelsets; ++i) {
@@ -943,7 +954,7 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
                 nullptr,
                 force_model,
                 i,
-                p.options.warm_contact && !(has_predictor && model == predictor)};
+                warm_contact && !(has_predictor && model == predictor)};
     }
     return ctx;
   };
@@ -968,25 +979,38 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
     std::string name;      // CurvingAttempt::start
     int start_index = 0;   // which start (a start's two tries share it)
     std::string label;     // the start's, for the message
+    bool lazy = false;     // CurvingStart::lazy, not yet called: replaced by its tries when reached
   };
   std::vector<Attempted> starts;
   int start_count = 0;
-  // The given start, then the fallbacks: each of the layout's size and not an earlier one.
-  auto add_start = [&](const CurvingStart& s, const std::string& label) {
+  // The tries of start `s` (number `index`) at `at` in `starts`: none when it is not of the
+  // layout's size or is a start before `at`; two for a start with its Jacobian.
+  auto insert_start = [&](size_t at, const CurvingStart& s, const std::string& label, int index) {
     if (s.state.size() != layout.size()) return;
-    for (const Attempted& a : starts) {
-      if (a.start.state == s.state) return;
+    for (size_t k = 0; k < at; ++k) {
+      if (!starts[k].lazy && starts[k].start.state == s.state) return;
     }
     const bool has_jacobian =
         s.jacobian.rows() == layout.size() && s.jacobian.cols() == layout.size();
     // (Without a predictor both attempts would be the same solve.)
     const bool both = has_jacobian && has_predictor;
+    std::vector<Attempted> tries;
     if (both) {
-      starts.push_back(
-          {s, true, false, false, label + ", continued on the full model", start_count, label});
+      tries.push_back(
+          {s, true, false, false, label + ", continued on the full model", index, label, false});
     }
-    starts.push_back({s, false, false, false, both ? label + ", through the predictor" : label,
-                      start_count, label});
+    tries.push_back({s, false, false, false, both ? label + ", through the predictor" : label,
+                     index, label, false});
+    starts.insert(starts.begin() + static_cast<std::ptrdiff_t>(at), tries.begin(), tries.end());
+  };
+  // The given start, then the fallbacks: each of the layout's size and not an earlier one; a
+  // lazy one kept as it is until the loop reaches it.
+  auto add_start = [&](const CurvingStart& s, const std::string& label) {
+    if (s.state.size() == 0 && s.lazy) {
+      starts.push_back({s, false, false, false, label, start_count, label, true});
+    } else {
+      insert_start(starts.size(), s, label, start_count);
+    }
     ++start_count;
   };
   if (p.options.start) {
@@ -1002,11 +1026,12 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
   // A centred start (each its own start): named `name`, `label` in the message.
   auto add_centred = [&](bool relaxed, bool table, const std::string& name,
                          const std::string& label) {
-    starts.push_back({{centred, {}, {}}, false, relaxed, table, name, start_count++, label});
+    starts.push_back(
+        {{centred, {}, {}, {}}, false, relaxed, table, name, start_count++, label, false});
   };
   // The table predictor: from the centred start through the contact table's equilibrium; when
   // that fails, the model predictor's centred start below is the fallback.
-  if (p.options.cold_predictor == CurvingPredictor::kTable) {
+  if (p.options.ColdPredictorFor(p.contact.model) == CurvingPredictor::kTable) {
     const std::string label = "the centred start through the contact table";
     add_centred(false, true, label, label);
   }
@@ -1065,7 +1090,18 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
   };
   std::string table_note;  // why the table's start failed
   for (size_t k = 0; k < starts.size(); ++k) {
-    const auto& [start, full_directly, relaxed, table, name, start_index, label] = starts[k];
+    if (starts[k].lazy) {  // found now, then tried as if it had been given
+      const Attempted pending = starts[k];
+      starts.erase(starts.begin() + static_cast<std::ptrdiff_t>(k));
+      const CurvingStart found = pending.start.lazy();
+      const bool named = found.label.empty() || !pending.start.label.empty();
+      insert_start(k, found, named ? pending.label : found.label, pending.start_index);
+      if (k == starts.size() || starts[k].start_index != pending.start_index) {
+        --k;  // (unsigned: wraps to k - 1, the loop's ++k brings it back)
+        continue;
+      }
+    }
+    const auto& [start, full_directly, relaxed, table, name, start_index, label, lazy] = starts[k];
     const bool another_follows = k + 1 < starts.size();
     const int solves_before = eq.solves();
     q = start.state;

@@ -77,6 +77,14 @@ struct CurvingStart {
   // What the start is, for the result's message and attempts ("the previous step's solution");
   // empty: "the given start" (CurvingOptions::start) or "fallback start N".
   std::string label;
+  // A start known only by how to find it, when `state` is empty: SolveCurving calls it once,
+  // when the solve reaches this start, and tries what it returns (its state and Jacobian; its
+  // label when `label` is empty) as it would have tried that start given: a fallback that costs
+  // a solve of its own (`railwear curving --db`'s unworn rails' equilibrium) is solved only when
+  // the starts before it fail. A returned state of another size (empty: none found) or equal to
+  // an earlier start's is skipped. It must not throw; cancelled, it may return an empty start
+  // (the solve then stops on CurvingOptions::cancel).
+  std::function<CurvingStart()> lazy;
 };
 
 // The cold solve's predictor: the iterates' contact model before the full model finishes.
@@ -113,8 +121,14 @@ inline std::string_view ToString(TablePredictorOutcome o) {
 }
 
 struct CurvingOptions {
-  // The predictor of a solve that does not continue from a start with its Jacobian.
-  CurvingPredictor cold_predictor = CurvingPredictor::kModel;
+  // The predictor of a solve that does not continue from a start with its Jacobian; absent
+  // (ColdPredictorFor): the table (kTable) when the problem's model is finer than draft and no
+  // `predictor` model is given, else the model predictor. At standard the table with warm_contact
+  // took the main job's coach from 68 to 12 wheelset solves and the Y25 wagon from 92 to 20
+  // (docs/curving.md, "Table and warm contact, the default at standard"); at draft, a single phase,
+  // the model predictor stays (the main job's results unchanged). kModel here: the behaviour
+  // before.
+  std::optional<CurvingPredictor> cold_predictor;
   // The contact table's nodes when cold_predictor is kTable (its build threads: `threads`).
   ContactTableOptions table;
   // The contact model of the iterates (the predictor's phase): this model when given, otherwise
@@ -157,7 +171,8 @@ struct CurvingOptions {
   // or whose state equals an earlier start's, is skipped. In a wear run: the vehicle's
   // equilibrium on the unworn rails, when the previous step's solution (`start`) fails: on the
   // worn rails of the 10 MGT study's step 105 the coach from the centred start took 316 wheelset
-  // solves (docs/curving.md, "The start sequence").
+  // solves (docs/curving.md, "The start sequence"). A lazy start (CurvingStart::lazy) is found
+  // only when the solve reaches it.
   std::vector<CurvingStart> fallback_starts;
   // Workers for the wheelsets' contact solves (each iterate's wheelsets and finite differences
   // are independent): 0 = the machine's hardware threads. Results do not depend on it.
@@ -169,14 +184,23 @@ struct CurvingOptions {
   // patches are conformal (their operators kept), and the results differ from cold solves by the
   // contact grid's discretization error (docs/curving.md, "Kept placements and warm contact
   // solves"). A problem without a predictor's phase (the predictor is its own model) is solved
-  // warm throughout. Deterministic and independent of `threads`.
-  bool warm_contact = false;
+  // warm throughout. Deterministic and independent of `threads`. Absent (WarmContactFor): on
+  // when the problem's model is finer than draft, off at draft (where it did not pay: the main
+  // job's coach took 96 solves instead of 56); false here: the behaviour before.
+  std::optional<bool> warm_contact;
   // Cancellation (issue 17), empty: never. Asked before every Newton iteration and before every
   // evaluation of the wheelsets' contact forces (from the calling thread: it must be
   // thread-safe, e.g. read an atomic flag). Once it returns true the solve stops at once with
   // CurvingStatus::kCancelled. The library installs no signal handler: app/ sets the flag from
   // its own (WearOptions::cancel is passed on here by wear/).
   std::function<bool()> cancel = {};
+
+  // cold_predictor and warm_contact as a solve of the full model `full` uses them: as given, or
+  // when absent the table and warm contact solves at standard accuracy and finer
+  // (full.accuracy other than AccuracyPreset::kDraft; the table only without a `predictor`
+  // model given), the model predictor and cold contact solves at draft.
+  CurvingPredictor ColdPredictorFor(const ModelOptions& full) const;
+  bool WarmContactFor(const ModelOptions& full) const;
 
   // The auto model on the draft grid with the default constants (a cheap contact for tests).
   static ModelOptions PredictorModel();
@@ -325,7 +349,7 @@ struct CurvingResult {
   double time_s = 0.0;
 
   // This solution as the start of a nearby solve (CurvingOptions::start).
-  CurvingStart Start() const { return {state, jacobian, {}}; }
+  CurvingStart Start() const { return {state, jacobian, {}, {}}; }
 };
 
 // Throws InputError for bad input (curve, vehicle, speed, friction; the contact set-up as

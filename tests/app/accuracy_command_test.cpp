@@ -282,14 +282,16 @@ TEST(AccuracyCommand, CurvingAtDraftAndStandard) {
   const Scene scene = ParseScene(test::kWheelsetCurveScene, "wheelset.toml");
   const CurvingAccuracyStudy s =
       RunCurvingAccuracyStudy(scene, {"standard", "draft"}, nullptr);  // run coarse to fine
-  // Both levels with the scene's predictor (model), then the finest with the other (table).
+  // Both levels with the scene's predictor (absent: each level's default, the model predictor
+  // at draft and the table at standard, CurvingOptions::ColdPredictorFor), then the finest with
+  // the other (the model predictor).
   ASSERT_EQ(s.rows.size(), 3u);
   EXPECT_EQ(s.rows[0].level, "draft");
   EXPECT_EQ(s.rows[1].level, "standard");
   EXPECT_EQ(s.rows[2].level, "standard");
   EXPECT_EQ(s.rows[0].predictor, "model");
-  EXPECT_EQ(s.rows[1].predictor, "model");
-  EXPECT_EQ(s.rows[2].predictor, "table");
+  EXPECT_EQ(s.rows[1].predictor, "table");
+  EXPECT_EQ(s.rows[2].predictor, "model");
   for (const CurvingAccuracyRow& r : s.rows) {
     EXPECT_EQ(r.status, "converged") << r.level << " " << r.predictor;
     EXPECT_GT(r.solves, 0);
@@ -301,7 +303,7 @@ TEST(AccuracyCommand, CurvingAtDraftAndStandard) {
   EXPECT_LT(s.rows[0].err_y_mm, 0.1);
   EXPECT_LT(s.rows[0].err_psi_mrad, 0.1);
   EXPECT_NEAR(s.rows[0].err_y_mm, std::abs(s.rows[0].lead_y_mm - s.rows[1].lead_y_mm), 1e-12);
-  // The same full model's equilibrium through the table predictor: within the curving's position
+  // The same full model's equilibrium through the other predictor: within the curving's position
   // tolerances (CurvingOptions::position_tolerance_m, yaw_tolerance_rad: 0.05 mm, 0.05 mrad).
   EXPECT_LT(s.rows[2].err_y_mm, 0.05);
   EXPECT_LT(s.rows[2].err_psi_mrad, 0.05);

@@ -142,27 +142,36 @@ TEST_F(CurvingCommandTest, TablePredictorReachesTheSameEquilibrium) {
 // its step where the model predictor's run does, within the curving's position tolerances
 // (CurvingOptions::position_tolerance_m, yaw_tolerance_rad: 0.05 mm, 0.05 mrad). Bad values:
 // the bad-input corpus (curving_predictor_*).
-// [curving] warm_contact (CurvingOptions::warm_contact, off by default) reaches every vehicle
-// entry's curving problem, the wear run's and `railwear curving`'s (VehicleCurvingProblem); a
-// value other than a boolean: the bad-input corpus (curving_warm_contact_not_a_bool). What the
-// option does: CurvingTest.WarmContactSolvesAreThreadIndependentAndNearTheColdOnes.
+// [curving] warm_contact (CurvingOptions::warm_contact; absent: on at standard accuracy and
+// finer, off at draft) reaches every vehicle entry's curving problem, the wear run's and
+// `railwear curving`'s (VehicleCurvingProblem); a value other than a boolean: the bad-input
+// corpus (curving_warm_contact_not_a_bool). What the option does:
+// CurvingTest.WarmContactSolvesAreThreadIndependentAndNearTheColdOnes.
 TEST_F(CurvingCommandTest, SceneWarmContactKeyReachesTheCurvingProblem) {
-  const app::Scene cold = app::ParseScene(TwoRailWearScene(), "s.toml");
-  EXPECT_FALSE(cold.wear->curving_warm_contact);
-  const TrackRails rails = UnwornRailsInTrack(*cold.wear);
-  EXPECT_FALSE(VehicleCurvingProblem(*cold.wear, 0, rails.high, rails.low).options.warm_contact);
-  const app::Scene warm =
-      app::ParseScene(TwoRailWearScene() + "[curving]\nwarm_contact = true\n", "w.toml");
-  ASSERT_TRUE(warm.wear->curving_warm_contact);
-  EXPECT_TRUE(VehicleCurvingProblem(*warm.wear, 0, rails.high, rails.low).options.warm_contact);
-  EXPECT_EQ(warm.wear->curving_predictor, CurvingPredictor::kModel);  // the other key unchanged
+  const app::Scene absent = app::ParseScene(TwoRailWearScene(), "s.toml");  // at draft
+  EXPECT_FALSE(absent.wear->curving_warm_contact.has_value());
+  const TrackRails rails = UnwornRailsInTrack(*absent.wear);
+  CurvingProblem p = VehicleCurvingProblem(*absent.wear, 0, rails.high, rails.low);
+  EXPECT_FALSE(p.options.warm_contact.has_value());
+  EXPECT_FALSE(p.options.WarmContactFor(p.contact.model));  // draft: off
+  p.contact.model.accuracy = AccuracyPreset::kStandard;
+  EXPECT_TRUE(p.options.WarmContactFor(p.contact.model));  // standard: on
+  for (const bool on : {true, false}) {
+    const app::Scene scene = app::ParseScene(
+        TwoRailWearScene() + "[curving]\nwarm_contact = " + (on ? "true\n" : "false\n"), "w.toml");
+    ASSERT_EQ(scene.wear->curving_warm_contact, on);
+    CurvingProblem q = VehicleCurvingProblem(*scene.wear, 0, rails.high, rails.low);
+    EXPECT_EQ(q.options.warm_contact, on);
+    q.contact.model.accuracy = AccuracyPreset::kStandard;  // the key holds at every accuracy
+    EXPECT_EQ(q.options.WarmContactFor(q.contact.model), on);
+    EXPECT_FALSE(scene.wear->curving_predictor.has_value());  // the other key unchanged
+  }
 }
 
 TEST_F(CurvingCommandTest, ScenePredictorKeyReachesTheCurvingAndTheWearRun) {
   const std::string table_scene = TwoRailWearScene() + "[curving]\npredictor = \"table\"\n";
   const std::string model_scene = TwoRailWearScene() + "[curving]\npredictor = \"model\"\n";
-  EXPECT_EQ(app::ParseScene(TwoRailWearScene(), "s.toml").wear->curving_predictor,
-            CurvingPredictor::kModel);
+  EXPECT_FALSE(app::ParseScene(TwoRailWearScene(), "s.toml").wear->curving_predictor.has_value());
   EXPECT_EQ(app::ParseScene(model_scene, "m.toml").wear->curving_predictor,
             CurvingPredictor::kModel);
   const app::Scene scene = app::ParseScene(table_scene, "t.toml");
@@ -221,7 +230,7 @@ TEST_F(CurvingCommandTest, TablePredictorOnWornRailsReachesTheModelPredictorsEqu
     const CurvingProblem p = VehicleCurvingProblem(study, wagon, high, low);
     ASSERT_EQ(p.vehicle.name, "Y25 wagon");
     ASSERT_FALSE(p.options.start.has_value());  // cold: the run's unworn starts are not set
-    EXPECT_EQ(p.options.cold_predictor,
+    EXPECT_EQ(p.options.ColdPredictorFor(p.contact.model),
               k == 0 ? CurvingPredictor::kModel : CurvingPredictor::kTable);
     results[k] = SolveCurving(p);
   }
@@ -291,6 +300,10 @@ TEST_F(CurvingCommandTest, OnAStoredStepIsTheRunsNextStepsSolve) {
   ASSERT_EQ(o.exit_code, 0) << o.err;
   EXPECT_TRUE(Contains(o.out, "on the worn rails of run 'wheelset on R1500' step 1")) << o.out;
   EXPECT_EQ(ReadFile(dir_ / "a.sqlite"), before);  // only read
+  // The stored start converged: the unworn rails' equilibrium, its fallback, was not solved
+  // (CurvingStart::lazy; CurvingRulesTest.LazyFallbackIsFoundOnlyWhenTheStartBeforeItFails).
+  EXPECT_FALSE(Contains(o.err, "on the run's unworn rails")) << o.err;
+  ASSERT_EQ(nlohmann::json::parse(ReadFile(dir_ / "eq.json"))[0]["starts"].size(), 1u);
   const nlohmann::json w = nlohmann::json::parse(ReadFile(dir_ / "eq.json"))[0]["wheelsets"][0];
   const ProfileStore db = ProfileStore::OpenReadOnly((dir_ / "a.sqlite").string());
   const StepRecord next = db.LoadStep(db.FindRun("wheelset on R1500")->id, 2);
@@ -515,7 +528,8 @@ TEST_F(CurvingCommandTest, CentredStartIsRelaxedOntoTheFlange) {
 // centred start. The coach's stored start on step 105 replaced by the track centre with unyawed
 // wheelsets (every unknown 0, no Jacobian): from there it walks past the 20 mm lateral limit
 // (244 solves), which used to end the solve `no_equilibrium` and the wear run with it. Now the
-// unworn rails' equilibrium (solved first on the run's step 0, as the run does) follows and
+// unworn rails' equilibrium (on the run's step 0, as the run solves it; the command solves it
+// only once the stored start has failed, CurvingStart::lazy) follows and
 // converges where the stored start does, in fewer solves than the centred start takes (316:
 // --start centred), and the message and the JSON's "starts" say so. The wagon's stored start
 // converges first: no start is named.

@@ -14,7 +14,11 @@
 //                           each wear step's curving costs (it starts from the step before's).
 //   BM_CurvingExampleWarm/V/A, BM_CurvingExampleContinuationWarm/V/A  the same two with warm
 //                           contact solves (CurvingOptions::warm_contact), and how far their
-//                           solution and Jacobian lie from the cold contact's;
+//                           solution and Jacobian lie from the cold contact's through the model
+//                           predictor (the default before: at standard the default is now the
+//                           table predictor with warm contact solves, at draft unchanged);
+//   BM_CurvingExampleWarmCombination/V/A/T  BM_CurvingExampleWarm with T = 1 the table
+//                           predictor (at A = 1 the default), T = 0 the model predictor;
 //   BM_CurvingExampleTable/V/A/T  as BM_CurvingExample with the table predictor
 //                           (CurvingPredictor::kTable: the contact table built, its equilibrium
 //                           finished with the full model); also reports the table's build time,
@@ -129,9 +133,14 @@ BENCHMARK(BM_CurvingExampleContinuation)
 // stream's last solve; also reports how far the solution lies from the cold contact's (the
 // largest over the wheelsets: off_cold_y_mm, off_cold_psi_mrad; off_cold_jacobian, the largest
 // relative change of a wheelset's 2 x 2 block of the returned Jacobian).
-void RunWarm(benchmark::State& state, CurvingProblem p) {
+void RunWarm(benchmark::State& state, CurvingProblem p, bool table = false) {
+  // The reference: cold contact solves through the model predictor (the default before; at
+  // standard the default is now the table with warm contact solves).
+  p.options.cold_predictor = CurvingPredictor::kModel;
+  p.options.warm_contact = false;
   const CurvingResult cold = SolveCurving(p);
   p.options.warm_contact = true;
+  if (table) p.options.cold_predictor = CurvingPredictor::kTable;
   Run(state, p);
   const CurvingResult warm = SolveCurving(p);
   double off_y = 0.0, off_psi = 0.0, off_j = 0.0;
@@ -170,6 +179,17 @@ BENCHMARK(BM_CurvingExampleContinuationWarm)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
+// BM_CurvingExampleWarm with T (third argument) = 0 as it is, 1 through the table predictor
+// (CurvingPredictor::kTable): T = 1 at A = 1 is the default at standard.
+void BM_CurvingExampleWarmCombination(benchmark::State& state) {
+  RunWarm(state, ExampleProblem(static_cast<int>(state.range(0)), state.range(1) == 1),
+          state.range(2) == 1);
+}
+BENCHMARK(BM_CurvingExampleWarmCombination)
+    ->ArgsProduct({{0, 1}, {0, 1}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
 // How near a cold solve's start must be (issue 15, docs/curving.md "Starts other than the centred
 // one"): vehicle V at draft from its own solution's state with every wheelset moved S x 0.1 mm
 // toward the track centre (the yaws, the frames and the body as solved), without its Jacobian,
@@ -177,7 +197,7 @@ BENCHMARK(BM_CurvingExampleContinuationWarm)
 void BM_CurvingExampleShiftedStart(benchmark::State& state) {
   CurvingProblem p = ExampleProblem(static_cast<int>(state.range(0)), false);
   const CurvingResult solved = SolveCurving(p);
-  CurvingStart start{solved.state, {}, {}};
+  CurvingStart start{solved.state, {}, {}, {}};
   for (int i = 0; i < p.vehicle.wheelsets(); ++i) start.state[2 * i] -= state.range(1) * 1e-4;
   p.options.start = start;
   Run(state, p);

@@ -367,5 +367,61 @@ TEST(CurvingRulesTest, FallbackThatAlsoFailsStillReachesTheCentredStart) {
   EXPECT_EQ(r.message.rfind("from the centred start relaxed", 0), 0u) << r.message;
 }
 
+// A lazy fallback (CurvingStart::lazy: `railwear curving --db`'s unworn rails' equilibrium, a
+// solve of its own) is found only when the starts before it fail: with a given start that
+// converges it is never called; with one that stalls it is called once, and the solve is bit
+// for bit the one with that fallback given (the same attempts, solves, state and message). One
+// that finds nothing (cancelled, or no equilibrium: an empty state) is skipped for the centred
+// start.
+TEST(CurvingRulesTest, LazyFallbackIsFoundOnlyWhenTheStartBeforeItFails) {
+  CurvingProblem p = BaseProblem(MakeCone(0.1), 0.0);
+  p.options.predictor = p.contact.model;
+  p.options.threads = 1;
+  int calls = 0;
+  CurvingStart lazy;
+  lazy.lazy = [&calls] {
+    ++calls;
+    return WheelsetStart(8e-3, "the unworn rails' equilibrium");
+  };
+  p.options.fallback_starts = {lazy};
+  p.options.start = WheelsetStart(WornTreadRoot_m(), "the previous step's solution");
+  const CurvingResult at_once = internal::SolveCurvingWith(p, WornTreadWithFlange());
+  ASSERT_EQ(at_once.status, CurvingStatus::kConverged) << at_once.message;
+  EXPECT_EQ(calls, 0);  // the first start converged: the fallback was not solved
+  ASSERT_EQ(at_once.attempts.size(), 1u);
+
+  p.options.start = WheelsetStart(0.0, "the previous step's solution");
+  const CurvingResult lazily = internal::SolveCurvingWith(p, WornTreadWithFlange());
+  EXPECT_EQ(calls, 1);
+  CurvingProblem given = p;
+  given.options.fallback_starts = {WheelsetStart(8e-3, "the unworn rails' equilibrium")};
+  const CurvingResult eager = internal::SolveCurvingWith(given, WornTreadWithFlange());
+  ASSERT_EQ(eager.status, CurvingStatus::kConverged) << eager.message;
+  EXPECT_EQ(lazily.status, eager.status);
+  EXPECT_EQ(lazily.state, eager.state);
+  EXPECT_EQ(lazily.message, eager.message);
+  EXPECT_EQ(lazily.contact_solves, eager.contact_solves);
+  ASSERT_EQ(lazily.attempts.size(), eager.attempts.size());
+  for (size_t k = 0; k < eager.attempts.size(); ++k) {
+    EXPECT_EQ(lazily.attempts[k].start, eager.attempts[k].start);
+    EXPECT_EQ(lazily.attempts[k].contact_solves, eager.attempts[k].contact_solves);
+  }
+
+  // A lazy start that finds nothing: the centred start follows, as without it.
+  p.options.fallback_starts[0].lazy = [&calls] {
+    ++calls;
+    return CurvingStart{};
+  };
+  const CurvingResult none = internal::SolveCurvingWith(p, WornTreadWithFlange());
+  EXPECT_EQ(calls, 2);
+  CurvingProblem without = p;
+  without.options.fallback_starts.clear();
+  const CurvingResult reference = internal::SolveCurvingWith(without, WornTreadWithFlange());
+  EXPECT_EQ(none.state, reference.state);
+  EXPECT_EQ(none.contact_solves, reference.contact_solves);
+  ASSERT_EQ(none.attempts.size(), reference.attempts.size());
+  EXPECT_EQ(none.attempts[1].start, reference.attempts[1].start);
+}
+
 }  // namespace
 }  // namespace railwear

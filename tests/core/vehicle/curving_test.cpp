@@ -242,6 +242,7 @@ TEST(CurvingTest, WarmContactSolvesAreThreadIndependentAndNearTheColdOnes) {
   CurvingProblem p = BaseProblem(MakeCone(0.05), 1000.0);
   p.contact.model.accuracy = AccuracyPreset::kStandard;
   p.options.predictor = p.contact.model;
+  p.options.warm_contact = false;  // (absent: on at standard)
   const CurvingResult cold = SolveCurving(p);
   ASSERT_EQ(cold.status, CurvingStatus::kConverged) << cold.message;
   p.options.warm_contact = true;
@@ -495,6 +496,36 @@ std::pair<double, double> PredictorOffset(const CurvingResult& r) {
     psi = std::max(psi, std::abs(r.predictor_state[2 * i + 1] - r.state[2 * i + 1]));
   }
   return {y, psi};
+}
+
+// The default at standard accuracy (CurvingOptions::ColdPredictorFor, WarmContactFor: the table
+// predictor and warm contact solves; docs/curving.md, "Table and warm contact, the default at
+// standard"): the S1002 coach on R 600 m with 100 mm cant at 25 m/s, cold, ends within the
+// curving's position tolerances (0.05 mm, 0.05 mrad) of the solve as it was before (the model
+// predictor, cold contact solves: `predictor = "model"`, `warm_contact = false`), in fewer
+// wheelset solves; at draft the defaults are the behaviour before.
+TEST(CurvingTest, DefaultAtStandardIsTheTableWithWarmContactNearTheColdSolve) {
+  CurvingProblem p = S1002Coach(600.0, 0.10, 25.0);
+  EXPECT_EQ(p.options.ColdPredictorFor(p.contact.model), CurvingPredictor::kModel);  // draft
+  EXPECT_FALSE(p.options.WarmContactFor(p.contact.model));
+  p.contact.model.accuracy = AccuracyPreset::kStandard;
+  const CurvingResult fast = SolveCurving(p);
+  p.options.cold_predictor = CurvingPredictor::kModel;
+  p.options.warm_contact = false;
+  const CurvingResult before = SolveCurving(p);
+  ASSERT_EQ(fast.status, CurvingStatus::kConverged) << fast.message;
+  ASSERT_EQ(before.status, CurvingStatus::kConverged) << before.message;
+  EXPECT_EQ(fast.table_predictor, TablePredictorOutcome::kUsed) << fast.message;
+  double off_y = 0.0, off_psi = 0.0;
+  for (size_t i = 0; i < before.wheelsets.size(); ++i) {
+    off_y = std::max(off_y, std::abs(fast.wheelsets[i].lateral_m - before.wheelsets[i].lateral_m));
+    off_psi = std::max(off_psi, std::abs(fast.wheelsets[i].yaw_rad - before.wheelsets[i].yaw_rad));
+  }
+  std::printf("coach at standard: default %d solves, before %d; off %.4f mm, %.4f mrad\n",
+              fast.contact_solves, before.contact_solves, off_y * 1e3, off_psi * 1e3);
+  EXPECT_LE(off_y, p.options.position_tolerance_m);
+  EXPECT_LE(off_psi, p.options.yaw_tolerance_rad);
+  EXPECT_LT(fast.contact_solves, before.contact_solves);
 }
 
 // The table predictor (CurvingPredictor::kTable): the S1002 coach's cold solve on R 600 m with
