@@ -2,7 +2,12 @@
 // discretization error on it, for the tests of the warm start and of the cold call's first cells.
 #pragma once
 
+#include <algorithm>
+
+#include <gtest/gtest.h>
+
 #include "core/contact/contact_case.h"
+#include "core/contact/contact_forces.h"
 #include "core/contact/influence_constant_sets.h"
 #include "core/profile/builtin_profiles.h"
 
@@ -39,5 +44,33 @@ constexpr double kAreaTolerance = 0.073;
 constexpr double kPeakTolerance = 0.062;  // twice p_max's 3.1 %: it depends on where cells fall
 constexpr double kFxTolerance = 0.012;    // of the load
 constexpr double kFyTolerance = 0.024;    // of the load
+
+// The cold standard call at `lateral_m` within the standard preset's discretization error (the
+// tolerances above) of the reference preset's call at the same position: total area, largest
+// p_max, F_x and F_y.
+inline void ExpectStandardWithinTheReferencesError(double lateral_m) {
+  const ContactCase standard = GaugeCorner(lateral_m);
+  ContactCase reference = standard;
+  reference.problem.model.accuracy = AccuracyPreset::kReference;
+  const ContactResult s = SolveContactCase(standard).wheel;
+  const ContactResult r = SolveContactCase(reference).wheel;
+  ASSERT_EQ(s.status, SolverStatus::kConverged) << s.message;
+  ASSERT_EQ(r.status, SolverStatus::kConverged) << r.message;
+  double area_s = 0, area_r = 0, peak_s = 0, peak_r = 0;
+  for (const PatchResult& p : s.patches) {
+    area_s += p.area_m2;
+    peak_s = std::max(peak_s, p.p_max_Pa);
+  }
+  for (const PatchResult& p : r.patches) {
+    area_r += p.area_m2;
+    peak_r = std::max(peak_r, p.p_max_Pa);
+  }
+  const double load_N = *standard.problem.load.vertical_force_N;
+  const Eigen::Vector3d fs = TotalForcesOnRail(s).Net(), fr = TotalForcesOnRail(r).Net();
+  EXPECT_NEAR(area_s / area_r, 1.0, kAreaTolerance);
+  EXPECT_NEAR(peak_s / peak_r, 1.0, kPeakTolerance);
+  EXPECT_NEAR(fs.x(), fr.x(), kFxTolerance * load_N);
+  EXPECT_NEAR(fs.y(), fr.y(), kFyTolerance * load_N);
+}
 
 }  // namespace railwear::testing
