@@ -1090,17 +1090,16 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
   };
   std::string table_note;  // why the table's start failed
   for (size_t k = 0; k < starts.size(); ++k) {
-    if (starts[k].lazy) {  // found now, then tried as if it had been given
+    // A lazy start is found now and replaced by its tries, as if it had been given (none when
+    // it finds nothing new: then the next start is at k, itself perhaps lazy).
+    while (k < starts.size() && starts[k].lazy) {
       const Attempted pending = starts[k];
       starts.erase(starts.begin() + static_cast<std::ptrdiff_t>(k));
       const CurvingStart found = pending.start.lazy();
       const bool named = found.label.empty() || !pending.start.label.empty();
       insert_start(k, found, named ? pending.label : found.label, pending.start_index);
-      if (k == starts.size() || starts[k].start_index != pending.start_index) {
-        --k;  // (unsigned: wraps to k - 1, the loop's ++k brings it back)
-        continue;
-      }
     }
+    if (k == starts.size()) break;
     const auto& [start, full_directly, relaxed, table, name, start_index, label, lazy] = starts[k];
     const bool another_follows = k + 1 < starts.size();
     const int solves_before = eq.solves();

@@ -93,7 +93,7 @@ void BM_CurvingFreeWheelsetStandard(benchmark::State& state) {
 BENCHMARK(BM_CurvingFreeWheelsetStandard)->Unit(benchmark::kMillisecond);
 
 // Vehicle `v` of the main job's scene on its unworn rails, at the scene's accuracy (draft) or
-// the standard one with the draft predictor.
+// the standard one with that accuracy's defaults (the table predictor and warm contact solves).
 CurvingProblem ExampleProblem(int v, bool standard) {
   const app::Scene scene =
       app::LoadScene(std::string(RAILWEAR_SOURCE_DIR) + "/examples/curve_r600_vehicles.toml");
@@ -102,9 +102,16 @@ CurvingProblem ExampleProblem(int v, bool standard) {
   CurvingProblem p = VehicleCurvingProblem(study, v, RailInTrack(study, s0.rail, s0.rail),
                                            RailInTrack(study, *s0.low_rail, *s0.low_rail));
   p.options.start.reset();
-  if (standard) {
-    p.contact.model.accuracy = AccuracyPreset::kStandard;  // the draft predictor by default
-  }
+  if (standard) p.contact.model.accuracy = AccuracyPreset::kStandard;
+  return p;
+}
+
+// ExampleProblem 0.5 m/s faster, started from its solution at the scene's speed (a wear step's
+// start: the step before's solution).
+CurvingProblem ContinuedExample(int v, bool standard) {
+  CurvingProblem p = ExampleProblem(v, standard);
+  p.options.start = SolveCurving(p).Start();
+  p.speed_m_s += 0.5;
   return p;
 }
 
@@ -117,11 +124,7 @@ BENCHMARK(BM_CurvingExample)
     ->Iterations(1);
 
 void BM_CurvingExampleContinuation(benchmark::State& state) {
-  CurvingProblem p = ExampleProblem(static_cast<int>(state.range(0)), state.range(1) == 1);
-  const CurvingResult at_speed = SolveCurving(p);
-  p.options.start = at_speed.Start();
-  p.speed_m_s += 0.5;
-  Run(state, p);
+  Run(state, ContinuedExample(static_cast<int>(state.range(0)), state.range(1) == 1));
 }
 BENCHMARK(BM_CurvingExampleContinuation)
     ->ArgsProduct({{0, 1}, {0, 1}})
@@ -168,11 +171,7 @@ BENCHMARK(BM_CurvingExampleWarm)
     ->Iterations(1);
 
 void BM_CurvingExampleContinuationWarm(benchmark::State& state) {
-  CurvingProblem p = ExampleProblem(static_cast<int>(state.range(0)), state.range(1) == 1);
-  const CurvingResult at_speed = SolveCurving(p);  // (the cold contact's start, as a wear step's)
-  p.options.start = at_speed.Start();
-  p.speed_m_s += 0.5;
-  RunWarm(state, p);
+  RunWarm(state, ContinuedExample(static_cast<int>(state.range(0)), state.range(1) == 1));
 }
 BENCHMARK(BM_CurvingExampleContinuationWarm)
     ->ArgsProduct({{0, 1}, {0, 1}})
