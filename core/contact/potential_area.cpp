@@ -131,6 +131,7 @@ bool PotentialArea::Build(const WheelRailGeometry& geom, PatchModelMemory* model
     o.threshold_m = threshold_;
     o.stiffness_ratio_K = stiffness_ratio_K_;
     o.trim_approach_m = trim_approach_;
+    o.walks = &walks_;
     o.size_accepted = [](const PatchGrid& sized) {
       return !(EstimateOperatorBytes(sized.nx, sized.ns, sized.planar) > kMaxOperatorBytes) &&
              !(static_cast<double>(sized.nx) * sized.ns > kMaxGridCells) &&

@@ -186,6 +186,10 @@ class PotentialArea {
   // Grids are cropped to the cells an approach of trim_approach could close (patch_builder.h):
   // unbounded until a solve has measured the approach, then kTrimFactor times the last one.
   double trim_approach_ = std::numeric_limits<double>::infinity();
+  // The candidates' lateral walks (LateralWalkCache), kept across the attempts of this solve:
+  // every attempt grids the same placed geometry, most of them the same candidates at other
+  // cells or thresholds. The grids are the same bit for bit; a cache, hence mutable.
+  mutable LateralWalkCache walks_;
 };
 
 // A wheel's contact as the last call left it, for the next call's warm start

@@ -25,12 +25,7 @@ int HalfCells(double x_half_m, double cell_dx_m) {
   return std::max(1, static_cast<int>(std::min(n, 1e9)));
 }
 
-struct Section {
-  double tau = 0.0;       // offset along t0 from the contact point [m]
-  double lambda_r = 0.0;  // rail surface offset along n0
-  double lambda_w = 0.0;  // wheel surface offset along n0 (x = 0)
-  double rail_s = 0.0, wheel_s = 0.0;
-};
+using Section = LateralWalkCache::Section;
 
 // Rail and wheel crossings of the line P_c + tau t0 + lambda n0, near the previous crossing.
 bool CrossSection(const WheelRailGeometry& g, const Eigen::Vector2d& pc, const Eigen::Vector2d& t0,
@@ -49,20 +44,20 @@ bool CrossSection(const WheelRailGeometry& g, const Eigen::Vector2d& pc, const E
 }
 
 // Walks tau outward (sign = +1 or -1) while the normal gap stays below the threshold.
-// Returns the sections in order of increasing |tau| (excluding tau = 0) and whether it stopped
-// for a geometric limit rather than the threshold.
+// The walk's sections are those of *side (the ones already walked on that side, from `start`),
+// extended as needed; returns how many of them it takes, in order of increasing |tau|
+// (excluding tau = 0), and whether it stopped for a geometric limit rather than the threshold.
 // After the threshold is passed it goes on for `extra` steps, so that cell centres near the
 // edge interpolate the reference curve instead of extrapolating it; *within is the number of
 // sections up to the first one past the threshold.
 // `reach` (below kMaxLateralReach_m: the memory estimate's bound) ends the walk without either:
 // *capped is set, *limited is not.
-std::vector<Section> Walk(const WheelRailGeometry& g, const Eigen::Vector2d& pc,
-                          const Eigen::Vector2d& t0, const Eigen::Vector2d& n0,
-                          const Section& start, double step, double threshold_n, double sign,
-                          double y_stop, int extra, double reach, bool* limited, bool* capped,
-                          int* within) {
-  std::vector<Section> out;
-  Section prev = start;
+int Walk(const WheelRailGeometry& g, const Eigen::Vector2d& pc, const Eigen::Vector2d& t0,
+         const Eigen::Vector2d& n0, const Section& start, double step, double threshold_n,
+         double sign, double y_stop, int extra, double reach, LateralWalkCache::Side* side,
+         bool* limited, bool* capped, int* within) {
+  std::vector<Section>& walked = side->sections;
+  int taken = 0;
   *limited = false;
   *capped = false;
   *within = -1;
@@ -76,24 +71,57 @@ std::vector<Section> Walk(const WheelRailGeometry& g, const Eigen::Vector2d& pc,
       *capped = true;
       break;
     }
-    Section s;
-    const double window = 50 * step + 5e-4;
-    if (!CrossSection(g, pc, t0, n0, tau, prev.rail_s, prev.wheel_s, window, &s)) {
-      *limited = true;
-      break;
+    if (k > static_cast<int>(walked.size())) {  // beyond the sections walked so far
+      if (side->ended) {
+        *limited = true;
+        break;
+      }
+      const Section prev = k == 1 ? start : walked[k - 2];
+      Section s;
+      const double window = 50 * step + 5e-4;
+      if (!CrossSection(g, pc, t0, n0, tau, prev.rail_s, prev.wheel_s, window, &s)) {
+        side->ended = true;
+        *limited = true;
+        break;
+      }
+      walked.push_back(s);
     }
-    out.push_back(s);
+    const Section& s = walked[k - 1];
+    taken = k;
     // Past the threshold, or past the saddle that separates this patch from its neighbour.
     const double y_rail = (pc + tau * t0 + s.lambda_r * n0).x();
     const bool past_saddle = sign * (y_rail - y_stop) > 0;
     if (*within < 0 && (s.lambda_w - s.lambda_r > threshold_n || past_saddle)) {
-      *within = static_cast<int>(out.size());
+      *within = taken;
     }
-    if (*within >= 0 && static_cast<int>(out.size()) >= *within + extra) break;
-    prev = s;
+    if (*within >= 0 && taken >= *within + extra) break;
   }
-  if (*within < 0) *within = static_cast<int>(out.size());
-  return out;
+  if (*within < 0) *within = taken;
+  return taken;
+}
+
+// The kept walk of candidate c at this step in *cache (emptied first when it was made on
+// another geometry), or a new one with its centre section.
+LateralWalkCache::Walked* FindWalk(const WheelRailGeometry& g, const ContactCandidate& c,
+                                   const Eigen::Vector2d& t0, const Eigen::Vector2d& n0,
+                                   double step, LateralWalkCache* cache) {
+  if (cache->geometry != &g) {
+    cache->walks.clear();
+    cache->geometry = &g;
+  }
+  for (LateralWalkCache::Walked& w : cache->walks) {
+    if (w.rail_point_m == c.rail_point_m && w.normal == c.normal && w.rail_s_m == c.rail_s_m &&
+        w.wheel_s_m == c.wheel_s_m && w.step_m == step) {
+      ++cache->reused;
+      return &w;
+    }
+  }
+  LateralWalkCache::Walked w{c.rail_point_m, c.normal,  c.rail_s_m, c.wheel_s_m, step,
+                             false,          Section{}, {},         {}};
+  w.centre_found =
+      CrossSection(g, c.rail_point_m, t0, n0, 0.0, c.rail_s_m, c.wheel_s_m, 1e-3, &w.centre);
+  cache->walks.push_back(std::move(w));
+  return &cache->walks.back();
 }
 
 // Crops `grid` to the bounding box of the cells with gap <= approach * w (w the vertical
@@ -222,23 +250,25 @@ PatchBuild BuildPatchGrid(const WheelRailGeometry& g, const ContactCandidate& c,
     }
   }
 
-  // 1. Lateral walk along t0 at x = 0.
-  Section centre;
-  if (!CrossSection(g, pc, t0, n0, 0.0, c.rail_s_m, c.wheel_s_m, 1e-3, &centre)) return build;
+  // 1. Lateral walk along t0 at x = 0 (or the part of a kept one it needs, LateralWalkCache).
   const double step = std::min(o.cell_ds_m / 8.0, 2e-5);
+  LateralWalkCache own;  // (without a cache: kept for this grid only)
+  LateralWalkCache::Walked* walk = FindWalk(g, c, t0, n0, step, o.walks ? o.walks : &own);
+  if (!walk->centre_found) return build;
+  const Section centre = walk->centre;
   bool lim_lo = false, lim_hi = false, cap_lo = false, cap_hi = false;
   int within_lo = 0, within_hi = 0;
   const int extra = static_cast<int>(std::ceil(o.cell_ds_m / step)) + 2;
   const double y_stop_lo = c.split_lo ? c.y_lo_m : -kInf;
   const double y_stop_hi = c.split_hi ? c.y_hi_m : kInf;
-  std::vector<Section> lo = Walk(g, pc, t0, n0, centre, step, threshold_n, -1.0, y_stop_lo, extra,
-                                 reach, &lim_lo, &cap_lo, &within_lo);
-  std::vector<Section> hi = Walk(g, pc, t0, n0, centre, step, threshold_n, +1.0, y_stop_hi, extra,
-                                 reach, &lim_hi, &cap_hi, &within_hi);
-  std::vector<Section> sections(lo.rbegin(), lo.rend());
+  const int n_lo = Walk(g, pc, t0, n0, centre, step, threshold_n, -1.0, y_stop_lo, extra, reach,
+                        &walk->lo, &lim_lo, &cap_lo, &within_lo);
+  const int n_hi = Walk(g, pc, t0, n0, centre, step, threshold_n, +1.0, y_stop_hi, extra, reach,
+                        &walk->hi, &lim_hi, &cap_hi, &within_hi);
+  std::vector<Section> sections(walk->lo.sections.rend() - n_lo, walk->lo.sections.rend());
   sections.push_back(centre);
-  sections.insert(sections.end(), hi.begin(), hi.end());
-  const int centre_index = static_cast<int>(lo.size());
+  sections.insert(sections.end(), walk->hi.sections.begin(), walk->hi.sections.begin() + n_hi);
+  const int centre_index = n_lo;
 
   // 2. Reference curve samples (rail frame) and their arc length, 0 at the contact point.
   const double K = o.stiffness_ratio_K;

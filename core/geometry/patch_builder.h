@@ -16,12 +16,52 @@
 
 #include <functional>
 #include <limits>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include "core/geometry/geometry_model.h"
 #include "core/geometry/patch_grid.h"
 #include "core/geometry/wheel_rail_geometry.h"
 
 namespace railwear {
+
+// Step 1 of BuildPatchGrid, the lateral walk of one candidate's cross-section (the rail and
+// wheel crossings of lines along n0, one an eighth of a cell or 20 um apart), kept for the next
+// grids of the same candidate on the same placed geometry: the attempts of one contact solve
+// walk the same candidate again and again, at other cells and thresholds (the measuring attempt,
+// its re-grid to the preset's cells, a grown threshold). A walk's sections depend only on the
+// candidate's point, normal and profile parameters and the step, each one on the one before;
+// a walk at a higher threshold or for more cells beyond it only goes on further. So a kept walk
+// serves any later one of the same key bit for bit, walking on from its last section where the
+// later one needs more. Internal to BuildPatchGrid (the members are its).
+struct LateralWalkCache {
+  struct Section {
+    double tau = 0.0;       // offset along t0 from the contact point [m]
+    double lambda_r = 0.0;  // rail surface offset along n0
+    double lambda_w = 0.0;  // wheel surface offset along n0 (x = 0)
+    double rail_s = 0.0, wheel_s = 0.0;
+  };
+  // The sections walked on one side, in order of increasing |tau|; ended: the next one has no
+  // crossing (a geometric limit), so no walk goes beyond them.
+  struct Side {
+    std::vector<Section> sections;
+    bool ended = false;
+  };
+  struct Walked {
+    Eigen::Vector2d rail_point_m, normal;  // the candidate's
+    double rail_s_m, wheel_s_m, step_m;
+    bool centre_found;
+    Section centre;
+    Side lo, hi;  // toward -t0 and +t0
+  };
+  // The geometry the walks were made on: a cache handed a grid on another WheelRailGeometry
+  // object is emptied first. A geometry moved in place (a new pose on the same object) must
+  // not be given the cache of its old pose.
+  const WheelRailGeometry* geometry = nullptr;
+  std::vector<Walked> walks;
+  int reused = 0;  // walks served from a kept one (for tests)
+};
 
 struct PatchGridOptions {
   GeometryModel geometry = GeometryModel::kConformal;
@@ -49,6 +89,9 @@ struct PatchGridOptions {
   // minutes and gigabytes): it must accept every grid no larger in nx and ns than one it
   // accepts.
   std::function<bool(const PatchGrid& sized)> size_accepted;
+  // When set: the lateral walk is taken from (and kept in) this cache, LateralWalkCache. The
+  // grid is the same bit for bit as without it.
+  LateralWalkCache* walks = nullptr;
 };
 
 // Cells kept around the closable cells when trimming (so the contact's edge lies inside).

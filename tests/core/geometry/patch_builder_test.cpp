@@ -108,6 +108,76 @@ TEST(PatchBuilder, UpdatedConformalGapsAreTheMovedWheelsOnTheSameCells) {
   EXPECT_FALSE(UpdateConformalGaps(g, &planar));
 }
 
+// Everything a build reports, compared with ==.
+void ExpectSameBuild(const PatchBuild& a, const PatchBuild& b) {
+  EXPECT_EQ(a.valid, b.valid);
+  EXPECT_EQ(a.lateral_limited, b.lateral_limited);
+  EXPECT_EQ(a.trimmed, b.trimmed);
+  EXPECT_EQ(a.too_large, b.too_large);
+  EXPECT_EQ(a.grid.nx, b.grid.nx);
+  EXPECT_EQ(a.grid.ns, b.grid.ns);
+  EXPECT_EQ(a.grid.x0_m, b.grid.x0_m);
+  EXPECT_EQ(a.grid.s0_m, b.grid.s0_m);
+  EXPECT_EQ(a.grid.point_yz_m, b.grid.point_yz_m);
+  EXPECT_EQ(a.grid.tangent_yz, b.grid.tangent_yz);
+  EXPECT_EQ(a.grid.normal_yz, b.grid.normal_yz);
+  EXPECT_TRUE(a.grid.gap_m.size() == b.grid.gap_m.size() && a.grid.gap_m == b.grid.gap_m);
+  EXPECT_EQ(a.rail_s_m, b.rail_s_m);
+  EXPECT_EQ(a.wheel_s_m, b.wheel_s_m);
+  EXPECT_EQ(a.x_contact_m, b.x_contact_m);
+}
+
+TEST(PatchBuilder, AKeptLateralWalkGivesTheSameGridsBitForBit) {
+  // The groove's candidate gridded in turn at other cells, thresholds (lower: a prefix of the
+  // kept walk; higher: the walk goes on from its last section; far higher: up to the profile's
+  // end), models and a size limit, all on one LateralWalkCache: each grid equals the one built
+  // without a cache, ==. The walk is kept per step (an eighth of a cell up to 20 um): the
+  // 0.1 mm cells walk anew.
+  const Groove groove;
+  const WheelRailGeometry g(groove.wheel, groove.rail, Groove::Pose());
+  const auto cands = g.FindCandidates(2e-5);
+  ASSERT_EQ(cands.size(), 1u);
+  LateralWalkCache cache;
+  struct Case {
+    double cell_m, threshold_m;
+    GeometryModel geometry;
+    bool size_limited;
+  };
+  const Case cases[] = {{2e-4, 2e-5, GeometryModel::kConformal, false},
+                        {4e-4, 1e-5, GeometryModel::kConformal, false},
+                        {3e-4, 8e-5, GeometryModel::kConformal, false},
+                        {2e-4, 8e-5, GeometryModel::kPlanar, false},
+                        {5e-4, 2e-3, GeometryModel::kConformal, false},
+                        {2e-4, 4e-5, GeometryModel::kConformal, true},
+                        {1e-4, 2e-5, GeometryModel::kConformal, false},
+                        {1e-4, 2e-5, GeometryModel::kConformal, false}};
+  for (const Case& k : cases) {
+    SCOPED_TRACE(::testing::Message() << k.cell_m << " m cells, threshold " << k.threshold_m);
+    PatchGridOptions o = Groove::Options();
+    o.cell_dx_m = o.cell_ds_m = k.cell_m;
+    o.threshold_m = k.threshold_m;
+    o.geometry = k.geometry;
+    if (k.size_limited) o.size_accepted = [](const PatchGrid& sized) { return sized.ns <= 12; };
+    const PatchBuild fresh = BuildPatchGrid(g, cands[0], o);
+    o.walks = &cache;
+    const PatchBuild kept = BuildPatchGrid(g, cands[0], o);
+    ExpectSameBuild(kept, fresh);
+  }
+  // Two walks (the 20 um step and the 0.1 mm cells' 12.5 um), the others reused.
+  EXPECT_EQ(cache.walks.size(), 2u);
+  EXPECT_EQ(cache.reused, 6);
+  // The far threshold walked up to the profile's end.
+  EXPECT_TRUE(cache.walks[0].lo.ended || cache.walks[0].hi.ended);
+  // Another geometry object empties the cache first.
+  const WheelRailGeometry other(groove.wheel, groove.rail, Groove::Pose());
+  PatchGridOptions o = Groove::Options();
+  o.walks = &cache;
+  ExpectSameBuild(BuildPatchGrid(other, cands[0], o),
+                  BuildPatchGrid(g, cands[0], Groove::Options()));
+  EXPECT_EQ(cache.walks.size(), 1u);
+  EXPECT_EQ(cache.geometry, &other);
+}
+
 TEST(PatchBuilder, PlanarGapIsQuadraticNearFirstContact) {
   // Laterally flat wheel of radius r0 on a 300 mm crown: along the plane normal the gap is
   // x^2/(2 r0) + s^2/(2 R) + higher order terms (relative size ~ s^2/R^2 ~ 1e-4 here).
