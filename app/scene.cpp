@@ -686,6 +686,7 @@ void ReadWearTable(const Fields& top, Scene* scene) {
                "conditions",
                "gauge_face_angle_deg",
                "max_depth_per_step_mm",
+               "time_step",
                "total_passes",
                "total_MGT",
                "quadrature_points",
@@ -706,6 +707,10 @@ void ReadWearTable(const Fields& top, Scene* scene) {
   o.max_depth_per_step_m = t.Number("max_depth_per_step_mm", OpenClosed(0.0, 1.0), Closed(0.001, 1.0))
                                .value_or(o.max_depth_per_step_m / kMm) *
                            kMm;
+  // The time step (WearTimeStep): "euler" (the default) or "heun".
+  if (const auto step = t.Choice("time_step", EnumChoices(kWearTimeStepNames))) {
+    o.time_step = *EnumFromString(kWearTimeStepNames, *step);
+  }
   // A rail's life is of the order of 1000 MGT (1e8 axle passes): ten times that is the bound.
   o.total_passes = t.Number("total_passes", OpenClosed(0.0, 1e9));
   o.total_mgt = t.Number("total_MGT", OpenClosed(0.0, 1e4));
