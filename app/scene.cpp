@@ -987,6 +987,12 @@ void ReadWheelWear(const Fields& t, const Scene& scene, TrafficCase* c) {
   const auto w = t.Table("wheel_wear",
                          "an inline table { distance_per_pass_m, grade or hardness_MPa }");
   if (!w) return;
+  if (scene.wear->options.time_step == WearTimeStep::kHeun) {
+    // Heun's predictor moves the rails only (wear/wear_simulation.h; ValidateWearStudy).
+    t.Fail("wheel_wear",
+           "no wheel_wear with time_step = \"heun\" (its predictor moves the rails only): "
+           "time_step = \"euler\" for an entry whose wheels wear");
+  }
   w->AllowOnly({"distance_per_pass_m", "grade", "hardness_MPa"});
   WheelWear wear;
   // Up to 1e7 m (10 000 km) per pass.

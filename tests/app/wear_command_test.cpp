@@ -170,7 +170,7 @@ TEST_F(WearCommandTest, KilledRunResumesToTheSameProfile) {
 TEST_F(WearCommandTest, HeunRunStoppedAndResumedEndsBitIdentically) {
   std::string scene = kWheelsetCurveScene;
   scene.replace(scene.find("total_passes = 1e5"), 18,
-                "total_passes = 4e4\nmax_depth_per_step_mm = 0.02\ntime_step = \"heun\"");
+                "total_passes = 1e6\nmax_depth_per_step_mm = 0.005\ntime_step = \"heun\"");
   Write("curve.toml", scene);
   const Outcome whole = Run("wear curve.toml --db whole.sqlite --threads 1");
   ASSERT_EQ(whole.exit_code, 0) << whole.err;
