@@ -916,28 +916,53 @@ StepResult RunWearStep(const WearStudy& given, const UnwornRails& unworn, const 
   if (o.time_step == WearTimeStep::kHeun && deepest > 0.0) {
     // Heun's corrector: the predictor's rails (each moved by the step's passes of f0; no damage,
     // no measures), their cases solved as the step's own (a vehicle's curving started from the
-    // step's equilibrium), and each rail's field averaged with the predictor's. The passes stay
-    // those f0 fixed; the damage and the cases reported are f0's; the next step's curving starts
-    // from the predictor's solution (the rails nearest the next step's).
+    // step's equilibrium), and each rail's field averaged with the predictor's. The damage and
+    // the cases reported are f0's; the next step's curving starts from the predictor's solution
+    // (the rails nearest the next step's).
+    // Step control on the mean: where the predictor's contact moved onto a band f0 barely wore
+    // (a new flange or gauge-corner contact), N (f0 + f1) / 2 can exceed the limit several times
+    // over. Such a step is predicted again with the passes at which the mean reaches the limit
+    // (up to kHeunRepredictions times), and what is still above it after them is cut to the
+    // limit by the passes alone (that last predictor then lies a little beyond the step's end).
+    constexpr int kHeunRepredictions = 2;
+    constexpr double kHeunAcceptedOvershoot = 1.1;  // the mean's deepest up to 10 % above the limit
     RAILWEAR_CHECK(wheels.empty());  // ValidateWearStudy refuses wheel wear with Heun
+    const SmoothedPerPass high_f0 = high.field;
+    std::optional<SmoothedPerPass> low_f0;
+    if (low) low_f0 = low->field;
     const std::vector<double> no_damage;
-    Profile high_predicted;
-    const MaterialMap high_map =
-        high.Move(high.field.StepDepth(step.step_passes), o.profile_spacing_m, &high_predicted);
-    RailWork high_predictor(RailSide::kHigh, high_predicted, unworn.high, no_damage, study);
-    Profile low_predicted;
-    MaterialMap low_map;
-    std::optional<RailWork> low_predictor;
-    if (low) {
-      low_map =
-          low->Move(low->field.StepDepth(step.step_passes), o.profile_spacing_m, &low_predicted);
-      low_predictor.emplace(RailSide::kLow, low_predicted, *unworn.low, no_damage, study);
+    for (int attempt = 0;; ++attempt) {
+      high.field = high_f0;
+      if (low) low->field = *low_f0;
+      Profile high_predicted;
+      const MaterialMap high_map =
+          high.Move(high.field.StepDepth(step.step_passes), o.profile_spacing_m, &high_predicted);
+      RailWork high_predictor(RailSide::kHigh, high_predicted, unworn.high, no_damage, study);
+      Profile low_predicted;
+      MaterialMap low_map;
+      std::optional<RailWork> low_predictor;
+      if (low) {
+        low_map =
+            low->Move(low->field.StepDepth(step.step_passes), o.profile_spacing_m, &low_predicted);
+        low_predictor.emplace(RailSide::kLow, low_predicted, *unworn.low, no_damage, study);
+      }
+      SolvedStepCases predicted = SolveStepCases(study, high_predictor, low_predictor, curving);
+      AverageWithPredictor(high_map, predicted, o.smoothing, &high_predictor, &high);
+      if (low) AverageWithPredictor(low_map, predicted, o.smoothing, &*low_predictor, &*low);
+      step.predictor_load_cases += static_cast<int>(predicted.cases.size());
+      const double mean_deepest =
+          std::max(high.SmoothedDeepest(), low ? low->SmoothedDeepest() : 0.0);
+      const double applied = step.step_passes * mean_deepest;
+      if (applied <= kHeunAcceptedOvershoot * o.max_depth_per_step_m ||
+          attempt == kHeunRepredictions) {
+        if (applied > o.max_depth_per_step_m) {
+          step.step_passes = o.max_depth_per_step_m / mean_deepest;
+        }
+        curving = std::move(predicted.curving);
+        break;
+      }
+      step.step_passes = o.max_depth_per_step_m / mean_deepest;
     }
-    SolvedStepCases predicted = SolveStepCases(study, high_predictor, low_predictor, curving);
-    AverageWithPredictor(high_map, predicted, o.smoothing, &high_predictor, &high);
-    if (low) AverageWithPredictor(low_map, predicted, o.smoothing, &*low_predictor, &*low);
-    step.predictor_load_cases = static_cast<int>(predicted.cases.size());
-    curving = std::move(predicted.curving);
   }
   WearState& next = step.state;
   next.step = state.step + 1;

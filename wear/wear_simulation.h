@@ -76,6 +76,10 @@ namespace railwear {
 //   kHeun:  explicit trapezoidal predictor-corrector: the same per-pass depth f0 fixes the passes
 //           N, the profiles moved by N f0 give the predictor's per-pass depth f1, and the step
 //           moves the profiles by N (f0 + f1) / 2 (second order; twice the load cases a step).
+//           Where N (f0 + f1) / 2 would go deeper than the limit by more than 10 % (the
+//           predictor's contact moved onto a band f0 barely wore), the step is predicted again
+//           with the passes at which the mean reaches the limit (up to twice), and the passes are
+//           then cut so that the mean stays within the limit.
 enum class WearTimeStep { kEuler, kHeun };
 inline constexpr std::array<EnumName<WearTimeStep>, 2> kWearTimeStepNames = {{
     {WearTimeStep::kEuler, "euler"},
@@ -88,8 +92,8 @@ struct WearOptions {
   // The friction conditions traffic entries name (TrafficCase::condition, gauge_face_condition):
   // each one's mu and wear factors, and the gauge-face zone's contact-angle boundary.
   FrictionConditions conditions;
-  // Step control: the deepest wear of one step [m], > 0 (with kHeun: of the step's first
-  // per-pass depth f0, which fixes the passes; the averaged depth applied may be a little less).
+  // Step control: the deepest wear of one step [m], > 0 (with kHeun: f0 fixes the passes, and the
+  // mean (f0 + f1) / 2 applied never goes deeper: see WearTimeStep).
   double max_depth_per_step_m = 1e-4;
   // The time step (above). kHeun refuses entries whose wheels wear (ValidateWearStudy).
   WearTimeStep time_step = WearTimeStep::kEuler;
@@ -331,7 +335,8 @@ struct StepResult {
   std::vector<WheelStepResult> wheels;
   std::vector<LoadCaseSummary> cases;      // both rails' cases, in StepLoadCases order
   SpreadIntegrationSummary integration;    // the spread rule's nodes per entry and its error
-  // WearTimeStep::kHeun: the load cases the predictor solved (0 with kEuler). `cases`,
+  // WearTimeStep::kHeun: the load cases the predictor solved, summed over the step's predictions
+  // (more than one when the mean overshot the step limit; 0 with kEuler). `cases`,
   // `integration` and the damage are the step's own rails' (f0); depth_per_pass_m and step_depth_m
   // the mean (f0 + f1) / 2 the step applied (docs/wear.md, "A second-order step").
   int predictor_load_cases = 0;
