@@ -462,9 +462,9 @@ TEST(WearSimulationTest, InconsistentStudiesAreRefused) {
 // second-order step"). The unyawed gauge-corner traffic of the step-limit test above, 1.5e5
 // passes: its wear rate falls as the corner conforms, so Euler's start-of-step rate over-predicts
 // (the worn area 6.63 / 6.40 mm^2 at 0.2 / 0.1 mm against 6.24 extrapolated). The reference is
-// Euler's Richardson extrapolation 2 E(L/16) - E(L/8) from 0.025 and 0.0125 mm (31 and 61 steps;
-// Euler converges at first order there: its differences fall 0.10 -> 0.023 -> 0.018 mm^2, so the
-// reference carries about 0.02 mm^2 of the contact grid's step-to-step noise). Measured (2
+// Euler's Richardson extrapolation 2 E(L/16) - E(L/8) from 0.025 and 0.0125 mm (31 and 61 steps,
+// 0.018 mm^2 apart: the reference is uncertain by about that, the contact grid's step-to-step
+// noise; 0.05 mm, run once beside them, fell only 0.023 mm^2 to 0.025 mm). Measured (2
 // threads): Euler's error +0.397 / +0.160 mm^2 at 0.2 / 0.1 mm, Heun's +0.113 / +0.006 mm^2:
 // 3.5x and 28x nearer, and Heun's error falls 20x from 0.2 to 0.1 mm (0.1 mm is at the
 // reference's noise). The bounds: nearer by 2.5x at both limits ("several times"), and a fall by
@@ -489,16 +489,17 @@ TEST(WearSimulationTest, HeunIsSeveralTimesNearerThanEulerAndConvergesAtSecondOr
     }
     return r.steps.back().measures.worn_area_m2 * 1e6;
   };
-  const double reference = 2.0 * worn_area_mm2(WearTimeStep::kEuler, 0.0125e-3) -
-                           worn_area_mm2(WearTimeStep::kEuler, 0.025e-3);
+  const double euler_0125 = worn_area_mm2(WearTimeStep::kEuler, 0.0125e-3);
+  const double euler_025 = worn_area_mm2(WearTimeStep::kEuler, 0.025e-3);
+  const double reference = 2.0 * euler_0125 - euler_025;
   const double euler_02 = worn_area_mm2(WearTimeStep::kEuler, 0.2e-3) - reference;
   const double euler_01 = worn_area_mm2(WearTimeStep::kEuler, 0.1e-3) - reference;
   const double heun_02 = worn_area_mm2(WearTimeStep::kHeun, 0.2e-3) - reference;
   const double heun_01 = worn_area_mm2(WearTimeStep::kHeun, 0.1e-3) - reference;
   std::printf(
-      "[figure] worn area error against Euler's extrapolation %.4f mm^2: Euler %+.4f / %+.4f, "
-      "Heun %+.4f / %+.4f mm^2 at 0.2 / 0.1 mm\n",
-      reference, euler_02, euler_01, heun_02, heun_01);
+      "[figure] worn area error against Euler's extrapolation %.4f mm^2 (Euler %.4f / %.4f mm^2 at "
+      "0.025 / 0.0125 mm): Euler %+.4f / %+.4f, Heun %+.4f / %+.4f mm^2 at 0.2 / 0.1 mm\n",
+      reference, euler_025, euler_0125, euler_02, euler_01, heun_02, heun_01);
   EXPECT_GT(euler_02, 0.0);  // the falling rate: Euler over-predicts
   EXPECT_GT(euler_01, 0.0);
   EXPECT_LT(2.5 * std::abs(heun_02), std::abs(euler_02));
