@@ -686,6 +686,7 @@ void ReadWearTable(const Fields& top, Scene* scene) {
                "conditions",
                "gauge_face_angle_deg",
                "max_depth_per_step_mm",
+               "time_step",
                "total_passes",
                "total_MGT",
                "quadrature_points",
@@ -706,6 +707,10 @@ void ReadWearTable(const Fields& top, Scene* scene) {
   o.max_depth_per_step_m = t.Number("max_depth_per_step_mm", OpenClosed(0.0, 1.0), Closed(0.001, 1.0))
                                .value_or(o.max_depth_per_step_m / kMm) *
                            kMm;
+  // The time step (WearTimeStep): "euler" (the default) or "heun".
+  if (const auto step = t.Choice("time_step", EnumChoices(kWearTimeStepNames))) {
+    o.time_step = *EnumFromString(kWearTimeStepNames, *step);
+  }
   // A rail's life is of the order of 1000 MGT (1e8 axle passes): ten times that is the bound.
   o.total_passes = t.Number("total_passes", OpenClosed(0.0, 1e9));
   o.total_mgt = t.Number("total_MGT", OpenClosed(0.0, 1e4));
@@ -982,6 +987,12 @@ void ReadWheelWear(const Fields& t, const Scene& scene, TrafficCase* c) {
   const auto w = t.Table("wheel_wear",
                          "an inline table { distance_per_pass_m, grade or hardness_MPa }");
   if (!w) return;
+  if (scene.wear->options.time_step == WearTimeStep::kHeun) {
+    // Heun's predictor moves the rails only (wear/wear_simulation.h; ValidateWearStudy).
+    t.Fail("wheel_wear",
+           "no wheel_wear with time_step = \"heun\" (its predictor moves the rails only): "
+           "time_step = \"euler\" for an entry whose wheels wear");
+  }
   w->AllowOnly({"distance_per_pass_m", "grade", "hardness_MPa"});
   WheelWear wear;
   // Up to 1e7 m (10 000 km) per pass.

@@ -147,6 +147,8 @@ speed_m_s = 20.0              # (0, 150]; needed by the "tangential" effect
 # # kth_velocity_band = 0.25, kth_pressure_band = 0.05              (law "kth-continuous")
 # # density_kg_m3 = 7850                                             (law "usfd")
 # max_depth_per_step_mm = 0.1  # step control: the deepest wear of one step, in (0, 1]
+# time_step = "euler"          # "euler" | "heun" (second order, twice the load cases a step;
+#                              # not with wheel_wear): docs/wear.md "A second-order step"
 # total_MGT = 10.0             # or total_passes = 1e6 (exactly one)
 # integration_tolerance = 0.005  # spreads: adaptive nodes until the step's worn area is within
 #                              # this relative tolerance, [0.0001, 0.1] (the default rule)

@@ -62,6 +62,10 @@ json WearLawJson(const WearStudy& study) {
   j["model"] = ModelJson(study.model);  // kernel and the named constants set (issue 17)
   j["max_depth_per_step_mm"] = study.options.max_depth_per_step_m * 1e3;
   j["smoothing_mm"] = study.options.smoothing.smoothing_length_m * 1e3;
+  // The time step, only when it is not the default (older runs' JSON unchanged).
+  if (study.options.time_step != WearTimeStep::kEuler) {
+    j["time_step"] = ToString(study.options.time_step);
+  }
   // Co-evolution (issue 16): the wearing wheels, only when there are (older runs' JSON unchanged).
   json wheels = json::array();
   for (size_t t = 0; t < study.traffic.size(); ++t) {
@@ -471,6 +475,11 @@ class Progress {
       const std::string nodes = IntegrationLine(step, study);
       if (!nodes.empty())
         std::cerr << fmt::format("railwear: step {}: {}\n", step.state.step, nodes);
+      if (step.predictor_load_cases > 0) {  // time_step = "heun": the predictor's cases too
+        std::cerr << fmt::format(
+            "railwear: step {}: heun: {} load cases, {} more in the predictor\n", step.state.step,
+            step.cases.size(), step.predictor_load_cases);
+      }
       for (const WheelStepResult& w : step.wheels) {
         std::cerr << fmt::format("railwear: step {}: wheel of '{}': max depth {:.3f} mm at y = {:.2f} mm\n",
                                  step.state.step, WheelName(study.traffic[w.traffic_index], w.wheel),

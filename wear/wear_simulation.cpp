@@ -299,6 +299,8 @@ std::vector<Eigen::Vector2d> MoveAlongInwardNormal(const Profile& body, const We
 
 }  // namespace
 
+std::string_view ToString(WearTimeStep v) { return EnumToString(kWearTimeStepNames, v); }
+
 SpreadRule SpreadRuleOf(const WearOptions& o) {
   if (o.integration_tolerance) return SpreadRule::kAdaptive;
   return o.spread_nodes.empty() ? SpreadRule::kGaussHermite : SpreadRule::kPiecewiseLinear;
@@ -399,6 +401,16 @@ void ValidateWearStudy(const WearStudy& study) {
   }
   if (o.threads < 0) {
     throw InputError(fmt::format("wear: threads = {}: expected >= 0 (0: all cores)", o.threads));
+  }
+  if (o.time_step == WearTimeStep::kHeun) {
+    for (const TrafficCase& c : study.traffic) {
+      if (c.wears_wheel()) {
+        throw InputError(fmt::format(
+            "{}: wheel_wear with time_step = \"heun\": expected time_step = \"euler\" for an "
+            "entry whose wheels wear (Heun's predictor does not move the wheels yet)",
+            c.name));
+      }
+    }
   }
 }
 
@@ -566,6 +578,54 @@ struct SmoothedPerPass {
     for (size_t b = 0; b < step.size(); ++b) step[b] = passes * deepest * smoothed.depth_m[b];
     return step;
   }
+
+  // Heun's field (WearTimeStep::kHeun): the mean of `a` and `b` (on the same bins) bin by bin,
+  // both the summed per-pass depth and the smoothed one; its smoothing area error the larger of
+  // theirs.
+  static SmoothedPerPass Mean(const SmoothedPerPass& a, const SmoothedPerPass& b) {
+    const size_t n = a.depth_per_pass_m.size();
+    RAILWEAR_CHECK(b.depth_per_pass_m.size() == n);
+    SmoothedPerPass m;
+    m.depth_per_pass_m.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      m.depth_per_pass_m[i] = 0.5 * (a.depth_per_pass_m[i] + b.depth_per_pass_m[i]);
+    }
+    m.deepest = *std::max_element(m.depth_per_pass_m.begin(), m.depth_per_pass_m.end());
+    if (m.deepest <= 0.0) return m;
+    const std::vector<double> sa = a.StepDepth(1.0), sb = b.StepDepth(1.0);
+    m.smoothed.depth_m.resize(n);
+    for (size_t i = 0; i < n; ++i) m.smoothed.depth_m[i] = 0.5 * (sa[i] + sb[i]) / m.deepest;
+    m.smoothed.area_error = std::abs(a.smoothed.area_error) >= std::abs(b.smoothed.area_error)
+                                ? a.smoothed.area_error
+                                : b.smoothed.area_error;
+    m.peak = *std::max_element(m.smoothed.depth_m.begin(), m.smoothed.depth_m.end());
+    return m;
+  }
+
+  // This field on the bins `from` of the profile a step led to, brought back onto the bins `to`
+  // of the profile the step started from: each bin of `to` takes the value (linear between bin
+  // centres, AtArcLength) at the arc length its centre's material went to (map.ToNext), for both
+  // the summed and the smoothed per-pass depth.
+  SmoothedPerPass OnStartBins(const WearGrid& from, const MaterialMap& map,
+                              const WearGrid& to) const {
+    SmoothedPerPass m;
+    m.depth_per_pass_m.assign(to.n, 0.0);
+    if (deepest <= 0.0) return m;
+    const std::vector<double> unit_smoothed = smoothed.depth_m;
+    std::vector<double> smoothed_on_to(to.n);
+    for (int b = 0; b < to.n; ++b) {
+      const double t = map.ToNext(to.Centre(b));
+      m.depth_per_pass_m[b] = AtArcLength(from, depth_per_pass_m, t);
+      smoothed_on_to[b] = deepest * AtArcLength(from, unit_smoothed, t);
+    }
+    m.deepest = *std::max_element(m.depth_per_pass_m.begin(), m.depth_per_pass_m.end());
+    if (m.deepest <= 0.0) return m;
+    m.smoothed.depth_m.resize(to.n);
+    for (int b = 0; b < to.n; ++b) m.smoothed.depth_m[b] = smoothed_on_to[b] / m.deepest;
+    m.smoothed.area_error = smoothed.area_error;
+    m.peak = *std::max_element(m.smoothed.depth_m.begin(), m.smoothed.depth_m.end());
+    return m;
+  }
 };
 
 // One rail through a step: its current profile in the track frame, its bins, and its summed and
@@ -604,6 +664,22 @@ struct RailWork {
   // The deepest smoothed wear of one pass [m] (0 when nothing wears this rail).
   double SmoothedDeepest() const { return field.SmoothedDeepest(); }
 
+  // The profile after the smoothed depth `step_depth_m` (per bin): every point moved along the
+  // rail's inward normal, then resampled; unchanged when nothing wears the rail. Returns the
+  // material map from this profile's arc length to the next one's (damage_transport.h).
+  MaterialMap Move(const std::vector<double>& step_depth_m, double profile_spacing_m,
+                   Profile* next_profile) const {
+    if (!(field.deepest > 0.0)) {
+      *next_profile = *current;
+      return IdentityMaterialMap(current->Length());
+    }
+    const std::vector<Eigen::Vector2d> moved_points =
+        MoveAlongInwardNormal(*current, grid, step_depth_m, /*material_toward_plus_z=*/true);
+    const Profile moved(moved_points, current->source());
+    *next_profile = ResampleProfile(moved, profile_spacing_m);
+    return MaterialMapOfStep(*current, moved_points, moved, *next_profile);
+  }
+
   // Applies `passes` of wear: the rail's part of the step, its next profile and damage.
   RailStepResult Apply(double passes, const std::vector<CaseOutcome>& outcomes,
                        const std::vector<LoadCase>& cases, const WearStudy& study,
@@ -613,21 +689,10 @@ struct RailWork {
     RailStepResult r;
     r.grid = grid;
     r.depth_per_pass_m = field.depth_per_pass_m;
-    // The material map from this profile's arc length to the next one's (damage_transport.h).
-    MaterialMap& map = r.material_map;
-    map = IdentityMaterialMap(current->Length());
-    if (field.deepest > 0.0) {
-      r.smoothing_area_error = field.smoothed.area_error;
-      r.step_depth_m = field.StepDepth(passes);
-      const std::vector<Eigen::Vector2d> moved_points =
-          MoveAlongInwardNormal(*current, grid, r.step_depth_m, /*material_toward_plus_z=*/true);
-      const Profile moved(moved_points, current->source());
-      *next_profile = ResampleProfile(moved, o.profile_spacing_m);
-      map = MaterialMapOfStep(*current, moved_points, moved, *next_profile);
-    } else {
-      r.step_depth_m.assign(n, 0.0);
-      *next_profile = *current;
-    }
+    if (field.deepest > 0.0) r.smoothing_area_error = field.smoothed.area_error;
+    r.step_depth_m = field.StepDepth(passes);
+    r.material_map = Move(r.step_depth_m, o.profile_spacing_m, next_profile);
+    const MaterialMap& map = r.material_map;
     if (study.damage) {
       r.damage_per_pass =
           WeightedSum(outcomes, cases, [this](const LoadCase& c) { return OnThisRail(c); }, n,
@@ -714,6 +779,79 @@ struct WheelWork {
   }
 };
 
+// The load cases of a step on the rails of `high` and `low` (their current profiles), solved:
+// the adaptive rule's in rounds, or the fixed rule's at once. Vehicle entries' curving starts
+// from `curving_starts` (per traffic entry; WearState::curving).
+struct SolvedStepCases {
+  std::vector<LoadCase> cases;        // in StepLoadCases order
+  std::vector<CaseOutcome> outcomes;  // per case
+  SpreadIntegrationSummary integration;
+  std::vector<CurvingStart> curving;  // per traffic entry: its curving solution (vehicles)
+};
+
+SolvedStepCases SolveStepCases(const WearStudy& study, const RailWork& high,
+                               const std::optional<RailWork>& low,
+                               const std::vector<CurvingStart>& curving_starts) {
+  const WearOptions& o = study.options;
+  std::optional<Profile> low_track;
+  if (low) low_track = low->track;
+  const RailTarget targets[2] = {{&*high.locator, &high.grid},
+                                 {low ? &*low->locator : nullptr, low ? &low->grid : nullptr}};
+  SolvedStepCases out;
+  std::vector<LoadCase>& cases = out.cases;
+  std::vector<CaseOutcome>& outcomes = out.outcomes;
+  if (o.integration_tolerance) {
+    // The adaptive rule: rounds of cases, each solved on the workers; kept in solving order,
+    // then put in StepLoadCases order with their final weights.
+    std::vector<CaseOutcome> solved;
+    SpreadStep spread = IntegrateSpreads(
+        study, high.track, low_track, curving_starts, &out.curving, *o.integration_tolerance,
+        [&](const std::vector<LoadCase>& batch, bool refinement) {
+          for (const LoadCase& c : batch) RAILWEAR_CHECK(targets[static_cast<int>(c.rail)].locator);
+          std::vector<char> failed;
+          std::vector<CaseOutcome> more =
+              SolveLoadCases(study, targets, batch, refinement ? &failed : nullptr);
+          std::vector<SolvedCase> out;
+          for (size_t i = 0; i < more.size(); ++i) {
+            if (refinement && failed[i]) {
+              out.push_back({std::nan(""), {}});
+            } else {
+              out.push_back({more[i].summary.worn_area_per_pass_m2, more[i].depth_per_pass_m});
+            }
+            solved.push_back(std::move(more[i]));
+          }
+          return out;
+        },
+        SpreadRailBins{{high.grid.n, low ? low->grid.n : 0},
+                       {high.grid.h_m, low ? low->grid.h_m : 0.0}});
+    for (const int i : spread.order) {
+      cases.push_back(spread.cases[i]);
+      outcomes.push_back(std::move(solved[i]));
+      outcomes.back().summary.load_case = spread.cases[i];
+    }
+    out.integration = std::move(spread.summary);
+  } else {
+    cases = internal::StepLoadCases(study, high.track, low_track, curving_starts, &out.curving);
+    for (const LoadCase& c : cases) RAILWEAR_CHECK(targets[static_cast<int>(c.rail)].locator);
+    outcomes = SolveLoadCases(study, targets, cases);
+    out.integration = FixedRuleSummary(study, cases);
+  }
+  return out;
+}
+
+// Heun's corrector (WearTimeStep::kHeun) of one rail whose field `rail` holds the step's first
+// per-pass depth f0 and fixed the step's `passes`: the predictor profile (the rail moved by
+// passes x f0) and its cases' field f1 (from `predicted`, solved on the predictor's rails),
+// brought onto the step's bins through the predictor step's material map
+// (SmoothedPerPass::OnStartBins); the rail's field becomes (f0 + f1) / 2.
+void AverageWithPredictor(const MaterialMap& to_predictor, const SolvedStepCases& predicted,
+                          const DepthSmoothingOptions& options, RailWork* predictor,
+                          RailWork* rail) {
+  predictor->Collect(predicted.outcomes, predicted.cases, options);
+  rail->field = SmoothedPerPass::Mean(
+      rail->field, predictor->field.OnStartBins(predictor->grid, to_predictor, rail->grid));
+}
+
 }  // namespace
 
 StepResult RunWearStep(const WearStudy& given, const UnwornRails& unworn, const WearState& state,
@@ -754,51 +892,13 @@ StepResult RunWearStep(const WearStudy& given, const UnwornRails& unworn, const 
   if (state.low_rail)
     low.emplace(RailSide::kLow, *state.low_rail, *unworn.low, state.low_damage, study);
 
-  std::optional<Profile> low_track;
-  if (low) low_track = low->track;
-  std::vector<CurvingStart> curving;
-  const RailTarget targets[2] = {{&*high.locator, &high.grid},
-                                 {low ? &*low->locator : nullptr, low ? &low->grid : nullptr}};
+  // The step's own per-pass depth f0: its load cases on the step's rails.
+  SolvedStepCases solved = SolveStepCases(study, high, low, state.curving);
+  std::vector<LoadCase>& cases = solved.cases;
+  std::vector<CaseOutcome>& outcomes = solved.outcomes;
   StepResult step;
-  std::vector<LoadCase> cases;
-  std::vector<CaseOutcome> outcomes;
-  if (o.integration_tolerance) {
-    // The adaptive rule: rounds of cases, each solved on the workers; kept in solving order,
-    // then put in StepLoadCases order with their final weights.
-    std::vector<CaseOutcome> solved;
-    SpreadStep spread = IntegrateSpreads(
-        study, high.track, low_track, state.curving, &curving, *o.integration_tolerance,
-        [&](const std::vector<LoadCase>& batch, bool refinement) {
-          for (const LoadCase& c : batch) RAILWEAR_CHECK(targets[static_cast<int>(c.rail)].locator);
-          std::vector<char> failed;
-          std::vector<CaseOutcome> more =
-              SolveLoadCases(study, targets, batch, refinement ? &failed : nullptr);
-          std::vector<SolvedCase> out;
-          for (size_t i = 0; i < more.size(); ++i) {
-            if (refinement && failed[i]) {
-              out.push_back({std::nan(""), {}});
-            } else {
-              out.push_back({more[i].summary.worn_area_per_pass_m2, more[i].depth_per_pass_m});
-            }
-            solved.push_back(std::move(more[i]));
-          }
-          return out;
-        },
-        SpreadRailBins{{high.grid.n, low ? low->grid.n : 0},
-                       {high.grid.h_m, low ? low->grid.h_m : 0.0}});
-    for (const int i : spread.order) {
-      cases.push_back(spread.cases[i]);
-      outcomes.push_back(std::move(solved[i]));
-      outcomes.back().summary.load_case = spread.cases[i];
-    }
-    step.integration = std::move(spread.summary);
-  } else {
-    cases = internal::StepLoadCases(study, high.track, low_track, state.curving, &curving);
-    for (const LoadCase& c : cases) RAILWEAR_CHECK(targets[static_cast<int>(c.rail)].locator);
-    outcomes = SolveLoadCases(study, targets, cases);
-    step.integration = FixedRuleSummary(study, cases);
-  }
-
+  step.integration = std::move(solved.integration);
+  std::vector<CurvingStart>& curving = solved.curving;
   for (const CaseOutcome& c : outcomes) {
     step.cases.push_back(c.summary);
     step.cases.back().depth_per_pass_m = c.depth_per_pass_m;
@@ -813,6 +913,57 @@ StepResult RunWearStep(const WearStudy& given, const UnwornRails& unworn, const 
   for (const WheelWork& w : wheels) deepest = std::max(deepest, w.field.SmoothedDeepest());
   step.step_passes = deepest > 0.0 ? std::min(passes_left, o.max_depth_per_step_m / deepest)
                                    : passes_left;  // nothing wears: the rest in one step
+  if (o.time_step == WearTimeStep::kHeun && deepest > 0.0) {
+    // Heun's corrector: the predictor's rails (each moved by the step's passes of f0; no damage,
+    // no measures), their cases solved as the step's own (a vehicle's curving started from the
+    // step's equilibrium), and each rail's field averaged with the predictor's. The damage and
+    // the cases reported are f0's; the next step's curving starts from the predictor's solution
+    // (the rails nearest the next step's).
+    // Step control on the mean: where the predictor's contact moved onto a band f0 barely wore
+    // (a new flange or gauge-corner contact), N (f0 + f1) / 2 can exceed the limit several times
+    // over. Such a step is predicted again with the passes at which the mean reaches the limit
+    // (up to kHeunRepredictions times), and what is still above it after them is cut to the
+    // limit by the passes alone (that last predictor then lies a little beyond the step's end).
+    constexpr int kHeunRepredictions = 2;
+    constexpr double kHeunAcceptedOvershoot = 1.1;  // the mean's deepest up to 10 % above the limit
+    RAILWEAR_CHECK(wheels.empty());  // ValidateWearStudy refuses wheel wear with Heun
+    const SmoothedPerPass high_f0 = high.field;
+    std::optional<SmoothedPerPass> low_f0;
+    if (low) low_f0 = low->field;
+    const std::vector<double> no_damage;
+    for (int attempt = 0;; ++attempt) {
+      high.field = high_f0;
+      if (low) low->field = *low_f0;
+      Profile high_predicted;
+      const MaterialMap high_map =
+          high.Move(high.field.StepDepth(step.step_passes), o.profile_spacing_m, &high_predicted);
+      RailWork high_predictor(RailSide::kHigh, high_predicted, unworn.high, no_damage, study);
+      Profile low_predicted;
+      MaterialMap low_map;
+      std::optional<RailWork> low_predictor;
+      if (low) {
+        low_map =
+            low->Move(low->field.StepDepth(step.step_passes), o.profile_spacing_m, &low_predicted);
+        low_predictor.emplace(RailSide::kLow, low_predicted, *unworn.low, no_damage, study);
+      }
+      SolvedStepCases predicted = SolveStepCases(study, high_predictor, low_predictor, curving);
+      AverageWithPredictor(high_map, predicted, o.smoothing, &high_predictor, &high);
+      if (low) AverageWithPredictor(low_map, predicted, o.smoothing, &*low_predictor, &*low);
+      step.predictor_load_cases += static_cast<int>(predicted.cases.size());
+      const double mean_deepest =
+          std::max(high.SmoothedDeepest(), low ? low->SmoothedDeepest() : 0.0);
+      const double applied = step.step_passes * mean_deepest;
+      if (applied <= kHeunAcceptedOvershoot * o.max_depth_per_step_m ||
+          attempt == kHeunRepredictions) {
+        if (applied > o.max_depth_per_step_m) {
+          step.step_passes = o.max_depth_per_step_m / mean_deepest;
+        }
+        curving = std::move(predicted.curving);
+        break;
+      }
+      step.step_passes = o.max_depth_per_step_m / mean_deepest;
+    }
+  }
   WearState& next = step.state;
   next.step = state.step + 1;
   RailStepResult high_step =

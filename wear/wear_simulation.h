@@ -22,6 +22,11 @@
 //      rail in the step equals max_depth_per_step (or the passes left, whichever is fewer);
 //      every profile point moves along its rail's inward normal by the step's depth, and the
 //      moved curve is resampled at a uniform arc-length spacing;
+//      with WearOptions::time_step = kHeun (explicit trapezoidal, opt-in) the moved rails are
+//      the predictor: steps 2-4 run again on them (a vehicle's curving started from the step's
+//      own equilibrium), each rail's predictor field is brought onto the step's bins through the
+//      predictor's material map, and the rails move instead by the step's passes times the mean
+//      of the two fields, bin by bin (the passes, damage and cases stay the first field's);
 //   6. accumulated damage grows by the step's damage (the WLRM's net damage: its falling branch
 //      already models wear removing cracks, so wear removes nothing more unless the opt-in
 //      damage_layer_m asks for the old rule) and moves with the material onto the next
@@ -40,14 +45,17 @@
 // exactly as the uninterrupted run would have.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/contact/contact_forces.h"
 #include "core/contact/contact_solver.h"
+#include "core/numerics/enum_names.h"
 #include "core/profile/profile.h"
 #include "core/vehicle/curving.h"
 #include "wear/damage_transport.h"
@@ -61,13 +69,34 @@
 
 namespace railwear {
 
+// How a step integrates the wear over its passes (WearOptions::time_step; scenes: [wear]
+// time_step, docs/wear.md "A second-order step"):
+//   kEuler: the per-pass depth of the step's own profiles, applied for all the step's passes
+//           (explicit Euler in the profile; first order in the step limit);
+//   kHeun:  explicit trapezoidal predictor-corrector: the same per-pass depth f0 fixes the passes
+//           N, the profiles moved by N f0 give the predictor's per-pass depth f1, and the step
+//           moves the profiles by N (f0 + f1) / 2 (second order; twice the load cases a step).
+//           Where N (f0 + f1) / 2 would go deeper than the limit by more than 10 % (the
+//           predictor's contact moved onto a band f0 barely wore), the step is predicted again
+//           with the passes at which the mean reaches the limit (up to twice), and the passes are
+//           then cut so that the mean stays within the limit.
+enum class WearTimeStep { kEuler, kHeun };
+inline constexpr std::array<EnumName<WearTimeStep>, 2> kWearTimeStepNames = {{
+    {WearTimeStep::kEuler, "euler"},
+    {WearTimeStep::kHeun, "heun"},
+}};
+std::string_view ToString(WearTimeStep v);
+
 struct WearOptions {
   WearLaw law;
   // The friction conditions traffic entries name (TrafficCase::condition, gauge_face_condition):
   // each one's mu and wear factors, and the gauge-face zone's contact-angle boundary.
   FrictionConditions conditions;
-  // Step control: the deepest wear of one step [m], > 0.
+  // Step control: the deepest wear of one step [m], > 0 (with kHeun: f0 fixes the passes, and the
+  // mean (f0 + f1) / 2 applied never goes deeper: see WearTimeStep).
   double max_depth_per_step_m = 1e-4;
+  // The time step (above). kHeun refuses entries whose wheels wear (ValidateWearStudy).
+  WearTimeStep time_step = WearTimeStep::kEuler;
   // Length of the run: exactly one of the two, > 0.
   std::optional<double> total_passes;
   std::optional<double> total_mgt;
@@ -177,7 +206,9 @@ struct WearState {
   // Per traffic entry, the curving solution of the step that led here (vehicle entries; empty
   // entries otherwise): the next step starts there, with its Jacobian as the first chord, so a
   // step's curving costs a few residual evaluations instead of a solve from the unworn start.
-  // Part of the state: a resumed run reads it back and continues bit-identically. Empty (step 0,
+  // Part of the state: a resumed run reads it back and continues bit-identically. With
+  // WearTimeStep::kHeun it is the solution on the step's predictor rails (the nearest the next
+  // step's rails), itself started from the step's own. Empty (step 0,
   // or a run stored without it): each entry starts from WearStudy::vehicle_starts, which is also
   // the fallback when this start fails.
   std::vector<CurvingStart> curving;
@@ -304,6 +335,11 @@ struct StepResult {
   std::vector<WheelStepResult> wheels;
   std::vector<LoadCaseSummary> cases;      // both rails' cases, in StepLoadCases order
   SpreadIntegrationSummary integration;    // the spread rule's nodes per entry and its error
+  // WearTimeStep::kHeun: the load cases the predictor solved, summed over the step's predictions
+  // (more than one when the mean overshot the step limit; 0 with kEuler). `cases`,
+  // `integration` and the damage are the step's own rails' (f0); depth_per_pass_m and step_depth_m
+  // the mean (f0 + f1) / 2 the step applied (docs/wear.md, "A second-order step").
+  int predictor_load_cases = 0;
   double seconds = 0.0;                    // wall time of the step
 };
 

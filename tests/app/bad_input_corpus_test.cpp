@@ -271,6 +271,22 @@ std::vector<CorpusCase> Corpus() {
                "wear s.toml --db w.sqlite",
                2,
                {"s.toml:30:", "key 'traffic[0].wheel_wear.hardness_MPa' is missing", "archard"}});
+  // The time step (issue 16 point 5, docs/wear.md "A second-order step"): a name it does not
+  // know, and Heun with a wheel that wears (its predictor moves the rails only).
+  const std::string heun = Replace(wheel_hardness, "max_depth_per_step_mm = 0.05",
+                                   "max_depth_per_step_mm = 0.05\ntime_step = \"heun\"");
+  c.push_back({"time_step_unknown",
+               {{"s.toml", Replace(wear, "max_depth_per_step_mm = 0.05",
+                                   "max_depth_per_step_mm = 0.05\ntime_step = \"rk4\"")}},
+               "wear s.toml --db w.sqlite",
+               2,
+               {"s.toml:", "key 'wear.time_step' = \"rk4\"", "'euler', 'heun'"}});
+  c.push_back(
+      {"time_step_heun_with_wheel_wear",
+       {{"s.toml", heun + "wheel_wear = { distance_per_pass_m = 100 }\n"}},
+       "wear s.toml --db w.sqlite",
+       2,
+       {"s.toml:31:", "key 'traffic[0].wheel_wear'", "no wheel_wear with time_step = \"heun\""}});
   c.push_back({"wheel_population_on_a_vehicle",
                {{"s.toml", std::string(kWheelsetCurveScene) +
                                "wheel_population = [ { profile = \"builtin:S1002\" } ]\n"}},

@@ -164,6 +164,32 @@ TEST_F(WearCommandTest, KilledRunResumesToTheSameProfile) {
   EXPECT_GT(*after.LastStep(run->id), steps_at_kill);
 }
 
+// The second-order time step (time_step = "heun", docs/wear.md "A second-order step") on vehicle
+// traffic: the next step's curving starts from the predictor's solution, which the stored state
+// carries, so a run stopped after a step (--steps) and resumed ends bit for bit as the whole run.
+TEST_F(WearCommandTest, HeunRunStoppedAndResumedEndsBitIdentically) {
+  std::string scene = kWheelsetCurveScene;
+  scene.replace(scene.find("total_passes = 1e5"), 18,
+                "total_passes = 1e6\nmax_depth_per_step_mm = 0.005\ntime_step = \"heun\"");
+  Write("curve.toml", scene);
+  const Outcome whole = Run("wear curve.toml --db whole.sqlite --threads 1");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  ProfileStore store = ProfileStore::Open((dir_ / "whole.sqlite").string());
+  const int steps = *store.LastStep(store.FindRun("wheelset on R1500")->id);
+  ASSERT_GE(steps, 3);  // the resumed part has a step that continues a stored curving
+  const Outcome first = Run("wear curve.toml --db cut.sqlite --threads 1 --steps 1");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const Outcome rest = Run("wear curve.toml --db cut.sqlite --threads 1 --resume");
+  ASSERT_EQ(rest.exit_code, 0) << rest.err;
+  const Profile expected = LastProfile(dir_ / "whole.sqlite", "wheelset on R1500");
+  const Profile got = LastProfile(dir_ / "cut.sqlite", "wheelset on R1500");
+  ASSERT_EQ(got.size(), expected.size());
+  EXPECT_EQ(got.points(), expected.points());  // bit for bit
+  const std::string passes = "SELECT passes, w2_mm FROM steps ORDER BY step";
+  EXPECT_EQ(ProfileStore::Open((dir_ / "cut.sqlite").string()).Query(passes).rows,
+            store.Query(passes).rows);
+}
+
 TEST_F(WearCommandTest, ForeignOrCorruptDatabaseIsRefusedAndUntouched) {
   Write("study.toml", kStudy);
   const std::string junk = "this is not a database\n";

@@ -13,7 +13,8 @@
 #    adaptive0.0025), TRAFFIC_STUDY_SPREAD=N: N fixed
 #    Gauss-Hermite nodes, TRAFFIC_STUDY_SPREAD=linearM: the fixed piecewise-linear rule,
 #    spread_nodes = M (linear64: the curve's converged reference); TRAFFIC_STUDY_STEP_MM=D: the
-#    step limit max_depth_per_step_mm = D instead of the scene's 0.1 mm; docs/wear.md)
+#    step limit max_depth_per_step_mm = D instead of the scene's 0.1 mm; TRAFFIC_STUDY_TIME=heun:
+#    the second-order time step, time_step = "heun", instead of the scene's Euler step; docs/wear.md)
 set -euo pipefail
 bin=${1:-build/app/railwear}
 work=${2:-$(mktemp -d)}
@@ -37,8 +38,14 @@ case "$step_mm" in
   "" | [0-9]*) ;;
   *) echo "TRAFFIC_STUDY_STEP_MM = '$step_mm': expected a step limit in mm such as 0.05" >&2; exit 2 ;;
 esac
+time_step=${TRAFFIC_STUDY_TIME:-}
+case "$time_step" in
+  "" | euler | heun) ;;
+  *) echo "TRAFFIC_STUDY_TIME = '$time_step': expected euler or heun" >&2; exit 2 ;;
+esac
 # The scene's rule lines give way to the chosen rule (none chosen: they stay).
-awk -v t="$total" -v r="$rule" -v d="$step_mm" '/^total_MGT = / { print "total_MGT = " t; next }
+awk -v t="$total" -v r="$rule" -v d="$step_mm" -v ts="$time_step" '/^total_MGT = / {
+    print "total_MGT = " t; if (ts != "") print "time_step = \"" ts "\""; next }
   d != "" && /^max_depth_per_step_mm = / { print "max_depth_per_step_mm = " d; next }
   r != "" && /^(quadrature_points|integration_tolerance|spread_rule|spread_nodes) = / {
     if (!done) print r; done = 1; next }
