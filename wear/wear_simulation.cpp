@@ -811,16 +811,17 @@ SolvedStepCases SolveStepCases(const WearStudy& study, const RailWork& high,
           std::vector<char> failed;
           std::vector<CaseOutcome> more =
               SolveLoadCases(study, targets, batch, refinement ? &failed : nullptr);
-          std::vector<SolvedCase> out;
+          std::vector<SolvedCase> integrands;
           for (size_t i = 0; i < more.size(); ++i) {
             if (refinement && failed[i]) {
-              out.push_back({std::nan(""), {}});
+              integrands.push_back({std::nan(""), {}});
             } else {
-              out.push_back({more[i].summary.worn_area_per_pass_m2, more[i].depth_per_pass_m});
+              integrands.push_back(
+                  {more[i].summary.worn_area_per_pass_m2, more[i].depth_per_pass_m});
             }
             solved.push_back(std::move(more[i]));
           }
-          return out;
+          return integrands;
         },
         SpreadRailBins{{high.grid.n, low ? low->grid.n : 0},
                        {high.grid.h_m, low ? low->grid.h_m : 0.0}});
