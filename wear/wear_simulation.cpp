@@ -579,27 +579,37 @@ struct SmoothedPerPass {
     return step;
   }
 
+  // A field from its summed per-pass depth `raw` and its smoothed per-pass depth
+  // `smoothed_m` [m] (not scaled), both per bin, with the smoothing's area error.
+  static SmoothedPerPass FromFields(std::vector<double> raw, const std::vector<double>& smoothed_m,
+                                    double area_error) {
+    SmoothedPerPass m;
+    m.depth_per_pass_m = std::move(raw);
+    m.deepest = *std::max_element(m.depth_per_pass_m.begin(), m.depth_per_pass_m.end());
+    if (m.deepest <= 0.0) return m;
+    m.smoothed.depth_m.resize(smoothed_m.size());
+    for (size_t b = 0; b < smoothed_m.size(); ++b)
+      m.smoothed.depth_m[b] = smoothed_m[b] / m.deepest;
+    m.smoothed.area_error = area_error;
+    m.peak = *std::max_element(m.smoothed.depth_m.begin(), m.smoothed.depth_m.end());
+    return m;
+  }
+
   // Heun's field (WearTimeStep::kHeun): the mean of `a` and `b` (on the same bins) bin by bin,
   // both the summed per-pass depth and the smoothed one; its smoothing area error the larger of
   // theirs.
   static SmoothedPerPass Mean(const SmoothedPerPass& a, const SmoothedPerPass& b) {
     const size_t n = a.depth_per_pass_m.size();
     RAILWEAR_CHECK(b.depth_per_pass_m.size() == n);
-    SmoothedPerPass m;
-    m.depth_per_pass_m.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-      m.depth_per_pass_m[i] = 0.5 * (a.depth_per_pass_m[i] + b.depth_per_pass_m[i]);
-    }
-    m.deepest = *std::max_element(m.depth_per_pass_m.begin(), m.depth_per_pass_m.end());
-    if (m.deepest <= 0.0) return m;
+    std::vector<double> raw(n);
+    for (size_t i = 0; i < n; ++i) raw[i] = 0.5 * (a.depth_per_pass_m[i] + b.depth_per_pass_m[i]);
     const std::vector<double> sa = a.StepDepth(1.0), sb = b.StepDepth(1.0);
-    m.smoothed.depth_m.resize(n);
-    for (size_t i = 0; i < n; ++i) m.smoothed.depth_m[i] = 0.5 * (sa[i] + sb[i]) / m.deepest;
-    m.smoothed.area_error = std::abs(a.smoothed.area_error) >= std::abs(b.smoothed.area_error)
-                                ? a.smoothed.area_error
-                                : b.smoothed.area_error;
-    m.peak = *std::max_element(m.smoothed.depth_m.begin(), m.smoothed.depth_m.end());
-    return m;
+    std::vector<double> smoothed_m(n);
+    for (size_t i = 0; i < n; ++i) smoothed_m[i] = 0.5 * (sa[i] + sb[i]);
+    return FromFields(std::move(raw), smoothed_m,
+                      std::abs(a.smoothed.area_error) >= std::abs(b.smoothed.area_error)
+                          ? a.smoothed.area_error
+                          : b.smoothed.area_error);
   }
 
   // This field on the bins `from` of the profile a step led to, brought back onto the bins `to`
@@ -608,23 +618,15 @@ struct SmoothedPerPass {
   // the summed and the smoothed per-pass depth.
   SmoothedPerPass OnStartBins(const WearGrid& from, const MaterialMap& map,
                               const WearGrid& to) const {
-    SmoothedPerPass m;
-    m.depth_per_pass_m.assign(to.n, 0.0);
-    if (deepest <= 0.0) return m;
-    const std::vector<double> unit_smoothed = smoothed.depth_m;
-    std::vector<double> smoothed_on_to(to.n);
+    std::vector<double> raw(to.n, 0.0);
+    if (deepest <= 0.0) return FromFields(std::move(raw), {}, 0.0);
+    std::vector<double> smoothed_m(to.n);
     for (int b = 0; b < to.n; ++b) {
       const double t = map.ToNext(to.Centre(b));
-      m.depth_per_pass_m[b] = AtArcLength(from, depth_per_pass_m, t);
-      smoothed_on_to[b] = deepest * AtArcLength(from, unit_smoothed, t);
+      raw[b] = AtArcLength(from, depth_per_pass_m, t);
+      smoothed_m[b] = deepest * AtArcLength(from, smoothed.depth_m, t);
     }
-    m.deepest = *std::max_element(m.depth_per_pass_m.begin(), m.depth_per_pass_m.end());
-    if (m.deepest <= 0.0) return m;
-    m.smoothed.depth_m.resize(to.n);
-    for (int b = 0; b < to.n; ++b) m.smoothed.depth_m[b] = smoothed_on_to[b] / m.deepest;
-    m.smoothed.area_error = smoothed.area_error;
-    m.peak = *std::max_element(m.smoothed.depth_m.begin(), m.smoothed.depth_m.end());
-    return m;
+    return FromFields(std::move(raw), smoothed_m, smoothed.area_error);
   }
 };
 
