@@ -175,22 +175,30 @@ Eigen::Vector2d CurveLocator::OutwardNormal(double s) const {
   return outward_sign_ * profile_->LeftNormal(s);
 }
 
-double CurveLocator::RefineClosest(const Eigen::Vector2d& q, double s0, double lo,
-                                   double hi) const {
+double CurveLocator::RefineClosest(const Eigen::Vector2d& q, double s0, double lo, double hi,
+                                   Eigen::Vector2d* c_at, Eigen::Vector2d* d1_at,
+                                   bool* evaluated) const {
   // Minimise |C(s) - q|^2: root of g(s) = (C - q) . C', g' = |C'|^2 + (C - q) . C''.
   lo = std::max(lo, 0.0);
   hi = std::min(hi, length_);
   double s = std::clamp(s0, lo, hi);
+  *evaluated = false;
   for (int it = 0; it < 50; ++it) {
     Eigen::Vector2d c, d1, d2;
     profile_->Evaluate(s, &c, &d1, &d2);
     const Eigen::Vector2d r = c - q;
     const double g = r.dot(d1);
-    if (g == 0.0) break;  // exactly at the closest point (common on straight pieces)
+    // Exactly at the closest point (common on straight pieces), or converged when the Newton
+    // step is below tolerance — tested before the bracket, because a step below one ulp leaves
+    // s on the bracket end just set and would fall back to bisection. s is the point just
+    // evaluated: its position and derivative go back with it.
     const double gp = d1.squaredNorm() + r.dot(d2);
-    // Converged when the Newton step is below tolerance — tested before the bracket, because a
-    // step below one ulp leaves s on the bracket end just set and would fall back to bisection.
-    if (gp > 0 && std::abs(g / gp) < kParameterTolerance_m) break;
+    if (g == 0.0 || (gp > 0 && std::abs(g / gp) < kParameterTolerance_m)) {
+      *c_at = c;
+      *d1_at = d1;
+      *evaluated = true;
+      break;
+    }
     if (g > 0)
       hi = s;
     else
@@ -212,13 +220,20 @@ CurveLocator::Projection CurveLocator::Project(const Eigen::Vector2d& q, double 
   int i0 = std::clamp(static_cast<int>(std::floor(s_lo / step_)), 0, n - 1);
   int i1 = std::clamp(static_cast<int>(std::ceil(s_hi / step_)), 0, n - 1);
   const int best = ClosestSample(q, i0, i1);
+  Eigen::Vector2d point, d1;
+  bool evaluated = false;
   const double s = RefineClosest(q, sample_s_[best], std::max(s_lo, sample_s_[best] - step_),
-                                 std::min(s_hi, sample_s_[best] + step_));
+                                 std::min(s_hi, sample_s_[best] + step_), &point, &d1, &evaluated);
+  // The position and derivative at s (the refinement's last evaluation when it ended on one):
+  // the values Position(s) and OutwardNormal(s) give, bit for bit.
+  if (!evaluated) profile_->Evaluate(s, &point, &d1, nullptr);
+  const Eigen::Vector2d t = d1.normalized();
+  const Eigen::Vector2d outward = outward_sign_ * Eigen::Vector2d(-t.y(), t.x());
   Projection p;
   p.s = s;
-  p.point = profile_->Position(s);
+  p.point = point;
   const double dist = (q - p.point).norm();
-  p.signed_distance = (q - p.point).dot(OutwardNormal(s)) >= 0 ? dist : -dist;
+  p.signed_distance = (q - p.point).dot(outward) >= 0 ? dist : -dist;
   return p;
 }
 
@@ -234,7 +249,8 @@ CurveLocator::Crossing CurveLocator::RefineCrossing(const Eigen::Vector2d& b,
     Eigen::Vector2d c, d1;
     profile_->Evaluate(s, &c, &d1, nullptr);
     const double f = (c - b).dot(t);
-    if (f == 0.0) break;
+    // Ended on the point just evaluated: its position gives lambda (Position(s) bit for bit).
+    if (f == 0.0) return Crossing{s, (c - b).dot(n)};
     if ((f <= 0) == (flo <= 0)) {
       lo = s;
       flo = f;
@@ -242,7 +258,9 @@ CurveLocator::Crossing CurveLocator::RefineCrossing(const Eigen::Vector2d& b,
       hi = s;
     }
     const double fp = d1.dot(t);
-    if (fp != 0 && std::abs(f / fp) < kParameterTolerance_m) break;  // as in RefineClosest
+    if (fp != 0 && std::abs(f / fp) < kParameterTolerance_m) {  // as in RefineClosest
+      return Crossing{s, (c - b).dot(n)};
+    }
     double next = (fp != 0) ? s - f / fp : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     const double step = std::abs(next - s);

@@ -82,7 +82,10 @@ class CurveLocator {
 
  private:
   struct Samples;
-  double RefineClosest(const Eigen::Vector2d& q, double s0, double lo, double hi) const;
+  // The closest point's parameter; *evaluated is set when the last evaluation was at it, with
+  // the position and derivative there in *c_at and *d1_at.
+  double RefineClosest(const Eigen::Vector2d& q, double s0, double lo, double hi,
+                       Eigen::Vector2d* c_at, Eigen::Vector2d* d1_at, bool* evaluated) const;
   // Index of the sample in [i0, i1] closest to q, the first of equals (the scan's choice).
   int ClosestSample(const Eigen::Vector2d& q, int i0, int i1) const;
   // Newton's refinement of the crossing in [s_{i-1}, s_i] given phi there (IntersectLine).

@@ -53,11 +53,18 @@ int CubicSpline::Interval(double t) const {
   return i;
 }
 
-void CubicSpline::Evaluate(double t, double* value, double* d1, double* d2) const {
-  const int i = Interval(t);
-  const double h = t_[i + 1] - t_[i];
-  const double a = (t_[i + 1] - t) / h;
-  const double b = (t - t_[i]) / h;
+CubicSpline::Location CubicSpline::Locate(double t) const {
+  Location at;
+  at.i = Interval(t);
+  at.h = t_[at.i + 1] - t_[at.i];
+  at.a = (t_[at.i + 1] - t) / at.h;
+  at.b = (t - t_[at.i]) / at.h;
+  return at;
+}
+
+void CubicSpline::EvaluateAt(const Location& at, double* value, double* d1, double* d2) const {
+  const int i = at.i;
+  const double h = at.h, a = at.a, b = at.b;
   const double m0 = m_[i], m1 = m_[i + 1];
   if (value) {
     *value =
@@ -68,6 +75,10 @@ void CubicSpline::Evaluate(double t, double* value, double* d1, double* d2) cons
           (3.0 * b * b - 1.0) * h * m1 / 6.0;
   }
   if (d2) *d2 = a * m0 + b * m1;
+}
+
+void CubicSpline::Evaluate(double t, double* value, double* d1, double* d2) const {
+  EvaluateAt(Locate(t), value, d1, d2);
 }
 
 double CubicSpline::Value(double t) const {

@@ -19,6 +19,17 @@ class CubicSpline {
   // All three at once (cheaper than three calls).
   void Evaluate(double t, double* value, double* d1, double* d2) const;
 
+  // Where t lies: its interval and the weights of the interval's ends. Splines on the same
+  // knots (a profile's y(s) and z(s)) share one Locate: EvaluateAt(Locate(t), ...) on either
+  // is its Evaluate(t, ...) bit for bit, with one interval lookup and division for both.
+  struct Location {
+    int i = 0;
+    double h = 0.0, a = 0.0, b = 0.0;  // h = t_i+1 - t_i, a = (t_i+1 - t) / h, b = (t - t_i) / h
+  };
+  Location Locate(double t) const;
+  // Value and derivatives at a Location of a spline with this one's knots (any null is skipped).
+  void EvaluateAt(const Location& at, double* value, double* d1, double* d2) const;
+
   const std::vector<double>& knots() const { return t_; }
   const std::vector<double>& values() const { return v_; }
 

@@ -147,20 +147,26 @@ void Profile::Build(Data* d) {
 
 void Profile::Evaluate(double s, Eigen::Vector2d* position, Eigen::Vector2d* d1,
                        Eigen::Vector2d* d2) const {
+  // y(s) and z(s) share their knots (Build): one interval lookup serves both.
+  const CubicSpline::Location at = d_->y_of_s.Locate(s);
   double y, yd, ydd, z, zd, zdd;
-  d_->y_of_s.Evaluate(s, &y, &yd, &ydd);
-  d_->z_of_s.Evaluate(s, &z, &zd, &zdd);
+  d_->y_of_s.EvaluateAt(at, position ? &y : nullptr, d1 ? &yd : nullptr, d2 ? &ydd : nullptr);
+  d_->z_of_s.EvaluateAt(at, position ? &z : nullptr, d1 ? &zd : nullptr, d2 ? &zdd : nullptr);
   if (position) *position = {y, z};
   if (d1) *d1 = {yd, zd};
   if (d2) *d2 = {ydd, zdd};
 }
 
 Eigen::Vector2d Profile::Position(double s) const {
-  return {d_->y_of_s.Value(s), d_->z_of_s.Value(s)};
+  Eigen::Vector2d p;
+  Evaluate(s, &p, nullptr, nullptr);
+  return p;
 }
 
 Eigen::Vector2d Profile::Derivative(double s) const {
-  return {d_->y_of_s.Derivative(s), d_->z_of_s.Derivative(s)};
+  Eigen::Vector2d d;
+  Evaluate(s, nullptr, &d, nullptr);
+  return d;
 }
 
 Eigen::Vector2d Profile::Tangent(double s) const { return Derivative(s).normalized(); }

@@ -118,6 +118,44 @@ TEST(CurveLocator, BlockScanEqualsSampleScanBitForBit) {
   }
 }
 
+// Project and IntersectLine end on the refinement's last evaluation where it was at the answer's
+// parameter (issue 20's grids): their point, signed distance and lambda are those of the profile
+// evaluated afresh there, Position(s) and OutwardNormal(s), bit for bit.
+TEST(CurveLocator, AnswersAreTheProfileAtTheirParameterBitForBit) {
+  const Profile rail_profile = MakeUic60();
+  const Profile wheel_profile = MakeS1002();
+  std::mt19937 rng(20);
+  for (const bool rail : {true, false}) {
+    const Profile& profile = rail ? rail_profile : wheel_profile;
+    const CurveLocator loc(profile, rail);
+    const double length = loc.length();
+    std::uniform_real_distribution<double> along(0.0, length);
+    std::uniform_real_distribution<double> offset(-2e-3, 2e-3);
+    std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
+    int crossings = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+      const double s = along(rng);
+      Eigen::Vector2d q = profile.Position(s);
+      if (trial % 10 != 0) q += Eigen::Vector2d(offset(rng), offset(rng));
+      const auto p = trial % 2 ? loc.Project(q) : loc.Project(q, s - 1e-3, s + 1e-3);
+      const Eigen::Vector2d point = profile.Position(p.s);
+      ASSERT_EQ(p.point.x(), point.x()) << trial;
+      ASSERT_EQ(p.point.y(), point.y()) << trial;
+      const double dist = (q - point).norm();
+      ASSERT_EQ(p.signed_distance, (q - point).dot(loc.OutwardNormal(p.s)) >= 0 ? dist : -dist)
+          << trial;
+      const double phi = angle(rng);
+      const Eigen::Vector2d n(std::cos(phi), std::sin(phi));
+      const auto x = loc.IntersectLine(q, n, s - 2e-3, s + 2e-3);
+      if (x) {
+        ++crossings;
+        ASSERT_EQ(x->lambda, (profile.Position(x->s) - q).dot(n)) << trial;
+      }
+    }
+    EXPECT_GT(crossings, 1000);  // the lines do meet the profile
+  }
+}
+
 // Answers of a locator to a fixed set of queries near and across the profile, for comparing
 // locators bit for bit: projections (s, signed distance) and crossings (s, lambda, or NaN).
 std::vector<double> Answers(const CurveLocator& loc, const Profile& profile, int seed) {

@@ -96,5 +96,42 @@ TEST(CubicSpline, IndexedLookupEqualsBinarySearchBitForBit) {
   }
 }
 
+// Splines on the same knots share one Locate (a profile's y(s) and z(s), issue 20's grids): each
+// one's EvaluateAt at the other's Location is its own Evaluate bit for bit, every output alone or
+// together, between, at and beyond the knots.
+TEST(CubicSpline, SplinesOnTheSameKnotsShareALocationBitForBit) {
+  std::mt19937 rng(20);  // fixed seed
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> t{0.0}, y{0.0}, z{0.0};
+  for (int i = 1; i < 400; ++i) {
+    t.push_back(t.back() + 2e-4 * (0.5 + u(rng)));
+    y.push_back(std::cos(90.0 * t.back()) + 0.01 * u(rng));
+    z.push_back(std::sin(40.0 * t.back()) - 0.01 * u(rng));
+  }
+  const CubicSpline sy(t, y), sz(t, z);
+  std::vector<double> queries = {-1e-3, t.front(), t.back(), t.back() + 1e-3};
+  for (double knot : t) queries.push_back(knot);
+  for (int k = 0; k < 4000; ++k) queries.push_back(t.back() * (1.2 * u(rng) - 0.1));
+  int compared = 0;
+  for (double x : queries) {
+    const CubicSpline::Location at = sy.Locate(x);
+    double v, d1, d2, w, e1, e2;
+    sz.Evaluate(x, &v, &d1, &d2);
+    sz.EvaluateAt(at, &w, &e1, &e2);
+    ASSERT_EQ(v, w) << x;
+    ASSERT_EQ(d1, e1) << x;
+    ASSERT_EQ(d2, e2) << x;
+    double only;
+    sz.EvaluateAt(at, &only, nullptr, nullptr);
+    ASSERT_EQ(only, sz.Value(x)) << x;
+    sz.EvaluateAt(at, nullptr, &only, nullptr);
+    ASSERT_EQ(only, sz.Derivative(x)) << x;
+    sz.EvaluateAt(at, nullptr, nullptr, &only);
+    ASSERT_EQ(only, sz.SecondDerivative(x)) << x;
+    ++compared;
+  }
+  EXPECT_EQ(compared, static_cast<int>(queries.size()));
+}
+
 }  // namespace
 }  // namespace railwear
