@@ -20,6 +20,7 @@
 
 #include "core/contact/influence_kernels.h"
 #include "core/numerics/check.h"
+#include "core/numerics/factored_solve.h"
 #include "core/numerics/fft_size.h"
 #include "core/numerics/fftw.h"
 #include "core/numerics/pooled_buffer.h"
@@ -150,6 +151,7 @@ class ToeplitzXsFftOperator final : public InfluenceOperator {
   // Toeplitz matrix (the constructor), inverted exactly. Until 2026-11-29 the inverse of the
   // products' own 2n - 1 embedding, cropped: 4 times the bins for the same iterations to +-1
   // (docs/speed.md).
+  bool HasPreconditioner() const override { return true; }
   bool ApplyPreconditioner(const Eigen::VectorXd& r, Eigen::VectorXd* z) const override {
     Convolve(*preconditioner_fft_, r, inverse_spectrum_, &preconditioner_work_, z);
     return true;
@@ -203,7 +205,8 @@ class CurvedFftOperator final : public InfluenceOperator {
         padded_in_(static_cast<size_t>(ns_) * lx_),
         padded_out_(static_cast<size_t>(ns_) * lx_),
         p_hat_(static_cast<size_t>(ns_) * 2 * hx_),
-        u_hat_(static_cast<size_t>(ns_) * 2 * hx_) {
+        u_hat_(static_cast<size_t>(ns_) * 2 * hx_),
+        odd_scratch_(static_cast<size_t>(2 * ns_)) {
     // Kernel on x offsets d >= 0 (nx * ns^2 values, a row of offsets per pair of s indices:
     // CellInfluenceRow): values(js * ns + is, d).
     const int pairs = ns_ * ns_;
@@ -271,6 +274,7 @@ class CurvedFftOperator final : public InfluenceOperator {
 
   // Per frequency, a solve with the symmetric part of K_k: the exact inverse of the
   // x-circulant embedding when C is symmetric.
+  bool HasPreconditioner() const override { return true; }
   bool ApplyPreconditioner(const Eigen::VectorXd& r, Eigen::VectorXd* z) const override {
     Convolve(r, /*inverse=*/true, z);
     return true;
@@ -304,51 +308,12 @@ class CurvedFftOperator final : public InfluenceOperator {
     }
   }
 
-  // L L^T z = y for the two columns a and b (the real and imaginary parts of one frequency,
-  // ns values each, overwritten with z), L the lower triangle of the column-major ns x ns block
-  // l. Plain substitutions rather than Eigen's triangularView solves: on a 2-column right-hand
-  // side those run the blocked matrix path (packing the block on every call, gebp_kernel), a
-  // quarter of a gauge-corner call's normal solve (docs/library.md). The forward pass walks the
-  // columns of L (contiguous: an axpy per column), the backward pass takes column j of L as row j
-  // of L^T (a dot product, in two partial sums per right-hand side). The same factor, other
-  // rounding: the preconditioner agrees with the blocked solve to rounding
-  // (influence_operator_test.cpp, PreconditionerSolvesEachFrequencysBlockExactly).
-  void SolveFactored(const double* __restrict l, double* __restrict a, double* __restrict b) const {
-    const int n = ns_;
-    for (int j = 0; j < n; ++j) {
-      const double* lj = l + static_cast<size_t>(j) * n;
-      const double aj = a[j] / lj[j], bj = b[j] / lj[j];
-      a[j] = aj;
-      b[j] = bj;
-      for (int i = j + 1; i < n; ++i) {
-        a[i] -= lj[i] * aj;
-        b[i] -= lj[i] * bj;
-      }
-    }
-    for (int j = n - 1; j >= 0; --j) {
-      const double* lj = l + static_cast<size_t>(j) * n;
-      double a0 = 0.0, a1 = 0.0, b0 = 0.0, b1 = 0.0;
-      int i = j + 1;
-      for (; i + 1 < n; i += 2) {
-        a0 += lj[i] * a[i];
-        a1 += lj[i + 1] * a[i + 1];
-        b0 += lj[i] * b[i];
-        b1 += lj[i + 1] * b[i + 1];
-      }
-      if (i < n) {
-        a0 += lj[i] * a[i];
-        b0 += lj[i] * b[i];
-      }
-      a[j] = (a[j] - (a0 + a1)) / lj[j];
-      b[j] = (b[j] - (b0 + b1)) / lj[j];
-    }
-  }
-
   // out = crop_x(IFFT_x(B_k FFT_x(pad_x(in)))) with B_k = K_k (inverse = false) or
-  // (sym K_k)^-1 (inverse = true) per x frequency k. Apply multiplies each constant block with
-  // the real and the imaginary column separately (two matrix-vector products): Eigen treats a
-  // 2-column right-hand side as a matrix product (GEMM) and repacks the whole block on every
-  // call (gemm_pack_lhs, issue 18). The preconditioner's triangular solves keep the 2-column
+  // (sym K_k)^-1 (inverse = true) per x frequency k, two frequencies at a time
+  // (internal::SolveFactoredPair, core/numerics/factored_solve.h). Apply multiplies each constant
+  // block with the real and the imaginary column separately (two matrix-vector products): Eigen
+  // treats a 2-column right-hand side as a matrix product (GEMM) and repacks the whole block on
+  // every call (gemm_pack_lhs, issue 18). The preconditioner's triangular solves keep the 2-column
   // form: per-column solves were no faster in the solve benchmarks and move the rounding of the
   // calibration fit's rank-deficient test case (InfluenceFit, condition number 400 -> 94).
   void Convolve(const Eigen::VectorXd& p, bool inverse, Eigen::VectorXd* u) const {
@@ -365,9 +330,19 @@ class CurvedFftOperator final : public InfluenceOperator {
     if (inverse) {
       // L L^T z = p / lx (the unscaled inverse FFT's factor), both columns at once.
       u_hat = p_hat * (1.0 / lx_);
-      for (int k = 0; k < hx_; ++k) {
-        SolveFactored(FactorBlock(k), u_hat_.data() + static_cast<size_t>(2 * k) * ns_,
-                      u_hat_.data() + static_cast<size_t>(2 * k + 1) * ns_);
+      auto column = [&](int c) { return u_hat_.data() + static_cast<size_t>(c) * ns_; };
+      int k = 0;
+      for (; k + 1 < hx_; k += 2) {
+        internal::SolveFactoredPair(ns_, FactorBlock(k), FactorBlock(k + 1), column(2 * k),
+                                    column(2 * k + 1), column(2 * k + 2), column(2 * k + 3));
+      }
+      if (k < hx_) {
+        // The last frequency of an odd count, paired with a zero right-hand side on the same
+        // factor (its chains cost no more than the frequency's own; the zeros are discarded).
+        std::fill(odd_scratch_.begin(), odd_scratch_.end(), 0.0);
+        internal::SolveFactoredPair(ns_, FactorBlock(k), FactorBlock(k), column(2 * k),
+                                    column(2 * k + 1), odd_scratch_.data(),
+                                    odd_scratch_.data() + ns_);
       }
     } else {
       for (int k = 0; k < hx_; ++k) {
@@ -407,6 +382,7 @@ class CurvedFftOperator final : public InfluenceOperator {
   mutable internal::FftwBuffer<double> padded_out_;  // [ns * lx]
   mutable internal::FftwBuffer<double> p_hat_;  // [ns x 2 hx_] column-major: (real, imag) per bin
   mutable internal::FftwBuffer<double> u_hat_;  // [ns x 2 hx_]
+  mutable std::vector<double> odd_scratch_;     // [2 ns]: an odd hx_'s pair (SolveFactoredPair)
   internal::SharedFftwPlan forward_;            // padded_in_ -> p_hat_
   internal::SharedFftwPlan inverse_;            // u_hat_ -> padded_out_ (overwrites u_hat_)
 };

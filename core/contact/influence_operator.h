@@ -79,6 +79,13 @@ class InfluenceOperator {
     (void)z;
     return false;
   }
+  // Whether ApplyPreconditioner has an inverse to apply. By default it is asked with a zero
+  // vector; the FFT operators answer without applying theirs (an application is as costly as
+  // Apply, and the normal solver asks once per solve: issue 20, docs/library.md).
+  virtual bool HasPreconditioner() const {
+    Eigen::VectorXd z;
+    return ApplyPreconditioner(Eigen::VectorXd::Zero(size()), &z);
+  }
 };
 
 struct InfluenceSettings {

@@ -111,15 +111,10 @@ class BlockOperator {
     }
   }
 
-  // True when every block has an approximate inverse (probed with a zero vector).
-  bool HasPreconditioner() {
-    for (size_t b = 0; b < blocks_.size(); ++b) {
-      Eigen::VectorXd z;
-      if (!blocks_[b]->ApplyPreconditioner(Eigen::VectorXd::Zero(blocks_[b]->size()), &z)) {
-        return false;
-      }
-    }
-    return true;
+  // True when every block has an approximate inverse (InfluenceOperator::HasPreconditioner).
+  bool HasPreconditioner() const {
+    return std::all_of(blocks_.begin(), blocks_.end(),
+                       [](const InfluenceOperator* b) { return b->HasPreconditioner(); });
   }
 
   // z = M r block by block (M = each block's approximate inverse). Only after

@@ -11,6 +11,7 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -912,6 +913,25 @@ TEST(InfluenceOperator, DenseOperatorHasNoPreconditioner) {
   Eigen::VectorXd z = Eigen::VectorXd::Constant(2, 7.0);
   EXPECT_FALSE(dense->ApplyPreconditioner(Eigen::VectorXd::Ones(12), &z));
   EXPECT_EQ(z.size(), 2);  // untouched
+  EXPECT_FALSE(dense->HasPreconditioner());
+}
+
+// The normal solver asks HasPreconditioner once per solve; the FFT operators answer it without
+// applying their inverse (issue 20), and the answer is the one an application gives.
+TEST(InfluenceOperator, FftOperatorsSayTheyHaveTheirPreconditioner) {
+  const InfluenceSettings settings = MakeSettings(KernelModel::kBoussinesq);
+  for (OperatorProducts products : {OperatorProducts::kFft, OperatorProducts::kDense}) {
+    for (const auto& [grid, structure] :
+         {std::pair{MakePlanarGrid(3, 4, 1e-4, 1e-4), SectionStructure::kAuto},
+          std::pair{MakeArcGrid(5, 7, 2e-4, 4e-4, 10e-3), SectionStructure::kBlocks},
+          std::pair{MakeParabolaGrid(5, 7, 2.5e-4, 4e-4), SectionStructure::kAuto}}) {
+      const auto op = MakeInfluenceOperator(grid, settings, products, structure);
+      EXPECT_TRUE(op->HasPreconditioner());
+      Eigen::VectorXd z;
+      EXPECT_TRUE(op->ApplyPreconditioner(Eigen::VectorXd::Ones(grid.cells()), &z));
+      EXPECT_EQ(z.size(), grid.cells());
+    }
+  }
 }
 
 // One operator serves many normal solves on its grid (a creep table's cases, contact_reference_
