@@ -39,6 +39,79 @@ constexpr double kNewtonSigma = 1e-2;
 constexpr int kStallWindow = 6;
 constexpr double kStallRatio = 0.95;
 
+// A wheel climbs when its contact lies on the flange beyond the flange's steepest flank, toward
+// its tip: there the contact angle, and with it the flange's lateral restoring force, falls as
+// the wheel moves on, so no steady state lies there (Nadal's limit is taken at the steepest
+// angle for this reason). The flank's tip-side end is where the front face's slope comes within
+// kFlankAngleBand_rad of its largest; a contact counts as beyond it kClimbMargin_m past that end,
+// well outside the contact point's lateral error (the wheel-frame y is taken as the rail-frame
+// y less the wheel's lateral shift, without the roll: under 0.3 mm at 10 mrad of roll and a
+// contact 30 mm below the wheel's profile origin).
+constexpr double kFlankAngleBand_rad = 0.5 * 3.14159265358979323846 / 180.0;
+constexpr double kClimbMargin_m = 1e-3;
+constexpr double kClimbLoadShare = 0.5;
+// ... and only when the wheelset's roll lifts one wheel over the other by more than this: a
+// wheel in flange contact on its steepest flank is lifted by about 1 mm (S1002 on UIC60 1:40,
+// roll 0.7 mrad at 70 deg), one that climbed toward the tip by much more (the near-climb coach's
+// climbed state: 14.7 mm, roll 9.8 mrad), one on a worn gauge corner by less (step 66: 0.9 mrad).
+constexpr double kClimbLift_m = 3e-3;
+constexpr double kFlankScanStep_m = 1e-4;
+
+}  // namespace
+
+namespace internal {
+
+double SteepestFlankTipSideY(const Profile& wheel) {
+  // The tip: the profile's deepest point (z grows downward, the flange reaches below the tread).
+  const int n = std::max(2, static_cast<int>(std::ceil(wheel.Length() / kFlankScanStep_m)));
+  std::vector<double> y(n + 1), z(n + 1), angle(n + 1);
+  int tip = 0;
+  for (int k = 0; k <= n; ++k) {
+    const double s = wheel.Length() * k / n;
+    const Eigen::Vector2d p = wheel.Position(s);
+    const Eigen::Vector2d t = wheel.Tangent(s);
+    y[k] = p.x();
+    z[k] = p.y();
+    angle[k] = std::atan2(std::abs(t.y()), std::abs(t.x()));
+    if (z[k] > z[tip]) tip = k;
+  }
+  // The front face: from the tip toward the tread (larger y) while the flange lies below the
+  // tip's half depth... down to the taping line's depth (z = 0) at the latest.
+  const int dir = (tip + 1 <= n && y[tip + 1] > y[tip]) ? 1 : -1;
+  double steepest = 0.0;
+  int end = tip;
+  for (int k = tip; k >= 0 && k <= n && z[k] > 0.0; k += dir) {
+    steepest = std::max(steepest, angle[k]);
+    end = k;
+  }
+  for (int k = tip; k != end + dir; k += dir) {
+    if (angle[k] >= steepest - kFlankAngleBand_rad) return y[k];
+  }
+  return y[tip];
+}
+
+}  // namespace internal
+
+namespace {
+
+// Whether the wheel of `result` (its rail's frame) at `pose` rides on its flange beyond the
+// steepest flank (see kClimbMargin_m): the patches there carry more than half of the wheel's
+// vertical load (kClimbLoadShare), its tread lifted. `flank_y_m` is that flank's tip-side end
+// (wheel frame). A worn gauge corner can touch the flange's upper part beside the wheel's main
+// contact without any climb (on the 10 MGT study's worn rails at 5.2 MGT, a third patch 1.2 mm
+// beyond the flank's end at 61 deg with up to 13 % of the load, the wheelset 1.5 mm off centre):
+// that is no climb, so the load decides, not the place alone.
+bool Climbing(const ContactResult& result, const WheelPose& pose, double flank_y_m) {
+  double beyond_N = 0.0, all_N = 0.0;
+  for (const PatchResult& patch : result.patches) {
+    all_N += patch.vertical_force_N;
+    if (patch.contact_point_yz_m.x() - pose.lateral_shift_m < flank_y_m - kClimbMargin_m) {
+      beyond_N += patch.vertical_force_N;
+    }
+  }
+  return all_N > 0.0 && beyond_N > kClimbLoadShare * all_N;
+}
+
 // The layout of a vehicle: per wheelset and bogie its position x from the car body's centre and
 // the index of its bogie; the unknown vector is [wheelsets (y, psi)..., bogies (y, psi)...,
 // body (y, psi)].
@@ -132,6 +205,9 @@ struct WheelsetContext {
   int index = 0;  // this wheelset's, from the front
   // The contact solves start warm (CurvingOptions::warm_contact: the full model's phases only).
   bool warm = false;
+  // The tip-side ends of the high and the low wheel's steepest flanks (wheel frames, each in its
+  // rail's): a contact beyond one climbs (internal::SteepestFlankTipSideY, Climbing).
+  double high_flank_y_m = 0.0, low_flank_y_m = 0.0;
 };
 
 // A wheelset's forces from the tests' model (internal::SolveCurvingWith): contact empty, its
@@ -250,6 +326,10 @@ CurvedWheelset EvaluateWheelset(const WheelsetContext& ctx, double y, double yaw
   out.high_lateral_N = TotalForcesOnRail(out.contact.right).Net().y();
   out.high_climb = CheckFlangeClimbAtSteepest(out.contact.right, p.friction);
   out.low_climb = CheckFlangeClimbAtSteepest(out.contact.left, p.friction);
+  // (and lifted: the wheelset's roll raises one wheel over the other by kClimbLift_m or more)
+  const bool lifted = 2.0 * kHalfBase_m * std::abs(out.roll_rad) > kClimbLift_m;
+  out.climbing = lifted && (Climbing(out.contact.right, placed.right, ctx.high_flank_y_m) ||
+                            Climbing(out.contact.left, placed.left, ctx.low_flank_y_m));
   return out;
 }
 
@@ -328,10 +408,17 @@ class Equilibrium {
   }
 
   // The residual at *trial with the frames and the body projected onto it (Project): false when
-  // a wheelset is beyond the lateral limit (no contact solved) or a contact failed.
+  // a wheelset is beyond the lateral limit (no contact solved), a contact failed or a wheel
+  // climbs its flange (CurvedWheelset::climbing: no steady state there, so no step goes there;
+  // docs/curving.md, "Climbed states are refused").
   bool TrialResidual(Eigen::VectorXd* trial, std::vector<CurvedWheelset>* ws, Eigen::VectorXd* r) {
     Project(trial);
-    return WithinBounds(*trial) && Residual(*trial, ws, r);
+    if (!WithinBounds(*trial) || !Residual(*trial, ws, r)) return false;
+    if (std::any_of(ws->begin(), ws->end(), [](const CurvedWheelset& w) { return w.climbing; })) {
+      climb_refused_ = true;
+      return false;
+    }
+    return true;
   }
 
   // The largest scaled residual (the convergence test) and the scaled 2-norm (the line search's
@@ -349,8 +436,18 @@ class Equilibrium {
     message->clear();
     ending_ = CurvingEnding::kNone;
     Note(internal::NewtonEvent::kSolve);
+    climb_refused_ = false;
     Project(q);
     if (!Residual(*q, ws, r)) return Fail("a wheel's contact did not converge", message);
+    // A start with a climbing wheel lies where no step may go (TrialResidual): the next start.
+    for (int i = 0; i < l_.wheelsets; ++i) {
+      if ((*ws)[i].climbing) {
+        return Fail(fmt::format("wheelset {} climbs its flange at the start (a wheel touches "
+                                "beyond its flange's steepest flank): no steady state there",
+                                i),
+                    message);
+      }
+    }
     first_norm_ = Norm(*r);
     // The Jacobian of the last phase (the predictor's) starts the next one as a chord.
     Eigen::MatrixXd& J = jacobian_;
@@ -541,7 +638,10 @@ class Equilibrium {
           continue;
         }
         return Fail(
-            fmt::format("no step reduced the residual (largest scaled residual {:.1e})", Norm(*r)),
+            fmt::format("no step reduced the residual (largest scaled residual {:.1e}){}", Norm(*r),
+                        climb_refused_ ? "; trial steps would have had a wheel climb its flange "
+                                         "beyond its steepest flank"
+                                       : ""),
             message);
       }
     }
@@ -848,6 +948,7 @@ class Equilibrium {
   Eigen::VectorXd suspension_offset_, scale_;
   int solves_ = 0, table_evaluations_ = 0;
   double first_norm_ = 0.0;
+  bool climb_refused_ = false;  // a trial of this solve was refused as climbing (TrialResidual)
   bool cancelled_ = false;
   CurvingEnding ending_ = CurvingEnding::kNone;
   std::vector<internal::NewtonEvent>* events_ = nullptr;
@@ -955,6 +1056,10 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
                 force_model,
                 i,
                 warm_contact && !(has_predictor && model == predictor)};
+      const Profile& high = p.wheels.empty() ? p.vehicle.wheel_profile : p.wheels[i].high;
+      const Profile& low = p.wheels.empty() ? p.vehicle.wheel_profile : p.wheels[i].low;
+      ctx[i].high_flank_y_m = internal::SteepestFlankTipSideY(high);
+      ctx[i].low_flank_y_m = internal::SteepestFlankTipSideY(low);
     }
     return ctx;
   };

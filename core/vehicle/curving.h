@@ -306,6 +306,12 @@ struct CurvedWheelset {
   // in flange contact even where one conformal patch wraps from the flange root onto the flange
   // (contact.right.climb takes each patch's resultant angle instead).
   FlangeClimbCheck high_climb, low_climb;
+  // A wheel rides on its flange beyond the flange's steepest flank, toward the tip (more than
+  // half its vertical load 1 mm or more past the flank's end, in the wheel's frame), lifted by
+  // the roll more than 3 mm over the other: it climbs, and the contact angle and the flange's
+  // restoring force fall as it goes on. No steady state lies there: the solve refuses such
+  // trial states and starts (docs/curving.md, "Climbed states are refused").
+  bool climbing = false;
 };
 
 struct CurvingResult {

@@ -40,6 +40,12 @@ enum class NewtonEvent {
   kEnded,                     // a rule ended the solve (CurvingResult::ending names it)
 };
 
+// The lateral position [m, the wheel profile's frame] of the tip-side end of `wheel`'s steepest
+// flank: from the flange's tip (the profile's deepest point) toward the tread, the first point
+// whose slope comes within half a degree of the front face's steepest (S1002: near y = -39.6 mm,
+// 70 deg). A contact beyond it (toward the tip) climbs (CurvedWheelset::climbing).
+double SteepestFlankTipSideY(const Profile& wheel);
+
 // SolveCurving with `forces` in place of every wheelset's contact solve (empty: the contact, as
 // SolveCurving). The returned wheelsets carry the model's forces; their contact results are
 // empty, marked converged, and they are never in flange climb. The problem is validated as

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -13,6 +15,7 @@
 #include "core/contact/kalker_coefficients.h"
 #include "core/numerics/input_error.h"
 #include "core/profile/builtin_profiles.h"
+#include "core/vehicle/curving_internal.h"
 #include "tests/core/vehicle/curving_cases.h"
 
 namespace railwear {
@@ -630,6 +633,64 @@ TEST(CurvingTest, TablePredictorHardCasesConvergeOrFallBack) {
       EXPECT_LT(r.wheelsets[0].high_climb.l_over_v, *r.wheelsets[0].high_climb.nadal_limit);
     }
   }
+}
+
+// The tip-side end of S1002's steepest flank: its 70 deg flank ends near S = -39.6 mm toward
+// the tip (F(S) of the standard, S1002RadiusIncrease_mm); past it the slope falls, 1 mm on by
+// some 6 deg (the numbers printed by the S1002 definition's own slope, below).
+TEST(CurvingTest, S1002sSteepestFlankEndsNearItsSeventyDegreeFlank) {
+  const double y = internal::SteepestFlankTipSideY(MakeS1002());
+  const auto slope_deg = [](double s_mm) {
+    const double h = 1e-3;
+    return std::atan(std::abs(S1002RadiusIncrease_mm(s_mm + h) - S1002RadiusIncrease_mm(s_mm - h)) /
+                     (2.0 * h)) *
+           180.0 / M_PI;
+  };
+  std::printf(
+      "S1002's steepest flank ends at y = %.2f mm (slope %.2f deg; 1 mm toward the tip "
+      "%.2f deg)\n",
+      y * 1e3, slope_deg(y * 1e3), slope_deg(y * 1e3 - 1.0));
+  EXPECT_GT(y, -40.5e-3);
+  EXPECT_LT(y, -39.0e-3);
+  EXPECT_GT(slope_deg(y * 1e3), 69.0);        // on the flank (70 deg, within the scan's step)
+  EXPECT_LT(slope_deg(y * 1e3 - 1.0), 66.0);  // beyond it, falling toward the tip
+  EXPECT_LT(slope_deg(y * 1e3 - 4.0), slope_deg(y * 1e3 - 1.0));
+}
+
+// A climbed start: the coach on R 150 m with 150 mm cant at 19 m/s and a dry mu of 0.5 (the
+// near-climb case of docs/curving.md), its leading wheelset 13.2 mm out at 15.2 mrad, where its
+// high wheel touches near the flange tip at 51 deg with L/V above Nadal's limit. That state is
+// an equilibrium of the forces at the grid's noise, and a solve of the far-field trial of
+// docs/library.md ("Both, on nearly idle cores") settled there from the centred start; it is
+// unstable (the flange's restoring force falls as the wheel climbs). The start is refused as
+// climbing, and the next start finds the flange equilibrium (70 deg, below Nadal).
+TEST(CurvingTest, AClimbedStartIsRefusedAndTheFlangeEquilibriumIsFound) {
+  CurvingProblem p = S1002Coach(150.0, 0.150, 19.0);
+  p.friction = 0.5;
+  CurvingStart climbed;
+  climbed.state = Eigen::VectorXd::Zero(14);  // 4 wheelsets, 2 bogie frames, the body
+  climbed.state.head(8) << 13.24e-3, 15.24e-3, -2.66e-3, -0.92e-3, 6.57e-3, 13.25e-3, -5.61e-3,
+      -3.24e-3;
+  climbed.label = "the climbed state";
+  p.options.start = climbed;
+  const CurvingResult r = SolveCurving(p);
+  ASSERT_FALSE(r.attempts.empty());
+  EXPECT_EQ(r.attempts[0].start.rfind("the climbed state", 0), 0u) << r.attempts[0].start;
+  EXPECT_FALSE(r.attempts[0].converged);
+  EXPECT_NE(r.attempts[0].message.find("climbs its flange at the start"), std::string::npos)
+      << r.attempts[0].message;
+  ASSERT_EQ(r.status, CurvingStatus::kConverged) << r.message;
+  for (const CurvedWheelset& w : r.wheelsets) EXPECT_FALSE(w.climbing);
+  const CurvedWheelset& lead = r.wheelsets[0];
+  std::printf(
+      "from the climbed start: lead y %.2f mm, %.2f mrad, %.1f deg, L/V %.2f (Nadal "
+      "%.2f), %d solves\n",
+      lead.lateral_m * 1e3, lead.yaw_rad * 1e3, lead.high_climb.contact_angle_rad * 180 / M_PI,
+      lead.high_climb.l_over_v, lead.high_climb.nadal_limit.value_or(0.0), r.contact_solves);
+  EXPECT_GT(lead.high_climb.contact_angle_rad, 65.0 * M_PI / 180.0);
+  EXPECT_LT(lead.lateral_m, 10e-3);
+  ASSERT_TRUE(lead.high_climb.nadal_limit);
+  EXPECT_LT(lead.high_climb.l_over_v, *lead.high_climb.nadal_limit);
 }
 
 }  // namespace
