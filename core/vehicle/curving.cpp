@@ -75,8 +75,8 @@ double SteepestFlankTipSideY(const Profile& wheel) {
     angle[k] = std::atan2(std::abs(t.y()), std::abs(t.x()));
     if (z[k] > z[tip]) tip = k;
   }
-  // The front face: from the tip toward the tread (larger y) while the flange lies below the
-  // tip's half depth... down to the taping line's depth (z = 0) at the latest.
+  // The front face: from the tip toward the tread (larger y), down to the taping line's depth
+  // (z = 0).
   const int dir = (tip + 1 <= n && y[tip + 1] > y[tip]) ? 1 : -1;
   double steepest = 0.0;
   int end = tip;
