@@ -6,6 +6,9 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <Eigen/Dense>
@@ -68,11 +71,11 @@ double SteepestFlankTipSideY(const Profile& wheel) {
   int tip = 0;
   for (int k = 0; k <= n; ++k) {
     const double s = wheel.Length() * k / n;
-    const Eigen::Vector2d p = wheel.Position(s);
-    const Eigen::Vector2d t = wheel.Tangent(s);
+    Eigen::Vector2d p, d1;
+    wheel.Evaluate(s, &p, &d1, nullptr);
     y[k] = p.x();
     z[k] = p.y();
-    angle[k] = std::atan2(std::abs(t.y()), std::abs(t.x()));
+    angle[k] = std::atan2(std::abs(d1.y()), std::abs(d1.x()));
     if (z[k] > z[tip]) tip = k;
   }
   // The front face: from the tip toward the tread (larger y), down to the taping line's depth
@@ -96,11 +99,12 @@ namespace {
 
 // Whether the wheel of `result` (its rail's frame) at `pose` rides on its flange beyond the
 // steepest flank (see kClimbMargin_m): the patches there carry more than half of the wheel's
-// vertical load (kClimbLoadShare), its tread lifted. `flank_y_m` is that flank's tip-side end
-// (wheel frame). A worn gauge corner can touch the flange's upper part beside the wheel's main
-// contact without any climb (on the 10 MGT study's worn rails at 5.2 MGT, a third patch 1.2 mm
-// beyond the flank's end at 61 deg with up to 13 % of the load, the wheelset 1.5 mm off centre):
-// that is no climb, so the load decides, not the place alone.
+// vertical load (kClimbLoadShare); EvaluateWheelset also asks for the lift (kClimbLift_m).
+// `flank_y_m` is that flank's tip-side end (wheel frame). A worn gauge corner can touch the
+// flange's upper part beside the wheel's main contact without any climb (on the 10 MGT study's worn
+// rails at 5.2 MGT, a temporary trace, not committed, showed a third patch 1.2 mm beyond the
+// flank's end at 61 deg with up to 13 % of the load, the wheel 1.5 mm off its centred place): that
+// is no climb, so the load decides, not the place alone.
 bool Climbing(const ContactResult& result, const WheelPose& pose, double flank_y_m) {
   double beyond_N = 0.0, all_N = 0.0;
   for (const PatchResult& patch : result.patches) {
@@ -1043,6 +1047,13 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
       p.options.predictor ? *p.options.predictor : CurvingOptions::PredictorFor(p.contact.model);
   const bool has_predictor = !(predictor == p.contact.model);
   const bool warm_contact = p.options.WarmContactFor(p.contact.model);
+  // Each wheel's flank end, once for the solve's phases (they share the wheels).
+  std::vector<std::pair<double, double>> flank_y_m(layout.wheelsets);
+  for (int i = 0; i < layout.wheelsets; ++i) {
+    const Profile& high = p.wheels.empty() ? p.vehicle.wheel_profile : p.wheels[i].high;
+    const Profile& low = p.wheels.empty() ? p.vehicle.wheel_profile : p.wheels[i].low;
+    flank_y_m[i] = {internal::SteepestFlankTipSideY(high), internal::SteepestFlankTipSideY(low)};
+  }
   auto contexts = [&](const ModelOptions& model) {
     std::vector<WheelsetContext> ctx(layout.wheelsets);
     for (int i = 0; i < layout.wheelsets; ++i) {
@@ -1056,10 +1067,7 @@ CurvingResult internal::SolveCurvingWith(const CurvingProblem& problem_in,
                 force_model,
                 i,
                 warm_contact && !(has_predictor && model == predictor)};
-      const Profile& high = p.wheels.empty() ? p.vehicle.wheel_profile : p.wheels[i].high;
-      const Profile& low = p.wheels.empty() ? p.vehicle.wheel_profile : p.wheels[i].low;
-      ctx[i].high_flank_y_m = internal::SteepestFlankTipSideY(high);
-      ctx[i].low_flank_y_m = internal::SteepestFlankTipSideY(low);
+      std::tie(ctx[i].high_flank_y_m, ctx[i].low_flank_y_m) = flank_y_m[i];
     }
     return ctx;
   };
