@@ -20,12 +20,17 @@ struct KernelCoefficients {
 KernelCoefficients MakeKernelCoefficients(const InfluenceSettings& settings);
 
 // Beyond this centre distance, in cell diagonals sqrt(hx^2 + hs^2), a cell is integrated by the
-// midpoint rule with its second-order (h^2/24) Taylor correction instead of the closed forms.
-// Its relative error there is below 1e-6 (influence_operator_test.cpp, FarFieldRule*), and the
-// closed forms lose digits to cancellation at large distances, so the rule is also the more
-// accurate one far away. A half-integer value keeps lattice distances of uniform grids away
-// from the switch, so translated copies of a cell pair never fall on different sides of it.
-inline constexpr double kFarFieldDiagonals = 8.5;
+// midpoint rule with its second- and fourth-order Taylor terms (RectangleIntegralsFarField)
+// instead of the closed forms. Its relative error there is below 1e-6 for 1/R, 2.5e-5 for
+// n^2/R^3 (under 1 % of the seed kernel) and 1.5e-6 for the seed kernel's combination
+// (influence_operator_test.cpp, FarFieldRule*): no more than the second-order rule's at the
+// 8.5 diagonals used until 2026-11-30 (2e-6, 3e-5, 2.4e-6), and on a gauge-corner grid at the
+// standard preset 4 % of the cell pairs are left to the closed forms instead of 18 %
+// (docs/speed.md). The closed forms lose digits to cancellation at large distances, so the rule
+// is also the more accurate one far away. A half-integer value keeps lattice distances of uniform
+// grids away from the switch, so translated copies of a cell pair never fall on different sides of
+// it.
+inline constexpr double kFarFieldDiagonals = 3.5;
 
 // Both rectangle integrals at once (they share the atan term); arguments as in
 // RectangleIntegralInvR. Closed forms near, corrected midpoint rule beyond kFarFieldDiagonals.

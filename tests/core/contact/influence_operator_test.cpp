@@ -38,6 +38,11 @@ constexpr double kQuadratureTolerance = 1e-8;
 // Far-field rule (corrected midpoint) against the closed forms beyond kFarFieldDiagonals: the
 // accuracy the project requires before it may replace the closed forms (DESIGN.md §1.3).
 constexpr double kFarFieldRuleTolerance = 1e-4;
+// ... and, on 1/R and on the seed kernel's combination (which the operators use), no worse than
+// the second-order rule was at its 8.5 diagonals before 2026-11-30 (2e-6 and 2.4e-6, printed by
+// FarFieldRuleIsWithinToleranceBeyondItsSwitch at that switch): the fourth-order rule at 3.5
+// diagonals keeps the operators' accuracy while it leaves a fifth of the pairs to the closed forms.
+constexpr double kFarFieldKernelTolerance = 2e-6;
 // FFT operators against the dense matrix: FFT rounding grows like eps log N on these
 // positive kernels; 1e-12 leaves two orders of margin on the grids below.
 constexpr double kFastVersusDenseTolerance = 1e-12;
@@ -271,9 +276,9 @@ TEST(RectangleIntegral, FarFieldRuleIsWithinToleranceBeyondItsSwitch) {
   std::cout << "far-field rule at " << internal::kFarFieldDiagonals
             << " diagonals: worst relative error 1/R " << worst_inv_r << ", n^2/R^3 " << worst_n2_r3
             << ", golubenko " << worst_combined << "\n";
-  EXPECT_LT(worst_inv_r, kFarFieldRuleTolerance);
+  EXPECT_LT(worst_inv_r, kFarFieldKernelTolerance);
   EXPECT_LT(worst_n2_r3, kFarFieldRuleTolerance);
-  EXPECT_LT(worst_combined, kFarFieldRuleTolerance);
+  EXPECT_LT(worst_combined, kFarFieldKernelTolerance);
 }
 
 // ----- grids ---------------------------------------------------------------------------------
