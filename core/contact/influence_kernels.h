@@ -24,9 +24,9 @@ KernelCoefficients MakeKernelCoefficients(const InfluenceSettings& settings);
 // instead of the closed forms. Its relative error there is below 1e-6 for 1/R, 2.5e-5 for
 // n^2/R^3 (under 1 % of the seed kernel) and 1.5e-6 for the seed kernel's combination
 // (influence_operator_test.cpp, FarFieldRule*): no more than the second-order rule's at the
-// 8.5 diagonals used until 2026-11-30 (2e-6, 3e-5, 2.4e-6), and on a gauge-corner grid at the
-// standard preset 4 % of the cell pairs are left to the closed forms instead of 18 %
-// (docs/speed.md). The closed forms lose digits to cancellation at large distances, so the rule
+// 8.5 diagonals used until 2026-11-30 (2e-6, 3e-5, 2.4e-6), while the disc of closed forms around
+// a cell shrinks by (3.5/8.5)^2 in area (docs/library.md, "The cell integrals' far-field rule").
+// The closed forms lose digits to cancellation at large distances, so the rule
 // is also the more accurate one far away. A half-integer value keeps lattice distances of uniform
 // grids away from the switch, so translated copies of a cell pair never fall on different sides of
 // it.
