@@ -9,6 +9,9 @@ namespace {
 // A bracket narrower than this (relative to the load) that has not met the tolerance holds a
 // step of f, whatever its height.
 constexpr double kClosedBracket = 1e-10;
+// Inside a bracket, the secant of the last two points is taken only after a step that reduced
+// |f| to below this fraction of the one before.
+constexpr double kSecantProgress = 0.5;
 
 }  // namespace
 
@@ -42,15 +45,27 @@ std::optional<double> BalanceTarget::Next(double f, double initial_slope) {
     hi_ = Point{target_, f, f};
     side_ = +1;
   }
+  const std::optional<std::pair<double, double>> previous = last_;
+  last_ = std::pair{target_, f};
   if (lo_ && hi_) {
     double t = (lo_->target_N * hi_->weight_N - hi_->target_N * lo_->weight_N) /
                (hi_->weight_N - lo_->weight_N);
+    // The secant through the last two points where it lands inside the bracket and the last
+    // step at least halved |f|: near the root those are the two latest strict solves, while a
+    // bracket's far end can be the first point, whose f came from the default criterion's
+    // solve (V_c off by some 3e-6 of the load on the benchmark's wheel), and Illinois halves
+    // that end's weight, which doubled the step past the root (docs/library.md, "The
+    // balance's secant inside its bracket"). Elsewhere, and across a step of f (where |f| does
+    // not halve), regula falsi as before.
+    if (previous && std::abs(f) < kSecantProgress * std::abs(previous->second)) {
+      const double secant = target_ - f * (target_ - previous->first) / (f - previous->second);
+      if (secant > lo_->target_N && secant < hi_->target_N) t = secant;
+    }
     if (!(t > lo_->target_N && t < hi_->target_N)) t = 0.5 * (lo_->target_N + hi_->target_N);
     target_ = t;
   } else {
-    double slope = last_ ? (f - last_->second) / (target_ - last_->first) : initial_slope;
+    double slope = previous ? (f - previous->second) / (target_ - previous->first) : initial_slope;
     if (!std::isfinite(slope) || slope < kMinBalanceSlope) slope = kMinBalanceSlope;
-    last_ = std::pair{target_, f};
     target_ -= f / slope;
   }
   if (!(target_ > 0.0)) return std::nullopt;

@@ -85,6 +85,36 @@ TEST(BalanceTarget, ACurvedContinuousBalanceSettles) {
   }
 }
 
+// The benchmark wheel's balance at -4 mm (docs/library.md, "The balance's secant inside its
+// bracket", traced): near the root f rises at 1.0337 per N of target (T* = 96736.9 N), but the
+// first point, V_c from the default criterion's solve at T = Q = 100 kN, lies 37 N above that
+// line (f 3410.5 N against 3373.4), and the first step, at slope 1 + V_c / V_p = 1.034105, lands
+// 36 N below the root: a bracket forms at once with that point as its far end. Regula falsi alone
+// took four solves after the first point (Illinois halved that end's weight and doubled the third
+// step, past the root); the secant of the two latest points, both on the line, settles in three.
+TEST(BalanceTarget, InsideTheBracketTheLatestSecantSettlesInThreeSolves) {
+  const double load = 100e3, t_star = 96736.9, slope = 1.0337;
+  int evaluations = 0;
+  const auto f = [&](double t) { return slope * (t - t_star) + (evaluations++ == 0 ? 37.0 : 0.0); };
+  BalanceTarget balance(load, load, kTolerance);
+  const auto first = balance.Next(f(load), 1.034105);
+  ASSERT_TRUE(first.has_value());
+  double t = *first;
+  int solves = 0;
+  while (solves < kMaxIterations) {
+    const double value = f(t);
+    ++solves;
+    if (balance.Settled(value)) break;
+    ASSERT_FALSE(balance.Stalled());
+    const auto next = balance.Next(value, 1.0);
+    ASSERT_TRUE(next.has_value());
+    t = *next;
+  }
+  std::printf("[ measured ] settled after %d solves\n", solves);
+  EXPECT_LE(std::abs(f(t)), kTolerance * load);
+  EXPECT_EQ(solves, 3);
+}
+
 // A step of f smaller than the tolerance is no step at all: the balance settles beside it.
 TEST(BalanceTarget, AStepWithinTheToleranceSettles) {
   const double load = 100e3;

@@ -10,6 +10,7 @@
 #include "core/contact/contact_forces.h"
 #include "core/contact/contact_solver.h"
 #include "core/profile/builtin_profiles.h"
+#include "tests/core/contact/gauge_corner_scene.h"
 
 namespace railwear {
 namespace {
@@ -76,6 +77,17 @@ TEST(VerticalBalance, FlangeContactCarriesTheLoadWithTheCreepForces) {
   EXPECT_GT(SteepestAngle(r), 60.0 * kDeg);
   EXPECT_LT(SteepestAngle(r), 72.0 * kDeg);
   ExpectBalanced(r, 80e3, "flange");
+}
+
+// The C API benchmark's wheel at -4 mm (gauge_corner_scene.h): the first secant step passes the
+// root and the bracket's far end is the first point, from the default criterion's solve; with
+// the secant of the two latest (strict) solves inside the bracket the balance ends after three
+// strict solves, where regula falsi took four (docs/library.md, "The balance's secant inside
+// its bracket"; balance_target_test.cpp models it).
+TEST(VerticalBalance, TheBenchmarkWheelAtMinus4mmBalancesInThreeStrictSolves) {
+  const ContactResult r = SolveContactCase(testing::GaugeCorner(-4e-3)).wheel;
+  ExpectBalanced(r, 100e3, "benchmark wheel at -4 mm");
+  EXPECT_EQ(r.balance_iterations, 3);
 }
 
 TEST(VerticalBalance, WithCouplingInOneLoop) {
