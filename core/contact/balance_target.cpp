@@ -51,12 +51,12 @@ std::optional<double> BalanceTarget::Next(double f, double initial_slope) {
     double t = (lo_->target_N * hi_->weight_N - hi_->target_N * lo_->weight_N) /
                (hi_->weight_N - lo_->weight_N);
     // The secant through the last two points where it lands inside the bracket and the last
-    // step at least halved |f|: near the root those are the two latest strict solves, while a
-    // bracket's far end can be the first point, whose f came from the default criterion's
-    // solve (V_c off by some 3e-6 of the load on the benchmark's wheel), and Illinois halves
-    // that end's weight, which doubled the step past the root (docs/library.md, "The
-    // balance's secant inside its bracket"). Elsewhere, and across a step of f (where |f| does
-    // not halve), regula falsi as before.
+    // step at least halved |f|: near the root those are the two latest strict solves, while the
+    // bracket's far end can be the first point, whose f comes from the default criterion's
+    // solve and lies off the line through the strict ones (on the benchmark's wheel at -4 mm by
+    // 37 N of 100 kN), and whose weight Illinois halves, which doubled a step past the root
+    // (docs/library.md, "The balance's secant inside its bracket"). Elsewhere, and across a
+    // step of f (where |f| does not halve), regula falsi as before.
     if (previous && std::abs(f) < kSecantProgress * std::abs(previous->second)) {
       const double secant = target_ - f * (target_ - previous->first) / (f - previous->second);
       if (secant > lo_->target_N && secant < hi_->target_N) t = secant;

@@ -88,7 +88,8 @@ TEST(BalanceTarget, ACurvedContinuousBalanceSettles) {
 // The benchmark wheel's balance at -4 mm (docs/library.md, "The balance's secant inside its
 // bracket", traced): near the root f rises at 1.0337 per N of target (T* = 96736.9 N), but the
 // first point, V_c from the default criterion's solve at T = Q = 100 kN, lies 37 N above that
-// line (f 3410.5 N against 3373.4), and the first step, at slope 1 + V_c / V_p = 1.034105, lands
+// line (f 3410.5 N against 3373.4: that solve's error and V_c's curvature over the 3 % step,
+// not told apart), and the first step, at slope 1 + V_c / V_p = 1.034105, lands
 // 36 N below the root: a bracket forms at once with that point as its far end. Regula falsi alone
 // took four solves after the first point (Illinois halved that end's weight and doubled the third
 // step, past the root); the secant of the two latest points, both on the line, settles in three.
