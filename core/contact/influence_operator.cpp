@@ -282,7 +282,8 @@ class CurvedFftOperator final : public InfluenceOperator {
 
  private:
   // factor column k = the Cholesky factor L_k of sym K_k = (K_k + K_k^T) / 2 [m/Pa] (lower
-  // triangle of an ns x ns column-major block). Factors rather than inverses: a third of the
+  // triangle of an ns x ns column-major block, its diagonal as reciprocals 1 / L_jj:
+  // InvertFactorDiagonal). Factors rather than inverses: a third of the
   // flops to build (ns^3 / 3 per frequency), which matters on laterally long patches (ns of a
   // few hundred), for about 1.5 times the cost to apply (measured at ns = 45 and 90). A block whose
   // symmetric part is not positive definite (Cholesky fails) is rebuilt from its eigenvalues, those
@@ -305,6 +306,7 @@ class CurvedFftOperator final : public InfluenceOperator {
         RAILWEAR_CHECK(llt.info() == Eigen::Success);
       }
       Eigen::Map<Eigen::MatrixXd>(FactorBlock(k), ns_, ns_) = llt.matrixLLT();
+      internal::InvertFactorDiagonal(ns_, FactorBlock(k));  // (SolveFactoredPair multiplies)
     }
   }
 

@@ -9,7 +9,8 @@ namespace railwear::internal {
 
 // L L^T z = y for the two columns a and b of one frequency and c and e of another (the real
 // and imaginary parts, ns values each, overwritten with z), L = l and m the lower triangles of
-// the two frequencies' column-major ns x ns blocks. Plain substitutions rather than Eigen's
+// the two frequencies' column-major ns x ns blocks, their diagonals as reciprocals
+// (InvertFactorDiagonal below). Plain substitutions rather than Eigen's
 // triangularView solves: on a 2-column right-hand side those run the blocked matrix path
 // (packing the block on every call, gebp_kernel), a quarter of a gauge-corner call's normal
 // solve (docs/library.md). The forward pass walks the columns of L (contiguous: an axpy per
@@ -25,14 +26,26 @@ namespace railwear::internal {
 // preconditioner takes two frequencies at a time"). Each frequency's operations and their order
 // are those of a solve on its own, so the result does not depend on its partner and is the
 // one-frequency substitution's bit for bit (tests/core/numerics/factored_solve_test.cpp).
+// Reciprocals instead of divisions (issue 20): the factor's diagonal holds 1 / L_jj
+// (InvertFactorDiagonal, once per factor), so that the substitutions' chains multiply where they
+// divided (a multiplication's latency is a few cycles, a division's several times that). Not bit
+// for bit with the divisions: a [j] * (1 / L_jj) rounds twice; the solve agrees to rounding
+// (factored_solve_test.cpp).
+inline void InvertFactorDiagonal(int n, double* l) {
+  for (int j = 0; j < n; ++j) {
+    double& d = l[static_cast<size_t>(j) * n + j];
+    d = 1.0 / d;
+  }
+}
+
 inline void SolveFactoredPair(int n, const double* __restrict l, const double* __restrict m,
                               double* __restrict a, double* __restrict b, double* __restrict c,
                               double* __restrict e) {
   for (int j = 0; j < n; ++j) {
     const double* lj = l + static_cast<size_t>(j) * n;
     const double* mj = m + static_cast<size_t>(j) * n;
-    const double aj = a[j] / lj[j], bj = b[j] / lj[j];
-    const double cj = c[j] / mj[j], ej = e[j] / mj[j];
+    const double aj = a[j] * lj[j], bj = b[j] * lj[j];
+    const double cj = c[j] * mj[j], ej = e[j] * mj[j];
     a[j] = aj;
     b[j] = bj;
     c[j] = cj;
@@ -66,10 +79,10 @@ inline void SolveFactoredPair(int n, const double* __restrict l, const double* _
       c0 += mj[i] * c[i];
       e0 += mj[i] * e[i];
     }
-    a[j] = (a[j] - (a0 + a1)) / lj[j];
-    b[j] = (b[j] - (b0 + b1)) / lj[j];
-    c[j] = (c[j] - (c0 + c1)) / mj[j];
-    e[j] = (e[j] - (e0 + e1)) / mj[j];
+    a[j] = (a[j] - (a0 + a1)) * lj[j];
+    b[j] = (b[j] - (b0 + b1)) * lj[j];
+    c[j] = (c[j] - (c0 + c1)) * mj[j];
+    e[j] = (e[j] - (e0 + e1)) * mj[j];
   }
 }
 
