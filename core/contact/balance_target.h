@@ -1,7 +1,8 @@
-// The iteration on the pressure's load target T of the vertical balance (normal_tangential_stage.h):
-// find T with f(T) = V_p(T) + V_c(T) - Q = 0, where V_p = T is the pressure's vertical part and
-// V_c the creep forces' vertical part. Secant steps first; once f has changed sign, regula falsi
-// (Illinois) inside the bracket.
+// The iteration on the pressure's load target T of the vertical balance
+// (normal_tangential_stage.h): find T with f(T) = V_p(T) + V_c(T) - Q = 0, where V_p = T is the
+// pressure's vertical part and V_c the creep forces' vertical part. Secant steps first; once f has
+// changed sign, regula falsi (Illinois) inside the bracket, or the secant of the last two points
+// where it lands inside the bracket after a step that halved |f| (balance_target.cpp).
 //
 // V_c(T) can jump where a cell enters or leaves the contact (the tangential solution changes with
 // the contact set), and f then has no root: it steps across zero. Regula falsi closes on such a
@@ -54,7 +55,7 @@ class BalanceTarget {
     double weight_N;       // f as regula falsi uses it (Illinois halves a side that stays)
   };
   double load_, target_, tolerance_;
-  std::optional<std::pair<double, double>> last_;  // (T, f) of the previous secant step
+  std::optional<std::pair<double, double>> last_;  // (T, f) of the previous point
   std::optional<Point> lo_, hi_;                   // f < 0 and f >= 0
   int side_ = 0;
 };
