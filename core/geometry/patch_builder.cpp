@@ -78,8 +78,8 @@ int Walk(const WheelRailGeometry& g, const Eigen::Vector2d& pc, const Eigen::Vec
       }
       const Section prev = k == 1 ? start : walked[k - 2];
       Section s;
-      const double window = 50 * step + 5e-4;
-      if (!CrossSection(g, pc, t0, n0, tau, prev.rail_s, prev.wheel_s, window, &s)) {
+      if (!CrossSection(g, pc, t0, n0, tau, prev.rail_s, prev.wheel_s, LateralWalkWindow(step),
+                        &s)) {
         side->ended = true;
         *limited = true;
         break;

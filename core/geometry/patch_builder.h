@@ -63,6 +63,18 @@ struct LateralWalkCache {
   int reused = 0;  // walks served from a kept one (for tests)
 };
 
+// Half-width [m] of the arc searched for a walk section's rail and wheel crossings about the
+// previous section's (a line along n0 one walk step further along t0; the whole profile when
+// nothing crosses there). Between sections 20 um apart a crossing moves by step / cos(angle
+// between the profile and t0): the window holds it up to 85 degrees, and a steeper profile's
+// crossing is found by the whole-profile search. The crossing taken is the one nearest the
+// line's base point, so a window only changes it where a nearer crossing lies outside it while
+// another lies inside: the profile turning back within a few tenths of a millimetre. It was
+// 50 steps + 0.5 mm (1.5 mm) before issue 20's grids; PatchBuilder.
+// TheWalksNarrowWindowFindsTheWideWindowsCrossingsBitForBit checks that both find the same
+// crossings on the gauge corner and the tread.
+inline double LateralWalkWindow(double step_m) { return 8.0 * step_m + 1e-4; }
+
 struct PatchGridOptions {
   GeometryModel geometry = GeometryModel::kConformal;
   double cell_dx_m = 0.0;          // > 0

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/profile/builtin_profiles.h"
+
 #include "tests/core/geometry/geometry_test_util.h"
 
 namespace railwear {
@@ -208,6 +210,59 @@ TEST(PatchBuilder, PlanarGapIsQuadraticNearFirstContact) {
   // Potential area: |s| up to sqrt(2 R T), |x| up to sqrt(2 r0 T).
   EXPECT_NEAR(grid.S(grid.ns - 1), std::sqrt(2 * R * 1e-4), 1.5 * o.cell_ds_m);
   EXPECT_NEAR(grid.X(grid.nx - 1), std::sqrt(2 * r0 * 1e-4), 1.0 * o.cell_dx_m);
+}
+
+TEST(PatchBuilder, TheWalksNarrowWindowFindsTheWideWindowsCrossingsBitForBit) {
+  // S1002 on UIC60 canted 1:40 from the tread (-10.4 mm) over the flange root (api_bench's
+  // -5.6 mm) to the gauge corner (-3 mm), conformal grids of 0.16 mm cells (20 um walk steps) at
+  // a threshold of 0.1 mm: every section of every walk (LateralWalkCache keeps them) is the
+  // crossing the former 1.5 mm window found from the previous section's, s and lambda ==.
+  const Profile wheel = MakeS1002();
+  const Profile rail = ApplyCant(MakeUic60(), 1.0 / 40.0);
+  constexpr double kFormerWindow_m = 50 * 2e-5 + 5e-4;
+  int sections = 0;
+  for (double shift_mm = -10.4; shift_mm <= -2.95; shift_mm += 0.2) {
+    WheelPose pose;
+    pose.lateral_shift_m = shift_mm * 1e-3;
+    pose.roll_rad = 1e-3;
+    const WheelRailGeometry g(wheel, rail, pose);
+    SCOPED_TRACE(::testing::Message() << shift_mm << " mm");
+    PatchGridOptions o;
+    o.geometry = GeometryModel::kConformal;
+    o.cell_dx_m = o.cell_ds_m = 1.6e-4;
+    o.threshold_m = 1e-4;
+    LateralWalkCache cache;
+    o.walks = &cache;
+    for (const ContactCandidate& c : g.FindCandidates(o.threshold_m)) {
+      BuildPatchGrid(g, c, o);
+    }
+    for (const LateralWalkCache::Walked& walk : cache.walks) {
+      ASSERT_TRUE(walk.centre_found);
+      const Eigen::Vector2d n0 = walk.normal.normalized();
+      const Eigen::Vector2d t0(-n0.y(), n0.x());
+      for (const LateralWalkCache::Side* side : {&walk.lo, &walk.hi}) {
+        LateralWalkCache::Section prev = walk.centre;
+        for (const LateralWalkCache::Section& s : side->sections) {
+          const Eigen::Vector2d b = walk.rail_point_m + s.tau * t0;
+          auto r = g.rail().IntersectLine(b, n0, prev.rail_s - kFormerWindow_m,
+                                          prev.rail_s + kFormerWindow_m);
+          if (!r) r = g.rail().IntersectLine(b, n0, 0.0, 1.0);
+          const Eigen::Vector2d b_w = g.RailToWheel(b), n_w = g.RailDirectionToWheel(n0);
+          auto w = g.wheel().IntersectLine(b_w, n_w, prev.wheel_s - kFormerWindow_m,
+                                           prev.wheel_s + kFormerWindow_m);
+          if (!w) w = g.wheel().IntersectLine(b_w, n_w, 0.0, 1.0);
+          ASSERT_TRUE(r && w) << s.tau;
+          ASSERT_EQ(r->s, s.rail_s) << s.tau;
+          ASSERT_EQ(r->lambda, s.lambda_r) << s.tau;
+          ASSERT_EQ(w->s, s.wheel_s) << s.tau;
+          ASSERT_EQ(w->lambda, s.lambda_w) << s.tau;
+          prev = s;
+          ++sections;
+        }
+      }
+    }
+  }
+  EXPECT_GT(sections, 10000);
 }
 
 }  // namespace
