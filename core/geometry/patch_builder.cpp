@@ -185,12 +185,24 @@ void FillConformalGaps(const WheelRailGeometry& g, double x_contact_m, int ic,
   const double window = ProjectionWindow(grid);
   const double warm_window = WarmProjectionWindow(grid);
   grid.gap_m.resize(grid.cells());
+  // Without yaw the wheel is a surface of revolution about an axle in the y-z plane, and a
+  // point's distance to it depends on x only through |x| (WheelRailGeometry::Meridian: hypot of
+  // x and the radial offset). On a grid centred on x = 0 the columns ic - k then take the
+  // projections of the columns ic + k (GapsMirroredWithoutYaw). The columns' x are x0 + i dx,
+  // mirror images to rounding: a mirrored cell's x may differ from its own by an ulp of x.
+  const bool mirrored = g.pose().yaw_rad == 0.0 && x_contact_m == 0.0 && 2 * ic + 1 == grid.nx;
   for (int j = 0; j < grid.ns; ++j) {
     const Eigen::Vector2d p = grid.point_yz_m[j];
     const auto pr = g.ProjectOnRail(p, rail_s[j] - window, rail_s[j] + window);
     const double s_centre =
         g.ProjectOnWheel({x_contact_m, p.x(), p.y()}, wheel_s[j] - window, wheel_s[j] + window).s;
     for (int dir : {+1, -1}) {
+      if (dir < 0 && mirrored) {
+        for (int i = ic - 1; i >= 0; --i) {
+          grid.gap_m[grid.Index(i, j)] = grid.gap_m[grid.Index(2 * ic - i, j)];
+        }
+        break;
+      }
       double sg = s_centre;
       for (int i = (dir > 0 ? ic : ic - 1); i >= 0 && i < grid.nx; i += dir) {
         const Eigen::Vector3d q(grid.X(i), p.x(), p.y());
