@@ -196,20 +196,23 @@ void FillConformalGaps(const WheelRailGeometry& g, double x_contact_m, int ic,
     const auto pr = g.ProjectOnRail(p, rail_s[j] - window, rail_s[j] + window);
     const double s_centre =
         g.ProjectOnWheel({x_contact_m, p.x(), p.y()}, wheel_s[j] - window, wheel_s[j] + window).s;
-    for (int dir : {+1, -1}) {
-      if (dir < 0 && mirrored) {
-        for (int i = ic - 1; i >= 0; --i) {
-          grid.gap_m[grid.Index(i, j)] = grid.gap_m[grid.Index(2 * ic - i, j)];
-        }
-        break;
-      }
+    // Each cell's wheel projection warm from its neighbour's toward the contact column.
+    const auto march = [&](int from, int dir) {
       double sg = s_centre;
-      for (int i = (dir > 0 ? ic : ic - 1); i >= 0 && i < grid.nx; i += dir) {
+      for (int i = from; i >= 0 && i < grid.nx; i += dir) {
         const Eigen::Vector3d q(grid.X(i), p.x(), p.y());
         const auto pw = g.ProjectOnWheel(q, sg - warm_window, sg + warm_window);
         sg = pw.s;
         grid.gap_m[grid.Index(i, j)] = pr.signed_distance + pw.signed_distance;
       }
+    };
+    march(ic, +1);
+    if (!mirrored) {
+      march(ic - 1, -1);
+      continue;
+    }
+    for (int i = ic - 1; i >= 0; --i) {
+      grid.gap_m[grid.Index(i, j)] = grid.gap_m[grid.Index(2 * ic - i, j)];
     }
   }
 }

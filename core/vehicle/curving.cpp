@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -50,7 +51,7 @@ constexpr double kStallRatio = 0.95;
 // well outside the contact point's lateral error (the wheel-frame y is taken as the rail-frame
 // y less the wheel's lateral shift, without the roll: under 0.3 mm at 10 mrad of roll and a
 // contact 30 mm below the wheel's profile origin).
-constexpr double kFlankAngleBand_rad = 0.5 * 3.14159265358979323846 / 180.0;
+constexpr double kFlankAngleBand_rad = 0.5 * std::numbers::pi / 180.0;
 constexpr double kClimbMargin_m = 1e-3;
 constexpr double kClimbLoadShare = 0.5;
 // ... and only when the wheelset's roll lifts one wheel over the other by more than this: a
