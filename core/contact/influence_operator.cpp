@@ -282,8 +282,8 @@ class CurvedFftOperator final : public InfluenceOperator {
 
  private:
   // factor column k = the Cholesky factor L_k of sym K_k = (K_k + K_k^T) / 2 [m/Pa] (lower
-  // triangle of an ns x ns column-major block, its diagonal as reciprocals 1 / L_jj:
-  // InvertFactorDiagonal). Factors rather than inverses: a third of the
+  // triangle of an ns x ns column-major block, its diagonal as reciprocals 1 / L_jj and L_k^T
+  // above it: internal::PrepareFactor). Factors rather than inverses: a third of the
   // flops to build (ns^3 / 3 per frequency), which matters on laterally long patches (ns of a
   // few hundred), for about 1.5 times the cost to apply (measured at ns = 45 and 90). A block whose
   // symmetric part is not positive definite (Cholesky fails) is rebuilt from its eigenvalues, those
@@ -306,18 +306,17 @@ class CurvedFftOperator final : public InfluenceOperator {
         RAILWEAR_CHECK(llt.info() == Eigen::Success);
       }
       Eigen::Map<Eigen::MatrixXd>(FactorBlock(k), ns_, ns_) = llt.matrixLLT();
-      internal::InvertFactorDiagonal(ns_, FactorBlock(k));  // (SolveFactoredPair multiplies)
+      internal::PrepareFactor(ns_, FactorBlock(k));  // (for SolveFactoredPair)
     }
   }
 
   // out = crop_x(IFFT_x(B_k FFT_x(pad_x(in)))) with B_k = K_k (inverse = false) or
-  // (sym K_k)^-1 (inverse = true) per x frequency k, two frequencies at a time
-  // (internal::SolveFactoredPair, core/numerics/factored_solve.h). Apply multiplies each constant
-  // block with the real and the imaginary column separately (two matrix-vector products): Eigen
-  // treats a 2-column right-hand side as a matrix product (GEMM) and repacks the whole block on
-  // every call (gemm_pack_lhs, issue 18). The preconditioner's triangular solves keep the 2-column
-  // form: per-column solves were no faster in the solve benchmarks and move the rounding of the
-  // calibration fit's rank-deficient test case (InfluenceFit, condition number 400 -> 94).
+  // (sym K_k)^-1 (inverse = true) per x frequency k (core/numerics/factored_solve.h): Apply
+  // multiplies each block with the real and the imaginary column in one pass over the block
+  // (internal::MultiplyBlockTwoColumns; until issue 20 two Eigen matrix-vector products, as
+  // Eigen treats a 2-column right-hand side as a matrix product and repacks the whole block on
+  // every call, gemm_pack_lhs, issue 18), the preconditioner solves two frequencies at a time
+  // (internal::SolveFactoredPair).
   void Convolve(const Eigen::VectorXd& p, bool inverse, Eigen::VectorXd* u) const {
     RAILWEAR_CHECK(p.size() == size());
     for (int j = 0; j < ns_; ++j) {
@@ -348,9 +347,9 @@ class CurvedFftOperator final : public InfluenceOperator {
       }
     } else {
       for (int k = 0; k < hx_; ++k) {
-        const Eigen::Map<const Eigen::MatrixXd> k_k(KernelBlock(k), ns_, ns_);
-        u_hat.col(2 * k).noalias() = k_k * p_hat.col(2 * k);
-        u_hat.col(2 * k + 1).noalias() = k_k * p_hat.col(2 * k + 1);
+        internal::MultiplyBlockTwoColumns(ns_, KernelBlock(k), p_hat.col(2 * k).data(),
+                                          p_hat.col(2 * k + 1).data(), u_hat.col(2 * k).data(),
+                                          u_hat.col(2 * k + 1).data());
       }
     }
     fftw_execute_split_dft_c2r(inverse_->get(), u_hat_.data(), u_hat_.data() + ns_,

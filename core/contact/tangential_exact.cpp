@@ -19,6 +19,7 @@
 #include "core/numerics/fft_size.h"
 #include "core/numerics/fftw.h"
 #include "core/numerics/input_error.h"
+#include "core/numerics/target_clones.h"
 
 namespace railwear {
 
@@ -707,22 +708,13 @@ LocalResult LocalSolveAt(const PatchGrid& grid, const SweepTables& tables,
 }
 
 // The sweeps' two inner loops (most of a sweep's time on the benchmark grids, perf in
-// docs/speed.md) are compiled twice, for AVX2 (4 doubles per instruction, chosen at load time on
-// CPUs that have it) and for the baseline (SSE2, 2 doubles): the loops are element-wise and AVX2
-// without the "fma" target keeps every multiply and add separately rounded, so both clones give
-// the same bits. Not under ThreadSanitizer (RAILWEAR_SANITIZE=thread): GCC instruments the
-// clones' load-time resolver, which then runs before the sanitizer's runtime is set up and
-// crashes the program while librailwear loads.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__SANITIZE_THREAD__)
-#define RAILWEAR_SWEEP_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define RAILWEAR_SWEEP_CLONES
-#endif
+// docs/speed.md) are compiled twice, for AVX2 and for the baseline
+// (core/numerics/target_clones.h): the loops are element-wise, so both clones give the same bits.
 
 // One column's slip refreshed right after a chain update in that column (the cells after the
 // updated one), from the table rows of the cell (*1) and of the virtual cell beyond the chain
 // end (*2).
-RAILWEAR_SWEEP_CLONES
+RAILWEAR_AVX2_CLONES
 void RefreshColumn(int len, const double* __restrict xx1, const double* __restrict xx2,
                    const double* __restrict xs1, const double* __restrict xs2,
                    const double* __restrict ss1, const double* __restrict ss2, double dqx,
@@ -741,7 +733,7 @@ void RefreshColumn(int len, const double* __restrict xx1, const double* __restri
 // at the table entries of source 0 for the first target cell; source t's entries start t
 // entries earlier (its row is t further along s). Four sources per pass over the target, so the
 // target is read and written once per four.
-RAILWEAR_SWEEP_CLONES
+RAILWEAR_AVX2_CLONES
 void AddKernelProducts(int len, int n_src, const double* xx, const double* xs, const double* ss,
                        const double* qx, const double* qs, double* __restrict ox,
                        double* __restrict os) {

@@ -1,7 +1,11 @@
-// SolveFactoredPair (core/numerics/factored_solve.h): two frequencies' substitutions at once give
-// each frequency's own one-at-a-time substitution bit for bit, whatever its partner.
+// The curved operator's per-frequency kernels (core/numerics/factored_solve.h): the products in
+// one pass over the block against Eigen's, and the preconditioner's substitutions two
+// frequencies at a time, each frequency's own one-at-a-time substitution bit for bit whatever
+// its partner, against the substitutions before issue 20's "one pass" change to rounding.
 #include "core/numerics/factored_solve.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdio>
 #include <random>
@@ -14,15 +18,12 @@
 namespace railwear::internal {
 namespace {
 
-// The curved operator's one-frequency substitution before the pairing (influence_operator.cpp
-// up to 181d73d, SolveFactored), kept here as the reference the pairs must reproduce; `divide`
-// as it was (l's own diagonal), else by the diagonal's stored reciprocals (InvertFactorDiagonal)
-// as the pairs now do.
-void SolveFactoredAlone(int n, const double* l, double* a, double* b, bool divide = false) {
-  auto by_diagonal = [divide](double x, double d) { return divide ? x / d : x * d; };
+// One frequency's substitution on a factor prepared by PrepareFactor, each value's operations in
+// SolveFactoredPair's order: the reference the pairs must reproduce.
+void SolveFactoredAlone(int n, const double* l, double* a, double* b) {
   for (int j = 0; j < n; ++j) {
     const double* lj = l + static_cast<size_t>(j) * n;
-    const double aj = by_diagonal(a[j], lj[j]), bj = by_diagonal(b[j], lj[j]);
+    const double aj = a[j] * lj[j], bj = b[j] * lj[j];
     a[j] = aj;
     b[j] = bj;
     for (int i = j + 1; i < n; ++i) {
@@ -32,30 +33,47 @@ void SolveFactoredAlone(int n, const double* l, double* a, double* b, bool divid
   }
   for (int j = n - 1; j >= 0; --j) {
     const double* lj = l + static_cast<size_t>(j) * n;
-    double a0 = 0.0, a1 = 0.0, b0 = 0.0, b1 = 0.0;
+    const double aj = a[j] * lj[j], bj = b[j] * lj[j];
+    a[j] = aj;
+    b[j] = bj;
+    for (int i = 0; i < j; ++i) {
+      a[i] -= lj[i] * aj;
+      b[i] -= lj[i] * bj;
+    }
+  }
+}
+
+// The curved operator's substitution up to 181d73d (influence_operator.cpp, SolveFactored): the
+// factor as Eigen leaves it (the diagonal itself), divisions by the diagonal, and the backward
+// pass as dot products of L's columns with z in two partial sums.
+void SolveFactoredByDotProducts(int n, const double* l, double* a) {
+  for (int j = 0; j < n; ++j) {
+    const double* lj = l + static_cast<size_t>(j) * n;
+    const double aj = a[j] / lj[j];
+    a[j] = aj;
+    for (int i = j + 1; i < n; ++i) a[i] -= lj[i] * aj;
+  }
+  for (int j = n - 1; j >= 0; --j) {
+    const double* lj = l + static_cast<size_t>(j) * n;
+    double a0 = 0.0, a1 = 0.0;
     int i = j + 1;
     for (; i + 1 < n; i += 2) {
       a0 += lj[i] * a[i];
       a1 += lj[i + 1] * a[i + 1];
-      b0 += lj[i] * b[i];
-      b1 += lj[i + 1] * b[i + 1];
     }
-    if (i < n) {
-      a0 += lj[i] * a[i];
-      b0 += lj[i] * b[i];
-    }
-    a[j] = by_diagonal(a[j] - (a0 + a1), lj[j]);
-    b[j] = by_diagonal(b[j] - (b0 + b1), lj[j]);
+    if (i < n) a0 += lj[i] * a[i];
+    a[j] = (a[j] - (a0 + a1)) / lj[j];
   }
 }
 
-std::vector<double> WithInvertedDiagonal(int n, std::vector<double> l) {
-  InvertFactorDiagonal(n, l.data());
+std::vector<double> Prepared(int n, std::vector<double> l) {
+  PrepareFactor(n, l.data());
   return l;
 }
 
 // The Cholesky factor of a random symmetric positive definite n x n matrix (column-major, the
-// lower triangle; the upper one left as Eigen's matrixLLT leaves it, as the operator stores it).
+// lower triangle; the upper one left as Eigen's matrixLLT leaves it, as the operator stores it
+// before PrepareFactor).
 std::vector<double> RandomFactor(int n, std::mt19937* rng) {
   std::uniform_real_distribution<double> value(-1.0, 1.0);
   Eigen::MatrixXd a(n, n);
@@ -72,14 +90,28 @@ std::vector<double> RandomColumn(int n, std::mt19937* rng) {
   return v;
 }
 
+// Sizes of the presets' grids (1, a single row; 30, the benchmark's) and odd and even ones
+// around them (the products' groups of four columns, the vectorized loops' remainders).
+constexpr int kSizes[] = {1, 2, 3, 4, 5, 7, 30, 45};
+
+TEST(FactoredSolve, PrepareFactorInvertsTheDiagonalAndMirrorsTheFactorAboveIt) {
+  std::mt19937 rng(3);
+  const int n = 5;
+  const std::vector<double> l = RandomFactor(n, &rng), p = Prepared(n, l);
+  for (int j = 0; j < n; ++j) {
+    EXPECT_EQ(p[j * n + j], 1.0 / l[j * n + j]);
+    for (int i = j + 1; i < n; ++i) {
+      EXPECT_EQ(p[j * n + i], l[j * n + i]);  // L below the diagonal, as it was
+      EXPECT_EQ(p[i * n + j], l[j * n + i]);  // and L^T above it
+    }
+  }
+}
+
 TEST(FactoredSolve, PairsGiveEachFrequencysOwnSubstitutionBitForBit) {
-  // Sizes of the presets' grids (1, a single row; 30, the benchmark's; odd and even ones for
-  // the backward pass's two partial sums).
-  for (int n : {1, 2, 3, 7, 30, 45}) {
+  for (int n : kSizes) {
     std::mt19937 rng(n);
     const std::vector<double> l_factor = RandomFactor(n, &rng), m_factor = RandomFactor(n, &rng);
-    const std::vector<double> l = WithInvertedDiagonal(n, l_factor);
-    const std::vector<double> m = WithInvertedDiagonal(n, m_factor);
+    const std::vector<double> l = Prepared(n, l_factor), m = Prepared(n, m_factor);
     const std::vector<double> a0 = RandomColumn(n, &rng), b0 = RandomColumn(n, &rng);
     const std::vector<double> c0 = RandomColumn(n, &rng), e0 = RandomColumn(n, &rng);
     std::vector<double> a_alone = a0, b_alone = b0, c_alone = c0, e_alone = e0;
@@ -107,14 +139,64 @@ TEST(FactoredSolve, PairsGiveEachFrequencysOwnSubstitutionBitForBit) {
     const Eigen::VectorXd z = Eigen::Map<const Eigen::VectorXd>(a.data(), n);
     EXPECT_LE((lower * (lower.transpose() * z) - y).norm(), 1e-12 * y.norm()) << n;
 
-    // Against the divisions by the diagonal (before the reciprocals): the same to rounding, a
-    // few units of the last place per substitution step (measured largest: see the output).
-    std::vector<double> a_divided = a0, b_divided = b0;
-    SolveFactoredAlone(n, l_factor.data(), a_divided.data(), b_divided.data(), true);
-    const Eigen::Map<const Eigen::VectorXd> zd(a_divided.data(), n);
-    const double moved = (z - zd).norm() / zd.norm();
-    std::printf("[ measured ] n %d: reciprocals move the solve by %.1e\n", n, moved);
+    // Against the substitution before (divisions, the backward pass by dot products): the same
+    // to rounding, a few units of the last place per substitution step on these well-conditioned
+    // factors (condition number below 10; measured largest: see the output).
+    std::vector<double> a_before = a0;
+    SolveFactoredByDotProducts(n, l_factor.data(), a_before.data());
+    const Eigen::Map<const Eigen::VectorXd> zb(a_before.data(), n);
+    const double moved = (z - zb).norm() / zb.norm();
+    std::printf("[ measured ] n %d: the substitution moved by %.1e\n", n, moved);
     EXPECT_LE(moved, 1e-14) << n;
+  }
+}
+
+// MultiplyBlockTwoColumns' sums in their documented order (factored_solve.h), written out.
+double RowSumInOrder(int n, const std::vector<double>& k, const std::vector<double>& x, int i) {
+  double s = 0.0;
+  int j = 0;
+  for (; j + 4 <= n; j += 4) {
+    s += (k[j * n + i] * x[j] + k[(j + 1) * n + i] * x[j + 1]) +
+         (k[(j + 2) * n + i] * x[j + 2] + k[(j + 3) * n + i] * x[j + 3]);
+  }
+  for (; j < n; ++j) s += k[j * n + i] * x[j];
+  return s;
+}
+
+// The products against Eigen's matrix-vector products (what Convolve ran before): equal to
+// rounding. Bound: a dot product of n terms in any order is within n eps sum_j |k_ij x_j| of
+// the exact one (Higham, Accuracy and Stability, eq. 3.5), so two orders within 2 n eps of it;
+// kProductRoundingTolerance = 2 n eps with eps = 2^-52 (DBL_EPSILON, twice the unit roundoff,
+// margin for the partial sums' own rounding).
+TEST(FactoredSolve, ProductsInOnePassEqualEigensToRounding) {
+  for (int n : kSizes) {
+    std::mt19937 rng(100 + n);
+    std::uniform_real_distribution<double> value(-1.0, 1.0);
+    std::vector<double> k(static_cast<size_t>(n) * n), x(n), y(n), u(n), v(n);
+    for (double& c : k) c = value(rng) * 1e-12;  // [m/Pa], an influence block's scale
+    for (double& c : x) c = value(rng) * 1e9;    // [Pa]
+    for (double& c : y) c = value(rng) * 1e9;
+    MultiplyBlockTwoColumns(n, k.data(), x.data(), y.data(), u.data(), v.data());
+    const Eigen::Map<const Eigen::MatrixXd> km(k.data(), n, n);
+    const Eigen::VectorXd eu = km * Eigen::Map<const Eigen::VectorXd>(x.data(), n);
+    const Eigen::VectorXd ev = km * Eigen::Map<const Eigen::VectorXd>(y.data(), n);
+    const Eigen::VectorXd su =
+        km.cwiseAbs() * Eigen::Map<const Eigen::VectorXd>(x.data(), n).cwiseAbs();
+    const Eigen::VectorXd sv =
+        km.cwiseAbs() * Eigen::Map<const Eigen::VectorXd>(y.data(), n).cwiseAbs();
+    const double kProductRoundingTolerance = 2.0 * n * 2.220446049250313e-16;
+    double moved = 0.0;
+    for (int i = 0; i < n; ++i) {
+      EXPECT_LE(std::abs(u[i] - eu[i]), kProductRoundingTolerance * su[i]) << n << " " << i;
+      EXPECT_LE(std::abs(v[i] - ev[i]), kProductRoundingTolerance * sv[i]) << n << " " << i;
+      moved = std::max({moved, std::abs(u[i] - eu[i]) / su[i], std::abs(v[i] - ev[i]) / sv[i]});
+      // The documented order, bit for bit, so the result does not depend on the clone
+      // (AVX2 or the baseline) or on how the compiler groups the rows.
+      EXPECT_EQ(u[i], RowSumInOrder(n, k, x, i)) << n << " " << i;
+      EXPECT_EQ(v[i], RowSumInOrder(n, k, y, i)) << n << " " << i;
+    }
+    std::printf("[ measured ] n %d: against Eigen's products, largest move %.1e of sum |k x|\n", n,
+                moved);
   }
 }
 
