@@ -172,7 +172,7 @@ BENCHMARK(BM_CurvedGolubenkoConstruct)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CurvedGolubenkoApply)
     ->Apply([](benchmark::internal::Benchmark* b) {
-      for (int n : {20, 45, 60, 80, 100}) b->Args({n, 0});
+      for (int n : {20, 30, 45, 60, 80, 100}) b->Args({n, 0});
       for (int n : {6, 8, 10, 11, 12, 13, 14, 16, 20, 25}) b->Args({n, 1});
       for (int n : {6, 8, 10, 11, 12, 13, 14, 16, 25}) b->Args({n, 0});
     })
