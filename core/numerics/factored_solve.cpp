@@ -31,42 +31,38 @@ void MultiplyBlockTwoColumns(int n, const double* __restrict k, const double* __
   }
 }
 
+namespace {
+
+// Step j of both frequencies' substitutions: their values at j times the diagonal's reciprocal,
+// then subtracted, times column j's entries i in [begin, end), from their values at i (the
+// forward pass below the diagonal, the backward one above it). Inlined into each clone.
+inline void EliminateColumn(int n, int j, int begin, int end, const double* __restrict l,
+                            const double* __restrict m, double* __restrict a, double* __restrict b,
+                            double* __restrict c, double* __restrict e) {
+  const double* lj = l + static_cast<size_t>(j) * n;
+  const double* mj = m + static_cast<size_t>(j) * n;
+  const double aj = a[j] * lj[j], bj = b[j] * lj[j];
+  const double cj = c[j] * mj[j], ej = e[j] * mj[j];
+  a[j] = aj;
+  b[j] = bj;
+  c[j] = cj;
+  e[j] = ej;
+  for (int i = begin; i < end; ++i) {
+    a[i] -= lj[i] * aj;
+    b[i] -= lj[i] * bj;
+    c[i] -= mj[i] * cj;
+    e[i] -= mj[i] * ej;
+  }
+}
+
+}  // namespace
+
 RAILWEAR_AVX2_CLONES
 void SolveFactoredPair(int n, const double* __restrict l, const double* __restrict m,
                        double* __restrict a, double* __restrict b, double* __restrict c,
                        double* __restrict e) {
-  for (int j = 0; j < n; ++j) {
-    const double* lj = l + static_cast<size_t>(j) * n;
-    const double* mj = m + static_cast<size_t>(j) * n;
-    const double aj = a[j] * lj[j], bj = b[j] * lj[j];
-    const double cj = c[j] * mj[j], ej = e[j] * mj[j];
-    a[j] = aj;
-    b[j] = bj;
-    c[j] = cj;
-    e[j] = ej;
-    for (int i = j + 1; i < n; ++i) {
-      a[i] -= lj[i] * aj;
-      b[i] -= lj[i] * bj;
-      c[i] -= mj[i] * cj;
-      e[i] -= mj[i] * ej;
-    }
-  }
-  for (int j = n - 1; j >= 0; --j) {
-    const double* lj = l + static_cast<size_t>(j) * n;
-    const double* mj = m + static_cast<size_t>(j) * n;
-    const double aj = a[j] * lj[j], bj = b[j] * lj[j];
-    const double cj = c[j] * mj[j], ej = e[j] * mj[j];
-    a[j] = aj;
-    b[j] = bj;
-    c[j] = cj;
-    e[j] = ej;
-    for (int i = 0; i < j; ++i) {
-      a[i] -= lj[i] * aj;
-      b[i] -= lj[i] * bj;
-      c[i] -= mj[i] * cj;
-      e[i] -= mj[i] * ej;
-    }
-  }
+  for (int j = 0; j < n; ++j) EliminateColumn(n, j, j + 1, n, l, m, a, b, c, e);
+  for (int j = n - 1; j >= 0; --j) EliminateColumn(n, j, 0, j, l, m, a, b, c, e);
 }
 
 }  // namespace railwear::internal
