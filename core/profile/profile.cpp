@@ -14,20 +14,21 @@ namespace railwear {
 namespace {
 
 // Arc length of the spline pieces between consecutive knots, by 5-point Gauss-Legendre.
-std::vector<double> SplineArcLengths(const std::vector<double>& t, const CubicSpline& y,
-                                     const CubicSpline& z) {
+std::vector<double> SplineArcLengths(const CubicSplineCurve& curve) {
   static constexpr double kX[5] = {-0.9061798459386640, -0.5384693101056831, 0.0,
                                    0.5384693101056831, 0.9061798459386640};
   static constexpr double kW[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
                                    0.4786286704993665, 0.2369268850561891};
+  const std::vector<double>& t = curve.knots();
   std::vector<double> s(t.size(), 0.0);
   for (size_t i = 0; i + 1 < t.size(); ++i) {
     const double mid = 0.5 * (t[i] + t[i + 1]);
     const double half = 0.5 * (t[i + 1] - t[i]);
     double len = 0.0;
     for (int k = 0; k < 5; ++k) {
-      const double tk = mid + half * kX[k];
-      len += kW[k] * std::hypot(y.Derivative(tk), z.Derivative(tk));
+      Eigen::Vector2d d1;
+      curve.Evaluate(mid + half * kX[k], nullptr, &d1, nullptr);
+      len += kW[k] * std::hypot(d1.x(), d1.y());
     }
     s[i + 1] = s[i] + half * len;
   }
@@ -136,10 +137,8 @@ void Profile::Build(Data* d) {
   }
   // Chord-length spline first, then re-parametrise by its own arc length (one pass makes the
   // parameter an arc length to far below the point spacing's second order).
-  CubicSpline yc(t, y), zc(t, z);
-  const std::vector<double> knot_s = SplineArcLengths(t, yc, zc);
-  d->y_of_s = CubicSpline(knot_s, y);
-  d->z_of_s = CubicSpline(knot_s, z);
+  const std::vector<double> knot_s = SplineArcLengths(CubicSplineCurve(t, y, z));
+  d->curve = CubicSplineCurve(knot_s, y, z);
   d->knot_s.resize(n);
   for (size_t i = 0; i < n; ++i) d->knot_s[i] = knot_s[point_knot[i]];
   d->length = knot_s.back();
@@ -147,14 +146,7 @@ void Profile::Build(Data* d) {
 
 void Profile::Evaluate(double s, Eigen::Vector2d* position, Eigen::Vector2d* d1,
                        Eigen::Vector2d* d2) const {
-  // y(s) and z(s) share their knots (Build): one interval lookup serves both.
-  const CubicSpline::Location at = d_->y_of_s.Locate(s);
-  double y, yd, ydd, z, zd, zdd;
-  d_->y_of_s.EvaluateAt(at, position ? &y : nullptr, d1 ? &yd : nullptr, d2 ? &ydd : nullptr);
-  d_->z_of_s.EvaluateAt(at, position ? &z : nullptr, d1 ? &zd : nullptr, d2 ? &zdd : nullptr);
-  if (position) *position = {y, z};
-  if (d1) *d1 = {yd, zd};
-  if (d2) *d2 = {ydd, zdd};
+  d_->curve.Evaluate(s, position, d1, d2);
 }
 
 Eigen::Vector2d Profile::Position(double s) const {

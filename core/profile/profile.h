@@ -85,7 +85,7 @@ class Profile {
     std::string source;
     std::vector<double> knot_s;  // arc length of each point
     double length = 0.0;
-    CubicSpline y_of_s, z_of_s;
+    CubicSplineCurve curve;  // (y, z) of s
   };
   static std::shared_ptr<const Data> Empty();
   static void Build(Data* d);

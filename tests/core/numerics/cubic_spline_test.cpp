@@ -4,8 +4,11 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
+
+#include "tests/core/numerics/knot_form_spline.h"
 
 namespace railwear {
 namespace {
@@ -41,66 +44,133 @@ TEST(CubicSpline, ConvergesOnSmoothFunction) {
   }
 }
 
-// The interval lookup (a bucket index) against the naive binary search over the knots: bit for bit
-// the same value and derivatives, on unequal knots (clusters, gaps of 100x), at and between the
-// knots, outside both ends, at +-inf and NaN.
-TEST(CubicSpline, IndexedLookupEqualsBinarySearchBitForBit) {
-  std::mt19937 rng(7);  // fixed seed
+// Knots as a resampled worn profile has them: mostly even spacing, with clusters (1e-3 of the
+// step) and gaps (10 steps), and values of order 1 varying on the scale of a few steps.
+void UnevenKnots(int n, std::mt19937* rng, std::vector<double>* t, std::vector<double>* v) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (int n : {2, 3, 7, 150, 1501}) {
-    std::vector<double> t{-0.07}, v{0.0};
-    for (int i = 1; i < n; ++i) {
-      // Mostly even spacing, with clusters (1e-3) and gaps (x10) as on resampled worn profiles.
-      const double r = u(rng);
-      t.push_back(t.back() + 1e-4 * (r < 0.1 ? 1e-3 : r > 0.95 ? 10.0 : 1.0 + 0.2 * u(rng)));
-      v.push_back(std::sin(300.0 * t.back()) + 0.1 * u(rng));
-    }
-    const CubicSpline s(t, v);
-    std::vector<double> m(n);  // the second derivatives at the knots, exactly (a = 1, b = 0)
-    for (int i = 0; i < n; ++i) m[i] = s.SecondDerivative(t[i]);
-    auto naive = [&](double x, double* value, double* d1, double* d2) {
-      const auto it = std::upper_bound(t.begin(), t.end(), x);
-      const int i = std::clamp(static_cast<int>(it - t.begin()) - 1, 0, n - 2);
-      const double h = t[i + 1] - t[i], a = (t[i + 1] - x) / h, b = (x - t[i]) / h;
-      *value = a * v[i] + b * v[i + 1] +
-               ((a * a * a - a) * m[i] + (b * b * b - b) * m[i + 1]) * h * h / 6.0;
-      *d1 = (v[i + 1] - v[i]) / h - (3.0 * a * a - 1.0) * h * m[i] / 6.0 +
-            (3.0 * b * b - 1.0) * h * m[i + 1] / 6.0;
-      *d2 = a * m[i] + b * m[i + 1];
-    };
-    std::vector<double> queries = {-1.0, t.front(), t.back(), t.back() + 1.0,
-                                   std::numeric_limits<double>::infinity(),
-                                   -std::numeric_limits<double>::infinity()};
-    for (int i = 0; i < n; ++i) {
-      queries.push_back(t[i]);
-      queries.push_back(std::nextafter(t[i], -1e9));
-      queries.push_back(std::nextafter(t[i], 1e9));
-    }
-    for (int k = 0; k < 20 * n; ++k) queries.push_back(t.front() + u(rng) * (t.back() - t.front()));
-    for (double x : queries) {
-      double a0, a1, a2, b0, b1, b2;
-      s.Evaluate(x, &a0, &a1, &a2);
-      naive(x, &b0, &b1, &b2);
-      if (std::isnan(b0)) {  // at +-inf
-        EXPECT_TRUE(std::isnan(a0)) << "n " << n << " t " << x;
-        continue;
-      }
-      ASSERT_EQ(a0, b0) << "n " << n << " t " << x;
-      ASSERT_EQ(a1, b1) << "n " << n << " t " << x;
-      ASSERT_EQ(a2, b2) << "n " << n << " t " << x;
-    }
-    double a0, b0, d;
-    s.Evaluate(std::nan(""), &a0, &d, &d);
-    naive(std::nan(""), &b0, &d, &d);
-    EXPECT_TRUE(std::isnan(a0) && std::isnan(b0));
+  *t = {-0.07};
+  *v = {0.0};
+  for (int i = 1; i < n; ++i) {
+    const double r = u(*rng);
+    t->push_back(t->back() + 1e-4 * (r < 0.1 ? 1e-3 : r > 0.95 ? 10.0 : 1.0 + 0.2 * u(*rng)));
+    v->push_back(std::sin(300.0 * t->back()) + 0.1 * u(*rng));
   }
 }
 
-// Splines on the same knots share one Locate (a profile's y(s) and z(s), issue 20's grids): each
-// one's EvaluateAt at the other's Location is its own Evaluate bit for bit, every output alone or
-// together, between, at and beyond the knots.
-TEST(CubicSpline, SplinesOnTheSameKnotsShareALocationBitForBit) {
+// Where the lookups are tested: at, just below and just above every knot, outside both ends,
+// and random points between the ends.
+std::vector<double> Queries(const std::vector<double>& t, int random, std::mt19937* rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> queries = {-1.0, t.back() + 1.0};
+  for (double knot : t) {
+    queries.push_back(knot);
+    queries.push_back(std::nextafter(knot, -1e9));
+    queries.push_back(std::nextafter(knot, 1e9));
+  }
+  for (int k = 0; k < random; ++k) queries.push_back(t.front() + u(*rng) * (t.back() - t.front()));
+  return queries;
+}
+
+// The bucket index against a binary search over the knots: the same knot, on unequal knots, on
+// equal knots whose bucket starts fall on knots (where rounding decides), at and between the
+// knots, outside both ends, at +-inf and NaN. The walk from a bucket's first knot only goes on,
+// so a bucket whose first knot lay above one of its points would fail here.
+TEST(CubicSpline, KnotLookupEqualsBinarySearch) {
+  std::mt19937 rng(7);  // fixed seed
+  std::vector<std::vector<double>> knot_sets;
+  for (int n : {2, 3, 7, 150, 1501}) {
+    std::vector<double> t, v;
+    UnevenKnots(n, &rng, &t, &v);
+    knot_sets.push_back(t);
+  }
+  for (double step : {0.1, 1e-4, 3.3e-4}) {
+    std::vector<double> t;
+    for (int i = 0; i < 1000; ++i) t.push_back(0.3 + step * i);
+    knot_sets.push_back(t);
+  }
+  for (const std::vector<double>& t : knot_sets) {
+    const int n = static_cast<int>(t.size());
+    const internal::SplineKnots knots(t);
+    std::vector<double> queries = Queries(t, 20 * n, &rng);
+    queries.push_back(std::numeric_limits<double>::infinity());
+    queries.push_back(-std::numeric_limits<double>::infinity());
+    for (double x : queries) {
+      const int expected =
+          std::max(0, static_cast<int>(std::upper_bound(t.begin(), t.end(), x) - t.begin()) - 1);
+      ASSERT_EQ(knots.Piece(x), expected) << "n " << n << " t " << x;
+    }
+    EXPECT_EQ(knots.Piece(std::nan("")), 0);
+  }
+}
+
+// The power form against the knot form it replaced (tests/core/numerics/knot_form_spline.h).
+// At the knots, the last included, value and both derivatives are the knot form's bit for bit
+// (the coefficients are its values there). Between the knots and a step beyond the ends they
+// differ by rounding: a few ulps of the largest value, slope and second derivative (Horner's
+// sums of terms up to those sizes, against the knot form's weighted sums). Measured here at most
+// 1.4e-15, 7.6e-16 and 2.4e-16 of them; 1e-14 (some 45 ulps) leaves a margin of 7.
+constexpr double kPowerFormRelTol = 1e-14;
+
+struct FormDifference {
+  double value = 0.0, d1 = 0.0, d2 = 0.0;  // largest |difference| / largest |knot form|
+};
+
+FormDifference CompareWithKnotForm(const std::vector<double>& t, const std::vector<double>& v,
+                                   std::mt19937* rng) {
+  const int n = static_cast<int>(t.size());
+  const CubicSpline spline(t, v);
+  testing::KnotFormSpline knot_form{t, v, std::vector<double>(n)};
+  for (int i = 0; i < n; ++i) knot_form.m[i] = spline.SecondDerivative(t[i]);
+  for (int i = 0; i < n; ++i) {
+    double a0, a1, a2, b0, b1, b2;
+    spline.Evaluate(t[i], &a0, &a1, &a2);
+    knot_form.Evaluate(t[i], &b0, &b1, &b2);
+    EXPECT_EQ(a0, b0) << "knot " << i << " of " << n;
+    EXPECT_EQ(a1, b1) << "knot " << i << " of " << n;
+    EXPECT_EQ(a2, b2) << "knot " << i << " of " << n;
+  }
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double lo = t[0] - (t[1] - t[0]), hi = t[n - 1] + (t[n - 1] - t[n - 2]);
+  std::vector<double> queries = Queries(t, 50 * n, rng);
+  queries.erase(queries.begin(), queries.begin() + 2);  // a step beyond the ends at most:
+  for (int k = 0; k < 100; ++k) queries.push_back(lo + u(*rng) * (t[0] - lo));
+  for (int k = 0; k < 100; ++k) queries.push_back(t[n - 1] + u(*rng) * (hi - t[n - 1]));
+  double max_value = 0.0, max_d1 = 0.0, max_d2 = 0.0;
+  FormDifference diff;
+  for (double x : queries) {
+    double a0, a1, a2, b0, b1, b2;
+    spline.Evaluate(x, &a0, &a1, &a2);
+    knot_form.Evaluate(x, &b0, &b1, &b2);
+    max_value = std::max(max_value, std::abs(b0));
+    max_d1 = std::max(max_d1, std::abs(b1));
+    max_d2 = std::max(max_d2, std::abs(b2));
+    diff.value = std::max(diff.value, std::abs(a0 - b0));
+    diff.d1 = std::max(diff.d1, std::abs(a1 - b1));
+    diff.d2 = std::max(diff.d2, std::abs(a2 - b2));
+  }
+  // (A straight line's second derivative is zero everywhere: its difference stays absolute.)
+  if (max_value > 0.0) diff.value /= max_value;
+  if (max_d1 > 0.0) diff.d1 /= max_d1;
+  if (max_d2 > 0.0) diff.d2 /= max_d2;
+  return diff;
+}
+
+TEST(CubicSpline, PowerFormIsTheKnotFormWithinRounding) {
   std::mt19937 rng(20);  // fixed seed
+  for (int n : {2, 3, 7, 150, 1501}) {
+    std::vector<double> t, v;
+    UnevenKnots(n, &rng, &t, &v);
+    const FormDifference diff = CompareWithKnotForm(t, v, &rng);
+    EXPECT_LE(diff.value, kPowerFormRelTol) << n;
+    EXPECT_LE(diff.d1, kPowerFormRelTol) << n;
+    EXPECT_LE(diff.d2, kPowerFormRelTol) << n;
+  }
+}
+
+// A curve's y and z are the splines of each coordinate alone, bit for bit, every output alone
+// or together, at, between and beyond the knots.
+TEST(CubicSplineCurve, IsTheSplinesOfItsCoordinatesBitForBit) {
+  std::mt19937 rng(21);  // fixed seed
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::vector<double> t{0.0}, y{0.0}, z{0.0};
   for (int i = 1; i < 400; ++i) {
@@ -109,28 +179,33 @@ TEST(CubicSpline, SplinesOnTheSameKnotsShareALocationBitForBit) {
     z.push_back(std::sin(40.0 * t.back()) - 0.01 * u(rng));
   }
   const CubicSpline sy(t, y), sz(t, z);
-  std::vector<double> queries = {-1e-3, t.front(), t.back(), t.back() + 1e-3};
-  for (double knot : t) queries.push_back(knot);
-  for (int k = 0; k < 4000; ++k) queries.push_back(t.back() * (1.2 * u(rng) - 0.1));
+  const CubicSplineCurve curve(t, y, z);
+  std::vector<double> queries = Queries(t, 4000, &rng);
+  for (int k = 0; k < 400; ++k) queries.push_back(t.back() * (1.2 * u(rng) - 0.1));
   int compared = 0;
   for (double x : queries) {
-    const CubicSpline::Location at = sy.Locate(x);
-    double v, d1, d2, w, e1, e2;
-    sz.Evaluate(x, &v, &d1, &d2);
-    sz.EvaluateAt(at, &w, &e1, &e2);
-    ASSERT_EQ(v, w) << x;
-    ASSERT_EQ(d1, e1) << x;
-    ASSERT_EQ(d2, e2) << x;
-    double only;
-    sz.EvaluateAt(at, &only, nullptr, nullptr);
-    ASSERT_EQ(only, sz.Value(x)) << x;
-    sz.EvaluateAt(at, nullptr, &only, nullptr);
-    ASSERT_EQ(only, sz.Derivative(x)) << x;
-    sz.EvaluateAt(at, nullptr, nullptr, &only);
-    ASSERT_EQ(only, sz.SecondDerivative(x)) << x;
+    double y0, y1, y2, z0, z1, z2;
+    sy.Evaluate(x, &y0, &y1, &y2);
+    sz.Evaluate(x, &z0, &z1, &z2);
+    Eigen::Vector2d p, d1, d2;
+    curve.Evaluate(x, &p, &d1, &d2);
+    ASSERT_EQ(p.x(), y0) << x;
+    ASSERT_EQ(p.y(), z0) << x;
+    ASSERT_EQ(d1.x(), y1) << x;
+    ASSERT_EQ(d1.y(), z1) << x;
+    ASSERT_EQ(d2.x(), y2) << x;
+    ASSERT_EQ(d2.y(), z2) << x;
+    Eigen::Vector2d only;
+    curve.Evaluate(x, &only, nullptr, nullptr);
+    ASSERT_EQ(only, p) << x;
+    curve.Evaluate(x, nullptr, &only, nullptr);
+    ASSERT_EQ(only, d1) << x;
+    curve.Evaluate(x, nullptr, nullptr, &only);
+    ASSERT_EQ(only, d2) << x;
     ++compared;
   }
   EXPECT_EQ(compared, static_cast<int>(queries.size()));
+  EXPECT_EQ(curve.knots(), t);
 }
 
 }  // namespace
