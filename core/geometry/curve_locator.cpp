@@ -17,6 +17,10 @@ namespace {
 // or the best distance by far more than that before its block is skipped. Any value from 1e-13 up
 // keeps the answers exact; a larger one only skips fewer blocks.
 constexpr double kCullMargin = 1e-12;
+// Relative margin of the profile's bounds (ProjectFrom, IntersectLineFrom) and of the tests
+// made with them: far above their rounding (1e-15), far below any margin that would matter.
+constexpr double kBoundsMargin = 1e-9;
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
@@ -26,6 +30,7 @@ struct CurveLocator::Samples {
   std::vector<double> s;
   std::vector<Eigen::Vector2d> p;
   std::vector<Eigen::Vector2d> box_lo, box_hi;
+  std::vector<CurveLocator::Bounds> bounds;  // per block
   double max_abs_coordinate = 0.0;
 };
 
@@ -44,9 +49,11 @@ std::shared_ptr<const Samples> SampleProfile(const Profile& profile, bool materi
   std::vector<Eigen::Vector2d>& sample_p = out->p;
   sample_s.resize(n);
   sample_p.resize(n);
+  // The profile's first and second derivatives at the samples, for the blocks' bounds.
+  std::vector<Eigen::Vector2d> d1(n), d2(n);
   for (int i = 0; i < n; ++i) {
     sample_s[i] = i * out->step;
-    sample_p[i] = profile.Position(sample_s[i]);
+    profile.Evaluate(sample_s[i], &sample_p[i], &d1[i], &d2[i]);
   }
   // Orientation: at the surface point facing away from the material (the top of a rail, the
   // bottom of a wheel), the outward normal points to -z for a rail and to +z for a wheel.
@@ -74,6 +81,39 @@ std::shared_ptr<const Samples> SampleProfile(const Profile& profile, bool materi
     out->max_abs_coordinate =
         std::max({out->max_abs_coordinate, lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()});
   }
+  // Bounds of the blocks' arcs [s_first, s_last]: C'' is linear in s between the spline's knots,
+  // so |C''| (convex there) is largest at a sample or a knot; |C'| changes by at most
+  // max |C''| |ds| within half a step of a sample.
+  out->bounds.resize(blocks);
+  for (int k = 0; k < blocks; ++k) {
+    const int first = k * block, last = std::min(first + block, n - 1);
+    double d2_max = 0.0, v_min = kInf, v_max = 0.0;
+    for (int i = first; i <= last; ++i) {
+      d2_max = std::max(d2_max, d2[i].norm());
+      v_min = std::min(v_min, d1[i].norm());
+      v_max = std::max(v_max, d1[i].norm());
+    }
+    out->bounds[k] = {d2_max, v_min, v_max};
+  }
+  const double block_length = block * out->step;
+  for (int j = 0; j < static_cast<int>(profile.points().size()); ++j) {
+    const double s = profile.KnotS(j);
+    Eigen::Vector2d knot_d2;
+    profile.Evaluate(s, nullptr, nullptr, &knot_d2);
+    // Every block whose arc holds the knot (two where it is a block's end).
+    const int k_hi = std::min(blocks - 1, static_cast<int>(s / block_length));
+    for (int k = std::max(0, k_hi - 1); k <= k_hi; ++k) {
+      if (s >= k * block_length - out->step && s <= (k + 1) * block_length + out->step) {
+        out->bounds[k].d2_max = std::max(out->bounds[k].d2_max, knot_d2.norm());
+      }
+    }
+  }
+  for (auto& b : out->bounds) {
+    // Rounding margins: the norms above carry a relative error of some 1e-16.
+    b.d2_max *= 1.0 + kBoundsMargin;
+    b.speed_min = b.speed_min * (1.0 - kBoundsMargin) - 0.5 * out->step * b.d2_max;
+    b.speed_max = b.speed_max * (1.0 + kBoundsMargin) + 0.5 * out->step * b.d2_max;
+  }
   return out;
 }
 
@@ -97,6 +137,7 @@ CurveLocator::CurveLocator(const Profile& profile, bool material_toward_plus_z,
   n_boxes_ = static_cast<int>(samples_->box_lo.size());
   box_lo_ = samples_->box_lo.data();
   box_hi_ = samples_->box_hi.data();
+  block_bounds_ = samples_->bounds.data();
   max_abs_coordinate_ = samples_->max_abs_coordinate;
 }
 
@@ -227,38 +268,97 @@ CurveLocator::Projection CurveLocator::Project(const Eigen::Vector2d& q, double 
   // The position and derivative at s (the refinement's last evaluation when it ended on one):
   // the values Position(s) and OutwardNormal(s) give, bit for bit.
   if (!evaluated) profile_->Evaluate(s, &point, &d1, nullptr);
+  return MakeProjection(q, s, point, d1);
+}
+
+CurveLocator::Projection CurveLocator::MakeProjection(const Eigen::Vector2d& q, double s,
+                                                      const Eigen::Vector2d& c,
+                                                      const Eigen::Vector2d& d1) const {
   const Eigen::Vector2d t = d1.normalized();
   const Eigen::Vector2d outward = outward_sign_ * Eigen::Vector2d(-t.y(), t.x());
   Projection p;
   p.s = s;
-  p.point = point;
+  p.point = c;
   const double dist = (q - p.point).norm();
   p.signed_distance = (q - p.point).dot(outward) >= 0 ? dist : -dist;
   return p;
+}
+
+CurveLocator::Bounds CurveLocator::BlockBounds(int k0, int k1) const {
+  k0 = std::clamp(k0, 0, n_boxes_ - 1);
+  k1 = std::clamp(k1, 0, n_boxes_ - 1);
+  Bounds b = block_bounds_[k0];
+  for (int k = k0 + 1; k <= k1; ++k) {
+    b.d2_max = std::max(b.d2_max, block_bounds_[k].d2_max);
+    b.speed_min = std::min(b.speed_min, block_bounds_[k].speed_min);
+    b.speed_max = std::max(b.speed_max, block_bounds_[k].speed_max);
+  }
+  return b;
+}
+
+CurveLocator::Projection CurveLocator::ProjectFrom(const Eigen::Vector2d& q, double s_start,
+                                                   double s_lo, double s_hi) const {
+  const double lo = std::max(0.0, s_lo), hi = std::min(length_, s_hi);
+  if (lo < hi && s_start > lo && s_start < hi) {
+    Eigen::Vector2d point, d1;
+    bool evaluated = false;
+    const double s = RefineClosest(q, s_start, lo, hi, &point, &d1, &evaluated);
+    // A root of g inside the window (by more than the tolerance it is known to), and g' > 0 over
+    // the samples Project would scan, [s_i0, s_i1]: |C(s') - q| <= |C(s) - q| + v_max |s' - s|,
+    // so g' >= v_min^2 - (|C(s) - q| + v_max reach) max |C''| > 0. Then the distance has this
+    // one critical point there, a minimum, which the scan's closest sample brackets.
+    if (evaluated && s - lo > 2 * kParameterTolerance_m && hi - s > 2 * kParameterTolerance_m) {
+      const int i0 = std::clamp(static_cast<int>(std::floor(lo / step_)), 0, n_samples_ - 1);
+      const int i1 = std::clamp(static_cast<int>(std::ceil(hi / step_)), 0, n_samples_ - 1);
+      const Bounds b = BlockBounds(i0 / kScanBlock, (i1 - 1) / kScanBlock);
+      const double reach = std::max(s - sample_s_[i0], sample_s_[i1] - s);
+      const double far = (point - q).norm() + b.speed_max * reach;
+      if (b.speed_min > 0 && far * b.d2_max < (1.0 - kBoundsMargin) * b.speed_min * b.speed_min) {
+        return MakeProjection(q, s, point, d1);
+      }
+    }
+  }
+  return Project(q, s_lo, s_hi);
 }
 
 CurveLocator::Crossing CurveLocator::RefineCrossing(const Eigen::Vector2d& b,
                                                     const Eigen::Vector2d& n,
                                                     const Eigen::Vector2d& t, int i, double prev,
                                                     double cur) const {
-  // Bisection-safeguarded Newton on phi(s) = (C(s) - b) . t in [s_{i-1}, s_i].
-  double lo = sample_s_[i - 1], hi = sample_s_[i];
-  double flo = prev;
-  double s = (prev == cur) ? lo : lo + (hi - lo) * prev / (prev - cur);
+  const double lo = sample_s_[i - 1], hi = sample_s_[i];
+  const double s = (prev == cur) ? lo : lo + (hi - lo) * prev / (prev - cur);  // the chord's root
+  bool converged = false;
+  double slope = 0.0;
+  return RefineCrossingFrom(b, n, t, s, lo, hi, prev, &converged, &slope);
+}
+
+CurveLocator::Crossing CurveLocator::RefineCrossingFrom(const Eigen::Vector2d& b,
+                                                        const Eigen::Vector2d& n,
+                                                        const Eigen::Vector2d& t, double s,
+                                                        double lo, double hi, double flo,
+                                                        bool* converged, double* slope) const {
+  // Bisection-safeguarded Newton on phi(s) = (C(s) - b) . t in [lo, hi].
+  *converged = false;
   for (int it = 0; it < 60; ++it) {
     Eigen::Vector2d c, d1;
     profile_->Evaluate(s, &c, &d1, nullptr);
     const double f = (c - b).dot(t);
+    const double fp = d1.dot(t);
     // Ended on the point just evaluated: its position gives lambda (Position(s) bit for bit).
-    if (f == 0.0) return Crossing{s, (c - b).dot(n)};
+    if (f == 0.0) {
+      *converged = true;
+      *slope = fp;
+      return Crossing{s, (c - b).dot(n)};
+    }
     if ((f <= 0) == (flo <= 0)) {
       lo = s;
       flo = f;
     } else {
       hi = s;
     }
-    const double fp = d1.dot(t);
     if (fp != 0 && std::abs(f / fp) < kParameterTolerance_m) {  // as in RefineClosest
+      *converged = true;
+      *slope = fp;
       return Crossing{s, (c - b).dot(n)};
     }
     double next = (fp != 0) ? s - f / fp : 0.5 * (lo + hi);
@@ -268,6 +368,33 @@ CurveLocator::Crossing CurveLocator::RefineCrossing(const Eigen::Vector2d& b,
     if (step < kParameterTolerance_m || hi - lo < kParameterTolerance_m) break;
   }
   return Crossing{s, (profile_->Position(s) - b).dot(n)};
+}
+
+std::optional<CurveLocator::Crossing> CurveLocator::IntersectLineFrom(const Eigen::Vector2d& b,
+                                                                      const Eigen::Vector2d& n,
+                                                                      double s_start, double s_lo,
+                                                                      double s_hi) const {
+  const Eigen::Vector2d t(n.y(), -n.x());
+  const double lo = std::max(0.0, s_lo), hi = std::min(length_, s_hi);
+  const int i0 = std::clamp(static_cast<int>(std::floor(lo / step_)), 0, n_samples_ - 1);
+  const int i1 = std::clamp(static_cast<int>(std::ceil(hi / step_)), 0, n_samples_ - 1);
+  // The scan's samples [s_i0, s_i1] bracket a crossing at their ends: then Newton's iteration
+  // from s_start inside that bracket.
+  const double f0 = (sample_p_[i0] - b).dot(t), f1 = (sample_p_[i1] - b).dot(t);
+  const double a = sample_s_[i0], z = sample_s_[i1];
+  if (i0 < i1 && ((f0 < 0 && f1 > 0) || (f0 > 0 && f1 < 0)) && s_start > a && s_start < z) {
+    bool converged = false;
+    double slope = 0.0;
+    const Crossing c = RefineCrossingFrom(b, n, t, s_start, a, z, f0, &converged, &slope);
+    // phi' = C' . t >= |phi'(s)| - max |C''| |s' - s| keeps phi's sign over [s_i0, s_i1]: phi is
+    // monotonic there, and this is the one crossing the scan would find.
+    if (converged && c.s - a > 2 * kParameterTolerance_m && z - c.s > 2 * kParameterTolerance_m) {
+      const Bounds bd = BlockBounds(i0 / kScanBlock, (i1 - 1) / kScanBlock);
+      const double reach = std::max(c.s - a, z - c.s);
+      if (std::abs(slope) * (1.0 - kBoundsMargin) > bd.d2_max * reach) return c;
+    }
+  }
+  return IntersectLine(b, n, s_lo, s_hi);
 }
 
 std::optional<CurveLocator::Crossing> CurveLocator::IntersectLine(const Eigen::Vector2d& b,

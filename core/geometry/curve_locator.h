@@ -62,6 +62,14 @@ class CurveLocator {
   Projection Project(const Eigen::Vector2d& q, double s_lo, double s_hi) const;
   Projection Project(const Eigen::Vector2d& q) const { return Project(q, 0.0, length_); }
 
+  // Project(q, s_lo, s_hi) started at s_start (a neighbouring query's answer): Newton's
+  // iteration from s_start over [s_lo, s_hi] without the closest-sample scan, kept only where
+  // the profile's bounds over the scan's samples prove the distance has no other critical point
+  // there (its derivative g' = |C'|^2 + (C - q) . C'' > 0: |C - q| |C''| < |C'|^2); otherwise
+  // Project's scan. The same closest point as Project's within kParameterTolerance_m (both end
+  // within it of the one root of g; the last bits may differ).
+  Projection ProjectFrom(const Eigen::Vector2d& q, double s_start, double s_lo, double s_hi) const;
+
   // Outward unit normal (pointing out of the body's material) at parameter s.
   Eigen::Vector2d OutwardNormal(double s) const;
 
@@ -74,6 +82,14 @@ class CurveLocator {
   };
   std::optional<Crossing> IntersectLine(const Eigen::Vector2d& b, const Eigen::Vector2d& n,
                                         double s_lo, double s_hi) const;
+
+  // IntersectLine(b, n, s_lo, s_hi) started at s_start (a neighbouring line's crossing):
+  // Newton's iteration over the scan's samples without the scan, kept only where the profile's
+  // bounds prove that (C - b) . t is monotonic there (|C'(s) . t| > |C''| |s - s_c| about the
+  // crossing s_c found), so that the scan would find this crossing alone; otherwise
+  // IntersectLine. The same crossing within kParameterTolerance_m.
+  std::optional<Crossing> IntersectLineFrom(const Eigen::Vector2d& b, const Eigen::Vector2d& n,
+                                            double s_start, double s_lo, double s_hi) const;
 
   double length() const { return length_; }
 
@@ -91,6 +107,19 @@ class CurveLocator {
   // Newton's refinement of the crossing in [s_{i-1}, s_i] given phi there (IntersectLine).
   Crossing RefineCrossing(const Eigen::Vector2d& b, const Eigen::Vector2d& n,
                           const Eigen::Vector2d& t, int i, double prev, double cur) const;
+  // The same from s in [lo, hi], phi(lo) = flo of the other sign than phi(hi); *converged is
+  // set when it ended on a root (phi = 0 or a Newton step below tolerance), *slope to phi' there.
+  Crossing RefineCrossingFrom(const Eigen::Vector2d& b, const Eigen::Vector2d& n,
+                              const Eigen::Vector2d& t, double s, double lo, double hi, double flo,
+                              bool* converged, double* slope) const;
+  // The projection onto the profile at s with position and derivative c, d1 there.
+  Projection MakeProjection(const Eigen::Vector2d& q, double s, const Eigen::Vector2d& c,
+                            const Eigen::Vector2d& d1) const;
+  // Bounds over blocks k0..k1 (their samples and knots): max |C''|, min and max |C'|.
+  struct Bounds {
+    double d2_max, speed_min, speed_max;
+  };
+  Bounds BlockBounds(int k0, int k1) const;
   // Squared distance from q to block k's box (a lower bound on its samples' squared
   // distances), and the range of (p - b) . t over the box.
   double BlockDistance2(int k, const Eigen::Vector2d& q) const;
@@ -111,6 +140,7 @@ class CurveLocator {
   int n_boxes_ = 0;
   const Eigen::Vector2d* box_lo_ = nullptr;
   const Eigen::Vector2d* box_hi_ = nullptr;
+  const Bounds* block_bounds_ = nullptr;  // per block, for ProjectFrom and IntersectLineFrom
   double max_abs_coordinate_ = 0.0;  // of the samples [m], for the rounding margin
 };
 

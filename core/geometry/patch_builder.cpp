@@ -27,16 +27,20 @@ int HalfCells(double x_half_m, double cell_dx_m) {
 
 using Section = LateralWalkCache::Section;
 
-// Rail and wheel crossings of the line P_c + tau t0 + lambda n0, near the previous crossing.
+// Rail and wheel crossings of the line P_c + tau t0 + lambda n0, near the previous crossing
+// (`near`'s, searched within `window` of them, Newton's iteration started at `start`'s:
+// CurveLocator::IntersectLineFrom).
 bool CrossSection(const WheelRailGeometry& g, const Eigen::Vector2d& pc, const Eigen::Vector2d& t0,
-                  const Eigen::Vector2d& n0, double tau, double rail_s_guess, double wheel_s_guess,
+                  const Eigen::Vector2d& n0, double tau, const Section& near, const Section& start,
                   double window, Section* out) {
   const Eigen::Vector2d b = pc + tau * t0;
-  auto r = g.rail().IntersectLine(b, n0, rail_s_guess - window, rail_s_guess + window);
+  auto r =
+      g.rail().IntersectLineFrom(b, n0, start.rail_s, near.rail_s - window, near.rail_s + window);
   if (!r) r = g.rail().IntersectLine(b, n0, 0.0, kInf);
   const Eigen::Vector2d b_w = g.RailToWheel(b);
   const Eigen::Vector2d n_w = g.RailDirectionToWheel(n0);
-  auto w = g.wheel().IntersectLine(b_w, n_w, wheel_s_guess - window, wheel_s_guess + window);
+  auto w = g.wheel().IntersectLineFrom(b_w, n_w, start.wheel_s, near.wheel_s - window,
+                                       near.wheel_s + window);
   if (!w) w = g.wheel().IntersectLine(b_w, n_w, 0.0, kInf);
   if (!r || !w) return false;
   *out = Section{tau, r->lambda, w->lambda, r->s, w->s};
@@ -77,9 +81,15 @@ int Walk(const WheelRailGeometry& g, const Eigen::Vector2d& pc, const Eigen::Vec
         break;
       }
       const Section prev = k == 1 ? start : walked[k - 2];
+      // Newton's start: the crossings extrapolated linearly from the two previous sections.
+      const Section before = k <= 2 ? start : walked[k - 3];
+      Section guess = prev;
+      if (k > 1) {
+        guess.rail_s = 2.0 * prev.rail_s - before.rail_s;
+        guess.wheel_s = 2.0 * prev.wheel_s - before.wheel_s;
+      }
       Section s;
-      if (!CrossSection(g, pc, t0, n0, tau, prev.rail_s, prev.wheel_s, LateralWalkWindow(step),
-                        &s)) {
+      if (!CrossSection(g, pc, t0, n0, tau, prev, guess, LateralWalkWindow(step), &s)) {
         side->ended = true;
         *limited = true;
         break;
@@ -118,8 +128,10 @@ LateralWalkCache::Walked* FindWalk(const WheelRailGeometry& g, const ContactCand
   }
   LateralWalkCache::Walked w{c.rail_point_m, c.normal,  c.rail_s_m, c.wheel_s_m, step,
                              false,          Section{}, {},         {}};
-  w.centre_found =
-      CrossSection(g, c.rail_point_m, t0, n0, 0.0, c.rail_s_m, c.wheel_s_m, 1e-3, &w.centre);
+  Section near;
+  near.rail_s = c.rail_s_m;
+  near.wheel_s = c.wheel_s_m;
+  w.centre_found = CrossSection(g, c.rail_point_m, t0, n0, 0.0, near, near, 1e-3, &w.centre);
   cache->walks.push_back(std::move(w));
   return &cache->walks.back();
 }
@@ -196,12 +208,16 @@ void FillConformalGaps(const WheelRailGeometry& g, double x_contact_m, int ic,
     const auto pr = g.ProjectOnRail(p, rail_s[j] - window, rail_s[j] + window);
     const double s_centre =
         g.ProjectOnWheel({x_contact_m, p.x(), p.y()}, wheel_s[j] - window, wheel_s[j] + window).s;
-    // Each cell's wheel projection warm from its neighbour's toward the contact column.
+    // Each cell's wheel projection searched about its neighbour's toward the contact column,
+    // Newton's iteration started there (extrapolated from the two before; ProjectFrom).
+    const CurveLocator& wheel = g.wheel_surface();
     const auto march = [&](int from, int dir) {
-      double sg = s_centre;
+      double sg = s_centre, sg_before = s_centre;
       for (int i = from; i >= 0 && i < grid.nx; i += dir) {
         const Eigen::Vector3d q(grid.X(i), p.x(), p.y());
-        const auto pw = g.ProjectOnWheel(q, sg - warm_window, sg + warm_window);
+        const auto pw = wheel.ProjectFrom(g.Meridian(q), 2.0 * sg - sg_before, sg - warm_window,
+                                          sg + warm_window);
+        sg_before = sg;
         sg = pw.s;
         grid.gap_m[grid.Index(i, j)] = pr.signed_distance + pw.signed_distance;
       }

@@ -71,8 +71,8 @@ struct LateralWalkCache {
 // line's base point, so a window only changes it where a nearer crossing lies outside it while
 // another lies inside: the profile turning back within a few tenths of a millimetre. It was
 // 50 steps + 0.5 mm (1.5 mm) before issue 20's grids; PatchBuilder.
-// TheWalksNarrowWindowFindsTheWideWindowsCrossingsBitForBit checks that both find the same
-// crossings on the gauge corner and the tread.
+// TheWalksNarrowWindowFindsTheWideWindowsCrossings checks that both find the same crossings
+// (within the refinement's tolerance) on the gauge corner and the tread.
 inline double LateralWalkWindow(double step_m) { return 8.0 * step_m + 1e-4; }
 
 struct PatchGridOptions {

@@ -1,5 +1,6 @@
 #include "core/geometry/curve_locator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -153,6 +154,81 @@ TEST(CurveLocator, AnswersAreTheProfileAtTheirParameterBitForBit) {
       }
     }
     EXPECT_GT(crossings, 1000);  // the lines do meet the profile
+  }
+}
+
+// ProjectFrom and IntersectLineFrom (issue 20's grids) against the scans they skip: queries
+// marching along the profiles as a grid's cells do (each started from its neighbour's answer,
+// extrapolated) end on the same closest point and crossing as Project and IntersectLine, within
+// kParameterTolerance_m of the same root each: s within twice it, lambda likewise (|C'| ~ 1),
+// and the signed distance within kDistanceRounding (the distance is stationary at the closest
+// point: a parameter 2e-12 m off moves it by some 1e-24 m; what is left is the rounding of a
+// distance of millimetres, some 1e-19 m). Then points about the centre of a 10 mm arc, where the
+// distance has other critical points within the window: the profile's bounds refuse Newton's
+// answer there, and the scan's is returned, bit for bit.
+TEST(CurveLocator, WarmStartedAnswersAreTheScansWithinTheParameterTolerance) {
+  constexpr double kSameS = 2 * CurveLocator::kParameterTolerance_m;
+  constexpr double kDistanceRounding = 1e-16;
+  const Profile rail_profile = MakeUic60();
+  const Profile wheel_profile = MakeS1002();
+  std::mt19937 rng(2121);
+  int projections = 0, crossings = 0;
+  for (const bool rail : {true, false}) {
+    const Profile& profile = rail ? rail_profile : wheel_profile;
+    const CurveLocator loc(profile, rail);
+    const double length = loc.length();
+    std::uniform_real_distribution<double> along(0.0, length), offset(-2e-3, 2e-3);
+    std::uniform_real_distribution<double> angle(0.0, std::numbers::pi);
+    for (int run = 0; run < 60; ++run) {
+      // A row of 40 points 0.1 mm apart along a random direction, near the profile.
+      const Eigen::Vector2d q0 =
+          profile.Position(along(rng)) + Eigen::Vector2d(offset(rng), offset(rng));
+      const double heading = angle(rng);
+      const Eigen::Vector2d step = 1e-4 * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+      const double phi = angle(rng);
+      const Eigen::Vector2d n(std::cos(phi), std::sin(phi));
+      const double window = 2e-4;
+      double s_p = loc.Project(q0).s, s_p_before = s_p;
+      auto x0 = loc.IntersectLine(q0, n, 0.0, length);
+      if (!x0) continue;
+      double s_x = x0->s, s_x_before = s_x;
+      for (int i = 1; i < 40; ++i) {
+        const Eigen::Vector2d q = q0 + i * step;
+        const auto warm = loc.ProjectFrom(q, 2 * s_p - s_p_before, s_p - window, s_p + window);
+        const auto scan = loc.Project(q, s_p - window, s_p + window);
+        ASSERT_NEAR(warm.s, scan.s, kSameS) << run << " " << i;
+        ASSERT_NEAR(warm.signed_distance, scan.signed_distance, kDistanceRounding)
+            << run << " " << i;
+        s_p_before = s_p;
+        s_p = scan.s;
+        ++projections;
+        const auto xw =
+            loc.IntersectLineFrom(q, n, 2 * s_x - s_x_before, s_x - window, s_x + window);
+        const auto xs = loc.IntersectLine(q, n, s_x - window, s_x + window);
+        ASSERT_EQ(xw.has_value(), xs.has_value()) << run << " " << i;
+        if (!xs) break;
+        ASSERT_NEAR(xw->s, xs->s, kSameS) << run << " " << i;
+        ASSERT_NEAR(xw->lambda, xs->lambda, kSameS) << run << " " << i;
+        s_x_before = s_x;
+        s_x = xs->s;
+        ++crossings;
+      }
+    }
+  }
+  EXPECT_GT(projections, 4000);
+  EXPECT_GT(crossings, 1000);
+  // About the centre of a 10 mm arc (the crown's centre of curvature), started anywhere.
+  const double R = 0.01;
+  const Profile crown = testing::ArcProfile(R, +1.0);
+  const CurveLocator arc(crown, true);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::uniform_real_distribution<double> near_centre(-1e-3, 1e-3), start(0.0, arc.length());
+    const Eigen::Vector2d q(near_centre(rng), R + near_centre(rng));
+    const double s0 = start(rng);
+    const auto warm = arc.ProjectFrom(q, s0, 0.0, arc.length());
+    const auto scan = arc.Project(q, 0.0, arc.length());
+    ASSERT_EQ(warm.s, scan.s) << trial;
+    ASSERT_EQ(warm.signed_distance, scan.signed_distance) << trial;
   }
 }
 
