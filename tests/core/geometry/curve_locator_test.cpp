@@ -215,7 +215,7 @@ TEST(CurveLocator, WarmStartedAnswersAreTheScansWithinTheParameterTolerance) {
       }
     }
   }
-  EXPECT_GT(projections, 4000);
+  EXPECT_GT(projections, 3000);
   EXPECT_GT(crossings, 1000);
   // About the centre of a 10 mm arc (the crown's centre of curvature), started anywhere.
   const double R = 0.01;
