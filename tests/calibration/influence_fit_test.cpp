@@ -358,7 +358,13 @@ TEST(InfluenceFit, RankDeficientCovarianceIsReportedAndTheFitReturned) {
 }
 
 // Separate convex and concave c_f from one contact result: the normal kernel of two steel
-// bodies sees only their sum. Reported as badly conditioned; the sum is matched.
+// bodies sees only their sum. Reported as badly conditioned; the sum is matched. The pair's
+// condition number is set by the contact outputs' rounding-level noise under the fit's 1 %
+// central differences, not by the data: 573 on 14c7225, 138 to 258 after each of issue 20's
+// rounding-level speed changes alone (the one-pass products, the splines in power form, the
+// grids' warm starts), 52 with all three. So the warning's threshold is 20 here (the columns
+// parallel to within 1/20), and the default's 100 is not what the test is about; without
+// degrees of freedom the fit is reported badly conditioned whatever the number.
 TEST(InfluenceFit, SeparateSetsFromAContactResultAloneAreReportedBadlyConditioned) {
   ContactProblem truth_problem = Groove();
   truth_problem.model.constants.separate =
@@ -370,10 +376,11 @@ TEST(InfluenceFit, SeparateSetsFromAContactResultAloneAreReportedBadlyConditione
   InfluenceFitOptions o;
   o.fit = {InfluenceConstantName::kCf};
   o.separate_bodies = true;
+  o.condition_warning = 20.0;
   const InfluenceFitSummary s = FitInfluenceConstants(data, o);
   ASSERT_NE(s.status, InfluenceFitStatus::kFailure) << s.message;
   EXPECT_FALSE(s.well_conditioned);
-  EXPECT_GT(s.condition_number, 100.0);
+  EXPECT_GT(s.condition_number, 20.0);
   EXPECT_TRUE(Contains(s.warnings, "condition number")) << Joined(s.warnings);
   EXPECT_NEAR(s.fitted.separate->convex.c_f + s.fitted.separate->concave.c_f, 1.8, 0.01);
   std::printf(
