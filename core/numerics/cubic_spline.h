@@ -104,10 +104,10 @@ class CubicSplineCurve {
     const int i = knots_.Piece(t);
     const double u = t - knots_.t()[i];
     const Piece& p = pieces_[i];
-    internal::EvaluateCubic(p.y.data(), u, value ? &value->x() : nullptr,
-                            d1 ? &d1->x() : nullptr, d2 ? &d2->x() : nullptr);
-    internal::EvaluateCubic(p.z.data(), u, value ? &value->y() : nullptr,
-                            d1 ? &d1->y() : nullptr, d2 ? &d2->y() : nullptr);
+    internal::EvaluateCubic(p.y.data(), u, value ? &value->x() : nullptr, d1 ? &d1->x() : nullptr,
+                            d2 ? &d2->x() : nullptr);
+    internal::EvaluateCubic(p.z.data(), u, value ? &value->y() : nullptr, d1 ? &d1->y() : nullptr,
+                            d2 ? &d2->y() : nullptr);
   }
 
   const std::vector<double>& knots() const { return knots_.t(); }
