@@ -257,9 +257,7 @@ CurveLocator::Projection CurveLocator::Project(const Eigen::Vector2d& q, double 
                                                double s_hi) const {
   s_lo = std::max(0.0, s_lo);
   s_hi = std::min(length_, s_hi);
-  const int n = n_samples_;
-  int i0 = std::clamp(static_cast<int>(std::floor(s_lo / step_)), 0, n - 1);
-  int i1 = std::clamp(static_cast<int>(std::ceil(s_hi / step_)), 0, n - 1);
+  const auto [i0, i1] = SampleRange(s_lo, s_hi);
   const int best = ClosestSample(q, i0, i1);
   Eigen::Vector2d point, d1;
   bool evaluated = false;
@@ -282,6 +280,11 @@ CurveLocator::Projection CurveLocator::MakeProjection(const Eigen::Vector2d& q, 
   const double dist = (q - p.point).norm();
   p.signed_distance = (q - p.point).dot(outward) >= 0 ? dist : -dist;
   return p;
+}
+
+std::pair<int, int> CurveLocator::SampleRange(double s_lo, double s_hi) const {
+  return {std::clamp(static_cast<int>(std::floor(s_lo / step_)), 0, n_samples_ - 1),
+          std::clamp(static_cast<int>(std::ceil(s_hi / step_)), 0, n_samples_ - 1)};
 }
 
 CurveLocator::Bounds CurveLocator::BlockBounds(int k0, int k1) const {
@@ -308,8 +311,7 @@ CurveLocator::Projection CurveLocator::ProjectFrom(const Eigen::Vector2d& q, dou
     // so g' >= v_min^2 - (|C(s) - q| + v_max reach) max |C''| > 0. Then the distance has this
     // one critical point there, a minimum, which the scan's closest sample brackets.
     if (evaluated && s - lo > 2 * kParameterTolerance_m && hi - s > 2 * kParameterTolerance_m) {
-      const int i0 = std::clamp(static_cast<int>(std::floor(lo / step_)), 0, n_samples_ - 1);
-      const int i1 = std::clamp(static_cast<int>(std::ceil(hi / step_)), 0, n_samples_ - 1);
+      const auto [i0, i1] = SampleRange(lo, hi);
       const Bounds b = BlockBounds(i0 / kScanBlock, (i1 - 1) / kScanBlock);
       const double reach = std::max(s - sample_s_[i0], sample_s_[i1] - s);
       const double far = (point - q).norm() + b.speed_max * reach;
@@ -376,8 +378,7 @@ std::optional<CurveLocator::Crossing> CurveLocator::IntersectLineFrom(const Eige
                                                                       double s_hi) const {
   const Eigen::Vector2d t(n.y(), -n.x());
   const double lo = std::max(0.0, s_lo), hi = std::min(length_, s_hi);
-  const int i0 = std::clamp(static_cast<int>(std::floor(lo / step_)), 0, n_samples_ - 1);
-  const int i1 = std::clamp(static_cast<int>(std::ceil(hi / step_)), 0, n_samples_ - 1);
+  const auto [i0, i1] = SampleRange(lo, hi);
   // The scan's samples [s_i0, s_i1] bracket a crossing at their ends: then Newton's iteration
   // from s_start inside that bracket.
   const double f0 = (sample_p_[i0] - b).dot(t), f1 = (sample_p_[i1] - b).dot(t);
@@ -404,9 +405,7 @@ std::optional<CurveLocator::Crossing> CurveLocator::IntersectLine(const Eigen::V
   const Eigen::Vector2d t(n.y(), -n.x());
   s_lo = std::max(0.0, s_lo);
   s_hi = std::min(length_, s_hi);
-  const int n_samples = n_samples_;
-  const int i0 = std::clamp(static_cast<int>(std::floor(s_lo / step_)), 0, n_samples - 1);
-  const int i1 = std::clamp(static_cast<int>(std::ceil(s_hi / step_)), 0, n_samples - 1);
+  const auto [i0, i1] = SampleRange(s_lo, s_hi);
   std::optional<Crossing> best;
   // Neighbours (i - 1, i) whose values (p - b) . t change sign (or touch zero) bracket a
   // crossing; each is refined and the one with the smallest |lambda| kept.

@@ -22,6 +22,7 @@
 
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -120,6 +121,9 @@ class CurveLocator {
     double d2_max, speed_min, speed_max;
   };
   Bounds BlockBounds(int k0, int k1) const;
+  // The samples a search over [s_lo, s_hi] scans: the first at or below s_lo, the last at or
+  // above s_hi, within the profile's.
+  std::pair<int, int> SampleRange(double s_lo, double s_hi) const;
   // Squared distance from q to block k's box (a lower bound on its samples' squared
   // distances), and the range of (p - b) . t over the box.
   double BlockDistance2(int k, const Eigen::Vector2d& q) const;
